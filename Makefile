@@ -1,0 +1,35 @@
+# The README's commands. Everything builds in a colcon workspace under .ws/ whose src/ links
+# back to this repository; Debian's ROS 1 lives in /usr, and /usr/bin goes first on PATH so that
+# catkin, roslaunch and rostest use the system python3 (a pyenv one has no ROS modules).
+SHELL := /bin/bash
+export PATH := /usr/bin:$(PATH)
+export PYTHONDONTWRITEBYTECODE := 1
+
+WS := $(CURDIR)/.ws
+SETUP := source $(WS)/install/setup.bash
+COLCON_BUILD := colcon build --event-handlers console_direct+ \
+	--cmake-args -DCMAKE_BUILD_TYPE=Release
+
+.PHONY: deps build demo test bench clean
+
+deps:
+	@scripts/install_deps.sh
+
+build: deps
+	@mkdir -p $(WS)/src
+	@ln -sfn $(CURDIR) $(WS)/src/propulsion_estimator
+	cd $(WS) && $(COLCON_BUILD)
+
+# Replays the bundled hover-flight bag through the node and prints the payload estimates.
+demo: build
+	$(SETUP) && scripts/run_demo.sh
+
+test: build
+	cd $(WS) && colcon test --event-handlers console_direct+ \
+		--packages-select propulsion_estimator && colcon test-result --verbose
+
+bench: build
+	$(SETUP) && scripts/run_benchmarks.sh
+
+clean:
+	rm -rf $(WS)
