@@ -1,0 +1,40 @@
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace propulsion_estimator {
+
+// One rotor in the body frame (REP-103: x forward, y left, z up), origin at the base link.
+struct Rotor {
+  std::string name;
+  Eigen::Vector3d position_m = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d thrust_axis = Eigen::Vector3d::UnitZ();  // unit vector
+  int spin_direction = 1;                                  // +1 counter-clockwise seen from above
+};
+
+struct MassProperties {
+  double mass_kg = 0.0;
+  Eigen::Vector3d centre_of_mass_m = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();  // about the centre of mass
+};
+
+// The multicopter: its rotors (in motor-channel order) and, when known, its empty mass
+// properties. Rotor positions are NaN when the geometry is unknown (no URDF given).
+struct Vehicle {
+  std::vector<Rotor> rotors;
+  std::optional<MassProperties> empty_mass;
+
+  bool hasGeometry() const;
+
+  // n rotors thrusting along +z at unknown positions: what the thesis' method needs.
+  static Vehicle upwardRotors(int n);
+  // Quad X in PX4/ArduPilot motor order (front-right, rear-left, front-left, rear-right).
+  static Vehicle quadX(double arm_length_m);
+};
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,57 @@
+#include "propulsion_estimator/ros/rcout_codec.h"
+
+#include <ros/serialization.h>
+
+namespace propulsion_estimator {
+
+const std::string& rcOutDefinition() {
+  static const std::string definition =
+      std::string("# RAW Servo out state\n\nstd_msgs/Header header\nuint16[] channels\n\n") + std::string(80, '=') +
+      "\nMSG: std_msgs/Header\n" + ros::message_traits::Definition<std_msgs::Header>::value();
+  return definition;
+}
+
+bool RcOutDecoder::decode(const topic_tools::ShapeShifter& message, RcOutMessage* out, std::string* error) {
+  if (message.getDataType() != kRcOutDataType || message.getMD5Sum() != kRcOutMd5Sum) {
+    *error = "expected " + std::string(kRcOutDataType) + " (md5sum " + kRcOutMd5Sum + "), got " +
+             message.getDataType() + " (md5sum " + message.getMD5Sum() + ")";
+    return false;
+  }
+  const std::uint32_t size = message.size();
+  if (buffer_.size() < size) buffer_.resize(size);
+  try {
+    ros::serialization::OStream writer(buffer_.data(), size);
+    message.write(writer);
+    ros::serialization::IStream reader(buffer_.data(), size);
+    ros::serialization::deserialize(reader, out->header);
+    std::uint32_t count = 0;
+    ros::serialization::deserialize(reader, count);
+    if (count > reader.getLength() / sizeof(std::uint16_t)) {
+      *error = "malformed mavros_msgs/RCOut: " + std::to_string(count) + " channels announced, " +
+               std::to_string(reader.getLength()) + " bytes left";
+      return false;
+    }
+    out->channels.resize(count);
+    for (std::uint16_t& channel : out->channels) ros::serialization::deserialize(reader, channel);
+  } catch (const ros::serialization::StreamOverrunException& e) {
+    *error = std::string("malformed mavros_msgs/RCOut: ") + e.what();
+    return false;
+  }
+  return true;
+}
+
+topic_tools::ShapeShifter encodeRcOut(const RcOutMessage& message) {
+  const std::uint32_t size =
+      ros::serialization::serializationLength(message.header) + 4 + 2 * static_cast<std::uint32_t>(message.channels.size());
+  std::vector<std::uint8_t> buffer(size);
+  ros::serialization::OStream writer(buffer.data(), size);
+  ros::serialization::serialize(writer, message.header);
+  ros::serialization::serialize(writer, message.channels);
+  topic_tools::ShapeShifter shifter;
+  shifter.morph(kRcOutMd5Sum, kRcOutDataType, rcOutDefinition(), "0");
+  ros::serialization::IStream reader(buffer.data(), size);
+  shifter.read(reader);
+  return shifter;
+}
+
+}  // namespace propulsion_estimator

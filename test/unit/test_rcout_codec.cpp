@@ -1,0 +1,63 @@
+#include <gtest/gtest.h>
+#include <std_msgs/Float64.h>
+
+#include "propulsion_estimator/ros/rcout_codec.h"
+
+namespace pe = propulsion_estimator;
+
+TEST(RcOutCodec, RoundTripsHeaderAndChannels) {
+  pe::RcOutMessage sent;
+  sent.header.seq = 7;
+  sent.header.stamp = ros::Time(12, 500);
+  sent.header.frame_id = "base_link";
+  sent.channels = {1500, 1510, 1490, 1505, 900, 900, 0, 0};
+  const topic_tools::ShapeShifter shifter = pe::encodeRcOut(sent);
+  EXPECT_EQ(shifter.getDataType(), "mavros_msgs/RCOut");
+  EXPECT_EQ(shifter.getMD5Sum(), "52cacf104bab5ae3b103cfe176590713");
+
+  pe::RcOutDecoder decoder;
+  pe::RcOutMessage received;
+  std::string error;
+  ASSERT_TRUE(decoder.decode(shifter, &received, &error)) << error;
+  EXPECT_EQ(received.header.stamp, sent.header.stamp);
+  EXPECT_EQ(received.header.frame_id, "base_link");
+  EXPECT_EQ(received.channels, sent.channels);
+}
+
+TEST(RcOutCodec, DefinitionEndsWithTheStdMsgsHeader) {
+  const std::string& definition = pe::rcOutDefinition();
+  EXPECT_EQ(definition.rfind("# RAW Servo out state\n\nstd_msgs/Header header\nuint16[] channels\n\n====", 0), 0u);
+  EXPECT_NE(definition.find("\nMSG: std_msgs/Header\n"), std::string::npos);
+  EXPECT_NE(definition.find("string frame_id"), std::string::npos);
+}
+
+TEST(RcOutCodec, RefusesOtherTypes) {
+  topic_tools::ShapeShifter shifter;
+  shifter.morph(ros::message_traits::MD5Sum<std_msgs::Float64>::value(), "std_msgs/Float64",
+                ros::message_traits::Definition<std_msgs::Float64>::value(), "0");
+  pe::RcOutDecoder decoder;
+  pe::RcOutMessage received;
+  std::string error;
+  EXPECT_FALSE(decoder.decode(shifter, &received, &error));
+  EXPECT_EQ(error,
+            "expected mavros_msgs/RCOut (md5sum 52cacf104bab5ae3b103cfe176590713), got std_msgs/Float64 (md5sum "
+            "fdb28210bfa9d7c91146260178d9a584)");
+}
+
+TEST(RcOutCodec, RefusesATruncatedPayload) {
+  pe::RcOutMessage sent;
+  sent.channels = {1500, 1500, 1500, 1500};
+  std::vector<std::uint8_t> bytes(ros::serialization::serializationLength(sent.header) + 4 + 8);
+  ros::serialization::OStream writer(bytes.data(), bytes.size());
+  ros::serialization::serialize(writer, sent.header);
+  ros::serialization::serialize(writer, std::uint32_t{1000});  // claims 1000 channels
+  topic_tools::ShapeShifter shifter;
+  shifter.morph(pe::kRcOutMd5Sum, pe::kRcOutDataType, pe::rcOutDefinition(), "0");
+  ros::serialization::IStream reader(bytes.data(), bytes.size());
+  shifter.read(reader);
+  pe::RcOutDecoder decoder;
+  pe::RcOutMessage received;
+  std::string error;
+  EXPECT_FALSE(decoder.decode(shifter, &received, &error));
+  EXPECT_EQ(error, "malformed mavros_msgs/RCOut: 1000 channels announced, 8 bytes left");
+}
