@@ -20,7 +20,7 @@ std::size_t windowCapacity(double span_s, double rate_hz) {
 const char* rejectionName(Rejection rejection) {
   static const char* const kNames[kRejectionCount] = {
       "none",           "bad_voltage",  "bad_imu",         "bad_velocity", "no_battery",    "stale_battery",
-      "disarmed",       "too_few_channels", "time_backwards", "outside_domain", "wrong_type"};
+      "disarmed",       "too_few_channels", "time_backwards", "outside_domain"};
   return kNames[static_cast<int>(rejection)];
 }
 
@@ -49,7 +49,6 @@ std::string describe(const RejectionDetail& d) {
       out << "motor outputs ignored: channel " << d.channel << " at " << d.value
           << " us (or the voltage) outside the model's domain, which says reject";
       break;
-    case Rejection::kWrongType: out << "message of the wrong type refused"; break;
   }
   return out.str();
 }
@@ -158,7 +157,7 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   const bool velocity_fresh = have_velocity_ && receipt_s - velocity_receipt_s_ <= config_.velocity_timeout_s;
   const bool tilt_known = imu_fresh && config_.compensate_tilt;
 
-  PropulsionTotals totals;
+  Totals totals;
   totals.voltage_v = voltage_v_;
   double moment_x = 0.0, moment_y = 0.0;
   for (std::size_t i = 0; i < vehicle_.rotors.size(); ++i) {
@@ -205,7 +204,7 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
 
 TareResult Estimator::tare() {
   TareResult result;
-  const PayloadEstimate& estimate = payload_.estimate();
+  const MassEstimate& estimate = payload_.estimate();
   if (!hover_.verdict().hovering) {
     result.message = "refused: " + describeHover();
   } else if (std::isnan(estimate.total_mass_kg)) {

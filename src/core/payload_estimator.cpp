@@ -49,7 +49,7 @@ PayloadEstimator::PayloadEstimator(const PayloadConfig& config, std::size_t capa
   clearEmptyMass();
 }
 
-const PayloadEstimate& PayloadEstimator::add(double stamp_s, double mass_kg, bool hovering) {
+const MassEstimate& PayloadEstimator::add(double stamp_s, double mass_kg, bool hovering) {
   if (hovering) {
     if (hovered_before_ && stamp_s - last_hover_stamp_s_ > config_.episode_gap_s) window_.clear();
     window_.push(stamp_s, mass_kg);
@@ -76,7 +76,7 @@ void PayloadEstimator::clearWindow() {
 
 void PayloadEstimator::update(bool hovering) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  PayloadEstimate& e = estimate_;
+  MassEstimate& e = estimate_;
   e.hovering = hovering;
   e.window_samples = static_cast<std::uint32_t>(window_.size());
   e.window_s = window_.span();

@@ -31,7 +31,7 @@ class EstimatorFixture {
 
   // Four motors at `pwm` through the model: the thrust the estimator must find.
   double modelMassKg(double pwm, double voltage_v = 11.4) const {
-    pe::MotorEstimate e;
+    pe::OperatingPoint e;
     model.evaluate(pwm, voltage_v, &e);
     return 4.0 * e.thrust_n / pe::kStandardGravity;
   }

@@ -43,7 +43,7 @@ TEST(Estimator, PayloadIsTotalMinusTaredEmptyMass) {
   EXPECT_EQ(f.estimator.addMotorOutputs(f.t, f.t, disarmed.data(), 8), pe::Rejection::kDisarmed);
   f.t += 1.0;
   f.fly(1760.0, 4.0);
-  const pe::PayloadEstimate& payload = f.estimator.output().payload;
+  const pe::MassEstimate& payload = f.estimator.output().payload;
   EXPECT_EQ(payload.state, pe::PayloadState::kHovering);
   EXPECT_EQ(payload.empty_mass_source, pe::EmptyMassSource::kTare);
   EXPECT_NEAR(payload.payload_mass_kg, f.modelMassKg(1760.0) - f.modelMassKg(1680.0), 1e-9);

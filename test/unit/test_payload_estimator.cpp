@@ -18,7 +18,7 @@ TEST(PayloadEstimator, AveragesHoverSamplesOnly) {
   for (int k = 1; k <= 3; ++k) estimator.add(k * 0.02, 1.6, true);
   EXPECT_EQ(estimator.estimate().state, pe::PayloadState::kWaitingForHover);
   estimator.add(0.08, 1.8, true);
-  const pe::PayloadEstimate& e = estimator.estimate();
+  const pe::MassEstimate& e = estimator.estimate();
   EXPECT_EQ(e.state, pe::PayloadState::kHovering);
   EXPECT_NEAR(e.total_mass_kg, 1.65, 1e-12);
   EXPECT_NEAR(e.mass_std_kg, 0.1, 1e-12);  // sample standard deviation of 1.6, 1.6, 1.6, 1.8

@@ -30,9 +30,8 @@ enum class Rejection {
   kTooFewChannels,  // RCOut shorter than the highest motor channel
   kTimeBackwards,   // RCOut stamp older than the previous accepted one
   kOutsideDomain,   // outside the model's domain and the model says reject
-  kWrongType,       // not mavros_msgs/RCOut (counted by the ROS layer)
 };
-constexpr int kRejectionCount = 11;
+constexpr int kRejectionCount = 10;
 const char* rejectionName(Rejection rejection);
 
 // The last refusal with what it was about, turned into text only when someone asks.
@@ -47,10 +46,10 @@ std::string describe(const RejectionDetail& detail);
 struct MotorOutput {
   int channel = 0;
   double pwm_us = 0.0;
-  MotorEstimate estimate;
+  OperatingPoint estimate;
 };
 
-struct PropulsionTotals {
+struct Totals {
   double voltage_v = 0.0;
   double thrust_n = 0.0;
   double vertical_thrust_n = 0.0;
@@ -66,9 +65,9 @@ struct PropulsionTotals {
 struct EstimatorOutput {
   double stamp_s = 0.0;
   std::vector<MotorOutput> motors;  // sized once, one per rotor
-  PropulsionTotals totals;
+  Totals totals;
   HoverVerdict hover;
-  PayloadEstimate payload;
+  MassEstimate payload;
 };
 
 struct EstimatorCounters {

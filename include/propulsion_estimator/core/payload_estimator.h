@@ -26,7 +26,7 @@ const char* emptyMassSourceName(EmptyMassSource source);
 enum class PayloadState { kWaitingForHover, kNoTareYet, kHovering, kHolding };
 const char* payloadStateName(PayloadState state);
 
-struct PayloadEstimate {
+struct MassEstimate {
   PayloadState state = PayloadState::kWaitingForHover;
   bool hovering = false;
   double total_mass_kg = 0.0;  // NaN until min_samples hover samples
@@ -44,8 +44,8 @@ class PayloadEstimator {
   PayloadEstimator(const PayloadConfig& config, std::size_t capacity);
 
   // The mass the thrust holds at `stamp_s`, and whether the vehicle hovers. Allocates nothing.
-  const PayloadEstimate& add(double stamp_s, double mass_kg, bool hovering);
-  const PayloadEstimate& estimate() const { return estimate_; }
+  const MassEstimate& add(double stamp_s, double mass_kg, bool hovering);
+  const MassEstimate& estimate() const { return estimate_; }
 
   void setEmptyMass(double mass_kg, EmptyMassSource source);
   void clearEmptyMass();
@@ -59,7 +59,7 @@ class PayloadEstimator {
   TimeWindow<double> window_;
   double last_hover_stamp_s_ = 0.0;
   bool hovered_before_ = false;
-  PayloadEstimate estimate_;
+  MassEstimate estimate_;
 };
 
 }  // namespace propulsion_estimator
