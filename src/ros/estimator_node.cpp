@@ -146,7 +146,7 @@ void EstimatorNode::logRejection(Rejection rejection) {
 
 void EstimatorNode::publish() {
   const EstimatorOutput& out = estimator_->output();
-  const std_msgs::Header header = rc_out_.header;
+  const std_msgs::Header& header = rc_out_.header;
 
   motors_msg_.header = header;
   motors_msg_.voltage_v = out.totals.voltage_v;

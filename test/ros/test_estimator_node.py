@@ -4,9 +4,11 @@
 import os
 import unittest
 
+import roslaunch
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticStatus
+from propulsion_estimator.msg import PayloadEstimate
 
 from estimator_harness import EstimatorHarness, is_nan
 
@@ -31,6 +33,28 @@ class EstimatorNodeTest(unittest.TestCase):
         self.assertEqual(self.h.count(self.h.motors), before, "an estimate was published from a bad input")
         status = self.h.wait_for_diagnostic("Motor outputs", diagnostic_text)
         self.assertEqual(status.level, level)
+
+    def assert_tare_survives_a_restart(self, empty_mass_kg):
+        """A second estimator started with the same tare file begins with the persisted tare."""
+        for name in ("model", "tare_file"):
+            rospy.set_param("/restarted/" + name, rospy.get_param("/propulsion_estimator/" + name))
+        launch = roslaunch.scriptapi.ROSLaunch()
+        launch.start()
+        process = launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name="restarted",
+                                                    namespace="/", output="log"))
+        try:
+            received = []
+            subscriber = rospy.Subscriber("/restarted/payload", PayloadEstimate, received.append)
+            rospy.wait_for_service("/restarted/tare", timeout=30.0)
+            self.h.wait_for(lambda: self.h.rc_out_pub.get_num_connections() > 1, 10.0, "the restarted node")
+            self.h.fly(HOVER, 0.3, voltage_v=11.4)
+            self.h.wait_for(lambda: received, 5.0, "an estimate of the restarted node")
+            self.assertEqual(received[-1].empty_mass_source, "tare_file")
+            self.assertAlmostEqual(received[-1].empty_mass_kg, empty_mass_kg, places=9)
+            subscriber.unregister()
+        finally:
+            process.stop()
+            launch.stop()
 
     def test_1_no_estimate_before_any_battery_voltage(self):
         self.h.fly(HOVER, 1.0)
@@ -74,6 +98,7 @@ class EstimatorNodeTest(unittest.TestCase):
         self.assertEqual(payload.state, "hovering")
         self.assertEqual(payload.empty_mass_source, "tare")
         self.assertAlmostEqual(payload.payload_mass_kg, 0.0, delta=1e-6)
+        self.assert_tare_survives_a_restart(payload.empty_mass_kg)
         answer = self.h.call("reset")
         self.assertTrue(answer.success)
         self.assertEqual(answer.message, "windows and tare cleared; empty mass now unknown (source: none)")
