@@ -441,7 +441,8 @@ BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& opti
   } catch (const ConfigError& e) {
     validation_error = e.what();
   }
-  return BenchFit{std::move(final_model), validation_error, std::move(data), grouping, description, reports, notes};
+  return BenchFit{std::move(final_model), validation_error, std::move(data), grouping, description, reports, notes,
+                  options.parsimony};
 }
 
 }  // namespace propulsion_estimator

@@ -75,6 +75,7 @@ struct BenchFit {
   std::string grouping_description;
   std::array<OutputFitReport, kOutputCount> outputs;
   std::vector<std::string> notes;  // data notes, then what the fit decided (metadata, grouping)
+  double parsimony = 0.0;          // FitOptions::parsimony the degrees were chosen with
 };
 
 // Fits the model: per output the polyXY degrees (up to the option's maxima) with the least
