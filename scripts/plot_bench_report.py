@@ -209,7 +209,7 @@ def plot_compare(directory):
     left.set_xlabel("Hover time (min)")
     left.set_ylabel("Total hover current (A)")
     left.grid(alpha=0.3)
-    left.legend(fontsize=8)
+    left.legend(fontsize=8, loc="upper left")
     names = [m for m in models if hover.get(m, {}).get("endurance_min", "") != ""]
     values = [float(hover[m]["endurance_min"]) for m in names]
     bars = right.bar(range(len(names)), values, color=[colours[m] for m in names])
