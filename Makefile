@@ -6,7 +6,7 @@ export PATH := /usr/bin:$(PATH)
 export PYTHONDONTWRITEBYTECODE := 1
 
 WS := $(CURDIR)/.ws
-SETUP := source $(WS)/install/setup.bash
+SETUP := source $(WS)/install/setup.sh
 COLCON_BUILD := colcon build --event-handlers console_direct+ \
 	--cmake-args -DCMAKE_BUILD_TYPE=Release
 
@@ -26,7 +26,7 @@ demo: build
 
 test: build
 	cd $(WS) && colcon test --event-handlers console_direct+ \
-		--packages-select propulsion_estimator && colcon test-result --verbose
+		&& colcon test-result --verbose
 
 bench: build
 	$(SETUP) && scripts/run_benchmarks.sh
