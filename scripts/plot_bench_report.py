@@ -69,7 +69,12 @@ def plot_fit(directory):
     voltage_curves = read_rows(directory, "fit_curves_voltage.csv")
     grid = read_rows(directory, "fit_surface_grid.csv")
     outputs = list(units)
-    levels = sorted({float(row["voltage_level_v"]) for row in points})
+    by_level, by_pwm_level, by_output = {}, {}, {}
+    for row in points:
+        by_level.setdefault((row["output"], float(row["voltage_level_v"])), []).append(row)
+        by_pwm_level.setdefault((row["output"], float(row["pwm_level_us"])), []).append(row)
+        by_output.setdefault(row["output"], []).append(row)
+    levels = sorted({level for (_, level) in by_level})
     colours = level_colours(levels)
     many_levels = len(levels) > 10
 
@@ -77,7 +82,7 @@ def plot_fit(directory):
     figure, axes = panel_grid(len(outputs), "Outputs against PWM at each voltage level: bench points and fitted sections")
     for axis, output in zip(axes, outputs):
         for level in levels:
-            rows = [r for r in points if r["output"] == output and float(r["voltage_level_v"]) == level]
+            rows = by_level.get((output, level), [])
             on = [r for r in rows if r["off_level"] == "0"]
             off = [r for r in rows if r["off_level"] == "1"]
             axis.scatter([float(r["pwm_us"]) for r in on], [float(r["measured"]) for r in on], s=10,
@@ -101,9 +106,9 @@ def plot_fit(directory):
     figure, axes = panel_grid(len(outputs), "Outputs against voltage at fixed PWM: bench points and fitted sections")
     for axis, output in zip(axes, outputs):
         for pwm in pwm_levels:
-            rows = [r for r in points if r["output"] == output and float(r["pwm_level_us"]) == pwm]
-            axis.scatter([float(r["voltage_v"]) for r in rows], [float(r["measured"]) for r in rows], s=10,
-                         color=pwm_colours[pwm], alpha=0.6)
+            rows = by_pwm_level.get((output, pwm), [])
+            axis.scatter([float(r["voltage_v"]) for r in rows], [float(r["measured_at_pwm_level"]) for r in rows],
+                         s=10, color=pwm_colours[pwm], alpha=0.6)
             curve = [r for r in voltage_curves if r["output"] == output and float(r["pwm_us"]) == pwm]
             axis.plot([float(r["voltage_v"]) for r in curve], [float(r["fitted"]) for r in curve],
                       color=pwm_colours[pwm], linewidth=1.6, label="%.0f \u00b5s" % pwm)
@@ -117,7 +122,7 @@ def plot_fit(directory):
     # Residuals.
     figure, axes = panel_grid(len(outputs), "Residuals (fitted - measured) against PWM, coloured by supply voltage")
     for axis, output in zip(axes, outputs):
-        rows = [r for r in points if r["output"] == output]
+        rows = by_output.get(output, [])
         residuals = np.array([float(r["residual"]) for r in rows])
         scatter = axis.scatter([float(r["pwm_us"]) for r in rows], residuals, s=10, alpha=0.7, cmap="viridis",
                                c=[float(r["voltage_v"]) for r in rows])
@@ -144,7 +149,7 @@ def plot_fit(directory):
         filled = axis.contourf(pwms, volts, values, levels=14, cmap="viridis")
         lines = axis.contour(pwms, volts, values, levels=7, colors="white", linewidths=0.6)
         axis.clabel(lines, fontsize=7, fmt=contour_label)
-        data = [r for r in points if r["output"] == output]
+        data = by_output.get(output, [])
         axis.scatter([float(r["pwm_us"]) for r in data], [float(r["voltage_v"]) for r in data], s=9, color="black",
                      edgecolors="white", linewidths=0.5)
         figure.colorbar(filled, ax=axis, label=axis_label(output, units[output]))

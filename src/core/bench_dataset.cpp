@@ -226,7 +226,6 @@ BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOpt
       const bool efficient_enough = peak_power > 0.0 && log_power[r] >= kEfficiencyMinPowerShare * peak_power;
       data.values[efficiency].push_back(efficient_enough ? thrust_g / log_power[r] : kNaN);
       data.values[rpm].push_back(log.has(BenchColumn::kRpm) ? log.column(BenchColumn::kRpm)[r] : kNaN);
-      data.motor_temp_c.push_back(log.has(BenchColumn::kMotorTemp) ? log.column(BenchColumn::kMotorTemp)[r] : kNaN);
     }
   }
   assignVoltageLevels(logs, options, &data);

@@ -287,16 +287,6 @@ bool measured(const BenchDataset& data, Output output) {
 
 }  // namespace
 
-const char* fitGroupingName(FitGrouping grouping) {
-  switch (grouping) {
-    case FitGrouping::kAuto: return "auto";
-    case FitGrouping::kVoltageLevel: return "voltage";
-    case FitGrouping::kPwmLevel: return "pwm";
-    case FitGrouping::kLog: return "log";
-  }
-  return "?";
-}
-
 void FitOptions::validate() const {
   if (max_pwm_degree < 1 || max_pwm_degree > GroupedLeastSquares::kMaxPwmDegree) {
     throw ConfigError("max PWM degree " + std::to_string(max_pwm_degree) + " is outside 1..5");

@@ -10,10 +10,6 @@
 
 namespace propulsion_estimator {
 
-const char* benchLogFormatName(BenchLogFormat format) {
-  return format == BenchLogFormat::kNative ? "native" : "Tyto/RCbenchmark";
-}
-
 BenchLogFormat detectBenchLogFormat(const CsvText& table) {
   if (isNativeBenchHeader(table.header)) return BenchLogFormat::kNative;
   if (isTytoHeader(table.header)) return BenchLogFormat::kTyto;

@@ -15,6 +15,10 @@ constexpr int kCurvePoints = 101;
 constexpr int kGridPwm = 61;
 constexpr int kGridVoltage = 31;
 constexpr std::size_t kMaxVoltageSections = 6;
+// Samples drawn per output: a million-row fit would make figures no one can read (and slow to draw).
+constexpr long kMaxPlottedPoints = 20000;
+
+long plotStride(long samples) { return (samples + kMaxPlottedPoints - 1) / kMaxPlottedPoints; }
 
 std::string number(double value, const char* pattern = "%.7g") {
   if (std::isnan(value)) return "";
@@ -84,18 +88,25 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
   }
 
   std::ofstream points = openFile(directory, "fit_points.csv");
-  points << "output,log,line,voltage_level_v,pwm_level_us,pwm_us,voltage_v,off_level,measured,fitted,residual\n";
+  // measured_at_pwm_level: the sample moved along the surface from its PWM to its PWM level's,
+  // so that the voltage sections show the noise, not the width of a PWM bin.
+  points << "output,log,line,voltage_level_v,pwm_level_us,pwm_us,voltage_v,off_level,measured,fitted,residual,"
+            "measured_at_pwm_level\n";
   for (Output output : outputs) {
     const std::vector<double>& y = data.output(output);
+    const long stride = plotStride(fit.outputs[static_cast<int>(output)].points);
+    long seen = 0;
     for (std::size_t row = 0; row < data.rows(); ++row) {
-      if (std::isnan(y[row])) continue;
+      if (std::isnan(y[row]) || seen++ % stride != 0) continue;
       const double level_v = data.voltage_levels[data.voltage_level[row]].centre;
+      const double pwm_level = data.pwm_levels[data.pwm_level[row]].centre;
       const double fitted = model.evaluateRaw(output, data.pwm_us[row], data.voltage_v[row]);
+      const double at_level = y[row] + model.evaluateRaw(output, pwm_level, data.voltage_v[row]) - fitted;
       points << outputName(output) << "," << baseName(data.sources[data.log[row]]) << "," << data.line[row] << ","
-             << number(level_v) << "," << number(data.pwm_levels[data.pwm_level[row]].centre) << ","
-             << number(data.pwm_us[row]) << "," << number(data.voltage_v[row]) << ","
-             << (std::abs(data.voltage_v[row] - level_v) > kSagNoteV ? 1 : 0) << "," << number(y[row]) << ","
-             << number(fitted) << "," << number(fitted - y[row]) << "\n";
+             << number(level_v) << "," << number(pwm_level) << "," << number(data.pwm_us[row]) << ","
+             << number(data.voltage_v[row]) << "," << (std::abs(data.voltage_v[row] - level_v) > kSagNoteV ? 1 : 0)
+             << "," << number(y[row]) << "," << number(fitted) << "," << number(fitted - y[row]) << ","
+             << number(at_level) << "\n";
     }
   }
 
@@ -212,7 +223,10 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
        << number(report.max_error, "%.4g") << " | " << (def.fit ? number(def.fit->held_out_rmse, "%.4g") : "") << " |\n";
   }
   md << "\nDerived outputs are compared with the bench's own ratio where the row drew at least "
-     << number(100.0 * kEfficiencyMinPowerShare, "%.0f") << "% of its log's peak power.\n\n";
+     << number(100.0 * kEfficiencyMinPowerShare, "%.0f") << "% of its log's peak power.";
+  const long stride = plotStride(fit.outputs[static_cast<int>(Output::kThrust)].points);
+  if (stride > 1) md << " The figures show every " << stride << "th sample.";
+  md << "\n\n";
 
   md << "### Held-out RMSE of every candidate (rows: PWM degree, columns: voltage degree; - : not determined)\n\n";
   for (Output output : kAllOutputs) {
@@ -240,7 +254,8 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
   const char* captions[] = {
       "Outputs against PWM at each voltage level (thesis 4.1): bench points and the fitted surface's section at the "
       "level's voltage; hollow points sit more than 0.5 V off their level (supply sag).",
-      "Outputs against voltage at fixed PWM (thesis 4.2): points of that PWM level and the surface's section.",
+      "Outputs against voltage at fixed PWM (thesis 4.2): the surface's section and the points of that PWM level "
+      "(binned PWM: each point moved along the surface to the level's PWM, so the scatter is the noise).",
       "Residuals (fitted - measured) against PWM, coloured by voltage.",
       "The surfaces as contour maps over the domain, with the bench points (where data are missing, the surface "
       "extrapolates)."};

@@ -42,7 +42,6 @@ struct BenchDataset {
   std::vector<double> pwm_us;
   std::vector<double> voltage_v;
   std::array<std::vector<double>, kOutputCount> values;
-  std::vector<double> motor_temp_c;  // NaN where not logged
 
   std::vector<int> voltage_level;  // per row, index into voltage_levels
   std::vector<Level> voltage_levels;

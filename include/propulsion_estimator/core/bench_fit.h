@@ -21,7 +21,6 @@ enum class FitGrouping {
   kPwmLevel,      // hold out one PWM level at every voltage: the only choice with 2 voltage levels
   kLog,           // hold out one log file
 };
-const char* fitGroupingName(FitGrouping grouping);
 
 struct FitOptions {
   FitGrouping grouping = FitGrouping::kAuto;

@@ -30,7 +30,6 @@ struct BenchReadOptions {
 };
 
 enum class BenchLogFormat { kNative, kTyto };
-const char* benchLogFormatName(BenchLogFormat format);
 
 // Detects the format from the header (native column names, or an RCbenchmark/Tyto "ESC signal"
 // column) and reads the log. What the reader decided (a negated thrust, the rpm column it took,
