@@ -53,7 +53,7 @@ std::string comparisonTables(const std::vector<ModelComparison>& models, const C
   }
   if (!options.hover) return md.str();
   const HoverOptions& h = *options.hover;
-  md << "\nHover of a " << number(h.vehicle_mass_kg, "%.3g") << " kg vehicle on " << h.motors << " motors ("
+  md << "\nHover of a " << number(h.vehicle_mass_kg, "%.4g") << " kg vehicle on " << h.motors << " motors ("
      << number(h.thrustPerMotorN() / kNewtonPerGramForce, "%.1f") << " g each), " << h.cells << "S "
      << number(h.capacity_mah, "%.0f") << " mAh; operating point at the mid-discharge "
      << number(h.midVoltage(), "%.2f") << " V:\n\n";
