@@ -79,7 +79,8 @@ def plot_fit(directory):
     many_levels = len(levels) > 10
 
     # Outputs against PWM at each voltage level.
-    figure, axes = panel_grid(len(outputs), "Outputs against PWM at each voltage level: bench points and fitted sections")
+    figure, axes = panel_grid(len(outputs),
+                              "Outputs against PWM at each voltage level: bench points and fitted sections")
     for axis, output in zip(axes, outputs):
         for level in levels:
             rows = by_level.get((output, level), [])

@@ -40,7 +40,8 @@ void writeNativeBenchCsv(const BenchLog& log, std::ostream& out, ThrustUnit thru
   for (std::size_t k = 0; k < logged.size(); ++k) {
     const auto column = static_cast<BenchColumn>(logged[k]);
     out << (k ? "," : "")
-        << (column == BenchColumn::kThrust && thrust_unit == ThrustUnit::kGram ? kThrustGrams : benchColumnName(column));
+        << (column == BenchColumn::kThrust && thrust_unit == ThrustUnit::kGram ? kThrustGrams
+                                                                               : benchColumnName(column));
   }
   for (const auto& extra : log.extra_columns) out << "," << csvField(extra.first);
   out << "\n";

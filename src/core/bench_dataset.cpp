@@ -79,7 +79,8 @@ void assignVoltageLevels(const std::vector<BenchLog>& logs, const LevelOptions& 
     const int l = data->log[row];
     const double v = data->voltage_v[row];
     row_key[row] = is_steady[l] ? log_key[l] : static_cast<long>(std::floor(v / options.voltage_bin_v));
-    centre_sum[row_key[row]] += is_steady[l] ? log_median[l] : (std::floor(v / options.voltage_bin_v) + 0.5) * options.voltage_bin_v;
+    centre_sum[row_key[row]] +=
+        is_steady[l] ? log_median[l] : (std::floor(v / options.voltage_bin_v) + 0.5) * options.voltage_bin_v;
     ++count[row_key[row]];
   }
   // A steady level whose centre falls in an occupied bin is that bin's level.
@@ -118,11 +119,14 @@ void assignVoltageLevels(const std::vector<BenchLog>& logs, const LevelOptions& 
   // Supply sag within steady logs, for the report.
   for (std::size_t l = 0; l < logs.size(); ++l) {
     if (!is_steady[l]) {
-      data->notes.push_back(logs[l].source + ": voltage varies (" + format("%.2f", *std::min_element(
-                                logs[l].column(BenchColumn::kVoltage).begin(), logs[l].column(BenchColumn::kVoltage).end())) +
-                            " to " + format("%.2f V", *std::max_element(logs[l].column(BenchColumn::kVoltage).begin(),
-                                                                         logs[l].column(BenchColumn::kVoltage).end())) +
-                            "): its rows are binned by voltage in " + format("%.2g V", options.voltage_bin_v) + " bins");
+      data->notes.push_back(logs[l].source + ": voltage varies (" +
+                            format("%.2f", *std::min_element(logs[l].column(BenchColumn::kVoltage).begin(),
+                                                             logs[l].column(BenchColumn::kVoltage).end())) +
+                            " to " +
+                            format("%.2f V", *std::max_element(logs[l].column(BenchColumn::kVoltage).begin(),
+                                                               logs[l].column(BenchColumn::kVoltage).end())) +
+                            "): its rows are binned by voltage in " + format("%.2g V", options.voltage_bin_v) +
+                            " bins");
       continue;
     }
     const std::vector<double>& v = logs[l].column(BenchColumn::kVoltage);
@@ -210,8 +214,10 @@ BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOpt
     }
     std::vector<double> log_power(n, kNaN);
     for (std::size_t r = 0; r < n; ++r) {
-      if (has_power) log_power[r] = log.column(BenchColumn::kPower)[r];
-      else if (has_current) log_power[r] = v[r] * log.column(BenchColumn::kCurrent)[r];
+      if (has_power)
+        log_power[r] = log.column(BenchColumn::kPower)[r];
+      else if (has_current)
+        log_power[r] = v[r] * log.column(BenchColumn::kCurrent)[r];
     }
     const double peak_power = (has_power || has_current) ? *std::max_element(log_power.begin(), log_power.end()) : 0.0;
     for (std::size_t r = 0; r < n; ++r) {

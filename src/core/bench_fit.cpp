@@ -25,11 +25,16 @@ std::string format(const char* pattern, double value) {
 
 const char* fileUnit(Output output) {
   switch (output) {
-    case Output::kThrust: return "g";
-    case Output::kCurrent: return "A";
-    case Output::kPower: return "W";
-    case Output::kEfficiency: return "g/W";
-    case Output::kRpm: return "rpm";
+    case Output::kThrust:
+      return "g";
+    case Output::kCurrent:
+      return "A";
+    case Output::kPower:
+      return "W";
+    case Output::kEfficiency:
+      return "g/W";
+    case Output::kRpm:
+      return "rpm";
   }
   return "";
 }
@@ -320,14 +325,15 @@ BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& opti
     return std::make_pair(*lo, *hi);
   }();
   domain.outside = options.outside;
-  const InputScaling scaling{0.5 * (domain.pwm_min_us + domain.pwm_max_us), 0.5 * (domain.pwm_max_us - domain.pwm_min_us),
-                             0.5 * (domain.voltage_min_v + domain.voltage_max_v),
-                             0.5 * (domain.voltage_max_v - domain.voltage_min_v)};
+  const InputScaling scaling{
+      0.5 * (domain.pwm_min_us + domain.pwm_max_us), 0.5 * (domain.pwm_max_us - domain.pwm_min_us),
+      0.5 * (domain.voltage_min_v + domain.voltage_max_v), 0.5 * (domain.voltage_max_v - domain.voltage_min_v)};
 
   // Grouping: voltage levels when holding one out leaves at least two to fit a voltage term.
   FitGrouping grouping = options.grouping;
   const int voltage_levels = static_cast<int>(data.voltage_levels.size());
-  if (grouping == FitGrouping::kAuto) grouping = voltage_levels >= 3 ? FitGrouping::kVoltageLevel : FitGrouping::kPwmLevel;
+  if (grouping == FitGrouping::kAuto)
+    grouping = voltage_levels >= 3 ? FitGrouping::kVoltageLevel : FitGrouping::kPwmLevel;
   std::vector<int> group_of_row;
   int groups = 0;
   std::string description;
@@ -381,13 +387,16 @@ BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& opti
 
   fitted(Output::kThrust);
   const bool current_logged = measured(data, Output::kCurrent);
-  const bool power_column = std::any_of(logs.begin(), logs.end(), [](const BenchLog& log) {
-    return log.has(BenchColumn::kPower);
-  });
-  if (options.without.count(Output::kCurrent)) absent(Output::kCurrent, "left out on request (--without current)");
-  else if (current_logged) fitted(Output::kCurrent);
-  else if (power_column && !options.without.count(Output::kPower)) derived(Output::kCurrent, "the logs have no current column");
-  else absent(Output::kCurrent, "the logs have no current column");
+  const bool power_column =
+      std::any_of(logs.begin(), logs.end(), [](const BenchLog& log) { return log.has(BenchColumn::kPower); });
+  if (options.without.count(Output::kCurrent))
+    absent(Output::kCurrent, "left out on request (--without current)");
+  else if (current_logged)
+    fitted(Output::kCurrent);
+  else if (power_column && !options.without.count(Output::kPower))
+    derived(Output::kCurrent, "the logs have no current column");
+  else
+    absent(Output::kCurrent, "the logs have no current column");
 
   if (options.without.count(Output::kPower)) {
     absent(Output::kPower, "left out on request (--without power)");
@@ -400,13 +409,19 @@ BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& opti
   }
 
   const bool power_modelled = definitions[static_cast<int>(Output::kPower)].source != OutputSource::kNone;
-  if (options.efficiency_surface) fitted(Output::kEfficiency);
-  else if (power_modelled) derived(Output::kEfficiency, "thrust / power, as the bench defines it");
-  else absent(Output::kEfficiency, "no power to divide thrust by");
+  if (options.efficiency_surface)
+    fitted(Output::kEfficiency);
+  else if (power_modelled)
+    derived(Output::kEfficiency, "thrust / power, as the bench defines it");
+  else
+    absent(Output::kEfficiency, "no power to divide thrust by");
 
-  if (options.without.count(Output::kRpm)) absent(Output::kRpm, "left out on request (--without rpm)");
-  else if (measured(data, Output::kRpm)) fitted(Output::kRpm);
-  else absent(Output::kRpm, "the logs have no rpm column");
+  if (options.without.count(Output::kRpm))
+    absent(Output::kRpm, "left out on request (--without rpm)");
+  else if (measured(data, Output::kRpm))
+    fitted(Output::kRpm);
+  else
+    absent(Output::kRpm, "the logs have no rpm column");
 
   PropulsionModel model(metadata, domain, definitions);
   for (Output output : kAllOutputs) {

@@ -20,8 +20,9 @@ BenchLogFormat detectBenchLogFormat(const CsvText& table) {
 
 BenchLog parseBenchLog(const std::string& text, const std::string& source, const BenchReadOptions& options) {
   const CsvText table = splitCsvText(text, source);
-  BenchLog log = detectBenchLogFormat(table) == BenchLogFormat::kNative ? nativeBenchLogFromTable(table, options.decimal)
-                                                                        : tytoBenchLogFromTable(table, options);
+  BenchLog log = detectBenchLogFormat(table) == BenchLogFormat::kNative
+                     ? nativeBenchLogFromTable(table, options.decimal)
+                     : tytoBenchLogFromTable(table, options);
   if (table.had_byte_order_mark) log.notes.insert(log.notes.begin(), "UTF-8 byte-order mark skipped");
   return log;
 }

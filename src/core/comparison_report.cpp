@@ -40,7 +40,8 @@ void writeSamples(std::ofstream& out, const std::string& label, const std::vecto
 
 std::string comparisonTables(const std::vector<ModelComparison>& models, const ComparisonOptions& options) {
   std::ostringstream md;
-  md << "| combination | ESC | motor | propeller | at (V) | max thrust (g) | max current (A) | max power (W) | max rpm | "
+  md << "| combination | ESC | motor | propeller | at (V) | max thrust (g) | max current (A) | max power (W) | max rpm "
+        "| "
         "efficiency at max power (g/W) | peak efficiency (g/W) at PWM (us) | max motor temperature (deg C) |\n";
   md << "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const ModelComparison& m : models) {
@@ -57,7 +58,8 @@ std::string comparisonTables(const std::vector<ModelComparison>& models, const C
      << number(h.thrustPerMotorN() / kNewtonPerGramForce, "%.1f") << " g each), " << h.cells << "S "
      << number(h.capacity_mah, "%.0f") << " mAh; operating point at the mid-discharge "
      << number(h.midVoltage(), "%.2f") << " V:\n\n";
-  md << "| combination | PWM (us) | current per motor (A) | power per motor (W) | efficiency (g/W) | total current (A) | "
+  md << "| combination | PWM (us) | current per motor (A) | power per motor (W) | efficiency (g/W) | total current (A) "
+        "| "
         "hover endurance (min) | notes |\n";
   md << "|---|---:|---:|---:|---:|---:|---:|---|\n";
   for (const ModelComparison& m : models) {
@@ -120,7 +122,8 @@ std::string comparisonReportMarkdown(const std::vector<ModelComparison>& models,
   std::ostringstream md;
   md << "# Comparison of " << models.size() << " ESC-motor-propeller combinations\n\n";
   md << "Maxima over each model's PWM domain at "
-     << (options.voltage_v ? number(*options.voltage_v, "%.2f V") : std::string("the top of each model's voltage domain"))
+     << (options.voltage_v ? number(*options.voltage_v, "%.2f V")
+                           : std::string("the top of each model's voltage domain"))
      << ", as thesis chapter 7 tabulates them. Peak efficiency is taken where the motor draws at least "
      << number(100.0 * kEfficiencyMinPowerShare, "%.0f")
      << "% of its maximum power (near idle thrust / power is a ratio of two near-zero numbers).\n\n";
@@ -131,8 +134,8 @@ std::string comparisonReportMarkdown(const std::vector<ModelComparison>& models,
           "charge drawn, from "
        << number(h.fullVoltage(), "%.2f") << " V (" << number(h.cell_full_v, "%.2f") << " V per cell) to "
        << number(h.cutoffVoltage(), "%.2f") << " V (" << number(h.cell_cutoff_v, "%.2f") << " V per cell) over "
-       << number(100.0 * h.usable_fraction, "%.0f") << "% of " << number(h.capacity_mah, "%.0f")
-       << " mAh, in " << h.steps
+       << number(100.0 * h.usable_fraction, "%.0f") << "% of " << number(h.capacity_mah, "%.0f") << " mAh, in "
+       << h.steps
        << " steps, the hover PWM solved anew at each voltage. It counts propulsion current only (no avionics), "
           "ignores the battery's internal resistance beyond that linear fall, and uses each model as its domain and "
           "outside policy allow.\n\n";

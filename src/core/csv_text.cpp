@@ -1,10 +1,10 @@
 #include "propulsion_estimator/core/csv_text.h"
 
+#include <csv.h>
+
 #include <charconv>
 #include <cmath>
 #include <memory>
-
-#include <csv.h>
 
 #include "propulsion_estimator/core/config_error.h"
 
@@ -98,7 +98,8 @@ CsvText splitCsvText(const std::string& text, const std::string& source) {
   }
   if (in_row) {
     if (csv_fini(&parser, onField, onRowEnd, &collector) != 0) {
-      throw ConfigError(source + ":" + std::to_string(row_line) + ": a quoted field is not closed before the end of the file");
+      throw ConfigError(source + ":" + std::to_string(row_line) +
+                        ": a quoted field is not closed before the end of the file");
     }
     finishRow();
   }
@@ -171,7 +172,8 @@ std::optional<std::vector<double>> numericColumn(const CsvText& table, std::size
   }
   if (values.empty()) return std::nullopt;
   if (first_empty) {
-    throw ConfigError(cellWhere(table, first_empty->line, column) + ": empty cell (the column has values in other rows)");
+    throw ConfigError(cellWhere(table, first_empty->line, column) +
+                      ": empty cell (the column has values in other rows)");
   }
   return values;
 }

@@ -38,9 +38,12 @@ std::ofstream openFile(const std::string& directory, const std::string& name) {
 
 const char* sourceName(OutputSource source) {
   switch (source) {
-    case OutputSource::kSurface: return "surface";
-    case OutputSource::kDerived: return "derived";
-    case OutputSource::kNone: return "none";
+    case OutputSource::kSurface:
+      return "surface";
+    case OutputSource::kDerived:
+      return "derived";
+    case OutputSource::kNone:
+      return "none";
   }
   return "?";
 }
@@ -190,12 +193,13 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
      << " us, voltage " << number(domain.voltage_min_v, "%.2f") << " to " << number(domain.voltage_max_v, "%.2f")
      << " V (the ranges the data cover); outside it the model will " << outsideDomainName(domain.outside) << ".\n";
   md << "- Bench: air " << number(meta.bench_air_temperature_c, "%.1f") << " deg C, "
-     << number(meta.bench_air_pressure_pa, "%.0f") << " Pa (density "
-     << number(meta.benchAirDensity(), "%.4f") << " kg/m^3), " << supplyKindName(meta.supply) << " supply.\n";
+     << number(meta.bench_air_pressure_pa, "%.0f") << " Pa (density " << number(meta.benchAirDensity(), "%.4f")
+     << " kg/m^3), " << supplyKindName(meta.supply) << " supply.\n";
   md << "- Voltage levels (" << data.voltage_levels.size() << "):";
-  for (const Level& level : data.voltage_levels) md << " " << number(level.centre, "%.2f") << " V (" << level.rows << " rows);";
-  md << "\n- PWM levels: " << data.pwm_levels.size() << ", " << number(data.pwm_levels.front().centre, "%.0f")
-     << " to " << number(data.pwm_levels.back().centre, "%.0f") << " us.\n";
+  for (const Level& level : data.voltage_levels)
+    md << " " << number(level.centre, "%.2f") << " V (" << level.rows << " rows);";
+  md << "\n- PWM levels: " << data.pwm_levels.size() << ", " << number(data.pwm_levels.front().centre, "%.0f") << " to "
+     << number(data.pwm_levels.back().centre, "%.0f") << " us.\n";
   md << "- Cross-validation: " << fit.grouping_description
      << ". Whole groups are held out, never random rows; candidates are the MATLAB polyXY degrees up to (5, 3) "
         "that every fold determines, and the one with the fewest terms within "
@@ -218,9 +222,12 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
       continue;
     }
     if (def.source == OutputSource::kDerived) md << " (" << def.note << ")";
-    md << " | " << (def.fit ? "(" + std::to_string(def.fit->pwm_degree) + ", " + std::to_string(def.fit->voltage_degree) + ")" : "")
+    md << " | "
+       << (def.fit ? "(" + std::to_string(def.fit->pwm_degree) + ", " + std::to_string(def.fit->voltage_degree) + ")"
+                   : "")
        << " | " << report.points << " | " << number(report.r2, "%.5f") << " | " << number(report.rmse, "%.4g") << " | "
-       << number(report.max_error, "%.4g") << " | " << (def.fit ? number(def.fit->held_out_rmse, "%.4g") : "") << " |\n";
+       << number(report.max_error, "%.4g") << " | " << (def.fit ? number(def.fit->held_out_rmse, "%.4g") : "")
+       << " |\n";
   }
   md << "\nDerived outputs are compared with the bench's own ratio where the row drew at least "
      << number(100.0 * kEfficiencyMinPowerShare, "%.0f") << "% of its log's peak power.";

@@ -1,9 +1,8 @@
 #include "propulsion_estimator/core/grouped_least_squares.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Cholesky>
 
 #include "propulsion_estimator/core/polynomial_2d.h"
 

@@ -47,16 +47,29 @@ std::optional<double> toLogUnit(BenchColumn quantity, const std::string& unit) {
       if (unit == "lbf") return kNewtonPerPoundForce;
       if (unit == "ozf") return kNewtonPerOunceForce;
       return std::nullopt;
-    case BenchColumn::kPwm: return isMicroseconds(unit) ? std::optional<double>(1.0) : std::nullopt;
-    case BenchColumn::kTime: return unit == "s" ? std::optional<double>(1.0) : std::nullopt;
-    case BenchColumn::kVoltage: return unit == "V" ? std::optional<double>(1.0) : std::nullopt;
-    case BenchColumn::kCurrent: return unit == "A" ? std::optional<double>(1.0) : std::nullopt;
-    case BenchColumn::kPower: return unit == "W" ? std::optional<double>(1.0) : std::nullopt;
-    case BenchColumn::kRpm: return lower(unit) == "rpm" ? std::optional<double>(1.0) : std::nullopt;
+    case BenchColumn::kPwm:
+      return isMicroseconds(unit) ? std::optional<double>(1.0) : std::nullopt;
+    case BenchColumn::kTime:
+      return unit == "s" ? std::optional<double>(1.0) : std::nullopt;
+    case BenchColumn::kVoltage:
+      return unit == "V" ? std::optional<double>(1.0) : std::nullopt;
+    case BenchColumn::kCurrent:
+      return unit == "A" ? std::optional<double>(1.0) : std::nullopt;
+    case BenchColumn::kPower:
+      return unit == "W" ? std::optional<double>(1.0) : std::nullopt;
+    case BenchColumn::kRpm:
+      return lower(unit) == "rpm" ? std::optional<double>(1.0) : std::nullopt;
     case BenchColumn::kAmbientTemp:
     case BenchColumn::kMotorTemp:
       // degree sign, masculine ordinal (RCbenchmark writes "ºC"), or plain
-      if (unit == "\xC2\xB0" "C" || unit == "\xC2\xBA" "C" || unit == "C" || unit == "degC") return 1.0;
+      if (unit ==
+              "\xC2\xB0"
+              "C" ||
+          unit ==
+              "\xC2\xBA"
+              "C" ||
+          unit == "C" || unit == "degC")
+        return 1.0;
       return std::nullopt;
     case BenchColumn::kPressure:
       if (unit == "Pa") return 1.0;
@@ -70,14 +83,22 @@ std::optional<double> toLogUnit(BenchColumn quantity, const std::string& unit) {
 // Which header names the format gives each quantity (lower case, without the unit).
 std::vector<std::string> standardNames(BenchColumn quantity) {
   switch (quantity) {
-    case BenchColumn::kTime: return {"time"};
-    case BenchColumn::kPwm: return {"esc signal"};
-    case BenchColumn::kVoltage: return {"voltage"};
-    case BenchColumn::kThrust: return {"thrust"};
-    case BenchColumn::kCurrent: return {"current"};
-    case BenchColumn::kPower: return {"electrical power"};
-    case BenchColumn::kRpm: return {"motor electrical speed", "motor optical speed"};
-    default: return {};
+    case BenchColumn::kTime:
+      return {"time"};
+    case BenchColumn::kPwm:
+      return {"esc signal"};
+    case BenchColumn::kVoltage:
+      return {"voltage"};
+    case BenchColumn::kThrust:
+      return {"thrust"};
+    case BenchColumn::kCurrent:
+      return {"current"};
+    case BenchColumn::kPower:
+      return {"electrical power"};
+    case BenchColumn::kRpm:
+      return {"motor electrical speed", "motor optical speed"};
+    default:
+      return {};
   }
 }
 
@@ -155,8 +176,8 @@ BenchLog tytoBenchLogFromTable(const CsvText& table, const BenchReadOptions& opt
   for (int q = 0; q < kBenchColumnCount; ++q) {
     const auto quantity = static_cast<BenchColumn>(q);
     const std::string quantity_name = benchColumnName(quantity);
-    const bool required = quantity == BenchColumn::kPwm || quantity == BenchColumn::kVoltage ||
-                          quantity == BenchColumn::kThrust;
+    const bool required =
+        quantity == BenchColumn::kPwm || quantity == BenchColumn::kVoltage || quantity == BenchColumn::kThrust;
     // Columns of this quantity that hold values. An optional sensor that is not connected logs
     // zeros or nothing; a required one that does is refused later as a constant column.
     std::vector<std::pair<std::size_t, std::vector<double>>> logged;
@@ -203,8 +224,9 @@ BenchLog tytoBenchLogFromTable(const CsvText& table, const BenchReadOptions& opt
       log.notes.push_back(quantity_name + " from '" + table.header[column] + "'; " + silent.front());
     }
     if (quantity == BenchColumn::kRpm && nameAndUnit(table.header[column]).first == "motor electrical speed") {
-      log.notes.push_back("rpm is the motor's electrical speed: mechanical rpm only if the stand software knew "
-                          "the motor's pole count");
+      log.notes.push_back(
+          "rpm is the motor's electrical speed: mechanical rpm only if the stand software knew "
+          "the motor's pole count");
     }
     used[column] = true;
     log.columns[q] = std::move(values);

@@ -25,7 +25,8 @@ void BenchLogOptions::addTo(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--map", maps_,
                  "QUANTITY=COLUMN: take a Tyto/RCbenchmark quantity from this header column, e.g. "
-                 "rpm='Motor Optical Speed (RPM)' or motor_temp_c='Temp 1 (\xC2\xBA" "C)' (repeatable)");
+                 "rpm='Motor Optical Speed (RPM)' or motor_temp_c='Temp 1 (\xC2\xBA"
+                 "C)' (repeatable)");
   app.add_option("--decimal", decimal_, "Decimal separator of ';'-separated logs: auto, point, comma")
       ->check(CLI::IsMember({"auto", "point", "comma"}))
       ->capture_default_str();
@@ -35,7 +36,7 @@ BenchReadOptions BenchLogOptions::readOptions() const {
   BenchReadOptions options;
   options.thrust_sign = signPolicy(thrust_sign_);
   options.current_sign = signPolicy(current_sign_);
-  options.decimal = decimal_ == "point" ? DecimalSeparator::kPoint
+  options.decimal = decimal_ == "point"   ? DecimalSeparator::kPoint
                     : decimal_ == "comma" ? DecimalSeparator::kComma
                                           : DecimalSeparator::kAuto;
   for (const std::string& map : maps_) {

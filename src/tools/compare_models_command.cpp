@@ -1,11 +1,10 @@
 #include "compare_models_command.h"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
-
-#include <CLI/CLI.hpp>
 
 #include "bench_log_options.h"
 #include "propulsion_estimator/core/comparison_report.h"
@@ -85,8 +84,9 @@ int compare(Arguments args, const BenchReadOptions& read_options) {
 }  // namespace
 
 int runCompareModels(int argc, char** argv) {
-  CLI::App app{"Compares ESC-motor-propeller combinations from their model files (thesis chapter 7): maxima at one "
-               "voltage, and with a vehicle and battery the hover point and hover endurance of each."};
+  CLI::App app{
+      "Compares ESC-motor-propeller combinations from their model files (thesis chapter 7): maxima at one "
+      "voltage, and with a vehicle and battery the hover point and hover endurance of each."};
   Arguments args;
   BenchLogOptions log_options;
   app.add_option("models", args.models,

@@ -1,12 +1,11 @@
 #include "fit_surfaces_command.h"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
-
-#include <CLI/CLI.hpp>
 
 #include "bench_log_options.h"
 #include "propulsion_estimator/core/bench_fit.h"
@@ -56,8 +55,9 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
                                                                 {"voltage", FitGrouping::kVoltageLevel},
                                                                 {"pwm", FitGrouping::kPwmLevel},
                                                                 {"log", FitGrouping::kLog}};
-  static const std::map<std::string, OutsideDomain> kOutside = {
-      {"clamp", OutsideDomain::kClamp}, {"extrapolate", OutsideDomain::kExtrapolate}, {"reject", OutsideDomain::kReject}};
+  static const std::map<std::string, OutsideDomain> kOutside = {{"clamp", OutsideDomain::kClamp},
+                                                                {"extrapolate", OutsideDomain::kExtrapolate},
+                                                                {"reject", OutsideDomain::kReject}};
   static const std::map<std::string, Output> kOptional = {
       {"current", Output::kCurrent}, {"power", Output::kPower}, {"rpm", Output::kRpm}};
   options.grouping = kGroupings.at(args.group_by);
@@ -97,8 +97,9 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
 }  // namespace
 
 int runFitSurfaces(int argc, char** argv) {
-  CLI::App app{"Fits the response surfaces of one ESC-motor-propeller combination to thrust-stand logs (native CSV or "
-               "Tyto/RCbenchmark exports) and writes the model file estimator_node loads."};
+  CLI::App app{
+      "Fits the response surfaces of one ESC-motor-propeller combination to thrust-stand logs (native CSV or "
+      "Tyto/RCbenchmark exports) and writes the model file estimator_node loads."};
   Arguments args;
   FitOptions options;
   BenchLogOptions log_options;
@@ -115,7 +116,8 @@ int runFitSurfaces(int argc, char** argv) {
   app.add_option("--max-voltage-degree", options.max_voltage_degree, "Highest voltage degree tried")
       ->check(CLI::Range(0, 3))
       ->capture_default_str();
-  app.add_option("--efficiency", args.efficiency, "derived (thrust / power) or surface (fitted to thrust / power samples)")
+  app.add_option("--efficiency", args.efficiency,
+                 "derived (thrust / power) or surface (fitted to thrust / power samples)")
       ->check(CLI::IsMember({"derived", "surface"}))
       ->capture_default_str();
   app.add_option("--without", args.without, "Leave an output out of the model: current, power, rpm (repeatable)")

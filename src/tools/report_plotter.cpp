@@ -56,7 +56,8 @@ void runPlotScript(const std::string& mode, const std::string& directory, const 
                       "pass --python /usr/bin/python3");
   }
   const int status = run({python, path, mode, directory});
-  if (status != 0) throw ConfigError(path + " " + mode + " " + directory + " failed (exit status " + std::to_string(status) + ")");
+  if (status != 0)
+    throw ConfigError(path + " " + mode + " " + directory + " failed (exit status " + std::to_string(status) + ")");
 }
 
 }  // namespace propulsion_estimator

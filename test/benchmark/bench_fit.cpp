@@ -1,12 +1,13 @@
 // fit_surfaces' core on a million bench rows: reading the rows into per-group Gram matrices once,
 // then choosing the degrees of every output by grouped cross-validation on those matrices.
+#include "propulsion_estimator/core/bench_fit.h"
+
+#include <benchmark/benchmark.h>
+
 #include <cmath>
 #include <random>
 #include <vector>
 
-#include <benchmark/benchmark.h>
-
-#include "propulsion_estimator/core/bench_fit.h"
 #include "propulsion_estimator/core/units.h"
 
 namespace pe = propulsion_estimator;
@@ -24,8 +25,12 @@ std::vector<pe::BenchLog> rampLogs(int rows) {
     pe::BenchLog& log = logs[level];
     const double voltage = 10.5 + 0.3 * level;
     log.source = "ramp_" + std::to_string(level) + ".csv";
-    log.metadata = {{"esc", "E"}, {"motor", "M"}, {"propeller", "P"}, {"supply", "regulated"},
-                    {"air_temperature_c", "22"}, {"air_pressure_pa", "101325"}};
+    log.metadata = {{"esc", "E"},
+                    {"motor", "M"},
+                    {"propeller", "P"},
+                    {"supply", "regulated"},
+                    {"air_temperature_c", "22"},
+                    {"air_pressure_pa", "101325"}};
     const int n = rows / 8;
     for (auto* column : {&log.column(pe::BenchColumn::kPwm), &log.column(pe::BenchColumn::kVoltage),
                          &log.column(pe::BenchColumn::kThrust), &log.column(pe::BenchColumn::kCurrent),
@@ -39,7 +44,8 @@ std::vector<pe::BenchLog> rampLogs(int rows) {
       const double power = 1.6e-10 * rpm * rpm * rpm + 0.5 * voltage;
       log.column(pe::BenchColumn::kPwm).push_back(x);
       log.column(pe::BenchColumn::kVoltage).push_back(voltage + 0.01 * noise(random));
-      log.column(pe::BenchColumn::kThrust).push_back((9.0e-6 * rpm * rpm + 4.0 * noise(random)) * pe::kNewtonPerGramForce);
+      log.column(pe::BenchColumn::kThrust)
+          .push_back((9.0e-6 * rpm * rpm + 4.0 * noise(random)) * pe::kNewtonPerGramForce);
       log.column(pe::BenchColumn::kCurrent).push_back(power / voltage + 0.05 * noise(random));
       log.column(pe::BenchColumn::kPower).push_back(power + 0.5 * noise(random));
       log.column(pe::BenchColumn::kRpm).push_back(rpm + 30.0 * noise(random));

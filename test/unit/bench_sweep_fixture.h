@@ -53,8 +53,8 @@ inline SweepSet syntheticSweeps(unsigned seed = 42) {
     const double voltage = 10.5 + 0.3 * level;
     pe::BenchLog log;
     log.source = "sweep_" + std::to_string(level) + ".csv";
-    log.metadata = {{"esc", "synthetic ESC"},     {"motor", "synthetic 920KV"},  {"propeller", "synthetic 9443"},
-                    {"supply", "regulated"},      {"air_temperature_c", "22"},   {"air_pressure_pa", "101325"},
+    log.metadata = {{"esc", "synthetic ESC"},   {"motor", "synthetic 920KV"}, {"propeller", "synthetic 9443"},
+                    {"supply", "regulated"},    {"air_temperature_c", "22"},  {"air_pressure_pa", "101325"},
                     {"experiment", "pwm_sweep"}};
     int line = 8;
     for (double pwm = 1200.0; pwm <= 1900.0; pwm += 5.0) {
@@ -64,8 +64,10 @@ inline SweepSet syntheticSweeps(unsigned seed = 42) {
       log.column(pe::BenchColumn::kThrust)
           .push_back((SmoothChain::thrustGrams(pwm, voltage) + set.thrust_sigma_g * unit(random)) *
                      pe::kNewtonPerGramForce);
-      log.column(pe::BenchColumn::kCurrent).push_back(SmoothChain::currentAmps(pwm, voltage) + set.current_sigma_a * unit(random));
-      log.column(pe::BenchColumn::kPower).push_back(SmoothChain::powerWatts(pwm, voltage) + set.power_sigma_w * unit(random));
+      log.column(pe::BenchColumn::kCurrent)
+          .push_back(SmoothChain::currentAmps(pwm, voltage) + set.current_sigma_a * unit(random));
+      log.column(pe::BenchColumn::kPower)
+          .push_back(SmoothChain::powerWatts(pwm, voltage) + set.power_sigma_w * unit(random));
       log.column(pe::BenchColumn::kRpm).push_back(SmoothChain::rpm(pwm, voltage) + set.rpm_sigma * unit(random));
       log.line_numbers.push_back(line++);
     }

@@ -1,11 +1,11 @@
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "bench_sweep_fixture.h"
 #include "propulsion_estimator/core/bench_fit.h"
@@ -45,10 +45,18 @@ double rmseOn(const pe::PropulsionModel& model, pe::Output output, const pe::Ben
     const double v = log.column(pe::BenchColumn::kVoltage)[r];
     double measured = 0.0;
     switch (output) {
-      case pe::Output::kThrust: measured = log.column(pe::BenchColumn::kThrust)[r] / pe::kNewtonPerGramForce; break;
-      case pe::Output::kCurrent: measured = log.column(pe::BenchColumn::kCurrent)[r]; break;
-      case pe::Output::kPower: measured = log.column(pe::BenchColumn::kPower)[r]; break;
-      default: measured = log.column(pe::BenchColumn::kRpm)[r]; break;
+      case pe::Output::kThrust:
+        measured = log.column(pe::BenchColumn::kThrust)[r] / pe::kNewtonPerGramForce;
+        break;
+      case pe::Output::kCurrent:
+        measured = log.column(pe::BenchColumn::kCurrent)[r];
+        break;
+      case pe::Output::kPower:
+        measured = log.column(pe::BenchColumn::kPower)[r];
+        break;
+      default:
+        measured = log.column(pe::BenchColumn::kRpm)[r];
+        break;
     }
     const double error = model.evaluateRaw(output, x, v) - measured;
     sse += error * error;
@@ -70,8 +78,12 @@ pe::BenchLog gridLog(const std::string& name, const std::vector<double>& pwms, d
                      double (*thrust_g)(double, double)) {
   pe::BenchLog log;
   log.source = name;
-  log.metadata = {{"esc", "E"}, {"motor", "M"}, {"propeller", "P"}, {"supply", "battery"},
-                  {"air_temperature_c", "20"}, {"air_pressure_pa", "100000"}};
+  log.metadata = {{"esc", "E"},
+                  {"motor", "M"},
+                  {"propeller", "P"},
+                  {"supply", "battery"},
+                  {"air_temperature_c", "20"},
+                  {"air_pressure_pa", "100000"}};
   int line = 8;
   for (double x : pwms) {
     log.column(pe::BenchColumn::kPwm).push_back(x);
@@ -153,7 +165,8 @@ TEST(BenchFit, SurfaceFollowsTheNoiseFreeChainAndReportsHonestErrors) {
   EXPECT_DOUBLE_EQ(s.pwm_center_us, 1550.0);
   EXPECT_DOUBLE_EQ(s.pwm_scale_us, 350.0);
   EXPECT_EQ(fit.model.metadata().motor, "synthetic 920KV");
-  EXPECT_EQ(fit.model.metadata().source, "fit_surfaces from sweep_0.csv, sweep_1.csv, sweep_2.csv, sweep_3.csv, ... (8 logs)");
+  EXPECT_EQ(fit.model.metadata().source,
+            "fit_surfaces from sweep_0.csv, sweep_1.csv, sweep_2.csv, sweep_3.csv, ... (8 logs)");
 }
 
 TEST(BenchFit, FittedModelFileLoadsUnchanged) {
@@ -187,8 +200,12 @@ TEST(BenchFit, BinsContinuousBatteryDischargesIntoVoltageLevels) {
   for (double pwm : {1600.0, 1700.0, 1800.0, 1900.0}) {
     pe::BenchLog log;
     log.source = "discharge_" + std::to_string(static_cast<int>(pwm)) + ".csv";
-    log.metadata = {{"esc", "E"}, {"motor", "M"}, {"propeller", "P"}, {"supply", "battery"},
-                    {"air_temperature_c", "20"}, {"air_pressure_pa", "100000"}};
+    log.metadata = {{"esc", "E"},
+                    {"motor", "M"},
+                    {"propeller", "P"},
+                    {"supply", "battery"},
+                    {"air_temperature_c", "20"},
+                    {"air_pressure_pa", "100000"}};
     for (int k = 0; k <= 400; ++k) {
       const double v = 12.6 - 2.1 * k / 400.0;
       log.column(pe::BenchColumn::kPwm).push_back(pwm);
@@ -203,7 +220,8 @@ TEST(BenchFit, BinsContinuousBatteryDischargesIntoVoltageLevels) {
   ASSERT_EQ(fit.data.voltage_levels.size(), 8u);
   EXPECT_NEAR(fit.data.voltage_levels.front().centre, 10.65, 1e-9);
   EXPECT_EQ(fit.grouping, pe::FitGrouping::kVoltageLevel);
-  EXPECT_EQ(fit.notes[0], "discharge_1600.csv: voltage varies (10.50 to 12.60 V): its rows are binned by voltage in 0.3 V bins");
+  EXPECT_EQ(fit.notes[0],
+            "discharge_1600.csv: voltage varies (10.50 to 12.60 V): its rows are binned by voltage in 0.3 V bins");
   // Four PWM levels: a held-out voltage bin still sees all four, so PWM degree <= 3.
   EXPECT_LE(fit.model.output(pe::Output::kThrust).fit->pwm_degree, 3);
   for (double pwm : {1600.0, 1750.0, 1900.0}) {
@@ -224,14 +242,15 @@ TEST(BenchFit, ThesisSurfacesSampledOnItsGridReproduceChapter7Maxima) {
     const double v = 10.5 + 0.3 * level;
     pe::BenchLog log;
     log.source = "thesis_" + std::to_string(level) + ".csv";
-    log.metadata = {{"esc", "DJI E300"}, {"motor", "DJI 2212 920KV"}, {"propeller", "DJI 9443"},
+    log.metadata = {{"esc", "DJI E300"},     {"motor", "DJI 2212 920KV"}, {"propeller", "DJI 9443"},
                     {"supply", "regulated"}, {"air_temperature_c", "22"}, {"air_pressure_pa", "101325"}};
     for (double x = 1200.0; x <= 1900.0; x += 5.0) {
       log.column(pe::BenchColumn::kPwm).push_back(x);
       log.column(pe::BenchColumn::kVoltage).push_back(v);
       log.column(pe::BenchColumn::kThrust)
           .push_back((thesis.evaluateRaw(pe::Output::kThrust, x, v) + 1.0 * unit(random)) * pe::kNewtonPerGramForce);
-      log.column(pe::BenchColumn::kCurrent).push_back(thesis.evaluateRaw(pe::Output::kCurrent, x, v) + 0.02 * unit(random));
+      log.column(pe::BenchColumn::kCurrent)
+          .push_back(thesis.evaluateRaw(pe::Output::kCurrent, x, v) + 0.02 * unit(random));
       log.column(pe::BenchColumn::kPower).push_back(thesis.evaluateRaw(pe::Output::kPower, x, v) + 0.2 * unit(random));
       log.column(pe::BenchColumn::kRpm).push_back(thesis.evaluateRaw(pe::Output::kRpm, x, v) + 10.0 * unit(random));
       log.line_numbers.push_back(static_cast<int>(log.rows()) + 2);
@@ -269,8 +288,8 @@ TEST(BenchFit, ThesisSurfacesSampledOnItsGridReproduceChapter7Maxima) {
 
 TEST(BenchFitStrawson, FitsAMotorPropellerPairFromItsTwoSupplyLevels) {
   // Lumenier RX2206-13 2000kv with the Cyclone T5040C: no current limit was hit.
-  const pe::BenchFit fit = pe::fitBenchModel(strawsonPair("g1"), strawsonOptions("Lumenier RX2206-13 2000kv",
-                                                                                 "Cyclone T5040C 3-blade"));
+  const pe::BenchFit fit =
+      pe::fitBenchModel(strawsonPair("g1"), strawsonOptions("Lumenier RX2206-13 2000kv", "Cyclone T5040C 3-blade"));
   ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
   EXPECT_EQ(fit.grouping, pe::FitGrouping::kPwmLevel);
   EXPECT_EQ(fit.grouping_description,
@@ -303,7 +322,8 @@ TEST(BenchFitStrawson, FitsAMotorPropellerPairFromItsTwoSupplyLevels) {
   const std::string path = (std::filesystem::temp_directory_path() / "pe_g1.yaml").string();
   pe::saveModelFile(fit.model, path);
   const pe::PropulsionModel loaded = pe::loadModelFile(path);
-  EXPECT_DOUBLE_EQ(loaded.evaluateRaw(pe::Output::kThrust, 1500.0, 9.0), fit.model.evaluateRaw(pe::Output::kThrust, 1500.0, 9.0));
+  EXPECT_DOUBLE_EQ(loaded.evaluateRaw(pe::Output::kThrust, 1500.0, 9.0),
+                   fit.model.evaluateRaw(pe::Output::kThrust, 1500.0, 9.0));
   EXPECT_EQ(loaded.metadata().propeller, "Cyclone T5040C 3-blade");
   std::filesystem::remove(path);
 }
@@ -333,15 +353,17 @@ TEST(BenchFitStrawson, RefusesAPairWhoseTwoFilesAreAtTheSameVoltage) {
 // --- refusals --------------------------------------------------------------------------------------
 
 TEST(BenchFitRefusals, OneVoltageLevel) {
-  EXPECT_EQ(refusal({gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
-                     gridLog("b.csv", pwmSteps(1150, 1850, 100), 11.12, smoothThrust)}),
-            "cannot fit a surface: one voltage level only (all 17 rows are near 11.11 V, 11.10 to 11.12 V); log sweeps at "
-            "two or more supply voltages, or a battery discharge");
+  EXPECT_EQ(
+      refusal({gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+               gridLog("b.csv", pwmSteps(1150, 1850, 100), 11.12, smoothThrust)}),
+      "cannot fit a surface: one voltage level only (all 17 rows are near 11.11 V, 11.10 to 11.12 V); log sweeps at "
+      "two or more supply voltages, or a battery discharge");
 }
 
 TEST(BenchFitRefusals, TooFewPwmLevels) {
-  EXPECT_EQ(refusal({gridLog("a.csv", {1500, 1600}, 11.1, smoothThrust), gridLog("b.csv", {1500, 1600}, 12.0, smoothThrust)}),
-            "cannot fit a surface: 2 PWM levels only (1500 us, 1600 us); log sweeps over at least 3 PWM values");
+  EXPECT_EQ(
+      refusal({gridLog("a.csv", {1500, 1600}, 11.1, smoothThrust), gridLog("b.csv", {1500, 1600}, 12.0, smoothThrust)}),
+      "cannot fit a surface: 2 PWM levels only (1500 us, 1600 us); log sweeps over at least 3 PWM values");
 }
 
 TEST(BenchFitRefusals, TooFewPoints) {
@@ -354,15 +376,17 @@ TEST(BenchFitRefusals, ConstantColumn) {
   std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
                                     gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)};
   for (pe::BenchLog& log : logs) log.column(pe::BenchColumn::kRpm).assign(log.rows(), 0.0);
-  EXPECT_EQ(refusal(logs),
-            "cannot fit rpm: it is 0 rpm in all 18 rows (a sensor that was not connected?); leave it out with --without rpm");
+  EXPECT_EQ(
+      refusal(logs),
+      "cannot fit rpm: it is 0 rpm in all 18 rows (a sensor that was not connected?); leave it out with --without rpm");
   pe::FitOptions without_rpm;
   without_rpm.without = {pe::Output::kRpm};
   const pe::BenchFit fit = pe::fitBenchModel(logs, without_rpm);
   EXPECT_EQ(fit.model.output(pe::Output::kRpm).source, pe::OutputSource::kNone);
   EXPECT_EQ(fit.model.output(pe::Output::kRpm).note, "left out on request (--without rpm)");
   for (pe::BenchLog& log : logs) log.column(pe::BenchColumn::kThrust).assign(log.rows(), 0.0);
-  EXPECT_EQ(refusal(logs, without_rpm), "cannot fit thrust: it is 0 g in all 18 rows (a sensor that was not connected?)");
+  EXPECT_EQ(refusal(logs, without_rpm),
+            "cannot fit thrust: it is 0 g in all 18 rows (a sensor that was not connected?)");
 }
 
 TEST(BenchFitRefusals, NaNInALog) {

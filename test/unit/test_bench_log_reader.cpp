@@ -1,10 +1,10 @@
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "propulsion_estimator/core/bench_csv.h"
 #include "propulsion_estimator/core/bench_log_reader.h"
@@ -89,8 +89,9 @@ TEST(NativeBenchCsv, WriterAndReaderRoundTrip) {
 TEST(NativeBenchCsv, RefusesMissingColumn) {
   EXPECT_EQ(refusal("pwm_us,thrust_g\n1500,100\n"),
             "log.csv:1: missing column 'voltage_v' (required: pwm_us, voltage_v, and thrust_g or thrust_n)");
-  EXPECT_EQ(refusal("# x: 1\npwm_us,voltage_v\n1500,11\n"),
-            "log.csv:2: missing column 'thrust_g' or 'thrust_n' (required: pwm_us, voltage_v, and thrust_g or thrust_n)");
+  EXPECT_EQ(
+      refusal("# x: 1\npwm_us,voltage_v\n1500,11\n"),
+      "log.csv:2: missing column 'thrust_g' or 'thrust_n' (required: pwm_us, voltage_v, and thrust_g or thrust_n)");
 }
 
 TEST(NativeBenchCsv, RefusesTextInANumberField) {
@@ -99,8 +100,10 @@ TEST(NativeBenchCsv, RefusesTextInANumberField) {
 }
 
 TEST(NativeBenchCsv, RefusesNaN) {
-  EXPECT_EQ(refusal("pwm_us,voltage_v,thrust_g\n1500,nan,100\n"), "log.csv:2: column 2 'voltage_v': 'nan' is not a finite number");
-  EXPECT_EQ(refusal("pwm_us,voltage_v,thrust_g\n1500,11,-inf\n"), "log.csv:2: column 3 'thrust_g': '-inf' is not a finite number");
+  EXPECT_EQ(refusal("pwm_us,voltage_v,thrust_g\n1500,nan,100\n"),
+            "log.csv:2: column 2 'voltage_v': 'nan' is not a finite number");
+  EXPECT_EQ(refusal("pwm_us,voltage_v,thrust_g\n1500,11,-inf\n"),
+            "log.csv:2: column 3 'thrust_g': '-inf' is not a finite number");
 }
 
 TEST(NativeBenchCsv, RefusesEmptyFile) {
@@ -128,7 +131,8 @@ TEST(NativeBenchCsv, RefusesMalformedRowsAndHeaders) {
 }
 
 TEST(NativeBenchCsv, ReadsSemicolonsWithDecimalCommas) {
-  const pe::BenchLog log = pe::parseBenchLog("pwm_us;voltage_v;thrust_g\n1500;11,1;100,5\n1600;11,0;120\n", "s.csv", {});
+  const pe::BenchLog log =
+      pe::parseBenchLog("pwm_us;voltage_v;thrust_g\n1500;11,1;100,5\n1600;11,0;120\n", "s.csv", {});
   EXPECT_DOUBLE_EQ(column(log, pe::BenchColumn::kVoltage)[0], 11.1);
   EXPECT_DOUBLE_EQ(column(log, pe::BenchColumn::kThrust)[0], 100.5 * pe::kNewtonPerGramForce);
   EXPECT_EQ(log.notes, (std::vector<std::string>{"numbers read with a decimal comma (';'-separated file)"}));
@@ -226,8 +230,12 @@ TEST(TytoBenchCsv, RefusesAmbiguousContentAndOffersTheOption) {
   EXPECT_DOUBLE_EQ(column(log, pe::BenchColumn::kRpm)[1], 5990);
 
   pe::BenchReadOptions missing;
-  missing.columns[pe::BenchColumn::kMotorTemp] = "Temp 1 (\xC2\xBA" "C)";
-  EXPECT_EQ(refusal(two_rpm, missing), "log.csv:1: no column 'Temp 1 (\xC2\xBA" "C)' for motor_temp_c (--map motor_temp_c=...)");
+  missing.columns[pe::BenchColumn::kMotorTemp] =
+      "Temp 1 (\xC2\xBA"
+      "C)";
+  EXPECT_EQ(refusal(two_rpm, missing),
+            "log.csv:1: no column 'Temp 1 (\xC2\xBA"
+            "C)' for motor_temp_c (--map motor_temp_c=...)");
 }
 
 TEST(TytoBenchCsv, RefusesMissingColumnAndTextCells) {

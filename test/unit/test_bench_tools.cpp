@@ -1,12 +1,12 @@
 // The two installed command lines, run as a user runs them (the built executables, which find
 // the plot script next to themselves).
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "propulsion_estimator/core/model_yaml.h"
 #include "propulsion_estimator/core/propulsion_model.h"
@@ -35,7 +35,8 @@ std::string quoted(const std::string& text) { return "'" + text + "'"; }
 class BenchTools : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("pe_tools_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = fs::temp_directory_path() /
+           ("pe_tools_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -48,9 +49,7 @@ class BenchTools : public testing::Test {
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "out.txt"), slurp(dir_ / "err.txt")};
   }
 
-  static std::string strawson(const std::string& file) {
-    return sharedPath("data/strawson_motor_propeller/" + file);
-  }
+  static std::string strawson(const std::string& file) { return sharedPath("data/strawson_motor_propeller/" + file); }
 
   static std::string metadata(const std::string& propeller) {
     return "--esc unknown --motor 'Lumenier RX2206-13 2000kv' --propeller " + quoted(propeller) +
@@ -68,9 +67,9 @@ TEST_F(BenchTools, FitSurfacesTurnsADirectoryOfLogsIntoAModelAndAReport) {
   fs::copy_file(strawson("g1_7.csv"), logs / "g1_7.csv");
   fs::copy_file(strawson("g1_11.csv"), logs / "g1_11.csv");
   const std::string model = (dir_ / "g1.yaml").string();
-  const ToolRun r = run(PE_FIT_SURFACES, "--out " + model + " --report " + (dir_ / "report").string() +
-                                             " --python /usr/bin/python3 " + metadata("Cyclone T5040C") + " " +
-                                             logs.string());
+  const ToolRun r =
+      run(PE_FIT_SURFACES, "--out " + model + " --report " + (dir_ / "report").string() +
+                               " --python /usr/bin/python3 " + metadata("Cyclone T5040C") + " " + logs.string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err, "");
   EXPECT_NE(r.out.find("thrust     surface  (3,1)        22"), std::string::npos) << r.out;
@@ -82,7 +81,8 @@ TEST_F(BenchTools, FitSurfacesTurnsADirectoryOfLogsIntoAModelAndAReport) {
   const std::string report = slurp(dir_ / "report" / "fit_report.md");
   EXPECT_NE(report.find("Model written to `" + model + "`"), std::string::npos);
   EXPECT_NE(report.find("| thrust | g | surface | (3, 1) | 22 |"), std::string::npos) << report;
-  for (const char* figure : {"fit_sections_pwm.png", "fit_sections_voltage.png", "fit_residuals.png", "fit_surfaces.png"}) {
+  for (const char* figure :
+       {"fit_sections_pwm.png", "fit_sections_voltage.png", "fit_residuals.png", "fit_surfaces.png"}) {
     EXPECT_NE(report.find(std::string("](") + figure + ")"), std::string::npos) << figure;
     EXPECT_GT(fs::file_size(dir_ / "report" / figure), 20000u) << figure;
   }
@@ -90,7 +90,7 @@ TEST_F(BenchTools, FitSurfacesTurnsADirectoryOfLogsIntoAModelAndAReport) {
 
 TEST_F(BenchTools, FitSurfacesRefusesOneVoltageLevelWithTheCoreMessage) {
   const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "l3.yaml").string() + " " + metadata("Gemfan 5x4.5") + " " +
-                                         strawson("l3_7.csv") + " " + strawson("l3_11.csv"));
+                                             strawson("l3_7.csv") + " " + strawson("l3_11.csv"));
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err,
             "fit_surfaces: cannot fit a surface: one voltage level only (all 22 rows are near 7.36 V, 7.13 to 7.44 V); "
@@ -105,9 +105,9 @@ TEST_F(BenchTools, FitSurfacesReportsButDoesNotWriteAModelTheLoaderWouldRefuse) 
                                    "pwm_us,voltage_v,thrust_g\n"
                                    "1100,11.1,0\n1300,11.1,-20\n1500,11.1,-40\n1700,11.1,-60\n1900,11.1,-80\n"
                                    "1100,12,0\n1300,12,-20\n1500,12,-40\n1700,12,-60\n1900,12,-80\n";
-  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "bad.yaml").string() + " --report " +
-                                         (dir_ / "report").string() + " --python /usr/bin/python3 " +
-                                         (dir_ / "a.csv").string());
+  const ToolRun r =
+      run(PE_FIT_SURFACES, "--out " + (dir_ / "bad.yaml").string() + " --report " + (dir_ / "report").string() +
+                               " --python /usr/bin/python3 " + (dir_ / "a.csv").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err,
             "fit_surfaces: the fitted model fails the loader's check and was not written: outputs.thrust: -80 g at "
@@ -121,16 +121,16 @@ TEST_F(BenchTools, FitSurfacesReportsButDoesNotWriteAModelTheLoaderWouldRefuse) 
 
 TEST_F(BenchTools, FitSurfacesSaysWhenThePlotsCannotBeDrawn) {
   const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() +
-                                         " " + metadata("T5040C") + " --python /bin/false " + strawson("g1_7.csv") +
-                                         " " + strawson("g1_11.csv"));
+                                             " " + metadata("T5040C") + " --python /bin/false " + strawson("g1_7.csv") +
+                                             " " + strawson("g1_11.csv"));
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err,
             "fit_surfaces: /bin/false cannot import matplotlib and numpy: the report's figures need them; install "
             "python3-matplotlib (scripts/install_deps.sh) or pass --python /usr/bin/python3\n");
-  const ToolRun missing = run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " --report " +
-                                               (dir_ / "r").string() + " " + metadata("T5040C") +
-                                               " --plot-script /nonexistent.py " + strawson("g1_7.csv") + " " +
-                                               strawson("g1_11.csv"));
+  const ToolRun missing =
+      run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() + " " +
+                               metadata("T5040C") + " --plot-script /nonexistent.py " + strawson("g1_7.csv") + " " +
+                               strawson("g1_11.csv"));
   EXPECT_EQ(missing.err, "fit_surfaces: /nonexistent.py: plot script not found (--plot-script)\n");
 }
 
@@ -139,7 +139,8 @@ TEST_F(BenchTools, FitSurfacesUsageAndReaderErrors) {
   std::ofstream(dir_ / "text.csv") << "pwm_us,voltage_v,thrust_g\n1500,11.1,100\n1600,11.1,abc\n";
   const ToolRun r = run(PE_FIT_SURFACES, "--out x.yaml " + (dir_ / "text.csv").string());
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.err, "fit_surfaces: " + (dir_ / "text.csv").string() + ":3: column 3 'thrust_g': 'abc' is not a number\n");
+  EXPECT_EQ(r.err,
+            "fit_surfaces: " + (dir_ / "text.csv").string() + ":3: column 3 'thrust_g': 'abc' is not a number\n");
   const ToolRun map = run(PE_FIT_SURFACES, "--out x.yaml --map speed=RPM " + (dir_ / "text.csv").string());
   EXPECT_EQ(map.err,
             "fit_surfaces: 'speed' is not a bench quantity (one of time_s, pwm_us, voltage_v, thrust_n, current_a, "
@@ -149,14 +150,14 @@ TEST_F(BenchTools, FitSurfacesUsageAndReaderErrors) {
 TEST_F(BenchTools, CompareModelsPrintsTheChapter7TableAndWritesTheReport) {
   for (const char* name : {"g4", "g5"}) {
     const ToolRun fit = run(PE_FIT_SURFACES, "--out " + (dir_ / (std::string(name) + ".yaml")).string() + " " +
-                                             metadata(name) + " " + strawson(std::string(name) + "_7.csv") + " " +
-                                             strawson(std::string(name) + "_11.csv"));
+                                                 metadata(name) + " " + strawson(std::string(name) + "_7.csv") + " " +
+                                                 strawson(std::string(name) + "_11.csv"));
     ASSERT_EQ(fit.status, 0) << fit.err;
   }
   const ToolRun r = run(PE_COMPARE_MODELS,
-                    "--voltage 11 --mass-kg 0.6 --cells 2 --capacity-mah 1300 --python /usr/bin/python3 --report " +
-                        (dir_ / "cmp").string() + " " + (dir_ / "g4.yaml").string() + "=" + strawson("g4_7.csv") + "," +
-                        strawson("g4_11.csv") + " " + (dir_ / "g5.yaml").string());
+                        "--voltage 11 --mass-kg 0.6 --cells 2 --capacity-mah 1300 --python /usr/bin/python3 --report " +
+                            (dir_ / "cmp").string() + " " + (dir_ / "g4.yaml").string() + "=" + strawson("g4_7.csv") +
+                            "," + strawson("g4_11.csv") + " " + (dir_ / "g5.yaml").string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("| g4 | unknown | Lumenier RX2206-13 2000kv | g4 | 11.00 |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Hover of a 0.6 kg vehicle on 4 motors (150.0 g each), 2S 1300 mAh"), std::string::npos);
@@ -169,6 +170,7 @@ TEST_F(BenchTools, CompareModelsPrintsTheChapter7TableAndWritesTheReport) {
   const ToolRun one = run(PE_COMPARE_MODELS, (dir_ / "g4.yaml").string());
   EXPECT_EQ(one.status, 1);
   EXPECT_EQ(one.err, "compare_models: give two or more models to compare\n");
-  const ToolRun partial = run(PE_COMPARE_MODELS, "--mass-kg 1 " + (dir_ / "g4.yaml").string() + " " + (dir_ / "g5.yaml").string());
+  const ToolRun partial =
+      run(PE_COMPARE_MODELS, "--mass-kg 1 " + (dir_ / "g4.yaml").string() + " " + (dir_ / "g5.yaml").string());
   EXPECT_EQ(partial.err, "compare_models: hover needs --mass-kg, --cells and --capacity-mah together\n");
 }

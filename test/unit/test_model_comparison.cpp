@@ -1,9 +1,9 @@
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "propulsion_estimator/core/bench_fit.h"
 #include "propulsion_estimator/core/bench_log_reader.h"
@@ -243,5 +243,6 @@ TEST(ModelComparisonStrawson, OneMotorWithAllItsPropellersOrdersAsPhysicsSays) {
     EXPECT_TRUE(c.endurance_min.has_value()) << propeller;
   }
   const std::string table = pe::comparisonTables(all, options);
-  EXPECT_NE(table.find("| g5 | unknown | Lumenier RX2206-13 2000kv | propeller 5 | 11.00 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| g5 | unknown | Lumenier RX2206-13 2000kv | propeller 5 | 11.00 |"), std::string::npos)
+      << table;
 }

@@ -28,7 +28,7 @@ struct FitOptions {
   int max_voltage_degree = 3;  // 0..3
   // A candidate within this share of the best held-out RMSE that has fewer terms is preferred.
   double parsimony = 0.02;
-  int min_points = 10;             // per fitted output
+  int min_points = 10;              // per fitted output
   bool efficiency_surface = false;  // fit efficiency samples instead of deriving thrust / power
   std::set<Output> without;         // current, power or rpm left out of the model
   OutsideDomain outside = OutsideDomain::kClamp;

@@ -1,10 +1,9 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace propulsion_estimator {
 

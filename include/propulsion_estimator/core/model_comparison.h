@@ -79,9 +79,9 @@ struct ModelComparison {
   double efficiency_at_max_power_g_per_w = 0.0;
   double peak_efficiency_g_per_w = 0.0;  // over samples drawing >= kEfficiencyMinPowerShare of max power
   double peak_efficiency_pwm_us = 0.0;
-  std::optional<double> max_motor_temp_c;        // from the logs, where logged
-  std::vector<ComparisonSample> logged_near;     // log rows within kNearVoltageV of voltage_v
-  std::optional<HoverPoint> hover;               // at the battery's mid-discharge voltage
+  std::optional<double> max_motor_temp_c;     // from the logs, where logged
+  std::vector<ComparisonSample> logged_near;  // log rows within kNearVoltageV of voltage_v
+  std::optional<HoverPoint> hover;            // at the battery's mid-discharge voltage
   std::vector<DischargeStep> discharge;
   std::optional<double> endurance_min;
   std::vector<std::string> hover_notes;
