@@ -359,7 +359,6 @@ BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& opti
       description = "leave one log out (" + std::to_string(groups) + " logs)";
       break;
   }
-  notes.push_back("cross-validation: " + description);
 
   std::array<OutputDefinition, kOutputCount> definitions;
   std::array<OutputFitReport, kOutputCount> reports;

@@ -196,9 +196,11 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
      << number(meta.bench_air_pressure_pa, "%.0f") << " Pa (density " << number(meta.benchAirDensity(), "%.4f")
      << " kg/m^3), " << supplyKindName(meta.supply) << " supply.\n";
   md << "- Voltage levels (" << data.voltage_levels.size() << "):";
-  for (const Level& level : data.voltage_levels)
-    md << " " << number(level.centre, "%.2f") << " V (" << level.rows << " rows);";
-  md << "\n- PWM levels: " << data.pwm_levels.size() << ", " << number(data.pwm_levels.front().centre, "%.0f") << " to "
+  for (std::size_t k = 0; k < data.voltage_levels.size(); ++k) {
+    md << (k ? ", " : " ") << number(data.voltage_levels[k].centre, "%.2f") << " V (" << data.voltage_levels[k].rows
+       << " rows)";
+  }
+  md << ".\n- PWM levels: " << data.pwm_levels.size() << ", " << number(data.pwm_levels.front().centre, "%.0f") << " to "
      << number(data.pwm_levels.back().centre, "%.0f") << " us.\n";
   md << "- Cross-validation: " << fit.grouping_description
      << ". Whole groups are held out, never random rows; candidates are the MATLAB polyXY degrees up to (5, 3) "

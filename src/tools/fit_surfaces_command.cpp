@@ -69,6 +69,7 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
   const std::vector<BenchLog> logs = readBenchLogs(args.logs, read_options);
   const BenchFit result = fitBenchModel(logs, options);
   for (const std::string& note : result.notes) std::printf("note: %s\n", note.c_str());
+  std::printf("cross-validation: %s\n", result.grouping_description.c_str());
   printSummary(result);
 
   if (!args.report.empty()) {
