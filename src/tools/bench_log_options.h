@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "propulsion_estimator/core/bench_log_reader.h"
+#include "propulsion_estimator/tools/bench_log_reader.h"
 
 namespace propulsion_estimator {
 

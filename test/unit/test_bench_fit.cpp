@@ -9,7 +9,7 @@
 
 #include "bench_sweep_fixture.h"
 #include "propulsion_estimator/core/bench_fit.h"
-#include "propulsion_estimator/core/bench_log_reader.h"
+#include "propulsion_estimator/tools/bench_log_reader.h"
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/model_yaml.h"
 #include "propulsion_estimator/core/units.h"

@@ -6,8 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "propulsion_estimator/core/bench_csv.h"
-#include "propulsion_estimator/core/bench_log_reader.h"
+#include "propulsion_estimator/tools/bench_csv.h"
+#include "propulsion_estimator/tools/bench_log_reader.h"
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/units.h"
 #include "test_paths.h"

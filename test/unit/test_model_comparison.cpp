@@ -6,7 +6,7 @@
 #include <string>
 
 #include "propulsion_estimator/core/bench_fit.h"
-#include "propulsion_estimator/core/bench_log_reader.h"
+#include "propulsion_estimator/tools/bench_log_reader.h"
 #include "propulsion_estimator/core/comparison_report.h"
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/model_comparison.h"

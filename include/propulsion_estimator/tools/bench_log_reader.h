@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "propulsion_estimator/core/bench_log.h"
-#include "propulsion_estimator/core/csv_text.h"
+#include "propulsion_estimator/tools/csv_text.h"
 
 namespace propulsion_estimator {
 

@@ -1,11 +1,11 @@
-#include "propulsion_estimator/core/bench_log_reader.h"
+#include "propulsion_estimator/tools/bench_log_reader.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "propulsion_estimator/core/bench_csv.h"
+#include "propulsion_estimator/tools/bench_csv.h"
 #include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/tyto_csv.h"
+#include "propulsion_estimator/tools/tyto_csv.h"
 #include "propulsion_estimator/core/yaml_map.h"
 
 namespace propulsion_estimator {

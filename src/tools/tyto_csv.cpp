@@ -1,4 +1,4 @@
-#include "propulsion_estimator/core/tyto_csv.h"
+#include "propulsion_estimator/tools/tyto_csv.h"
 
 #include <algorithm>
 #include <cctype>

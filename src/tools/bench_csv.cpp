@@ -1,4 +1,4 @@
-#include "propulsion_estimator/core/bench_csv.h"
+#include "propulsion_estimator/tools/bench_csv.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -23,13 +23,6 @@ std::string csvField(const std::string& text) {
 constexpr const char* kThrustGrams = "thrust_g";
 
 }  // namespace
-
-const char* benchColumnName(BenchColumn column) {
-  static const char* const kNames[kBenchColumnCount] = {"time_s",  "pwm_us", "voltage_v",      "thrust_n",
-                                                        "current_a", "power_w", "rpm", "ambient_temp_c",
-                                                        "motor_temp_c", "pressure_pa"};
-  return kNames[static_cast<int>(column)];
-}
 
 void writeNativeBenchCsv(const BenchLog& log, std::ostream& out, ThrustUnit thrust_unit) {
   for (const auto& [key, value] : log.metadata) out << "# " << key << ": " << value << "\n";

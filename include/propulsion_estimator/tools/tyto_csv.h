@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "propulsion_estimator/core/bench_log.h"
-#include "propulsion_estimator/core/bench_log_reader.h"
-#include "propulsion_estimator/core/csv_text.h"
+#include "propulsion_estimator/tools/bench_log_reader.h"
+#include "propulsion_estimator/tools/csv_text.h"
 
 namespace propulsion_estimator {
 

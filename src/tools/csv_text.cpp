@@ -1,4 +1,4 @@
-#include "propulsion_estimator/core/csv_text.h"
+#include "propulsion_estimator/tools/csv_text.h"
 
 #include <csv.h>
 
