@@ -72,7 +72,8 @@ void FlightProfile::validate() const {
   if (segments.empty()) throw FieldError("segments", "no segments");
 
   const double landed = vehicle.landing_gear_height_m;
-  const double lowest = landed + kMinimumClearanceM;
+  // Rounded to the micrometre so that messages quote "0.17", not "0.16999999999999998".
+  const double lowest = std::round((landed + kMinimumClearanceM) * 1e6) / 1e6;
   bool flying = false;
   double height = landed;
   double payload = 0.0;
@@ -113,7 +114,7 @@ void FlightProfile::validate() const {
         flying = false;
         break;
     }
-    const double needed = cable.length_m - cable.attach_point_m.z() + kPayloadClearanceM;
+    const double needed = std::round((cable.length_m - cable.attach_point_m.z() + kPayloadClearanceM) * 1e6) / 1e6;
     if (s.kind == SegmentKind::kHover && payload > 0.0 && height < needed) {
       throw FieldError(at + "type", "hover at " + metres(height) + " with the " + formatNumber(payload) +
                                         " kg payload on a " + metres(cable.length_m) +

@@ -125,6 +125,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
                             const FlightSensorParams& sensors) {
   params.validate();
   effects.validate();
+  sensors.validate();
   const std::vector<ScheduledSegment> schedule = scheduleFlight(profile);
   MultirotorDynamics dynamics(vehicle, profile.vehicle, profile.cable);
   const int rotors = static_cast<int>(vehicle.rotors.size());

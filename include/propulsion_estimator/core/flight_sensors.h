@@ -36,6 +36,10 @@ struct FlightSensorParams {
   double rangefinder_fov_rad = 0.035;
   // Thermistor or IR sensor on the motor bell (assumed).
   double motor_temperature_sigma_c = 0.2;
+
+  // Throws FieldError naming the member for a rate outside 0..500 Hz, a negative sigma, or a
+  // rangefinder range that is empty.
+  void validate() const;
 };
 
 }  // namespace propulsion_estimator
