@@ -120,6 +120,10 @@ void runOnBattery(const SimParams& params, const SimEffects& effects, const Benc
       pwms[0] = controller(recorder->readThrust(state.motors[0].thrust_n), pwms[0]);
     }
     battery.draw(state.current_a, kStepS);
+    if (battery.stateOfCharge() <= 0.0) {
+      throw ConfigError(what + " emptied the battery before the measured voltage fell below the " +
+                        formatNumber(experiment.cutoff_voltage_v) + " V cut-off");
+    }
   }
   *time += step * kStepS;
 }

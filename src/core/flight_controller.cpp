@@ -9,12 +9,12 @@ namespace propulsion_estimator {
 namespace {
 
 // Gains for a 1-2 kg quad on 9-10 in propellers, in throttle units (PX4's MPC_* and MC_* play
-// the same roles). Height: 1 m/s per m; vertical speed: 0.1 throttle per m/s with an integral
-// of 0.05 per m; horizontal: 1 m/s^2 per m and 1.5 m/s^2 per m/s, tilt within 20 deg.
-constexpr double kHeightGain = 1.0;
+// the same roles). Height: 1.5 m/s per m; vertical speed: 0.1 throttle per m/s with an integral
+// of 0.15 per m; horizontal: 1 m/s^2 per m and 1.5 m/s^2 per m/s, tilt within 20 deg.
+constexpr double kHeightGain = 1.5;
 constexpr double kMaxVerticalSpeedM_S = 2.0;
 constexpr double kVerticalSpeedGain = 0.1;
-constexpr double kHoverThrottleGain = 0.05;
+constexpr double kHoverThrottleGain = 0.15;
 constexpr double kInitialHoverThrottle = 0.5;
 constexpr double kPositionGain = 1.0;
 constexpr double kVelocityGain = 1.5;

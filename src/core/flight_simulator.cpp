@@ -10,6 +10,7 @@
 #include "propulsion_estimator/core/flight_controller.h"
 #include "propulsion_estimator/core/lipo_battery.h"
 #include "propulsion_estimator/core/multirotor_dynamics.h"
+#include "propulsion_estimator/core/number_format.h"
 #include "propulsion_estimator/core/power_train.h"
 #include "propulsion_estimator/core/units.h"
 
@@ -102,7 +103,7 @@ void checkThrustReserve(const SimParams& params, const SimEffects& effects, cons
                                                      : "vehicle.urdf";
       throw ConfigError(profile.source + ": " + field + ": " + threeDigits(mass) + " kg needs " + threeDigits(needed) +
                         " N per rotor, more than " + threeDigits(100.0 * kMaxHoverThrustShare) + " % of the " +
-                        threeDigits(max_thrust) + " N each gives at " + threeDigits(profile.autopilot.pwm_max_us) +
+                        threeDigits(max_thrust) + " N each gives at " + formatNumber(profile.autopilot.pwm_max_us) +
                         " us from " + threeDigits(source_v) + " V");
     }
   }
