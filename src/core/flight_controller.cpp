@@ -68,7 +68,9 @@ const std::vector<double>& FlightController::update(const HeightSetpoint& setpoi
   // Vertical: height -> speed -> throttle; the integrator is the learned hover throttle, held
   // while the gear is expected on the ground, taking off or landing (where the height error says
   // nothing about the thrust).
-  if (setpoint.vertical_speed_m_s > 0.0 || !near_ground) takeoff_ramp_ = std::min(1.0, takeoff_ramp_ + dt_s / kTakeoffRampS);
+  const bool takeoff_commanded =
+      setpoint.vertical_speed_m_s > 0.0 || setpoint.height_m > landed_height_m_ + kLandedMarginM;
+  if (takeoff_commanded || !near_ground) takeoff_ramp_ = std::min(1.0, takeoff_ramp_ + dt_s / kTakeoffRampS);
   const bool on_ground = near_ground && (setpoint.landing || takeoff_ramp_ < 1.0);
   const double speed_setpoint = std::clamp(setpoint.vertical_speed_m_s + kHeightGain * (setpoint.height_m - height),
                                            -kMaxVerticalSpeedM_S, kMaxVerticalSpeedM_S);

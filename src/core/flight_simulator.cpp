@@ -20,6 +20,9 @@ namespace {
 // A hover may use at most this share of the rotors' thrust, leaving the rest to attitude control.
 constexpr double kMaxHoverThrustShare = 0.8;
 constexpr double kEmptyStateOfCharge = 0.02;
+// A hover that ends farther than this from its height did not happen as scripted; its manifest
+// segment would be wrong.
+constexpr double kHoverToleranceM = 0.25;
 constexpr int kMinRcOutChannels = 8;  // MAVLink SERVO_OUTPUT_RAW carries 8 (or 16) outputs
 
 std::string threeDigits(double value) {
@@ -158,6 +161,13 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
   for (long step = 0; step <= steps; ++step) {
     const double t = step * kFlightStepS;
     while (current + 1 < schedule.size() && t >= schedule[current].end_s - 1e-9) {
+      const double height = dynamics.basePosition().z();
+      if (schedule[current].segment.kind == SegmentKind::kHover &&
+          std::fabs(height - schedule[current].end_height_m) > kHoverToleranceM) {
+        throw ConfigError(profile.source + ": segments[" + std::to_string(schedule[current].index) +
+                          "].type: the vehicle ended its hover at " + threeDigits(height) + " m instead of " +
+                          threeDigits(schedule[current].end_height_m) + " m");
+      }
       if (schedule[current].segment.kind == SegmentKind::kLand && controller.armed()) {
         throw ConfigError(profile.source + ": segments[" + std::to_string(schedule[current].index) +
                           "].type: the vehicle had not landed and disarmed " + threeDigits(kTouchdownS) +

@@ -255,5 +255,16 @@ TEST(FlightSimulator, RefusesAFlightLongerThanTheBattery) {
   // 13 % of 4 Ah above the 2 % floor at the ~13 A of the empty hovers: about 144 s.
   profile.vehicle.battery_initial_soc = 0.15;
   EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
-                                  ": vehicle.battery_initial_soc: the battery is empty 143 s into the flight");
+                                  ": vehicle.battery_initial_soc: the battery is empty 142 s into the flight");
+}
+
+TEST(FlightSimulator, RefusesAHoverTheVehicleCannotReach) {
+  // 5 m/s to 50 m is beyond the autopilot's 2 m/s climb limit: after 12 s of climbing the vehicle is at
+  // 17 m, and its hover would not be where the manifest says.
+  pe::FlightProfile profile = defaultProfile();
+  profile.segments = {{pe::SegmentKind::kTakeoff, 0.0, 50.0, 5.0, 0.0},
+                      {pe::SegmentKind::kHover, 0.5, 0.0, 0.0, 0.0},
+                      {pe::SegmentKind::kLand, 0.0, 0.0, 5.0, 0.0}};
+  EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
+                                  ": segments[1].type: the vehicle ended its hover at 17 m instead of 50 m");
 }
