@@ -15,10 +15,10 @@
 namespace propulsion_estimator {
 namespace {
 
-constexpr double kStepS = 0.02;                  // integration step; the rotor lag is ~0.07 s
-constexpr double kControlIntervalS = 0.1;        // HX711 at its 10 Hz output rate
-constexpr double kThrustSettleS = 10.0;          // constant-thrust runs are logged once the controller has settled
-constexpr double kMaxRunS = 12.0 * 3600.0;       // a discharge that has not reached the cut-off by then never will
+constexpr double kStepS = 0.02;             // integration step; the rotor lag is ~0.07 s
+constexpr double kControlIntervalS = 0.1;   // HX711 at its 10 Hz output rate
+constexpr double kThrustSettleS = 10.0;     // constant-thrust runs are logged once the controller has settled
+constexpr double kMaxRunS = 12.0 * 3600.0;  // a discharge that has not reached the cut-off by then never will
 
 // Logs rows as the bench's sensors see them and, optionally, as they are.
 class Recorder {
@@ -36,22 +36,24 @@ class Recorder {
   void row(double time_s, double pwm_us, int run, const PowerTrainState& state, double air_c) {
     const ChainState& motor = state.motors[0];
     const double current = sensors_.current_a.measure(state.current_a, rng_);
-    add(measured_, {time_s, pwm_us, voltage_reading_, readThrust(motor.thrust_n), current, voltage_reading_ * current,
-                    sensors_.rpm.measure(motor.rpm(), rng_), sensors_.temperature_c.measure(air_c, rng_),
-                    sensors_.temperature_c.measure(state.winding_temperature_c[0], rng_)},
+    add(measured_,
+        {time_s, pwm_us, voltage_reading_, readThrust(motor.thrust_n), current, voltage_reading_ * current,
+         sensors_.rpm.measure(motor.rpm(), rng_), sensors_.temperature_c.measure(air_c, rng_),
+         sensors_.temperature_c.measure(state.winding_temperature_c[0], rng_)},
         run);
     if (truth_) {
-      add(truth_, {time_s, pwm_us, state.terminal_voltage_v, motor.thrust_n, state.current_a,
-                   state.terminal_voltage_v * state.current_a, motor.rpm(), air_c, state.winding_temperature_c[0]},
+      add(truth_,
+          {time_s, pwm_us, state.terminal_voltage_v, motor.thrust_n, state.current_a,
+           state.terminal_voltage_v * state.current_a, motor.rpm(), air_c, state.winding_temperature_c[0]},
           run);
     }
   }
 
  private:
   static void add(BenchLog* log, const std::vector<double>& values, int run) {
-    static const BenchColumn kColumns[] = {BenchColumn::kTime,  BenchColumn::kPwm,         BenchColumn::kVoltage,
+    static const BenchColumn kColumns[] = {BenchColumn::kTime,   BenchColumn::kPwm,         BenchColumn::kVoltage,
                                            BenchColumn::kThrust, BenchColumn::kCurrent,     BenchColumn::kPower,
-                                           BenchColumn::kRpm,   BenchColumn::kAmbientTemp, BenchColumn::kMotorTemp};
+                                           BenchColumn::kRpm,    BenchColumn::kAmbientTemp, BenchColumn::kMotorTemp};
     for (std::size_t i = 0; i < values.size(); ++i) log->column(kColumns[i]).push_back(values[i]);
     log->extra_columns["run"].push_back(std::to_string(run));
     log->line_numbers.push_back(0);
@@ -65,7 +67,9 @@ class Recorder {
 };
 
 std::vector<double> sweepPulseWidths(const BenchExperiment& experiment) {
-  const int count = static_cast<int>(std::floor((experiment.pwm_end_us - experiment.pwm_start_us) / experiment.pwm_step_us + 1e-9)) + 1;
+  const int count =
+      static_cast<int>(std::floor((experiment.pwm_end_us - experiment.pwm_start_us) / experiment.pwm_step_us + 1e-9)) +
+      1;
   std::vector<double> pwms;
   for (int i = 0; i < count; ++i) pwms.push_back(experiment.pwm_start_us + i * experiment.pwm_step_us);
   return pwms;
@@ -152,7 +156,8 @@ void BenchExperiment::validate() const {
     case BenchExperimentKind::kPwmSweep:
       if (voltages_v.empty()) throw FieldError("voltages_v", "no supply voltage to sweep at");
       for (double voltage : voltages_v) {
-        if (!(voltage > 0.0 && voltage <= 60.0)) throw FieldError("voltages_v", formatNumber(voltage) + " is outside 0..60 V");
+        if (!(voltage > 0.0 && voltage <= 60.0))
+          throw FieldError("voltages_v", formatNumber(voltage) + " is outside 0..60 V");
       }
       if (!(pwm_start_us >= 800.0 && pwm_end_us <= 2200.0 && pwm_start_us < pwm_end_us)) {
         throw FieldError("pwm_start_us", "[" + formatNumber(pwm_start_us) + ", " + formatNumber(pwm_end_us) +
@@ -164,7 +169,8 @@ void BenchExperiment::validate() const {
     case BenchExperimentKind::kDischarge:
       if (pwms_us.empty()) throw FieldError("pwms_us", "no pulse width to discharge at");
       for (double pwm : pwms_us) {
-        if (!(pwm >= 800.0 && pwm <= 2200.0)) throw FieldError("pwms_us", formatNumber(pwm) + " is outside 800..2200 us");
+        if (!(pwm >= 800.0 && pwm <= 2200.0))
+          throw FieldError("pwms_us", formatNumber(pwm) + " is outside 800..2200 us");
       }
       break;
     case BenchExperimentKind::kConstantThrust:
@@ -187,11 +193,13 @@ BenchExperiment thesisBenchExperiment(BenchExperimentKind kind, const SimParams&
       break;
     case BenchExperimentKind::kDischarge:
       for (double pwm : {1600.0, 1700.0, 1800.0, 1900.0}) {
-        if (pwm >= params.bench.sweep_pwm_min_us && pwm <= params.bench.sweep_pwm_max_us) experiment.pwms_us.push_back(pwm);
+        if (pwm >= params.bench.sweep_pwm_min_us && pwm <= params.bench.sweep_pwm_max_us)
+          experiment.pwms_us.push_back(pwm);
       }
       break;
     case BenchExperimentKind::kConstantThrust:
-      for (double grams : {300.0, 350.0, 400.0, 450.0, 500.0}) experiment.thrusts_n.push_back(grams * kNewtonPerGramForce);
+      for (double grams : {300.0, 350.0, 400.0, 450.0, 500.0})
+        experiment.thrusts_n.push_back(grams * kNewtonPerGramForce);
       break;
   }
   return experiment;
@@ -208,9 +216,7 @@ BenchLog simulateBench(const SimParams& params, const SimEffects& effects, const
   Recorder recorder(params.bench.sensors, seed, &log, truth);
   double time = 0.0;
   switch (experiment.kind) {
-    case BenchExperimentKind::kPwmSweep:
-      runSweeps(params, effects, experiment, air, &recorder);
-      break;
+    case BenchExperimentKind::kPwmSweep: runSweeps(params, effects, experiment, air, &recorder); break;
     case BenchExperimentKind::kDischarge:
       for (std::size_t run = 0; run < experiment.pwms_us.size(); ++run) {
         const double pwm = experiment.pwms_us[run];
@@ -261,7 +267,8 @@ BenchLog simulateBench(const SimParams& params, const SimEffects& effects, const
       meta[std::string("resolution_") + name] = formatNumber(noise_scale * sensor->resolution);
     }
     // Rows sit below the metadata lines and the header of the native CSV.
-    for (std::size_t i = 0; i < out->line_numbers.size(); ++i) out->line_numbers[i] = static_cast<int>(meta.size() + 2 + i);
+    for (std::size_t i = 0; i < out->line_numbers.size(); ++i)
+      out->line_numbers[i] = static_cast<int>(meta.size() + 2 + i);
   }
   return log;
 }

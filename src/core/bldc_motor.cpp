@@ -32,7 +32,8 @@ MotorConstants motorConstantsAt(const BldcMotorParams& motor, double winding_tem
   MotorConstants constants;
   const double kt_reference = 1.0 / (motor.kv_rpm_per_v * kRadPerSecPerRpm);
   constants.torque_constant_nm_per_a =
-      kt_reference * (1.0 + motor.flux_temperature_coefficient_per_c * (winding_temperature_c - motor.reference_temperature_c));
+      kt_reference *
+      (1.0 + motor.flux_temperature_coefficient_per_c * (winding_temperature_c - motor.reference_temperature_c));
   const auto copperFactor = [](double t) {
     return 1.0 + kCopperTemperatureCoefficientPerC * (t - kCopperReferenceTemperatureC);
   };

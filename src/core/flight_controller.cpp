@@ -56,9 +56,8 @@ const std::vector<double>& FlightController::update(const HeightSetpoint& setpoi
   }
   const double height = state.position_m.z();
   const bool near_ground = height < landed_height_m_ + kLandedMarginM;
-  landed_for_s_ = setpoint.landing && near_ground && state.velocity_m_s.norm() < kLandedSpeedM_S
-                      ? landed_for_s_ + dt_s
-                      : 0.0;
+  landed_for_s_ =
+      setpoint.landing && near_ground && state.velocity_m_s.norm() < kLandedSpeedM_S ? landed_for_s_ + dt_s : 0.0;
   if (landed_for_s_ >= kLandedTimeS) {
     armed_ = false;
     std::fill(pwm_us_.begin(), pwm_us_.end(), autopilot_.disarmed_pwm_us);
@@ -82,7 +81,8 @@ const std::vector<double>& FlightController::update(const HeightSetpoint& setpoi
       std::clamp((hover_throttle_ + kVerticalSpeedGain * speed_error) / tilt_cosine, 0.0, takeoff_ramp_);
 
   // Horizontal: hold the take-off point, tilting towards the wanted acceleration (heading 0).
-  const Eigen::Vector2d acceleration = -kPositionGain * state.position_m.head<2>() - kVelocityGain * state.velocity_m_s.head<2>();
+  const Eigen::Vector2d acceleration =
+      -kPositionGain * state.position_m.head<2>() - kVelocityGain * state.velocity_m_s.head<2>();
   const double pitch = std::clamp(acceleration.x() / kStandardGravity, -kMaxTiltRad, kMaxTiltRad);
   const double roll = std::clamp(-acceleration.y() / kStandardGravity, -kMaxTiltRad, kMaxTiltRad);
   const Eigen::Quaterniond wanted = Eigen::Quaterniond(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY())) *

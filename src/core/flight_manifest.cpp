@@ -1,9 +1,9 @@
 #include "propulsion_estimator/core/flight_manifest.h"
 
+#include <yaml-cpp/yaml.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <yaml-cpp/yaml.h>
 
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/field_error.h"
@@ -23,7 +23,8 @@ void FlightManifest::validate() const {
       const std::string field = at + "segments[" + std::to_string(s) + "].";
       if (!(segment.start_s >= 0.0)) throw FieldError(field + "start", formatNumber(segment.start_s) + " is negative");
       if (!(segment.end_s > segment.start_s)) {
-        throw FieldError(field + "end", formatNumber(segment.end_s) + " is not after start " + formatNumber(segment.start_s));
+        throw FieldError(field + "end",
+                         formatNumber(segment.end_s) + " is not after start " + formatNumber(segment.start_s));
       }
       if (!(segment.mass_kg > 0.0 && segment.mass_kg <= 100.0)) {
         throw FieldError(field + "mass_kg", formatNumber(segment.mass_kg) + " is outside 0..100 kg");

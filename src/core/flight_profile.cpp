@@ -30,10 +30,6 @@ std::string metres(double value) { return formatNumber(value) + " m"; }
 
 }  // namespace
 
-const char* autopilotFlavourName(AutopilotFlavour flavour) {
-  return flavour == AutopilotFlavour::kPx4 ? "px4" : "ardupilot";
-}
-
 const char* segmentKindName(SegmentKind kind) {
   switch (kind) {
     case SegmentKind::kWait: return "wait";
@@ -81,14 +77,14 @@ void FlightProfile::validate() const {
     const FlightSegment& s = segments[i];
     const std::string at = "segments[" + std::to_string(i) + "].";
     const std::string kind = segmentKindName(s.kind);
-    const bool needs_ground = s.kind == SegmentKind::kWait || s.kind == SegmentKind::kPayload || s.kind == SegmentKind::kTakeoff;
-    if (needs_ground && flying) throw FieldError(at + "type", kind + " while flying at " + metres(height) + " (land first)");
+    const bool needs_ground =
+        s.kind == SegmentKind::kWait || s.kind == SegmentKind::kPayload || s.kind == SegmentKind::kTakeoff;
+    if (needs_ground && flying)
+      throw FieldError(at + "type", kind + " while flying at " + metres(height) + " (land first)");
     if (!needs_ground && !flying) throw FieldError(at + "type", kind + " on the ground (take off first)");
     switch (s.kind) {
       case SegmentKind::kWait:
-      case SegmentKind::kHover:
-        requirePositive(at + "duration_s", s.duration_s, 3600.0, " s");
-        break;
+      case SegmentKind::kHover: requirePositive(at + "duration_s", s.duration_s, 3600.0, " s"); break;
       case SegmentKind::kPayload:
         requirePositive(at + "duration_s", s.duration_s, 3600.0, " s");
         requireWithin(at + "mass_kg", s.payload_mass_kg, 0.0, 5.0, " kg");
@@ -100,10 +96,12 @@ void FlightProfile::validate() const {
         requirePositive(at + "rate_m_s", s.rate_m_s, 5.0, " m/s");
         requireWithin(at + "height_m", s.height_m, lowest, kMaxHeightM, " m");
         if (s.kind == SegmentKind::kClimb && !(s.height_m > height)) {
-          throw FieldError(at + "height_m", "climb to " + metres(s.height_m) + " from " + metres(height) + " (use descend)");
+          throw FieldError(at + "height_m",
+                           "climb to " + metres(s.height_m) + " from " + metres(height) + " (use descend)");
         }
         if (s.kind == SegmentKind::kDescend && !(s.height_m < height)) {
-          throw FieldError(at + "height_m", "descend to " + metres(s.height_m) + " from " + metres(height) + " (use climb)");
+          throw FieldError(at + "height_m",
+                           "descend to " + metres(s.height_m) + " from " + metres(height) + " (use climb)");
         }
         height = s.height_m;
         flying = true;
@@ -143,7 +141,8 @@ std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile) {
       case SegmentKind::kTakeoff:
       case SegmentKind::kClimb:
       case SegmentKind::kDescend:
-        duration = std::fabs(s.height_m - height) / s.rate_m_s + (s.kind == SegmentKind::kTakeoff ? kTakeoffSpinUpS : 0.0);
+        duration =
+            std::fabs(s.height_m - height) / s.rate_m_s + (s.kind == SegmentKind::kTakeoff ? kTakeoffSpinUpS : 0.0);
         height = s.height_m;
         break;
       case SegmentKind::kLand:
@@ -151,8 +150,7 @@ std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile) {
         height = profile.vehicle.landing_gear_height_m;
         break;
       case SegmentKind::kWait:
-      case SegmentKind::kHover:
-        break;
+      case SegmentKind::kHover: break;
     }
     scheduled.end_s = time + duration;
     scheduled.end_height_m = height;

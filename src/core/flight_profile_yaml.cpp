@@ -17,8 +17,8 @@ Eigen::Vector3d readVector(const YamlMap& map, const std::string& key) {
 AutopilotParams readAutopilot(const YamlMap& map) {
   map.allowOnly({"flavour", "pwm_min_us", "pwm_max_us", "disarmed_pwm_us", "rc_out_rate_hz"});
   AutopilotParams autopilot;
-  autopilot.flavour = map.choice("flavour", {"px4", "ardupilot"}) == "px4" ? AutopilotFlavour::kPx4
-                                                                           : AutopilotFlavour::kArduPilot;
+  autopilot.flavour =
+      map.choice("flavour", {"px4", "ardupilot"}) == "px4" ? AutopilotFlavour::kPx4 : AutopilotFlavour::kArduPilot;
   autopilot.pwm_min_us = map.number("pwm_min_us");
   autopilot.pwm_max_us = map.number("pwm_max_us");
   autopilot.disarmed_pwm_us = map.number("disarmed_pwm_us");
@@ -30,7 +30,8 @@ VehicleSetup readVehicle(const YamlMap& map, const std::string& folder) {
   map.allowOnly({"urdf", "centre_of_mass_offset_m", "landing_gear", "drag_area_m2", "battery_initial_soc"});
   VehicleSetup vehicle;
   const std::string urdf = map.text("urdf");
-  vehicle.urdf_path = std::filesystem::path(urdf).is_absolute() ? urdf : (std::filesystem::path(folder) / urdf).string();
+  vehicle.urdf_path =
+      std::filesystem::path(urdf).is_absolute() ? urdf : (std::filesystem::path(folder) / urdf).string();
   vehicle.centre_of_mass_offset_m = readVector(map, "centre_of_mass_offset_m");
   const YamlMap gear = map.map("landing_gear");
   gear.allowOnly({"height_m", "half_width_m"});
@@ -65,7 +66,9 @@ FlightSegment readSegment(const YamlMap& map) {
     segment.rate_m_s = map.number("rate_m_s");
   } else {
     map.allowOnly({"type", "height_m", "rate_m_s"});
-    segment.kind = type == "takeoff" ? SegmentKind::kTakeoff : type == "climb" ? SegmentKind::kClimb : SegmentKind::kDescend;
+    segment.kind = type == "takeoff" ? SegmentKind::kTakeoff
+                   : type == "climb" ? SegmentKind::kClimb
+                                     : SegmentKind::kDescend;
     segment.height_m = map.number("height_m");
     segment.rate_m_s = map.number("rate_m_s");
   }
@@ -94,6 +97,8 @@ FlightProfile parseFlightProfileYaml(const std::string& text, const std::string&
   return profile;
 }
 
-FlightProfile loadFlightProfileFile(const std::string& path) { return parseFlightProfileYaml(readTextFile(path), path); }
+FlightProfile loadFlightProfileFile(const std::string& path) {
+  return parseFlightProfileYaml(readTextFile(path), path);
+}
 
 }  // namespace propulsion_estimator

@@ -53,13 +53,15 @@ HeightSetpoint setpointAt(const ScheduledSegment& scheduled, double time_s) {
   switch (segment.kind) {
     case SegmentKind::kTakeoff:
       if (elapsed < kTakeoffSpinUpS) break;
-      setpoint.height_m = std::min(scheduled.end_height_m, scheduled.start_height_m + segment.rate_m_s * (elapsed - kTakeoffSpinUpS));
+      setpoint.height_m =
+          std::min(scheduled.end_height_m, scheduled.start_height_m + segment.rate_m_s * (elapsed - kTakeoffSpinUpS));
       setpoint.vertical_speed_m_s = setpoint.height_m < scheduled.end_height_m ? segment.rate_m_s : 0.0;
       break;
     case SegmentKind::kClimb:
     case SegmentKind::kDescend: {
       const double direction = scheduled.end_height_m > scheduled.start_height_m ? 1.0 : -1.0;
-      const double travelled = std::min(std::fabs(scheduled.end_height_m - scheduled.start_height_m), segment.rate_m_s * elapsed);
+      const double travelled =
+          std::min(std::fabs(scheduled.end_height_m - scheduled.start_height_m), segment.rate_m_s * elapsed);
       setpoint.height_m = scheduled.start_height_m + direction * travelled;
       setpoint.vertical_speed_m_s = direction * segment.rate_m_s;
       break;
@@ -72,8 +74,7 @@ HeightSetpoint setpointAt(const ScheduledSegment& scheduled, double time_s) {
       break;
     case SegmentKind::kWait:
     case SegmentKind::kHover:
-    case SegmentKind::kPayload:
-      break;
+    case SegmentKind::kPayload: break;
   }
   return setpoint;
 }
@@ -89,12 +90,9 @@ void checkThrustReserve(const SimParams& params, const SimEffects& effects, cons
   const double source_v = params.battery.openCircuitVoltage(profile.vehicle.battery_initial_soc);
   const ChainInput input{params.chain.esc.duty(profile.autopilot.pwm_max_us, effects.esc_offset_us.value_or(0.0)), 0.0,
                          air_density, params.chain.motor.reference_temperature_c};
-  const double max_thrust =
-      chain.steadyFromSource(input, source_v,
-                             params.battery.series_resistance_ohm + effects.supply_resistance_ohm.value_or(0.0), rotors,
-                             nullptr)
-          .thrust_n *
-      (1.0 - effects.thrust_loss_fraction.value_or(0.0));
+  const double series_ohm = params.battery.series_resistance_ohm + effects.supply_resistance_ohm.value_or(0.0);
+  const double max_thrust = chain.steadyFromSource(input, source_v, series_ohm, rotors, nullptr).thrust_n *
+                            (1.0 - effects.thrust_loss_fraction.value_or(0.0));
   int payload_segment = -1;
   for (const ScheduledSegment& scheduled : schedule) {
     if (scheduled.segment.kind == SegmentKind::kPayload) payload_segment = scheduled.index;
@@ -102,8 +100,8 @@ void checkThrustReserve(const SimParams& params, const SimEffects& effects, cons
     const double mass = vehicle_mass_kg + scheduled.payload_mass_kg;
     const double needed = mass * kStandardGravity / rotors;
     if (needed > kMaxHoverThrustShare * max_thrust) {
-      const std::string field = payload_segment >= 0 ? "segments[" + std::to_string(payload_segment) + "].mass_kg"
-                                                     : "vehicle.urdf";
+      const std::string field =
+          payload_segment >= 0 ? "segments[" + std::to_string(payload_segment) + "].mass_kg" : "vehicle.urdf";
       throw ConfigError(profile.source + ": " + field + ": " + threeDigits(mass) + " kg needs " + threeDigits(needed) +
                         " N per rotor, more than " + threeDigits(100.0 * kMaxHoverThrustShare) + " % of the " +
                         threeDigits(max_thrust) + " N each gives at " + formatNumber(profile.autopilot.pwm_max_us) +
@@ -235,7 +233,10 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
         const Eigen::Vector3d tilt = noise.vector(sensors.orientation_sigma_rad);
         ImuSample sample;
         sample.time_s = t;
-        sample.orientation = navigation.attitude * Eigen::Quaterniond(Eigen::AngleAxisd(tilt.norm(), tilt.normalized()));
+        sample.orientation =
+            tilt.norm() > 0.0
+                ? navigation.attitude * Eigen::Quaterniond(Eigen::AngleAxisd(tilt.norm(), tilt.normalized()))
+                : navigation.attitude;
         sample.angular_velocity_rad_s = navigation.angular_velocity_body_rad_s + noise.vector(sensors.gyro_sigma_rad_s);
         sample.linear_acceleration_m_s2 = dynamics.specificForceBody() + noise.vector(sensors.accel_sigma_m_s2);
         sample.orientation_sigma_rad = sensors.orientation_sigma_rad;
@@ -249,25 +250,26 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
                         rotation * navigation.angular_velocity_body_rad_s});
       }
       if (pressure.due(t)) {
-        sink->staticPressure({t, air.pressureAtHeightPa(height) + noise(sensors.pressure_sigma_pa), sensors.pressure_sigma_pa,
-                              "base_link"});
+        sink->staticPressure({t, air.pressureAtHeightPa(height) + noise(sensors.pressure_sigma_pa),
+                              sensors.pressure_sigma_pa, "base_link"});
       }
       if (air_temperature.due(t)) {
-        sink->airTemperature({t, air.temperature_c + noise(sensors.air_temperature_sigma_c), sensors.air_temperature_sigma_c,
-                              "base_link"});
+        sink->airTemperature({t, air.temperature_c + noise(sensors.air_temperature_sigma_c),
+                              sensors.air_temperature_sigma_c, "base_link"});
       }
       if (range.due(t)) {
         double reading = rotation(2, 2) > 0.1 ? height / rotation(2, 2) + noise(sensors.rangefinder_sigma_m)
-                                               : std::numeric_limits<double>::infinity();
+                                              : std::numeric_limits<double>::infinity();
         if (reading < sensors.rangefinder_min_m) reading = -std::numeric_limits<double>::infinity();
         if (reading > sensors.rangefinder_max_m) reading = std::numeric_limits<double>::infinity();
-        sink->rangefinder({t, reading, sensors.rangefinder_min_m, sensors.rangefinder_max_m, sensors.rangefinder_fov_rad});
+        sink->rangefinder(
+            {t, reading, sensors.rangefinder_min_m, sensors.rangefinder_max_m, sensors.rangefinder_fov_rad});
       }
       if (motor_temperature.due(t)) {
         const auto hottest = std::max_element(power.winding_temperature_c.begin(), power.winding_temperature_c.end());
         const std::size_t k = static_cast<std::size_t>(hottest - power.winding_temperature_c.begin());
-        sink->motorTemperature({t, *hottest + noise(sensors.motor_temperature_sigma_c), sensors.motor_temperature_sigma_c,
-                                vehicle.rotors[k].name});
+        sink->motorTemperature({t, *hottest + noise(sensors.motor_temperature_sigma_c),
+                                sensors.motor_temperature_sigma_c, vehicle.rotors[k].name});
       }
     }
 

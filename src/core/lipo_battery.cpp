@@ -14,17 +14,17 @@ void LipoBatteryParams::validate() const {
     throw FieldError("battery.capacity_ah", formatNumber(capacity_ah) + " is outside 0..1000 Ah");
   }
   if (ocv_soc.size() < 2 || ocv_soc.size() != ocv_cell_v.size()) {
-    throw FieldError("battery.open_circuit_voltage",
-                     "soc and cell_v need the same number of points, at least 2 (got " + std::to_string(ocv_soc.size()) +
-                         " and " + std::to_string(ocv_cell_v.size()) + ")");
+    throw FieldError("battery.open_circuit_voltage", "soc and cell_v need the same number of points, at least 2 (got " +
+                                                         std::to_string(ocv_soc.size()) + " and " +
+                                                         std::to_string(ocv_cell_v.size()) + ")");
   }
   if (ocv_soc.front() != 0.0 || ocv_soc.back() != 1.0) {
     throw FieldError("battery.open_circuit_voltage.soc", "must run from 0 to 1");
   }
   for (std::size_t i = 0; i < ocv_soc.size(); ++i) {
     if (i > 0 && !(ocv_soc[i] > ocv_soc[i - 1])) {
-      throw FieldError("battery.open_circuit_voltage.soc", "must increase (" + formatNumber(ocv_soc[i]) + " after " +
-                                                               formatNumber(ocv_soc[i - 1]) + ")");
+      throw FieldError("battery.open_circuit_voltage.soc",
+                       "must increase (" + formatNumber(ocv_soc[i]) + " after " + formatNumber(ocv_soc[i - 1]) + ")");
     }
     if (i > 0 && !(ocv_cell_v[i] > ocv_cell_v[i - 1])) {
       throw FieldError("battery.open_circuit_voltage.cell_v", "must increase with soc (" + formatNumber(ocv_cell_v[i]) +
@@ -65,7 +65,8 @@ double LipoBattery::sourceVoltage() const { return params_.openCircuitVoltage(so
 void LipoBattery::draw(double current_a, double dt_s) {
   soc_ -= current_a * dt_s / (params_.capacity_ah * 3600.0);
   const double settled = current_a * params_.rc_resistance_ohm;
-  polarisation_v_ = settled + (polarisation_v_ - settled) * std::exp(-dt_s / (params_.rc_resistance_ohm * params_.rc_capacitance_f));
+  polarisation_v_ =
+      settled + (polarisation_v_ - settled) * std::exp(-dt_s / (params_.rc_resistance_ohm * params_.rc_capacitance_f));
 }
 
 }  // namespace propulsion_estimator

@@ -1,9 +1,8 @@
 #include "propulsion_estimator/core/motor_mixer.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Dense>
 
 #include "propulsion_estimator/core/config_error.h"
 

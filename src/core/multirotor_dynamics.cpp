@@ -43,8 +43,9 @@ Eigen::Vector3d drag(const Eigen::Vector3d& velocity, double density, double are
 MultirotorDynamics::MultirotorDynamics(const Vehicle& vehicle, const VehicleSetup& setup, const PayloadCable& cable)
     : rotors_(vehicle.rotors), drag_area_m2_(setup.drag_area_m2), cable_(cable) {
   if (!vehicle.hasGeometry() || !vehicle.empty_mass) {
-    throw ConfigError("the flight simulator needs the rotors' positions and the mass properties of the vehicle (a URDF "
-                      "with rotor joints and <inertial> elements)");
+    throw ConfigError(
+        "the flight simulator needs the rotors' positions and the mass properties of the vehicle (a URDF "
+        "with rotor joints and <inertial> elements)");
   }
   mass_kg_ = vehicle.empty_mass->mass_kg;
   // The URDF's inertia about its own centre of mass; the configured offset of a few millimetres
@@ -95,7 +96,8 @@ void MultirotorDynamics::step(const std::vector<double>& thrust_n, const std::ve
   const double foot_stiffness = mass_kg_ / feet_body_.size() * std::pow(kTwoPi * kContactFrequencyHz, 2);
   const double foot_damping = 2.0 * kContactDampingRatio * std::sqrt(foot_stiffness * mass_kg_ / feet_body_.size());
   for (const Eigen::Vector3d& foot : feet_body_) {
-    const Eigen::Vector3d contact = groundForce(worldPoint(foot), worldPointVelocity(foot), foot_stiffness, foot_damping);
+    const Eigen::Vector3d contact =
+        groundForce(worldPoint(foot), worldPointVelocity(foot), foot_stiffness, foot_damping);
     applyBody(foot, attitude_.conjugate() * contact);
   }
 
@@ -108,8 +110,8 @@ void MultirotorDynamics::step(const std::vector<double>& thrust_n, const std::ve
     if (length > cable_.length_m) {
       const Eigen::Vector3d along = span / length;
       const double stretch_rate = (payload_velocity_ - worldPointVelocity(cable_.attach_point_m)).dot(along);
-      cable_tension_n_ =
-          std::max(0.0, cable_.stiffness_n_per_m * (length - cable_.length_m) + cable_.damping_n_s_per_m * stretch_rate);
+      cable_tension_n_ = std::max(
+          0.0, cable_.stiffness_n_per_m * (length - cable_.length_m) + cable_.damping_n_s_per_m * stretch_rate);
     }
     if (cable_tension_n_ > 0.0) {
       const Eigen::Vector3d pull = cable_tension_n_ * span / length;

@@ -57,7 +57,8 @@ const PowerTrainState& PowerTrain::step(const std::vector<double>& pwm_us, const
       const double time_constant = chain_.speedTimeConstantS(input, omega_rad_s_[k]);
       omega_rad_s_[k] = target + (omega_rad_s_[k] - target) * std::exp(-dt_s / time_constant);
     } else {
-      omega_rad_s_[k] = std::max(0.0, omega_rad_s_[k] - chain_.coastingDecelerationRadS2(input, omega_rad_s_[k]) * dt_s);
+      omega_rad_s_[k] =
+          std::max(0.0, omega_rad_s_[k] - chain_.coastingDecelerationRadS2(input, omega_rad_s_[k]) * dt_s);
     }
     temperature_c_[k] = nextWindingTemperature(chain_.params().motor, temperature_c_[k], state_.motors[k].heat_w,
                                                air.temperature_c, thermal_resistance_c_per_w_, dt_s);

@@ -34,7 +34,8 @@ ChainState PropulsionChain::atSpeed(const ChainInput& input, double omega_rad_s)
   state.torque_nm = params_.propeller.torqueNm(input.air_density_kg_m3, rev_per_s);
   if (input.duty <= 0.0) return state;  // bridge off: no current, no copper loss
   const double resistance = motor.resistance_ohm + params_.esc.resistance_ohm;
-  state.motor_current_a = (input.duty * input.esc_voltage_v - motor.torque_constant_nm_per_a * omega_rad_s) / resistance;
+  state.motor_current_a =
+      (input.duty * input.esc_voltage_v - motor.torque_constant_nm_per_a * omega_rad_s) / resistance;
   state.input_current_a = input.duty * state.motor_current_a;
   state.input_power_w = input.esc_voltage_v * state.input_current_a;
   state.heat_w = state.motor_current_a * state.motor_current_a * motor.resistance_ohm +

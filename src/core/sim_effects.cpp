@@ -37,8 +37,8 @@ std::string SimEffects::summary() const {
   const auto add = [&text](const std::string& effect) { text += (text.empty() ? "" : " ") + effect; };
   if (supply_resistance_ohm) add("supply_resistance(ohm=" + formatNumber(*supply_resistance_ohm) + ")");
   if (air) {
-    add("air_density(temperature_c=" + formatNumber(air->temperature_c) + ",pressure_pa=" + formatNumber(air->pressure_pa) +
-        ")");
+    add("air_density(temperature_c=" + formatNumber(air->temperature_c) +
+        ",pressure_pa=" + formatNumber(air->pressure_pa) + ")");
   }
   if (ground_effect_strength) add("ground_effect(strength=" + formatNumber(*ground_effect_strength) + ")");
   if (thrust_loss_fraction) add("thrust_loss(fraction=" + formatNumber(*thrust_loss_fraction) + ")");

@@ -17,8 +17,8 @@ double parameter(const YamlMap& root, const char* effect, const char* name) {
 
 SimEffects parseSimEffectsYaml(const std::string& text, const std::string& source) {
   const YamlMap root = parseYamlDocument(text, source);
-  root.allowOnly({"supply_resistance", "air_density", "ground_effect", "thrust_loss", "motor_temperature", "climb_inflow",
-                  "esc_offset"});
+  root.allowOnly({"supply_resistance", "air_density", "ground_effect", "thrust_loss", "motor_temperature",
+                  "climb_inflow", "esc_offset"});
   SimEffects effects;
   // Keys, not has(): an effect written without its parameter is refused, not silently off.
   for (const std::string& effect : root.keys()) {

@@ -10,7 +10,8 @@ constexpr int kFormatVersion = 1;
 
 EscParams readEsc(const YamlMap& map) {
   map.allowOnly({"name", "pwm_zero_us", "pwm_full_us", "resistance_ohm"});
-  return EscParams{map.text("name"), map.number("pwm_zero_us"), map.number("pwm_full_us"), map.number("resistance_ohm")};
+  return EscParams{map.text("name"), map.number("pwm_zero_us"), map.number("pwm_full_us"),
+                   map.number("resistance_ohm")};
 }
 
 BldcMotorParams readMotor(const YamlMap& map) {
@@ -83,8 +84,8 @@ SimParams parseSimParamsYaml(const std::string& text, const std::string& source)
   const YamlMap root = parseYamlDocument(text, source);
   root.allowOnly({"format_version", "esc", "motor", "propeller", "battery", "bench"});
   if (root.integer("format_version") != kFormatVersion) {
-    root.fail("format_version", std::to_string(root.integer("format_version")) + " is not supported (this reader knows " +
-                                    std::to_string(kFormatVersion) + ")");
+    root.fail("format_version", std::to_string(root.integer("format_version")) +
+                                    " is not supported (this reader knows " + std::to_string(kFormatVersion) + ")");
   }
   SimParams params;
   params.source = source;

@@ -1,7 +1,5 @@
 #include "propulsion_estimator/ros/bag_flight_sink.h"
 
-#include <limits>
-
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TwistStamped.h>
 #include <sensor_msgs/BatteryState.h>
@@ -9,6 +7,8 @@
 #include <sensor_msgs/Imu.h>
 #include <sensor_msgs/Range.h>
 #include <sensor_msgs/Temperature.h>
+
+#include <limits>
 
 #include "propulsion_estimator/SimTruth.h"
 #include "propulsion_estimator/ros/rcout_codec.h"

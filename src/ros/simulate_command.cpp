@@ -1,11 +1,12 @@
 #include "propulsion_estimator/ros/simulate_command.h"
 
+#include <rosbag/exceptions.h>
+
+#include <CLI/CLI.hpp>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
-
-#include <CLI/CLI.hpp>
-#include <rosbag/exceptions.h>
 
 #include "propulsion_estimator/core/bench_csv.h"
 #include "propulsion_estimator/core/bench_simulator.h"
@@ -55,10 +56,14 @@ SimEffects loadEffects(const std::string& path) { return path.empty() ? SimEffec
 
 // The command-line option behind each field of BenchExperiment, for refusals.
 std::string optionOf(const std::string& field) {
-  static const std::map<std::string, std::string> kOptions = {
-      {"voltages_v", "--voltage"},       {"pwm_start_us", "--pwm-range"},     {"pwm_step_us", "--pwm-step"},
-      {"step_duration_s", "--step-duration"}, {"pwms_us", "--pwm"},           {"thrusts_n", "--thrust-g"},
-      {"sample_interval_s", "--sample-interval"}, {"cutoff_voltage_v", "--cutoff-v"}};
+  static const std::map<std::string, std::string> kOptions = {{"voltages_v", "--voltage"},
+                                                              {"pwm_start_us", "--pwm-range"},
+                                                              {"pwm_step_us", "--pwm-step"},
+                                                              {"step_duration_s", "--step-duration"},
+                                                              {"pwms_us", "--pwm"},
+                                                              {"thrusts_n", "--thrust-g"},
+                                                              {"sample_interval_s", "--sample-interval"},
+                                                              {"cutoff_voltage_v", "--cutoff-v"}};
   const auto found = kOptions.find(field);
   return found == kOptions.end() ? field : found->second;
 }
@@ -90,7 +95,8 @@ void runBench(const BenchOptions& options) {
     throw ConfigError(optionOf(e.field()) + ": " + e.problem());
   }
   BenchLog truth;
-  const BenchLog log = simulateBench(params, effects, experiment, options.seed, options.truth.empty() ? nullptr : &truth);
+  const BenchLog log =
+      simulateBench(params, effects, experiment, options.seed, options.truth.empty() ? nullptr : &truth);
   saveNativeBenchCsv(log, options.output);
   if (!options.truth.empty()) saveNativeBenchCsv(truth, options.truth);
   std::cout << "simulate bench: " << log.rows() << " rows of " << benchExperimentName(kind) << " -> " << options.output
@@ -103,14 +109,17 @@ void runFlight(const FlightOptions& options) {
   const SimEffects effects = loadEffects(options.effects);
   const Vehicle vehicle = loadVehicleUrdf(profile.vehicle.urdf_path);
   const rosbag::compression::CompressionType compression = options.compression == "bz2" ? rosbag::compression::BZ2
-                                                           : options.compression == "lz4" ? rosbag::compression::LZ4
-                                                                                         : rosbag::compression::Uncompressed;
+                                                           : options.compression == "lz4"
+                                                               ? rosbag::compression::LZ4
+                                                               : rosbag::compression::Uncompressed;
   FlightResult result;
   {
     BagFlightSink sink(options.bag, compression);
     result = simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
   }
-  std::cout << "simulate flight: " << formatNumber(result.duration_s) << " s -> " << options.bag << "\n";
+  std::cout << "simulate flight: " << formatNumber(result.duration_s) << " s, battery from "
+            << formatNumber(100.0 * profile.vehicle.battery_initial_soc) << " % to "
+            << formatNumber(std::round(100.0 * result.final_state_of_charge)) << " % -> " << options.bag << "\n";
   if (options.manifest.empty()) return;
   const std::filesystem::path folder = std::filesystem::absolute(options.manifest).parent_path();
   FlightManifest manifest;
@@ -119,8 +128,8 @@ void runFlight(const FlightOptions& options) {
   saveFlightManifest(manifest, options.manifest,
                      "Simulated by: simulate flight --params " + options.params + " --profile " + options.profile +
                          (options.effects.empty() ? "" : " --effects " + options.effects) + " --seed " +
-                         std::to_string(options.seed) + "\nEffects: " + effects.summary() +
-                         "\nHover segments from " + formatNumber(profile.manifest_settle_s) +
+                         std::to_string(options.seed) + "\nEffects: " + effects.summary() + "\nHover segments from " +
+                         formatNumber(profile.manifest_settle_s) +
                          " s after each hover starts; times in seconds from the bag's first message.");
   std::cout << "simulate flight: " << result.segments.size() << " hover segments -> " << options.manifest << "\n";
 }
@@ -132,25 +141,33 @@ int runSimulateCommand(int argc, char** argv) {
   app.require_subcommand(1);
 
   BenchOptions bench;
-  CLI::App* bench_command = app.add_subcommand("bench", "Simulated thrust-stand experiments (thesis chapter 4) -> native bench CSV");
+  CLI::App* bench_command =
+      app.add_subcommand("bench", "Simulated thrust-stand experiments (thesis chapter 4) -> native bench CSV");
   bench_command->add_option("--params", bench.params, "Simulator parameter file (config/sim/*.yaml)")->required();
   bench_command->add_option("--effects", bench.effects, "Effects file (default: no effects)");
-  bench_command->add_option("--experiment", bench.experiment, "pwm_sweep (4.1), discharge (4.2) or constant_thrust (4.3)")
+  bench_command
+      ->add_option("--experiment", bench.experiment, "pwm_sweep (4.1), discharge (4.2) or constant_thrust (4.3)")
       ->required()
       ->check(CLI::IsMember({"pwm_sweep", "discharge", "constant_thrust"}));
   bench_command->add_option("--voltage", bench.voltages_v, "pwm_sweep: supply voltages (default 10.5, 10.8, ..., 12.6)")
       ->check(CLI::Range(1.0, 60.0));
-  bench_command->add_option("--pwm-range", bench.pwm_range_us, "pwm_sweep: first and last pulse width, us (default: the parameter file's)")
+  bench_command
+      ->add_option("--pwm-range", bench.pwm_range_us,
+                   "pwm_sweep: first and last pulse width, us (default: the parameter file's)")
       ->expected(2)
       ->check(CLI::Range(800.0, 2200.0));
-  bench_command->add_option("--pwm-step", bench.pwm_step_us, "pwm_sweep: step, us (default 5)")->check(CLI::PositiveNumber);
+  bench_command->add_option("--pwm-step", bench.pwm_step_us, "pwm_sweep: step, us (default 5)")
+      ->check(CLI::PositiveNumber);
   bench_command->add_option("--step-duration", bench.step_duration_s, "pwm_sweep: dwell per step, s (default 1)")
       ->check(CLI::PositiveNumber);
-  bench_command->add_option("--pwm", bench.pwms_us, "discharge: pulse widths, us (default 1600 1700 1800 1900 within the range)")
+  bench_command
+      ->add_option("--pwm", bench.pwms_us, "discharge: pulse widths, us (default 1600 1700 1800 1900 within the range)")
       ->check(CLI::Range(800.0, 2200.0));
   bench_command->add_option("--thrust-g", bench.thrusts_g, "constant_thrust: thrusts, g (default 300 350 400 450 500)")
       ->check(CLI::PositiveNumber);
-  bench_command->add_option("--sample-interval", bench.sample_interval_s, "discharge, constant_thrust: log interval, s (default 1)")
+  bench_command
+      ->add_option("--sample-interval", bench.sample_interval_s,
+                   "discharge, constant_thrust: log interval, s (default 1)")
       ->check(CLI::PositiveNumber);
   bench_command->add_option("--cutoff-v", bench.cutoff_v, "discharge, constant_thrust: cut-off voltage (default 10.5)")
       ->check(CLI::PositiveNumber);
@@ -159,13 +176,15 @@ int runSimulateCommand(int argc, char** argv) {
   bench_command->add_option("--truth", bench.truth, "Also write the noise-free log to this CSV");
 
   FlightOptions flight;
-  CLI::App* flight_command = app.add_subcommand("flight", "Simulated hover flight -> rosbag with MAVROS topics, and its manifest");
+  CLI::App* flight_command =
+      app.add_subcommand("flight", "Simulated hover flight -> rosbag with MAVROS topics, and its manifest");
   flight_command->add_option("--params", flight.params, "Simulator parameter file (config/sim/*.yaml)")->required();
   flight_command->add_option("--profile", flight.profile, "Flight profile (config/sim/*_flight.yaml)")->required();
   flight_command->add_option("--effects", flight.effects, "Effects file (default: no effects)");
   flight_command->add_option("--seed", flight.seed, "Seed of the sensor noise (default 1)");
   flight_command->add_option("--bag", flight.bag, "Bag to write")->required();
-  flight_command->add_option("--manifest", flight.manifest, "Manifest to write (hover segments with their true masses)");
+  flight_command->add_option("--manifest", flight.manifest,
+                             "Manifest to write (hover segments with their true masses)");
   flight_command->add_option("--compression", flight.compression, "Bag compression: none (default), bz2 or lz4")
       ->check(CLI::IsMember({"none", "bz2", "lz4"}));
 

@@ -1,10 +1,10 @@
 // Time to simulate the default three-minute flight (config/sim/default_flight.yaml, rc/out at
 // 50 Hz, 2 ms physics step): the core simulation with every reading built and discarded, and the
 // same writing a bag (uncompressed, and bz2 as the bundled demo) to a temporary file.
-#include <filesystem>
-
 #include <benchmark/benchmark.h>
 #include <unistd.h>
+
+#include <filesystem>
 
 #include "propulsion_estimator/core/flight_profile_yaml.h"
 #include "propulsion_estimator/core/flight_simulator.h"

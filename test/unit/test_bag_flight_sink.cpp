@@ -1,14 +1,14 @@
 // The ROS layer of the simulator, without a master: a short simulated flight written to a bag and
 // read back with rosbag::View, and the `simulate` command end to end.
-#include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <map>
-
 #include <gtest/gtest.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/Range.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
 
 #include "propulsion_estimator/SimTruth.h"
 #include "propulsion_estimator/core/flight_manifest.h"
@@ -34,7 +34,8 @@ std::string shortProfile() {
          repoPath("config/f450_quad.urdf") +
          "\n  centre_of_mass_offset_m: [0, 0, 0]\n  landing_gear: {height_m: 0.12, half_width_m: 0.12}\n"
          "  drag_area_m2: 0.04\n  battery_initial_soc: 0.9\n"
-         "payload_cable: {length_m: 1.0, attach_point_m: [0, 0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: 10}\n"
+         "payload_cable: {length_m: 1.0, attach_point_m: [0, 0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: "
+         "10}\n"
          "manifest: {settle_s: 3}\n"
          "segments:\n  - {type: wait, duration_s: 1}\n  - {type: takeoff, height_m: 1.0, rate_m_s: 1.0}\n"
          "  - {type: hover, duration_s: 8}\n  - {type: land, rate_m_s: 1.0}\n";
@@ -42,7 +43,8 @@ std::string shortProfile() {
 
 class TempDir {
  public:
-  TempDir() : path_(fs::temp_directory_path() / ("pe_sim_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++))) {
+  TempDir()
+      : path_(fs::temp_directory_path() / ("pe_sim_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++))) {
     fs::create_directories(path_);
   }
   ~TempDir() { fs::remove_all(path_); }
@@ -131,7 +133,9 @@ TEST(BagFlightSink, WritesMavrosTopicsWithTheirTypesAndRates) {
   EXPECT_EQ(view.getBeginTime(), ros::Time(pe::kSimulatedBagStartSec));
 
   const double duration = result.duration_s;
-  const auto expected = [&](double rate_hz) { return static_cast<std::size_t>(std::floor(duration * rate_hz + 1e-6)) + 1; };
+  const auto expected = [&](double rate_hz) {
+    return static_cast<std::size_t>(std::floor(duration * rate_hz + 1e-6)) + 1;
+  };
   const pe::FlightSensorParams sensors;
   EXPECT_EQ(counts["/mavros/rc/out"], expected(25.0));
   EXPECT_EQ(counts["/sim/truth"], expected(25.0));
@@ -150,10 +154,10 @@ TEST(SimulateCommand, WritesAFlightBagAndItsManifest) {
   writeFile(dir.file("profile.yaml"), shortProfile());
   writeFile(dir.file("effects.yaml"), "thrust_loss: {fraction: 0.03}\n");
   testing::internal::CaptureStdout();
-  const int code = runCommand({"flight", "--params", repoPath("config/sim/e300_dji2212_dji9443.yaml"), "--profile",
-                               dir.file("profile.yaml"), "--effects", dir.file("effects.yaml"), "--bag",
-                               dir.file("flight.bag"), "--manifest", dir.file("flight.manifest.yaml"),
-                               "--compression", "lz4", "--seed", "3"});
+  const int code =
+      runCommand({"flight", "--params", repoPath("config/sim/e300_dji2212_dji9443.yaml"), "--profile",
+                  dir.file("profile.yaml"), "--effects", dir.file("effects.yaml"), "--bag", dir.file("flight.bag"),
+                  "--manifest", dir.file("flight.manifest.yaml"), "--compression", "lz4", "--seed", "3"});
   const std::string out = testing::internal::GetCapturedStdout();
   ASSERT_EQ(code, 0) << out;
   const pe::FlightManifest manifest = pe::loadFlightManifest(dir.file("flight.manifest.yaml"));
@@ -169,9 +173,10 @@ TEST(SimulateCommand, WritesAFlightBagAndItsManifest) {
 TEST(SimulateCommand, WritesABenchCsv) {
   TempDir dir;
   testing::internal::CaptureStdout();
-  const int code = runCommand({"bench", "--params", repoPath("config/sim/e300_dji2212_dji9443.yaml"), "--experiment",
-                               "pwm_sweep", "--voltage", "11.1", "--voltage", "12.6", "--pwm-range", "1300", "1800",
-                               "--pwm-step", "10", "--output", dir.file("sweep.csv"), "--truth", dir.file("truth.csv")});
+  const int code =
+      runCommand({"bench", "--params", repoPath("config/sim/e300_dji2212_dji9443.yaml"), "--experiment", "pwm_sweep",
+                  "--voltage", "11.1", "--voltage", "12.6", "--pwm-range", "1300", "1800", "--pwm-step", "10",
+                  "--output", dir.file("sweep.csv"), "--truth", dir.file("truth.csv")});
   const std::string out = testing::internal::GetCapturedStdout();
   ASSERT_EQ(code, 0);
   EXPECT_EQ(out, "simulate bench: 102 rows of pwm_sweep -> " + dir.file("sweep.csv") + "\n");
@@ -196,18 +201,18 @@ TEST(SimulateCommand, RefusesBadInputsWithOneLine) {
             "1 simulate flight: " + dir.file("wind.yaml") +
                 ":1: wind: unknown key (allowed: supply_resistance, air_density, ground_effect, thrust_loss, "
                 "motor_temperature, climb_inflow, esc_offset)\n");
-  writeFile(dir.file("impossible.yaml"),
-            shortProfile() + "  - {type: hover, duration_s: 5}\n");
-  EXPECT_EQ(refusal({"flight", "--params", params, "--profile", dir.file("impossible.yaml"), "--bag", dir.file("f.bag")}),
-            "1 simulate flight: " + dir.file("impossible.yaml") +
-                ":15: segments[4].type: hover on the ground (take off first)\n");
+  writeFile(dir.file("impossible.yaml"), shortProfile() + "  - {type: hover, duration_s: 5}\n");
+  EXPECT_EQ(
+      refusal({"flight", "--params", params, "--profile", dir.file("impossible.yaml"), "--bag", dir.file("f.bag")}),
+      "1 simulate flight: " + dir.file("impossible.yaml") +
+          ":15: segments[4].type: hover on the ground (take off first)\n");
   EXPECT_EQ(refusal({"flight", "--params", dir.file("missing.yaml"), "--profile", dir.file("profile.yaml"), "--bag",
                      dir.file("f.bag")}),
             "1 simulate flight: " + dir.file("missing.yaml") + ": cannot open file\n");
   EXPECT_EQ(refusal({"flight", "--params", params, "--profile", dir.file("profile.yaml"), "--bag",
                      dir.file("no/such/dir/f.bag")}),
-            "1 simulate flight: " + dir.file("no/such/dir/f.bag") + ": Error opening file: " +
-                dir.file("no/such/dir/f.bag") + "\n");
+            "1 simulate flight: " + dir.file("no/such/dir/f.bag") +
+                ": Error opening file: " + dir.file("no/such/dir/f.bag") + "\n");
   EXPECT_EQ(refusal({"bench", "--params", params, "--experiment", "pwm_sweep", "--pwm-range", "1900", "1200",
                      "--output", dir.file("b.csv")}),
             "1 simulate bench: --pwm-range: [1900, 1200] is not a range within 800..2200 us\n");

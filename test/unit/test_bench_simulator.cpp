@@ -1,12 +1,12 @@
 // The simulated thrust stand: its sensors' noise, the thesis' three experiments (chapter 4) and
 // what it writes.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
-
-#include <Eigen/Dense>
-#include <gtest/gtest.h>
 
 #include "propulsion_estimator/core/bench_csv.h"
 #include "propulsion_estimator/core/bench_simulator.h"
@@ -72,8 +72,8 @@ TEST(BenchSimulator, SensorNoiseMatchesTheConfiguredSigmas) {
   ASSERT_EQ(log.rows(), 8u * 141u);
   const pe::BenchSensors& sensors = params.bench.sensors;
   const std::pair<pe::BenchColumn, const pe::SensorNoise*> checks[] = {
-      {pe::BenchColumn::kThrust, &sensors.thrust_n},      {pe::BenchColumn::kCurrent, &sensors.current_a},
-      {pe::BenchColumn::kVoltage, &sensors.voltage_v},    {pe::BenchColumn::kRpm, &sensors.rpm},
+      {pe::BenchColumn::kThrust, &sensors.thrust_n},         {pe::BenchColumn::kCurrent, &sensors.current_a},
+      {pe::BenchColumn::kVoltage, &sensors.voltage_v},       {pe::BenchColumn::kRpm, &sensors.rpm},
       {pe::BenchColumn::kMotorTemp, &sensors.temperature_c}, {pe::BenchColumn::kAmbientTemp, &sensors.temperature_c}};
   for (const auto& [column, sensor] : checks) {
     double sum = 0.0, sum2 = 0.0;
@@ -232,5 +232,6 @@ TEST(BenchSimulator, RefusesImpossibleExperiments) {
   pe::BenchExperiment discharge = pe::thesisBenchExperiment(pe::BenchExperimentKind::kDischarge, params);
   discharge.pwms_us = {1800.0};
   discharge.cutoff_voltage_v = 9.0;  // below the empty pack's 9.81 V
-  EXPECT_EQ(refusal(discharge), "discharge at 1800 us emptied the battery before the measured voltage fell below the 9 V cut-off");
+  EXPECT_EQ(refusal(discharge),
+            "discharge at 1800 us emptied the battery before the measured voltage fell below the 9 V cut-off");
 }

@@ -1,8 +1,8 @@
 // Simulated flights of the thesis quad: the controller holds the script, the truth balances the
 // weight, the payload hangs, the streams keep their rates, and impossible flights are refused.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/flight_profile_yaml.h"
@@ -63,7 +63,8 @@ TEST(FlightSimulator, ManifestSegmentsAreTheHoversWithTheirTrueMasses) {
   const double settle = defaultProfile().manifest_settle_s;
   std::vector<pe::ManifestSegment> expected;
   for (const pe::ScheduledSegment& s : flight.schedule) {
-    if (s.segment.kind == pe::SegmentKind::kHover) expected.push_back({s.start_s + settle, s.end_s, 1.315 + s.payload_mass_kg});
+    if (s.segment.kind == pe::SegmentKind::kHover)
+      expected.push_back({s.start_s + settle, s.end_s, 1.315 + s.payload_mass_kg});
   }
   ASSERT_EQ(flight.result.segments.size(), 4u);
   ASSERT_EQ(expected.size(), 4u);
@@ -167,7 +168,9 @@ TEST(FlightSimulator, TheCentreOfThrustLiesUnderTheCentreOfGravity) {
 TEST(FlightSimulator, StreamsKeepTheirRatesFromTheFirstMessage) {
   const Flight& flight = defaultFlight();
   const double duration = flight.result.duration_s;
-  const auto expected = [&](double rate_hz) { return static_cast<std::size_t>(std::floor(duration * rate_hz + 1e-6)) + 1; };
+  const auto expected = [&](double rate_hz) {
+    return static_cast<std::size_t>(std::floor(duration * rate_hz + 1e-6)) + 1;
+  };
   const pe::FlightSensorParams sensors;
   EXPECT_EQ(flight.sink.rc_out.size(), expected(50.0));
   EXPECT_EQ(flight.sink.truths.size(), expected(50.0));
@@ -198,7 +201,8 @@ TEST(FlightSimulator, SensorsReadThePhysicalState) {
   forSegment(flight.sink.ranges, low, [&](const pe::RangeSample& s) { range_low.push_back(s.range_m); });
   forSegment(flight.sink.pressures, high, [&](const pe::ScalarSample& s) { pressure_high.push_back(s.value); });
   forSegment(flight.sink.pressures, low, [&](const pe::ScalarSample& s) { pressure_low.push_back(s.value); });
-  forSegment(flight.sink.imus, high, [&](const pe::ImuSample& s) { accel_z.push_back(s.linear_acceleration_m_s2.z()); });
+  forSegment(flight.sink.imus, high,
+             [&](const pe::ImuSample& s) { accel_z.push_back(s.linear_acceleration_m_s2.z()); });
   forSegment(flight.sink.poses, high, [&](const pe::PoseSample& s) { pose_z.push_back(s.position_m.z()); });
   EXPECT_NEAR(mean(range_high), 5.0, 0.02);
   EXPECT_NEAR(mean(range_low), 2.0, 0.02);

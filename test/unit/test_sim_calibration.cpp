@@ -1,9 +1,9 @@
 // The default simulator parameters against the thesis' numbers: the bench maxima (tables 7.1-7.3,
 // 7.6), the response surfaces of chapter 5 over the hover band, the motor temperature of table
 // 7.7, and the hover of the 1.315 kg quad of chapter 6.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "propulsion_estimator/core/bench_simulator.h"
 #include "propulsion_estimator/core/model_yaml.h"
@@ -51,8 +51,8 @@ TEST(SimCalibration, E300Dji2212Dji9443MeetsTheThesisMaximaWithinTenPercent) {
 
 TEST(SimCalibration, Dji430LiteDji2312eDji9450MeetsTheThesisMaximaWithinTenPercent) {
   // Tables 7.1, 7.2, 7.3, 7.6 (9450 column, 430LITE-2312E row) at 12.6 V and 1800 us.
-  expectBenchMaxima(pe::loadSimParamsFile(repoPath("config/sim/430lite_dji2312e_dji9450.yaml")), 1800.0, 734.11,
-                    10.35, 129.09, 7602.0);
+  expectBenchMaxima(pe::loadSimParamsFile(repoPath("config/sim/430lite_dji2312e_dji9450.yaml")), 1800.0, 734.11, 10.35,
+                    129.09, 7602.0);
 }
 
 TEST(SimCalibration, MatchesTheThesisSurfacesOverTheHoverBand) {
@@ -65,8 +65,8 @@ TEST(SimCalibration, MatchesTheThesisSurfacesOverTheHoverBand) {
   double worst_thrust = 0.0, worst_rpm = 0.0, worst_current = 0.0;
   for (double pwm = 1550.0; pwm <= 1800.0; pwm += 10.0) {
     for (double voltage = 10.5; voltage <= 12.6 + 1e-9; voltage += 0.1) {
-      const pe::ChainState state = chain.steady(
-          {params.chain.esc.duty(pwm), voltage, density, params.chain.motor.reference_temperature_c});
+      const pe::ChainState state =
+          chain.steady({params.chain.esc.duty(pwm), voltage, density, params.chain.motor.reference_temperature_c});
       pe::MotorEstimate surface;
       surfaces.evaluate(pwm, voltage, &surface);
       worst_thrust = std::max(worst_thrust, std::fabs(state.thrust_n / surface.thrust_n - 1.0));

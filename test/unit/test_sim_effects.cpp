@@ -1,9 +1,9 @@
 // Each switchable effect moves the simulated thrust in the direction, and by the amount, its
 // formula says: checked where it applies (bench and/or flight), against the formula evaluated
 // independently of the simulator's code path.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "propulsion_estimator/core/bench_simulator.h"
 #include "propulsion_estimator/core/flight_profile_yaml.h"
@@ -154,8 +154,8 @@ TEST(AirDensity, FlightAirShowsInTheBarometerAndTheTruth) {
   const Flight flight = fly(effects);
   EXPECT_NEAR(flight.sink.truths.front().density_ratio,
               effects.air->densityKgM3() / thesisParams().bench.air.densityKgM3(), 1e-12);
-  EXPECT_NEAR(flight.sink.pressures.front().value, 90000.0 * std::exp(-pe::kStandardGravity * 0.12 / (287.058 * 308.15)),
-              6.0);
+  EXPECT_NEAR(flight.sink.pressures.front().value,
+              90000.0 * std::exp(-pe::kStandardGravity * 0.12 / (287.058 * 308.15)), 6.0);
   EXPECT_NEAR(flight.sink.air_temperatures.front().value, 35.0, 0.3);
   expectThrustIsIsolatedTimesTerms(flight, effects.air->densityKgM3());
 }
@@ -208,10 +208,12 @@ TEST(ThrustLoss, TheAirframeKeepsExactlyOneMinusTheFraction) {
   int samples = 0;
   for (const pe::TruthSample& truth : with.sink.truths) {
     if (truth.time_s < hover.start_s || truth.time_s > hover.end_s) continue;
-    for (const pe::MotorTruth& motor : truth.motors) isolated += isolatedThrust(params, truth.air_density_kg_m3, motor.rpm);
+    for (const pe::MotorTruth& motor : truth.motors)
+      isolated += isolatedThrust(params, truth.air_density_kg_m3, motor.rpm);
     ++samples;
   }
-  EXPECT_NEAR(isolated / samples, hover.mass_kg * pe::kStandardGravity / 0.95, 0.005 * hover.mass_kg * pe::kStandardGravity);
+  EXPECT_NEAR(isolated / samples, hover.mass_kg * pe::kStandardGravity / 0.95,
+              0.005 * hover.mass_kg * pe::kStandardGravity);
 }
 
 TEST(MotorTemperature, OperatingPointFollowsTheWindingTemperature) {

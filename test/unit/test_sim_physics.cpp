@@ -1,7 +1,7 @@
 // Components of the simulator's propulsion chain against their textbook formulas.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "propulsion_estimator/core/atmosphere.h"
 #include "propulsion_estimator/core/field_error.h"
@@ -39,11 +39,15 @@ std::string refusal(F f) {
 
 TEST(Atmosphere, DensityAndPressureMatchTheStandardAtmosphere) {
   const pe::AirConditions sea_level{15.0, 101325.0};
-  EXPECT_NEAR(sea_level.densityKgM3(), 1.2250, 0.0005);  // ISA sea level
+  EXPECT_NEAR(sea_level.densityKgM3(), 1.2250, 0.0005);             // ISA sea level
   EXPECT_NEAR(sea_level.pressureAtHeightPa(100.0), 100129.0, 5.0);  // ISA at 100 m (with its lapse rate)
-  EXPECT_EQ(refusal([] { pe::AirConditions{70.0, 101325.0}.validate("air"); }),
+  EXPECT_EQ(refusal([] {
+              pe::AirConditions{70.0, 101325.0}.validate("air");
+            }),
             "air.temperature_c: 70 is outside -40..60 deg C");
-  EXPECT_EQ(refusal([] { pe::AirConditions{20.0, 12000.0}.validate("air"); }),
+  EXPECT_EQ(refusal([] {
+              pe::AirConditions{20.0, 12000.0}.validate("air");
+            }),
             "air.pressure_pa: 12000 is outside 50000..110000 Pa");
 }
 
@@ -53,7 +57,9 @@ TEST(Esc, DutyIsLinearBetweenTheEndPointsAndClamped) {
   EXPECT_DOUBLE_EQ(esc.duty(1000.0), 0.0);
   EXPECT_DOUBLE_EQ(esc.duty(2000.0), 1.0);
   EXPECT_DOUBLE_EQ(esc.duty(1520.0, 20.0), 0.5);
-  EXPECT_EQ(refusal([] { pe::EscParams{"e", 1500.0, 1600.0, 0.0}.validate(); }),
+  EXPECT_EQ(refusal([] {
+              pe::EscParams{"e", 1500.0, 1600.0, 0.0}.validate();
+            }),
             "esc.pwm_full_us: 1600 must be at least 200 us above pwm_zero_us (1500)");
 }
 
@@ -97,14 +103,16 @@ TEST(PropulsionChain, SteadyStateBalancesTorqueAndVoltage) {
     const pe::ChainState state = chain.steady(input);
     ASSERT_GT(state.omega_rad_s, 0.0);
     // Kt (I - I0) = CQ rho n^2 D^5 and duty V = Kt w + R I.
-    EXPECT_NEAR(motor.torque_constant_nm_per_a * (state.motor_current_a - motor.no_load_current_a), state.torque_nm, 1e-9);
-    EXPECT_NEAR(input.duty * 11.1, motor.torque_constant_nm_per_a * state.omega_rad_s + resistance * state.motor_current_a,
+    EXPECT_NEAR(motor.torque_constant_nm_per_a * (state.motor_current_a - motor.no_load_current_a), state.torque_nm,
                 1e-9);
+    EXPECT_NEAR(input.duty * 11.1,
+                motor.torque_constant_nm_per_a * state.omega_rad_s + resistance * state.motor_current_a, 1e-9);
     EXPECT_NEAR(state.input_current_a, input.duty * state.motor_current_a, 1e-12);
     EXPECT_NEAR(state.input_power_w, 11.1 * state.input_current_a, 1e-9);
     const double n = state.omega_rad_s / (2.0 * kPi);
     EXPECT_NEAR(state.thrust_n,
-                params.chain.propeller.thrust_coefficient * input.air_density_kg_m3 * n * n * std::pow(0.2388, 4), 1e-9);
+                params.chain.propeller.thrust_coefficient * input.air_density_kg_m3 * n * n * std::pow(0.2388, 4),
+                1e-9);
     EXPECT_NEAR(state.heat_w,
                 state.motor_current_a * state.motor_current_a * motor.resistance_ohm +
                     motor.no_load_current_a * motor.torque_constant_nm_per_a * state.omega_rad_s,

@@ -189,7 +189,8 @@ TEST(FlightProfileYaml, RefusesImpossibleSegments) {
   EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
                            "  - {type: payload, mass_kg: 0.3, duration_s: 1}\n  - {type: land"),
             "config/sim/f.yaml:17: segments[2].type: payload while flying at 2 m (land first)");
-  EXPECT_EQ(profileRefusal("0.3, duration_s: 2}\n  - {type: takeoff, height_m: 2.0,", "0.3, duration_s: 2}\n  - {type: takeoff, height_m: 1.0,"),
+  EXPECT_EQ(profileRefusal("0.3, duration_s: 2}\n  - {type: takeoff, height_m: 2.0,",
+                           "0.3, duration_s: 2}\n  - {type: takeoff, height_m: 1.0,"),
             "config/sim/f.yaml:21: segments[6].type: hover at 1 m with the 0.3 kg payload on a 1 m cable: the "
             "payload would rest on the ground (hover at 1.24 m or higher)");
   const std::string ends_flying = kProfile.substr(0, kProfile.rfind("  - {type: land"));
@@ -204,9 +205,10 @@ TEST(FlightProfileYaml, RefusesBadValuesAndUnknownKeys) {
             "config/sim/f.yaml:5: autopilot.disarmed_pwm_us: 1200 is outside 500..1100 us (or 0)");
   EXPECT_EQ(profileRefusal("flavour: px4", "flavour: betaflight"),
             "config/sim/f.yaml:2: autopilot.flavour: 'betaflight' is not one of px4, ardupilot");
-  EXPECT_EQ(profileRefusal("{type: wait, duration_s: 2}", "{type: loiter, duration_s: 2}"),
-            "config/sim/f.yaml:15: segments[0].type: 'loiter' is not one of wait, takeoff, hover, climb, descend, land, "
-            "payload");
+  EXPECT_EQ(
+      profileRefusal("{type: wait, duration_s: 2}", "{type: loiter, duration_s: 2}"),
+      "config/sim/f.yaml:15: segments[0].type: 'loiter' is not one of wait, takeoff, hover, climb, descend, land, "
+      "payload");
   EXPECT_EQ(profileRefusal("{type: wait, duration_s: 2}", "{type: wait, duration_s: 2, height_m: 3}"),
             "config/sim/f.yaml:15: segments[0].height_m: unknown key (allowed: type, duration_s)");
   EXPECT_EQ(profileRefusal("{type: hover, duration_s: 10}", "{type: hover, duration_s: -10}"),
@@ -244,7 +246,8 @@ TEST(FlightManifest, RoundTripsThroughItsWriter) {
 
 TEST(FlightManifest, ReadsTheIssuesExample) {
   const pe::FlightManifest manifest = pe::parseFlightManifest(
-      "flights:\n  - bag: flight_01.bag        # path relative to the manifest\n    segments:                 # times in "
+      "flights:\n  - bag: flight_01.bag        # path relative to the manifest\n    segments:                 # times "
+      "in "
       "seconds from the bag's first message\n      - {start: 5.0, end: 178.0, mass_kg: 1.315}\n",
       "m.yaml");
   ASSERT_EQ(manifest.flights.size(), 1u);

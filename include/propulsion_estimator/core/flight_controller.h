@@ -1,9 +1,8 @@
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "propulsion_estimator/core/flight_profile.h"
 #include "propulsion_estimator/core/motor_mixer.h"
@@ -41,7 +40,6 @@ class FlightController {
   const std::vector<double>& update(const HeightSetpoint& setpoint, const NavigationState& state, double dt_s);
 
   bool armed() const { return armed_; }
-  double hoverThrottle() const { return hover_throttle_; }
 
  private:
   AutopilotParams autopilot_;

@@ -1,9 +1,8 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace propulsion_estimator {
 
@@ -11,7 +10,6 @@ namespace propulsion_estimator {
 // disarmed ESC and its battery current arrives negated on /mavros/battery; ArduPilot outputs
 // MOT_PWM_MIN (1000 us), or nothing (0) with MOT_SAFE_DISARM, and a positive current.
 enum class AutopilotFlavour { kPx4, kArduPilot };
-const char* autopilotFlavourName(AutopilotFlavour flavour);
 
 struct AutopilotParams {
   AutopilotFlavour flavour = AutopilotFlavour::kPx4;
@@ -22,11 +20,11 @@ struct AutopilotParams {
 };
 
 struct VehicleSetup {
-  std::string urdf_path;                                        // resolved against the profile's folder
+  std::string urdf_path;                                              // resolved against the profile's folder
   Eigen::Vector3d centre_of_mass_offset_m = Eigen::Vector3d::Zero();  // added to the URDF's centre of mass
-  double landing_gear_height_m = 0.0;      // base_link above the ground when landed
-  double landing_gear_half_width_m = 0.0;  // feet at (+-w, +-w) under base_link
-  double drag_area_m2 = 0.0;               // Cd A of the airframe
+  double landing_gear_height_m = 0.0;                                 // base_link above the ground when landed
+  double landing_gear_half_width_m = 0.0;                             // feet at (+-w, +-w) under base_link
+  double drag_area_m2 = 0.0;                                          // Cd A of the airframe
   double battery_initial_soc = 1.0;
 };
 

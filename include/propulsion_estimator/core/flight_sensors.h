@@ -6,12 +6,12 @@ namespace propulsion_estimator {
 // profile's). Noise is Gaussian, independent per reading.
 struct FlightSensorParams {
   // MAVLink stream rates of a companion-computer link (PX4 "onboard" mode, ArduPilot SRx_*):
-  double battery_rate_hz = 1.0;          // SYS_STATUS / BATTERY_STATUS
-  double imu_rate_hz = 50.0;             // ATTITUDE_QUATERNION + HIGHRES_IMU
-  double pose_rate_hz = 30.0;            // LOCAL_POSITION_NED
-  double pressure_rate_hz = 10.0;        // SCALED_PRESSURE
+  double battery_rate_hz = 1.0;    // SYS_STATUS / BATTERY_STATUS
+  double imu_rate_hz = 50.0;       // ATTITUDE_QUATERNION + HIGHRES_IMU
+  double pose_rate_hz = 30.0;      // LOCAL_POSITION_NED
+  double pressure_rate_hz = 10.0;  // SCALED_PRESSURE
   double air_temperature_rate_hz = 1.0;
-  double rangefinder_rate_hz = 20.0;     // DISTANCE_SENSOR
+  double rangefinder_rate_hz = 20.0;  // DISTANCE_SENSOR
   double motor_temperature_rate_hz = 1.0;
 
   // Power module (PX4 default analog module; ~12-bit ADC): a few tens of mV and ~0.1 A.

@@ -1,11 +1,10 @@
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 namespace propulsion_estimator {
 
@@ -21,15 +20,15 @@ struct RcOutSample {
 
 struct BatterySample {
   double time_s = 0.0;
-  double voltage_v = 0.0;  // at the battery's terminals
-  double current_a = 0.0;  // sign as the autopilot reports it through MAVROS (PX4: negative when discharging)
+  double voltage_v = 0.0;   // at the battery's terminals
+  double current_a = 0.0;   // sign as the autopilot reports it through MAVROS (PX4: negative when discharging)
   double percentage = 0.0;  // 0..1
 };
 
 struct ImuSample {
   double time_s = 0.0;
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();  // body
+  Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();    // body
   Eigen::Vector3d linear_acceleration_m_s2 = Eigen::Vector3d::Zero();  // specific force, body (+g at rest)
   double orientation_sigma_rad = 0.0;
   double angular_velocity_sigma_rad_s = 0.0;
@@ -67,27 +66,27 @@ struct RangeSample {
 // Per-motor truth.
 struct MotorTruth {
   double pwm_us = 0.0;
-  double thrust_n = 0.0;          // force on the airframe along the rotor axis, all effects included
-  double current_a = 0.0;         // ESC input current
-  double power_w = 0.0;           // ESC input power
+  double thrust_n = 0.0;   // force on the airframe along the rotor axis, all effects included
+  double current_a = 0.0;  // ESC input current
+  double power_w = 0.0;    // ESC input power
   double rpm = 0.0;
   double ground_effect_factor = 1.0;
   double winding_temperature_c = 0.0;
-  bool in_bench_range = false;    // pulse width within the parameter file's bench sweep range
+  bool in_bench_range = false;  // pulse width within the parameter file's bench sweep range
 };
 
 // What a real flight cannot measure, for tests and the gap diagnosis.
 struct TruthSample {
   double time_s = 0.0;
-  double total_mass_kg = 0.0;        // vehicle plus payload
+  double total_mass_kg = 0.0;  // vehicle plus payload
   double payload_mass_kg = 0.0;
-  double cable_tension_n = 0.0;      // 0 while the payload rests on the ground
-  double height_m = 0.0;             // base_link above the ground
+  double cable_tension_n = 0.0;  // 0 while the payload rests on the ground
+  double height_m = 0.0;         // base_link above the ground
   double vertical_speed_m_s = 0.0;
   double air_density_kg_m3 = 0.0;
-  double density_ratio = 1.0;        // flight air over bench air
-  double battery_voltage_v = 0.0;    // at the terminals, without sensor noise
-  double esc_voltage_v = 0.0;        // after the supply path
+  double density_ratio = 1.0;      // flight air over bench air
+  double battery_voltage_v = 0.0;  // at the terminals, without sensor noise
+  double esc_voltage_v = 0.0;      // after the supply path
   double battery_current_a = 0.0;
   double climb_factor = 1.0;
   double thrust_loss_factor = 1.0;

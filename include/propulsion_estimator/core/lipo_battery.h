@@ -42,7 +42,6 @@ class LipoBattery {
 
   double stateOfCharge() const { return soc_; }
   double polarisationVoltage() const { return polarisation_v_; }
-  const LipoBatteryParams& params() const { return params_; }
 
  private:
   LipoBatteryParams params_;

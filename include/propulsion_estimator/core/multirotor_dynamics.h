@@ -1,10 +1,9 @@
 #pragma once
 
-#include <array>
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
+#include <vector>
 
 #include "propulsion_estimator/core/flight_profile.h"
 #include "propulsion_estimator/core/vehicle.h"
@@ -41,7 +40,6 @@ class MultirotorDynamics {
   Eigen::Vector3d rotorPosition(int k) const;  // in the world
   double cableTensionN() const { return cable_tension_n_; }
   double payloadMassKg() const { return payload_mass_kg_; }
-  const Eigen::Vector3d& payloadPosition() const { return payload_position_; }
   double vehicleMassKg() const { return mass_kg_; }
 
  private:

@@ -18,7 +18,7 @@ struct Supply {
 
 struct PowerTrainState {
   std::vector<double> duty;
-  std::vector<ChainState> motors;              // isolated rotors: thrust before rotor effects
+  std::vector<ChainState> motors;  // isolated rotors: thrust before rotor effects
   std::vector<double> winding_temperature_c;
   double esc_voltage_v = 0.0;
   double terminal_voltage_v = 0.0;  // at the supply's terminals, where the voltage is sensed
@@ -40,7 +40,6 @@ class PowerTrain {
   const PowerTrainState& step(const std::vector<double>& pwm_us, const Supply& supply, const AirConditions& air,
                               double dt_s);
 
-  const PowerTrainState& state() const { return state_; }
   const PropulsionChain& chain() const { return chain_; }
   int motors() const { return static_cast<int>(omega_rad_s_.size()); }
   // The temperature the electrical constants of motor k are taken at.

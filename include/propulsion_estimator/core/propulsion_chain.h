@@ -28,11 +28,11 @@ struct ChainInput {
 struct ChainState {
   double omega_rad_s = 0.0;
   double thrust_n = 0.0;
-  double torque_nm = 0.0;         // propeller's aerodynamic torque
+  double torque_nm = 0.0;  // propeller's aerodynamic torque
   double motor_current_a = 0.0;
-  double input_current_a = 0.0;   // drawn by the ESC from its supply
-  double input_power_w = 0.0;     // ESC input voltage * input current
-  double heat_w = 0.0;            // dissipated in the motor (winding copper + no-load losses)
+  double input_current_a = 0.0;  // drawn by the ESC from its supply
+  double input_power_w = 0.0;    // ESC input voltage * input current
+  double heat_w = 0.0;           // dissipated in the motor (winding copper + no-load losses)
 
   double rpm() const;
 };

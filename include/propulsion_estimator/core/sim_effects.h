@@ -20,7 +20,7 @@ namespace propulsion_estimator {
 struct SimEffects {
   std::optional<double> supply_resistance_ohm;
   std::optional<AirConditions> air;
-  std::optional<double> ground_effect_strength;            // 1 = Cheeseman-Bennett
+  std::optional<double> ground_effect_strength;  // 1 = Cheeseman-Bennett
   std::optional<double> thrust_loss_fraction;
   std::optional<double> motor_thermal_resistance_c_per_w;  // the motors' cooling during the run
   std::optional<double> climb_inflow_per_m_s;              // thrust fraction lost per m/s of climb

@@ -11,8 +11,8 @@ namespace propulsion_estimator {
 
 // The thrust stand the chain was characterised on.
 struct BenchParams {
-  AirConditions air;               // also the air of flights unless the air_density effect is on
-  double sweep_pwm_min_us = 0.0;   // the PWM range of this ESC's sweeps (thesis 4.1 and ch. 7)
+  AirConditions air;              // also the air of flights unless the air_density effect is on
+  double sweep_pwm_min_us = 0.0;  // the PWM range of this ESC's sweeps (thesis 4.1 and ch. 7)
   double sweep_pwm_max_us = 0.0;
   BenchSensors sensors;
 

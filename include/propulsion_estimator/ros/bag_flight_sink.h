@@ -1,10 +1,10 @@
 #pragma once
 
-#include <cstdint>
-#include <string>
-
 #include <ros/time.h>
 #include <rosbag/bag.h>
+
+#include <cstdint>
+#include <string>
 
 #include "propulsion_estimator/core/flight_sink.h"
 
