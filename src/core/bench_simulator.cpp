@@ -205,11 +205,12 @@ BenchExperiment thesisBenchExperiment(BenchExperimentKind kind, const SimParams&
   return experiment;
 }
 
-BenchLog simulateBench(const SimParams& params, const SimEffects& effects, const BenchExperiment& experiment,
+BenchLog simulateBench(const SimParams& params, const SimEffects& all_effects, const BenchExperiment& experiment,
                        std::uint64_t seed, BenchLog* truth) {
   params.validate();
-  effects.validate();
+  all_effects.validate();
   experiment.validate();
+  const SimEffects effects = all_effects.onTheBench();
   const AirConditions air = effects.air.value_or(params.bench.air);
   BenchLog log;
   if (truth) *truth = BenchLog{};

@@ -32,6 +32,14 @@ bool SimEffects::any() const {
          motor_thermal_resistance_c_per_w || climb_inflow_per_m_s || esc_offset_us;
 }
 
+SimEffects SimEffects::onTheBench() const {
+  SimEffects bench;
+  bench.supply_resistance_ohm = supply_resistance_ohm;
+  bench.air = air;
+  bench.motor_thermal_resistance_c_per_w = motor_thermal_resistance_c_per_w;
+  return bench;
+}
+
 std::string SimEffects::summary() const {
   std::string text;
   const auto add = [&text](const std::string& effect) { text += (text.empty() ? "" : " ") + effect; };

@@ -188,6 +188,24 @@ TEST(BenchSimulator, ConstantThrustRunsHoldTheThrustAndReproduceTheThesisSlopes)
   EXPECT_NEAR(mean, 500.0, 0.5);
 }
 
+TEST(BenchSimulator, AppliesOnlyTheEffectsABenchShows) {
+  const pe::SimParams params = thesisParams();
+  pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  sweep.voltages_v = {12.0};
+  pe::SimEffects flight_only;
+  flight_only.esc_offset_us = 30.0;
+  flight_only.ground_effect_strength = 1.0;
+  flight_only.thrust_loss_fraction = 0.1;
+  flight_only.climb_inflow_per_m_s = 0.1;
+  const pe::BenchLog with = pe::simulateBench(params, flight_only, sweep, 9);
+  const pe::BenchLog without = pe::simulateBench(params, {}, sweep, 9);
+  EXPECT_EQ(with.column(pe::BenchColumn::kThrust), without.column(pe::BenchColumn::kThrust));
+  EXPECT_EQ(with.metadata.at("effects"), "none");
+  pe::SimEffects mixed = flight_only;
+  mixed.supply_resistance_ohm = 0.05;
+  EXPECT_EQ(pe::simulateBench(params, mixed, sweep, 9).metadata.at("effects"), "supply_resistance(ohm=0.05)");
+}
+
 TEST(BenchSimulator, TheSeedFixesTheNoise) {
   const pe::SimParams params = thesisParams();
   pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);

@@ -51,8 +51,9 @@ BenchExperiment thesisBenchExperiment(BenchExperimentKind kind, const SimParams&
 // the thesis bench computes it), rpm, ambient_temp_c, motor_temp_c, and the extra column "run"
 // (1-based index of the sweep or discharge). Metadata: esc, motor, propeller, battery, supply,
 // air_temperature_c, air_pressure_pa, experiment, effects, seed, source, and each sensor's
-// noise_sigma_* and resolution_*. Runs start with the motor at air temperature. The same seed
-// gives the same log. `truth`, when given, receives the same rows without sensor noise.
+// noise_sigma_* and resolution_*. Runs start with the motor at air temperature. Of `effects` only
+// those a bench shows apply (SimEffects::onTheBench; the metadata lists them). The same seed gives
+// the same log. `truth`, when given, receives the same rows without sensor noise.
 BenchLog simulateBench(const SimParams& params, const SimEffects& effects, const BenchExperiment& experiment,
                        std::uint64_t seed, BenchLog* truth = nullptr);
 

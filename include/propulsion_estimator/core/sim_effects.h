@@ -29,6 +29,9 @@ struct SimEffects {
   // Throws FieldError "<effect>.<parameter>" for a value outside its physical range.
   void validate() const;
   bool any() const;
+  // The effects a thrust stand shows (supply_resistance, air_density, motor_temperature); the others
+  // need an airframe, the ground or flight, or (esc_offset) are by definition the bench's reference.
+  SimEffects onTheBench() const;
   // "none", or the effects that are on with their parameters, e.g.
   // "ground_effect(strength=1) thrust_loss(fraction=0.05)"; for logs and bag metadata.
   std::string summary() const;
