@@ -6,7 +6,7 @@ export PATH := /usr/bin:$(PATH)
 export PYTHONDONTWRITEBYTECODE := 1
 
 WS := $(CURDIR)/.ws
-SETUP := source $(WS)/install/setup.bash
+SETUP := source $(WS)/install/setup.sh
 COLCON_BUILD := colcon build --event-handlers console_direct+ \
 	--cmake-args -DCMAKE_BUILD_TYPE=Release
 
@@ -27,13 +27,13 @@ demo: build
 # Regenerates the bundled demo flight (bag and manifest) with the simulator; see the comment at the
 # top of config/demo/demo_flight_profile.yaml.
 demo-bag: build
-	. $(WS)/install/setup.sh && rosrun propulsion_estimator simulate flight --params config/sim/e300_dji2212_dji9443.yaml \
+	$(SETUP) && rosrun propulsion_estimator simulate flight --params config/sim/e300_dji2212_dji9443.yaml \
 		--profile config/demo/demo_flight_profile.yaml --seed 1 --compression bz2 \
 		--bag config/demo/demo_flight.bag --manifest config/demo/demo_flight.manifest.yaml
 
 test: build
 	cd $(WS) && colcon test --event-handlers console_direct+ \
-		--packages-select propulsion_estimator && colcon test-result --verbose
+		&& colcon test-result --verbose
 
 bench: build
 	$(SETUP) && scripts/run_benchmarks.sh

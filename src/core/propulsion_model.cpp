@@ -148,7 +148,7 @@ std::array<double, kOutputCount> PropulsionModel::computeSi(double pwm_us, doubl
   return si;
 }
 
-bool PropulsionModel::evaluate(double pwm_us, double voltage_v, MotorEstimate* estimate) const {
+bool PropulsionModel::evaluate(double pwm_us, double voltage_v, OperatingPoint* estimate) const {
   const bool inside = domain_.contains(pwm_us, voltage_v);
   if (!inside) {
     if (domain_.outside == OutsideDomain::kReject) return false;

@@ -8,7 +8,7 @@
 #include <iostream>
 #include <map>
 
-#include "propulsion_estimator/core/bench_csv.h"
+#include "propulsion_estimator/tools/bench_csv.h"
 #include "propulsion_estimator/core/bench_simulator.h"
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/field_error.h"

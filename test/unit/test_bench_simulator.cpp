@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "propulsion_estimator/core/bench_csv.h"
+#include "propulsion_estimator/tools/bench_csv.h"
 #include "propulsion_estimator/core/bench_simulator.h"
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/field_error.h"
@@ -217,22 +217,31 @@ TEST(BenchSimulator, TheSeedFixesTheNoise) {
   EXPECT_NE(a.column(pe::BenchColumn::kThrust), c.column(pe::BenchColumn::kThrust));
 }
 
-TEST(BenchSimulator, WritesTheNativeBenchCsv) {
+TEST(BenchSimulator, WritesANativeBenchCsvThatReadsBack) {
   const pe::SimParams params = thesisParams();
   pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
-  sweep.voltages_v = {12.6};
+  sweep.voltages_v = {11.4, 12.6};
   const pe::BenchLog log = pe::simulateBench(params, {}, sweep, 1);
   std::ostringstream out;
   pe::writeNativeBenchCsv(log, out);
   const std::string text = out.str();
   EXPECT_NE(text.find("# experiment: pwm_sweep\n"), std::string::npos);
-  EXPECT_NE(text.find("\ntime_s,pwm_us,voltage_v,thrust_g,current_a,power_w,rpm,ambient_temp_c,motor_temp_c\n"),
+  EXPECT_NE(text.find("\ntime_s,pwm_us,voltage_v,thrust_g,current_a,power_w,rpm,ambient_temp_c,motor_temp_c,run\n"),
             std::string::npos);
-  // The log's line numbers are those of its rows in that file.
-  std::istringstream lines(text);
-  std::string line;
-  for (int number = 1; number <= log.line_numbers[0]; ++number) std::getline(lines, line);
-  EXPECT_EQ(line.rfind("1,1200,", 0), 0u) << line;
+  // The log's line numbers are those of its rows in that file, and the reader gets the log back
+  // (to the writer's 6 significant digits).
+  const pe::BenchLog read = pe::parseNativeBenchCsv(text, "sim.csv");
+  ASSERT_EQ(read.rows(), log.rows());
+  EXPECT_EQ(read.line_numbers, log.line_numbers);
+  EXPECT_EQ(read.metadata, log.metadata);
+  EXPECT_EQ(read.extra_columns.at("run"), log.extra_columns.at("run"));
+  for (int c = 0; c < pe::kBenchColumnCount; ++c) {
+    const auto column = static_cast<pe::BenchColumn>(c);
+    ASSERT_EQ(read.has(column), log.has(column)) << pe::benchColumnName(column);
+    for (std::size_t i = 0; i < read.column(column).size(); ++i) {
+      ASSERT_NEAR(read.column(column)[i], log.column(column)[i], 1e-5 * std::fabs(log.column(column)[i]) + 1e-12);
+    }
+  }
 }
 
 TEST(BenchSimulator, RefusesImpossibleExperiments) {

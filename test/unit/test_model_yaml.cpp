@@ -66,7 +66,7 @@ std::string refusal(const std::string& text) {
 
 TEST(ModelYaml, AcceptsTheValidModel) {
   const pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
-  pe::MotorEstimate e;
+  pe::OperatingPoint e;
   ASSERT_TRUE(model.evaluate(1500.0, 11.5, &e));
   EXPECT_DOUBLE_EQ(e.thrust_n, 3.0);
   EXPECT_DOUBLE_EQ(e.current_a, 10.0);

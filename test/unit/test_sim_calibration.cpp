@@ -67,7 +67,7 @@ TEST(SimCalibration, MatchesTheThesisSurfacesOverTheHoverBand) {
     for (double voltage = 10.5; voltage <= 12.6 + 1e-9; voltage += 0.1) {
       const pe::ChainState state =
           chain.steady({params.chain.esc.duty(pwm), voltage, density, params.chain.motor.reference_temperature_c});
-      pe::MotorEstimate surface;
+      pe::OperatingPoint surface;
       surfaces.evaluate(pwm, voltage, &surface);
       worst_thrust = std::max(worst_thrust, std::fabs(state.thrust_n / surface.thrust_n - 1.0));
       worst_rpm = std::max(worst_rpm, std::fabs(state.rpm() / surface.rpm - 1.0));

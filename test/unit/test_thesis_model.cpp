@@ -23,7 +23,7 @@ struct Maxima {
 Maxima maximaAt(const pe::PropulsionModel& model, double voltage_v) {
   Maxima m;
   for (double x = 1200.0; x <= 1900.0; x += 5.0) {
-    pe::MotorEstimate e;
+    pe::OperatingPoint e;
     EXPECT_TRUE(model.evaluate(x, voltage_v, &e));
     m.thrust_g = std::max(m.thrust_g, e.thrust_n / pe::kNewtonPerGramForce);
     m.current_a = std::max(m.current_a, e.current_a);
@@ -51,7 +51,7 @@ TEST(ThesisModel, ReproducesChapter7MaximaWithin3Percent) {
 TEST(ThesisModel, HoverPwmGivesAThirdOfTheQuadsWeightPerMotor) {
   const pe::PropulsionModel model = pe::loadModelFile(repoPath(kModel));
   for (double x : {1680.0, 1690.0, 1700.0}) {
-    pe::MotorEstimate e;
+    pe::OperatingPoint e;
     ASSERT_TRUE(model.evaluate(x, 11.4, &e));
     const double grams = e.thrust_n / pe::kNewtonPerGramForce;
     EXPECT_GT(grams, 335.0) << x;
@@ -62,7 +62,7 @@ TEST(ThesisModel, HoverPwmGivesAThirdOfTheQuadsWeightPerMotor) {
 
 TEST(ThesisModel, ClampsAndFlagsArmedIdleBelowTheDomain) {
   const pe::PropulsionModel model = pe::loadModelFile(repoPath(kModel));
-  pe::MotorEstimate idle, bottom;
+  pe::OperatingPoint idle, bottom;
   ASSERT_TRUE(model.evaluate(1100.0, 11.4, &idle));
   ASSERT_TRUE(model.evaluate(1200.0, 11.4, &bottom));
   EXPECT_FALSE(idle.in_domain);

@@ -33,6 +33,9 @@ struct BenchLog {
   std::vector<int> line_numbers;  // file line of each row
   // Columns the package does not use, kept for reports: name -> one text value per row.
   std::map<std::string, std::vector<std::string>> extra_columns;
+  // What the reader decided about ambiguous content (a negated thrust, the rpm column it took),
+  // one sentence each, for the reports.
+  std::vector<std::string> notes;
 
   std::size_t rows() const { return line_numbers.size(); }
   bool has(BenchColumn column) const { return !columns[static_cast<int>(column)].empty(); }

@@ -73,8 +73,8 @@ struct ModelMetadata {
   double benchAirDensity() const;
 };
 
-// Steady-state output of one motor, in SI units.
-struct MotorEstimate {
+// Steady-state operating point of one motor from the surfaces, in SI units.
+struct OperatingPoint {
   double thrust_n = 0.0;
   double current_a = 0.0;
   double power_w = 0.0;
@@ -95,7 +95,7 @@ class PropulsionModel {
   // extrapolated, as the model says, and in_domain is false; with the reject policy nothing is
   // computed and false is returned. Thrust, current, power and rpm are floored at zero (an idling
   // polynomial may dip below it); efficiency is zero where power is zero.
-  bool evaluate(double pwm_us, double voltage_v, MotorEstimate* estimate) const;
+  bool evaluate(double pwm_us, double voltage_v, OperatingPoint* estimate) const;
 
   // One output in its file unit at any point, without clamping to the domain: a surface's own
   // value (not floored), a derived output as evaluate() derives it, NaN if not modelled.

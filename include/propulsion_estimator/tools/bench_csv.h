@@ -2,8 +2,10 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "propulsion_estimator/core/bench_log.h"
+#include "propulsion_estimator/tools/csv_text.h"
 
 namespace propulsion_estimator {
 
@@ -18,8 +20,20 @@ namespace propulsion_estimator {
 
 enum class ThrustUnit { kGram, kNewton };
 
-// Writes the logged columns of `log` (thrust as thrust_g or thrust_n), metadata first.
+// Writes the logged columns of `log` (thrust as thrust_g or thrust_n), then its extra columns,
+// metadata first; readNativeBenchCsv reads it back (numbers to 6 significant digits).
 void writeNativeBenchCsv(const BenchLog& log, std::ostream& out, ThrustUnit thrust_unit = ThrustUnit::kGram);
 void saveNativeBenchCsv(const BenchLog& log, const std::string& path, ThrustUnit thrust_unit = ThrustUnit::kGram);
+
+// Reads a native log. Throws ConfigError "<file>:<line>: column <n> '<name>': <problem>" for a
+// cell that is empty, text, NaN or infinite, and "<file>:<line>: ..." for a missing required
+// column, a repeated column, a repeated metadata key, an empty file or one without rows.
+BenchLog parseNativeBenchCsv(const std::string& text, const std::string& source);
+BenchLog readNativeBenchCsv(const std::string& path);
+// The same on an already split table (readBenchLog detects the format first).
+BenchLog nativeBenchLogFromTable(const CsvText& table, DecimalSeparator decimal = DecimalSeparator::kAuto);
+
+// True when the header names one of pwm_us, voltage_v, thrust_g, thrust_n.
+bool isNativeBenchHeader(const std::vector<std::string>& header);
 
 }  // namespace propulsion_estimator

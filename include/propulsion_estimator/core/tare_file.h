@@ -1,0 +1,24 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace propulsion_estimator {
+
+// The tare survives a restart of the node in a small YAML file:
+//   empty_mass_kg: 1.3154
+//   model: <model file the tare was taken with>
+// A tare is only meaningful with the model it was measured through, so the file names it.
+struct TareRecord {
+  double empty_mass_kg = 0.0;
+  std::string model;
+};
+
+// nullopt when the file does not exist; ConfigError naming the file for anything unreadable.
+std::optional<TareRecord> loadTareFile(const std::string& path);
+// Writes atomically (temporary file + rename) so that a crash never leaves half a file.
+void saveTareFile(const std::string& path, const TareRecord& record);
+// Removes the file if it exists.
+void removeTareFile(const std::string& path);
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,28 @@
+#pragma once
+
+#include <string>
+
+#include <ros/node_handle.h>
+
+#include "propulsion_estimator/core/estimator_config.h"
+
+namespace propulsion_estimator {
+
+// Everything estimator_node reads from its private namespace (documented in the README).
+struct EstimatorNodeParams {
+  std::string model;       // required: path of the model YAML
+  std::string urdf_file;   // optional: vehicle description; else robot_description, else no geometry
+  std::string tare_file;   // optional: where ~tare persists the empty mass ("" = not persisted)
+  std::string battery_topic = "/mavros/battery";
+  std::string rc_out_topic = "/mavros/rc/out";
+  std::string imu_topic = "/mavros/imu/data";          // "" disables
+  std::string velocity_topic = "/mavros/local_position/velocity_local";  // "" disables
+  double domain_warn_fraction = 0.2;  // of motor samples outside the model's domain, per diagnostics period
+  EstimatorConfig estimator;
+};
+
+// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is
+// known); throws ConfigError naming the parameter. Logs each loaded value once.
+EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& private_nh);
+
+}  // namespace propulsion_estimator

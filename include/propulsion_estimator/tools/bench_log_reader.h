@@ -1,0 +1,50 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "propulsion_estimator/core/bench_log.h"
+#include "propulsion_estimator/tools/csv_text.h"
+
+namespace propulsion_estimator {
+
+// How to read a logged quantity whose sign depends on how the stand was mounted (a pusher
+// propeller pulls the load cell the other way; some shunts are wired reversed).
+enum class SignPolicy {
+  kAuto,      // as logged when (nearly) all values are >= 0, negated when (nearly) all are <= 0,
+              // refused when both signs are substantial
+  kAsLogged,  // keep the sign
+  kNegate,    // negate every value
+};
+
+// Choices the user makes for ambiguous logs (Tyto/RCbenchmark format; the native format has
+// one meaning per column and ignores them, except `decimal`).
+struct BenchReadOptions {
+  SignPolicy thrust_sign = SignPolicy::kAuto;
+  SignPolicy current_sign = SignPolicy::kAuto;  // applies to the electrical power too
+  // Quantity -> header name, overriding the automatic choice ("rpm" -> "Motor Optical Speed
+  // (RPM)") or adding a column the format does not name (motor_temp_c -> "Temp 1 (degC)").
+  std::map<BenchColumn, std::string> columns;
+  DecimalSeparator decimal = DecimalSeparator::kAuto;
+};
+
+enum class BenchLogFormat { kNative, kTyto };
+
+// Detects the format from the header (native column names, or an RCbenchmark/Tyto "ESC signal"
+// column) and reads the log. What the reader decided (a negated thrust, the rpm column it took,
+// decimal commas) is appended to BenchLog::notes. Throws ConfigError naming the file, and the
+// line and column where one is at fault.
+BenchLog parseBenchLog(const std::string& text, const std::string& source, const BenchReadOptions& options);
+BenchLog readBenchLog(const std::string& path, const BenchReadOptions& options = {});
+BenchLogFormat detectBenchLogFormat(const CsvText& table);
+
+// Command-line log arguments to files: a file stays, a directory stands for its *.csv files
+// (sorted by name, not recursive). Throws ConfigError for a missing path or an empty directory.
+std::vector<std::string> expandBenchLogPaths(const std::vector<std::string>& arguments);
+
+// The BenchColumn named by its native name ("rpm", "motor_temp_c", "thrust_n"); ConfigError
+// listing the names when there is none.
+BenchColumn benchColumnFromName(const std::string& name);
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,117 @@
+#include "propulsion_estimator/ros/estimator_params.h"
+
+#include <sstream>
+
+#include <ros/console.h>
+
+#include "propulsion_estimator/core/config_error.h"
+
+namespace propulsion_estimator {
+namespace {
+
+// Typed reads that refuse a parameter of the wrong type instead of silently keeping the default.
+class ParamReader {
+ public:
+  explicit ParamReader(const ros::NodeHandle& nh) : nh_(nh) {}
+
+  template <typename T>
+  void optional(const std::string& name, T* value) const {
+    if (nh_.hasParam(name) && !nh_.getParam(name, *value)) {
+      throw ConfigError(nh_.resolveName(name) + ": wrong type, expected " + typeName(*value));
+    }
+  }
+
+  void required(const std::string& name, std::string* value) const {
+    if (!nh_.hasParam(name)) throw ConfigError(nh_.resolveName(name) + ": required parameter is not set");
+    optional(name, value);
+  }
+
+  void optionalMass(const std::string& name, std::optional<double>* value) const {
+    if (!nh_.hasParam(name)) return;
+    double mass = 0.0;
+    optional(name, &mass);
+    *value = mass;
+  }
+
+ private:
+  static const char* typeName(const std::string&) { return "a string"; }
+  static const char* typeName(double) { return "a number"; }
+  static const char* typeName(bool) { return "true or false"; }
+  static const char* typeName(int) { return "an integer"; }
+  static const char* typeName(const std::vector<int>&) { return "a list of integers"; }
+
+  const ros::NodeHandle& nh_;
+};
+
+}  // namespace
+
+EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
+  const ParamReader read(nh);
+  EstimatorNodeParams p;
+  read.required("model", &p.model);
+  read.optional("urdf_file", &p.urdf_file);
+  read.optional("tare_file", &p.tare_file);
+  read.optional("battery_topic", &p.battery_topic);
+  read.optional("rc_out_topic", &p.rc_out_topic);
+  read.optional("imu_topic", &p.imu_topic);
+  read.optional("velocity_topic", &p.velocity_topic);
+  read.optional("domain_warn_fraction", &p.domain_warn_fraction);
+
+  EstimatorConfig& c = p.estimator;
+  read.optional("motor_channels", &c.motor_channels);
+  read.optional("disarmed_pwm_max_us", &c.disarmed_pwm_max_us);
+  read.optional("battery_timeout_s", &c.battery_timeout_s);
+  read.optional("imu/timeout_s", &c.imu_timeout_s);
+  read.optional("imu/compensate_tilt", &c.compensate_tilt);
+  read.optional("imu/compensate_acceleration", &c.compensate_acceleration);
+  read.optional("imu/accel_filter_s", &c.accel_filter_s);
+  read.optional("imu/accel_bias_filter_s", &c.accel_bias_filter_s);
+  read.optional("velocity/timeout_s", &c.velocity_timeout_s);
+  read.optional("max_rate_hz", &c.max_rate_hz);
+  read.optional("clock_jump_reset_s", &c.clock_jump_reset_s);
+  read.optionalMass("empty_mass_kg", &c.empty_mass_kg);
+  read.optional("hover/window_s", &c.hover.window_s);
+  read.optional("hover/min_window_fill", &c.hover.min_window_fill);
+  read.optional("hover/max_thrust_rel_std", &c.hover.max_thrust_rel_std);
+  read.optional("hover/max_tilt_deg", &c.hover.max_tilt_deg);
+  read.optional("hover/max_vertical_speed_m_s", &c.hover.max_vertical_speed_m_s);
+  read.optional("hover/max_vertical_accel_m_s2", &c.hover.max_vertical_accel_m_s2);
+  read.optional("hover/min_mass_kg", &c.hover.min_mass_kg);
+  read.optional("payload/averaging_window_s", &c.payload.averaging_window_s);
+  int min_samples = static_cast<int>(c.payload.min_samples);
+  read.optional("payload/min_samples", &min_samples);
+  if (min_samples < 0) throw ConfigError(nh.resolveName("payload/min_samples") + ": must not be negative");
+  c.payload.min_samples = static_cast<std::size_t>(min_samples);
+  read.optional("payload/episode_gap_s", &c.payload.episode_gap_s);
+  if (!(p.domain_warn_fraction >= 0.0 && p.domain_warn_fraction <= 1.0)) {
+    throw ConfigError(nh.resolveName("domain_warn_fraction") + ": must be in [0, 1]");
+  }
+
+  std::ostringstream channels;
+  for (std::size_t i = 0; i < c.motor_channels.size(); ++i) channels << (i ? ", " : "") << c.motor_channels[i];
+  ROS_INFO_STREAM("propulsion_estimator parameters:"
+                  << "\n  model: " << p.model << "\n  urdf_file: " << (p.urdf_file.empty() ? "(none)" : p.urdf_file)
+                  << "\n  tare_file: " << (p.tare_file.empty() ? "(not persisted)" : p.tare_file)
+                  << "\n  battery_topic: " << p.battery_topic << "\n  rc_out_topic: " << p.rc_out_topic
+                  << "\n  imu_topic: " << (p.imu_topic.empty() ? "(disabled)" : p.imu_topic)
+                  << "\n  velocity_topic: " << (p.velocity_topic.empty() ? "(disabled)" : p.velocity_topic)
+                  << "\n  motor_channels: [" << channels.str() << "]"
+                  << "\n  disarmed_pwm_max_us: " << c.disarmed_pwm_max_us
+                  << "\n  battery_timeout_s: " << c.battery_timeout_s
+                  << "\n  empty_mass_kg: " << (c.empty_mass_kg ? std::to_string(*c.empty_mass_kg) : "(not set)")
+                  << "\n  imu: timeout_s " << c.imu_timeout_s << ", compensate_tilt " << c.compensate_tilt
+                  << ", compensate_acceleration " << c.compensate_acceleration << ", accel_filter_s "
+                  << c.accel_filter_s << ", accel_bias_filter_s " << c.accel_bias_filter_s
+                  << "\n  velocity: timeout_s " << c.velocity_timeout_s
+                  << "\n  hover: window_s " << c.hover.window_s << ", min_window_fill " << c.hover.min_window_fill
+                  << ", max_thrust_rel_std " << c.hover.max_thrust_rel_std << ", max_tilt_deg "
+                  << c.hover.max_tilt_deg << ", max_vertical_speed_m_s " << c.hover.max_vertical_speed_m_s
+                  << ", max_vertical_accel_m_s2 " << c.hover.max_vertical_accel_m_s2 << ", min_mass_kg "
+                  << c.hover.min_mass_kg << "\n  payload: averaging_window_s " << c.payload.averaging_window_s
+                  << ", min_samples " << c.payload.min_samples << ", episode_gap_s " << c.payload.episode_gap_s
+                  << "\n  max_rate_hz: " << c.max_rate_hz << ", clock_jump_reset_s: " << c.clock_jump_reset_s
+                  << ", domain_warn_fraction: " << p.domain_warn_fraction);
+  return p;
+}
+
+}  // namespace propulsion_estimator

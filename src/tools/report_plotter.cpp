@@ -1,0 +1,69 @@
+#include "report_plotter.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <vector>
+
+#include "propulsion_estimator/core/config_error.h"
+
+extern char** environ;
+
+namespace propulsion_estimator {
+namespace {
+
+constexpr const char* kScriptName = "plot_bench_report.py";
+
+// Runs a program (searched on PATH) with its output going to ours, or its error output
+// discarded when `quiet`; its exit status, or -1 when it could not be started.
+int run(const std::vector<std::string>& arguments, bool quiet) {
+  std::vector<char*> argv;
+  for (const std::string& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t child = 0;
+  const int spawned = posix_spawnp(&child, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) return -1;
+  int status = 0;
+  if (waitpid(child, &status, 0) != child || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
+std::string findScript(const std::string& script) {
+  namespace fs = std::filesystem;
+  if (!script.empty()) {
+    if (!fs::exists(script)) throw ConfigError(script + ": plot script not found (--plot-script)");
+    return script;
+  }
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  const fs::path beside = self.parent_path() / kScriptName;
+  if (error || !fs::exists(beside)) {
+    throw ConfigError(std::string(kScriptName) + " not found next to this executable (" + beside.string() +
+                      "): pass --plot-script PATH");
+  }
+  return beside.string();
+}
+
+}  // namespace
+
+void runPlotScript(const std::string& mode, const std::string& directory, const std::string& python,
+                   const std::string& script) {
+  const std::string path = findScript(script);
+  const int check = run({python, "-c", "import matplotlib, numpy"}, true);
+  if (check != 0) {
+    throw ConfigError(python + (check < 0 ? " cannot be run" : " cannot import matplotlib and numpy") +
+                      ": the report's figures need them; install python3-matplotlib (scripts/install_deps.sh) or "
+                      "pass --python /usr/bin/python3");
+  }
+  const int status = run({python, path, mode, directory}, false);
+  if (status != 0)
+    throw ConfigError(path + " " + mode + " " + directory + " failed (exit status " + std::to_string(status) + ")");
+}
+
+}  // namespace propulsion_estimator

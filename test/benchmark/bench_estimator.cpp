@@ -1,0 +1,62 @@
+// Per-message cost of the onboard estimation: model evaluation, the whole core pipeline for one
+// RCOut message, and decoding an RCOut ShapeShifter in the ROS layer.
+#include <cstdint>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "propulsion_estimator/core/estimator.h"
+#include "propulsion_estimator/core/model_yaml.h"
+#include "propulsion_estimator/ros/rcout_codec.h"
+
+namespace pe = propulsion_estimator;
+
+namespace {
+
+pe::PropulsionModel thesisModel() { return pe::loadModelFile(std::string(PE_REPO_DIR) + "/config/e300_dji2212_dji9443.yaml"); }
+
+void BM_ModelEvaluate(benchmark::State& state) {
+  const pe::PropulsionModel model = thesisModel();
+  pe::OperatingPoint point;
+  double pwm = 1200.0;
+  for (auto _ : state) {
+    pwm = pwm >= 1900.0 ? 1200.0 : pwm + 0.7;
+    model.evaluate(pwm, 11.4, &point);
+    benchmark::DoNotOptimize(point);
+  }
+}
+BENCHMARK(BM_ModelEvaluate);
+
+void BM_EstimatorRcOutMessage(benchmark::State& state) {
+  const int motors = static_cast<int>(state.range(0));
+  pe::EstimatorConfig config;
+  config.motor_channels.clear();
+  for (int k = 1; k <= motors; ++k) config.motor_channels.push_back(k);
+  pe::Estimator estimator(thesisModel(), pe::Vehicle::upwardRotors(motors), config);
+  std::vector<std::uint16_t> channels(16, 1690);
+  double t = 0.0;
+  for (auto _ : state) {
+    t += 0.02;
+    if (static_cast<int>(t * 50.0) % 50 == 0) estimator.addBattery(t, 11.4);
+    estimator.addImu(t, Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.0, 0.0, 9.81));
+    channels[0] = static_cast<std::uint16_t>(1680 + static_cast<int>(t * 50.0) % 20);
+    benchmark::DoNotOptimize(estimator.addMotorOutputs(t, t, channels.data(), channels.size()));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_EstimatorRcOutMessage)->Arg(4)->Arg(6)->Arg(8);
+
+void BM_RcOutDecode(benchmark::State& state) {
+  pe::RcOutMessage message;
+  message.channels.assign(16, 1690);
+  const topic_tools::ShapeShifter shifter = pe::encodeRcOut(message);
+  pe::RcOutDecoder decoder;
+  pe::RcOutMessage decoded;
+  std::string error;
+  for (auto _ : state) benchmark::DoNotOptimize(decoder.decode(shifter, &decoded, &error));
+}
+BENCHMARK(BM_RcOutDecode);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,149 @@
+#!/usr/bin/env python3
+"""rostest of estimator_node as a black box: inputs on MAVROS topics, estimates on ~motors,
+~totals and ~payload, services, /diagnostics. Expected values come as test parameters."""
+import os
+import unittest
+
+import roslaunch
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticStatus
+from propulsion_estimator.msg import PayloadEstimate
+
+from estimator_harness import EstimatorHarness, is_nan
+
+G = 9.80665
+HOVER = [1690, 1690, 1690, 1690, 1000, 1000, 1000, 1000]
+
+
+class EstimatorNodeTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_estimator_node")
+        cls.h = EstimatorHarness()
+        cls.thrust_n = rospy.get_param("~expected_thrust_per_motor_n")
+        cls.tolerance_n = rospy.get_param("~thrust_tolerance_n")
+        cls.tare_file = rospy.get_param("~tare_file")
+
+    def assert_no_estimate_from(self, publish, diagnostic_text, level=DiagnosticStatus.WARN):
+        """Publishes a bad input and checks that no estimate follows and the diagnostics say why."""
+        before = self.h.count(self.h.motors)
+        publish()
+        rospy.sleep(0.5)
+        self.assertEqual(self.h.count(self.h.motors), before, "an estimate was published from a bad input")
+        status = self.h.wait_for_diagnostic("Motor outputs", diagnostic_text)
+        self.assertEqual(status.level, level)
+
+    def assert_tare_survives_a_restart(self, empty_mass_kg):
+        """A second estimator started with the same tare file begins with the persisted tare."""
+        for name in ("model", "tare_file"):
+            rospy.set_param("/restarted/" + name, rospy.get_param("/propulsion_estimator/" + name))
+        launch = roslaunch.scriptapi.ROSLaunch()
+        launch.start()
+        process = launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name="restarted",
+                                                    namespace="/", output="log"))
+        try:
+            received = []
+            subscriber = rospy.Subscriber("/restarted/payload", PayloadEstimate, received.append)
+            rospy.wait_for_service("/restarted/tare", timeout=30.0)
+            self.h.wait_for(lambda: self.h.rc_out_pub.get_num_connections() > 1, 10.0, "the restarted node")
+            self.h.fly(HOVER, 0.3, voltage_v=11.4)
+            self.h.wait_for(lambda: received, 5.0, "an estimate of the restarted node")
+            self.assertEqual(received[-1].empty_mass_source, "tare_file")
+            self.assertAlmostEqual(received[-1].empty_mass_kg, empty_mass_kg, places=9)
+            subscriber.unregister()
+        finally:
+            process.stop()
+            launch.stop()
+
+    def test_1_no_estimate_before_any_battery_voltage(self):
+        self.h.fly(HOVER, 1.0)
+        self.assertEqual(self.h.count(self.h.motors), 0)
+        status = self.h.wait_for_diagnostic("Inputs", "estimates stopped: no valid battery voltage received")
+        self.assertEqual(status.level, DiagnosticStatus.ERROR)
+
+    def test_2_hover_estimates(self):
+        self.h.fly(HOVER, 4.0, voltage_v=11.4)
+        motors = self.h.latest(self.h.motors)
+        self.assertEqual([m.channel for m in motors.motors], [1, 2, 3, 4])
+        self.assertAlmostEqual(motors.voltage_v, 11.4, places=5)
+        for m in motors.motors:
+            self.assertEqual(m.pwm_us, 1690.0)
+            self.assertAlmostEqual(m.thrust_n, self.thrust_n, delta=self.tolerance_n)
+            self.assertTrue(m.in_domain)
+            self.assertGreater(m.current_a, 0.0)
+            self.assertAlmostEqual(m.efficiency_n_per_w, m.thrust_n / m.power_w, places=9)
+        totals = self.h.latest(self.h.totals)
+        self.assertAlmostEqual(totals.mass_kg, 4 * self.thrust_n / G, delta=4 * self.tolerance_n / G)
+        self.assertEqual(totals.motors_out_of_domain, 0)
+        payload = self.h.latest(self.h.payload)
+        self.assertTrue(payload.hovering)
+        self.assertEqual(payload.state, "no_tare_yet")
+        self.assertAlmostEqual(payload.total_mass_kg, totals.mass_kg, places=6)
+        self.assertTrue(is_nan(payload.payload_mass_kg))
+        self.assertGreater(payload.window_samples, 50)
+
+    def test_3_services(self):
+        self.h.fly(HOVER, 3.0, voltage_v=11.4)
+        answer = self.h.call("detect_hover")
+        self.assertTrue(answer.success, answer.message)
+        self.assertTrue(answer.message.startswith("hovering; window"), answer.message)
+        answer = self.h.call("tare")
+        self.assertTrue(answer.success, answer.message)
+        self.assertIn("saved to " + self.tare_file, answer.message)
+        with open(self.tare_file) as f:
+            self.assertIn("empty_mass_kg: ", f.read())
+        self.h.fly(HOVER, 0.5, voltage_v=11.4)
+        payload = self.h.latest(self.h.payload)
+        self.assertEqual(payload.state, "hovering")
+        self.assertEqual(payload.empty_mass_source, "tare")
+        self.assertAlmostEqual(payload.payload_mass_kg, 0.0, delta=1e-6)
+        self.assert_tare_survives_a_restart(payload.empty_mass_kg)
+        answer = self.h.call("reset")
+        self.assertTrue(answer.success)
+        self.assertEqual(answer.message, "windows and tare cleared; empty mass now unknown (source: none)")
+        self.assertFalse(os.path.exists(self.tare_file))
+        self.h.fly(HOVER, 0.2, voltage_v=11.4)
+        self.assertEqual(self.h.latest(self.h.payload).state, "waiting_for_hover")
+        answer = self.h.call("tare")
+        self.assertFalse(answer.success)
+        self.assertTrue(answer.message.startswith("refused: not hovering: window spans"), answer.message)
+
+    def test_4_bad_messages(self):
+        self.h.fly(HOVER, 1.0, voltage_v=11.4)
+        for bad_voltage, text in ((float("nan"), "battery voltage nan V refused"),
+                                  (0.0, "battery voltage 0 V refused")):
+            self.h.battery(bad_voltage)
+            self.h.wait_for_diagnostic("Motor outputs", text)
+            self.h.fly(HOVER, 0.3)
+            totals = self.h.latest(self.h.totals)
+            self.assertAlmostEqual(totals.voltage_v, 11.4, places=5, msg="an estimate used the bad voltage")
+            self.h.fly(HOVER, 1.5, voltage_v=11.4)  # the next diagnostics period is clean again
+        # Disarmed on the ground is normal: no estimates, said plainly, not a warning.
+        self.assert_no_estimate_from(lambda: self.h.rc_out([0, 0, 0, 0, 0, 0, 0, 0]),
+                                     "channel 1 at 0 us, at or below disarmed_pwm_max_us 950", DiagnosticStatus.OK)
+        self.assert_no_estimate_from(lambda: self.h.rc_out([900, 900, 900, 900, 900, 900, 900, 900]),
+                                     "channel 1 at 900 us, at or below disarmed_pwm_max_us 950", DiagnosticStatus.OK)
+        self.assert_no_estimate_from(lambda: self.h.rc_out([1690, 1690, 1690]),
+                                     "RCOut has 3 channels, motor channel 4 is configured")
+        self.h.fly(HOVER, 0.5, voltage_v=11.4)
+        self.assert_no_estimate_from(lambda: self.h.rc_out(HOVER, stamp=self.h.stamp - rospy.Duration(1.0)),
+                                     "stamp went back by 1 s")
+        # Still alive and estimating.
+        before = self.h.count(self.h.motors)
+        self.h.fly(HOVER, 0.5, voltage_v=11.4)
+        self.assertGreater(self.h.count(self.h.motors), before + 10)
+
+    def test_5_stale_battery_stops_estimates(self):
+        self.h.fly(HOVER, 1.0, voltage_v=11.4)
+        timeout = rospy.get_param("/propulsion_estimator/battery_timeout_s")
+        self.h.fly(HOVER, timeout + 0.5)  # no battery messages any more
+        before = self.h.count(self.h.motors)
+        self.h.fly(HOVER, 0.5)
+        self.assertEqual(self.h.count(self.h.motors), before)
+        status = self.h.wait_for_diagnostic("Inputs", "estimates stopped: no battery voltage for")
+        self.assertEqual(status.level, DiagnosticStatus.ERROR)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("propulsion_estimator", "estimator_node", EstimatorNodeTest)

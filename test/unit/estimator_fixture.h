@@ -1,0 +1,43 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "propulsion_estimator/core/estimator.h"
+#include "propulsion_estimator/core/model_yaml.h"
+#include "propulsion_estimator/core/units.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+
+// The thesis model on the thesis quad, fed at 50 Hz like MAVROS' rc/out.
+class EstimatorFixture {
+ public:
+  explicit EstimatorFixture(pe::EstimatorConfig config = {}, pe::Vehicle vehicle = pe::Vehicle::quadX(0.225))
+      : model(pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"))),
+        estimator(model, std::move(vehicle), std::move(config)) {}
+
+  // Motor outputs at `pwm` on all four motors for `seconds`, with a fresh voltage every second.
+  void fly(double pwm, double seconds, double voltage_v = 11.4) {
+    const std::vector<std::uint16_t> channels(8, static_cast<std::uint16_t>(pwm));
+    for (double end = t + seconds; t < end - 1e-9; t += 0.02) {
+      if (t - last_battery >= 1.0) {
+        estimator.addBattery(t, voltage_v);
+        last_battery = t;
+      }
+      EXPECT_EQ(estimator.addMotorOutputs(t, t, channels.data(), channels.size()), pe::Rejection::kNone) << t;
+    }
+  }
+
+  // Four motors at `pwm` through the model: the thrust the estimator must find.
+  double modelMassKg(double pwm, double voltage_v = 11.4) const {
+    pe::OperatingPoint e;
+    model.evaluate(pwm, voltage_v, &e);
+    return 4.0 * e.thrust_n / pe::kStandardGravity;
+  }
+
+  pe::PropulsionModel model;
+  pe::Estimator estimator;
+  double t = 100.0;
+  double last_battery = -10.0;
+};

@@ -1,0 +1,454 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "bench_sweep_fixture.h"
+#include "propulsion_estimator/core/bench_fit.h"
+#include "propulsion_estimator/tools/bench_log_reader.h"
+#include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/model_yaml.h"
+#include "propulsion_estimator/core/units.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+
+namespace {
+
+const std::string kStrawson = "data/strawson_motor_propeller/";
+
+// Bench conditions the Strawson exports do not carry (the stand software writes no metadata).
+pe::FitOptions strawsonOptions(const std::string& motor, const std::string& propeller) {
+  pe::FitOptions options;
+  options.esc = "unknown BLHeli ESC";
+  options.motor = motor;
+  options.propeller = propeller;
+  options.air_temperature_c = 20.0;
+  options.air_pressure_pa = 101325.0;
+  options.supply = pe::SupplyKind::kRegulated;
+  return options;
+}
+
+std::vector<pe::BenchLog> strawsonPair(const std::string& combination) {
+  return {pe::readBenchLog(sharedPath(kStrawson + combination + "_7.csv")),
+          pe::readBenchLog(sharedPath(kStrawson + combination + "_11.csv"))};
+}
+
+double rmseOn(const pe::PropulsionModel& model, pe::Output output, const pe::BenchLog& log) {
+  double sse = 0.0;
+  for (std::size_t r = 0; r < log.rows(); ++r) {
+    const double x = log.column(pe::BenchColumn::kPwm)[r];
+    const double v = log.column(pe::BenchColumn::kVoltage)[r];
+    double measured = 0.0;
+    switch (output) {
+      case pe::Output::kThrust:
+        measured = log.column(pe::BenchColumn::kThrust)[r] / pe::kNewtonPerGramForce;
+        break;
+      case pe::Output::kCurrent:
+        measured = log.column(pe::BenchColumn::kCurrent)[r];
+        break;
+      case pe::Output::kPower:
+        measured = log.column(pe::BenchColumn::kPower)[r];
+        break;
+      default:
+        measured = log.column(pe::BenchColumn::kRpm)[r];
+        break;
+    }
+    const double error = model.evaluateRaw(output, x, v) - measured;
+    sse += error * error;
+  }
+  return std::sqrt(sse / static_cast<double>(log.rows()));
+}
+
+std::string refusal(const std::vector<pe::BenchLog>& logs, const pe::FitOptions& options = {}) {
+  try {
+    pe::fitBenchModel(logs, options);
+  } catch (const pe::ConfigError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+// A clean native-style log: thrust_g = f(pwm, voltage) on a grid, no noise.
+pe::BenchLog gridLog(const std::string& name, const std::vector<double>& pwms, double voltage,
+                     double (*thrust_g)(double, double)) {
+  pe::BenchLog log;
+  log.source = name;
+  log.metadata = {{"esc", "E"},
+                  {"motor", "M"},
+                  {"propeller", "P"},
+                  {"supply", "battery"},
+                  {"air_temperature_c", "20"},
+                  {"air_pressure_pa", "100000"}};
+  int line = 8;
+  for (double x : pwms) {
+    log.column(pe::BenchColumn::kPwm).push_back(x);
+    log.column(pe::BenchColumn::kVoltage).push_back(voltage);
+    log.column(pe::BenchColumn::kThrust).push_back(thrust_g(x, voltage) * pe::kNewtonPerGramForce);
+    log.line_numbers.push_back(line++);
+  }
+  return log;
+}
+
+std::vector<double> pwmSteps(double from, double to, double step) {
+  std::vector<double> values;
+  for (double x = from; x <= to + 1e-9; x += step) values.push_back(x);
+  return values;
+}
+
+double smoothThrust(double x, double v) { return SmoothChain::thrustGrams(x, v); }
+
+}  // namespace
+
+// --- synthetic sweeps: the held-out voltage level within the noise ------------------------------
+
+TEST(BenchFit, RecoversEachHeldOutVoltageLevelWithinTheNoise) {
+  const SweepSet set = syntheticSweeps();
+  // Every interior level in turn (the two end levels would test extrapolation, not the model).
+  for (std::size_t held_out = 1; held_out + 1 < set.logs.size(); ++held_out) {
+    std::vector<pe::BenchLog> training;
+    for (std::size_t k = 0; k < set.logs.size(); ++k) {
+      if (k != held_out) training.push_back(set.logs[k]);
+    }
+    const pe::BenchFit fit = pe::fitBenchModel(training, {});
+    ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
+    EXPECT_EQ(fit.grouping, pe::FitGrouping::kVoltageLevel);
+    const pe::BenchLog& test = set.logs[held_out];
+    EXPECT_LT(rmseOn(fit.model, pe::Output::kThrust, test), 1.5 * set.thrust_sigma_g) << held_out;
+    EXPECT_LT(rmseOn(fit.model, pe::Output::kCurrent, test), 1.5 * set.current_sigma_a) << held_out;
+    EXPECT_LT(rmseOn(fit.model, pe::Output::kPower, test), 1.5 * set.power_sigma_w) << held_out;
+    EXPECT_LT(rmseOn(fit.model, pe::Output::kRpm, test), 1.5 * set.rpm_sigma) << held_out;
+  }
+}
+
+TEST(BenchFit, SurfaceFollowsTheNoiseFreeChainAndReportsHonestErrors) {
+  const SweepSet set = syntheticSweeps(7);
+  const pe::BenchFit fit = pe::fitBenchModel(set.logs, {});
+  ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
+  EXPECT_EQ(fit.grouping_description, "leave one voltage level out (8 levels, 10.50 to 12.60 V)");
+  // Against the truth on a grid, the surface is much closer than one noise sigma (1128 samples).
+  double sse = 0.0;
+  int n = 0;
+  for (double x = 1200.0; x <= 1900.0; x += 20.0) {
+    for (double v = 10.5; v <= 12.6001; v += 0.15) {
+      const double error = fit.model.evaluateRaw(pe::Output::kThrust, x, v) - SmoothChain::thrustGrams(x, v);
+      sse += error * error;
+      ++n;
+    }
+  }
+  EXPECT_LT(std::sqrt(sse / n), 0.5 * set.thrust_sigma_g);
+  const pe::OutputFitReport& thrust = fit.outputs[static_cast<int>(pe::Output::kThrust)];
+  EXPECT_EQ(thrust.points, 8 * 141);
+  // In-sample and held-out errors both estimate the noise.
+  EXPECT_NEAR(thrust.rmse, set.thrust_sigma_g, 0.15 * set.thrust_sigma_g);
+  const pe::FitQuality& quality = *fit.model.output(pe::Output::kThrust).fit;
+  EXPECT_NEAR(quality.held_out_rmse, set.thrust_sigma_g, 0.2 * set.thrust_sigma_g);
+  EXPECT_GE(quality.held_out_rmse, thrust.rmse);
+  EXPECT_GT(thrust.r2, 0.999);
+  EXPECT_GT(thrust.max_error, 2.5 * set.thrust_sigma_g);  // the largest of 1128 normal residuals
+  EXPECT_LT(thrust.max_error, 5.0 * set.thrust_sigma_g);
+  // Degrees: 20 candidates scored; thrust ~ rpm^2 is (4, 2) in the chain, power needs more PWM terms.
+  EXPECT_EQ(thrust.candidates.size(), 20u);
+  EXPECT_GE(quality.pwm_degree, 3);
+  EXPECT_GE(quality.voltage_degree, 1);
+  EXPECT_EQ(fit.model.output(pe::Output::kEfficiency).source, pe::OutputSource::kDerived);
+  // The domain and scaling come from the data.
+  EXPECT_DOUBLE_EQ(fit.model.domain().pwm_min_us, 1200.0);
+  EXPECT_DOUBLE_EQ(fit.model.domain().pwm_max_us, 1900.0);
+  EXPECT_NEAR(fit.model.domain().voltage_min_v, 10.5, 0.05);
+  EXPECT_NEAR(fit.model.domain().voltage_max_v, 12.6, 0.05);
+  const pe::InputScaling& s = fit.model.output(pe::Output::kThrust).surface->scaling();
+  EXPECT_DOUBLE_EQ(s.pwm_center_us, 1550.0);
+  EXPECT_DOUBLE_EQ(s.pwm_scale_us, 350.0);
+  EXPECT_EQ(fit.model.metadata().motor, "synthetic 920KV");
+  EXPECT_EQ(fit.model.metadata().source,
+            "fit_surfaces from sweep_0.csv, sweep_1.csv, sweep_2.csv, sweep_3.csv, ... (8 logs)");
+}
+
+TEST(BenchFit, FittedModelFileLoadsUnchanged) {
+  const pe::BenchFit fit = pe::fitBenchModel(syntheticSweeps().logs, {});
+  const std::string path = (std::filesystem::temp_directory_path() / "pe_fitted_model.yaml").string();
+  pe::saveModelFile(fit.model, path);
+  const pe::PropulsionModel loaded = pe::loadModelFile(path);
+  for (double x : {1200.0, 1433.0, 1900.0}) {
+    for (double v : {10.5, 11.7, 12.6}) {
+      for (pe::Output output : pe::kAllOutputs) {
+        EXPECT_DOUBLE_EQ(loaded.evaluateRaw(output, x, v), fit.model.evaluateRaw(output, x, v));
+      }
+    }
+  }
+  const pe::FitQuality& q = *loaded.output(pe::Output::kRpm).fit;
+  const pe::FitQuality& original = *fit.model.output(pe::Output::kRpm).fit;
+  EXPECT_EQ(q.pwm_degree, original.pwm_degree);
+  EXPECT_EQ(q.points, original.points);
+  EXPECT_DOUBLE_EQ(q.held_out_rmse, original.held_out_rmse);
+  EXPECT_EQ(q.grouping, original.grouping);
+  std::filesystem::remove(path);
+}
+
+// --- battery discharges: no discrete levels, rows binned by voltage ------------------------------
+
+TEST(BenchFit, BinsContinuousBatteryDischargesIntoVoltageLevels) {
+  // Thesis 4.2: constant PWM 1600..1900 us while a 3S battery runs down from 12.6 to 10.5 V.
+  std::vector<pe::BenchLog> logs;
+  std::mt19937 random(3);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  for (double pwm : {1600.0, 1700.0, 1800.0, 1900.0}) {
+    pe::BenchLog log;
+    log.source = "discharge_" + std::to_string(static_cast<int>(pwm)) + ".csv";
+    log.metadata = {{"esc", "E"},
+                    {"motor", "M"},
+                    {"propeller", "P"},
+                    {"supply", "battery"},
+                    {"air_temperature_c", "20"},
+                    {"air_pressure_pa", "100000"}};
+    for (int k = 0; k <= 400; ++k) {
+      const double v = 12.6 - 2.1 * k / 400.0;
+      log.column(pe::BenchColumn::kPwm).push_back(pwm);
+      log.column(pe::BenchColumn::kVoltage).push_back(v);
+      log.column(pe::BenchColumn::kThrust).push_back((smoothThrust(pwm, v) + noise(random)) * pe::kNewtonPerGramForce);
+      log.line_numbers.push_back(k + 2);
+    }
+    logs.push_back(std::move(log));
+  }
+  const pe::BenchFit fit = pe::fitBenchModel(logs, {});
+  // 10.5..12.6 V in 0.3 V bins anchored at 0 V: [10.5, 10.8), ..., [12.3, 12.6), [12.6, 12.9).
+  ASSERT_EQ(fit.data.voltage_levels.size(), 8u);
+  EXPECT_NEAR(fit.data.voltage_levels.front().centre, 10.65, 1e-9);
+  EXPECT_EQ(fit.grouping, pe::FitGrouping::kVoltageLevel);
+  EXPECT_EQ(fit.notes[0],
+            "discharge_1600.csv: voltage varies (10.50 to 12.60 V): its rows are binned by voltage in 0.3 V bins");
+  // Four PWM levels: a held-out voltage bin still sees all four, so PWM degree <= 3.
+  EXPECT_LE(fit.model.output(pe::Output::kThrust).fit->pwm_degree, 3);
+  for (double pwm : {1600.0, 1750.0, 1900.0}) {
+    for (double v : {10.6, 11.5, 12.5}) {
+      EXPECT_NEAR(fit.model.evaluateRaw(pe::Output::kThrust, pwm, v), smoothThrust(pwm, v), 3.0) << pwm << " " << v;
+    }
+  }
+}
+
+// --- the thesis: surfaces sampled on its grid are fitted back to its chapter 7 maxima ------------
+
+TEST(BenchFit, ThesisSurfacesSampledOnItsGridReproduceChapter7Maxima) {
+  const pe::PropulsionModel thesis = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
+  std::mt19937 random(11);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  std::vector<pe::BenchLog> logs;
+  for (int level = 0; level < 8; ++level) {
+    const double v = 10.5 + 0.3 * level;
+    pe::BenchLog log;
+    log.source = "thesis_" + std::to_string(level) + ".csv";
+    log.metadata = {{"esc", "DJI E300"},     {"motor", "DJI 2212 920KV"}, {"propeller", "DJI 9443"},
+                    {"supply", "regulated"}, {"air_temperature_c", "22"}, {"air_pressure_pa", "101325"}};
+    for (double x = 1200.0; x <= 1900.0; x += 5.0) {
+      log.column(pe::BenchColumn::kPwm).push_back(x);
+      log.column(pe::BenchColumn::kVoltage).push_back(v);
+      log.column(pe::BenchColumn::kThrust)
+          .push_back((thesis.evaluateRaw(pe::Output::kThrust, x, v) + 1.0 * unit(random)) * pe::kNewtonPerGramForce);
+      log.column(pe::BenchColumn::kCurrent)
+          .push_back(thesis.evaluateRaw(pe::Output::kCurrent, x, v) + 0.02 * unit(random));
+      log.column(pe::BenchColumn::kPower).push_back(thesis.evaluateRaw(pe::Output::kPower, x, v) + 0.2 * unit(random));
+      log.column(pe::BenchColumn::kRpm).push_back(thesis.evaluateRaw(pe::Output::kRpm, x, v) + 10.0 * unit(random));
+      log.line_numbers.push_back(static_cast<int>(log.rows()) + 2);
+    }
+    logs.push_back(std::move(log));
+  }
+  const pe::BenchFit fit = pe::fitBenchModel(logs, {});
+  ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
+  // Chapter 7, table 7.1-7.6, E300-2212 with the 9443 propeller at 12.6 V.
+  double thrust = 0, current = 0, power = 0, efficiency_at_max_power = 0, rpm = 0;
+  for (double x = 1200.0; x <= 1900.0; x += 5.0) {
+    pe::OperatingPoint e;
+    ASSERT_TRUE(fit.model.evaluate(x, 12.6, &e));
+    thrust = std::max(thrust, e.thrust_n / pe::kNewtonPerGramForce);
+    current = std::max(current, e.current_a);
+    rpm = std::max(rpm, e.rpm);
+    if (e.power_w > power) {
+      power = e.power_w;
+      efficiency_at_max_power = e.efficiency_n_per_w / pe::kNewtonPerGramForce;
+    }
+  }
+  EXPECT_NEAR(thrust, 681.85, 0.03 * 681.85);
+  EXPECT_NEAR(current, 8.89, 0.03 * 8.89);
+  EXPECT_NEAR(power, 112.12, 0.03 * 112.12);
+  EXPECT_NEAR(efficiency_at_max_power, 6.28, 0.03 * 6.28);
+  EXPECT_NEAR(rpm, 8682.0, 0.03 * 8682.0);
+  // The thesis' thrust is poly21: a (2, 1) surface or one containing it.
+  const pe::FitQuality& q = *fit.model.output(pe::Output::kThrust).fit;
+  EXPECT_GE(q.pwm_degree, 2);
+  EXPECT_GE(q.voltage_degree, 1);
+  EXPECT_LT(q.held_out_rmse, 1.3);
+}
+
+// --- real data: Strawson's RCbenchmark exports, two supply levels per combination ---------------
+
+TEST(BenchFitStrawson, FitsAMotorPropellerPairFromItsTwoSupplyLevels) {
+  // Lumenier RX2206-13 2000kv with the Cyclone T5040C: no current limit was hit.
+  const pe::BenchFit fit =
+      pe::fitBenchModel(strawsonPair("g1"), strawsonOptions("Lumenier RX2206-13 2000kv", "Cyclone T5040C 3-blade"));
+  ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
+  EXPECT_EQ(fit.grouping, pe::FitGrouping::kPwmLevel);
+  EXPECT_EQ(fit.grouping_description,
+            "leave one PWM level out (11 levels, 1050 to 2000 us); 2 voltage levels only, so the voltage degree is at "
+            "most 1");
+  ASSERT_EQ(fit.data.voltage_levels.size(), 2u);
+  EXPECT_NEAR(fit.data.voltage_levels[0].centre, 7.39, 0.05);
+  EXPECT_NEAR(fit.data.voltage_levels[1].centre, 11.06, 0.05);
+  // Thrust 2..340 gf, current to 6.9 A, power to 75 W, electrical rpm to 16k.
+  struct Bound {
+    pe::Output output;
+    double min_r2, max_rmse, max_held_out;
+  };
+  for (const Bound& b : {Bound{pe::Output::kThrust, 0.999, 3.0, 8.0}, Bound{pe::Output::kCurrent, 0.998, 0.1, 0.25},
+                         Bound{pe::Output::kPower, 0.998, 1.0, 2.5}, Bound{pe::Output::kRpm, 0.995, 250.0, 700.0}}) {
+    const pe::OutputFitReport& report = fit.outputs[static_cast<int>(b.output)];
+    const pe::FitQuality& q = *fit.model.output(b.output).fit;
+    EXPECT_EQ(report.points, 22) << pe::outputName(b.output);
+    EXPECT_GT(report.r2, b.min_r2) << pe::outputName(b.output);
+    EXPECT_LT(report.rmse, b.max_rmse) << pe::outputName(b.output);
+    EXPECT_LT(q.held_out_rmse, b.max_held_out) << pe::outputName(b.output);
+    EXPECT_GE(q.held_out_rmse, report.rmse) << pe::outputName(b.output);
+    EXPECT_LE(q.voltage_degree, 1) << pe::outputName(b.output);
+    EXPECT_LE(report.max_error, 4.0 * report.rmse) << pe::outputName(b.output);
+  }
+  // Physically: more thrust at 3S than at 2S at the same command, both near the logged values.
+  EXPECT_NEAR(fit.model.evaluateRaw(pe::Output::kThrust, 2000.0, 10.9), 340.0, 8.0);
+  EXPECT_NEAR(fit.model.evaluateRaw(pe::Output::kThrust, 2000.0, 7.3), 162.0, 8.0);
+
+  const std::string path = (std::filesystem::temp_directory_path() / "pe_g1.yaml").string();
+  pe::saveModelFile(fit.model, path);
+  const pe::PropulsionModel loaded = pe::loadModelFile(path);
+  EXPECT_DOUBLE_EQ(loaded.evaluateRaw(pe::Output::kThrust, 1500.0, 9.0),
+                   fit.model.evaluateRaw(pe::Output::kThrust, 1500.0, 9.0));
+  EXPECT_EQ(loaded.metadata().propeller, "Cyclone T5040C 3-blade");
+  std::filesystem::remove(path);
+}
+
+TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedTheVoltage) {
+  // a1_11: at 1905 and 2000 us the supply's ~11 A limit pulled 11 V down to 9.35 and 8.30 V.
+  const pe::BenchFit fit = pe::fitBenchModel(strawsonPair("a1"), strawsonOptions("EMAX RS2205S 2600kv", "T5040C"));
+  ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
+  const std::string expected = sharedPath(kStrawson + "a1_11.csv") +
+                               ": 2 rows more than 0.5 V off the sweep's 10.99 V (down to 8.30 V at 2000 us, 10.96 A): "
+                               "the supply sagged; these rows are fitted at their measured voltage";
+  EXPECT_NE(std::find(fit.notes.begin(), fit.notes.end(), expected), fit.notes.end());
+  // The sagged rows are still two levels' worth of data, not four.
+  EXPECT_EQ(fit.data.voltage_levels.size(), 2u);
+  EXPECT_NEAR(fit.model.domain().voltage_min_v, 7.14, 0.01);
+  // At the collapsed point the surface matches the measured 377 gf at 8.30 V.
+  EXPECT_NEAR(fit.model.evaluateRaw(pe::Output::kThrust, 2000.0, 8.304389367087847), 376.9, 6.0);
+}
+
+TEST(BenchFitStrawson, RefusesAPairWhoseTwoFilesAreAtTheSameVoltage) {
+  // l3_11.csv is named 3S but was logged at 2S: its voltage is 7.15..7.43 V like l3_7.csv.
+  EXPECT_EQ(refusal(strawsonPair("l3"), strawsonOptions("T-Motor F30", "Gemfan 5x4.5")),
+            "cannot fit a surface: one voltage level only (all 22 rows are near 7.36 V, 7.13 to 7.44 V); log sweeps at "
+            "two or more supply voltages, or a battery discharge");
+}
+
+// --- refusals --------------------------------------------------------------------------------------
+
+TEST(BenchFitRefusals, OneVoltageLevel) {
+  EXPECT_EQ(
+      refusal({gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+               gridLog("b.csv", pwmSteps(1150, 1850, 100), 11.12, smoothThrust)}),
+      "cannot fit a surface: one voltage level only (all 17 rows are near 11.11 V, 11.10 to 11.12 V); log sweeps at "
+      "two or more supply voltages, or a battery discharge");
+}
+
+TEST(BenchFitRefusals, TooFewPwmLevels) {
+  EXPECT_EQ(
+      refusal({gridLog("a.csv", {1500, 1600}, 11.1, smoothThrust), gridLog("b.csv", {1500, 1600}, 12.0, smoothThrust)}),
+      "cannot fit a surface: 2 PWM levels only (1500 us, 1600 us); log sweeps over at least 3 PWM values");
+}
+
+TEST(BenchFitRefusals, TooFewPoints) {
+  EXPECT_EQ(refusal({gridLog("a.csv", {1200, 1500, 1800}, 11.1, smoothThrust),
+                     gridLog("b.csv", {1200, 1500, 1800}, 12.0, smoothThrust)}),
+            "cannot fit thrust: 6 rows have it, at least 10 are needed");
+}
+
+TEST(BenchFitRefusals, ConstantColumn) {
+  std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                    gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)};
+  for (pe::BenchLog& log : logs) log.column(pe::BenchColumn::kRpm).assign(log.rows(), 0.0);
+  EXPECT_EQ(
+      refusal(logs),
+      "cannot fit rpm: it is 0 rpm in all 18 rows (a sensor that was not connected?); leave it out with --without rpm");
+  pe::FitOptions without_rpm;
+  without_rpm.without = {pe::Output::kRpm};
+  const pe::BenchFit fit = pe::fitBenchModel(logs, without_rpm);
+  EXPECT_EQ(fit.model.output(pe::Output::kRpm).source, pe::OutputSource::kNone);
+  EXPECT_EQ(fit.model.output(pe::Output::kRpm).note, "left out on request (--without rpm)");
+  for (pe::BenchLog& log : logs) log.column(pe::BenchColumn::kThrust).assign(log.rows(), 0.0);
+  EXPECT_EQ(refusal(logs, without_rpm),
+            "cannot fit thrust: it is 0 g in all 18 rows (a sensor that was not connected?)");
+}
+
+TEST(BenchFitRefusals, NaNInALog) {
+  std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                    gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)};
+  logs[1].column(pe::BenchColumn::kThrust)[3] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(refusal(logs), "b.csv:11: thrust_n: nan is not a finite number");
+}
+
+TEST(BenchFitRefusals, MissingOrContradictoryMetadata) {
+  std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                    gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)};
+  logs[1].metadata["motor"] = "other";
+  EXPECT_EQ(refusal(logs),
+            "logs disagree on motor: 'M' (a.csv) and 'other' (b.csv); pass --motor to say which the model records");
+  for (pe::BenchLog& log : logs) log.metadata.erase("air_temperature_c");
+  pe::FitOptions motor;
+  motor.motor = "M";
+  EXPECT_EQ(refusal(logs, motor),
+            "air_temperature_c unknown: no log has a '# air_temperature_c:' line or a ambient_temp_c column; pass "
+            "--air-temperature-c");
+  logs[0].column(pe::BenchColumn::kAmbientTemp).assign(logs[0].rows(), 24.0);
+  const pe::BenchFit fit = pe::fitBenchModel(logs, motor);
+  EXPECT_DOUBLE_EQ(fit.model.metadata().bench_air_temperature_c, 24.0);
+  EXPECT_EQ(fit.model.metadata().supply, pe::SupplyKind::kBattery);
+}
+
+TEST(BenchFitRefusals, ReportsAModelThatFailsTheLoadersGridCheckInsteadOfHidingIt) {
+  // A stand wired so that thrust reads negative, passed on without a sign correction.
+  auto negative = [](double x, double v) { return -0.1 * (x - 1100.0) + 0.0 * v; };
+  const pe::BenchFit fit = pe::fitBenchModel({gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, negative),
+                                              gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, negative)},
+                                             {});
+  EXPECT_EQ(fit.validation_error,
+            "outputs.thrust: -80 g at pwm_us=1900, voltage_v=11.1: thrust must not be negative at the top of the PWM "
+            "range");
+}
+
+TEST(BenchFitRefusals, BadOptions) {
+  const std::vector<pe::BenchLog> logs = syntheticSweeps().logs;
+  pe::FitOptions options;
+  options.max_pwm_degree = 6;
+  EXPECT_EQ(refusal(logs, options), "max PWM degree 6 is outside 1..5");
+  options = {};
+  options.without = {pe::Output::kThrust};
+  EXPECT_EQ(refusal(logs, options), "thrust cannot be left out: it is what the estimator is for");
+}
+
+TEST(BenchFit, EfficiencyAsItsOwnSurfaceOnRequest) {
+  pe::FitOptions options;
+  options.efficiency_surface = true;
+  const pe::BenchFit fit = pe::fitBenchModel(syntheticSweeps().logs, options);
+  ASSERT_EQ(fit.model.output(pe::Output::kEfficiency).source, pe::OutputSource::kSurface);
+  // Thrust / power of the chain at 1700 us, 11.7 V.
+  const double truth = SmoothChain::thrustGrams(1700, 11.7) / SmoothChain::powerWatts(1700, 11.7);
+  EXPECT_NEAR(fit.model.evaluateRaw(pe::Output::kEfficiency, 1700, 11.7), truth, 0.05 * truth);
+}
+
+TEST(BenchFit, GroupingByLogOnRequest) {
+  pe::FitOptions options;
+  options.grouping = pe::FitGrouping::kLog;
+  const pe::BenchFit fit = pe::fitBenchModel(syntheticSweeps().logs, options);
+  EXPECT_EQ(fit.grouping_description, "leave one log out (8 logs)");
+  EXPECT_EQ(fit.model.output(pe::Output::kThrust).fit->grouping, "leave one log out (8 logs)");
+}

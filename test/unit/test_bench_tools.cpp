@@ -1,0 +1,176 @@
+// The two installed command lines, run as a user runs them (the built executables, which find
+// the plot script next to themselves).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "propulsion_estimator/core/model_yaml.h"
+#include "propulsion_estimator/core/propulsion_model.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ToolRun {
+  int status = 0;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string quoted(const std::string& text) { return "'" + text + "'"; }
+
+class BenchTools : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pe_tools_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  ToolRun run(const std::string& tool, const std::string& arguments) const {
+    const std::string command = quoted(tool) + " " + arguments + " > " + quoted((dir_ / "out.txt").string()) + " 2> " +
+                                quoted((dir_ / "err.txt").string());
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "out.txt"), slurp(dir_ / "err.txt")};
+  }
+
+  static std::string strawson(const std::string& file) { return sharedPath("data/strawson_motor_propeller/" + file); }
+
+  static std::string metadata(const std::string& propeller) {
+    return "--esc unknown --motor 'Lumenier RX2206-13 2000kv' --propeller " + quoted(propeller) +
+           " --air-temperature-c 20 --air-pressure-pa 101325 --supply regulated";
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(BenchTools, FitSurfacesTurnsADirectoryOfLogsIntoAModelAndAReport) {
+  const fs::path logs = dir_ / "logs";
+  fs::create_directories(logs);
+  fs::copy_file(strawson("g1_7.csv"), logs / "g1_7.csv");
+  fs::copy_file(strawson("g1_11.csv"), logs / "g1_11.csv");
+  const std::string model = (dir_ / "g1.yaml").string();
+  const ToolRun r =
+      run(PE_FIT_SURFACES, "--out " + model + " --report " + (dir_ / "report").string() +
+                               " --python /usr/bin/python3 " + metadata("Cyclone T5040C") + " " + logs.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_NE(r.out.find("thrust     surface  (3,1)        22"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("model: " + model), std::string::npos) << r.out;
+  // The estimator's loader takes the file as written.
+  const pe::PropulsionModel loaded = pe::loadModelFile(model);
+  EXPECT_EQ(loaded.metadata().propeller, "Cyclone T5040C");
+  EXPECT_NEAR(loaded.evaluateRaw(pe::Output::kThrust, 2000, 10.9), 340.0, 8.0);
+  const std::string report = slurp(dir_ / "report" / "fit_report.md");
+  EXPECT_NE(report.find("Model written to `" + model + "`"), std::string::npos);
+  EXPECT_NE(report.find("| thrust | g | surface | (3, 1) | 22 |"), std::string::npos) << report;
+  for (const char* figure :
+       {"fit_sections_pwm.png", "fit_sections_voltage.png", "fit_residuals.png", "fit_surfaces.png"}) {
+    EXPECT_NE(report.find(std::string("](") + figure + ")"), std::string::npos) << figure;
+    EXPECT_GT(fs::file_size(dir_ / "report" / figure), 20000u) << figure;
+  }
+}
+
+TEST_F(BenchTools, FitSurfacesRefusesOneVoltageLevelWithTheCoreMessage) {
+  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "l3.yaml").string() + " " + metadata("Gemfan 5x4.5") + " " +
+                                             strawson("l3_7.csv") + " " + strawson("l3_11.csv"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: cannot fit a surface: one voltage level only (all 22 rows are near 7.36 V, 7.13 to 7.44 V); "
+            "log sweeps at two or more supply voltages, or a battery discharge\n");
+  EXPECT_FALSE(fs::exists(dir_ / "l3.yaml"));
+}
+
+TEST_F(BenchTools, FitSurfacesReportsButDoesNotWriteAModelTheLoaderWouldRefuse) {
+  // A stand whose thrust reads negative, its sign kept as logged on purpose.
+  std::ofstream(dir_ / "a.csv") << "# esc: E\n# motor: M\n# propeller: P\n# supply: battery\n"
+                                   "# air_temperature_c: 20\n# air_pressure_pa: 100000\n"
+                                   "pwm_us,voltage_v,thrust_g\n"
+                                   "1100,11.1,0\n1300,11.1,-20\n1500,11.1,-40\n1700,11.1,-60\n1900,11.1,-80\n"
+                                   "1100,12,0\n1300,12,-20\n1500,12,-40\n1700,12,-60\n1900,12,-80\n";
+  const ToolRun r =
+      run(PE_FIT_SURFACES, "--out " + (dir_ / "bad.yaml").string() + " --report " + (dir_ / "report").string() +
+                               " --python /usr/bin/python3 " + (dir_ / "a.csv").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: the fitted model fails the loader's check and was not written: outputs.thrust: -80 g at "
+            "pwm_us=1900, voltage_v=11.1: thrust must not be negative at the top of the PWM range\n");
+  EXPECT_FALSE(fs::exists(dir_ / "bad.yaml"));
+  EXPECT_NE(slurp(dir_ / "report" / "fit_report.md")
+                .find("**The fitted model fails the loader's check on its domain grid and was not written:** "
+                      "outputs.thrust: -80 g"),
+            std::string::npos);
+}
+
+TEST_F(BenchTools, FitSurfacesSaysWhenThePlotsCannotBeDrawn) {
+  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() +
+                                             " " + metadata("T5040C") + " --python /bin/false " + strawson("g1_7.csv") +
+                                             " " + strawson("g1_11.csv"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: /bin/false cannot import matplotlib and numpy: the report's figures need them; install "
+            "python3-matplotlib (scripts/install_deps.sh) or pass --python /usr/bin/python3\n");
+  const ToolRun missing =
+      run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() + " " +
+                               metadata("T5040C") + " --plot-script /nonexistent.py " + strawson("g1_7.csv") + " " +
+                               strawson("g1_11.csv"));
+  EXPECT_EQ(missing.err, "fit_surfaces: /nonexistent.py: plot script not found (--plot-script)\n");
+}
+
+TEST_F(BenchTools, FitSurfacesUsageAndReaderErrors) {
+  EXPECT_EQ(run(PE_FIT_SURFACES, strawson("g1_7.csv")).status, 2);  // no --out
+  std::ofstream(dir_ / "text.csv") << "pwm_us,voltage_v,thrust_g\n1500,11.1,100\n1600,11.1,abc\n";
+  const ToolRun r = run(PE_FIT_SURFACES, "--out x.yaml " + (dir_ / "text.csv").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: " + (dir_ / "text.csv").string() + ":3: column 3 'thrust_g': 'abc' is not a number\n");
+  const ToolRun map = run(PE_FIT_SURFACES, "--out x.yaml --map speed=RPM " + (dir_ / "text.csv").string());
+  EXPECT_EQ(map.err,
+            "fit_surfaces: 'speed' is not a bench quantity (one of time_s, pwm_us, voltage_v, thrust_n, current_a, "
+            "power_w, rpm, ambient_temp_c, motor_temp_c, pressure_pa)\n");
+}
+
+TEST_F(BenchTools, CompareModelsPrintsTheChapter7TableAndWritesTheReport) {
+  for (const char* name : {"g4", "g5"}) {
+    const ToolRun fit = run(PE_FIT_SURFACES, "--out " + (dir_ / (std::string(name) + ".yaml")).string() + " " +
+                                                 metadata(name) + " " + strawson(std::string(name) + "_7.csv") + " " +
+                                                 strawson(std::string(name) + "_11.csv"));
+    ASSERT_EQ(fit.status, 0) << fit.err;
+  }
+  const ToolRun r = run(PE_COMPARE_MODELS,
+                        "--voltage 11 --mass-kg 0.6 --cells 2 --capacity-mah 1300 --python /usr/bin/python3 --report " +
+                            (dir_ / "cmp").string() + " " + (dir_ / "g4.yaml").string() + "=" + strawson("g4_7.csv") +
+                            "," + strawson("g4_11.csv") + " " + (dir_ / "g5.yaml").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("| g4 | unknown | Lumenier RX2206-13 2000kv | g4 | 11.00 |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Hover of a 0.6 kg vehicle on 4 motors (150.0 g each), 2S 1300 mAh"), std::string::npos);
+  const std::string report = slurp(dir_ / "cmp" / "compare_report.md");
+  EXPECT_NE(report.find("# Comparison of 2 ESC-motor-propeller combinations"), std::string::npos);
+  for (const char* figure : {"compare_curves.png", "compare_endurance.png"}) {
+    EXPECT_NE(report.find(std::string("](") + figure + ")"), std::string::npos) << figure;
+    EXPECT_GT(fs::file_size(dir_ / "cmp" / figure), 20000u) << figure;
+  }
+  const ToolRun one = run(PE_COMPARE_MODELS, (dir_ / "g4.yaml").string());
+  EXPECT_EQ(one.status, 1);
+  EXPECT_EQ(one.err, "compare_models: give two or more models to compare\n");
+  const ToolRun partial =
+      run(PE_COMPARE_MODELS, "--mass-kg 1 " + (dir_ / "g4.yaml").string() + " " + (dir_ / "g5.yaml").string());
+  EXPECT_EQ(partial.err, "compare_models: hover needs --mass-kg, --cells and --capacity-mah together\n");
+}

@@ -1,0 +1,248 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "propulsion_estimator/core/bench_fit.h"
+#include "propulsion_estimator/tools/bench_log_reader.h"
+#include "propulsion_estimator/core/comparison_report.h"
+#include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/model_comparison.h"
+#include "propulsion_estimator/core/model_yaml.h"
+#include "propulsion_estimator/core/units.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+
+namespace {
+
+pe::PropulsionModel thesisModel() { return pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml")); }
+
+struct Scan {
+  double thrust_g = 0, current_a = 0, power_w = 0, rpm = 0, efficiency_at_max_power = 0;
+};
+
+// Independent of compareModel: a fine scan with evaluate().
+Scan scan(const pe::PropulsionModel& model, double voltage) {
+  Scan s;
+  const pe::ModelDomain& d = model.domain();
+  for (double x = d.pwm_min_us; x <= d.pwm_max_us; x += 0.25) {
+    pe::OperatingPoint e;
+    model.evaluate(x, voltage, &e);
+    s.thrust_g = std::max(s.thrust_g, e.thrust_n / pe::kNewtonPerGramForce);
+    s.current_a = std::max(s.current_a, e.current_a);
+    s.rpm = std::max(s.rpm, e.rpm);
+    if (e.power_w > s.power_w) {
+      s.power_w = e.power_w;
+      s.efficiency_at_max_power = e.efficiency_n_per_w / pe::kNewtonPerGramForce;
+    }
+  }
+  return s;
+}
+
+// A model whose thrust and current depend on PWM only: hover current is the same at every
+// battery voltage, so endurance is capacity / current exactly.
+pe::PropulsionModel voltageFreeModel() {
+  return pe::parseModelYaml(R"(format_version: 1
+metadata: {esc: E, motor: M, propeller: P, bench_air_temperature_c: 20, bench_air_pressure_pa: 101325,
+           supply: battery, source: test}
+domain: {pwm_us: [1000, 2000], voltage_v: [10, 13], outside: clamp}
+outputs:
+  thrust: {unit: g, polynomial: {p00: -1000, p10: 1}}
+  current: {unit: A, polynomial: {p00: -10, p10: 0.01}}
+  power: {unit: W, derived: voltage*current}
+  efficiency: {unit: g/W, derived: thrust/power}
+  rpm: {unit: rpm, none: no tachometer}
+)",
+                            "voltage_free.yaml");
+}
+
+pe::HoverOptions quad(double mass_kg, int cells, double capacity_mah) {
+  pe::HoverOptions hover;
+  hover.vehicle_mass_kg = mass_kg;
+  hover.motors = 4;
+  hover.cells = cells;
+  hover.capacity_mah = capacity_mah;
+  return hover;
+}
+
+}  // namespace
+
+TEST(ModelComparison, TableMaximaAreTheMaximaOfTheModelsCurves) {
+  const pe::PropulsionModel model = thesisModel();
+  pe::ComparisonOptions options;
+  options.voltage_v = 12.6;
+  const pe::ModelComparison c = pe::compareModel("e300", model, {}, options);
+  const Scan s = scan(model, 12.6);
+  EXPECT_NEAR(c.max_thrust_g, s.thrust_g, 1e-3 * s.thrust_g);
+  EXPECT_NEAR(c.max_current_a, s.current_a, 1e-3 * s.current_a);
+  EXPECT_NEAR(c.max_power_w, s.power_w, 1e-3 * s.power_w);
+  EXPECT_NEAR(c.max_rpm, s.rpm, 1e-3 * s.rpm);
+  EXPECT_NEAR(c.efficiency_at_max_power_g_per_w, s.efficiency_at_max_power, 1e-3 * s.efficiency_at_max_power);
+  // And they are thesis chapter 7's (E300-2212, 9443 propeller, 12.6 V).
+  EXPECT_NEAR(c.max_thrust_g, 681.85, 0.03 * 681.85);
+  EXPECT_NEAR(c.max_power_w, 112.12, 0.03 * 112.12);
+  EXPECT_EQ(c.curve.size(), 701u);
+  EXPECT_FALSE(c.max_motor_temp_c.has_value());
+  // Peak efficiency lies above the efficiency at maximum power, among rows drawing >= 5% of it.
+  EXPECT_GT(c.peak_efficiency_g_per_w, c.efficiency_at_max_power_g_per_w);
+  pe::OperatingPoint at_peak;
+  model.evaluate(c.peak_efficiency_pwm_us, 12.6, &at_peak);
+  EXPECT_GE(at_peak.power_w, pe::kEfficiencyMinPowerShare * c.max_power_w);
+  EXPECT_NEAR(at_peak.efficiency_n_per_w / pe::kNewtonPerGramForce, c.peak_efficiency_g_per_w, 1e-9);
+  // Default voltage: the top of the domain.
+  EXPECT_DOUBLE_EQ(pe::compareModel("e300", model, {}, {}).voltage_v, 12.6);
+}
+
+TEST(ModelComparison, HoverPointOfTheThesisQuad) {
+  const pe::PropulsionModel model = thesisModel();
+  pe::ComparisonOptions options;
+  options.hover = quad(1.315, 3, 4000);  // thesis F450 on a Turnigy 3S 4000 mAh
+  const pe::ModelComparison c = pe::compareModel("e300", model, {}, options);
+  ASSERT_TRUE(c.hover.has_value());
+  EXPECT_DOUBLE_EQ(c.hover->voltage_v, 3 * 3.85);
+  pe::OperatingPoint e;
+  model.evaluate(c.hover->pwm_us, c.hover->voltage_v, &e);
+  EXPECT_NEAR(e.thrust_n, 1.315 * pe::kStandardGravity / 4, 1e-6);
+  EXPECT_GT(c.hover->pwm_us, 1600.0);
+  EXPECT_LT(c.hover->pwm_us, 1750.0);
+  EXPECT_DOUBLE_EQ(c.hover->current_a, e.current_a);
+  EXPECT_TRUE(c.hover->in_domain);
+  ASSERT_TRUE(c.endurance_min.has_value());
+  // Bounds: all the usable charge at the highest and at the lowest hover current of the discharge.
+  double lowest = 1e9, highest = 0;
+  for (const pe::DischargeStep& step : c.discharge) {
+    lowest = std::min(lowest, step.total_current_a);
+    highest = std::max(highest, step.total_current_a);
+  }
+  EXPECT_GT(highest, lowest);  // the hover current changes as the voltage falls
+  const double usable_ah = 0.8 * 4.0;
+  EXPECT_GT(*c.endurance_min, 60.0 * usable_ah / highest);
+  EXPECT_LT(*c.endurance_min, 60.0 * usable_ah / lowest);
+  EXPECT_EQ(c.discharge.size(), 200u);
+  EXPECT_DOUBLE_EQ(c.discharge.back().time_min, *c.endurance_min);
+}
+
+TEST(ModelComparison, EnduranceIsCapacityOverCurrentWhenTheCurrentIsConstant) {
+  pe::ComparisonOptions options;
+  options.hover = quad(2.0, 4, 5000);
+  const pe::ModelComparison c = pe::compareModel("flat", voltageFreeModel(), {}, options);
+  // 500 g per motor: thrust = x - 1000 g, so x = 1500 us, current = 0.01 x - 10 = 5 A per motor.
+  const double per_motor_g = 2.0 * pe::kStandardGravity / 4 / pe::kNewtonPerGramForce;
+  ASSERT_TRUE(c.hover.has_value());
+  EXPECT_NEAR(c.hover->pwm_us, 1000.0 + per_motor_g, 1e-6);
+  const double per_motor_a = 0.01 * (1000.0 + per_motor_g) - 10.0;
+  EXPECT_NEAR(c.hover->current_a, per_motor_a, 1e-8);
+  ASSERT_TRUE(c.endurance_min.has_value());
+  EXPECT_NEAR(*c.endurance_min, 60.0 * 0.8 * 5.0 / (4 * per_motor_a), 1e-6);
+  // 4S from 16.8 to 14.0 V leaves the 10-13 V domain: said, not hidden.
+  EXPECT_EQ(c.hover_notes,
+            (std::vector<std::string>{"the hover point's 15.40 V is outside the model's domain",
+                                      "the battery's 14.00-16.80 V leaves the model's 10.00-13.00 V for 100% of the "
+                                      "discharge; there the model clamps the voltage to its domain"}));
+}
+
+TEST(ModelComparison, SaysWhenTheVehicleIsTooHeavyToHover) {
+  pe::ComparisonOptions options;
+  options.hover = quad(4.0, 3, 4000);  // 1 kg per motor, the thesis motor gives 680 g
+  const pe::ModelComparison c = pe::compareModel("e300", thesisModel(), {}, options);
+  EXPECT_FALSE(c.hover.has_value());
+  EXPECT_FALSE(c.endurance_min.has_value());
+  EXPECT_EQ(c.hover_notes, (std::vector<std::string>{
+                               "cannot hover: the motors give less than the hover thrust at 11.55 V",
+                               "hover ends at 12.59 V: the motors cannot give the hover thrust at that voltage"}));
+  const std::string table = pe::comparisonTables({c}, options);
+  EXPECT_NE(table.find("| e300 | n/a | n/a | n/a | n/a | n/a | n/a | cannot hover"), std::string::npos) << table;
+}
+
+TEST(ModelComparison, RefusesBadHoverOptions) {
+  pe::ComparisonOptions options;
+  options.hover = quad(1.0, 3, 4000);
+  options.hover->cell_cutoff_v = 4.3;
+  try {
+    pe::compareModel("e300", thesisModel(), {}, options);
+    FAIL();
+  } catch (const pe::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "--cell-cutoff-v must be positive and below --cell-full-v");
+  }
+}
+
+TEST(ModelComparison, MaximumMotorTemperatureFromTheLogs) {
+  pe::BenchLog log;
+  log.source = "t.csv";
+  log.column(pe::BenchColumn::kPwm) = {1200, 1500, 1900};
+  log.column(pe::BenchColumn::kVoltage) = {12.6, 12.5, 12.4};
+  log.column(pe::BenchColumn::kThrust) = {0.5, 2.5, 6.5};
+  log.column(pe::BenchColumn::kMotorTemp) = {25.0, 33.6, 31.0};
+  log.line_numbers = {2, 3, 4};
+  const pe::ModelComparison c = pe::compareModel("e300", thesisModel(), {log}, {});
+  ASSERT_TRUE(c.max_motor_temp_c.has_value());
+  EXPECT_DOUBLE_EQ(*c.max_motor_temp_c, 33.6);
+  EXPECT_EQ(c.logged_near.size(), 3u);  // all within 0.3 V of 12.6 V
+  EXPECT_NE(pe::comparisonTables({c}, {}).find("| 33.6 |"), std::string::npos);
+}
+
+// The real-data counterpart of thesis chapter 7: one motor (Lumenier RX2206-13 2000kv) with its
+// eight propellers, each fitted from its 2S and 3S sweeps.
+TEST(ModelComparisonStrawson, OneMotorWithAllItsPropellersOrdersAsPhysicsSays) {
+  std::map<int, pe::ModelComparison> by_propeller;
+  pe::ComparisonOptions options;
+  options.voltage_v = 11.0;  // inside every 3S domain (their tops are 11.11-11.15 V)
+  options.hover = quad(0.6, 2, 1300);
+  std::vector<pe::ModelComparison> all;
+  for (int propeller = 1; propeller <= 8; ++propeller) {
+    const std::string name = "g" + std::to_string(propeller);
+    const std::string base = sharedPath("data/strawson_motor_propeller/" + name);
+    const std::vector<pe::BenchLog> logs = {pe::readBenchLog(base + "_7.csv"), pe::readBenchLog(base + "_11.csv")};
+    pe::FitOptions fit_options;
+    fit_options.esc = "unknown";
+    fit_options.motor = "Lumenier RX2206-13 2000kv";
+    fit_options.propeller = "propeller " + std::to_string(propeller);
+    fit_options.air_temperature_c = 20;
+    fit_options.air_pressure_pa = 101325;
+    fit_options.supply = pe::SupplyKind::kRegulated;
+    const pe::BenchFit fit = pe::fitBenchModel(logs, fit_options);
+    ASSERT_TRUE(fit.validation_error.empty()) << name << ": " << fit.validation_error;
+    const pe::ModelComparison c = pe::compareModel(name, fit.model, logs, options);
+    const Scan s = scan(fit.model, 11.0);
+    EXPECT_NEAR(c.max_thrust_g, s.thrust_g, 1e-3 * s.thrust_g) << name;
+    EXPECT_NEAR(c.max_current_a, s.current_a, 1e-3 * s.current_a) << name;
+    EXPECT_NEAR(c.max_power_w, s.power_w, 1e-3 * s.power_w) << name;
+    EXPECT_NEAR(c.max_rpm, s.rpm, 1e-3 * s.rpm) << name;
+    // The 3S rows near 11 V are drawn with the curves; the model's maximum is near the logged one.
+    EXPECT_GE(c.logged_near.size(), 8u) << name;
+    double logged_max = 0.0;
+    for (const pe::ComparisonSample& row : c.logged_near) logged_max = std::max(logged_max, row.thrust_g);
+    EXPECT_NEAR(c.max_thrust_g, logged_max, 0.05 * logged_max) << name;
+    by_propeller.emplace(propeller, c);
+    all.push_back(c);
+  }
+  auto rpm = [&](int p) { return by_propeller.at(p).max_rpm; };
+  auto current = [&](int p) { return by_propeller.at(p).max_current_a; };
+  auto thrust = [&](int p) { return by_propeller.at(p).max_thrust_g; };
+  // Same 5x4 size, 2 -> 3 -> 4 blades (4 Gemfan, 7 Lumenier, 5 HQProp): more load, lower speed,
+  // more current, more thrust.
+  EXPECT_GT(rpm(4), rpm(7));
+  EXPECT_GT(rpm(7), rpm(5));
+  EXPECT_LT(current(4), current(7));
+  EXPECT_LT(current(7), current(5));
+  EXPECT_LT(thrust(4), thrust(7));
+  EXPECT_LT(thrust(7), thrust(5));
+  // More pitch on the same blade (Cyclone 5040 -> 5045, Lumenier 5x4 -> 5x5.3 three-blade).
+  EXPECT_GT(rpm(1), rpm(2));
+  EXPECT_LT(current(1), current(2));
+  EXPECT_LT(thrust(1), thrust(2));
+  EXPECT_GT(rpm(7), rpm(8));
+  EXPECT_LT(thrust(7), thrust(8));
+  // A 0.6 kg quad on 2S: every combination hovers within its measured domain (7.3-11.1 V).
+  for (const auto& [propeller, c] : by_propeller) {
+    ASSERT_TRUE(c.hover.has_value()) << propeller;
+    EXPECT_TRUE(c.hover->in_domain) << propeller;
+    EXPECT_TRUE(c.endurance_min.has_value()) << propeller;
+  }
+  const std::string table = pe::comparisonTables(all, options);
+  EXPECT_NE(table.find("| g5 | unknown | Lumenier RX2206-13 2000kv | propeller 5 | 11.00 |"), std::string::npos)
+      << table;
+}

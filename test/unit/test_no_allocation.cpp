@@ -1,0 +1,41 @@
+// Its own test binary: it replaces the global operator new to count allocations.
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include <gtest/gtest.h>
+
+#include "estimator_fixture.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+TEST(Estimator, EvaluatesMotorOutputsWithoutHeapAllocation) {
+  EstimatorFixture f;
+  f.fly(1690.0, 20.0);  // windows full, everything warmed up
+  const std::vector<std::uint16_t> channels{1690, 1700, 1680, 1695, 1000, 1000, 1000, 1000};
+  const Eigen::Quaterniond level = Eigen::Quaterniond::Identity();
+  const long before = g_allocations.load();
+  for (int k = 0; k < 1000; ++k, f.t += 0.02) {
+    f.estimator.addImu(f.t, level, Eigen::Vector3d(0, 0, 9.81));
+    f.estimator.addVerticalSpeed(f.t, 0.1);
+    if (k % 50 == 0) f.estimator.addBattery(f.t, 11.4);
+    ASSERT_EQ(f.estimator.addMotorOutputs(f.t, f.t, channels.data(), channels.size()), pe::Rejection::kNone);
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_TRUE(f.estimator.output().hover.hovering);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,77 @@
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/payload_estimator.h"
+#include "propulsion_estimator/core/tare_file.h"
+
+namespace pe = propulsion_estimator;
+
+TEST(PayloadEstimator, AveragesHoverSamplesOnly) {
+  pe::PayloadConfig config;
+  config.min_samples = 4;
+  pe::PayloadEstimator estimator(config, 1000);
+  estimator.setEmptyMass(1.3, pe::EmptyMassSource::kParameter);
+  estimator.add(0.0, 9.0, false);  // a climb: not averaged
+  for (int k = 1; k <= 3; ++k) estimator.add(k * 0.02, 1.6, true);
+  EXPECT_EQ(estimator.estimate().state, pe::PayloadState::kWaitingForHover);
+  estimator.add(0.08, 1.8, true);
+  const pe::MassEstimate& e = estimator.estimate();
+  EXPECT_EQ(e.state, pe::PayloadState::kHovering);
+  EXPECT_NEAR(e.total_mass_kg, 1.65, 1e-12);
+  EXPECT_NEAR(e.mass_std_kg, 0.1, 1e-12);  // sample standard deviation of 1.6, 1.6, 1.6, 1.8
+  EXPECT_NEAR(e.payload_mass_kg, 0.35, 1e-12);
+  EXPECT_EQ(e.window_samples, 4u);
+  EXPECT_NEAR(e.window_s, 0.06, 1e-12);
+  estimator.add(0.1, 5.0, false);
+  EXPECT_EQ(estimator.estimate().state, pe::PayloadState::kHolding);
+  EXPECT_NEAR(estimator.estimate().total_mass_kg, 1.65, 1e-12);
+}
+
+TEST(PayloadEstimator, APauseInHoverStartsANewEpisode) {
+  pe::PayloadConfig config;
+  config.min_samples = 2;
+  pe::PayloadEstimator estimator(config, 1000);
+  estimator.add(0.0, 1.3, true);
+  estimator.add(0.1, 1.3, true);
+  estimator.add(2.0, 1.7, false);  // winched a payload up between hovers
+  estimator.add(3.0, 1.7, true);
+  estimator.add(3.1, 1.7, true);
+  EXPECT_NEAR(estimator.estimate().total_mass_kg, 1.7, 1e-12);
+  EXPECT_EQ(estimator.estimate().window_samples, 2u);
+}
+
+TEST(PayloadConfig, RefusesNonsense) {
+  pe::PayloadConfig config;
+  config.min_samples = 1;
+  try {
+    config.validate();
+    FAIL();
+  } catch (const pe::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "payload/min_samples: must be at least 2, got 1");
+  }
+}
+
+TEST(TareFile, RoundTripsAndRefusesGarbage) {
+  const std::string path = testing::TempDir() + "/pe_tare/tare.yaml";
+  pe::removeTareFile(path);
+  EXPECT_FALSE(pe::loadTareFile(path).has_value());
+  pe::saveTareFile(path, {1.2983456789012345, "/models/with \"quotes\".yaml"});
+  const auto record = pe::loadTareFile(path);
+  ASSERT_TRUE(record.has_value());
+  EXPECT_EQ(record->empty_mass_kg, 1.2983456789012345);
+  EXPECT_EQ(record->model, "/models/with \"quotes\".yaml");
+  {
+    std::ofstream out(path);
+    out << "empty_mass_kg: heavy\nmodel: m.yaml\n";
+  }
+  try {
+    pe::loadTareFile(path);
+    FAIL();
+  } catch (const pe::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":1: empty_mass_kg: expected a number, got 'heavy'");
+  }
+  pe::removeTareFile(path);
+}
