@@ -33,6 +33,10 @@ void FlightSensorParams::validate() const {
   requireSigma("orientation_sigma_rad", orientation_sigma_rad);
   requireSigma("position_sigma_m", position_sigma_m);
   requireSigma("velocity_sigma_m_s", velocity_sigma_m_s);
+  if (!(navigation_error_correlation_s > 0.0 && navigation_error_correlation_s <= 1000.0)) {
+    throw FieldError("navigation_error_correlation_s",
+                     formatNumber(navigation_error_correlation_s) + " is outside 0..1000 s");
+  }
   requireSigma("pressure_sigma_pa", pressure_sigma_pa);
   requireSigma("air_temperature_sigma_c", air_temperature_sigma_c);
   requireSigma("rangefinder_sigma_m", rangefinder_sigma_m);

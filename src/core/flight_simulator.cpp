@@ -120,6 +120,27 @@ class Noise {
   std::mt19937_64 rng_;
 };
 
+// Zero-mean error with standard deviation sigma and correlation time tau, sampled at `rate_hz`:
+// e <- a e + sqrt(1 - a^2) sigma n, a = exp(-1 / (rate tau)); starts in its stationary spread.
+class GaussMarkov3 {
+ public:
+  GaussMarkov3(double sigma, double correlation_s, double rate_hz, Noise* noise)
+      : sigma_(sigma),
+        decay_(std::exp(-1.0 / (rate_hz * correlation_s))),
+        noise_(noise),
+        error_(noise->vector(sigma)) {}
+  const Eigen::Vector3d& next() {
+    error_ = decay_ * error_ + std::sqrt(1.0 - decay_ * decay_) * noise_->vector(sigma_);
+    return error_;
+  }
+
+ private:
+  double sigma_;
+  double decay_;
+  Noise* noise_;
+  Eigen::Vector3d error_;
+};
+
 }  // namespace
 
 FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
@@ -143,6 +164,10 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
   const double radius = params.chain.propeller.radiusM();
   const Eigen::Vector3d origin = dynamics.basePosition();
   const double current_sign = profile.autopilot.flavour == AutopilotFlavour::kPx4 ? -1.0 : 1.0;
+  GaussMarkov3 position_error(sensors.position_sigma_m, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
+                              &noise);
+  GaussMarkov3 velocity_error(sensors.velocity_sigma_m_s, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
+                              &noise);
 
   Stream rc_out(profile.autopilot.rc_out_rate_hz), truth(profile.autopilot.rc_out_rate_hz),
       battery_stream(sensors.battery_rate_hz), imu(sensors.imu_rate_hz), pose(sensors.pose_rate_hz),
@@ -245,9 +270,9 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
         sink->imu(sample);
       }
       if (pose.due(t)) {
-        sink->pose({t, navigation.position_m - origin + noise.vector(sensors.position_sigma_m), navigation.attitude});
-        sink->velocity({t, navigation.velocity_m_s + noise.vector(sensors.velocity_sigma_m_s),
-                        rotation * navigation.angular_velocity_body_rad_s});
+        sink->pose({t, navigation.position_m - origin + position_error.next(), navigation.attitude});
+        sink->velocity(
+            {t, navigation.velocity_m_s + velocity_error.next(), rotation * navigation.angular_velocity_body_rad_s});
       }
       if (pressure.due(t)) {
         sink->staticPressure({t, air.pressureAtHeightPa(height) + noise(sensors.pressure_sigma_pa),

@@ -210,6 +210,8 @@ TEST(FlightSimulator, SensorsReadThePhysicalState) {
   EXPECT_NEAR(mean(pressure_low) - mean(pressure_high), 3.0 * 1.196 * pe::kStandardGravity, 1.5);
   EXPECT_NEAR(mean(accel_z), pe::kStandardGravity, 0.05);
   EXPECT_NEAR(mean(pose_z), 5.0 - 0.12, 0.02);  // local position starts at 0 on the ground
+  // Standing on its gear before take-off, the accelerometer reads g from the first message on.
+  EXPECT_NEAR(flight.sink.imus.front().linear_acceleration_m_s2.z(), pe::kStandardGravity, 0.25);
   // On the ground the rangefinder (0.1 m minimum) still reads the 0.12 m landing gear.
   EXPECT_NEAR(flight.sink.ranges.front().range_m, 0.12, 0.05);
 }

@@ -22,9 +22,12 @@ struct FlightSensorParams {
   double gyro_sigma_rad_s = 0.005;
   double accel_sigma_m_s2 = 0.05;
   double orientation_sigma_rad = 0.005;
-  // EKF local position and velocity (GNSS or vision aided, assumed).
+  // EKF local position and velocity (GNSS or vision aided, assumed). An EKF's errors wander
+  // slowly rather than jump from one output to the next: first-order Gauss-Markov processes with
+  // this correlation time.
   double position_sigma_m = 0.02;
   double velocity_sigma_m_s = 0.03;
+  double navigation_error_correlation_s = 1.0;
   // MS5611 barometer at its highest oversampling: 0.012 mbar rms (datasheet); temperature
   // resolution 0.01 deg C.
   double pressure_sigma_pa = 1.2;
