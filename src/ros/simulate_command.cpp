@@ -8,7 +8,6 @@
 #include <iostream>
 #include <map>
 
-#include "propulsion_estimator/tools/bench_csv.h"
 #include "propulsion_estimator/core/bench_simulator.h"
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/field_error.h"
@@ -21,6 +20,7 @@
 #include "propulsion_estimator/core/units.h"
 #include "propulsion_estimator/core/vehicle_urdf.h"
 #include "propulsion_estimator/ros/bag_flight_sink.h"
+#include "propulsion_estimator/tools/bench_csv.h"
 
 namespace propulsion_estimator {
 namespace {
