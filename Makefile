@@ -10,7 +10,7 @@ SETUP := source $(WS)/install/setup.sh
 COLCON_BUILD := colcon build --event-handlers console_direct+ \
 	--cmake-args -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps build demo test bench clean
+.PHONY: deps build demo demo-bag test bench clean
 
 deps:
 	@scripts/install_deps.sh
@@ -23,6 +23,13 @@ build: deps
 # Replays the bundled hover-flight bag through the node and prints the payload estimates.
 demo: build
 	$(SETUP) && scripts/run_demo.sh
+
+# Regenerates the bundled demo flight (bag and manifest) with the simulator; see the comment at the
+# top of config/demo/demo_flight_profile.yaml.
+demo-bag: build
+	$(SETUP) && rosrun propulsion_estimator simulate flight --params config/sim/e300_dji2212_dji9443.yaml \
+		--profile config/demo/demo_flight_profile.yaml --seed 1 --compression bz2 \
+		--bag config/demo/demo_flight.bag --manifest config/demo/demo_flight.manifest.yaml
 
 test: build
 	cd $(WS) && colcon test --event-handlers console_direct+ \

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <string>
+
+#include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/yaml_map.h"
+
+namespace propulsion_estimator {
+
+// A refused value of a configuration struct, named by its key path as the YAML file spells it
+// ("motor.kv_rpm_per_v", "segments[3].height_m"). validate() functions throw it without knowing
+// where the struct came from; a reader turns it into a located ConfigError with throwAtField.
+class FieldError : public ConfigError {
+ public:
+  FieldError(const std::string& field, const std::string& problem)
+      : ConfigError(field + ": " + problem), field_(field), problem_(problem) {}
+
+  const std::string& field() const { return field_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string field_;
+  std::string problem_;
+};
+
+// Rethrows `error` as "<source>:<line>: <field>: <problem>", with the line of the field in the
+// document whose root is `root` (the line of its nearest present ancestor when it is absent).
+[[noreturn]] void throwAtField(const YamlMap& root, const FieldError& error);
+
+}  // namespace propulsion_estimator

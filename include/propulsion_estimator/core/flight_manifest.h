@@ -1,0 +1,45 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace propulsion_estimator {
+
+// A stretch of a flight whose lifted mass is known (weighed): the ground truth of the estimator's
+// tests and the input of the gap diagnosis.
+struct ManifestSegment {
+  double start_s = 0.0;  // seconds from the bag's first message
+  double end_s = 0.0;
+  double mass_kg = 0.0;  // vehicle plus hanging payload
+};
+
+struct ManifestFlight {
+  std::string bag;  // as written in the manifest: relative to the manifest's folder, or absolute
+  std::vector<ManifestSegment> segments;
+};
+
+// A set of flights:
+//   flights:
+//     - bag: flight_01.bag
+//       segments:
+//         - {start: 5.0, end: 178.0, mass_kg: 1.315}
+struct FlightManifest {
+  std::vector<ManifestFlight> flights;
+
+  // Throws FieldError ("flights[0].segments[2].end") for no flights, a flight without bag or
+  // segments, a segment with start < 0, end <= start, mass outside 0..100 kg, or segments of a
+  // flight out of order or overlapping.
+  void validate() const;
+};
+
+// The manifest's reader and writer: parseFlightManifest(flightManifestToYaml(m)) == m.
+// Refusals are ConfigError "<file>:<line>: <key>: <problem>".
+FlightManifest parseFlightManifest(const std::string& text, const std::string& source);
+FlightManifest loadFlightManifest(const std::string& path);
+std::string flightManifestToYaml(const FlightManifest& manifest, const std::string& comment = "");
+void saveFlightManifest(const FlightManifest& manifest, const std::string& path, const std::string& comment = "");
+
+// A flight's bag path as a file path: relative paths are taken from the manifest's folder.
+std::string resolveBagPath(const std::string& manifest_path, const std::string& bag);
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,149 @@
+#include "propulsion_estimator/core/multirotor_dynamics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/units.h"
+
+namespace propulsion_estimator {
+namespace {
+
+const Eigen::Vector3d kGravity(0.0, 0.0, -kStandardGravity);
+constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+
+// Ground contact: stiff enough that a foot sinks ~1 mm under the vehicle, damped to 0.8 of
+// critical; Coulomb friction of rubber feet on a floor, viscous below 5 cm/s of sliding. The
+// regularisation keeps the explicit step stable: the friction's rate mu g / v = 160 /s times the
+// 2 ms step stays well below 1 (at 1 cm/s it would exceed 1 and the feet would chatter).
+constexpr double kContactFrequencyHz = 15.0;
+constexpr double kContactDampingRatio = 0.8;
+constexpr double kFrictionCoefficient = 0.8;
+constexpr double kFrictionRegularisationM_S = 0.05;
+// Rotational damping of the airframe and its rotors (blade flapping), N m s/rad, assumed.
+constexpr double kAngularDampingNmS = 0.002;
+// Cd A of a small payload (a 10 cm box).
+constexpr double kPayloadDragAreaM2 = 0.01;
+
+// Normal and friction force of the ground on a point at `position` moving at `velocity`, for a
+// contact of stiffness k and damping c.
+Eigen::Vector3d groundForce(const Eigen::Vector3d& position, const Eigen::Vector3d& velocity, double k, double c) {
+  if (position.z() >= 0.0) return Eigen::Vector3d::Zero();
+  const double normal = std::max(0.0, -k * position.z() - c * velocity.z());
+  const Eigen::Vector2d sliding(velocity.x(), velocity.y());
+  const Eigen::Vector2d friction =
+      -sliding / std::max(sliding.norm(), kFrictionRegularisationM_S) * kFrictionCoefficient * normal;
+  return Eigen::Vector3d(friction.x(), friction.y(), normal);
+}
+
+Eigen::Vector3d drag(const Eigen::Vector3d& velocity, double density, double area) {
+  return -0.5 * density * area * velocity.norm() * velocity;
+}
+
+}  // namespace
+
+MultirotorDynamics::MultirotorDynamics(const Vehicle& vehicle, const VehicleSetup& setup, const PayloadCable& cable)
+    : rotors_(vehicle.rotors), drag_area_m2_(setup.drag_area_m2), cable_(cable) {
+  if (!vehicle.hasGeometry() || !vehicle.empty_mass) {
+    throw ConfigError(
+        "the flight simulator needs the rotors' positions and the mass properties of the vehicle (a URDF "
+        "with rotor joints and <inertial> elements)");
+  }
+  mass_kg_ = vehicle.empty_mass->mass_kg;
+  // The URDF's inertia about its own centre of mass; the configured offset of a few millimetres
+  // changes it by m d^2 < 1e-4 kg m^2, which is neglected.
+  inertia_ = vehicle.empty_mass->inertia_kg_m2;
+  inertia_inverse_ = inertia_.inverse();
+  centre_of_mass_body_ = vehicle.empty_mass->centre_of_mass_m + setup.centre_of_mass_offset_m;
+  const double w = setup.landing_gear_half_width_m;
+  const double h = setup.landing_gear_height_m;
+  feet_body_ = {Eigen::Vector3d(w, w, -h), Eigen::Vector3d(w, -w, -h), Eigen::Vector3d(-w, w, -h),
+                Eigen::Vector3d(-w, -w, -h)};
+  // At rest on the gear: each foot sunk by its share of the weight over its stiffness.
+  const double foot_stiffness = mass_kg_ / feet_body_.size() * std::pow(kTwoPi * kContactFrequencyHz, 2);
+  const double sink = mass_kg_ * kStandardGravity / (feet_body_.size() * foot_stiffness);
+  position_ = Eigen::Vector3d(0.0, 0.0, h - sink) + centre_of_mass_body_;
+  specific_force_body_ = -kGravity;  // the ground holds the weight
+}
+
+Eigen::Vector3d MultirotorDynamics::worldPoint(const Eigen::Vector3d& body_point) const {
+  return position_ + attitude_ * (body_point - centre_of_mass_body_);
+}
+
+Eigen::Vector3d MultirotorDynamics::worldPointVelocity(const Eigen::Vector3d& body_point) const {
+  return velocity_ + attitude_ * omega_body_.cross(body_point - centre_of_mass_body_);
+}
+
+Eigen::Vector3d MultirotorDynamics::basePosition() const { return worldPoint(Eigen::Vector3d::Zero()); }
+Eigen::Vector3d MultirotorDynamics::baseVelocity() const { return worldPointVelocity(Eigen::Vector3d::Zero()); }
+Eigen::Vector3d MultirotorDynamics::rotorPosition(int k) const { return worldPoint(rotors_[k].position_m); }
+
+void MultirotorDynamics::setPayload(double mass_kg) {
+  payload_mass_kg_ = mass_kg;
+  const Eigen::Vector3d attach = worldPoint(cable_.attach_point_m);
+  payload_position_ = Eigen::Vector3d(attach.x(), attach.y(), 0.0);
+  payload_velocity_.setZero();
+  cable_tension_n_ = 0.0;
+}
+
+void MultirotorDynamics::step(const std::vector<double>& thrust_n, const std::vector<double>& torque_nm,
+                              double air_density_kg_m3, double dt_s) {
+  Eigen::Vector3d force = drag(velocity_, air_density_kg_m3, drag_area_m2_);
+  Eigen::Vector3d torque_body = -kAngularDampingNmS * omega_body_;
+  const auto applyBody = [&](const Eigen::Vector3d& point_body, const Eigen::Vector3d& force_body) {
+    force += attitude_ * force_body;
+    torque_body += (point_body - centre_of_mass_body_).cross(force_body);
+  };
+  for (std::size_t k = 0; k < rotors_.size(); ++k) {
+    applyBody(rotors_[k].position_m, thrust_n[k] * rotors_[k].thrust_axis);
+    torque_body -= rotors_[k].spin_direction * torque_nm[k] * rotors_[k].thrust_axis;
+  }
+
+  const double foot_stiffness = mass_kg_ / feet_body_.size() * std::pow(kTwoPi * kContactFrequencyHz, 2);
+  const double foot_damping = 2.0 * kContactDampingRatio * std::sqrt(foot_stiffness * mass_kg_ / feet_body_.size());
+  for (const Eigen::Vector3d& foot : feet_body_) {
+    const Eigen::Vector3d contact =
+        groundForce(worldPoint(foot), worldPointVelocity(foot), foot_stiffness, foot_damping);
+    applyBody(foot, attitude_.conjugate() * contact);
+  }
+
+  Eigen::Vector3d payload_force = Eigen::Vector3d::Zero();
+  cable_tension_n_ = 0.0;
+  if (payload_mass_kg_ > 0.0) {
+    const Eigen::Vector3d attach = worldPoint(cable_.attach_point_m);
+    const Eigen::Vector3d span = payload_position_ - attach;
+    const double length = span.norm();
+    if (length > cable_.length_m) {
+      const Eigen::Vector3d along = span / length;
+      const double stretch_rate = (payload_velocity_ - worldPointVelocity(cable_.attach_point_m)).dot(along);
+      cable_tension_n_ = std::max(
+          0.0, cable_.stiffness_n_per_m * (length - cable_.length_m) + cable_.damping_n_s_per_m * stretch_rate);
+    }
+    if (cable_tension_n_ > 0.0) {
+      const Eigen::Vector3d pull = cable_tension_n_ * span / length;
+      applyBody(cable_.attach_point_m, attitude_.conjugate() * pull);
+      payload_force -= pull;
+    }
+    const double payload_stiffness = payload_mass_kg_ * std::pow(kTwoPi * kContactFrequencyHz, 2);
+    const double payload_damping = 2.0 * kContactDampingRatio * std::sqrt(payload_stiffness * payload_mass_kg_);
+    payload_force += groundForce(payload_position_, payload_velocity_, payload_stiffness, payload_damping) +
+                     drag(payload_velocity_, air_density_kg_m3, kPayloadDragAreaM2);
+    payload_velocity_ += (payload_force / payload_mass_kg_ + kGravity) * dt_s;
+    payload_position_ += payload_velocity_ * dt_s;
+  }
+
+  const Eigen::Vector3d acceleration = force / mass_kg_;
+  specific_force_body_ = attitude_.conjugate() * acceleration;
+  velocity_ += (acceleration + kGravity) * dt_s;
+  position_ += velocity_ * dt_s;
+
+  const Eigen::Vector3d angular_acceleration =
+      inertia_inverse_ * (torque_body - omega_body_.cross(inertia_ * omega_body_));
+  omega_body_ += angular_acceleration * dt_s;
+  const double angle = omega_body_.norm() * dt_s;
+  if (angle > 0.0) {
+    attitude_ = (attitude_ * Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega_body_.normalized()))).normalized();
+  }
+}
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,78 @@
+#include "propulsion_estimator/core/sim_effects.h"
+
+#include <algorithm>
+
+#include "propulsion_estimator/core/field_error.h"
+#include "propulsion_estimator/core/number_format.h"
+
+namespace propulsion_estimator {
+namespace {
+
+void requireWithin(const std::optional<double>& value, const char* field, double lo, double hi, const char* unit) {
+  if (value && !(*value >= lo && *value <= hi)) {
+    throw FieldError(field, formatNumber(*value) + " is outside " + formatNumber(lo) + ".." + formatNumber(hi) + unit);
+  }
+}
+
+}  // namespace
+
+void SimEffects::validate() const {
+  requireWithin(supply_resistance_ohm, "supply_resistance.ohm", 0.0, 1.0, " ohm");
+  if (air) air->validate("air_density");
+  requireWithin(ground_effect_strength, "ground_effect.strength", 0.0, 5.0, "");
+  requireWithin(thrust_loss_fraction, "thrust_loss.fraction", 0.0, 0.5, "");
+  requireWithin(motor_thermal_resistance_c_per_w, "motor_temperature.thermal_resistance_c_per_w", 0.01, 100.0,
+                " deg C/W");
+  requireWithin(climb_inflow_per_m_s, "climb_inflow.per_m_s", 0.0, 0.5, " per m/s");
+  requireWithin(esc_offset_us, "esc_offset.us", -200.0, 200.0, " us");
+}
+
+bool SimEffects::any() const {
+  return supply_resistance_ohm || air || ground_effect_strength || thrust_loss_fraction ||
+         motor_thermal_resistance_c_per_w || climb_inflow_per_m_s || esc_offset_us;
+}
+
+SimEffects SimEffects::onTheBench() const {
+  SimEffects bench;
+  bench.supply_resistance_ohm = supply_resistance_ohm;
+  bench.air = air;
+  bench.motor_thermal_resistance_c_per_w = motor_thermal_resistance_c_per_w;
+  return bench;
+}
+
+std::string SimEffects::summary() const {
+  std::string text;
+  const auto add = [&text](const std::string& effect) { text += (text.empty() ? "" : " ") + effect; };
+  if (supply_resistance_ohm) add("supply_resistance(ohm=" + formatNumber(*supply_resistance_ohm) + ")");
+  if (air) {
+    add("air_density(temperature_c=" + formatNumber(air->temperature_c) +
+        ",pressure_pa=" + formatNumber(air->pressure_pa) + ")");
+  }
+  if (ground_effect_strength) add("ground_effect(strength=" + formatNumber(*ground_effect_strength) + ")");
+  if (thrust_loss_fraction) add("thrust_loss(fraction=" + formatNumber(*thrust_loss_fraction) + ")");
+  if (motor_thermal_resistance_c_per_w) {
+    add("motor_temperature(thermal_resistance_c_per_w=" + formatNumber(*motor_thermal_resistance_c_per_w) + ")");
+  }
+  if (climb_inflow_per_m_s) add("climb_inflow(per_m_s=" + formatNumber(*climb_inflow_per_m_s) + ")");
+  if (esc_offset_us) add("esc_offset(us=" + formatNumber(*esc_offset_us) + ")");
+  return text.empty() ? "none" : text;
+}
+
+double groundEffectFactor(double rotor_radius_m, double rotor_height_m, double strength) {
+  const double z = std::max(rotor_height_m, 0.5 * rotor_radius_m);
+  const double ratio = rotor_radius_m / (4.0 * z);
+  return 1.0 + strength * (1.0 / (1.0 - ratio * ratio) - 1.0);
+}
+
+RotorEffectTerms rotorEffectTerms(const SimEffects& effects, double rotor_radius_m, double rotor_height_m,
+                                  double climb_rate_m_s) {
+  RotorEffectTerms terms;
+  if (effects.ground_effect_strength) {
+    terms.ground_effect = groundEffectFactor(rotor_radius_m, rotor_height_m, *effects.ground_effect_strength);
+  }
+  if (effects.climb_inflow_per_m_s) terms.climb = std::max(0.0, 1.0 - *effects.climb_inflow_per_m_s * climb_rate_m_s);
+  if (effects.thrust_loss_fraction) terms.thrust_loss = 1.0 - *effects.thrust_loss_fraction;
+  return terms;
+}
+
+}  // namespace propulsion_estimator

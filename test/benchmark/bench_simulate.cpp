@@ -1,0 +1,77 @@
+// Time to simulate the default three-minute flight (config/sim/default_flight.yaml, rc/out at
+// 50 Hz, 2 ms physics step): the core simulation with every reading built and discarded, and the
+// same writing a bag (uncompressed, and bz2 as the bundled demo) to a temporary file.
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "propulsion_estimator/core/flight_profile_yaml.h"
+#include "propulsion_estimator/core/flight_simulator.h"
+#include "propulsion_estimator/core/sim_params_yaml.h"
+#include "propulsion_estimator/core/vehicle_urdf.h"
+#include "propulsion_estimator/ros/bag_flight_sink.h"
+
+namespace pe = propulsion_estimator;
+
+namespace {
+
+struct Inputs {
+  pe::SimParams params = pe::loadSimParamsFile(std::string(PE_REPO_DIR) + "/config/sim/e300_dji2212_dji9443.yaml");
+  pe::FlightProfile profile = pe::loadFlightProfileFile(std::string(PE_REPO_DIR) + "/config/sim/default_flight.yaml");
+  pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
+};
+
+const Inputs& inputs() {
+  static const Inputs loaded;
+  return loaded;
+}
+
+// Receives every reading and keeps nothing.
+struct DiscardingSink : pe::FlightSink {
+  std::size_t messages = 0;
+  void rcOut(const pe::RcOutSample&) override { ++messages; }
+  void battery(const pe::BatterySample&) override { ++messages; }
+  void imu(const pe::ImuSample&) override { ++messages; }
+  void pose(const pe::PoseSample&) override { ++messages; }
+  void velocity(const pe::VelocitySample&) override { ++messages; }
+  void staticPressure(const pe::ScalarSample&) override { ++messages; }
+  void airTemperature(const pe::ScalarSample&) override { ++messages; }
+  void rangefinder(const pe::RangeSample&) override { ++messages; }
+  void motorTemperature(const pe::ScalarSample&) override { ++messages; }
+  void truth(const pe::TruthSample&) override { ++messages; }
+};
+
+void BM_FlightCore(benchmark::State& state) {
+  const Inputs& in = inputs();
+  double simulated_s = 0.0;
+  for (auto _ : state) {
+    DiscardingSink sink;
+    simulated_s = pe::simulateFlight(in.params, {}, in.profile, in.vehicle, 1, &sink).duration_s;
+    benchmark::DoNotOptimize(sink.messages);
+  }
+  state.counters["simulated_s"] = simulated_s;
+}
+BENCHMARK(BM_FlightCore)->Unit(benchmark::kMillisecond);
+
+void BM_FlightToBag(benchmark::State& state) {
+  const Inputs& in = inputs();
+  const auto compression = static_cast<rosbag::compression::CompressionType>(state.range(0));
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("bench_simulate_" + std::to_string(::getpid()) + ".bag")).string();
+  for (auto _ : state) {
+    pe::BagFlightSink sink(path, compression);
+    pe::simulateFlight(in.params, {}, in.profile, in.vehicle, 1, &sink);
+    sink.close();
+  }
+  state.counters["bag_mb"] = std::filesystem::file_size(path) / 1e6;
+  std::filesystem::remove(path);
+}
+BENCHMARK(BM_FlightToBag)
+    ->Arg(rosbag::compression::Uncompressed)
+    ->Arg(rosbag::compression::BZ2)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

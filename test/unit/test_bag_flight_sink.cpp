@@ -1,0 +1,219 @@
+// The ROS layer of the simulator, without a master: a short simulated flight written to a bag and
+// read back with rosbag::View, and the `simulate` command end to end.
+#include <gtest/gtest.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/BatteryState.h>
+#include <sensor_msgs/Range.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "propulsion_estimator/SimTruth.h"
+#include "propulsion_estimator/core/flight_manifest.h"
+#include "propulsion_estimator/core/flight_profile_yaml.h"
+#include "propulsion_estimator/core/flight_simulator.h"
+#include "propulsion_estimator/core/sim_params_yaml.h"
+#include "propulsion_estimator/core/vehicle_urdf.h"
+#include "propulsion_estimator/core/yaml_map.h"
+#include "propulsion_estimator/ros/bag_flight_sink.h"
+#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/ros/simulate_command.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Take off to 1 m, hover, land: 20 s at rc/out 25 Hz.
+std::string shortProfile() {
+  return "autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, rc_out_rate_hz: 25}\n"
+         "vehicle:\n  urdf: " +
+         repoPath("config/f450_quad.urdf") +
+         "\n  centre_of_mass_offset_m: [0, 0, 0]\n  landing_gear: {height_m: 0.12, half_width_m: 0.12}\n"
+         "  drag_area_m2: 0.04\n  battery_initial_soc: 0.9\n"
+         "payload_cable: {length_m: 1.0, attach_point_m: [0, 0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: "
+         "10}\n"
+         "manifest: {settle_s: 3}\n"
+         "segments:\n  - {type: wait, duration_s: 1}\n  - {type: takeoff, height_m: 1.0, rate_m_s: 1.0}\n"
+         "  - {type: hover, duration_s: 8}\n  - {type: land, rate_m_s: 1.0}\n";
+}
+
+class TempDir {
+ public:
+  TempDir()
+      : path_(fs::temp_directory_path() / ("pe_sim_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++))) {
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  static inline int counter_ = 0;
+  fs::path path_;
+};
+
+int runCommand(std::vector<std::string> args) {
+  args.insert(args.begin(), "simulate");
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  return pe::runSimulateCommand(static_cast<int>(argv.size()), argv.data());
+}
+
+void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+}  // namespace
+
+TEST(BagFlightSink, WritesMavrosTopicsWithTheirTypesAndRates) {
+  TempDir dir;
+  const pe::FlightProfile profile = pe::parseFlightProfileYaml(shortProfile(), dir.file("profile.yaml"));
+  const pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
+  pe::FlightResult result;
+  {
+    pe::BagFlightSink sink(dir.file("flight.bag"), rosbag::compression::Uncompressed);
+    result = pe::simulateFlight(pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")), {}, profile,
+                                vehicle, 1, &sink);
+  }
+  rosbag::Bag bag(dir.file("flight.bag"), rosbag::bagmode::Read);
+  rosbag::View view(bag);
+  std::map<std::string, std::pair<std::string, std::string>> types;  // topic -> (type, md5)
+  std::map<std::string, std::size_t> counts;
+  for (const rosbag::ConnectionInfo* connection : view.getConnections()) {
+    types[connection->topic] = {connection->datatype, connection->md5sum};
+  }
+  const std::map<std::string, std::string> expected_types = {
+      {"/mavros/rc/out", "mavros_msgs/RCOut"},
+      {"/mavros/battery", "sensor_msgs/BatteryState"},
+      {"/mavros/imu/data", "sensor_msgs/Imu"},
+      {"/mavros/local_position/pose", "geometry_msgs/PoseStamped"},
+      {"/mavros/local_position/velocity_local", "geometry_msgs/TwistStamped"},
+      {"/mavros/imu/static_pressure", "sensor_msgs/FluidPressure"},
+      {"/mavros/imu/temperature_baro", "sensor_msgs/Temperature"},
+      {"/mavros/rangefinder/rangefinder", "sensor_msgs/Range"},
+      {"/motor_temperature", "sensor_msgs/Temperature"},
+      {"/sim/truth", "propulsion_estimator/SimTruth"}};
+  ASSERT_EQ(types.size(), expected_types.size());
+  for (const auto& [topic, type] : expected_types) EXPECT_EQ(types[topic].first, type) << topic;
+  EXPECT_EQ(types["/mavros/rc/out"].second, "52cacf104bab5ae3b103cfe176590713");
+
+  pe::RcOutDecoder decoder;
+  pe::RcOutMessage rc_out;
+  std::string error;
+  double hover_pwm = 0.0;
+  int hover_samples = 0;
+  for (const rosbag::MessageInstance& message : view) {
+    ++counts[message.getTopic()];
+    const double t = (message.getTime() - ros::Time(pe::kSimulatedBagStartSec)).toSec();
+    if (message.getTopic() == "/mavros/rc/out") {
+      ASSERT_TRUE(decoder.decode(*message.instantiate<topic_tools::ShapeShifter>(), &rc_out, &error)) << error;
+      ASSERT_EQ(rc_out.channels.size(), 8u);
+      ASSERT_EQ(rc_out.header.stamp, message.getTime());
+      if (t == 0.0) {
+        EXPECT_EQ(rc_out.channels, (std::vector<std::uint16_t>{900, 900, 900, 900, 0, 0, 0, 0}));
+      }
+      if (t >= result.segments[0].start_s && t <= result.segments[0].end_s) {
+        for (int k = 0; k < 4; ++k) hover_pwm += rc_out.channels[k];
+        hover_samples += 4;
+      }
+    }
+    if (message.getTopic() == "/mavros/battery" && t >= result.segments[0].start_s && t <= result.segments[0].end_s) {
+      EXPECT_LT(message.instantiate<sensor_msgs::BatteryState>()->current, -10.0f);  // PX4 through MAVROS
+    }
+    if (message.getTopic() == "/sim/truth") {
+      const pe::SimTruth::ConstPtr truth = message.instantiate<pe::SimTruth>();
+      ASSERT_EQ(truth->motors.size(), 4u);
+      ASSERT_EQ(truth->ground_effect_factor.size(), 4u);
+      EXPECT_DOUBLE_EQ(truth->total_mass_kg, 1.315);
+    }
+  }
+  EXPECT_GT(hover_pwm / hover_samples, 1600.0);
+  EXPECT_LT(hover_pwm / hover_samples, 1750.0);
+  EXPECT_EQ(view.getBeginTime(), ros::Time(pe::kSimulatedBagStartSec));
+
+  const double duration = result.duration_s;
+  const auto expected = [&](double rate_hz) {
+    return static_cast<std::size_t>(std::floor(duration * rate_hz + 1e-6)) + 1;
+  };
+  const pe::FlightSensorParams sensors;
+  EXPECT_EQ(counts["/mavros/rc/out"], expected(25.0));
+  EXPECT_EQ(counts["/sim/truth"], expected(25.0));
+  EXPECT_EQ(counts["/mavros/battery"], expected(sensors.battery_rate_hz));
+  EXPECT_EQ(counts["/mavros/imu/data"], expected(sensors.imu_rate_hz));
+  EXPECT_EQ(counts["/mavros/local_position/pose"], expected(sensors.pose_rate_hz));
+  EXPECT_EQ(counts["/mavros/local_position/velocity_local"], expected(sensors.pose_rate_hz));
+  EXPECT_EQ(counts["/mavros/imu/static_pressure"], expected(sensors.pressure_rate_hz));
+  EXPECT_EQ(counts["/mavros/imu/temperature_baro"], expected(sensors.air_temperature_rate_hz));
+  EXPECT_EQ(counts["/mavros/rangefinder/rangefinder"], expected(sensors.rangefinder_rate_hz));
+  EXPECT_EQ(counts["/motor_temperature"], expected(sensors.motor_temperature_rate_hz));
+}
+
+TEST(SimulateCommand, WritesAFlightBagAndItsManifest) {
+  TempDir dir;
+  writeFile(dir.file("profile.yaml"), shortProfile());
+  writeFile(dir.file("effects.yaml"), "thrust_loss: {fraction: 0.03}\n");
+  testing::internal::CaptureStdout();
+  const int code =
+      runCommand({"flight", "--params", repoPath("config/sim/e300_dji2212_dji9443.yaml"), "--profile",
+                  dir.file("profile.yaml"), "--effects", dir.file("effects.yaml"), "--bag", dir.file("flight.bag"),
+                  "--manifest", dir.file("flight.manifest.yaml"), "--compression", "lz4", "--seed", "3"});
+  const std::string out = testing::internal::GetCapturedStdout();
+  ASSERT_EQ(code, 0) << out;
+  const pe::FlightManifest manifest = pe::loadFlightManifest(dir.file("flight.manifest.yaml"));
+  ASSERT_EQ(manifest.flights.size(), 1u);
+  EXPECT_EQ(manifest.flights[0].bag, "flight.bag");
+  ASSERT_EQ(manifest.flights[0].segments.size(), 1u);
+  EXPECT_EQ(manifest.flights[0].segments[0].mass_kg, 1.315);
+  EXPECT_TRUE(fs::exists(pe::resolveBagPath(dir.file("flight.manifest.yaml"), manifest.flights[0].bag)));
+  const std::string text = pe::readTextFile(dir.file("flight.manifest.yaml"));
+  EXPECT_NE(text.find("# Effects: thrust_loss(fraction=0.03)\n"), std::string::npos) << text;
+}
+
+TEST(SimulateCommand, WritesABenchCsv) {
+  TempDir dir;
+  testing::internal::CaptureStdout();
+  const int code =
+      runCommand({"bench", "--params", repoPath("config/sim/e300_dji2212_dji9443.yaml"), "--experiment", "pwm_sweep",
+                  "--voltage", "11.1", "--voltage", "12.6", "--pwm-range", "1300", "1800", "--pwm-step", "10",
+                  "--output", dir.file("sweep.csv"), "--truth", dir.file("truth.csv")});
+  const std::string out = testing::internal::GetCapturedStdout();
+  ASSERT_EQ(code, 0);
+  EXPECT_EQ(out, "simulate bench: 102 rows of pwm_sweep -> " + dir.file("sweep.csv") + "\n");
+  const std::string csv = pe::readTextFile(dir.file("sweep.csv"));
+  EXPECT_NE(csv.find("# noise_sigma_current_a: 0.106\n"), std::string::npos);
+  EXPECT_NE(pe::readTextFile(dir.file("truth.csv")).find("# noise_sigma_current_a: 0\n"), std::string::npos);
+}
+
+TEST(SimulateCommand, RefusesBadInputsWithOneLine) {
+  TempDir dir;
+  writeFile(dir.file("profile.yaml"), shortProfile());
+  writeFile(dir.file("wind.yaml"), "wind: {speed_m_s: 3}\n");
+  const std::string params = repoPath("config/sim/e300_dji2212_dji9443.yaml");
+  const auto refusal = [](std::vector<std::string> args) {
+    testing::internal::CaptureStderr();
+    const int code = runCommand(std::move(args));
+    const std::string err = testing::internal::GetCapturedStderr();
+    return std::to_string(code) + " " + err;
+  };
+  EXPECT_EQ(refusal({"flight", "--params", params, "--profile", dir.file("profile.yaml"), "--effects",
+                     dir.file("wind.yaml"), "--bag", dir.file("f.bag")}),
+            "1 simulate flight: " + dir.file("wind.yaml") +
+                ":1: wind: unknown key (allowed: supply_resistance, air_density, ground_effect, thrust_loss, "
+                "motor_temperature, climb_inflow, esc_offset)\n");
+  writeFile(dir.file("impossible.yaml"), shortProfile() + "  - {type: hover, duration_s: 5}\n");
+  EXPECT_EQ(
+      refusal({"flight", "--params", params, "--profile", dir.file("impossible.yaml"), "--bag", dir.file("f.bag")}),
+      "1 simulate flight: " + dir.file("impossible.yaml") +
+          ":15: segments[4].type: hover on the ground (take off first)\n");
+  EXPECT_EQ(refusal({"flight", "--params", dir.file("missing.yaml"), "--profile", dir.file("profile.yaml"), "--bag",
+                     dir.file("f.bag")}),
+            "1 simulate flight: " + dir.file("missing.yaml") + ": cannot open file\n");
+  EXPECT_EQ(refusal({"flight", "--params", params, "--profile", dir.file("profile.yaml"), "--bag",
+                     dir.file("no/such/dir/f.bag")}),
+            "1 simulate flight: " + dir.file("no/such/dir/f.bag") +
+                ": Error opening file: " + dir.file("no/such/dir/f.bag") + "\n");
+  EXPECT_EQ(refusal({"bench", "--params", params, "--experiment", "pwm_sweep", "--pwm-range", "1900", "1200",
+                     "--output", dir.file("b.csv")}),
+            "1 simulate bench: --pwm-range: [1900, 1200] is not a range within 800..2200 us\n");
+}

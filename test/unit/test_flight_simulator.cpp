@@ -1,0 +1,276 @@
+// Simulated flights of the thesis quad: the controller holds the script, the truth balances the
+// weight, the payload hangs, the streams keep their rates, and impossible flights are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/flight_profile_yaml.h"
+#include "propulsion_estimator/core/flight_simulator.h"
+#include "propulsion_estimator/core/sim_params_yaml.h"
+#include "propulsion_estimator/core/units.h"
+#include "propulsion_estimator/core/vehicle_urdf.h"
+#include "recording_flight_sink.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+
+namespace {
+
+pe::SimParams thesisParams() { return pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")); }
+
+pe::FlightProfile defaultProfile() { return pe::loadFlightProfileFile(repoPath("config/sim/default_flight.yaml")); }
+
+struct Flight {
+  RecordingFlightSink sink;
+  pe::FlightResult result;
+  std::vector<pe::ScheduledSegment> schedule;
+};
+
+Flight fly(const pe::FlightProfile& profile, std::uint64_t seed = 1) {
+  Flight flight;
+  const pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
+  flight.result = pe::simulateFlight(thesisParams(), {}, profile, vehicle, seed, &flight.sink);
+  flight.schedule = pe::scheduleFlight(profile);
+  return flight;
+}
+
+const Flight& defaultFlight() {
+  static const Flight flight = fly(defaultProfile());
+  return flight;
+}
+
+template <typename Sample, typename F>
+void forSegment(const std::vector<Sample>& samples, const pe::ManifestSegment& segment, F f) {
+  for (const Sample& sample : samples) {
+    if (sample.time_s >= segment.start_s && sample.time_s <= segment.end_s) f(sample);
+  }
+}
+
+std::string refusal(const pe::FlightProfile& profile) {
+  try {
+    fly(profile);
+  } catch (const pe::ConfigError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+}  // namespace
+
+TEST(FlightSimulator, ManifestSegmentsAreTheHoversWithTheirTrueMasses) {
+  const Flight& flight = defaultFlight();
+  const double settle = defaultProfile().manifest_settle_s;
+  std::vector<pe::ManifestSegment> expected;
+  for (const pe::ScheduledSegment& s : flight.schedule) {
+    if (s.segment.kind == pe::SegmentKind::kHover)
+      expected.push_back({s.start_s + settle, s.end_s, 1.315 + s.payload_mass_kg});
+  }
+  ASSERT_EQ(flight.result.segments.size(), 4u);
+  ASSERT_EQ(expected.size(), 4u);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_NEAR(flight.result.segments[i].start_s, expected[i].start_s, 1e-6);
+    EXPECT_NEAR(flight.result.segments[i].end_s, expected[i].end_s, 1e-6);
+    EXPECT_NEAR(flight.result.segments[i].mass_kg, expected[i].mass_kg, 1e-9);
+  }
+  EXPECT_EQ(flight.result.segments[3].mass_kg, 1.711);  // 1.315 kg + the 396 g payload (thesis table 6.4)
+}
+
+TEST(FlightSimulator, HoldsTheCommandedHeights) {
+  const Flight& flight = defaultFlight();
+  const double targets[] = {2.0, 5.0, 0.2, 2.5};
+  for (std::size_t i = 0; i < 4; ++i) {
+    double sum = 0.0, worst = 0.0;
+    int n = 0;
+    forSegment(flight.sink.truths, flight.result.segments[i], [&](const pe::TruthSample& t) {
+      sum += t.height_m;
+      worst = std::max(worst, std::fabs(t.height_m - targets[i]));
+      ++n;
+    });
+    EXPECT_NEAR(sum / n, targets[i], 0.02) << "hover " << i;
+    EXPECT_LT(worst, 0.05) << "hover " << i;
+  }
+}
+
+TEST(FlightSimulator, TheThesisQuadHoversBetween1600And1750Us) {
+  const Flight& flight = defaultFlight();
+  for (std::size_t i = 0; i < 3; ++i) {  // the empty hovers
+    double sum = 0.0;
+    int n = 0;
+    forSegment(flight.sink.rc_out, flight.result.segments[i], [&](const pe::RcOutSample& s) {
+      for (int k = 0; k < 4; ++k) sum += s.channels[k];
+      n += 4;
+    });
+    EXPECT_GT(sum / n, 1600.0) << "hover " << i;
+    EXPECT_LT(sum / n, 1750.0) << "hover " << i;
+  }
+}
+
+TEST(FlightSimulator, TrueThrustSumsToTheWeightInHover) {
+  const Flight& flight = defaultFlight();
+  for (const pe::ManifestSegment& segment : flight.result.segments) {
+    double sum = 0.0;
+    int n = 0;
+    forSegment(flight.sink.truths, segment, [&](const pe::TruthSample& t) {
+      for (const pe::MotorTruth& motor : t.motors) sum += motor.thrust_n;
+      ++n;
+    });
+    // Tilt in hover is below a degree: the thrust along the rotor axes is the weight to 0.3 %.
+    EXPECT_NEAR(sum / n, segment.mass_kg * pe::kStandardGravity, 0.003 * segment.mass_kg * pe::kStandardGravity);
+  }
+}
+
+TEST(FlightSimulator, ThePendulumPayloadsWeightAppearsInTheTotal) {
+  const Flight& flight = defaultFlight();
+  const pe::ManifestSegment& loaded = flight.result.segments[3];
+  double tension = 0.0, thrust = 0.0;
+  int n = 0;
+  forSegment(flight.sink.truths, loaded, [&](const pe::TruthSample& t) {
+    EXPECT_EQ(t.payload_mass_kg, 0.396);
+    EXPECT_DOUBLE_EQ(t.total_mass_kg, 1.315 + 0.396);
+    tension += t.cable_tension_n;
+    for (const pe::MotorTruth& motor : t.motors) thrust += motor.thrust_n;
+    ++n;
+  });
+  EXPECT_NEAR(tension / n, 0.396 * pe::kStandardGravity, 0.01 * 0.396 * pe::kStandardGravity);
+  EXPECT_NEAR(thrust / n - tension / n, 1.315 * pe::kStandardGravity, 0.005 * 1.315 * pe::kStandardGravity);
+  // Landed, the payload rests on the ground and the cable is slack.
+  for (const pe::TruthSample& t : flight.sink.truths) {
+    if (t.payload_mass_kg > 0.0 && t.time_s < loaded.start_s - 20.0) {
+      ASSERT_LT(t.height_m, 0.2);
+      ASSERT_EQ(t.cable_tension_n, 0.0);
+    }
+  }
+}
+
+TEST(FlightSimulator, TheCentreOfThrustLiesUnderTheCentreOfGravity) {
+  // The battery sits 8 mm forward and 5 mm right: the front-right motor (1) works hardest, the
+  // rear-left (2) least, and the thrust-weighted rotor position is the centre of gravity.
+  const Flight& flight = defaultFlight();
+  const pe::Vehicle vehicle = pe::loadVehicleUrdf(defaultProfile().vehicle.urdf_path);
+  const Eigen::Vector3d cog = vehicle.empty_mass->centre_of_mass_m + defaultProfile().vehicle.centre_of_mass_offset_m;
+  Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+  double total = 0.0;
+  std::vector<double> mean(4, 0.0);
+  forSegment(flight.sink.truths, flight.result.segments[1], [&](const pe::TruthSample& t) {
+    for (int k = 0; k < 4; ++k) {
+      moment += t.motors[k].thrust_n * vehicle.rotors[k].position_m.head<2>();
+      total += t.motors[k].thrust_n;
+      mean[k] += t.motors[k].thrust_n;
+    }
+  });
+  EXPECT_NEAR(moment.x() / total, cog.x(), 0.001);
+  EXPECT_NEAR(moment.y() / total, cog.y(), 0.001);
+  EXPECT_EQ(std::max_element(mean.begin(), mean.end()) - mean.begin(), 0);
+  EXPECT_EQ(std::min_element(mean.begin(), mean.end()) - mean.begin(), 1);
+}
+
+TEST(FlightSimulator, StreamsKeepTheirRatesFromTheFirstMessage) {
+  const Flight& flight = defaultFlight();
+  const double duration = flight.result.duration_s;
+  const auto expected = [&](double rate_hz) {
+    return static_cast<std::size_t>(std::floor(duration * rate_hz + 1e-6)) + 1;
+  };
+  const pe::FlightSensorParams sensors;
+  EXPECT_EQ(flight.sink.rc_out.size(), expected(50.0));
+  EXPECT_EQ(flight.sink.truths.size(), expected(50.0));
+  EXPECT_EQ(flight.sink.batteries.size(), expected(sensors.battery_rate_hz));
+  EXPECT_EQ(flight.sink.imus.size(), expected(sensors.imu_rate_hz));
+  EXPECT_EQ(flight.sink.poses.size(), expected(sensors.pose_rate_hz));
+  EXPECT_EQ(flight.sink.velocities.size(), expected(sensors.pose_rate_hz));
+  EXPECT_EQ(flight.sink.pressures.size(), expected(sensors.pressure_rate_hz));
+  EXPECT_EQ(flight.sink.air_temperatures.size(), expected(sensors.air_temperature_rate_hz));
+  EXPECT_EQ(flight.sink.ranges.size(), expected(sensors.rangefinder_rate_hz));
+  EXPECT_EQ(flight.sink.motor_temperatures.size(), expected(sensors.motor_temperature_rate_hz));
+  EXPECT_EQ(flight.sink.rc_out.front().time_s, 0.0);
+  EXPECT_EQ(flight.sink.imus.front().time_s, 0.0);
+  EXPECT_NEAR(flight.sink.poses[3].time_s, 0.1, 0.002);  // 30 Hz on a 2 ms step
+}
+
+TEST(FlightSimulator, SensorsReadThePhysicalState) {
+  const Flight& flight = defaultFlight();
+  const pe::ManifestSegment& high = flight.result.segments[1];  // 5 m
+  const pe::ManifestSegment& low = flight.result.segments[0];   // 2 m
+  const auto mean = [](const std::vector<double>& values) {
+    double sum = 0.0;
+    for (double v : values) sum += v;
+    return sum / values.size();
+  };
+  std::vector<double> range_high, range_low, pressure_high, pressure_low, accel_z, pose_z;
+  forSegment(flight.sink.ranges, high, [&](const pe::RangeSample& s) { range_high.push_back(s.range_m); });
+  forSegment(flight.sink.ranges, low, [&](const pe::RangeSample& s) { range_low.push_back(s.range_m); });
+  forSegment(flight.sink.pressures, high, [&](const pe::ScalarSample& s) { pressure_high.push_back(s.value); });
+  forSegment(flight.sink.pressures, low, [&](const pe::ScalarSample& s) { pressure_low.push_back(s.value); });
+  forSegment(flight.sink.imus, high,
+             [&](const pe::ImuSample& s) { accel_z.push_back(s.linear_acceleration_m_s2.z()); });
+  forSegment(flight.sink.poses, high, [&](const pe::PoseSample& s) { pose_z.push_back(s.position_m.z()); });
+  EXPECT_NEAR(mean(range_high), 5.0, 0.02);
+  EXPECT_NEAR(mean(range_low), 2.0, 0.02);
+  // Air of 1.196 kg/m^3: 11.73 Pa per metre.
+  EXPECT_NEAR(mean(pressure_low) - mean(pressure_high), 3.0 * 1.196 * pe::kStandardGravity, 1.5);
+  EXPECT_NEAR(mean(accel_z), pe::kStandardGravity, 0.05);
+  EXPECT_NEAR(mean(pose_z), 5.0 - 0.12, 0.02);  // local position starts at 0 on the ground
+  // Standing on its gear before take-off, the accelerometer reads g from the first message on.
+  EXPECT_NEAR(flight.sink.imus.front().linear_acceleration_m_s2.z(), pe::kStandardGravity, 0.25);
+  // On the ground the rangefinder (0.1 m minimum) still reads the 0.12 m landing gear.
+  EXPECT_NEAR(flight.sink.ranges.front().range_m, 0.12, 0.05);
+}
+
+TEST(FlightSimulator, Px4AndArduPilotConventions) {
+  const Flight& px4 = defaultFlight();
+  EXPECT_EQ(px4.sink.rc_out.front().channels, (std::vector<std::uint16_t>{900, 900, 900, 900, 0, 0, 0, 0}));
+  const pe::ManifestSegment& hover = px4.result.segments[0];
+  forSegment(px4.sink.batteries, hover, [](const pe::BatterySample& s) { EXPECT_LT(s.current_a, -10.0); });
+
+  pe::FlightProfile profile = defaultProfile();
+  profile.autopilot.flavour = pe::AutopilotFlavour::kArduPilot;
+  profile.autopilot.disarmed_pwm_us = 0.0;
+  const Flight ardupilot = fly(profile);
+  EXPECT_EQ(ardupilot.sink.rc_out.front().channels, (std::vector<std::uint16_t>{0, 0, 0, 0, 0, 0, 0, 0}));
+  forSegment(ardupilot.sink.batteries, hover, [](const pe::BatterySample& s) { EXPECT_GT(s.current_a, 10.0); });
+}
+
+TEST(FlightSimulator, TheSeedFixesTheFlight) {
+  pe::FlightProfile profile = defaultProfile();
+  profile.segments.resize(4);  // wait, take off, hover, climb
+  profile.segments.push_back({pe::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0});
+  const Flight a = fly(profile, 4);
+  const Flight b = fly(profile, 4);
+  const Flight c = fly(profile, 5);
+  ASSERT_EQ(a.sink.imus.size(), b.sink.imus.size());
+  for (std::size_t i = 0; i < a.sink.imus.size(); ++i) {
+    ASSERT_EQ(a.sink.imus[i].linear_acceleration_m_s2, b.sink.imus[i].linear_acceleration_m_s2);
+  }
+  EXPECT_NE(a.sink.imus[100].linear_acceleration_m_s2, c.sink.imus[100].linear_acceleration_m_s2);
+  // Noise is on the sensors only: the flown trajectory is the same.
+  EXPECT_EQ(a.sink.truths.back().height_m, c.sink.truths.back().height_m);
+}
+
+TEST(FlightSimulator, RefusesAPayloadTooHeavyToHover) {
+  // 2.515 kg / 4 rotors x g = 6.17 N, beyond 80 % of the ~697 g a rotor gives at full pulse width.
+  pe::FlightProfile profile = defaultProfile();
+  profile.segments[8].payload_mass_kg = 1.2;
+  EXPECT_EQ(refusal(profile),
+            repoPath("config/sim/default_flight.yaml") +
+                ": segments[8].mass_kg: 2.52 kg needs 6.17 N per rotor, more than 80 % of the 6.84 N each gives at "
+                "1950 us from 12.5 V");
+}
+
+TEST(FlightSimulator, RefusesAFlightLongerThanTheBattery) {
+  pe::FlightProfile profile = defaultProfile();
+  // 13 % of 4 Ah above the 2 % floor at the ~13 A of the empty hovers: about 144 s.
+  profile.vehicle.battery_initial_soc = 0.15;
+  EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
+                                  ": vehicle.battery_initial_soc: the battery is empty 142 s into the flight");
+}
+
+TEST(FlightSimulator, RefusesAHoverTheVehicleCannotReach) {
+  // 5 m/s to 50 m is beyond the autopilot's 2 m/s climb limit: after 12 s of climbing the vehicle is at
+  // 17 m, and its hover would not be where the manifest says.
+  pe::FlightProfile profile = defaultProfile();
+  profile.segments = {{pe::SegmentKind::kTakeoff, 0.0, 50.0, 5.0, 0.0},
+                      {pe::SegmentKind::kHover, 0.5, 0.0, 0.0, 0.0},
+                      {pe::SegmentKind::kLand, 0.0, 0.0, 5.0, 0.0}};
+  EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
+                                  ": segments[1].type: the vehicle ended its hover at 17 m instead of 50 m");
+}

@@ -1,0 +1,269 @@
+// Readers of the simulator's files: parameters, effects, flight profiles and manifests. Every
+// refusal is one exact line naming the file, the line, the key and the value.
+#include <gtest/gtest.h>
+
+#include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/flight_manifest.h"
+#include "propulsion_estimator/core/flight_profile_yaml.h"
+#include "propulsion_estimator/core/sim_effects_yaml.h"
+#include "propulsion_estimator/core/sim_params_yaml.h"
+#include "propulsion_estimator/core/yaml_map.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+
+namespace {
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+template <typename F>
+std::string refusal(F parse) {
+  try {
+    parse();
+  } catch (const pe::ConfigError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+const std::string& paramsText() {
+  static const std::string text = pe::readTextFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
+  return text;
+}
+
+std::string paramsRefusal(const std::string& from, const std::string& to) {
+  const std::string text = replaced(paramsText(), from, to);
+  return refusal([&] { pe::parseSimParamsYaml(text, "p.yaml"); });
+}
+
+std::string effectsRefusal(const std::string& text) {
+  return refusal([&] { pe::parseSimEffectsYaml(text, "e.yaml"); });
+}
+
+// A small valid profile; each test breaks one thing in it.
+const std::string kProfile = R"(autopilot:
+  flavour: px4
+  pwm_min_us: 1100
+  pwm_max_us: 1950
+  disarmed_pwm_us: 900
+vehicle:
+  urdf: ../f450_quad.urdf
+  centre_of_mass_offset_m: [0, 0, 0]
+  landing_gear: {height_m: 0.12, half_width_m: 0.12}
+  drag_area_m2: 0.04
+  battery_initial_soc: 0.9
+payload_cable: {length_m: 1.0, attach_point_m: [0, 0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: 10}
+manifest: {settle_s: 5}
+segments:
+  - {type: wait, duration_s: 2}
+  - {type: takeoff, height_m: 2.0, rate_m_s: 1.0}
+  - {type: hover, duration_s: 10}
+  - {type: land, rate_m_s: 0.5}
+  - {type: payload, mass_kg: 0.3, duration_s: 2}
+  - {type: takeoff, height_m: 2.0, rate_m_s: 1.0}
+  - {type: hover, duration_s: 10}
+  - {type: land, rate_m_s: 0.5}
+)";
+
+std::string profileRefusal(const std::string& from, const std::string& to) {
+  const std::string text = replaced(kProfile, from, to);
+  return refusal([&] { pe::parseFlightProfileYaml(text, "config/sim/f.yaml"); });
+}
+
+const std::string kManifest = R"(flights:
+  - bag: a.bag
+    segments:
+      - {start: 5, end: 30, mass_kg: 1.315}
+      - {start: 40, end: 70.5, mass_kg: 1.609}
+)";
+
+std::string manifestRefusal(const std::string& from, const std::string& to) {
+  const std::string text = replaced(kManifest, from, to);
+  return refusal([&] { pe::parseFlightManifest(text, "m.yaml"); });
+}
+
+}  // namespace
+
+TEST(SimParamsYaml, ReadsTheBundledParameterFiles) {
+  const pe::SimParams params = pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
+  EXPECT_EQ(params.chain.motor.name, "DJI 2212 920KV");
+  EXPECT_EQ(params.chain.motor.kv_rpm_per_v, 920.0);
+  EXPECT_EQ(params.chain.esc.pwm_zero_us, 1071.0);
+  EXPECT_EQ(params.battery.ocv_soc.size(), 13u);
+  EXPECT_NEAR(params.bench.sensors.thrust_n.sigma, 0.0098, 1e-12);
+  EXPECT_EQ(params.bench.sweep_pwm_max_us, 1900.0);
+  const pe::SimParams second = pe::loadSimParamsFile(repoPath("config/sim/430lite_dji2312e_dji9450.yaml"));
+  EXPECT_EQ(second.chain.propeller.name, "DJI 9450");
+  EXPECT_EQ(second.bench.sweep_pwm_max_us, 1800.0);
+}
+
+TEST(SimParamsYaml, RefusesUnknownMissingAndOutOfRangeValues) {
+  EXPECT_EQ(paramsRefusal("  kv_rpm_per_v: 920 ", "  kv_rpm_per_v: 920\n  colour: red "),
+            "p.yaml:28: motor.colour: unknown key (allowed: name, kv_rpm_per_v, winding_resistance_ohm, "
+            "no_load_current_a, reference_temperature_c, flux_temperature_coefficient_per_c, rotor_inertia_kg_m2, "
+            "thermal_capacity_j_per_c, thermal_resistance_c_per_w)");
+  EXPECT_EQ(paramsRefusal("  kv_rpm_per_v: 920 ", "  # kv removed"), "p.yaml:26: motor.kv_rpm_per_v: missing key");
+  EXPECT_EQ(paramsRefusal("  kv_rpm_per_v: 920 ", "  kv_rpm_per_v: -920 "),
+            "p.yaml:27: motor.kv_rpm_per_v: -920 is outside 10..10000 rpm/V");
+  EXPECT_EQ(paramsRefusal("  pwm_full_us: 1957", "  pwm_full_us: 1200"),
+            "p.yaml:21: esc.pwm_full_us: 1200 must be at least 200 us above pwm_zero_us (1071)");
+  EXPECT_EQ(paramsRefusal("  thrust_coefficient: 0.0807", "  thrust_coefficient: .nan"),
+            "p.yaml:47: propeller.thrust_coefficient: expected a finite number, got '.nan'");
+  EXPECT_EQ(paramsRefusal("3.80, 3.84", "3.90, 3.84"),
+            "p.yaml:59: battery.open_circuit_voltage.cell_v: must increase with soc (3.84 after 3.9)");
+  EXPECT_EQ(paramsRefusal("{sigma_a: 0.106", "{sigma_a: -0.106"),
+            "p.yaml:77: bench.sensors.current.sigma_a: -0.106 is outside 0..10");
+  EXPECT_EQ(paramsRefusal("format_version: 1", "format_version: 2"),
+            "p.yaml:15: format_version: 2 is not supported (this reader knows 1)");
+}
+
+TEST(SimEffectsYaml, ReadsEveryEffectWithItsParameter) {
+  const pe::SimEffects effects = pe::parseSimEffectsYaml(
+      "supply_resistance: {ohm: 0.05}\nair_density: {temperature_c: 35, pressure_pa: 90000}\n"
+      "ground_effect: {strength: 1.0}\nthrust_loss: {fraction: 0.05}\n"
+      "motor_temperature: {thermal_resistance_c_per_w: 2.0}\nclimb_inflow: {per_m_s: 0.05}\nesc_offset: {us: -15}\n",
+      "e.yaml");
+  EXPECT_EQ(effects.summary(),
+            "supply_resistance(ohm=0.05) air_density(temperature_c=35,pressure_pa=90000) ground_effect(strength=1) "
+            "thrust_loss(fraction=0.05) motor_temperature(thermal_resistance_c_per_w=2) climb_inflow(per_m_s=0.05) "
+            "esc_offset(us=-15)");
+  EXPECT_FALSE(pe::parseSimEffectsYaml("{}", "e.yaml").any());
+}
+
+TEST(SimEffectsYaml, RefusesUnknownEffectsAndBadParameters) {
+  EXPECT_EQ(effectsRefusal("thrust_loss: {fraction: 0.05}\nwind: {speed_m_s: 3}\n"),
+            "e.yaml:2: wind: unknown key (allowed: supply_resistance, air_density, ground_effect, thrust_loss, "
+            "motor_temperature, climb_inflow, esc_offset)");
+  EXPECT_EQ(effectsRefusal("ground_effect: {height_m: 1}\n"),
+            "e.yaml:1: ground_effect.height_m: unknown key (allowed: strength)");
+  EXPECT_EQ(effectsRefusal("ground_effect:\n"), "e.yaml:1: ground_effect: missing key");
+  EXPECT_EQ(effectsRefusal("esc_offset: {us: 20}\nthrust_loss: {fraction: 0.7}\n"),
+            "e.yaml:2: thrust_loss.fraction: 0.7 is outside 0..0.5");
+  EXPECT_EQ(effectsRefusal("air_density: {temperature_c: 20, pressure_pa: 9000}\n"),
+            "e.yaml:1: air_density.pressure_pa: 9000 is outside 50000..110000 Pa");
+  EXPECT_EQ(effectsRefusal("supply_resistance: {ohm: ten}\n"),
+            "e.yaml:1: supply_resistance.ohm: expected a number, got 'ten'");
+}
+
+TEST(FlightProfileYaml, ReadsTheBundledProfiles) {
+  const pe::FlightProfile profile = pe::loadFlightProfileFile(repoPath("config/sim/default_flight.yaml"));
+  EXPECT_EQ(profile.autopilot.flavour, pe::AutopilotFlavour::kPx4);
+  EXPECT_EQ(profile.autopilot.rc_out_rate_hz, 50.0);
+  EXPECT_EQ(profile.vehicle.urdf_path, repoPath("config/sim/../f450_quad.urdf"));
+  const std::vector<pe::ScheduledSegment> schedule = pe::scheduleFlight(profile);
+  EXPECT_GT(schedule.back().end_s, 170.0);  // about three minutes
+  EXPECT_LT(schedule.back().end_s, 190.0);
+  const pe::FlightProfile demo = pe::loadFlightProfileFile(repoPath("config/demo/demo_flight_profile.yaml"));
+  EXPECT_EQ(demo.autopilot.rc_out_rate_hz, 20.0);
+}
+
+TEST(FlightProfileYaml, SchedulesClimbsByRateAndLandingsWithTouchdownTime) {
+  const pe::FlightProfile profile = pe::parseFlightProfileYaml(kProfile, "config/sim/f.yaml");
+  const std::vector<pe::ScheduledSegment> schedule = pe::scheduleFlight(profile);
+  ASSERT_EQ(schedule.size(), 8u);
+  EXPECT_DOUBLE_EQ(schedule[1].start_s, 2.0);
+  EXPECT_DOUBLE_EQ(schedule[1].end_s, 2.0 + pe::kTakeoffSpinUpS + (2.0 - 0.12) / 1.0);
+  EXPECT_DOUBLE_EQ(schedule[2].end_s - schedule[2].start_s, 10.0);
+  EXPECT_DOUBLE_EQ(schedule[3].end_s - schedule[3].start_s, (2.0 - 0.12) / 0.5 + pe::kTouchdownS);
+  EXPECT_DOUBLE_EQ(schedule[6].payload_mass_kg, 0.3);
+  EXPECT_DOUBLE_EQ(schedule[2].payload_mass_kg, 0.0);
+}
+
+TEST(FlightProfileYaml, RefusesImpossibleSegments) {
+  EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
+                           "  - {type: takeoff, height_m: 3, rate_m_s: 1}\n  - {type: land"),
+            "config/sim/f.yaml:17: segments[2].type: takeoff while flying at 2 m (land first)");
+  EXPECT_EQ(profileRefusal("  - {type: wait, duration_s: 2}", "  - {type: hover, duration_s: 2}"),
+            "config/sim/f.yaml:15: segments[0].type: hover on the ground (take off first)");
+  EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
+                           "  - {type: climb, height_m: 1.5, rate_m_s: 1}\n  - {type: land"),
+            "config/sim/f.yaml:17: segments[2].height_m: climb to 1.5 m from 2 m (use descend)");
+  EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
+                           "  - {type: descend, height_m: 2.5, rate_m_s: 1}\n  - {type: land"),
+            "config/sim/f.yaml:17: segments[2].height_m: descend to 2.5 m from 2 m (use climb)");
+  EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
+                           "  - {type: payload, mass_kg: 0.3, duration_s: 1}\n  - {type: land"),
+            "config/sim/f.yaml:17: segments[2].type: payload while flying at 2 m (land first)");
+  EXPECT_EQ(profileRefusal("0.3, duration_s: 2}\n  - {type: takeoff, height_m: 2.0,",
+                           "0.3, duration_s: 2}\n  - {type: takeoff, height_m: 1.0,"),
+            "config/sim/f.yaml:21: segments[6].type: hover at 1 m with the 0.3 kg payload on a 1 m cable: the "
+            "payload would rest on the ground (hover at 1.24 m or higher)");
+  const std::string ends_flying = kProfile.substr(0, kProfile.rfind("  - {type: land"));
+  EXPECT_EQ(refusal([&] { pe::parseFlightProfileYaml(ends_flying, "config/sim/f.yaml"); }),
+            "config/sim/f.yaml:15: segments: the profile ends in flight (add a land segment)");
+}
+
+TEST(FlightProfileYaml, RefusesBadValuesAndUnknownKeys) {
+  EXPECT_EQ(profileRefusal("  disarmed_pwm_us: 900", "  disarmed_pwm_us: 900\n  rc_out_rate_hz: 60"),
+            "config/sim/f.yaml:6: autopilot.rc_out_rate_hz: 60 is outside 10..50 Hz");
+  EXPECT_EQ(profileRefusal("  disarmed_pwm_us: 900", "  disarmed_pwm_us: 1200"),
+            "config/sim/f.yaml:5: autopilot.disarmed_pwm_us: 1200 is outside 500..1100 us (or 0)");
+  EXPECT_EQ(profileRefusal("flavour: px4", "flavour: betaflight"),
+            "config/sim/f.yaml:2: autopilot.flavour: 'betaflight' is not one of px4, ardupilot");
+  EXPECT_EQ(
+      profileRefusal("{type: wait, duration_s: 2}", "{type: loiter, duration_s: 2}"),
+      "config/sim/f.yaml:15: segments[0].type: 'loiter' is not one of wait, takeoff, hover, climb, descend, land, "
+      "payload");
+  EXPECT_EQ(profileRefusal("{type: wait, duration_s: 2}", "{type: wait, duration_s: 2, height_m: 3}"),
+            "config/sim/f.yaml:15: segments[0].height_m: unknown key (allowed: type, duration_s)");
+  EXPECT_EQ(profileRefusal("{type: hover, duration_s: 10}", "{type: hover, duration_s: -10}"),
+            "config/sim/f.yaml:17: segments[2].duration_s: -10 is outside 0..3600 s (must be positive)");
+  EXPECT_EQ(profileRefusal("{type: payload, mass_kg: 0.3,", "{type: payload, mass_kg: 7,"),
+            "config/sim/f.yaml:19: segments[4].mass_kg: 7 is outside 0..5 kg");
+  EXPECT_EQ(profileRefusal("{type: takeoff, height_m: 2.0,", "{type: takeoff, height_m: 0.1,"),
+            "config/sim/f.yaml:16: segments[1].height_m: 0.1 is outside 0.17..100 m");
+  EXPECT_EQ(profileRefusal("landing_gear: {height_m: 0.12,", "landing_gear: {height_m: 0,"),
+            "config/sim/f.yaml:9: vehicle.landing_gear.height_m: 0 is outside 0..1 m (must be positive)");
+  EXPECT_EQ(profileRefusal("centre_of_mass_offset_m: [0, 0, 0]", "centre_of_mass_offset_m: [0, 0]"),
+            "config/sim/f.yaml:8: vehicle.centre_of_mass_offset_m: expected [x, y, z], got 2 numbers");
+}
+
+TEST(FlightManifest, RoundTripsThroughItsWriter) {
+  pe::FlightManifest manifest;
+  manifest.flights.push_back({"flight_01.bag", {{5.0, 178.0, 1.315}, {180.25, 200.125, 1.711}}});
+  manifest.flights.push_back({"/data/flight_02.bag", {{0.1, 0.3, 0.2}}});
+  const std::string text = pe::flightManifestToYaml(manifest, "written by a test");
+  EXPECT_EQ(text.rfind("# written by a test\n", 0), 0u) << text;
+  const pe::FlightManifest read = pe::parseFlightManifest(text, "m.yaml");
+  ASSERT_EQ(read.flights.size(), 2u);
+  for (std::size_t f = 0; f < 2; ++f) {
+    EXPECT_EQ(read.flights[f].bag, manifest.flights[f].bag);
+    ASSERT_EQ(read.flights[f].segments.size(), manifest.flights[f].segments.size());
+    for (std::size_t s = 0; s < read.flights[f].segments.size(); ++s) {
+      EXPECT_EQ(read.flights[f].segments[s].start_s, manifest.flights[f].segments[s].start_s);
+      EXPECT_EQ(read.flights[f].segments[s].end_s, manifest.flights[f].segments[s].end_s);
+      EXPECT_EQ(read.flights[f].segments[s].mass_kg, manifest.flights[f].segments[s].mass_kg);
+    }
+  }
+  EXPECT_EQ(pe::resolveBagPath("/x/y/m.yaml", "flight_01.bag"), "/x/y/flight_01.bag");
+  EXPECT_EQ(pe::resolveBagPath("/x/y/m.yaml", "/data/flight_02.bag"), "/data/flight_02.bag");
+}
+
+TEST(FlightManifest, ReadsTheIssuesExample) {
+  const pe::FlightManifest manifest = pe::parseFlightManifest(
+      "flights:\n  - bag: flight_01.bag        # path relative to the manifest\n    segments:                 # times "
+      "in "
+      "seconds from the bag's first message\n      - {start: 5.0, end: 178.0, mass_kg: 1.315}\n",
+      "m.yaml");
+  ASSERT_EQ(manifest.flights.size(), 1u);
+  EXPECT_EQ(manifest.flights[0].segments[0].end_s, 178.0);
+}
+
+TEST(FlightManifest, RefusesBadSegments) {
+  EXPECT_EQ(manifestRefusal("{start: 40, end: 70.5,", "{start: 40, end: 40,"),
+            "m.yaml:5: flights[0].segments[1].end: 40 is not after start 40");
+  EXPECT_EQ(manifestRefusal("{start: 40, end: 70.5,", "{start: 20, end: 70.5,"),
+            "m.yaml:5: flights[0].segments[1].start: 20 is before the previous segment's end 30");
+  EXPECT_EQ(manifestRefusal("mass_kg: 1.315}", "mass_kg: 0}"),
+            "m.yaml:4: flights[0].segments[0].mass_kg: 0 is outside 0..100 kg");
+  EXPECT_EQ(manifestRefusal("mass_kg: 1.315}", "mass_kg: 1.315, weight_g: 1315}"),
+            "m.yaml:4: flights[0].segments[0].weight_g: unknown key (allowed: start, end, mass_kg)");
+  EXPECT_EQ(manifestRefusal("  - bag: a.bag\n", "  - file: a.bag\n"),
+            "m.yaml:2: flights[0].file: unknown key (allowed: bag, segments)");
+  EXPECT_EQ(refusal([] { pe::parseFlightManifest("flights: []\n", "m.yaml"); }), "m.yaml:1: flights: no flights");
+}
