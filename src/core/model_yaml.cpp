@@ -1,7 +1,5 @@
 #include "propulsion_estimator/core/model_yaml.h"
 
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <stdexcept>
@@ -10,6 +8,7 @@
 
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/model_validation.h"
+#include "propulsion_estimator/core/number_format.h"
 #include "propulsion_estimator/core/yaml_map.h"
 
 namespace propulsion_estimator {
@@ -97,16 +96,6 @@ OutputDefinition readOutput(const YamlMap& map, Output output) {
   }
   if (map.has("fit")) def.fit = readFit(map.map("fit"));
   return def;
-}
-
-// Shortest decimal form that reads back to the same double.
-std::string formatNumber(double value) {
-  char buffer[40];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof(buffer), "%.*g", digits, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
 }
 
 void writePolynomial(YAML::Emitter& out, const Polynomial2D& polynomial) {
