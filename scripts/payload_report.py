@@ -6,8 +6,8 @@ during the manifest's empty segment, then prints, for every segment, the estimat
 payload mass beside the weighed ones. The bag replay test imports SegmentReport from here.
 
 Parameters: ~manifest (path), ~flight (index in the manifest, default 0), ~estimator (node
-name, default /propulsion_estimator), ~tare_segment (index, default 0), ~results_file (optional
-YAML with the table)."""
+name, default /propulsion_estimator), ~tare_segment (index, default 0), ~table_file (optional:
+the printed table), ~results_file (optional: the rows as YAML)."""
 import math
 import os
 
@@ -106,8 +106,13 @@ def main():
             report.tare_answer = answer.message
             rospy.loginfo("~tare: %s", answer.message)
         rate.sleep()
-    print("\nPayload estimates of %s (tare: %s)\n%s\n" % (os.path.basename(bag_path), report.tare_answer,
-                                                         report.table()), flush=True)
+    text = "Payload estimates of %s (~tare: %s)\n%s\n" % (os.path.basename(bag_path), report.tare_answer,
+                                                         report.table())
+    print("\n" + text, flush=True)
+    table_file = rospy.get_param("~table_file", "")
+    if table_file:
+        with open(table_file, "w") as f:
+            f.write(text)
     results_file = rospy.get_param("~results_file", "")
     if results_file:
         with open(results_file, "w") as f:

@@ -1,6 +1,19 @@
 #!/bin/bash
-# The README's main job: replays the bundled flight bag through estimator_node (roslaunch starts a
-# ROS master if none runs) and prints the payload estimates beside the weighed masses.
+# The README's main job: replays the bundled flight bag (empty hover, then the thesis' 294 g and
+# 396 g payloads on a cable) through estimator_node and prints the payload estimates beside the
+# weighed masses. roslaunch starts a ROS master when none runs.
 set -eu
 export PATH=/usr/bin:$PATH
-exec roslaunch propulsion_estimator demo.launch "$@"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+echo "Replaying the bundled flight through estimator_node at 4x (about 30 s)."
+echo "Watch it from another shell: rostopic echo /propulsion_estimator/payload (or /totals, /motors)."
+if ! roslaunch propulsion_estimator demo.launch table_file:="$work/table.txt" "$@" >"$work/launch.log" 2>&1 \
+    || [ ! -s "$work/table.txt" ]; then
+  cat "$work/launch.log"
+  echo "run_demo.sh: the replay did not produce a report (roslaunch output above)" >&2
+  exit 1
+fi
+echo
+cat "$work/table.txt"

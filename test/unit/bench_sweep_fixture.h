@@ -7,12 +7,14 @@
 #include <vector>
 
 #include "propulsion_estimator/core/bench_log.h"
+#include "propulsion_estimator/core/bench_simulator.h"
+#include "propulsion_estimator/core/sim_params_yaml.h"
 #include "propulsion_estimator/core/units.h"
+#include "test_paths.h"
 
 // Constant-voltage PWM sweeps like thesis 4.1 (1200..1900 us in 5 us steps at 8 supply voltages,
-// 10.5..12.6 V), drawn from a known smooth propulsion chain plus Gaussian sensor noise. Tests
-// take their bench data from syntheticSweeps() only, so that the simulator's `simulate bench`
-// sweep can replace it in one place.
+// 10.5..12.6 V): simulatedSweeps() from the physics simulator (`simulate bench`), and
+// syntheticSweeps() from a known smooth chain whose noise-free values the tests can compare with.
 struct SweepSet {
   std::vector<propulsion_estimator::BenchLog> logs;  // one per voltage level
   // Standard deviation of the noise added to each measured quantity, in the fit's units.
@@ -72,6 +74,44 @@ inline SweepSet syntheticSweeps(unsigned seed = 42) {
       log.line_numbers.push_back(line++);
     }
     set.logs.push_back(std::move(log));
+  }
+  return set;
+}
+
+// The simulator's thesis sweep of the E300-2212-9443 (8 voltages, 1200..1900 us every 5 us), one
+// log per voltage as a bench writes one file per sweep. The noise of each quantity is what the
+// simulated sensors added: the RMS of logged minus noise-free values (quantization included;
+// power is measured voltage times measured current, as on the thesis bench).
+inline SweepSet simulatedSweeps(unsigned seed = 3) {
+  namespace pe = propulsion_estimator;
+  const pe::SimParams params = pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
+  pe::BenchLog truth;
+  const pe::BenchLog logged = pe::simulateBench(
+      params, pe::SimEffects{}, pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params), seed, &truth);
+  const std::vector<std::string>& run = logged.extra_columns.at("run");
+  SweepSet set;
+  auto rms = [&](pe::BenchColumn column, double scale) {
+    double sum = 0.0;
+    for (std::size_t r = 0; r < logged.rows(); ++r) {
+      sum += std::pow((logged.column(column)[r] - truth.column(column)[r]) * scale, 2);
+    }
+    return std::sqrt(sum / static_cast<double>(logged.rows()));
+  };
+  set.thrust_sigma_g = rms(pe::BenchColumn::kThrust, 1.0 / pe::kNewtonPerGramForce);
+  set.current_sigma_a = rms(pe::BenchColumn::kCurrent, 1.0);
+  set.power_sigma_w = rms(pe::BenchColumn::kPower, 1.0);
+  set.rpm_sigma = rms(pe::BenchColumn::kRpm, 1.0);
+  for (std::size_t r = 0; r < logged.rows(); ++r) {
+    if (r == 0 || run[r] != run[r - 1]) {
+      set.logs.emplace_back();
+      set.logs.back().source = "simulated_sweep_" + run[r] + ".csv";
+      set.logs.back().metadata = logged.metadata;
+    }
+    pe::BenchLog& log = set.logs.back();
+    for (int c = 0; c < pe::kBenchColumnCount; ++c) {
+      if (!logged.columns[c].empty()) log.columns[c].push_back(logged.columns[c][r]);
+    }
+    log.line_numbers.push_back(logged.line_numbers[r]);
   }
   return set;
 }

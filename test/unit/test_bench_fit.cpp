@@ -104,10 +104,12 @@ double smoothThrust(double x, double v) { return SmoothChain::thrustGrams(x, v);
 
 }  // namespace
 
-// --- synthetic sweeps: the held-out voltage level within the noise ------------------------------
+// --- the simulator's sweeps: the held-out voltage level within the noise -------------------------
 
-TEST(BenchFit, RecoversEachHeldOutVoltageLevelWithinTheNoise) {
-  const SweepSet set = syntheticSweeps();
+TEST(BenchFit, RecoversEachHeldOutVoltageLevelOfTheSimulatedSweepWithinItsNoise) {
+  const SweepSet set = simulatedSweeps();
+  ASSERT_EQ(set.logs.size(), 8u);
+  EXPECT_GT(set.thrust_sigma_g, 0.5);  // the sensors did add noise
   // Every interior level in turn (the two end levels would test extrapolation, not the model).
   for (std::size_t held_out = 1; held_out + 1 < set.logs.size(); ++held_out) {
     std::vector<pe::BenchLog> training;

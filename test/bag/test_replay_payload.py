@@ -1,0 +1,97 @@
+#!/usr/bin/env python3
+"""Bag replay test: the simulator flies a profile into a bag at test time (physics, independent of
+the response surfaces), the bag plays on simulated time through the running estimator_node, and
+the estimates are checked against the manifest's true masses and the bag's /sim/truth, with
+tolerances given as test parameters."""
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import rosbag
+import roslib.packages
+import rospkg
+import rospy
+import rostest
+from propulsion_estimator.msg import PayloadEstimate, PropulsionTotals, SimTruth
+from std_srvs.srv import Trigger
+
+sys.path.insert(0, os.path.join(rospkg.RosPack().get_path("propulsion_estimator"), "scripts"))
+from payload_report import SegmentReport, load_segments  # noqa: E402
+
+
+class ReplayPayloadTest(unittest.TestCase):
+    def test_payload_of_a_simulated_flight(self):
+        rospy.init_node("test_replay_payload")
+        work = tempfile.mkdtemp(prefix="pe_replay_")
+        bag_path, manifest = os.path.join(work, "flight.bag"), os.path.join(work, "flight.manifest.yaml")
+        simulate = roslib.packages.find_node("propulsion_estimator", "simulate")[0]
+        command = [simulate, "flight", "--params", rospy.get_param("~params"), "--profile", rospy.get_param("~profile"),
+                   "--seed", str(rospy.get_param("~seed")), "--bag", bag_path, "--manifest", manifest]
+        subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+        _, segments = load_segments(manifest)
+        with rosbag.Bag(bag_path) as bag:
+            start = bag.get_start_time()
+        report = SegmentReport(segments, start, tare_segment=0)
+
+        # Hover-averaged estimated thrust against the simulator's true thrust, per segment.
+        truth_sum, estimate_sum = [0.0] * len(segments), [0.0] * len(segments)
+
+        def in_segment(stamp):
+            for i, s in enumerate(segments):
+                if start + s["start"] <= stamp <= start + s["end"]:
+                    return i
+            return None
+
+        def on_truth(message):
+            i = in_segment(message.header.stamp.to_sec())
+            if i is not None:
+                truth_sum[i] += sum(m.thrust_n for m in message.motors)
+
+        def on_totals(message):
+            i = in_segment(message.header.stamp.to_sec())
+            if i is not None:
+                estimate_sum[i] += message.thrust_n
+
+        rospy.Subscriber("/propulsion_estimator/payload", PayloadEstimate, report.on_payload)
+        rospy.Subscriber("/propulsion_estimator/totals", PropulsionTotals, on_totals)
+        rospy.Subscriber("/sim/truth", SimTruth, on_truth)
+        rospy.wait_for_service("/propulsion_estimator/tare", timeout=30.0)
+        tare = rospy.ServiceProxy("/propulsion_estimator/tare", Trigger)
+
+        player = subprocess.Popen(["rosbag", "play", "--clock", "--quiet", "--delay=1",
+                                   "--rate=%s" % rospy.get_param("~rate"), bag_path])
+        try:
+            while player.poll() is None:
+                if report.tare_due(rospy.Time.now().to_sec()):
+                    answer = tare()
+                    report.tared = answer.success
+                    report.tare_answer = answer.message
+                time.sleep(0.1)  # wall time: simulated time stops with the bag
+        finally:
+            if player.poll() is None:
+                player.kill()
+        self.assertEqual(player.returncode, 0)
+        self.assertTrue(report.tared, "no successful ~tare in the empty segment: %s" % report.tare_answer)
+        print(report.table())
+
+        payload_tolerance = rospy.get_param("~payload_tolerance_kg")
+        total_tolerance = rospy.get_param("~total_tolerance_fraction")
+        thrust_tolerance = rospy.get_param("~thrust_tolerance_fraction")
+        for row in report.rows():
+            i = row["segment"]
+            self.assertEqual(row["state"], "hovering", "segment %d never hovering" % i)
+            self.assertGreater(row["samples"], 100, "segment %d" % i)
+            self.assertAlmostEqual(row["payload_kg"], row["true_payload_kg"], delta=payload_tolerance,
+                                   msg="segment %d payload" % i)
+            self.assertAlmostEqual(row["total_kg"], row["true_total_kg"], delta=total_tolerance * row["true_total_kg"],
+                                   msg="segment %d total mass" % i)
+            self.assertGreater(truth_sum[i], 0.0)
+            self.assertAlmostEqual(estimate_sum[i] / truth_sum[i], 1.0, delta=thrust_tolerance,
+                                   msg="segment %d: estimated over true thrust" % i)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("propulsion_estimator", "replay_payload", ReplayPayloadTest)
