@@ -88,7 +88,7 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
     return 1;
   }
   saveModelFile(result.model, args.out,
-                " Response surfaces fitted by fit_surfaces from " + std::to_string(logs.size()) +
+                "Response surfaces fitted by fit_surfaces from " + std::to_string(logs.size()) +
                     " bench logs; fit quality per output under 'fit'.");
   loadModelFile(args.out);  // what the estimator will do with it
   std::printf("model: %s\n", args.out.c_str());
