@@ -7,18 +7,13 @@
 #include <map>
 
 #include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/number_format.h"
 #include "propulsion_estimator/core/units.h"
 
 namespace propulsion_estimator {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), pattern, value);
-  return buffer;
-}
 
 double median(std::vector<double> values) {
   const std::size_t mid = values.size() / 2;
@@ -33,7 +28,7 @@ void requireFinite(const BenchLog& log, BenchColumn column) {
   for (std::size_t row = 0; row < values.size(); ++row) {
     if (!std::isfinite(values[row])) {
       throw ConfigError(log.source + ":" + std::to_string(log.line_numbers[row]) + ": " + benchColumnName(column) +
-                        ": " + format("%g", values[row]) + " is not a finite number");
+                        ": " + formatPrintf("%g", values[row]) + " is not a finite number");
     }
   }
 }
@@ -120,12 +115,12 @@ void assignVoltageLevels(const std::vector<BenchLog>& logs, const LevelOptions& 
   for (std::size_t l = 0; l < logs.size(); ++l) {
     if (!is_steady[l]) {
       data->notes.push_back(logs[l].source + ": voltage varies (" +
-                            format("%.2f", *std::min_element(logs[l].column(BenchColumn::kVoltage).begin(),
+                            formatPrintf("%.2f", *std::min_element(logs[l].column(BenchColumn::kVoltage).begin(),
                                                              logs[l].column(BenchColumn::kVoltage).end())) +
                             " to " +
-                            format("%.2f V", *std::max_element(logs[l].column(BenchColumn::kVoltage).begin(),
+                            formatPrintf("%.2f V", *std::max_element(logs[l].column(BenchColumn::kVoltage).begin(),
                                                                logs[l].column(BenchColumn::kVoltage).end())) +
-                            "): its rows are binned by voltage in " + format("%.2g V", options.voltage_bin_v) +
+                            "): its rows are binned by voltage in " + formatPrintf("%.2g V", options.voltage_bin_v) +
                             " bins");
       continue;
     }
@@ -140,10 +135,10 @@ void assignVoltageLevels(const std::vector<BenchLog>& logs, const LevelOptions& 
     }
     if (sagged == 0) continue;
     std::string note = logs[l].source + ": " + std::to_string(sagged) + " row" + (sagged > 1 ? "s" : "") +
-                       " more than " + format("%.1f V", kSagNoteV) + " off the sweep's " +
-                       format("%.2f V", log_median[l]) + " (down to " + format("%.2f V", v[worst]) + " at " +
-                       format("%.0f us", logs[l].column(BenchColumn::kPwm)[worst]);
-    if (logs[l].has(BenchColumn::kCurrent)) note += format(", %.2f A", logs[l].column(BenchColumn::kCurrent)[worst]);
+                       " more than " + formatPrintf("%.1f V", kSagNoteV) + " off the sweep's " +
+                       formatPrintf("%.2f V", log_median[l]) + " (down to " + formatPrintf("%.2f V", v[worst]) + " at " +
+                       formatPrintf("%.0f us", logs[l].column(BenchColumn::kPwm)[worst]);
+    if (logs[l].has(BenchColumn::kCurrent)) note += formatPrintf(", %.2f A", logs[l].column(BenchColumn::kCurrent)[worst]);
     note += "): the supply sagged; these rows are fitted at their measured voltage";
     data->notes.push_back(note);
   }

@@ -10,18 +10,13 @@
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/grouped_least_squares.h"
 #include "propulsion_estimator/core/model_validation.h"
+#include "propulsion_estimator/core/number_format.h"
 #include "propulsion_estimator/core/polynomial_2d.h"
 
 namespace propulsion_estimator {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), pattern, value);
-  return buffer;
-}
 
 const char* fileUnit(Output output) {
   switch (output) {
@@ -94,8 +89,8 @@ double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key,
                       " column; pass " + option_name);
   }
   if (count > 1 && hi > lo) {
-    notes->push_back(key + ": mean of " + std::to_string(count) + " logs (" + format("%g", lo) + " to " +
-                     format("%g", hi) + ")");
+    notes->push_back(key + ": mean of " + std::to_string(count) + " logs (" + formatPrintf("%g", lo) + " to " +
+                     formatPrintf("%g", hi) + ")");
   }
   return sum / count;
 }
@@ -133,7 +128,7 @@ ModelMetadata resolveMetadata(const std::vector<BenchLog>& logs, const FitOption
 
 std::string levelList(const std::vector<Level>& levels, const char* pattern) {
   std::string text;
-  for (std::size_t k = 0; k < levels.size() && k < 6; ++k) text += (k ? ", " : "") + format(pattern, levels[k].centre);
+  for (std::size_t k = 0; k < levels.size() && k < 6; ++k) text += (k ? ", " : "") + formatPrintf(pattern, levels[k].centre);
   if (levels.size() > 6) text += ", ...";
   return text;
 }
@@ -142,8 +137,8 @@ void requireSurfaceData(const BenchDataset& data) {
   const auto [vlo, vhi] = std::minmax_element(data.voltage_v.begin(), data.voltage_v.end());
   if (data.voltage_levels.size() < 2) {
     throw ConfigError("cannot fit a surface: one voltage level only (all " + std::to_string(data.rows()) +
-                      " rows are near " + format("%.2f V", data.voltage_levels[0].centre) + ", " +
-                      format("%.2f", *vlo) + " to " + format("%.2f V", *vhi) +
+                      " rows are near " + formatPrintf("%.2f V", data.voltage_levels[0].centre) + ", " +
+                      formatPrintf("%.2f", *vlo) + " to " + formatPrintf("%.2f V", *vhi) +
                       "); log sweeps at two or more supply voltages, or a battery discharge");
   }
   if (data.pwm_levels.size() < 3) {
@@ -206,7 +201,7 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const std::vec
                       std::to_string(options.min_points) + " are needed");
   }
   if (hi == lo) {
-    throw ConfigError("cannot fit " + name + ": it is " + format("%g", lo) + " " + fileUnit(output) + " in all " +
+    throw ConfigError("cannot fit " + name + ": it is " + formatPrintf("%g", lo) + " " + fileUnit(output) + " in all " +
                       std::to_string(points) + " rows (a sensor that was not connected?)" +
                       (output == Output::kThrust ? "" : "; leave it out with --without " + name));
   }
@@ -342,15 +337,15 @@ BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& opti
       group_of_row = data.voltage_level;
       groups = voltage_levels;
       description = "leave one voltage level out (" + std::to_string(groups) + " levels, " +
-                    format("%.2f", data.voltage_levels.front().centre) + " to " +
-                    format("%.2f V", data.voltage_levels.back().centre) + ")";
+                    formatPrintf("%.2f", data.voltage_levels.front().centre) + " to " +
+                    formatPrintf("%.2f V", data.voltage_levels.back().centre) + ")";
       break;
     case FitGrouping::kPwmLevel:
       group_of_row = data.pwm_level;
       groups = static_cast<int>(data.pwm_levels.size());
       description = "leave one PWM level out (" + std::to_string(groups) + " levels, " +
-                    format("%.0f", data.pwm_levels.front().centre) + " to " +
-                    format("%.0f us", data.pwm_levels.back().centre) + ")";
+                    formatPrintf("%.0f", data.pwm_levels.front().centre) + " to " +
+                    formatPrintf("%.0f us", data.pwm_levels.back().centre) + ")";
       if (voltage_levels == 2) description += "; 2 voltage levels only, so the voltage degree is at most 1";
       break;
     default:

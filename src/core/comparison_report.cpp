@@ -7,26 +7,18 @@
 
 #include "propulsion_estimator/core/bench_dataset.h"
 #include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/number_format.h"
+#include "propulsion_estimator/core/report_file.h"
 #include "propulsion_estimator/core/units.h"
 
 namespace propulsion_estimator {
 namespace {
 
 std::string number(double value, const char* pattern) {
-  if (std::isnan(value)) return "n/a";
-  char buffer[48];
-  std::snprintf(buffer, sizeof(buffer), pattern, value);
-  return buffer;
+  return std::isnan(value) ? "n/a" : formatPrintf(pattern, value);
 }
 
 std::string cell(double value) { return std::isnan(value) ? "" : number(value, "%.7g"); }
-
-std::ofstream openFile(const std::string& directory, const std::string& name) {
-  const std::string path = directory + "/" + name;
-  std::ofstream file(path);
-  if (!file) throw ConfigError(path + ": cannot open for writing");
-  return file;
-}
 
 void writeSamples(std::ofstream& out, const std::string& label, const std::vector<ComparisonSample>& samples) {
   for (const ComparisonSample& s : samples) {
@@ -81,13 +73,13 @@ std::string comparisonTables(const std::vector<ModelComparison>& models, const C
 void writeComparisonReportData(const std::vector<ModelComparison>& models, const ComparisonOptions& options,
                                const std::string& directory) {
   const std::string header = "model,voltage_v,pwm_us,thrust_g,current_a,power_w,efficiency_g_per_w,rpm\n";
-  std::ofstream curves = openFile(directory, "compare_curves.csv");
-  std::ofstream points = openFile(directory, "compare_points.csv");
+  std::ofstream curves = openReportFile(directory, "compare_curves.csv");
+  std::ofstream points = openReportFile(directory, "compare_points.csv");
   curves << header;
   points << header;
-  std::ofstream hover = openFile(directory, "compare_hover.csv");
+  std::ofstream hover = openReportFile(directory, "compare_hover.csv");
   hover << "model,thrust_per_motor_g,voltage_v,pwm_us,current_a,power_w,efficiency_g_per_w,endurance_min\n";
-  std::ofstream discharge = openFile(directory, "compare_discharge.csv");
+  std::ofstream discharge = openReportFile(directory, "compare_discharge.csv");
   discharge << "model,time_min,voltage_v,total_current_a,pwm_us\n";
   for (const ModelComparison& m : models) {
     writeSamples(curves, m.label, m.curve);

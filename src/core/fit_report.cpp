@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/number_format.h"
+#include "propulsion_estimator/core/report_file.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -21,20 +23,10 @@ constexpr long kMaxPlottedPoints = 20000;
 long plotStride(long samples) { return (samples + kMaxPlottedPoints - 1) / kMaxPlottedPoints; }
 
 std::string number(double value, const char* pattern = "%.7g") {
-  if (std::isnan(value)) return "";
-  char buffer[48];
-  std::snprintf(buffer, sizeof(buffer), pattern, value);
-  return buffer;
+  return std::isnan(value) ? "" : formatPrintf(pattern, value);
 }
 
 std::string baseName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
-
-std::ofstream openFile(const std::string& directory, const std::string& name) {
-  const std::string path = directory + "/" + name;
-  std::ofstream file(path);
-  if (!file) throw ConfigError(path + ": cannot open for writing");
-  return file;
-}
 
 const char* sourceName(OutputSource source) {
   switch (source) {
@@ -83,14 +75,14 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
   const ModelDomain& domain = model.domain();
   const std::vector<Output> outputs = modelled(model);
 
-  std::ofstream kinds = openFile(directory, "fit_outputs.csv");
+  std::ofstream kinds = openReportFile(directory, "fit_outputs.csv");
   kinds << "output,unit,source\n";
   for (Output output : kAllOutputs) {
     kinds << outputName(output) << "," << model.output(output).unit << "," << sourceName(model.output(output).source)
           << "\n";
   }
 
-  std::ofstream points = openFile(directory, "fit_points.csv");
+  std::ofstream points = openReportFile(directory, "fit_points.csv");
   // measured_at_pwm_level: the sample moved along the surface from its PWM to its PWM level's,
   // so that the voltage sections show the noise, not the width of a PWM bin.
   points << "output,log,line,voltage_level_v,pwm_level_us,pwm_us,voltage_v,off_level,measured,fitted,residual,"
@@ -113,7 +105,7 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
     }
   }
 
-  std::ofstream pwm_curves = openFile(directory, "fit_curves_pwm.csv");
+  std::ofstream pwm_curves = openReportFile(directory, "fit_curves_pwm.csv");
   pwm_curves << "output,voltage_v,pwm_us,fitted\n";
   for (Output output : outputs) {
     for (const Level& level : data.voltage_levels) {
@@ -125,7 +117,7 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
     }
   }
 
-  std::ofstream voltage_curves = openFile(directory, "fit_curves_voltage.csv");
+  std::ofstream voltage_curves = openReportFile(directory, "fit_curves_voltage.csv");
   voltage_curves << "output,pwm_us,voltage_v,fitted\n";
   const std::vector<int> sections = sectionPwmLevels(data);
   for (Output output : outputs) {
@@ -139,7 +131,7 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
     }
   }
 
-  std::ofstream grid = openFile(directory, "fit_surface_grid.csv");
+  std::ofstream grid = openReportFile(directory, "fit_surface_grid.csv");
   grid << "output,pwm_us,voltage_v,value\n";
   for (Output output : outputs) {
     for (int b = 0; b < kGridVoltage; ++b) {

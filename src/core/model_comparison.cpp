@@ -7,6 +7,7 @@
 
 #include "propulsion_estimator/core/bench_dataset.h"
 #include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/number_format.h"
 #include "propulsion_estimator/core/units.h"
 
 namespace propulsion_estimator {
@@ -14,12 +15,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kBisectionSteps = 60;
-
-std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), pattern, value);
-  return buffer;
-}
 
 double modelled(const PropulsionModel& model, Output output, double value) {
   return model.output(output).source == OutputSource::kNone ? kNaN : value;
@@ -62,7 +57,7 @@ void integrateHover(const PropulsionModel& model, const HoverOptions& hover, Mod
     const double voltage = hover.fullVoltage() - (hover.fullVoltage() - hover.cutoffVoltage()) * charge_ah / usable_ah;
     const std::optional<HoverPoint> point = hoverPoint(model, thrust_n, voltage);
     if (!point) {
-      result->hover_notes.push_back("hover ends at " + format("%.2f V", voltage) +
+      result->hover_notes.push_back("hover ends at " + formatPrintf("%.2f V", voltage) +
                                     ": the motors cannot give the hover thrust at that voltage" +
                                     (domain.outside == OutsideDomain::kReject ? " (or the model rejects it)" : ""));
       break;
@@ -74,9 +69,9 @@ void integrateHover(const PropulsionModel& model, const HoverOptions& hover, Mod
   }
   if (outside > 0) {
     result->hover_notes.push_back(
-        "the battery's " + format("%.2f", hover.cutoffVoltage()) + "-" + format("%.2f V", hover.fullVoltage()) +
-        " leaves the model's " + format("%.2f", domain.voltage_min_v) + "-" + format("%.2f V", domain.voltage_max_v) +
-        " for " + format("%.0f%%", 100.0 * outside / hover.steps) + " of the discharge; there the model " +
+        "the battery's " + formatPrintf("%.2f", hover.cutoffVoltage()) + "-" + formatPrintf("%.2f V", hover.fullVoltage()) +
+        " leaves the model's " + formatPrintf("%.2f", domain.voltage_min_v) + "-" + formatPrintf("%.2f V", domain.voltage_max_v) +
+        " for " + formatPrintf("%.0f%%", 100.0 * outside / hover.steps) + " of the discharge; there the model " +
         (domain.outside == OutsideDomain::kClamp ? "clamps the voltage to its domain" : "extrapolates"));
   }
   if (static_cast<int>(result->discharge.size()) == hover.steps) result->endurance_min = 60.0 * hours;
@@ -145,8 +140,8 @@ ModelComparison compareModel(const std::string& label, const PropulsionModel& mo
     const double x = domain.pwm_min_us + (domain.pwm_max_us - domain.pwm_min_us) * k / (options.curve_points - 1);
     const std::optional<ComparisonSample> s = sample(model, x, result.voltage_v);
     if (!s) {
-      throw ConfigError(label + ": the model rejects " + format("%.2f V", result.voltage_v) + " (outside its " +
-                        format("%.2f", domain.voltage_min_v) + "-" + format("%.2f V", domain.voltage_max_v) +
+      throw ConfigError(label + ": the model rejects " + formatPrintf("%.2f V", result.voltage_v) + " (outside its " +
+                        formatPrintf("%.2f", domain.voltage_min_v) + "-" + formatPrintf("%.2f V", domain.voltage_max_v) +
                         " domain, policy reject): choose --voltage inside it");
     }
     result.curve.push_back(*s);
@@ -194,9 +189,9 @@ ModelComparison compareModel(const std::string& label, const PropulsionModel& mo
     result.hover = hoverPoint(model, options.hover->thrustPerMotorN(), options.hover->midVoltage());
     if (!result.hover) {
       result.hover_notes.push_back("cannot hover: the motors give less than the hover thrust at " +
-                                   format("%.2f V", options.hover->midVoltage()));
+                                   formatPrintf("%.2f V", options.hover->midVoltage()));
     } else if (!result.hover->in_domain) {
-      result.hover_notes.push_back("the hover point's " + format("%.2f V", options.hover->midVoltage()) +
+      result.hover_notes.push_back("the hover point's " + formatPrintf("%.2f V", options.hover->midVoltage()) +
                                    " is outside the model's domain");
     }
     integrateHover(model, *options.hover, &result);

@@ -14,4 +14,10 @@ std::string formatNumber(double value) {
   return buffer;
 }
 
+std::string formatPrintf(const char* pattern, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), pattern, value);
+  return buffer;
+}
+
 }  // namespace propulsion_estimator

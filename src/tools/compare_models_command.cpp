@@ -12,6 +12,7 @@
 #include "propulsion_estimator/core/model_comparison.h"
 #include "propulsion_estimator/core/model_yaml.h"
 #include "report_plotter.h"
+#include "tool_command.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -24,8 +25,7 @@ struct Arguments {
   std::optional<double> capacity_mah;
   HoverOptions hover;
   std::string report;
-  std::string python = "python3";
-  std::string plot_script;
+  ReportPlotter plotter;
 };
 
 // "dir/g1.yaml=a.csv,b/" -> model path and log arguments.
@@ -71,7 +71,7 @@ int compare(Arguments args, const BenchReadOptions& read_options) {
   if (!args.report.empty()) {
     std::filesystem::create_directories(args.report);
     writeComparisonReportData(comparisons, options, args.report);
-    runPlotScript("compare", args.report, args.python, args.plot_script);
+    args.plotter.plot("compare", args.report);
     const std::string path = args.report + "/compare_report.md";
     std::ofstream markdown(path);
     markdown << comparisonReportMarkdown(comparisons, options);
@@ -106,23 +106,8 @@ int runCompareModels(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--report", args.report, "Directory for the report (Markdown, CSV data, PNG figures)");
   log_options.addTo(app);
-  app.add_option("--python", args.python, "Python interpreter with matplotlib, for the report's figures")
-      ->capture_default_str();
-  app.add_option("--plot-script", args.plot_script, "plot_bench_report.py (default: next to this executable)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
-  try {
-    return compare(args, log_options.readOptions());
-  } catch (const ConfigError& e) {
-    std::fprintf(stderr, "compare_models: %s\n", e.what());
-    return 1;
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::fprintf(stderr, "compare_models: %s\n", e.what());
-    return 1;
-  }
+  args.plotter.addTo(app);
+  return runToolCommand("compare_models", app, argc, argv, [&] { return compare(args, log_options.readOptions()); });
 }
 
 }  // namespace propulsion_estimator

@@ -13,6 +13,7 @@
 #include "propulsion_estimator/core/fit_report.h"
 #include "propulsion_estimator/core/model_yaml.h"
 #include "report_plotter.h"
+#include "tool_command.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -26,8 +27,7 @@ struct Arguments {
   std::vector<std::string> without;
   std::string outside = "clamp";
   std::optional<std::string> supply;
-  std::string python = "python3";
-  std::string plot_script;
+  ReportPlotter plotter;
 };
 
 void printSummary(const BenchFit& fit) {
@@ -75,7 +75,7 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
   if (!args.report.empty()) {
     std::filesystem::create_directories(args.report);
     writeFitReportData(result, args.report);
-    runPlotScript("fit", args.report, args.python, args.plot_script);
+    args.plotter.plot("fit", args.report);
     const std::string markdown_path = args.report + "/fit_report.md";
     std::ofstream markdown(markdown_path);
     markdown << fitReportMarkdown(result, result.validation_error.empty() ? args.out : "");
@@ -142,23 +142,8 @@ int runFitSurfaces(int argc, char** argv) {
                  "Voltage bin width for logs whose voltage wanders, e.g. battery discharges (V)")
       ->capture_default_str();
   log_options.addTo(app);
-  app.add_option("--python", args.python, "Python interpreter with matplotlib, for the report's figures")
-      ->capture_default_str();
-  app.add_option("--plot-script", args.plot_script, "plot_bench_report.py (default: next to this executable)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
-  try {
-    return fit(args, options, log_options.readOptions());
-  } catch (const ConfigError& e) {
-    std::fprintf(stderr, "fit_surfaces: %s\n", e.what());
-    return 1;
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::fprintf(stderr, "fit_surfaces: %s\n", e.what());
-    return 1;
-  }
+  args.plotter.addTo(app);
+  return runToolCommand("fit_surfaces", app, argc, argv, [&] { return fit(args, options, log_options.readOptions()); });
 }
 
 }  // namespace propulsion_estimator

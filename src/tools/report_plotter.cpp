@@ -52,9 +52,15 @@ std::string findScript(const std::string& script) {
 
 }  // namespace
 
-void runPlotScript(const std::string& mode, const std::string& directory, const std::string& python,
-                   const std::string& script) {
-  const std::string path = findScript(script);
+void ReportPlotter::addTo(CLI::App& app) {
+  app.add_option("--python", python_, "Python interpreter with matplotlib, for the report's figures")
+      ->capture_default_str();
+  app.add_option("--plot-script", script_, "plot_bench_report.py (default: next to this executable)");
+}
+
+void ReportPlotter::plot(const std::string& mode, const std::string& directory) const {
+  const std::string& python = python_;
+  const std::string path = findScript(script_);
   const int check = run({python, "-c", "import matplotlib, numpy"}, true);
   if (check != 0) {
     throw ConfigError(python + (check < 0 ? " cannot be run" : " cannot import matplotlib and numpy") +

@@ -2,13 +2,23 @@
 
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 namespace propulsion_estimator {
 
-// Runs scripts/plot_bench_report.py (`mode` "fit" or "compare") on a report directory. The
-// script is `script` when given, else the one installed next to this executable
-// (/proc/self/exe). Throws ConfigError when the script is missing, when `python` cannot import
-// matplotlib, or when the script fails.
-void runPlotScript(const std::string& mode, const std::string& directory, const std::string& python,
-                   const std::string& script);
+// Draws a report's figures with scripts/plot_bench_report.py and matplotlib; --python and
+// --plot-script choose the interpreter and the script (default: python3, and the script installed
+// next to this executable, found through /proc/self/exe).
+class ReportPlotter {
+ public:
+  void addTo(CLI::App& app);
+  // Runs the script in `mode` ("fit" or "compare") on a report directory. Throws ConfigError when
+  // the script is missing, when the interpreter cannot import matplotlib, or when the script fails.
+  void plot(const std::string& mode, const std::string& directory) const;
+
+ private:
+  std::string python_ = "python3";
+  std::string script_;
+};
 
 }  // namespace propulsion_estimator

@@ -8,4 +8,7 @@ namespace propulsion_estimator {
 // for files that must round-trip and for messages that quote a value.
 std::string formatNumber(double value);
 
+// `value` formatted with one printf conversion ("%.2f", "%.4g"): for reports and messages.
+std::string formatPrintf(const char* pattern, double value);
+
 }  // namespace propulsion_estimator
