@@ -4,6 +4,9 @@
 SHELL := /bin/bash
 export PATH := /usr/bin:$(PATH)
 export PYTHONDONTWRITEBYTECODE := 1
+# Everything runs on this machine: ROS nodes address each other as localhost, which works where
+# the host name does not resolve (containers, fresh CI machines).
+export ROS_HOSTNAME ?= localhost
 
 WS := $(CURDIR)/.ws
 SETUP := source $(WS)/install/setup.sh
