@@ -20,7 +20,7 @@ std::size_t windowCapacity(double span_s, double rate_hz) {
 const char* rejectionName(Rejection rejection) {
   static const char* const kNames[kRejectionCount] = {
       "none",           "bad_voltage",  "bad_imu",         "bad_velocity", "no_battery",    "stale_battery",
-      "disarmed",       "too_few_channels", "time_backwards", "outside_domain"};
+      "disarmed",       "too_few_channels", "time_backwards", "outside_domain", "non_finite_estimate"};
   return kNames[static_cast<int>(rejection)];
 }
 
@@ -49,6 +49,10 @@ std::string describe(const RejectionDetail& d) {
       out << "motor outputs ignored: channel " << d.channel << " at " << d.value
           << " us (or the voltage) outside the model's domain, which says reject";
       break;
+    case Rejection::kNonFiniteEstimate:
+      out << "motor outputs ignored: the model gives a non-finite value for channel " << d.channel << " at "
+          << d.value << " us and " << d.limit << " V (a pole of a rational surface when extrapolating?)";
+      break;
   }
   return out.str();
 }
@@ -70,6 +74,7 @@ Estimator::Estimator(PropulsionModel model, Vehicle vehicle, EstimatorConfig con
   }
   if (configured_empty_mass_kg_) payload_.setEmptyMass(*configured_empty_mass_kg_, configured_source_);
   output_.motors.resize(vehicle_.rotors.size());
+  scratch_.resize(vehicle_.rotors.size());
   for (std::size_t i = 0; i < output_.motors.size(); ++i) output_.motors[i].channel = config_.motor_channels[i];
   output_.payload = payload_.estimate();
 }
@@ -150,7 +155,25 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   }
   if (stamp_s == 0.0) stamp_s = receipt_s;  // an unstamped message is taken as stamped on arrival
   if (have_stamp_ && stamp_s < last_stamp_s_) {
-    return reject(Rejection::kTimeBackwards, 0, last_stamp_s_ - stamp_s);
+    // A message out of order is refused; stamps that restart (an autopilot reboot, a time-sync
+    // reset, a bag looped without --clock) would otherwise refuse everything that follows.
+    if (last_stamp_s_ - stamp_s <= config_.clock_jump_reset_s) {
+      return reject(Rejection::kTimeBackwards, 0, last_stamp_s_ - stamp_s);
+    }
+    clearWindows();
+    ++counters_.clock_resets;
+  }
+  // Every motor is evaluated before anything is committed, so that a refusal leaves the
+  // estimates as they were.
+  for (std::size_t i = 0; i < scratch_.size(); ++i) {
+    const int channel = config_.motor_channels[i];
+    const double pwm = channels[channel - 1];
+    if (!model_.evaluate(pwm, voltage_v_, &scratch_[i])) return reject(Rejection::kOutsideDomain, channel, pwm);
+    const OperatingPoint& p = scratch_[i];
+    if (!std::isfinite(p.thrust_n) || !std::isfinite(p.current_a) || !std::isfinite(p.power_w) ||
+        !std::isfinite(p.efficiency_n_per_w)) {
+      return reject(Rejection::kNonFiniteEstimate, channel, pwm, voltage_v_);
+    }
   }
 
   const bool imu_fresh = have_imu_ && receipt_s - imu_receipt_s_ <= config_.imu_timeout_s;
@@ -163,9 +186,7 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   for (std::size_t i = 0; i < vehicle_.rotors.size(); ++i) {
     MotorOutput& motor = output_.motors[i];
     motor.pwm_us = channels[motor.channel - 1];
-    if (!model_.evaluate(motor.pwm_us, voltage_v_, &motor.estimate)) {
-      return reject(Rejection::kOutsideDomain, motor.channel, motor.pwm_us);
-    }
+    motor.estimate = scratch_[i];
     const Rotor& rotor = vehicle_.rotors[i];
     const double thrust = motor.estimate.thrust_n;
     totals.thrust_n += thrust;

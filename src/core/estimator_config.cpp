@@ -9,6 +9,8 @@
 namespace propulsion_estimator {
 namespace {
 
+constexpr double kMaxRateHz = 1000.0;
+
 void requirePositive(double value, const char* name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     std::ostringstream message;
@@ -46,10 +48,20 @@ void EstimatorConfig::validate(std::size_t rotors) const {
   requirePositive(accel_filter_s, "imu/accel_filter_s");
   requirePositive(accel_bias_filter_s, "imu/accel_bias_filter_s");
   requirePositive(max_rate_hz, "max_rate_hz");
+  if (max_rate_hz > kMaxRateHz) {
+    message << "max_rate_hz: " << max_rate_hz << " is above " << kMaxRateHz << " (RCOut comes at 10-50 Hz)";
+    throw ConfigError(message.str());
+  }
   requirePositive(clock_jump_reset_s, "clock_jump_reset_s");
   if (empty_mass_kg) requirePositive(*empty_mass_kg, "empty_mass_kg");
   hover.validate();
   payload.validate();
+  const double window_samples = payload.averaging_window_s * max_rate_hz;
+  if (static_cast<double>(payload.min_samples) > window_samples) {
+    message << "payload/min_samples: " << payload.min_samples << " samples never fit in payload/averaging_window_s "
+            << payload.averaging_window_s << " s at max_rate_hz " << max_rate_hz;
+    throw ConfigError(message.str());
+  }
 }
 
 }  // namespace propulsion_estimator

@@ -1,5 +1,7 @@
 #include "propulsion_estimator/core/model_yaml.h"
 
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <regex>
 #include <stdexcept>
@@ -239,6 +241,18 @@ void saveModelFile(const PropulsionModel& model, const std::string& path, const 
   if (!file) throw ConfigError(path + ": cannot open for writing");
   file << modelToYaml(model, comment);
   if (!file) throw ConfigError(path + ": cannot write");
+}
+
+std::string modelFingerprint(const PropulsionModel& model) {
+  // FNV-1a, 64 bit: stable across runs and machines, unlike std::hash.
+  std::uint64_t hash = 14695981039346656037ULL;
+  for (const unsigned char byte : modelToYaml(model)) {
+    hash ^= byte;
+    hash *= 1099511628211ULL;
+  }
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash));
+  return text;
 }
 
 }  // namespace propulsion_estimator

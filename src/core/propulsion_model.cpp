@@ -143,7 +143,8 @@ std::array<double, kOutputCount> PropulsionModel::computeSi(double pwm_us, doubl
   std::array<double, kOutputCount> si{};
   for (Output output : evaluation_order_) {
     const double value = evaluateSi(output, pwm_us, voltage_v, si);
-    si[index(output)] = (output != Output::kEfficiency && value < 0.0) ? 0.0 : value;
+    // Floor a finite dip below zero; a non-finite value stays visible to the caller.
+    si[index(output)] = (output != Output::kEfficiency && value < 0.0 && std::isfinite(value)) ? 0.0 : value;
   }
   return si;
 }

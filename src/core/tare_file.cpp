@@ -16,8 +16,8 @@ std::optional<TareRecord> loadTareFile(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) return std::nullopt;
   const YamlMap root = loadYamlFile(path);
-  root.allowOnly({"empty_mass_kg", "model"});
-  TareRecord record{root.number("empty_mass_kg"), root.text("model")};
+  root.allowOnly({"empty_mass_kg", "model", "model_fingerprint"});
+  TareRecord record{root.number("empty_mass_kg"), root.text("model"), root.text("model_fingerprint")};
   if (record.empty_mass_kg <= 0.0) root.fail("empty_mass_kg", "must be positive");
   return record;
 }
@@ -33,7 +33,7 @@ void saveTareFile(const std::string& path, const TareRecord& record) {
     YAML::Emitter yaml;
     yaml << YAML::Comment("Written by propulsion_estimator's ~tare service.") << YAML::Newline << YAML::BeginMap
          << YAML::Key << "empty_mass_kg" << YAML::Value << mass << YAML::Key << "model" << YAML::Value
-         << record.model << YAML::EndMap;
+         << record.model << YAML::Key << "model_fingerprint" << YAML::Value << record.model_fingerprint << YAML::EndMap;
     std::ofstream out(temporary);
     out << yaml.c_str() << "\n";
     if (!out) throw ConfigError(path + ": cannot write the tare file");

@@ -71,13 +71,14 @@ Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
   if (!model) throw ConfigError(source + ": not a valid URDF robot description");
 
-  static const std::regex kRotorJoint("rotor_([0-9]+)_joint");
+  // Motor numbers are small: at most 32 RC output channels.
+  static const std::regex kRotorJoint("rotor_([0-9]{1,2})_joint");
   std::map<int, Rotor> rotors;
   for (const auto& [name, joint] : model->joints_) {
     std::smatch match;
     if (!std::regex_match(name, match, kRotorJoint)) continue;
     if (joint->type != urdf::Joint::CONTINUOUS && joint->type != urdf::Joint::REVOLUTE) {
-      throw ConfigError(source + ": joint " + name + ": a rotor joint must be continuous");
+      throw ConfigError(source + ": joint " + name + ": a rotor joint must be continuous (or revolute)");
     }
     const int number = std::stoi(match[1]);
     const Eigen::Isometry3d pose = linkPose(*model, joint->child_link_name);

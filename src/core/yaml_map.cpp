@@ -29,6 +29,12 @@ YamlMap::YamlMap(const YAML::Node& node, std::string source, std::string path)
     throw ConfigError(source_ + ":" + lineOf(node_) + ": " + (path_.empty() ? "document" : path_) +
                       ": expected a mapping, got " + describe(node_));
   }
+  for (const auto& entry : node_) {
+    if (!entry.first.IsScalar()) {
+      throw ConfigError(source_ + ":" + lineOf(entry.first) + ": " + (path_.empty() ? "document" : path_) +
+                        ": a key must be a name, got " + describe(entry.first));
+    }
+  }
 }
 
 std::string YamlMap::keyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }

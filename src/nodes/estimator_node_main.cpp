@@ -1,6 +1,7 @@
+#include <exception>
+
 #include <ros/ros.h>
 
-#include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/ros/estimator_node.h"
 
 int main(int argc, char** argv) {
@@ -8,7 +9,7 @@ int main(int argc, char** argv) {
   try {
     propulsion_estimator::EstimatorNode node(ros::NodeHandle(), ros::NodeHandle("~"));
     ros::spin();
-  } catch (const propulsion_estimator::ConfigError& e) {
+  } catch (const std::exception& e) {  // ConfigError: a refused parameter, model, URDF or tare file
     ROS_FATAL_STREAM(e.what());
     return 1;
   }

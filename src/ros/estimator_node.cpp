@@ -37,6 +37,7 @@ double rate(std::uint64_t now, std::uint64_t before, double seconds) {
 EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : params_(readEstimatorNodeParams(private_nh)), diagnostics_(nh, private_nh) {
   PropulsionModel model = loadModelFile(params_.model);
+  model_fingerprint_ = modelFingerprint(model);
   const ModelMetadata& meta = model.metadata();
   ROS_INFO_STREAM("model " << params_.model << ": " << meta.esc << " + " << meta.motor << " + " << meta.propeller
                            << ", domain " << model.domain().pwm_min_us << "-" << model.domain().pwm_max_us << " us, "
@@ -47,12 +48,13 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
   if (!params_.tare_file.empty()) {
     if (const std::optional<TareRecord> tare = loadTareFile(params_.tare_file)) {
-      if (tare->model == params_.model) {
+      if (tare->model_fingerprint == model_fingerprint_) {
         estimator_->setEmptyMass(tare->empty_mass_kg, EmptyMassSource::kTareFile);
         ROS_INFO_STREAM("empty mass " << tare->empty_mass_kg << " kg from tare file " << params_.tare_file);
       } else {
-        ROS_WARN_STREAM("tare file " << params_.tare_file << " ignored: it was taken with model " << tare->model
-                                     << ", not " << params_.model);
+        ROS_WARN_STREAM("tare file " << params_.tare_file << " ignored: it was taken with another model (" << tare->model
+                                     << ", fingerprint " << tare->model_fingerprint << ") than " << params_.model
+                                     << " (fingerprint " << model_fingerprint_ << ")");
       }
     }
   }
@@ -197,7 +199,7 @@ bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
   response.message = tare.message;
   if (tare.ok && !params_.tare_file.empty()) {
     try {
-      saveTareFile(params_.tare_file, TareRecord{tare.empty_mass_kg, params_.model});
+      saveTareFile(params_.tare_file, TareRecord{tare.empty_mass_kg, params_.model, model_fingerprint_});
       response.message += ", saved to " + params_.tare_file;
     } catch (const ConfigError& e) {
       response.message += std::string(", NOT persisted: ") + e.what();
@@ -240,6 +242,7 @@ void EstimatorNode::diagnoseInputs(diagnostic_updater::DiagnosticStatusWrapper& 
   const double seconds = (now.time - inputs_before_.time).toSec();
   const char* names[kInputCount] = {"rc_out rate (Hz)", "battery rate (Hz)", "imu rate (Hz)", "velocity rate (Hz)"};
   for (int i = 0; i < kInputCount; ++i) status.add(names[i], rate(now.received[i], inputs_before_.received[i], seconds));
+  const double rc_out_rate = rate(now.received[kRcOut], inputs_before_.received[kRcOut], seconds);
   const double age = estimator_->batteryAge(now.time.toSec());
   status.add("battery age (s)", age);
   status.add("imu messages without orientation", imu_without_orientation_);
@@ -255,6 +258,12 @@ void EstimatorNode::diagnoseInputs(diagnostic_updater::DiagnosticStatusWrapper& 
     status.summary(DiagnosticStatus::ERROR, message.str());
   } else if (now.received[kRcOut] == inputs_before_.received[kRcOut]) {
     status.summary(DiagnosticStatus::WARN, "no motor outputs on " + params_.rc_out_topic);
+  } else if (rc_out_rate > params_.estimator.max_rate_hz) {
+    std::ostringstream message;
+    message.precision(3);
+    message << params_.rc_out_topic << " at " << rc_out_rate << " Hz, above max_rate_hz "
+            << params_.estimator.max_rate_hz << ": the hover and averaging windows cover less time than configured";
+    status.summary(DiagnosticStatus::WARN, message.str());
   } else {
     status.summary(DiagnosticStatus::OK, "receiving");
   }

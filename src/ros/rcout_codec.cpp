@@ -23,7 +23,16 @@ bool RcOutDecoder::decode(const topic_tools::ShapeShifter& message, RcOutMessage
     ros::serialization::OStream writer(buffer_.data(), size);
     message.write(writer);
     ros::serialization::IStream reader(buffer_.data(), size);
-    ros::serialization::deserialize(reader, out->header);
+    // The header by hand: roscpp's string deserializer builds a temporary std::string, which
+    // allocates for a frame_id longer than the small-string buffer; assign() reuses capacity.
+    std_msgs::Header& header = out->header;
+    ros::serialization::deserialize(reader, header.seq);
+    ros::serialization::deserialize(reader, header.stamp.sec);
+    ros::serialization::deserialize(reader, header.stamp.nsec);
+    std::uint32_t frame_length = 0;
+    ros::serialization::deserialize(reader, frame_length);
+    const char* frame = reinterpret_cast<const char*>(reader.advance(frame_length));
+    header.frame_id.assign(frame, frame_length);
     std::uint32_t count = 0;
     ros::serialization::deserialize(reader, count);
     if (count > reader.getLength() / sizeof(std::uint16_t)) {

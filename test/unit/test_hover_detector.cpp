@@ -95,5 +95,10 @@ TEST(HoverConfig, RefusesNonsense) {
   }
   config = pe::HoverConfig{};
   config.min_window_fill = 1.5;
-  EXPECT_THROW(config.validate(), pe::ConfigError);
+  try {
+    config.validate();
+    FAIL();
+  } catch (const pe::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "hover/min_window_fill: must be in (0, 1], got 1.5");
+  }
 }

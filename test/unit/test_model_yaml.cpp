@@ -102,6 +102,20 @@ TEST(ModelYaml, RefusesWrongType) {
   EXPECT_EQ(refusal(replaced("unit: N", "unit: A")), "m.yaml:16: outputs.thrust.unit: 'A' is not a unit of thrust");
 }
 
+TEST(ModelYaml, RefusesAKeyThatIsNotAName) {
+  EXPECT_EQ(refusal(replaced("  supply: battery", "  supply: battery\n  [1, 2]: 3")),
+            "m.yaml:9: metadata: a key must be a name, got a list");
+}
+
+TEST(ModelYaml, FingerprintIdentifiesTheModelNotItsFile) {
+  const pe::PropulsionModel a = pe::parseModelYaml(kValid, "a.yaml");
+  const pe::PropulsionModel b = pe::parseModelYaml("# another file, same model\n" + kValid, "/elsewhere/b.yaml");
+  const pe::PropulsionModel c = pe::parseModelYaml(replaced("p01: 0.3", "p01: 0.31"), "a.yaml");
+  EXPECT_EQ(pe::modelFingerprint(a).size(), 16u);
+  EXPECT_EQ(pe::modelFingerprint(a), pe::modelFingerprint(b));
+  EXPECT_NE(pe::modelFingerprint(a), pe::modelFingerprint(c));
+}
+
 TEST(ModelYaml, RefusesNonFiniteCoefficient) {
   EXPECT_EQ(refusal(replaced("p10: 3.0", "p10: .nan")),
             "m.yaml:18: outputs.thrust.polynomial.p10: expected a finite number, got '.nan'");

@@ -1,4 +1,5 @@
-// Its own test binary: it replaces the global operator new to count allocations.
+// Its own test binary: it replaces the global operator new to count allocations. What the node
+// does per RCOut message besides roscpp's own (de)serialization: decode, then estimate.
 #include <atomic>
 #include <cstdlib>
 #include <new>
@@ -6,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "estimator_fixture.h"
+#include "propulsion_estimator/ros/rcout_codec.h"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -33,6 +35,22 @@ TEST(Estimator, EvaluatesMotorOutputsWithoutHeapAllocation) {
   }
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_TRUE(f.estimator.output().hover.hovering);
+}
+
+TEST(RcOutDecoder, DecodesWithoutHeapAllocationOnceWarm) {
+  pe::RcOutMessage sent;
+  sent.header.frame_id = "a_frame_id_longer_than_the_small_string_buffer";
+  sent.channels.assign(16, 1500);
+  const topic_tools::ShapeShifter shifter = pe::encodeRcOut(sent);
+  pe::RcOutDecoder decoder;
+  pe::RcOutMessage received;
+  std::string error;
+  ASSERT_TRUE(decoder.decode(shifter, &received, &error));
+  const long before = g_allocations.load();
+  for (int k = 0; k < 1000; ++k) ASSERT_TRUE(decoder.decode(shifter, &received, &error));
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(received.header.frame_id, sent.header.frame_id);
+  EXPECT_EQ(received.channels, sent.channels);
 }
 
 int main(int argc, char** argv) {

@@ -58,14 +58,15 @@ TEST(TareFile, RoundTripsAndRefusesGarbage) {
   const std::string path = testing::TempDir() + "/pe_tare/tare.yaml";
   pe::removeTareFile(path);
   EXPECT_FALSE(pe::loadTareFile(path).has_value());
-  pe::saveTareFile(path, {1.2983456789012345, "/models/with \"quotes\".yaml"});
+  pe::saveTareFile(path, {1.2983456789012345, "/models/with \"quotes\".yaml", "0123456789abcdef"});
   const auto record = pe::loadTareFile(path);
   ASSERT_TRUE(record.has_value());
   EXPECT_EQ(record->empty_mass_kg, 1.2983456789012345);
   EXPECT_EQ(record->model, "/models/with \"quotes\".yaml");
+  EXPECT_EQ(record->model_fingerprint, "0123456789abcdef");
   {
     std::ofstream out(path);
-    out << "empty_mass_kg: heavy\nmodel: m.yaml\n";
+    out << "empty_mass_kg: heavy\nmodel: m.yaml\nmodel_fingerprint: 0123456789abcdef\n";
   }
   try {
     pe::loadTareFile(path);

@@ -61,3 +61,4 @@ TEST(RcOutCodec, RefusesATruncatedPayload) {
   EXPECT_FALSE(decoder.decode(shifter, &received, &error));
   EXPECT_EQ(error, "malformed mavros_msgs/RCOut: 1000 channels announced, 8 bytes left");
 }
+

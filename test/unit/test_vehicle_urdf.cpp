@@ -52,5 +52,9 @@ TEST(VehicleUrdf, RefusesBadDescriptions) {
             "v.urdf: rotor_1_joint is missing (rotors are numbered 1..1 without gaps)");
   EXPECT_EQ(refusal(R"(<robot name="r"><link name="base_link"/><link name="p"/>
     <joint name="rotor_1_joint" type="fixed"><parent link="base_link"/><child link="p"/></joint></robot>)"),
-            "v.urdf: joint rotor_1_joint: a rotor joint must be continuous");
+            "v.urdf: joint rotor_1_joint: a rotor joint must be continuous (or revolute)");
+  // Not a motor number: an ordinary joint, so the description has no rotors.
+  EXPECT_EQ(refusal(R"(<robot name="r"><link name="base_link"/><link name="p"/>
+    <joint name="rotor_99999999999_joint" type="continuous"><parent link="base_link"/><child link="p"/></joint></robot>)"),
+            "v.urdf: no rotor joints (expected joints named rotor_1_joint, rotor_2_joint, ...)");
 }

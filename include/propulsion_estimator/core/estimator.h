@@ -3,6 +3,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,9 @@ enum class Rejection {
   kTooFewChannels,  // RCOut shorter than the highest motor channel
   kTimeBackwards,   // RCOut stamp older than the previous accepted one
   kOutsideDomain,   // outside the model's domain and the model says reject
+  kNonFiniteEstimate,  // the model gives NaN or infinity (a rational surface extrapolated to its pole)
 };
-constexpr int kRejectionCount = 10;
+constexpr int kRejectionCount = 11;
 const char* rejectionName(Rejection rejection);
 
 // The last refusal with what it was about, turned into text only when someone asks.
@@ -149,6 +151,7 @@ class Estimator {
   bool have_stamp_ = false;
   double last_receipt_s_ = 0.0;
 
+  std::vector<OperatingPoint> scratch_;  // this message's motors, committed to output_ once all are valid
   EstimatorOutput output_;
   EstimatorCounters counters_;
   RejectionDetail last_rejection_;

@@ -19,4 +19,8 @@ PropulsionModel loadModelFile(const std::string& path);
 std::string modelToYaml(const PropulsionModel& model, const std::string& comment = "");
 void saveModelFile(const PropulsionModel& model, const std::string& path, const std::string& comment = "");
 
+// 16 hex digits identifying the surfaces, domain and metadata of a model (a hash of what
+// modelToYaml writes), whatever file it was read from: a tare is valid only with its model.
+std::string modelFingerprint(const PropulsionModel& model);
+
 }  // namespace propulsion_estimator

@@ -8,10 +8,13 @@ namespace propulsion_estimator {
 // The tare survives a restart of the node in a small YAML file:
 //   empty_mass_kg: 1.3154
 //   model: <model file the tare was taken with>
-// A tare is only meaningful with the model it was measured through, so the file names it.
+//   model_fingerprint: <modelFingerprint() of that model>
+// A tare is only meaningful with the model it was measured through: the fingerprint tells
+// whether the model now loaded is that one, wherever its file lies; the path is for people.
 struct TareRecord {
   double empty_mass_kg = 0.0;
   std::string model;
+  std::string model_fingerprint;
 };
 
 // nullopt when the file does not exist; ConfigError naming the file for anything unreadable.

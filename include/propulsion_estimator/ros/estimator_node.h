@@ -50,6 +50,7 @@ class EstimatorNode {
   void diagnosePayload(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   EstimatorNodeParams params_;
+  std::string model_fingerprint_;
   std::unique_ptr<Estimator> estimator_;
 
   ros::Subscriber rc_out_sub_, battery_sub_, imu_sub_, velocity_sub_;
