@@ -6,8 +6,9 @@ during the manifest's empty segment, then prints, for every segment, the estimat
 payload mass beside the weighed ones. The bag replay test imports SegmentReport from here.
 
 Parameters: ~manifest (path), ~flight (index in the manifest, default 0), ~estimator (node
-name, default /propulsion_estimator), ~tare_segment (index, default 0), ~table_file (optional:
-the printed table), ~results_file (optional: the rows as YAML)."""
+name, default /propulsion_estimator), ~tare_segment (index, default 0), ~tolerance_kg
+(optional: adds a verdict line on the payload errors), ~table_file (optional: the printed
+table), ~results_file (optional: the rows as YAML)."""
 import math
 import os
 
@@ -70,6 +71,17 @@ class SegmentReport:
                 state=message.state if message else "never hovering"))
         return rows
 
+    def verdict(self, tolerance_kg):
+        """(ok, sentence): whether every segment's payload estimate lies within tolerance_kg."""
+        if not self.tared:
+            return False, "No successful ~tare in segment %d: %s" % (self.tare_segment, self.tare_answer)
+        for r in self.rows():
+            error = abs(r["payload_kg"] - r["true_payload_kg"])
+            if not error <= tolerance_kg:  # NaN fails too
+                return False, "Segment %d: payload estimate %.3f kg, weighed %.3f kg: off by more than %.3f kg." % (
+                    r["segment"], r["payload_kg"], r["true_payload_kg"], tolerance_kg)
+        return True, "All payload estimates within %.3f kg of the weighed masses." % tolerance_kg
+
     def table(self):
         lines = ["segment  true total  est. total   true payload  est. payload   error    std   samples",
                  "         (kg)        (kg)         (kg)          (kg)           (%)      (kg)"]
@@ -108,6 +120,8 @@ def main():
         rate.sleep()
     text = "Payload estimates of %s (~tare: %s)\n%s\n" % (os.path.basename(bag_path), report.tare_answer,
                                                          report.table())
+    if rospy.has_param("~tolerance_kg"):
+        text += report.verdict(rospy.get_param("~tolerance_kg"))[1] + "\n"
     print("\n" + text, flush=True)
     table_file = rospy.get_param("~table_file", "")
     if table_file:

@@ -17,3 +17,4 @@ if ! roslaunch propulsion_estimator demo.launch table_file:="$work/table.txt" "$
 fi
 echo
 cat "$work/table.txt"
+grep -q "^All payload estimates within" "$work/table.txt"

@@ -8,6 +8,9 @@
 namespace propulsion_estimator {
 namespace {
 
+constexpr int kPwmPoints = 36;
+constexpr int kVoltagePoints = 15;
+
 double gridValue(double lo, double hi, int k, int n) { return n == 1 ? lo : lo + (hi - lo) * k / (n - 1); }
 
 [[noreturn]] void refuse(Output output, double value, const std::string& unit, double x, double v,
@@ -20,17 +23,17 @@ double gridValue(double lo, double hi, int k, int n) { return n == 1 ? lo : lo +
 
 }  // namespace
 
-void validateModelOnGrid(const PropulsionModel& model, const ValidationGrid& grid) {
+void validateModelOnGrid(const PropulsionModel& model) {
   const ModelDomain& domain = model.domain();
   for (Output output : kAllOutputs) {
     const OutputDefinition& def = model.output(output);
     if (def.source == OutputSource::kNone) continue;
     const bool must_be_positive_at_top = output != Output::kEfficiency;
     double first_denominator = 0.0;
-    for (int a = 0; a < grid.pwm_points; ++a) {
-      const double x = gridValue(domain.pwm_min_us, domain.pwm_max_us, a, grid.pwm_points);
-      for (int b = 0; b < grid.voltage_points; ++b) {
-        const double v = gridValue(domain.voltage_min_v, domain.voltage_max_v, b, grid.voltage_points);
+    for (int a = 0; a < kPwmPoints; ++a) {
+      const double x = gridValue(domain.pwm_min_us, domain.pwm_max_us, a, kPwmPoints);
+      for (int b = 0; b < kVoltagePoints; ++b) {
+        const double v = gridValue(domain.voltage_min_v, domain.voltage_max_v, b, kVoltagePoints);
         const double value = model.evaluateRaw(output, x, v);
         if (!std::isfinite(value)) refuse(output, value, def.unit, x, v, "not finite");
         if (def.surface && def.surface->denominator()) {
@@ -45,7 +48,7 @@ void validateModelOnGrid(const PropulsionModel& model, const ValidationGrid& gri
         if (!must_be_positive_at_top && value < 0.0) {
           refuse(output, value, def.unit, x, v, "efficiency must not be negative anywhere in the domain");
         }
-        if (must_be_positive_at_top && a == grid.pwm_points - 1 && value < 0.0) {
+        if (must_be_positive_at_top && a == kPwmPoints - 1 && value < 0.0) {
           refuse(output, value, def.unit, x, v,
                  std::string(outputName(output)) + " must not be negative at the top of the PWM range");
         }

@@ -6,8 +6,10 @@
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "propulsion_estimator");
+  // Outside the try: when the last node handle goes, roscpp shuts down and its logging with it.
+  ros::NodeHandle nh, private_nh("~");
   try {
-    propulsion_estimator::EstimatorNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    propulsion_estimator::EstimatorNode node(nh, private_nh);
     ros::spin();
   } catch (const std::exception& e) {  // ConfigError: a refused parameter, model, URDF or tare file
     ROS_FATAL_STREAM(e.what());

@@ -1,6 +1,8 @@
 #include "propulsion_estimator/ros/estimator_params.h"
 
+#include <set>
 #include <sstream>
+#include <vector>
 
 #include <ros/console.h>
 
@@ -15,22 +17,38 @@ class ParamReader {
   explicit ParamReader(const ros::NodeHandle& nh) : nh_(nh) {}
 
   template <typename T>
-  void optional(const std::string& name, T* value) const {
+  void optional(const std::string& name, T* value) {
+    known_.insert(name);
     if (nh_.hasParam(name) && !nh_.getParam(name, *value)) {
       throw ConfigError(nh_.resolveName(name) + ": wrong type, expected " + typeName(*value));
     }
   }
 
-  void required(const std::string& name, std::string* value) const {
+  void required(const std::string& name, std::string* value) {
     if (!nh_.hasParam(name)) throw ConfigError(nh_.resolveName(name) + ": required parameter is not set");
     optional(name, value);
   }
 
-  void optionalMass(const std::string& name, std::optional<double>* value) const {
+  void optionalMass(const std::string& name, std::optional<double>* value) {
+    known_.insert(name);
     if (!nh_.hasParam(name)) return;
     double mass = 0.0;
     optional(name, &mass);
     *value = mass;
+  }
+
+  // A misspelt parameter would otherwise leave its default silently in force.
+  void refuseUnknown() const {
+    const std::string prefix = nh_.getNamespace() + "/";
+    std::vector<std::string> names;
+    nh_.getParamNames(names);
+    for (const std::string& name : names) {
+      if (name.rfind(prefix, 0) != 0) continue;
+      const std::string relative = name.substr(prefix.size());
+      if (known_.count(relative) == 0 && relative != "diagnostic_period") {
+        throw ConfigError(name + ": unknown parameter (see the README's parameter table)");
+      }
+    }
   }
 
  private:
@@ -41,12 +59,13 @@ class ParamReader {
   static const char* typeName(const std::vector<int>&) { return "a list of integers"; }
 
   const ros::NodeHandle& nh_;
+  std::set<std::string> known_;
 };
 
 }  // namespace
 
 EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
-  const ParamReader read(nh);
+  ParamReader read(nh);
   EstimatorNodeParams p;
   read.required("model", &p.model);
   read.optional("urdf_file", &p.urdf_file);
@@ -83,6 +102,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   if (min_samples < 0) throw ConfigError(nh.resolveName("payload/min_samples") + ": must not be negative");
   c.payload.min_samples = static_cast<std::size_t>(min_samples);
   read.optional("payload/episode_gap_s", &c.payload.episode_gap_s);
+  read.refuseUnknown();
   if (!(p.domain_warn_fraction >= 0.0 && p.domain_warn_fraction <= 1.0)) {
     throw ConfigError(nh.resolveName("domain_warn_fraction") + ": must be in [0, 1]");
   }

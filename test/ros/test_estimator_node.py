@@ -9,6 +9,7 @@ import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticStatus
 from propulsion_estimator.msg import PayloadEstimate
+from sensor_msgs.msg import Imu
 
 from estimator_harness import EstimatorHarness, is_nan
 
@@ -24,6 +25,7 @@ class EstimatorNodeTest(unittest.TestCase):
         cls.thrust_n = rospy.get_param("~expected_thrust_per_motor_n")
         cls.tolerance_n = rospy.get_param("~thrust_tolerance_n")
         cls.tare_file = rospy.get_param("~tare_file")
+        assert not os.path.exists(cls.tare_file), "a tare file from another run: " + cls.tare_file
 
     def assert_no_estimate_from(self, publish, diagnostic_text, level=DiagnosticStatus.WARN):
         """Publishes a bad input and checks that no estimate follows and the diagnostics say why."""
@@ -134,7 +136,24 @@ class EstimatorNodeTest(unittest.TestCase):
         self.h.fly(HOVER, 0.5, voltage_v=11.4)
         self.assertGreater(self.h.count(self.h.motors), before + 10)
 
-    def test_5_stale_battery_stops_estimates(self):
+    def test_5_imu_without_orientation_is_skipped(self):
+        imu = rospy.Publisher("/mavros/imu/data", Imu, queue_size=10)
+        self.h.wait_for(lambda: imu.get_num_connections() > 0, 10.0, "the node subscribing to the IMU")
+        message = Imu()
+        message.orientation_covariance[0] = -1.0  # REP-145: no orientation
+        message.linear_acceleration.z = 9.81
+        for _ in range(5):
+            imu.publish(message)
+            self.h.fly(HOVER, 0.1, voltage_v=11.4)
+        # Counted as carrying no orientation, not refused as a bad IMU, and not used.
+        self.h.wait_for(lambda: int({kv.key: kv.value for kv in self.h.diagnostic("Inputs").values}
+                                    ["imu messages without orientation"]) > 0, 5.0, "the IMU messages counted")
+        outputs = {kv.key: kv.value for kv in self.h.wait_for_diagnostic("Motor outputs", "").values}
+        self.assertEqual(outputs["rejected bad_imu"], "0")
+        totals = self.h.latest(self.h.totals)
+        self.assertAlmostEqual(totals.vertical_thrust_n, totals.thrust_n, places=9)
+
+    def test_6_stale_battery_stops_estimates(self):
         self.h.fly(HOVER, 1.0, voltage_v=11.4)
         timeout = rospy.get_param("/propulsion_estimator/battery_timeout_s")
         self.h.fly(HOVER, timeout + 0.5)  # no battery messages any more

@@ -25,8 +25,6 @@ class TimeWindow {
   void clear() { head_ = size_ = 0; }
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
-  std::size_t capacity() const { return stamps_.size(); }
-  double spanLimit() const { return span_s_; }
   // Time between the oldest and the newest sample.
   double span() const { return size_ < 2 ? 0.0 : newestStamp() - stamps_[head_]; }
   double newestStamp() const { return stamps_[(head_ + size_ - 1) % stamps_.size()]; }

@@ -1,0 +1,61 @@
+#!/usr/bin/env python3
+"""rostest: estimator_node refuses a bad configuration at start-up with one line naming the
+parameter or file, and exits with status 1 (no crash, no silent default)."""
+import os
+import re
+import subprocess
+import unittest
+
+import roslib.packages
+import rospkg
+import rospy
+import rostest
+
+MODEL = os.path.join(rospkg.RosPack().get_path("propulsion_estimator"), "config", "e300_dji2212_dji9443.yaml")
+NODE = roslib.packages.find_node("propulsion_estimator", "estimator_node")[0]
+
+
+def start(name, parameters):
+    """Runs the node with private parameters; returns (exit status, its FATAL line)."""
+    for key in list(rospy.get_param_names()):
+        if key.startswith("/" + name + "/"):
+            rospy.delete_param(key)
+    for key, value in parameters.items():
+        rospy.set_param("/" + name + "/" + key, value)
+    run = subprocess.run([NODE, "__name:=" + name], capture_output=True, text=True, timeout=60)
+    text = re.sub(r"\x1b\[[0-9;]*m", "", run.stdout + run.stderr)  # rosconsole's colours
+    fatal = [line for line in text.splitlines() if "[FATAL]" in line]
+    return run.returncode, fatal[0].split("]: ", 1)[1] if fatal else ""
+
+
+class BadParametersTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_bad_parameters")
+
+    def test_missing_model(self):
+        self.assertEqual(start("a", {}), (1, "/a/model: required parameter is not set"))
+
+    def test_model_file_missing(self):
+        self.assertEqual(start("b", {"model": "/nonexistent.yaml"}), (1, "/nonexistent.yaml: cannot open file"))
+
+    def test_wrong_type(self):
+        self.assertEqual(start("c", {"model": MODEL, "battery_timeout_s": "five"}),
+                         (1, "/c/battery_timeout_s: wrong type, expected a number"))
+
+    def test_misspelt_parameter(self):
+        self.assertEqual(start("d", {"model": MODEL, "hover/window": 3.0}),
+                         (1, "/d/hover/window: unknown parameter (see the README's parameter table)"))
+
+    def test_invalid_value(self):
+        self.assertEqual(start("e", {"model": MODEL, "hover/window_s": -1.0}),
+                         (1, "hover/window_s: must be a positive number, got -1"))
+
+    def test_channels_that_do_not_fit_the_urdf(self):
+        urdf = os.path.join(os.path.dirname(MODEL), "f450_quad.urdf")
+        self.assertEqual(start("f", {"model": MODEL, "urdf_file": urdf, "motor_channels": [1, 2, 3, 4, 5, 6]}),
+                         (1, "motor_channels: 6 channels for a vehicle with 4 rotors"))
+
+
+if __name__ == "__main__":
+    rostest.rosrun("propulsion_estimator", "bad_parameters", BadParametersTest)
