@@ -3,19 +3,9 @@
 #include <cmath>
 
 #include "propulsion_estimator/core/field_error.h"
-#include "propulsion_estimator/core/number_format.h"
 #include "propulsion_estimator/core/units.h"
 
 namespace propulsion_estimator {
-namespace {
-
-void requireWithin(const char* field, double value, double lo, double hi, const char* unit) {
-  if (!(value >= lo && value <= hi)) {
-    throw FieldError(field, formatNumber(value) + " is outside " + formatNumber(lo) + ".." + formatNumber(hi) + unit);
-  }
-}
-
-}  // namespace
 
 void BldcMotorParams::validate() const {
   requireWithin("motor.kv_rpm_per_v", kv_rpm_per_v, 10.0, 10000.0, " rpm/V");

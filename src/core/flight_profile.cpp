@@ -14,18 +14,6 @@ constexpr double kMinimumClearanceM = 0.05;
 constexpr double kPayloadClearanceM = 0.2;
 constexpr double kMaxHeightM = 100.0;
 
-void requireWithin(const std::string& field, double value, double lo, double hi, const std::string& unit) {
-  if (!(value >= lo && value <= hi)) {
-    throw FieldError(field, formatNumber(value) + " is outside " + formatNumber(lo) + ".." + formatNumber(hi) + unit);
-  }
-}
-
-void requirePositive(const std::string& field, double value, double hi, const std::string& unit) {
-  if (!(value > 0.0 && value <= hi)) {
-    throw FieldError(field, formatNumber(value) + " is outside 0.." + formatNumber(hi) + unit + " (must be positive)");
-  }
-}
-
 std::string metres(double value) { return formatNumber(value) + " m"; }
 
 }  // namespace

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -24,12 +23,6 @@ constexpr double kEmptyStateOfCharge = 0.02;
 // segment would be wrong.
 constexpr double kHoverToleranceM = 0.25;
 constexpr int kMinRcOutChannels = 8;  // MAVLink SERVO_OUTPUT_RAW carries 8 (or 16) outputs
-
-std::string threeDigits(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.3g", value);
-  return buffer;
-}
 
 // Readings of one stream at k / rate, k = 0, 1, ...: at the first physics step at or after each.
 class Stream {
@@ -102,10 +95,12 @@ void checkThrustReserve(const SimParams& params, const SimEffects& effects, cons
     if (needed > kMaxHoverThrustShare * max_thrust) {
       const std::string field =
           payload_segment >= 0 ? "segments[" + std::to_string(payload_segment) + "].mass_kg" : "vehicle.urdf";
-      throw ConfigError(profile.source + ": " + field + ": " + threeDigits(mass) + " kg needs " + threeDigits(needed) +
-                        " N per rotor, more than " + threeDigits(100.0 * kMaxHoverThrustShare) + " % of the " +
-                        threeDigits(max_thrust) + " N each gives at " + formatNumber(profile.autopilot.pwm_max_us) +
-                        " us from " + threeDigits(source_v) + " V");
+      throw ConfigError(profile.source + ": " + field + ": " + formatPrintf("%.3g", mass) + " kg needs " +
+                        formatPrintf("%.3g", needed) + " N per rotor, more than " +
+                        formatPrintf("%.3g", 100.0 * kMaxHoverThrustShare) + " % of the " +
+                        formatPrintf("%.3g", max_thrust) + " N each gives at " +
+                        formatNumber(profile.autopilot.pwm_max_us) + " us from " + formatPrintf("%.3g", source_v) +
+                        " V");
     }
   }
 }
@@ -188,12 +183,12 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
       if (schedule[current].segment.kind == SegmentKind::kHover &&
           std::fabs(height - schedule[current].end_height_m) > kHoverToleranceM) {
         throw ConfigError(profile.source + ": segments[" + std::to_string(schedule[current].index) +
-                          "].type: the vehicle ended its hover at " + threeDigits(height) + " m instead of " +
-                          threeDigits(schedule[current].end_height_m) + " m");
+                          "].type: the vehicle ended its hover at " + formatPrintf("%.3g", height) + " m instead of " +
+                          formatPrintf("%.3g", schedule[current].end_height_m) + " m");
       }
       if (schedule[current].segment.kind == SegmentKind::kLand && controller.armed()) {
         throw ConfigError(profile.source + ": segments[" + std::to_string(schedule[current].index) +
-                          "].type: the vehicle had not landed and disarmed " + threeDigits(kTouchdownS) +
+                          "].type: the vehicle had not landed and disarmed " + formatPrintf("%.3g", kTouchdownS) +
                           " s after its descent");
       }
       ++current;
@@ -301,8 +296,8 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
     dynamics.step(thrust, torque, density, kFlightStepS);
     battery.draw(power.current_a, kFlightStepS);
     if (battery.stateOfCharge() < kEmptyStateOfCharge) {
-      throw ConfigError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " + threeDigits(t) +
-                        " s into the flight");
+      throw ConfigError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +
+                        formatPrintf("%.3g", t) + " s into the flight");
     }
   }
 

@@ -1,6 +1,5 @@
 #include "propulsion_estimator/core/model_yaml.h"
 
-#include <fstream>
 #include <regex>
 #include <stdexcept>
 
@@ -235,10 +234,7 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
 }
 
 void saveModelFile(const PropulsionModel& model, const std::string& path, const std::string& comment) {
-  std::ofstream file(path);
-  if (!file) throw ConfigError(path + ": cannot open for writing");
-  file << modelToYaml(model, comment);
-  if (!file) throw ConfigError(path + ": cannot write");
+  writeTextFile(path, modelToYaml(model, comment));
 }
 
 }  // namespace propulsion_estimator

@@ -10,7 +10,6 @@ namespace propulsion_estimator {
 namespace {
 
 const Eigen::Vector3d kGravity(0.0, 0.0, -kStandardGravity);
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 // Ground contact: stiff enough that a foot sinks ~1 mm under the vehicle, damped to 0.8 of
 // critical; Coulomb friction of rubber feet on a floor, viscous below 5 cm/s of sliding. The
@@ -24,6 +23,12 @@ constexpr double kFrictionRegularisationM_S = 0.05;
 constexpr double kAngularDampingNmS = 0.002;
 // Cd A of a small payload (a 10 cm box).
 constexpr double kPayloadDragAreaM2 = 0.01;
+
+// Stiffness and damping of a contact carrying `mass_kg`: it rings at kContactFrequencyHz.
+double contactStiffness(double mass_kg) { return mass_kg * std::pow(kTwoPi * kContactFrequencyHz, 2); }
+double contactDamping(double mass_kg) {
+  return 2.0 * kContactDampingRatio * std::sqrt(contactStiffness(mass_kg) * mass_kg);
+}
 
 // Normal and friction force of the ground on a point at `position` moving at `velocity`, for a
 // contact of stiffness k and damping c.
@@ -59,9 +64,11 @@ MultirotorDynamics::MultirotorDynamics(const Vehicle& vehicle, const VehicleSetu
   const double h = setup.landing_gear_height_m;
   feet_body_ = {Eigen::Vector3d(w, w, -h), Eigen::Vector3d(w, -w, -h), Eigen::Vector3d(-w, w, -h),
                 Eigen::Vector3d(-w, -w, -h)};
-  // At rest on the gear: each foot sunk by its share of the weight over its stiffness.
-  const double foot_stiffness = mass_kg_ / feet_body_.size() * std::pow(kTwoPi * kContactFrequencyHz, 2);
-  const double sink = mass_kg_ * kStandardGravity / (feet_body_.size() * foot_stiffness);
+  // Each foot carries its share of the vehicle; at rest it is sunk by that weight over its stiffness.
+  const double foot_mass = mass_kg_ / feet_body_.size();
+  foot_stiffness_n_per_m_ = contactStiffness(foot_mass);
+  foot_damping_n_s_per_m_ = contactDamping(foot_mass);
+  const double sink = mass_kg_ * kStandardGravity / (feet_body_.size() * foot_stiffness_n_per_m_);
   position_ = Eigen::Vector3d(0.0, 0.0, h - sink) + centre_of_mass_body_;
   specific_force_body_ = -kGravity;  // the ground holds the weight
 }
@@ -99,11 +106,9 @@ void MultirotorDynamics::step(const std::vector<double>& thrust_n, const std::ve
     torque_body -= rotors_[k].spin_direction * torque_nm[k] * rotors_[k].thrust_axis;
   }
 
-  const double foot_stiffness = mass_kg_ / feet_body_.size() * std::pow(kTwoPi * kContactFrequencyHz, 2);
-  const double foot_damping = 2.0 * kContactDampingRatio * std::sqrt(foot_stiffness * mass_kg_ / feet_body_.size());
   for (const Eigen::Vector3d& foot : feet_body_) {
     const Eigen::Vector3d contact =
-        groundForce(worldPoint(foot), worldPointVelocity(foot), foot_stiffness, foot_damping);
+        groundForce(worldPoint(foot), worldPointVelocity(foot), foot_stiffness_n_per_m_, foot_damping_n_s_per_m_);
     applyBody(foot, attitude_.conjugate() * contact);
   }
 
@@ -124,9 +129,8 @@ void MultirotorDynamics::step(const std::vector<double>& thrust_n, const std::ve
       applyBody(cable_.attach_point_m, attitude_.conjugate() * pull);
       payload_force -= pull;
     }
-    const double payload_stiffness = payload_mass_kg_ * std::pow(kTwoPi * kContactFrequencyHz, 2);
-    const double payload_damping = 2.0 * kContactDampingRatio * std::sqrt(payload_stiffness * payload_mass_kg_);
-    payload_force += groundForce(payload_position_, payload_velocity_, payload_stiffness, payload_damping) +
+    payload_force += groundForce(payload_position_, payload_velocity_, contactStiffness(payload_mass_kg_),
+                                 contactDamping(payload_mass_kg_)) +
                      drag(payload_velocity_, air_density_kg_m3, kPayloadDragAreaM2);
     payload_velocity_ += (payload_force / payload_mass_kg_ + kGravity) * dt_s;
     payload_position_ += payload_velocity_ * dt_s;

@@ -19,8 +19,6 @@ namespace pe = propulsion_estimator;
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
-
 pe::SimParams thesisParams() { return pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")); }
 
 // Noise-free sweep at 12 V from 1500 to 1800 us in 50 us steps.

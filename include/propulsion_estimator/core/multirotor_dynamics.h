@@ -52,6 +52,8 @@ class MultirotorDynamics {
   Eigen::Matrix3d inertia_inverse_;
   Eigen::Vector3d centre_of_mass_body_;
   std::array<Eigen::Vector3d, 4> feet_body_;
+  double foot_stiffness_n_per_m_;
+  double foot_damping_n_s_per_m_;
   double drag_area_m2_;
   PayloadCable cable_;
 
