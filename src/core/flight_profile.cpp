@@ -13,6 +13,9 @@ constexpr double kMinimumClearanceM = 0.05;
 // How high a hanging payload must stay above the ground while hovering.
 constexpr double kPayloadClearanceM = 0.2;
 constexpr double kMaxHeightM = 100.0;
+// A lighter payload is far below what the estimator can weigh; one below ~0.1 g would also let
+// its drag (a 10 cm box) outrun the explicit 2 ms step of its motion.
+constexpr double kLightestPayloadKg = 0.01;
 
 std::string metres(double value) { return formatNumber(value) + " m"; }
 
@@ -75,7 +78,9 @@ void FlightProfile::validate() const {
       case SegmentKind::kHover: requirePositive(at + "duration_s", s.duration_s, 3600.0, " s"); break;
       case SegmentKind::kPayload:
         requirePositive(at + "duration_s", s.duration_s, 3600.0, " s");
-        requireWithin(at + "mass_kg", s.payload_mass_kg, 0.0, 5.0, " kg");
+        if (s.payload_mass_kg != 0.0) {
+          requireWithin(at + "mass_kg", s.payload_mass_kg, kLightestPayloadKg, 5.0, " kg (or 0 for none)");
+        }
         payload = s.payload_mass_kg;
         break;
       case SegmentKind::kTakeoff:

@@ -181,7 +181,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
     while (current + 1 < schedule.size() && t >= schedule[current].end_s - 1e-9) {
       const double height = dynamics.basePosition().z();
       if (schedule[current].segment.kind == SegmentKind::kHover &&
-          std::fabs(height - schedule[current].end_height_m) > kHoverToleranceM) {
+          !(std::fabs(height - schedule[current].end_height_m) <= kHoverToleranceM)) {
         throw ConfigError(profile.source + ": segments[" + std::to_string(schedule[current].index) +
                           "].type: the vehicle ended its hover at " + formatPrintf("%.3g", height) + " m instead of " +
                           formatPrintf("%.3g", schedule[current].end_height_m) + " m");
@@ -294,6 +294,10 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
     }
 
     dynamics.step(thrust, torque, density, kFlightStepS);
+    if (!dynamics.isFinite()) {
+      throw ConfigError(profile.source +
+                        ": the simulation diverged at t = " + formatPrintf("%.3f", (step + 1) * kFlightStepS) + " s");
+    }
     battery.draw(power.current_a, kFlightStepS);
     if (battery.stateOfCharge() < kEmptyStateOfCharge) {
       throw ConfigError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +

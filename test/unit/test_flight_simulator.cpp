@@ -274,3 +274,46 @@ TEST(FlightSimulator, RefusesAHoverTheVehicleCannotReach) {
   EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
                                   ": segments[1].type: the vehicle ended its hover at 17 m instead of 50 m");
 }
+
+TEST(FlightSimulator, ALightPayloadOnAStiffDampedCableHangsSteadily) {
+  // 10 g on the default cable (1000 N/m, 10 N s/m) and on the stiffest, most damped one a profile
+  // may have (1e5 N/m, 1000 N s/m): stretch modes of 316 and 3162 rad/s and damping rates c/m of
+  // 1000 and 1e5 /s, against a 2 ms step. The cable must carry the payload's weight, steadily.
+  for (const auto& [stiffness, damping] : {std::pair{1000.0, 10.0}, std::pair{1e5, 1e3}}) {
+    pe::FlightProfile profile = defaultProfile();
+    profile.cable.stiffness_n_per_m = stiffness;
+    profile.cable.damping_n_s_per_m = damping;
+    profile.segments = {{pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
+                        {pe::SegmentKind::kPayload, 2.0, 0.0, 0.0, 0.01},
+                        {pe::SegmentKind::kTakeoff, 0.0, 2.5, 1.0, 0.0},
+                        {pe::SegmentKind::kHover, 20.0, 0.0, 0.0, 0.0},
+                        {pe::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0}};
+    const Flight flight = fly(profile);
+    ASSERT_EQ(flight.result.segments.size(), 1u);
+    double tension = 0.0, worst_height = 0.0;
+    int n = 0;
+    forSegment(flight.sink.truths, flight.result.segments[0], [&](const pe::TruthSample& t) {
+      tension += t.cable_tension_n;
+      worst_height = std::max(worst_height, std::fabs(t.height_m - 2.5));
+      ++n;
+    });
+    EXPECT_NEAR(tension / n, 0.01 * pe::kStandardGravity, 0.01 * 0.01 * pe::kStandardGravity) << stiffness;
+    EXPECT_LT(worst_height, 0.05) << stiffness;
+  }
+}
+
+TEST(FlightSimulator, RefusesAFlightThatDiverges) {
+  // A vehicle whose inertia is a millionth of the quad's: the 2 ms step cannot follow its
+  // rotation (angular damping alone has the rate 0.002 N m s / 1e-8 kg m^2 = 2e5 /s).
+  pe::FlightProfile profile = defaultProfile();
+  pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
+  vehicle.empty_mass->inertia_kg_m2 *= 1e-6;
+  RecordingFlightSink sink;
+  try {
+    pe::simulateFlight(thesisParams(), {}, profile, vehicle, 1, &sink);
+    ADD_FAILURE() << "accepted";
+  } catch (const pe::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              repoPath("config/sim/default_flight.yaml") + ": the simulation diverged at t = 0.016 s");
+  }
+}

@@ -214,7 +214,9 @@ TEST(FlightProfileYaml, RefusesBadValuesAndUnknownKeys) {
   EXPECT_EQ(profileRefusal("{type: hover, duration_s: 10}", "{type: hover, duration_s: -10}"),
             "config/sim/f.yaml:17: segments[2].duration_s: -10 is outside 0..3600 s (must be positive)");
   EXPECT_EQ(profileRefusal("{type: payload, mass_kg: 0.3,", "{type: payload, mass_kg: 7,"),
-            "config/sim/f.yaml:19: segments[4].mass_kg: 7 is outside 0..5 kg");
+            "config/sim/f.yaml:19: segments[4].mass_kg: 7 is outside 0.01..5 kg (or 0 for none)");
+  EXPECT_EQ(profileRefusal("{type: payload, mass_kg: 0.3,", "{type: payload, mass_kg: 0.005,"),
+            "config/sim/f.yaml:19: segments[4].mass_kg: 0.005 is outside 0.01..5 kg (or 0 for none)");
   EXPECT_EQ(profileRefusal("{type: takeoff, height_m: 2.0,", "{type: takeoff, height_m: 0.1,"),
             "config/sim/f.yaml:16: segments[1].height_m: 0.1 is outside 0.17..100 m");
   EXPECT_EQ(profileRefusal("landing_gear: {height_m: 0.12,", "landing_gear: {height_m: 0,"),

@@ -45,7 +45,7 @@ struct FlightSegment {
   double duration_s = 0.0;       // wait, hover, payload
   double height_m = 0.0;         // takeoff, climb, descend: target height
   double rate_m_s = 0.0;         // takeoff, climb, descend, land: vertical speed
-  double payload_mass_kg = 0.0;  // payload: the new payload (0 = none)
+  double payload_mass_kg = 0.0;  // payload: the new payload, 0.01..5 kg (0 = none)
 };
 
 struct FlightProfile {
