@@ -317,3 +317,41 @@ TEST(FlightSimulator, RefusesAFlightThatDiverges) {
               repoPath("config/sim/default_flight.yaml") + ": the simulation diverged at t = 0.016 s");
   }
 }
+
+TEST(FlightSimulator, RefusesALandingThatDoesNotLandAlsoAtTheEnd) {
+  // Landing from 20 m at 5 m/s: the autopilot descends at 2 m/s at most, so 4 s after the scripted
+  // descent the vehicle is still about 4 m up. Checked where the landing ends the profile and where
+  // it does not.
+  pe::FlightProfile profile = defaultProfile();
+  profile.segments = {{pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
+                      {pe::SegmentKind::kTakeoff, 0.0, 20.0, 2.0, 0.0},
+                      {pe::SegmentKind::kLand, 0.0, 0.0, 5.0, 0.0}};
+  const std::string expected = repoPath("config/sim/default_flight.yaml") +
+                               ": segments[2].type: the vehicle had not landed and disarmed 4 s after its descent";
+  EXPECT_EQ(refusal(profile), expected);
+  profile.segments.push_back({pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0});
+  EXPECT_EQ(refusal(profile), expected);
+}
+
+TEST(FlightSimulator, RefusesAVehicleItCannotFlyNamingItsUrdf) {
+  const pe::FlightProfile profile = defaultProfile();
+  const pe::Vehicle quad = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
+  const auto refused = [&](const pe::Vehicle& vehicle) {
+    try {
+      pe::checkFlight(thesisParams(), {}, profile, vehicle);
+    } catch (const pe::ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  pe::Vehicle massless = quad;
+  massless.empty_mass.reset();
+  EXPECT_EQ(refused(massless), repoPath("config/sim/../f450_quad.urdf") +
+                                   ": the flight simulator needs the rotors' positions and the mass properties of the "
+                                   "vehicle (a URDF with rotor joints and <inertial> elements)");
+  pe::Vehicle one_way = quad;  // every propeller turning the same way: no yaw control
+  for (pe::Rotor& rotor : one_way.rotors) rotor.spin_direction = 1;
+  EXPECT_EQ(refused(one_way), repoPath("config/sim/../f450_quad.urdf") +
+                                  ": the rotor layout cannot control roll, pitch, yaw and thrust independently");
+  EXPECT_EQ(refused(quad), "accepted");
+}
