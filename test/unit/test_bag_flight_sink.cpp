@@ -212,8 +212,36 @@ TEST(SimulateCommand, RefusesBadInputsWithOneLine) {
   EXPECT_EQ(refusal({"flight", "--params", params, "--profile", dir.file("profile.yaml"), "--bag",
                      dir.file("no/such/dir/f.bag")}),
             "1 simulate flight: " + dir.file("no/such/dir/f.bag") +
-                ": Error opening file: " + dir.file("no/such/dir/f.bag") + "\n");
+                ": Error opening file: " + dir.file("no/such/dir/f.bag.active") + "\n");
   EXPECT_EQ(refusal({"bench", "--params", params, "--experiment", "pwm_sweep", "--pwm-range", "1900", "1200",
                      "--output", dir.file("b.csv")}),
             "1 simulate bench: --pwm-range: [1900, 1200] is not a range within 800..2200 us\n");
+}
+
+TEST(SimulateCommand, ARefusedFlightLeavesNoBagBehind) {
+  TempDir dir;
+  const std::string params = repoPath("config/sim/e300_dji2212_dji9443.yaml");
+  const std::string bag = dir.file("f.bag");
+  writeFile(bag, "an earlier bag");
+  const auto refusal = [&](const std::string& profile) {
+    writeFile(dir.file("profile.yaml"), profile);
+    testing::internal::CaptureStderr();
+    const int code = runCommand({"flight", "--params", params, "--profile", dir.file("profile.yaml"), "--bag", bag});
+    return std::to_string(code) + " " + testing::internal::GetCapturedStderr();
+  };
+  // Refused before flying: the bag is never opened.
+  std::string heavy = shortProfile();
+  heavy.replace(heavy.find("{length_m: 1.0,"), 15, "{length_m: 0.3,");
+  const std::string wait = "  - {type: wait, duration_s: 1}\n";
+  heavy.replace(heavy.find(wait), wait.size(), wait + "  - {type: payload, mass_kg: 1.5, duration_s: 1}\n");
+  EXPECT_EQ(refusal(heavy), "1 simulate flight: " + dir.file("profile.yaml") +
+                                ": segments[1].mass_kg: 2.82 kg needs 6.9 N per rotor, more than 80 % of the 6.71 N "
+                                "each gives at 1950 us from 12.3 V\n");
+  // Refused in flight: the bag written so far is removed.
+  std::string short_battery = shortProfile();
+  short_battery.replace(short_battery.find("battery_initial_soc: 0.9"), 24, "battery_initial_soc: 0.025");
+  EXPECT_EQ(refusal(short_battery), "1 simulate flight: " + dir.file("profile.yaml") +
+                                        ": vehicle.battery_initial_soc: the battery is empty 8.88 s into the flight\n");
+  EXPECT_TRUE(pe::readTextFile(bag) == "an earlier bag");
+  EXPECT_FALSE(fs::exists(bag + ".active"));
 }
