@@ -118,6 +118,8 @@ TEST(SimParamsYaml, RefusesUnknownMissingAndOutOfRangeValues) {
             "p.yaml:59: battery.open_circuit_voltage.cell_v: must increase with soc (3.84 after 3.9)");
   EXPECT_EQ(paramsRefusal("{sigma_a: 0.106", "{sigma_a: -0.106"),
             "p.yaml:77: bench.sensors.current.sigma_a: -0.106 is outside 0..10");
+  EXPECT_EQ(paramsRefusal("  rotor_inertia_kg_m2: 5.0e-6", "  rotor_inertia_kg_m2: 0"),
+            "p.yaml:36: motor.rotor_inertia_kg_m2: 0 is outside 0..0.01 kg m^2 (must be positive)");
   EXPECT_EQ(paramsRefusal("format_version: 1", "format_version: 2"),
             "p.yaml:15: format_version: 2 is not supported (this reader knows 1)");
 }
