@@ -216,6 +216,10 @@ TEST(SimulateCommand, RefusesBadInputsWithOneLine) {
   EXPECT_EQ(refusal({"bench", "--params", params, "--experiment", "pwm_sweep", "--pwm-range", "1900", "1200",
                      "--output", dir.file("b.csv")}),
             "1 simulate bench: --pwm-range: [1900, 1200] is not a range within 800..2200 us\n");
+  EXPECT_EQ(refusal({"bench", "--params", params, "--experiment", "pwm_sweep", "--pwm-step", "1e-7", "--output",
+                     dir.file("b.csv")}),
+            "1 simulate bench: --pwm-step: 1e-07 gives 7000000001 pulse widths from 1200 to 1900 us (at most 1e+06)\n");
+  EXPECT_FALSE(fs::exists(dir.file("b.csv")));
 }
 
 TEST(SimulateCommand, ARefusedFlightLeavesNoBagBehind) {
