@@ -13,6 +13,9 @@ constexpr double kMinimumClearanceM = 0.05;
 // How high a hanging payload must stay above the ground while hovering.
 constexpr double kPayloadClearanceM = 0.2;
 constexpr double kMaxHeightM = 100.0;
+// Climbs, descents and landings last height / rate: slower than this they are hovers (and a rate
+// near 0 would schedule a flight of years).
+constexpr double kSlowestRateM_S = 0.05;
 // A lighter payload is far below what the estimator can weigh; one below ~0.1 g would also let
 // its drag (a 10 cm box) outrun the explicit 2 ms step of its motion.
 constexpr double kLightestPayloadKg = 0.01;
@@ -86,7 +89,7 @@ void FlightProfile::validate() const {
       case SegmentKind::kTakeoff:
       case SegmentKind::kClimb:
       case SegmentKind::kDescend:
-        requirePositive(at + "rate_m_s", s.rate_m_s, 5.0, " m/s");
+        requireWithin(at + "rate_m_s", s.rate_m_s, kSlowestRateM_S, 5.0, " m/s");
         requireWithin(at + "height_m", s.height_m, lowest, kMaxHeightM, " m");
         if (s.kind == SegmentKind::kClimb && !(s.height_m > height)) {
           throw FieldError(at + "height_m",
@@ -100,7 +103,7 @@ void FlightProfile::validate() const {
         flying = true;
         break;
       case SegmentKind::kLand:
-        requirePositive(at + "rate_m_s", s.rate_m_s, 5.0, " m/s");
+        requireWithin(at + "rate_m_s", s.rate_m_s, kSlowestRateM_S, 5.0, " m/s");
         height = landed;
         flying = false;
         break;

@@ -16,7 +16,7 @@ struct AutopilotParams {
   double pwm_min_us = 0.0;       // mixer output 0 while armed (PX4 PWM_MAIN_MIN, ArduPilot MOT_PWM_MIN/SPIN_ARM)
   double pwm_max_us = 0.0;       // mixer output 1
   double disarmed_pwm_us = 0.0;  // what the ESCs get while disarmed
-  double rc_out_rate_hz = 50.0;  // /mavros/rc/out (and /sim/truth) publication rate
+  double rc_out_rate_hz = 0.0;   // /mavros/rc/out (and /sim/truth) publication rate
 };
 
 struct VehicleSetup {
