@@ -118,8 +118,20 @@ TEST(BagFlightSink, WritesMavrosTopicsWithTheirTypesAndRates) {
         hover_samples += 4;
       }
     }
-    if (message.getTopic() == "/mavros/battery" && t >= result.segments[0].start_s && t <= result.segments[0].end_s) {
-      EXPECT_LT(message.instantiate<sensor_msgs::BatteryState>()->current, -10.0f);  // PX4 through MAVROS
+    if (message.getTopic() == "/mavros/battery") {
+      const sensor_msgs::BatteryState::ConstPtr battery = message.instantiate<sensor_msgs::BatteryState>();
+      if (t >= result.segments[0].start_s && t <= result.segments[0].end_s) {
+        EXPECT_LT(battery->current, -10.0f);  // PX4 through MAVROS
+      }
+      // Unmeasured fields are NaN, as the message definition asks.
+      EXPECT_TRUE(std::isnan(battery->temperature));
+      EXPECT_TRUE(std::isnan(battery->charge));
+      EXPECT_TRUE(std::isnan(battery->capacity));
+      EXPECT_TRUE(std::isnan(battery->design_capacity));
+      EXPECT_GT(battery->voltage, 11.0f);
+      EXPECT_GE(battery->percentage, 0.0f);
+      EXPECT_LE(battery->percentage, 1.0f);
+      EXPECT_TRUE(battery->cell_voltage.empty());
     }
     if (message.getTopic() == "/sim/truth") {
       const pe::SimTruth::ConstPtr truth = message.instantiate<pe::SimTruth>();
