@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "estimator_fixture.h"
+#include "propulsion_estimator/core/motor_mixer.h"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -33,6 +34,16 @@ TEST(Estimator, EvaluatesMotorOutputsWithoutHeapAllocation) {
   }
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_TRUE(f.estimator.output().hover.hovering);
+}
+
+TEST(MotorMixer, MixesWithoutHeapAllocation) {
+  // The flight simulator mixes every 2 ms step.
+  pe::MotorMixer mixer(pe::Vehicle::quadX(0.225));
+  const long before = g_allocations.load();
+  double sum = 0.0;
+  for (int k = 0; k < 1000; ++k) sum += mixer.mix(0.5, 0.01 * (k % 7), -0.02, 0.005).front();
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(sum, 0.0);
 }
 
 int main(int argc, char** argv) {
