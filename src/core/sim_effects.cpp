@@ -29,11 +29,6 @@ void SimEffects::validate() const {
   requireWithinIfOn(esc_offset_us, "esc_offset.us", -200.0, 200.0, " us");
 }
 
-bool SimEffects::any() const {
-  return supply_resistance_ohm || air || ground_effect_strength || thrust_loss_fraction ||
-         motor_thermal_resistance_c_per_w || climb_inflow_per_m_s || esc_offset_us;
-}
-
 SimEffects SimEffects::onTheBench() const {
   SimEffects bench;
   bench.supply_resistance_ohm = supply_resistance_ohm;

@@ -278,12 +278,10 @@ TEST(EscOffset, TheAutopilotHoversTheOffsetHigher) {
 }
 
 TEST(SimEffects, AllOffByDefaultAndSummarised) {
-  EXPECT_FALSE(pe::SimEffects{}.any());
   EXPECT_EQ(pe::SimEffects{}.summary(), "none");
   pe::SimEffects effects;
   effects.ground_effect_strength = 1.0;
   effects.thrust_loss_fraction = 0.05;
-  EXPECT_TRUE(effects.any());
   EXPECT_EQ(effects.summary(), "ground_effect(strength=1) thrust_loss(fraction=0.05)");
   const pe::RotorEffectTerms terms = pe::rotorEffectTerms({}, 0.12, 0.2, 3.0);
   EXPECT_EQ(terms.product(), 1.0);

@@ -135,7 +135,7 @@ TEST(SimEffectsYaml, ReadsEveryEffectWithItsParameter) {
             "supply_resistance(ohm=0.05) air_density(temperature_c=35,pressure_pa=90000) ground_effect(strength=1) "
             "thrust_loss(fraction=0.05) motor_temperature(thermal_resistance_c_per_w=2) climb_inflow(per_m_s=0.05) "
             "esc_offset(us=-15)");
-  EXPECT_FALSE(pe::parseSimEffectsYaml("{}", "e.yaml").any());
+  EXPECT_EQ(pe::parseSimEffectsYaml("{}", "e.yaml").summary(), "none");
 }
 
 TEST(SimEffectsYaml, RefusesUnknownEffectsAndBadParameters) {
