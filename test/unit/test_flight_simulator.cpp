@@ -355,3 +355,62 @@ TEST(FlightSimulator, RefusesAVehicleItCannotFlyNamingItsUrdf) {
                                   ": the rotor layout cannot control roll, pitch, yaw and thrust independently");
   EXPECT_EQ(refused(quad), "accepted");
 }
+
+TEST(FlightSimulator, FliesAHexacopter) {
+  // Six rotors 0.3 m out at 60 deg spacing, alternating spin, 1.9 kg: the geometric mixer handles
+  // six motors, the vehicle holds its height, its thrust balances the weight, the centre of thrust
+  // lies under the centre of gravity (the profile's 8 mm / -5 mm offset), and rc/out carries six
+  // motor channels of its eight.
+  pe::Vehicle hexa;
+  const double pi = 3.14159265358979323846;
+  for (int k = 0; k < 6; ++k) {
+    pe::Rotor rotor;
+    rotor.name = "rotor_" + std::to_string(k + 1);
+    const double angle = pi / 6.0 + k * pi / 3.0;
+    rotor.position_m = Eigen::Vector3d(0.3 * std::cos(angle), 0.3 * std::sin(angle), 0.035);
+    rotor.spin_direction = k % 2 == 0 ? 1 : -1;
+    hexa.rotors.push_back(rotor);
+  }
+  pe::MassProperties mass;
+  mass.mass_kg = 1.9;
+  mass.inertia_kg_m2 = Eigen::Vector3d(0.02, 0.02, 0.035).asDiagonal();
+  hexa.empty_mass = mass;
+  pe::FlightProfile profile = defaultProfile();
+  profile.segments = {{pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
+                      {pe::SegmentKind::kTakeoff, 0.0, 2.0, 1.0, 0.0},
+                      {pe::SegmentKind::kHover, 25.0, 0.0, 0.0, 0.0},
+                      {pe::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0}};
+  Flight flight;
+  flight.result = pe::simulateFlight(thesisParams(), {}, profile, hexa, 1, &flight.sink);
+  ASSERT_EQ(flight.result.segments.size(), 1u);
+  const pe::ManifestSegment& hover = flight.result.segments[0];
+  EXPECT_EQ(hover.mass_kg, 1.9);
+  double height = 0.0, worst = 0.0, total = 0.0;
+  Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+  int n = 0;
+  forSegment(flight.sink.truths, hover, [&](const pe::TruthSample& t) {
+    ASSERT_EQ(t.motors.size(), 6u);
+    height += t.height_m;
+    worst = std::max(worst, std::fabs(t.height_m - 2.0));
+    for (int k = 0; k < 6; ++k) {
+      total += t.motors[k].thrust_n;
+      moment += t.motors[k].thrust_n * hexa.rotors[k].position_m.head<2>();
+    }
+    ++n;
+  });
+  EXPECT_NEAR(height / n, 2.0, 0.02);
+  EXPECT_LT(worst, 0.05);
+  EXPECT_NEAR(total / n, 1.9 * pe::kStandardGravity, 0.003 * 1.9 * pe::kStandardGravity);
+  EXPECT_NEAR(moment.x() / total, 0.008, 0.001);
+  EXPECT_NEAR(moment.y() / total, -0.005, 0.001);
+  forSegment(flight.sink.rc_out, hover, [](const pe::RcOutSample& s) {
+    ASSERT_EQ(s.channels.size(), 8u);
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_GT(s.channels[k], 1500);
+      EXPECT_LT(s.channels[k], 1850);
+    }
+    EXPECT_EQ(s.channels[6], 0);
+    EXPECT_EQ(s.channels[7], 0);
+  });
+  EXPECT_EQ(flight.sink.rc_out.front().channels, (std::vector<std::uint16_t>{900, 900, 900, 900, 900, 900, 0, 0}));
+}
