@@ -253,6 +253,8 @@ TEST(FlightManifest, RoundTripsThroughItsWriter) {
       EXPECT_EQ(read.flights[f].segments[s].mass_kg, manifest.flights[f].segments[s].mass_kg);
     }
   }
+  EXPECT_EQ(refusal([&] { pe::saveFlightManifest(manifest, "/nonexistent/folder/m.yaml", ""); }),
+            "/nonexistent/folder/m.yaml: cannot open for writing");
   EXPECT_EQ(pe::resolveBagPath("/x/y/m.yaml", "flight_01.bag"), "/x/y/flight_01.bag");
   EXPECT_EQ(pe::resolveBagPath("/x/y/m.yaml", "/data/flight_02.bag"), "/data/flight_02.bag");
 }
