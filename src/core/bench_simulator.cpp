@@ -19,6 +19,15 @@ constexpr double kStepS = 0.02;             // integration step; the rotor lag i
 constexpr double kControlIntervalS = 0.1;   // HX711 at its 10 Hz output rate
 constexpr double kThrustSettleS = 10.0;     // constant-thrust runs are logged once the controller has settled
 constexpr double kMaxRunS = 12.0 * 3600.0;  // a discharge that has not reached the cut-off by then never will
+// A sweep of more pulse widths than this is a typing error (5 us steps over 800-2200 us are 281).
+constexpr double kMaxSweepPulseWidths = 1e6;
+// A constant thrust this many load-cell sigmas beyond what the PWM range gives is unreachable.
+constexpr double kUnreachableThrustSigmas = 3.0;
+
+// Pulse widths of one sweep (validated: at most kMaxSweepPulseWidths).
+double sweepPulseWidthCount(const BenchExperiment& experiment) {
+  return std::floor((experiment.pwm_end_us - experiment.pwm_start_us) / experiment.pwm_step_us + 1e-9) + 1.0;
+}
 
 // Logs rows as the bench's sensors see them and, optionally, as they are.
 class Recorder {
@@ -67,17 +76,40 @@ class Recorder {
 };
 
 std::vector<double> sweepPulseWidths(const BenchExperiment& experiment) {
-  const int count =
-      static_cast<int>(std::floor((experiment.pwm_end_us - experiment.pwm_start_us) / experiment.pwm_step_us + 1e-9)) +
-      1;
+  const long count = static_cast<long>(sweepPulseWidthCount(experiment));
   std::vector<double> pwms;
-  for (int i = 0; i < count; ++i) pwms.push_back(experiment.pwm_start_us + i * experiment.pwm_step_us);
+  for (long i = 0; i < count; ++i) pwms.push_back(experiment.pwm_start_us + i * experiment.pwm_step_us);
   return pwms;
+}
+
+// Refuses a constant thrust the bench cannot hold within its PWM range from the run's full
+// battery: more than the top pulse width gives, or less than the bottom one does.
+void checkThrustReachable(const SimParams& params, const SimEffects& effects, const BenchExperiment& experiment,
+                          const AirConditions& air, double target_n, const std::string& what) {
+  const PowerTrain train(PropulsionChain(params.chain), 1, effects, air.temperature_c);
+  const LipoBattery battery(params.battery, experiment.initial_soc);
+  const double series_ohm = battery.seriesResistanceOhm() + effects.supply_resistance_ohm.value_or(0.0);
+  const auto thrustAt = [&](double pwm_us) {
+    const ChainInput input{params.chain.esc.duty(pwm_us), 0.0, air.densityKgM3(), train.electricalTemperatureC(0)};
+    return train.chain().steadyFromSource(input, battery.sourceVoltage(), series_ohm, 1, nullptr).thrust_n;
+  };
+  const double margin = kUnreachableThrustSigmas * params.bench.sensors.thrust_n.effectiveSigma();
+  const auto grams = [](double newtons) { return formatPrintf("%.0f", newtons / kNewtonPerGramForce); };
+  const double highest = thrustAt(params.bench.sweep_pwm_max_us);
+  if (target_n > highest + margin) {
+    throw ConfigError(what + ": only " + grams(highest) + " g at " + formatNumber(params.bench.sweep_pwm_max_us) +
+                      " us");
+  }
+  const double lowest = thrustAt(params.bench.sweep_pwm_min_us);
+  if (target_n < lowest - margin) {
+    throw ConfigError(what + ": already " + grams(lowest) + " g at " + formatNumber(params.bench.sweep_pwm_min_us) +
+                      " us");
+  }
 }
 
 void runSweeps(const SimParams& params, const SimEffects& effects, const BenchExperiment& experiment,
                const AirConditions& air, Recorder* recorder) {
-  const int steps = std::max(1, static_cast<int>(std::round(experiment.step_duration_s / kStepS)));
+  const long steps = std::max(1L, std::lround(experiment.step_duration_s / kStepS));
   const double dt = experiment.step_duration_s / steps;
   double time = 0.0;
   for (std::size_t run = 0; run < experiment.voltages_v.size(); ++run) {
@@ -85,7 +117,7 @@ void runSweeps(const SimParams& params, const SimEffects& effects, const BenchEx
     const Supply supply{experiment.voltages_v[run], 0.0};
     for (double pwm : sweepPulseWidths(experiment)) {
       const std::vector<double> pwms{pwm};
-      for (int i = 0; i < steps; ++i) train.step(pwms, supply, air, dt);
+      for (long i = 0; i < steps; ++i) train.step(pwms, supply, air, dt);
       time += experiment.step_duration_s;
       const PowerTrainState& state = train.step(pwms, supply, air, 0.0);
       recorder->readVoltage(state.terminal_voltage_v);
@@ -147,7 +179,8 @@ void BenchExperiment::validate() const {
   const auto positive = [](const char* field, double value) {
     if (!(value > 0.0)) throw FieldError(field, formatNumber(value) + " must be positive");
   };
-  positive("sample_interval_s", sample_interval_s);
+  // From one integration step to an hour.
+  requireWithin("sample_interval_s", sample_interval_s, kStepS, 3600.0, " s");
   positive("cutoff_voltage_v", cutoff_voltage_v);
   if (!(initial_soc > 0.0 && initial_soc <= 1.0)) {
     throw FieldError("initial_soc", formatNumber(initial_soc) + " is outside 0..1");
@@ -164,7 +197,13 @@ void BenchExperiment::validate() const {
                                              "] is not a range within 800..2200 us");
       }
       positive("pwm_step_us", pwm_step_us);
-      positive("step_duration_s", step_duration_s);
+      if (sweepPulseWidthCount(*this) > kMaxSweepPulseWidths) {
+        throw FieldError("pwm_step_us", formatNumber(pwm_step_us) + " gives " +
+                                            formatNumber(sweepPulseWidthCount(*this)) + " pulse widths from " +
+                                            formatNumber(pwm_start_us) + " to " + formatNumber(pwm_end_us) +
+                                            " us (at most " + formatNumber(kMaxSweepPulseWidths) + ")");
+      }
+      requireWithin("step_duration_s", step_duration_s, kStepS, 3600.0, " s");
       break;
     case BenchExperimentKind::kDischarge:
       if (pwms_us.empty()) throw FieldError("pwms_us", "no pulse width to discharge at");
@@ -228,14 +267,16 @@ BenchLog simulateBench(const SimParams& params, const SimEffects& all_effects, c
     case BenchExperimentKind::kConstantThrust:
       for (std::size_t run = 0; run < experiment.thrusts_n.size(); ++run) {
         const double target = experiment.thrusts_n[run];
+        // Grams to six digits: 2000 g, not its round trip through newtons (1999.9999999999998).
+        const std::string what = "constant thrust of " + formatPrintf("%.6g", target / kNewtonPerGramForce) + " g";
+        checkThrustReachable(params, effects, experiment, air, target, what);
         const double lo = params.bench.sweep_pwm_min_us;
         const double hi = params.bench.sweep_pwm_max_us;
         const auto controller = [&](double reading, double pwm) {
           return std::clamp(pwm + experiment.thrust_gain_us_per_n_s * (target - reading) * kControlIntervalS, lo, hi);
         };
         runOnBattery(params, effects, experiment, air, static_cast<int>(run) + 1, 0.5 * (lo + hi), kThrustSettleS,
-                     controller, "constant thrust of " + formatNumber(target / kNewtonPerGramForce) + " g", &time,
-                     &recorder);
+                     controller, what, &time, &recorder);
       }
       break;
   }

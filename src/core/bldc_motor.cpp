@@ -3,19 +3,9 @@
 #include <cmath>
 
 #include "propulsion_estimator/core/field_error.h"
-#include "propulsion_estimator/core/number_format.h"
 #include "propulsion_estimator/core/units.h"
 
 namespace propulsion_estimator {
-namespace {
-
-void requireWithin(const char* field, double value, double lo, double hi, const char* unit) {
-  if (!(value >= lo && value <= hi)) {
-    throw FieldError(field, formatNumber(value) + " is outside " + formatNumber(lo) + ".." + formatNumber(hi) + unit);
-  }
-}
-
-}  // namespace
 
 void BldcMotorParams::validate() const {
   requireWithin("motor.kv_rpm_per_v", kv_rpm_per_v, 10.0, 10000.0, " rpm/V");
@@ -23,7 +13,8 @@ void BldcMotorParams::validate() const {
   requireWithin("motor.no_load_current_a", no_load_current_a, 0.0, 20.0, " A");
   requireWithin("motor.reference_temperature_c", reference_temperature_c, -40.0, 120.0, " deg C");
   requireWithin("motor.flux_temperature_coefficient_per_c", flux_temperature_coefficient_per_c, -0.005, 0.0, " /deg C");
-  requireWithin("motor.rotor_inertia_kg_m2", rotor_inertia_kg_m2, 0.0, 0.01, " kg m^2");
+  // Every rotor has inertia; the speed lag divides by it.
+  requirePositive("motor.rotor_inertia_kg_m2", rotor_inertia_kg_m2, 0.01, " kg m^2");
   requireWithin("motor.thermal_capacity_j_per_c", thermal_capacity_j_per_c, 1.0, 10000.0, " J/deg C");
   requireWithin("motor.thermal_resistance_c_per_w", thermal_resistance_c_per_w, 0.01, 100.0, " deg C/W");
 }

@@ -3,7 +3,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/field_error.h"
@@ -83,11 +82,7 @@ std::string flightManifestToYaml(const FlightManifest& manifest, const std::stri
 }
 
 void saveFlightManifest(const FlightManifest& manifest, const std::string& path, const std::string& comment) {
-  const std::string text = flightManifestToYaml(manifest, comment);
-  std::ofstream file(path);
-  if (!file) throw ConfigError(path + ": cannot open for writing");
-  file << text;
-  if (!file) throw ConfigError(path + ": cannot write");
+  writeTextFile(path, flightManifestToYaml(manifest, comment));
 }
 
 std::string resolveBagPath(const std::string& manifest_path, const std::string& bag) {

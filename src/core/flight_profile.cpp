@@ -13,18 +13,12 @@ constexpr double kMinimumClearanceM = 0.05;
 // How high a hanging payload must stay above the ground while hovering.
 constexpr double kPayloadClearanceM = 0.2;
 constexpr double kMaxHeightM = 100.0;
-
-void requireWithin(const std::string& field, double value, double lo, double hi, const std::string& unit) {
-  if (!(value >= lo && value <= hi)) {
-    throw FieldError(field, formatNumber(value) + " is outside " + formatNumber(lo) + ".." + formatNumber(hi) + unit);
-  }
-}
-
-void requirePositive(const std::string& field, double value, double hi, const std::string& unit) {
-  if (!(value > 0.0 && value <= hi)) {
-    throw FieldError(field, formatNumber(value) + " is outside 0.." + formatNumber(hi) + unit + " (must be positive)");
-  }
-}
+// Climbs, descents and landings last height / rate: slower than this they are hovers (and a rate
+// near 0 would schedule a flight of years).
+constexpr double kSlowestRateM_S = 0.05;
+// A lighter payload is far below what the estimator can weigh; one below ~0.1 g would also let
+// its drag (a 10 cm box) outrun the explicit 2 ms step of its motion.
+constexpr double kLightestPayloadKg = 0.01;
 
 std::string metres(double value) { return formatNumber(value) + " m"; }
 
@@ -87,13 +81,15 @@ void FlightProfile::validate() const {
       case SegmentKind::kHover: requirePositive(at + "duration_s", s.duration_s, 3600.0, " s"); break;
       case SegmentKind::kPayload:
         requirePositive(at + "duration_s", s.duration_s, 3600.0, " s");
-        requireWithin(at + "mass_kg", s.payload_mass_kg, 0.0, 5.0, " kg");
+        if (s.payload_mass_kg != 0.0) {
+          requireWithin(at + "mass_kg", s.payload_mass_kg, kLightestPayloadKg, 5.0, " kg (or 0 for none)");
+        }
         payload = s.payload_mass_kg;
         break;
       case SegmentKind::kTakeoff:
       case SegmentKind::kClimb:
       case SegmentKind::kDescend:
-        requirePositive(at + "rate_m_s", s.rate_m_s, 5.0, " m/s");
+        requireWithin(at + "rate_m_s", s.rate_m_s, kSlowestRateM_S, 5.0, " m/s");
         requireWithin(at + "height_m", s.height_m, lowest, kMaxHeightM, " m");
         if (s.kind == SegmentKind::kClimb && !(s.height_m > height)) {
           throw FieldError(at + "height_m",
@@ -107,7 +103,7 @@ void FlightProfile::validate() const {
         flying = true;
         break;
       case SegmentKind::kLand:
-        requirePositive(at + "rate_m_s", s.rate_m_s, 5.0, " m/s");
+        requireWithin(at + "rate_m_s", s.rate_m_s, kSlowestRateM_S, 5.0, " m/s");
         height = landed;
         flying = false;
         break;

@@ -22,7 +22,7 @@ AutopilotParams readAutopilot(const YamlMap& map) {
   autopilot.pwm_min_us = map.number("pwm_min_us");
   autopilot.pwm_max_us = map.number("pwm_max_us");
   autopilot.disarmed_pwm_us = map.number("disarmed_pwm_us");
-  autopilot.rc_out_rate_hz = map.optionalNumber("rc_out_rate_hz").value_or(autopilot.rc_out_rate_hz);
+  autopilot.rc_out_rate_hz = map.number("rc_out_rate_hz");
   return autopilot;
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -24,12 +23,6 @@ constexpr double kEmptyStateOfCharge = 0.02;
 // segment would be wrong.
 constexpr double kHoverToleranceM = 0.25;
 constexpr int kMinRcOutChannels = 8;  // MAVLink SERVO_OUTPUT_RAW carries 8 (or 16) outputs
-
-std::string threeDigits(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.3g", value);
-  return buffer;
-}
 
 // Readings of one stream at k / rate, k = 0, 1, ...: at the first physics step at or after each.
 class Stream {
@@ -102,12 +95,57 @@ void checkThrustReserve(const SimParams& params, const SimEffects& effects, cons
     if (needed > kMaxHoverThrustShare * max_thrust) {
       const std::string field =
           payload_segment >= 0 ? "segments[" + std::to_string(payload_segment) + "].mass_kg" : "vehicle.urdf";
-      throw ConfigError(profile.source + ": " + field + ": " + threeDigits(mass) + " kg needs " + threeDigits(needed) +
-                        " N per rotor, more than " + threeDigits(100.0 * kMaxHoverThrustShare) + " % of the " +
-                        threeDigits(max_thrust) + " N each gives at " + formatNumber(profile.autopilot.pwm_max_us) +
-                        " us from " + threeDigits(source_v) + " V");
+      throw ConfigError(profile.source + ": " + field + ": " + formatPrintf("%.3g", mass) + " kg needs " +
+                        formatPrintf("%.3g", needed) + " N per rotor, more than " +
+                        formatPrintf("%.3g", 100.0 * kMaxHoverThrustShare) + " % of the " +
+                        formatPrintf("%.3g", max_thrust) + " N each gives at " +
+                        formatNumber(profile.autopilot.pwm_max_us) + " us from " + formatPrintf("%.3g", source_v) +
+                        " V");
     }
   }
+}
+
+// Refuses a segment that did not end as scripted: a hover away from its height (its manifest
+// segment would be wrong), a landing that has not disarmed.
+void checkSegmentEnd(const FlightProfile& profile, const ScheduledSegment& scheduled, double height_m, bool armed) {
+  const std::string at = profile.source + ": segments[" + std::to_string(scheduled.index) + "].type: ";
+  if (scheduled.segment.kind == SegmentKind::kHover &&
+      !(std::fabs(height_m - scheduled.end_height_m) <= kHoverToleranceM)) {
+    throw ConfigError(at + "the vehicle ended its hover at " + formatPrintf("%.3g", height_m) + " m instead of " +
+                      formatPrintf("%.3g", scheduled.end_height_m) + " m");
+  }
+  if (scheduled.segment.kind == SegmentKind::kLand && armed) {
+    throw ConfigError(at + "the vehicle had not landed and disarmed " + formatPrintf("%.3g", kTouchdownS) +
+                      " s after its descent");
+  }
+}
+
+// Everything a flight starts from, once every input has been checked.
+struct FlightSetup {
+  std::vector<ScheduledSegment> schedule;
+  MultirotorDynamics dynamics;
+  FlightController controller;
+};
+
+FlightSetup setUpFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
+                        const Vehicle& vehicle, const FlightSensorParams& sensors) {
+  params.validate();
+  effects.validate();
+  sensors.validate();
+  // The vehicle's refusals (no mass properties, a rotor layout the mixer cannot use) name its URDF.
+  const auto fromUrdf = [&profile](const auto& make) {
+    try {
+      return make();
+    } catch (const ConfigError& e) {
+      throw ConfigError(profile.vehicle.urdf_path + ": " + e.what());
+    }
+  };
+  FlightSetup setup{
+      scheduleFlight(profile), fromUrdf([&] { return MultirotorDynamics(vehicle, profile.vehicle, profile.cable); }),
+      fromUrdf([&] { return FlightController(vehicle, profile.autopilot, profile.vehicle.landing_gear_height_m); })};
+  checkThrustReserve(params, effects, profile, setup.schedule, setup.dynamics.vehicleMassKg(),
+                     static_cast<int>(vehicle.rotors.size()), effects.air.value_or(params.bench.air).densityKgM3());
+  return setup;
 }
 
 class Noise {
@@ -143,23 +181,24 @@ class GaussMarkov3 {
 
 }  // namespace
 
+void checkFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
+                 const Vehicle& vehicle, const FlightSensorParams& sensors) {
+  setUpFlight(params, effects, profile, vehicle, sensors);
+}
+
 FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
                             const Vehicle& vehicle, std::uint64_t seed, FlightSink* sink,
                             const FlightSensorParams& sensors) {
-  params.validate();
-  effects.validate();
-  sensors.validate();
-  const std::vector<ScheduledSegment> schedule = scheduleFlight(profile);
-  MultirotorDynamics dynamics(vehicle, profile.vehicle, profile.cable);
+  FlightSetup setup = setUpFlight(params, effects, profile, vehicle, sensors);
+  const std::vector<ScheduledSegment>& schedule = setup.schedule;
+  MultirotorDynamics& dynamics = setup.dynamics;
+  FlightController& controller = setup.controller;
   const int rotors = static_cast<int>(vehicle.rotors.size());
   const AirConditions air = effects.air.value_or(params.bench.air);
   const double density = air.densityKgM3();
-  checkThrustReserve(params, effects, profile, schedule, dynamics.vehicleMassKg(), rotors, density);
 
   PowerTrain train(PropulsionChain(params.chain), rotors, effects, air.temperature_c);
   LipoBattery battery(params.battery, profile.vehicle.battery_initial_soc);
-  const double landed_height = profile.vehicle.landing_gear_height_m;
-  FlightController controller(vehicle, profile.autopilot, landed_height);
   Noise noise(seed);
   const double radius = params.chain.propeller.radiusM();
   const Eigen::Vector3d origin = dynamics.basePosition();
@@ -184,18 +223,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
   for (long step = 0; step <= steps; ++step) {
     const double t = step * kFlightStepS;
     while (current + 1 < schedule.size() && t >= schedule[current].end_s - 1e-9) {
-      const double height = dynamics.basePosition().z();
-      if (schedule[current].segment.kind == SegmentKind::kHover &&
-          std::fabs(height - schedule[current].end_height_m) > kHoverToleranceM) {
-        throw ConfigError(profile.source + ": segments[" + std::to_string(schedule[current].index) +
-                          "].type: the vehicle ended its hover at " + threeDigits(height) + " m instead of " +
-                          threeDigits(schedule[current].end_height_m) + " m");
-      }
-      if (schedule[current].segment.kind == SegmentKind::kLand && controller.armed()) {
-        throw ConfigError(profile.source + ": segments[" + std::to_string(schedule[current].index) +
-                          "].type: the vehicle had not landed and disarmed " + threeDigits(kTouchdownS) +
-                          " s after its descent");
-      }
+      checkSegmentEnd(profile, schedule[current], dynamics.basePosition().z(), controller.armed());
       ++current;
       entered = false;
     }
@@ -299,12 +327,18 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
     }
 
     dynamics.step(thrust, torque, density, kFlightStepS);
+    if (!dynamics.isFinite()) {
+      throw ConfigError(profile.source +
+                        ": the simulation diverged at t = " + formatPrintf("%.3f", (step + 1) * kFlightStepS) + " s");
+    }
     battery.draw(power.current_a, kFlightStepS);
     if (battery.stateOfCharge() < kEmptyStateOfCharge) {
-      throw ConfigError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " + threeDigits(t) +
-                        " s into the flight");
+      throw ConfigError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +
+                        formatPrintf("%.3g", t) + " s into the flight");
     }
   }
+
+  checkSegmentEnd(profile, schedule.back(), dynamics.basePosition().z(), controller.armed());
 
   for (const ScheduledSegment& scheduled : schedule) {
     if (scheduled.segment.kind != SegmentKind::kHover) continue;

@@ -2,7 +2,6 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <regex>
 #include <stdexcept>
 
@@ -237,10 +236,7 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
 }
 
 void saveModelFile(const PropulsionModel& model, const std::string& path, const std::string& comment) {
-  std::ofstream file(path);
-  if (!file) throw ConfigError(path + ": cannot open for writing");
-  file << modelToYaml(model, comment);
-  if (!file) throw ConfigError(path + ": cannot write");
+  writeTextFile(path, modelToYaml(model, comment));
 }
 
 std::string modelFingerprint(const PropulsionModel& model) {

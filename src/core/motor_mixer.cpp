@@ -33,12 +33,13 @@ MotorMixer::MotorMixer(const Vehicle& vehicle) {
     const double largest = matrix_.col(axis).cwiseAbs().maxCoeff();
     if (largest > 0.0) matrix_.col(axis) /= largest;
   }
+  commands_.resize(n);
   outputs_.assign(n, 0.0);
 }
 
 const std::vector<double>& MotorMixer::mix(double collective, double roll, double pitch, double yaw) {
-  const Eigen::VectorXd u = matrix_ * Eigen::Vector4d(roll, pitch, yaw, collective);
-  for (std::size_t k = 0; k < outputs_.size(); ++k) outputs_[k] = std::clamp(u(k), 0.0, 1.0);
+  commands_.noalias() = matrix_ * Eigen::Vector4d(roll, pitch, yaw, collective);
+  for (std::size_t k = 0; k < outputs_.size(); ++k) outputs_[k] = std::clamp(commands_(k), 0.0, 1.0);
   return outputs_;
 }
 

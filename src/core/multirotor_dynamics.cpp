@@ -10,7 +10,6 @@ namespace propulsion_estimator {
 namespace {
 
 const Eigen::Vector3d kGravity(0.0, 0.0, -kStandardGravity);
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 // Ground contact: stiff enough that a foot sinks ~1 mm under the vehicle, damped to 0.8 of
 // critical; Coulomb friction of rubber feet on a floor, viscous below 5 cm/s of sliding. The
@@ -24,6 +23,12 @@ constexpr double kFrictionRegularisationM_S = 0.05;
 constexpr double kAngularDampingNmS = 0.002;
 // Cd A of a small payload (a 10 cm box).
 constexpr double kPayloadDragAreaM2 = 0.01;
+
+// Stiffness and damping of a contact carrying `mass_kg`: it rings at kContactFrequencyHz.
+double contactStiffness(double mass_kg) { return mass_kg * std::pow(kTwoPi * kContactFrequencyHz, 2); }
+double contactDamping(double mass_kg) {
+  return 2.0 * kContactDampingRatio * std::sqrt(contactStiffness(mass_kg) * mass_kg);
+}
 
 // Normal and friction force of the ground on a point at `position` moving at `velocity`, for a
 // contact of stiffness k and damping c.
@@ -59,9 +64,11 @@ MultirotorDynamics::MultirotorDynamics(const Vehicle& vehicle, const VehicleSetu
   const double h = setup.landing_gear_height_m;
   feet_body_ = {Eigen::Vector3d(w, w, -h), Eigen::Vector3d(w, -w, -h), Eigen::Vector3d(-w, w, -h),
                 Eigen::Vector3d(-w, -w, -h)};
-  // At rest on the gear: each foot sunk by its share of the weight over its stiffness.
-  const double foot_stiffness = mass_kg_ / feet_body_.size() * std::pow(kTwoPi * kContactFrequencyHz, 2);
-  const double sink = mass_kg_ * kStandardGravity / (feet_body_.size() * foot_stiffness);
+  // Each foot carries its share of the vehicle; at rest it is sunk by that weight over its stiffness.
+  const double foot_mass = mass_kg_ / feet_body_.size();
+  foot_stiffness_n_per_m_ = contactStiffness(foot_mass);
+  foot_damping_n_s_per_m_ = contactDamping(foot_mass);
+  const double sink = mass_kg_ * kStandardGravity / (feet_body_.size() * foot_stiffness_n_per_m_);
   position_ = Eigen::Vector3d(0.0, 0.0, h - sink) + centre_of_mass_body_;
   specific_force_body_ = -kGravity;  // the ground holds the weight
 }
@@ -86,6 +93,36 @@ void MultirotorDynamics::setPayload(double mass_kg) {
   cable_tension_n_ = 0.0;
 }
 
+bool MultirotorDynamics::isFinite() const {
+  return position_.allFinite() && velocity_.allFinite() && attitude_.coeffs().allFinite() && omega_body_.allFinite() &&
+         payload_position_.allFinite() && payload_velocity_.allFinite();
+}
+
+double MultirotorDynamics::cableTension(const Eigen::Vector3d& along, double stretch_m,
+                                        const Eigen::Vector3d& payload_force, const Eigen::Vector3d& vehicle_force,
+                                        const Eigen::Vector3d& vehicle_torque_body, double dt_s) const {
+  // The attachment point moves along the cable with the vehicle's translation and rotation: it
+  // answers a pull T along the cable with the acceleration T (1/M + w' I^-1 w), w = r x u in the
+  // body frame, and the other forces and torques give it the acceleration a_v.u + alpha.w.
+  const Eigen::Vector3d lever = cable_.attach_point_m - centre_of_mass_body_;
+  const Eigen::Vector3d w = lever.cross(attitude_.conjugate() * along);
+  const double attach_mobility = 1.0 / mass_kg_ + w.dot(inertia_inverse_ * w);
+  const Eigen::Vector3d angular_acceleration =
+      inertia_inverse_ * (vehicle_torque_body - omega_body_.cross(inertia_ * omega_body_));
+  const double reduced_mass = 1.0 / (1.0 / payload_mass_kg_ + attach_mobility);
+  // Gravity accelerates both ends alike.
+  const double relative_acceleration =
+      (payload_force / payload_mass_kg_ - vehicle_force / mass_kg_).dot(along) - angular_acceleration.dot(w);
+  const double stretch_rate = (payload_velocity_ - worldPointVelocity(cable_.attach_point_m)).dot(along);
+  // Backward Euler on the stretch s: T = k (s + dt s') + c s' with s' the rate at the end of the
+  // step, s' = rate + dt (relative_acceleration - T / reduced_mass).
+  const double k = cable_.stiffness_n_per_m;
+  const double c = cable_.damping_n_s_per_m;
+  const double next_rate = (stretch_rate + dt_s * (relative_acceleration - k * stretch_m / reduced_mass)) /
+                           (1.0 + dt_s * (k * dt_s + c) / reduced_mass);
+  return std::max(0.0, k * (stretch_m + dt_s * next_rate) + c * next_rate);
+}
+
 void MultirotorDynamics::step(const std::vector<double>& thrust_n, const std::vector<double>& torque_nm,
                               double air_density_kg_m3, double dt_s) {
   Eigen::Vector3d force = drag(velocity_, air_density_kg_m3, drag_area_m2_);
@@ -99,35 +136,26 @@ void MultirotorDynamics::step(const std::vector<double>& thrust_n, const std::ve
     torque_body -= rotors_[k].spin_direction * torque_nm[k] * rotors_[k].thrust_axis;
   }
 
-  const double foot_stiffness = mass_kg_ / feet_body_.size() * std::pow(kTwoPi * kContactFrequencyHz, 2);
-  const double foot_damping = 2.0 * kContactDampingRatio * std::sqrt(foot_stiffness * mass_kg_ / feet_body_.size());
   for (const Eigen::Vector3d& foot : feet_body_) {
     const Eigen::Vector3d contact =
-        groundForce(worldPoint(foot), worldPointVelocity(foot), foot_stiffness, foot_damping);
+        groundForce(worldPoint(foot), worldPointVelocity(foot), foot_stiffness_n_per_m_, foot_damping_n_s_per_m_);
     applyBody(foot, attitude_.conjugate() * contact);
   }
 
-  Eigen::Vector3d payload_force = Eigen::Vector3d::Zero();
   cable_tension_n_ = 0.0;
   if (payload_mass_kg_ > 0.0) {
-    const Eigen::Vector3d attach = worldPoint(cable_.attach_point_m);
-    const Eigen::Vector3d span = payload_position_ - attach;
+    Eigen::Vector3d payload_force = groundForce(payload_position_, payload_velocity_,
+                                                contactStiffness(payload_mass_kg_), contactDamping(payload_mass_kg_)) +
+                                    drag(payload_velocity_, air_density_kg_m3, kPayloadDragAreaM2);
+    const Eigen::Vector3d span = payload_position_ - worldPoint(cable_.attach_point_m);
     const double length = span.norm();
     if (length > cable_.length_m) {
       const Eigen::Vector3d along = span / length;
-      const double stretch_rate = (payload_velocity_ - worldPointVelocity(cable_.attach_point_m)).dot(along);
-      cable_tension_n_ = std::max(
-          0.0, cable_.stiffness_n_per_m * (length - cable_.length_m) + cable_.damping_n_s_per_m * stretch_rate);
-    }
-    if (cable_tension_n_ > 0.0) {
-      const Eigen::Vector3d pull = cable_tension_n_ * span / length;
+      cable_tension_n_ = cableTension(along, length - cable_.length_m, payload_force, force, torque_body, dt_s);
+      const Eigen::Vector3d pull = cable_tension_n_ * along;
       applyBody(cable_.attach_point_m, attitude_.conjugate() * pull);
       payload_force -= pull;
     }
-    const double payload_stiffness = payload_mass_kg_ * std::pow(kTwoPi * kContactFrequencyHz, 2);
-    const double payload_damping = 2.0 * kContactDampingRatio * std::sqrt(payload_stiffness * payload_mass_kg_);
-    payload_force += groundForce(payload_position_, payload_velocity_, payload_stiffness, payload_damping) +
-                     drag(payload_velocity_, air_density_kg_m3, kPayloadDragAreaM2);
     payload_velocity_ += (payload_force / payload_mass_kg_ + kGravity) * dt_s;
     payload_position_ += payload_velocity_ * dt_s;
   }

@@ -49,6 +49,7 @@ const PowerTrainState& PowerTrain::step(const std::vector<double>& pwm_us, const
     state_.current_a += state_.motors[k].input_current_a;
   }
   state_.terminal_voltage_v = supply.source_voltage_v - supply.internal_resistance_ohm * state_.current_a;
+  if (dt_s == 0.0) return state_;
 
   for (int k = 0; k < n; ++k) {
     const ChainInput input{state_.duty[k], state_.esc_voltage_v, density, electricalTemperatureC(k)};

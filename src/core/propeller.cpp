@@ -1,18 +1,8 @@
 #include "propulsion_estimator/core/propeller.h"
 
 #include "propulsion_estimator/core/field_error.h"
-#include "propulsion_estimator/core/number_format.h"
 
 namespace propulsion_estimator {
-namespace {
-
-void requireWithin(const char* field, double value, double lo, double hi) {
-  if (!(value >= lo && value <= hi)) {
-    throw FieldError(field, formatNumber(value) + " is outside " + formatNumber(lo) + ".." + formatNumber(hi));
-  }
-}
-
-}  // namespace
 
 void PropellerParams::validate() const {
   requireWithin("propeller.diameter_m", diameter_m, 0.02, 2.0);

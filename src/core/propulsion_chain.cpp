@@ -5,11 +5,6 @@
 #include "propulsion_estimator/core/units.h"
 
 namespace propulsion_estimator {
-namespace {
-
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
-
-}  // namespace
 
 void ChainParams::validate() const {
   esc.validate();

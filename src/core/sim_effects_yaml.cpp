@@ -1,5 +1,6 @@
 #include "propulsion_estimator/core/sim_effects_yaml.h"
 
+#include "propulsion_estimator/core/atmosphere_yaml.h"
 #include "propulsion_estimator/core/field_error.h"
 #include "propulsion_estimator/core/yaml_map.h"
 
@@ -23,11 +24,7 @@ SimEffects parseSimEffectsYaml(const std::string& text, const std::string& sourc
   // Keys, not has(): an effect written without its parameter is refused, not silently off.
   for (const std::string& effect : root.keys()) {
     if (effect == "supply_resistance") effects.supply_resistance_ohm = parameter(root, "supply_resistance", "ohm");
-    if (effect == "air_density") {
-      const YamlMap air = root.map("air_density");
-      air.allowOnly({"temperature_c", "pressure_pa"});
-      effects.air = AirConditions{air.number("temperature_c"), air.number("pressure_pa")};
-    }
+    if (effect == "air_density") effects.air = readAirConditions(root.map("air_density"));
     if (effect == "ground_effect") effects.ground_effect_strength = parameter(root, "ground_effect", "strength");
     if (effect == "thrust_loss") effects.thrust_loss_fraction = parameter(root, "thrust_loss", "fraction");
     if (effect == "motor_temperature") {

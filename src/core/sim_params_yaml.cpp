@@ -1,5 +1,6 @@
 #include "propulsion_estimator/core/sim_params_yaml.h"
 
+#include "propulsion_estimator/core/atmosphere_yaml.h"
 #include "propulsion_estimator/core/field_error.h"
 #include "propulsion_estimator/core/yaml_map.h"
 
@@ -64,9 +65,7 @@ SensorNoise readSensor(const YamlMap& map, const std::string& unit) {
 BenchParams readBench(const YamlMap& map) {
   map.allowOnly({"air", "sweep_pwm_us", "sensors"});
   BenchParams bench;
-  const YamlMap air = map.map("air");
-  air.allowOnly({"temperature_c", "pressure_pa"});
-  bench.air = AirConditions{air.number("temperature_c"), air.number("pressure_pa")};
+  bench.air = readAirConditions(map.map("air"));
   std::tie(bench.sweep_pwm_min_us, bench.sweep_pwm_max_us) = map.range("sweep_pwm_us");
   const YamlMap sensors = map.map("sensors");
   sensors.allowOnly({"load_cell", "current", "voltage", "rpm", "temperature"});

@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <system_error>
 
 #include <yaml-cpp/yaml.h>
@@ -34,9 +33,7 @@ void saveTareFile(const std::string& path, const TareRecord& record) {
     yaml << YAML::Comment("Written by propulsion_estimator's ~tare service.") << YAML::Newline << YAML::BeginMap
          << YAML::Key << "empty_mass_kg" << YAML::Value << mass << YAML::Key << "model" << YAML::Value
          << record.model << YAML::Key << "model_fingerprint" << YAML::Value << record.model_fingerprint << YAML::EndMap;
-    std::ofstream out(temporary);
-    out << yaml.c_str() << "\n";
-    if (!out) throw ConfigError(path + ": cannot write the tare file");
+    writeTextFile(temporary, std::string(yaml.c_str()) + "\n");
   }
   std::filesystem::rename(temporary, target, error);
   if (error) throw ConfigError(path + ": cannot write the tare file: " + error.message());

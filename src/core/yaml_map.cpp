@@ -196,4 +196,12 @@ std::string readTextFile(const std::string& path) {
 
 YamlMap loadYamlFile(const std::string& path) { return parseYamlDocument(readTextFile(path), path); }
 
+void writeTextFile(const std::string& path, const std::string& text) {
+  std::ofstream file(path, std::ios::binary);
+  if (!file) throw ConfigError(path + ": cannot open for writing");
+  file << text;
+  file.close();
+  if (!file) throw ConfigError(path + ": cannot write");
+}
+
 }  // namespace propulsion_estimator

@@ -8,6 +8,7 @@
 #include <sensor_msgs/Range.h>
 #include <sensor_msgs/Temperature.h>
 
+#include <iostream>
 #include <limits>
 
 #include "propulsion_estimator/SimTruth.h"
@@ -48,12 +49,20 @@ boost::array<double, 9> diagonal(double sigma) {
 
 }  // namespace
 
-BagFlightSink::BagFlightSink(const std::string& path, rosbag::compression::CompressionType compression) {
+BagFlightSink::BagFlightSink(const std::string& path, rosbag::compression::CompressionType compression) : path_(path) {
   bag_.open(path, rosbag::bagmode::Write);
   bag_.setCompression(compression);
 }
 
-BagFlightSink::~BagFlightSink() { close(); }
+BagFlightSink::~BagFlightSink() {
+  // A destructor must not throw (it may run while an exception unwinds): report instead. Callers
+  // that need to know call close() first.
+  try {
+    close();
+  } catch (const std::exception& e) {
+    std::cerr << path_ << ": closing the bag failed: " << e.what() << "\n";
+  }
+}
 
 void BagFlightSink::close() {
   if (bag_.isOpen()) bag_.close();
@@ -74,6 +83,10 @@ void BagFlightSink::battery(const BatterySample& sample) {
   msg.header = header(stamp(sample.time_s), "");
   msg.voltage = static_cast<float>(sample.voltage_v);
   msg.current = static_cast<float>(sample.current_a);
+  // The message's convention for what is not measured: NaN. A power module measures neither the
+  // pack's temperature nor its charge; the percentage is the autopilot's estimate, and MAVROS
+  // leaves cell_voltage empty when (as from SYS_STATUS) it does not know the cell count.
+  msg.temperature = std::numeric_limits<float>::quiet_NaN();
   msg.charge = std::numeric_limits<float>::quiet_NaN();
   msg.capacity = std::numeric_limits<float>::quiet_NaN();
   msg.design_capacity = std::numeric_limits<float>::quiet_NaN();

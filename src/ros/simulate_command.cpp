@@ -112,11 +112,23 @@ void runFlight(const FlightOptions& options) {
                                                            : options.compression == "lz4"
                                                                ? rosbag::compression::LZ4
                                                                : rosbag::compression::Uncompressed;
+  // The refusals that need no flying come before any file is touched; the bag is written under
+  // another name and takes its own only when the flight has been flown to its end.
+  checkFlight(params, effects, profile, vehicle);
+  const std::string active = options.bag + ".active";
   FlightResult result;
-  {
-    BagFlightSink sink(options.bag, compression);
+  try {
+    BagFlightSink sink(active, compression);
     result = simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
+    sink.close();
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(active, ignored);
+    throw;
   }
+  std::error_code error;
+  std::filesystem::rename(active, options.bag, error);
+  if (error) throw ConfigError(options.bag + ": cannot move " + active + " there: " + error.message());
   std::cout << "simulate flight: " << formatNumber(result.duration_s) << " s, battery from "
             << formatNumber(100.0 * profile.vehicle.battery_initial_soc) << " % to "
             << formatNumber(std::round(100.0 * result.final_state_of_charge)) << " % -> " << options.bag << "\n";

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/units.h"
@@ -54,10 +54,9 @@ void writeNativeBenchCsv(const BenchLog& log, std::ostream& out, ThrustUnit thru
 }
 
 void saveNativeBenchCsv(const BenchLog& log, const std::string& path, ThrustUnit thrust_unit) {
-  std::ofstream file(path);
-  if (!file) throw ConfigError(path + ": cannot open for writing");
-  writeNativeBenchCsv(log, file, thrust_unit);
-  if (!file) throw ConfigError(path + ": cannot write");
+  std::ostringstream text;
+  writeNativeBenchCsv(log, text, thrust_unit);
+  writeTextFile(path, text.str());
 }
 
 bool isNativeBenchHeader(const std::vector<std::string>& header) {

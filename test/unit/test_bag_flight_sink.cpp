@@ -118,8 +118,20 @@ TEST(BagFlightSink, WritesMavrosTopicsWithTheirTypesAndRates) {
         hover_samples += 4;
       }
     }
-    if (message.getTopic() == "/mavros/battery" && t >= result.segments[0].start_s && t <= result.segments[0].end_s) {
-      EXPECT_LT(message.instantiate<sensor_msgs::BatteryState>()->current, -10.0f);  // PX4 through MAVROS
+    if (message.getTopic() == "/mavros/battery") {
+      const sensor_msgs::BatteryState::ConstPtr battery = message.instantiate<sensor_msgs::BatteryState>();
+      if (t >= result.segments[0].start_s && t <= result.segments[0].end_s) {
+        EXPECT_LT(battery->current, -10.0f);  // PX4 through MAVROS
+      }
+      // Unmeasured fields are NaN, as the message definition asks.
+      EXPECT_TRUE(std::isnan(battery->temperature));
+      EXPECT_TRUE(std::isnan(battery->charge));
+      EXPECT_TRUE(std::isnan(battery->capacity));
+      EXPECT_TRUE(std::isnan(battery->design_capacity));
+      EXPECT_GT(battery->voltage, 11.0f);
+      EXPECT_GE(battery->percentage, 0.0f);
+      EXPECT_LE(battery->percentage, 1.0f);
+      EXPECT_TRUE(battery->cell_voltage.empty());
     }
     if (message.getTopic() == "/sim/truth") {
       const pe::SimTruth::ConstPtr truth = message.instantiate<pe::SimTruth>();
@@ -212,8 +224,40 @@ TEST(SimulateCommand, RefusesBadInputsWithOneLine) {
   EXPECT_EQ(refusal({"flight", "--params", params, "--profile", dir.file("profile.yaml"), "--bag",
                      dir.file("no/such/dir/f.bag")}),
             "1 simulate flight: " + dir.file("no/such/dir/f.bag") +
-                ": Error opening file: " + dir.file("no/such/dir/f.bag") + "\n");
+                ": Error opening file: " + dir.file("no/such/dir/f.bag.active") + "\n");
   EXPECT_EQ(refusal({"bench", "--params", params, "--experiment", "pwm_sweep", "--pwm-range", "1900", "1200",
                      "--output", dir.file("b.csv")}),
             "1 simulate bench: --pwm-range: [1900, 1200] is not a range within 800..2200 us\n");
+  EXPECT_EQ(refusal({"bench", "--params", params, "--experiment", "pwm_sweep", "--pwm-step", "1e-7", "--output",
+                     dir.file("b.csv")}),
+            "1 simulate bench: --pwm-step: 1e-07 gives 7000000001 pulse widths from 1200 to 1900 us (at most 1e+06)\n");
+  EXPECT_FALSE(fs::exists(dir.file("b.csv")));
+}
+
+TEST(SimulateCommand, ARefusedFlightLeavesNoBagBehind) {
+  TempDir dir;
+  const std::string params = repoPath("config/sim/e300_dji2212_dji9443.yaml");
+  const std::string bag = dir.file("f.bag");
+  writeFile(bag, "an earlier bag");
+  const auto refusal = [&](const std::string& profile) {
+    writeFile(dir.file("profile.yaml"), profile);
+    testing::internal::CaptureStderr();
+    const int code = runCommand({"flight", "--params", params, "--profile", dir.file("profile.yaml"), "--bag", bag});
+    return std::to_string(code) + " " + testing::internal::GetCapturedStderr();
+  };
+  // Refused before flying: the bag is never opened.
+  std::string heavy = shortProfile();
+  heavy.replace(heavy.find("{length_m: 1.0,"), 15, "{length_m: 0.3,");
+  const std::string wait = "  - {type: wait, duration_s: 1}\n";
+  heavy.replace(heavy.find(wait), wait.size(), wait + "  - {type: payload, mass_kg: 1.5, duration_s: 1}\n");
+  EXPECT_EQ(refusal(heavy), "1 simulate flight: " + dir.file("profile.yaml") +
+                                ": segments[1].mass_kg: 2.82 kg needs 6.9 N per rotor, more than 80 % of the 6.71 N "
+                                "each gives at 1950 us from 12.3 V\n");
+  // Refused in flight: the bag written so far is removed.
+  std::string short_battery = shortProfile();
+  short_battery.replace(short_battery.find("battery_initial_soc: 0.9"), 24, "battery_initial_soc: 0.025");
+  EXPECT_EQ(refusal(short_battery), "1 simulate flight: " + dir.file("profile.yaml") +
+                                        ": vehicle.battery_initial_soc: the battery is empty 8.88 s into the flight\n");
+  EXPECT_TRUE(pe::readTextFile(bag) == "an earlier bag");
+  EXPECT_FALSE(fs::exists(bag + ".active"));
 }

@@ -256,9 +256,33 @@ TEST(BenchSimulator, RefusesImpossibleExperiments) {
   sweep.pwm_start_us = 1900.0;
   sweep.pwm_end_us = 1200.0;
   EXPECT_EQ(refusal(sweep), "pwm_start_us: [1900, 1200] is not a range within 800..2200 us");
+  // Counts of steps in double: a step of 1e-7 us is 7e9 pulse widths, not an overflowed int.
+  sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  sweep.pwm_step_us = 1e-7;
+  EXPECT_EQ(refusal(sweep), "pwm_step_us: 1e-07 gives 7000000001 pulse widths from 1200 to 1900 us (at most 1e+06)");
+  sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  sweep.step_duration_s = 0.01;
+  EXPECT_EQ(refusal(sweep), "step_duration_s: 0.01 is outside 0.02..3600 s");
+  sweep.step_duration_s = 1e5;
+  EXPECT_EQ(refusal(sweep), "step_duration_s: 100000 is outside 0.02..3600 s");
   pe::BenchExperiment discharge = pe::thesisBenchExperiment(pe::BenchExperimentKind::kDischarge, params);
+  discharge.sample_interval_s = 1e9;
+  EXPECT_EQ(refusal(discharge), "sample_interval_s: 1e+09 is outside 0.02..3600 s");
+  discharge = pe::thesisBenchExperiment(pe::BenchExperimentKind::kDischarge, params);
   discharge.pwms_us = {1800.0};
   discharge.cutoff_voltage_v = 9.0;  // below the empty pack's 9.81 V
   EXPECT_EQ(refusal(discharge),
             "discharge at 1800 us emptied the battery before the measured voltage fell below the 9 V cut-off");
+}
+
+TEST(BenchSimulator, RefusesAConstantThrustOutsideWhatThePwmRangeGives) {
+  // From the full 3S pack (12.6 V behind 15 mOhm) the rotor gives 683 g at 1900 us (695 g at a
+  // regulated 12.6 V) and 19 g at 1200 us; 3 load-cell sigmas (3 g) of slack either side. The
+  // target is quoted as given, not as its round trip through newtons.
+  const pe::SimParams params = thesisParams();
+  pe::BenchExperiment held = pe::thesisBenchExperiment(pe::BenchExperimentKind::kConstantThrust, params);
+  held.thrusts_n = {300.0 * pe::kNewtonPerGramForce, 2000.0 * pe::kNewtonPerGramForce};
+  EXPECT_EQ(refusal(held), "constant thrust of 2000 g: only 683 g at 1900 us");
+  held.thrusts_n = {10.0 * pe::kNewtonPerGramForce};
+  EXPECT_EQ(refusal(held), "constant thrust of 10 g: already 19 g at 1200 us");
 }

@@ -274,3 +274,143 @@ TEST(FlightSimulator, RefusesAHoverTheVehicleCannotReach) {
   EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
                                   ": segments[1].type: the vehicle ended its hover at 17 m instead of 50 m");
 }
+
+TEST(FlightSimulator, ALightPayloadOnAStiffDampedCableHangsSteadily) {
+  // 10 g on the default cable (1000 N/m, 10 N s/m) and on the stiffest, most damped one a profile
+  // may have (1e5 N/m, 1000 N s/m): stretch modes of 316 and 3162 rad/s and damping rates c/m of
+  // 1000 and 1e5 /s, against a 2 ms step. The cable must carry the payload's weight, steadily.
+  for (const auto& [stiffness, damping] : {std::pair{1000.0, 10.0}, std::pair{1e5, 1e3}}) {
+    pe::FlightProfile profile = defaultProfile();
+    profile.cable.stiffness_n_per_m = stiffness;
+    profile.cable.damping_n_s_per_m = damping;
+    profile.segments = {{pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
+                        {pe::SegmentKind::kPayload, 2.0, 0.0, 0.0, 0.01},
+                        {pe::SegmentKind::kTakeoff, 0.0, 2.5, 1.0, 0.0},
+                        {pe::SegmentKind::kHover, 20.0, 0.0, 0.0, 0.0},
+                        {pe::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0}};
+    const Flight flight = fly(profile);
+    ASSERT_EQ(flight.result.segments.size(), 1u);
+    double tension = 0.0, worst_height = 0.0;
+    int n = 0;
+    forSegment(flight.sink.truths, flight.result.segments[0], [&](const pe::TruthSample& t) {
+      tension += t.cable_tension_n;
+      worst_height = std::max(worst_height, std::fabs(t.height_m - 2.5));
+      ++n;
+    });
+    EXPECT_NEAR(tension / n, 0.01 * pe::kStandardGravity, 0.01 * 0.01 * pe::kStandardGravity) << stiffness;
+    EXPECT_LT(worst_height, 0.05) << stiffness;
+  }
+}
+
+TEST(FlightSimulator, RefusesAFlightThatDiverges) {
+  // A vehicle whose inertia is a millionth of the quad's: the 2 ms step cannot follow its
+  // rotation (angular damping alone has the rate 0.002 N m s / 1e-8 kg m^2 = 2e5 /s).
+  pe::FlightProfile profile = defaultProfile();
+  pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
+  vehicle.empty_mass->inertia_kg_m2 *= 1e-6;
+  RecordingFlightSink sink;
+  try {
+    pe::simulateFlight(thesisParams(), {}, profile, vehicle, 1, &sink);
+    ADD_FAILURE() << "accepted";
+  } catch (const pe::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              repoPath("config/sim/default_flight.yaml") + ": the simulation diverged at t = 0.016 s");
+  }
+}
+
+TEST(FlightSimulator, RefusesALandingThatDoesNotLandAlsoAtTheEnd) {
+  // Landing from 20 m at 5 m/s: the autopilot descends at 2 m/s at most, so 4 s after the scripted
+  // descent the vehicle is still about 4 m up. Checked where the landing ends the profile and where
+  // it does not.
+  pe::FlightProfile profile = defaultProfile();
+  profile.segments = {{pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
+                      {pe::SegmentKind::kTakeoff, 0.0, 20.0, 2.0, 0.0},
+                      {pe::SegmentKind::kLand, 0.0, 0.0, 5.0, 0.0}};
+  const std::string expected = repoPath("config/sim/default_flight.yaml") +
+                               ": segments[2].type: the vehicle had not landed and disarmed 4 s after its descent";
+  EXPECT_EQ(refusal(profile), expected);
+  profile.segments.push_back({pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0});
+  EXPECT_EQ(refusal(profile), expected);
+}
+
+TEST(FlightSimulator, RefusesAVehicleItCannotFlyNamingItsUrdf) {
+  const pe::FlightProfile profile = defaultProfile();
+  const pe::Vehicle quad = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
+  const auto refused = [&](const pe::Vehicle& vehicle) {
+    try {
+      pe::checkFlight(thesisParams(), {}, profile, vehicle);
+    } catch (const pe::ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  pe::Vehicle massless = quad;
+  massless.empty_mass.reset();
+  EXPECT_EQ(refused(massless), repoPath("config/sim/../f450_quad.urdf") +
+                                   ": the flight simulator needs the rotors' positions and the mass properties of the "
+                                   "vehicle (a URDF with rotor joints and <inertial> elements)");
+  pe::Vehicle one_way = quad;  // every propeller turning the same way: no yaw control
+  for (pe::Rotor& rotor : one_way.rotors) rotor.spin_direction = 1;
+  EXPECT_EQ(refused(one_way), repoPath("config/sim/../f450_quad.urdf") +
+                                  ": the rotor layout cannot control roll, pitch, yaw and thrust independently");
+  EXPECT_EQ(refused(quad), "accepted");
+}
+
+TEST(FlightSimulator, FliesAHexacopter) {
+  // Six rotors 0.3 m out at 60 deg spacing, alternating spin, 1.9 kg: the geometric mixer handles
+  // six motors, the vehicle holds its height, its thrust balances the weight, the centre of thrust
+  // lies under the centre of gravity (the profile's 8 mm / -5 mm offset), and rc/out carries six
+  // motor channels of its eight.
+  pe::Vehicle hexa;
+  const double pi = 3.14159265358979323846;
+  for (int k = 0; k < 6; ++k) {
+    pe::Rotor rotor;
+    rotor.name = "rotor_" + std::to_string(k + 1);
+    const double angle = pi / 6.0 + k * pi / 3.0;
+    rotor.position_m = Eigen::Vector3d(0.3 * std::cos(angle), 0.3 * std::sin(angle), 0.035);
+    rotor.spin_direction = k % 2 == 0 ? 1 : -1;
+    hexa.rotors.push_back(rotor);
+  }
+  pe::MassProperties mass;
+  mass.mass_kg = 1.9;
+  mass.inertia_kg_m2 = Eigen::Vector3d(0.02, 0.02, 0.035).asDiagonal();
+  hexa.empty_mass = mass;
+  pe::FlightProfile profile = defaultProfile();
+  profile.segments = {{pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
+                      {pe::SegmentKind::kTakeoff, 0.0, 2.0, 1.0, 0.0},
+                      {pe::SegmentKind::kHover, 25.0, 0.0, 0.0, 0.0},
+                      {pe::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0}};
+  Flight flight;
+  flight.result = pe::simulateFlight(thesisParams(), {}, profile, hexa, 1, &flight.sink);
+  ASSERT_EQ(flight.result.segments.size(), 1u);
+  const pe::ManifestSegment& hover = flight.result.segments[0];
+  EXPECT_EQ(hover.mass_kg, 1.9);
+  double height = 0.0, worst = 0.0, total = 0.0;
+  Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+  int n = 0;
+  forSegment(flight.sink.truths, hover, [&](const pe::TruthSample& t) {
+    ASSERT_EQ(t.motors.size(), 6u);
+    height += t.height_m;
+    worst = std::max(worst, std::fabs(t.height_m - 2.0));
+    for (int k = 0; k < 6; ++k) {
+      total += t.motors[k].thrust_n;
+      moment += t.motors[k].thrust_n * hexa.rotors[k].position_m.head<2>();
+    }
+    ++n;
+  });
+  EXPECT_NEAR(height / n, 2.0, 0.02);
+  EXPECT_LT(worst, 0.05);
+  EXPECT_NEAR(total / n, 1.9 * pe::kStandardGravity, 0.003 * 1.9 * pe::kStandardGravity);
+  EXPECT_NEAR(moment.x() / total, 0.008, 0.001);
+  EXPECT_NEAR(moment.y() / total, -0.005, 0.001);
+  forSegment(flight.sink.rc_out, hover, [](const pe::RcOutSample& s) {
+    ASSERT_EQ(s.channels.size(), 8u);
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_GT(s.channels[k], 1500);
+      EXPECT_LT(s.channels[k], 1850);
+    }
+    EXPECT_EQ(s.channels[6], 0);
+    EXPECT_EQ(s.channels[7], 0);
+  });
+  EXPECT_EQ(flight.sink.rc_out.front().channels, (std::vector<std::uint16_t>{900, 900, 900, 900, 900, 900, 0, 0}));
+}

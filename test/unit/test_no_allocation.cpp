@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "estimator_fixture.h"
+#include "propulsion_estimator/core/motor_mixer.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
 namespace {
@@ -51,6 +52,16 @@ TEST(RcOutDecoder, DecodesWithoutHeapAllocationOnceWarm) {
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_EQ(received.header.frame_id, sent.header.frame_id);
   EXPECT_EQ(received.channels, sent.channels);
+}
+
+TEST(MotorMixer, MixesWithoutHeapAllocation) {
+  // The flight simulator mixes every 2 ms step.
+  pe::MotorMixer mixer(pe::Vehicle::quadX(0.225));
+  const long before = g_allocations.load();
+  double sum = 0.0;
+  for (int k = 0; k < 1000; ++k) sum += mixer.mix(0.5, 0.01 * (k % 7), -0.02, 0.005).front();
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(sum, 0.0);
 }
 
 int main(int argc, char** argv) {

@@ -112,3 +112,17 @@ TEST(SimCalibration, TheThesisQuadHoversBetween1600And1750Us) {
     EXPECT_LT(lo, 1750.0) << source_v << " V";
   }
 }
+
+TEST(SimCalibration, BothPropellersHaveTheFigureOfMeritOfASmallRotor) {
+  // Momentum theory: ideal hover power T^1.5 / sqrt(2 rho A), A = pi D^2 / 4. With T = CT rho n^2 D^4
+  // and P = CP rho n^3 D^5 (CP = 2 pi CQ) the figure of merit is CT^1.5 sqrt(2 / pi) / CP; small
+  // fixed-pitch rotors reach 0.5-0.7 (the 9443's parameter file quotes its 0.65).
+  const double pi = 3.14159265358979323846;
+  const auto figureOfMerit = [pi](const pe::PropellerParams& propeller) {
+    return std::pow(propeller.thrust_coefficient, 1.5) * std::sqrt(2.0 / pi) / (2.0 * pi * propeller.torque_coefficient);
+  };
+  EXPECT_NEAR(figureOfMerit(thesisParams().chain.propeller), 0.65, 0.005);
+  EXPECT_NEAR(
+      figureOfMerit(pe::loadSimParamsFile(repoPath("config/sim/430lite_dji2312e_dji9450.yaml")).chain.propeller), 0.64,
+      0.005);
+}

@@ -3,6 +3,7 @@
 // independently of the simulator's code path.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "propulsion_estimator/core/bench_simulator.h"
@@ -18,8 +19,6 @@
 namespace pe = propulsion_estimator;
 
 namespace {
-
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 pe::SimParams thesisParams() { return pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")); }
 
@@ -43,6 +42,42 @@ double column(const pe::BenchLog& log, pe::BenchColumn c, std::size_t row) { ret
 double isolatedThrust(const pe::SimParams& params, double density, double rpm) {
   const double n = rpm / 60.0;
   return params.chain.propeller.thrust_coefficient * density * n * n * std::pow(params.chain.propeller.diameter_m, 4);
+}
+
+// The brushed-DC-equivalent motor written out here, independently of the simulator's code, at
+// winding temperature T: copper resistance R_w(T) = R_w(T0) (1 + 0.00393 (T - 20)) / (1 + 0.00393
+// (T0 - 20)) (IEC 60028 gives 0.00393 /K at 20 C; referred to T0 = 25 C it is 0.00386 /K), torque
+// constant Kt(T) = Kt0 (1 + alpha (T - T0)) with Kt0 = 60 / (2 pi Kv) and alpha the magnets'
+// remanence coefficient. With R = R_w + R_esc and Q = kQ w^2 (kQ = CQ rho D^5 / (2 pi)^2), the
+// torque balance Kt (I - I0) = Q with I = (d V - Kt w) / R is kQ w^2 + (Kt^2 / R) w - Kt (d V / R - I0) = 0.
+struct SteadyPoint {
+  double omega_rad_s = 0.0;
+  double thrust_n = 0.0;
+  double motor_current_a = 0.0;
+  double input_current_a = 0.0;
+};
+
+SteadyPoint brushedDcSteadyState(const pe::SimParams& params, double pwm_us, double esc_voltage_v, double density,
+                                 double winding_c) {
+  const pe::BldcMotorParams& motor = params.chain.motor;
+  const pe::PropellerParams& propeller = params.chain.propeller;
+  const double pi = 3.14159265358979323846;
+  const double duty = std::clamp(
+      (pwm_us - params.chain.esc.pwm_zero_us) / (params.chain.esc.pwm_full_us - params.chain.esc.pwm_zero_us), 0.0,
+      1.0);
+  const double t0 = motor.reference_temperature_c;
+  const double kt =
+      60.0 / (2.0 * pi * motor.kv_rpm_per_v) * (1.0 + motor.flux_temperature_coefficient_per_c * (winding_c - t0));
+  const double r = motor.winding_resistance_ohm * (1.0 + 0.00393 * (winding_c - 20.0)) / (1.0 + 0.00393 * (t0 - 20.0)) +
+                   params.chain.esc.resistance_ohm;
+  const double kq = propeller.torque_coefficient * density * std::pow(propeller.diameter_m, 5) / (4.0 * pi * pi);
+  const double a = kq, b = kt * kt / r, c = -kt * (duty * esc_voltage_v / r - motor.no_load_current_a);
+  SteadyPoint point;
+  point.omega_rad_s = (-b + std::sqrt(b * b - 4.0 * a * c)) / (2.0 * a);
+  point.thrust_n = isolatedThrust(params, density, point.omega_rad_s * 60.0 / (2.0 * pi));
+  point.motor_current_a = (duty * esc_voltage_v - kt * point.omega_rad_s) / r;
+  point.input_current_a = duty * point.motor_current_a;
+  return point;
 }
 
 struct Flight {
@@ -112,6 +147,37 @@ TEST(SupplyResistance, EscsSeeTheSensedVoltageLessRTimesCurrent) {
   }
 }
 
+TEST(SupplyResistance, OnABatteryTheVoltageSensorReadsUpstreamOfThePath) {
+  // A discharge at 1700 us with 0.1 ohm between the bench's voltage sensor (at the pack's
+  // terminals) and the ESC: every row's thrust is the written-out motor's at the sensed voltage
+  // less 0.1 ohm x the sensed current, and visibly not at the sensed voltage itself.
+  const pe::SimParams params = thesisParams();
+  const double density = params.bench.air.densityKgM3();
+  pe::BenchExperiment discharge = pe::thesisBenchExperiment(pe::BenchExperimentKind::kDischarge, params);
+  discharge.pwms_us = {1700.0};
+  discharge.sample_interval_s = 20.0;
+  discharge.initial_soc = 0.5;
+  pe::SimEffects effects;
+  effects.supply_resistance_ohm = 0.1;
+  pe::BenchLog with, without;
+  pe::simulateBench(params, effects, discharge, 4, &with);
+  pe::simulateBench(params, {}, discharge, 4, &without);
+  ASSERT_GT(with.rows(), 20u);
+  for (std::size_t row = 0; row < with.rows(); ++row) {
+    const double sensed = column(with, pe::BenchColumn::kVoltage, row);
+    const double current = column(with, pe::BenchColumn::kCurrent, row);
+    const double thrust = column(with, pe::BenchColumn::kThrust, row);
+    const double expected = brushedDcSteadyState(params, 1700.0, sensed - 0.1 * current, density, 25.0).thrust_n;
+    ASSERT_NEAR(thrust, expected, 1e-4 * expected) << "row " << row;
+    ASSERT_LT(thrust, 0.97 * brushedDcSteadyState(params, 1700.0, sensed, density, 25.0).thrust_n) << "row " << row;
+  }
+  for (std::size_t row = 0; row < without.rows(); ++row) {
+    const double expected =
+        brushedDcSteadyState(params, 1700.0, column(without, pe::BenchColumn::kVoltage, row), density, 25.0).thrust_n;
+    ASSERT_NEAR(column(without, pe::BenchColumn::kThrust, row), expected, 1e-4 * expected) << "row " << row;
+  }
+}
+
 TEST(SupplyResistance, RaisesTheHoverPulseWidthInFlight) {
   pe::SimEffects effects;
   effects.supply_resistance_ohm = 0.05;
@@ -154,8 +220,35 @@ TEST(AirDensity, FlightAirShowsInTheBarometerAndTheTruth) {
   const Flight flight = fly(effects);
   EXPECT_NEAR(flight.sink.truths.front().density_ratio,
               effects.air->densityKgM3() / thesisParams().bench.air.densityKgM3(), 1e-12);
-  EXPECT_NEAR(flight.sink.pressures.front().value,
-              90000.0 * std::exp(-pe::kStandardGravity * 0.12 / (287.058 * 308.15)), 6.0);
+  // The barometer at base_link, averaged over the wait on the ground (50 readings, 1.2 Pa each:
+  // 0.17 Pa) and over the 5 m hover (270 readings: 0.07 Pa), against the barometric formula at the
+  // true heights. On the ground the 0.12 m gear alone is 1.2 Pa: a 0.5 Pa tolerance sees it.
+  const auto pressureAt = [](double height_m) {
+    return 90000.0 * std::exp(-pe::kStandardGravity * height_m / (287.058 * (35.0 + 273.15)));
+  };
+  const auto meanOver = [&](double from_s, double to_s) {
+    double pressure = 0.0, height = 0.0;
+    int pressures = 0, heights = 0;
+    for (const pe::ScalarSample& s : flight.sink.pressures) {
+      if (s.time_s < from_s || s.time_s > to_s) continue;
+      pressure += s.value;
+      ++pressures;
+    }
+    for (const pe::TruthSample& t : flight.sink.truths) {
+      if (t.time_s < from_s || t.time_s > to_s) continue;
+      height += t.height_m;
+      ++heights;
+    }
+    return std::pair{pressure / pressures, height / heights};
+  };
+  const auto [ground_pressure, ground_height] = meanOver(0.0, 4.9);
+  EXPECT_NEAR(ground_height, 0.12, 0.002);
+  EXPECT_NEAR(ground_pressure, pressureAt(ground_height), 0.5);
+  EXPECT_GT(std::fabs(pressureAt(ground_height) - 90000.0), 1.0);
+  const auto [high_pressure, high_height] =
+      meanOver(flight.result.segments[1].start_s, flight.result.segments[1].end_s);
+  EXPECT_NEAR(high_height, 5.0, 0.02);
+  EXPECT_NEAR(high_pressure, pressureAt(high_height), 0.3);
   EXPECT_NEAR(flight.sink.air_temperatures.front().value, 35.0, 0.3);
   expectThrustIsIsolatedTimesTerms(flight, effects.air->densityKgM3());
 }
@@ -216,28 +309,101 @@ TEST(ThrustLoss, TheAirframeKeepsExactlyOneMinusTheFraction) {
               0.005 * hover.mass_kg * pe::kStandardGravity);
 }
 
-TEST(MotorTemperature, OperatingPointFollowsTheWindingTemperature) {
-  // Poorly cooled motors (5 C/W) heat during the sweep; every row is the steady state of a motor
-  // whose resistance and flux are those of its temperature, and differs from the cold motor's.
+TEST(MotorTemperature, HotWindingsAtFixedPwmSpinFasterAndDrawMoreCurrent) {
+  // At fixed duty the steady speed is w = (d V - I R) / Kt: the no-load speed d V / Kt over the
+  // drop I R. From 25 to 100 deg C the NdFeB flux (Kt) falls 9 %, raising the no-load speed by
+  // 10 %, while the copper's resistance rises 29 % (26 % with the ESC's), raising the drop by more
+  // than half (R / Kt^2) - but at 1700 us and 12 V the drop is only 15 % of d V, so the weaker
+  // field wins: the rotor spins faster and the thrust RISES, from 3.839 to 3.970 N. It would fall
+  // only where the drop exceeds about 19 % of d V (heavy load, beyond 1900 us at 12 V). The motor
+  // pays with current: a weaker Kt needs more amperes for the propeller's larger torque.
+  const pe::SimParams params = thesisParams();
+  const double density = params.bench.air.densityKgM3();
+  const SteadyPoint cold = brushedDcSteadyState(params, 1700.0, 12.0, density, 25.0);
+  const SteadyPoint hot = brushedDcSteadyState(params, 1700.0, 12.0, density, 100.0);
+  EXPECT_NEAR(cold.thrust_n, 3.839, 0.001);
+  EXPECT_NEAR(hot.thrust_n, 3.970, 0.001);
+  EXPECT_GT(hot.thrust_n, cold.thrust_n);
+  EXPECT_GT(hot.input_current_a, 1.1 * cold.input_current_a);
+  // The simulator's chain at the same points.
+  const pe::PropulsionChain chain(params.chain);
+  const double duty = params.chain.esc.duty(1700.0);
+  for (const auto& [celsius, expected] : {std::pair{25.0, cold}, std::pair{100.0, hot}}) {
+    const pe::ChainState state = chain.steady({duty, 12.0, density, celsius});
+    EXPECT_NEAR(state.thrust_n, expected.thrust_n, 1e-9 * expected.thrust_n) << celsius;
+    EXPECT_NEAR(state.input_current_a, expected.input_current_a, 1e-9 * expected.input_current_a) << celsius;
+  }
+}
+
+TEST(MotorTemperature, TheBenchOperatingPointFollowsTheWindingTemperature) {
+  // Poorly cooled motors (5 C/W) heat during a sweep of 30 s steps; every row is the steady state
+  // of the written-out motor at the row's winding temperature, and above 60 deg C the hot rotor
+  // gives more thrust and draws more current than the cold one (see the test above).
   pe::SimEffects effects;
   effects.motor_thermal_resistance_c_per_w = 5.0;
   const pe::BenchLog hot = sweepTruth(effects, 30.0);
   const pe::BenchLog cold = sweepTruth({}, 30.0);
   const pe::SimParams params = thesisParams();
-  const pe::PropulsionChain chain(params.chain);
+  const double density = params.bench.air.densityKgM3();
   for (std::size_t row = 0; row < hot.rows(); ++row) {
     const double pwm = column(hot, pe::BenchColumn::kPwm, row);
-    const double temperature = column(hot, pe::BenchColumn::kMotorTemp, row);
-    const pe::ChainState expected =
-        chain.steady({params.chain.esc.duty(pwm), 12.0, params.bench.air.densityKgM3(), temperature});
+    const SteadyPoint expected =
+        brushedDcSteadyState(params, pwm, 12.0, density, column(hot, pe::BenchColumn::kMotorTemp, row));
     EXPECT_NEAR(column(hot, pe::BenchColumn::kThrust, row), expected.thrust_n, 1e-3 * expected.thrust_n) << pwm;
-    EXPECT_NEAR(column(hot, pe::BenchColumn::kCurrent, row), expected.input_current_a, 1e-3 * expected.input_current_a);
+    EXPECT_NEAR(column(hot, pe::BenchColumn::kCurrent, row), expected.input_current_a, 1e-3 * expected.input_current_a)
+        << pwm;
+    // Without the effect the constants stay at the 25 deg C reference.
+    const SteadyPoint reference = brushedDcSteadyState(params, pwm, 12.0, density, 25.0);
+    EXPECT_NEAR(column(cold, pe::BenchColumn::kThrust, row), reference.thrust_n, 1e-3 * reference.thrust_n) << pwm;
   }
-  // By the end the windings are far above the 25 C reference, and the operating point has moved.
   const std::size_t last = hot.rows() - 1;
   EXPECT_GT(column(hot, pe::BenchColumn::kMotorTemp, last), 60.0);
-  EXPECT_GT(std::fabs(column(hot, pe::BenchColumn::kThrust, last) / column(cold, pe::BenchColumn::kThrust, last) - 1.0),
-            0.005);
+  EXPECT_GT(column(hot, pe::BenchColumn::kThrust, last), 1.01 * column(cold, pe::BenchColumn::kThrust, last));
+  EXPECT_GT(column(hot, pe::BenchColumn::kCurrent, last), 1.05 * column(cold, pe::BenchColumn::kCurrent, last));
+}
+
+TEST(MotorTemperature, HotMotorsHoverOnMorePower) {
+  // In flight the autopilot holds the thrust, so the rotor speed and the propeller's torque Q stay;
+  // a hot motor then needs I = I0 + Q / Kt(T) and the input power d V I = I (Kt w + R I): more
+  // copper loss for the weaker field. Each truth sample's input power is that of the written-out
+  // motor at its rotor speed and winding temperature (to the speed changes the control makes).
+  pe::SimEffects effects;
+  effects.motor_thermal_resistance_c_per_w = 5.0;
+  const Flight hot = fly(effects);
+  const Flight cold = fly({});
+  const pe::SimParams params = thesisParams();
+  const pe::BldcMotorParams& motor = params.chain.motor;
+  const double pi = 3.14159265358979323846;
+  const pe::ManifestSegment& last = hot.result.segments.back();
+  double simulated = 0.0, expected = 0.0, cold_power = 0.0, temperature = 0.0;
+  int readings = 0;
+  for (const pe::TruthSample& truth : hot.sink.truths) {
+    if (truth.time_s < last.start_s || truth.time_s > last.end_s) continue;
+    for (const pe::MotorTruth& m : truth.motors) {
+      const double omega = m.rpm * 2.0 * pi / 60.0;
+      const double t = m.winding_temperature_c;
+      const double kt = 60.0 / (2.0 * pi * motor.kv_rpm_per_v) *
+                        (1.0 + motor.flux_temperature_coefficient_per_c * (t - motor.reference_temperature_c));
+      const double r = motor.winding_resistance_ohm * (1.0 + 0.00393 * (t - 20.0)) /
+                           (1.0 + 0.00393 * (motor.reference_temperature_c - 20.0)) +
+                       params.chain.esc.resistance_ohm;
+      const double torque = params.chain.propeller.torque_coefficient * truth.air_density_kg_m3 *
+                            std::pow(omega / (2.0 * pi), 2) * std::pow(params.chain.propeller.diameter_m, 5);
+      const double current = motor.no_load_current_a + torque / kt;
+      simulated += m.power_w;
+      expected += current * (kt * omega + r * current);
+      temperature += t;
+      ++readings;
+    }
+  }
+  for (const pe::TruthSample& truth : cold.sink.truths) {
+    if (truth.time_s < last.start_s || truth.time_s > last.end_s) continue;
+    for (const pe::MotorTruth& m : truth.motors) cold_power += m.power_w;
+  }
+  EXPECT_NEAR(simulated / expected, 1.0, 0.001);
+  // The same segment of both flights (the same number of readings): the hot motors use more power.
+  EXPECT_GT(simulated, 1.01 * cold_power);
+  EXPECT_GT(temperature / readings, 45.0);
 }
 
 TEST(ClimbInflow, ThrustChangesByTheFactorPerMetrePerSecond) {
@@ -280,12 +446,10 @@ TEST(EscOffset, TheAutopilotHoversTheOffsetHigher) {
 }
 
 TEST(SimEffects, AllOffByDefaultAndSummarised) {
-  EXPECT_FALSE(pe::SimEffects{}.any());
   EXPECT_EQ(pe::SimEffects{}.summary(), "none");
   pe::SimEffects effects;
   effects.ground_effect_strength = 1.0;
   effects.thrust_loss_fraction = 0.05;
-  EXPECT_TRUE(effects.any());
   EXPECT_EQ(effects.summary(), "ground_effect(strength=1) thrust_loss(fraction=0.05)");
   const pe::RotorEffectTerms terms = pe::rotorEffectTerms({}, 0.12, 0.2, 3.0);
   EXPECT_EQ(terms.product(), 1.0);

@@ -188,6 +188,23 @@ TEST(PowerTrain, SettlesOnTheSteadyStateOfMotorsSharingASupply) {
   for (const pe::ChainState& motor : state.motors) EXPECT_NEAR(motor.thrust_n, steady.thrust_n, 1e-6);
 }
 
+TEST(PowerTrain, AStepOfNoTimeOnlyEvaluatesTheState) {
+  // The bench reads the state after a dwell with dt = 0: the rotor and the windings must stay put,
+  // with the temperature-coupled motor as well.
+  const pe::SimParams params = thesisParams();
+  pe::SimEffects effects;
+  effects.motor_thermal_resistance_c_per_w = 2.0;
+  pe::PowerTrain train(pe::PropulsionChain(params.chain), 1, effects, 22.0);
+  const pe::Supply supply{12.0, 0.015};
+  for (int i = 0; i < 500; ++i) train.step({1700.0}, supply, params.bench.air, 1e-3);
+  const pe::PowerTrainState before = train.step({1700.0}, supply, params.bench.air, 0.0);
+  const pe::PowerTrainState again = train.step({1700.0}, supply, params.bench.air, 0.0);
+  EXPECT_EQ(again.motors[0].omega_rad_s, before.motors[0].omega_rad_s);
+  EXPECT_EQ(again.winding_temperature_c[0], before.winding_temperature_c[0]);
+  EXPECT_EQ(again.current_a, before.current_a);
+  EXPECT_GT(train.step({1700.0}, supply, params.bench.air, 0.0).motors[0].omega_rad_s, 0.0);
+}
+
 TEST(PowerTrain, AMotorWhoseEscIsOffCoastsWithoutCurrent) {
   const pe::SimParams params = thesisParams();
   pe::PowerTrain train(pe::PropulsionChain(params.chain), 1, {}, 22.0);

@@ -51,6 +51,7 @@ const std::string kProfile = R"(autopilot:
   pwm_min_us: 1100
   pwm_max_us: 1950
   disarmed_pwm_us: 900
+  rc_out_rate_hz: 50
 vehicle:
   urdf: ../f450_quad.urdf
   centre_of_mass_offset_m: [0, 0, 0]
@@ -118,6 +119,8 @@ TEST(SimParamsYaml, RefusesUnknownMissingAndOutOfRangeValues) {
             "p.yaml:59: battery.open_circuit_voltage.cell_v: must increase with soc (3.84 after 3.9)");
   EXPECT_EQ(paramsRefusal("{sigma_a: 0.106", "{sigma_a: -0.106"),
             "p.yaml:77: bench.sensors.current.sigma_a: -0.106 is outside 0..10");
+  EXPECT_EQ(paramsRefusal("  rotor_inertia_kg_m2: 5.0e-6", "  rotor_inertia_kg_m2: 0"),
+            "p.yaml:36: motor.rotor_inertia_kg_m2: 0 is outside 0..0.01 kg m^2 (must be positive)");
   EXPECT_EQ(paramsRefusal("format_version: 1", "format_version: 2"),
             "p.yaml:15: format_version: 2 is not supported (this reader knows 1)");
 }
@@ -132,7 +135,7 @@ TEST(SimEffectsYaml, ReadsEveryEffectWithItsParameter) {
             "supply_resistance(ohm=0.05) air_density(temperature_c=35,pressure_pa=90000) ground_effect(strength=1) "
             "thrust_loss(fraction=0.05) motor_temperature(thermal_resistance_c_per_w=2) climb_inflow(per_m_s=0.05) "
             "esc_offset(us=-15)");
-  EXPECT_FALSE(pe::parseSimEffectsYaml("{}", "e.yaml").any());
+  EXPECT_EQ(pe::parseSimEffectsYaml("{}", "e.yaml").summary(), "none");
 }
 
 TEST(SimEffectsYaml, RefusesUnknownEffectsAndBadParameters) {
@@ -146,6 +149,8 @@ TEST(SimEffectsYaml, RefusesUnknownEffectsAndBadParameters) {
             "e.yaml:2: thrust_loss.fraction: 0.7 is outside 0..0.5");
   EXPECT_EQ(effectsRefusal("air_density: {temperature_c: 20, pressure_pa: 9000}\n"),
             "e.yaml:1: air_density.pressure_pa: 9000 is outside 50000..110000 Pa");
+  EXPECT_EQ(effectsRefusal("climb_inflow: {per_m_s: 0.3}\n"),
+            "e.yaml:1: climb_inflow.per_m_s: 0.3 is outside 0..0.25 per m/s");
   EXPECT_EQ(effectsRefusal("supply_resistance: {ohm: ten}\n"),
             "e.yaml:1: supply_resistance.ohm: expected a number, got 'ten'");
 }
@@ -177,50 +182,58 @@ TEST(FlightProfileYaml, SchedulesClimbsByRateAndLandingsWithTouchdownTime) {
 TEST(FlightProfileYaml, RefusesImpossibleSegments) {
   EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
                            "  - {type: takeoff, height_m: 3, rate_m_s: 1}\n  - {type: land"),
-            "config/sim/f.yaml:17: segments[2].type: takeoff while flying at 2 m (land first)");
+            "config/sim/f.yaml:18: segments[2].type: takeoff while flying at 2 m (land first)");
   EXPECT_EQ(profileRefusal("  - {type: wait, duration_s: 2}", "  - {type: hover, duration_s: 2}"),
-            "config/sim/f.yaml:15: segments[0].type: hover on the ground (take off first)");
+            "config/sim/f.yaml:16: segments[0].type: hover on the ground (take off first)");
   EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
                            "  - {type: climb, height_m: 1.5, rate_m_s: 1}\n  - {type: land"),
-            "config/sim/f.yaml:17: segments[2].height_m: climb to 1.5 m from 2 m (use descend)");
+            "config/sim/f.yaml:18: segments[2].height_m: climb to 1.5 m from 2 m (use descend)");
   EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
                            "  - {type: descend, height_m: 2.5, rate_m_s: 1}\n  - {type: land"),
-            "config/sim/f.yaml:17: segments[2].height_m: descend to 2.5 m from 2 m (use climb)");
+            "config/sim/f.yaml:18: segments[2].height_m: descend to 2.5 m from 2 m (use climb)");
   EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
                            "  - {type: payload, mass_kg: 0.3, duration_s: 1}\n  - {type: land"),
-            "config/sim/f.yaml:17: segments[2].type: payload while flying at 2 m (land first)");
+            "config/sim/f.yaml:18: segments[2].type: payload while flying at 2 m (land first)");
   EXPECT_EQ(profileRefusal("0.3, duration_s: 2}\n  - {type: takeoff, height_m: 2.0,",
                            "0.3, duration_s: 2}\n  - {type: takeoff, height_m: 1.0,"),
-            "config/sim/f.yaml:21: segments[6].type: hover at 1 m with the 0.3 kg payload on a 1 m cable: the "
+            "config/sim/f.yaml:22: segments[6].type: hover at 1 m with the 0.3 kg payload on a 1 m cable: the "
             "payload would rest on the ground (hover at 1.24 m or higher)");
   const std::string ends_flying = kProfile.substr(0, kProfile.rfind("  - {type: land"));
   EXPECT_EQ(refusal([&] { pe::parseFlightProfileYaml(ends_flying, "config/sim/f.yaml"); }),
-            "config/sim/f.yaml:15: segments: the profile ends in flight (add a land segment)");
+            "config/sim/f.yaml:16: segments: the profile ends in flight (add a land segment)");
 }
 
 TEST(FlightProfileYaml, RefusesBadValuesAndUnknownKeys) {
-  EXPECT_EQ(profileRefusal("  disarmed_pwm_us: 900", "  disarmed_pwm_us: 900\n  rc_out_rate_hz: 60"),
+  EXPECT_EQ(profileRefusal("  rc_out_rate_hz: 50", "  rc_out_rate_hz: 60"),
             "config/sim/f.yaml:6: autopilot.rc_out_rate_hz: 60 is outside 10..50 Hz");
+  EXPECT_EQ(profileRefusal("  rc_out_rate_hz: 50\n", ""), "config/sim/f.yaml:2: autopilot.rc_out_rate_hz: missing key");
   EXPECT_EQ(profileRefusal("  disarmed_pwm_us: 900", "  disarmed_pwm_us: 1200"),
             "config/sim/f.yaml:5: autopilot.disarmed_pwm_us: 1200 is outside 500..1100 us (or 0)");
   EXPECT_EQ(profileRefusal("flavour: px4", "flavour: betaflight"),
             "config/sim/f.yaml:2: autopilot.flavour: 'betaflight' is not one of px4, ardupilot");
   EXPECT_EQ(
       profileRefusal("{type: wait, duration_s: 2}", "{type: loiter, duration_s: 2}"),
-      "config/sim/f.yaml:15: segments[0].type: 'loiter' is not one of wait, takeoff, hover, climb, descend, land, "
+      "config/sim/f.yaml:16: segments[0].type: 'loiter' is not one of wait, takeoff, hover, climb, descend, land, "
       "payload");
   EXPECT_EQ(profileRefusal("{type: wait, duration_s: 2}", "{type: wait, duration_s: 2, height_m: 3}"),
-            "config/sim/f.yaml:15: segments[0].height_m: unknown key (allowed: type, duration_s)");
+            "config/sim/f.yaml:16: segments[0].height_m: unknown key (allowed: type, duration_s)");
   EXPECT_EQ(profileRefusal("{type: hover, duration_s: 10}", "{type: hover, duration_s: -10}"),
-            "config/sim/f.yaml:17: segments[2].duration_s: -10 is outside 0..3600 s (must be positive)");
+            "config/sim/f.yaml:18: segments[2].duration_s: -10 is outside 0..3600 s (must be positive)");
   EXPECT_EQ(profileRefusal("{type: payload, mass_kg: 0.3,", "{type: payload, mass_kg: 7,"),
-            "config/sim/f.yaml:19: segments[4].mass_kg: 7 is outside 0..5 kg");
+            "config/sim/f.yaml:20: segments[4].mass_kg: 7 is outside 0.01..5 kg (or 0 for none)");
+  EXPECT_EQ(profileRefusal("{type: payload, mass_kg: 0.3,", "{type: payload, mass_kg: 0.005,"),
+            "config/sim/f.yaml:20: segments[4].mass_kg: 0.005 is outside 0.01..5 kg (or 0 for none)");
   EXPECT_EQ(profileRefusal("{type: takeoff, height_m: 2.0,", "{type: takeoff, height_m: 0.1,"),
-            "config/sim/f.yaml:16: segments[1].height_m: 0.1 is outside 0.17..100 m");
+            "config/sim/f.yaml:17: segments[1].height_m: 0.1 is outside 0.17..100 m");
+  EXPECT_EQ(
+      profileRefusal("{type: takeoff, height_m: 2.0, rate_m_s: 1.0}", "{type: takeoff, height_m: 2.0, rate_m_s: 0.01}"),
+      "config/sim/f.yaml:17: segments[1].rate_m_s: 0.01 is outside 0.05..5 m/s");
+  EXPECT_EQ(profileRefusal("  - {type: land, rate_m_s: 0.5}", "  - {type: land, rate_m_s: 0}"),
+            "config/sim/f.yaml:19: segments[3].rate_m_s: 0 is outside 0.05..5 m/s");
   EXPECT_EQ(profileRefusal("landing_gear: {height_m: 0.12,", "landing_gear: {height_m: 0,"),
-            "config/sim/f.yaml:9: vehicle.landing_gear.height_m: 0 is outside 0..1 m (must be positive)");
+            "config/sim/f.yaml:10: vehicle.landing_gear.height_m: 0 is outside 0..1 m (must be positive)");
   EXPECT_EQ(profileRefusal("centre_of_mass_offset_m: [0, 0, 0]", "centre_of_mass_offset_m: [0, 0]"),
-            "config/sim/f.yaml:8: vehicle.centre_of_mass_offset_m: expected [x, y, z], got 2 numbers");
+            "config/sim/f.yaml:9: vehicle.centre_of_mass_offset_m: expected [x, y, z], got 2 numbers");
 }
 
 TEST(FlightManifest, RoundTripsThroughItsWriter) {
@@ -240,6 +253,8 @@ TEST(FlightManifest, RoundTripsThroughItsWriter) {
       EXPECT_EQ(read.flights[f].segments[s].mass_kg, manifest.flights[f].segments[s].mass_kg);
     }
   }
+  EXPECT_EQ(refusal([&] { pe::saveFlightManifest(manifest, "/nonexistent/folder/m.yaml", ""); }),
+            "/nonexistent/folder/m.yaml: cannot open for writing");
   EXPECT_EQ(pe::resolveBagPath("/x/y/m.yaml", "flight_01.bag"), "/x/y/flight_01.bag");
   EXPECT_EQ(pe::resolveBagPath("/x/y/m.yaml", "/data/flight_02.bag"), "/data/flight_02.bag");
 }

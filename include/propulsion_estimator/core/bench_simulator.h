@@ -37,7 +37,9 @@ struct BenchExperiment {
   double cutoff_voltage_v = 10.5;  // a run stops when the measured voltage falls below it
   double initial_soc = 1.0;        // each run starts on a battery charged to this
 
-  // Throws FieldError naming the member (e.g. "pwm_step_us") for an empty or inconsistent setup.
+  // Throws FieldError naming the member (e.g. "pwm_step_us") for an empty or inconsistent setup,
+  // a sweep of more than 1e6 pulse widths, or a dwell or sample interval outside 0.02..3600 s
+  // (one integration step to an hour).
   void validate() const;
 };
 
@@ -53,7 +55,10 @@ BenchExperiment thesisBenchExperiment(BenchExperimentKind kind, const SimParams&
 // air_temperature_c, air_pressure_pa, experiment, effects, seed, source, and each sensor's
 // noise_sigma_* and resolution_*. Runs start with the motor at air temperature. Of `effects` only
 // those a bench shows apply (SimEffects::onTheBench; the metadata lists them). The same seed gives
-// the same log. `truth`, when given, receives the same rows without sensor noise.
+// the same log. `truth`, when given, receives the same rows without sensor noise. Throws
+// ConfigError "constant thrust of 2000 g: only 683 g at 1900 us" (or "already ... at" the bottom
+// of the range) for a thrust the PWM range cannot give from the run's charged battery, by more
+// than three load-cell sigmas.
 BenchLog simulateBench(const SimParams& params, const SimEffects& effects, const BenchExperiment& experiment,
                        std::uint64_t seed, BenchLog* truth = nullptr);
 

@@ -23,6 +23,12 @@ class FieldError : public ConfigError {
   std::string problem_;
 };
 
+// Range checks for validate() functions: throw FieldError(field, "<value> is outside <lo>..<hi><unit>")
+// unless lo <= value <= hi, and "<value> is outside 0..<hi><unit> (must be positive)" unless
+// 0 < value <= hi; NaN is outside every range. `unit` is appended as given (" m", " rpm/V").
+void requireWithin(const std::string& field, double value, double lo, double hi, const std::string& unit = "");
+void requirePositive(const std::string& field, double value, double hi, const std::string& unit = "");
+
 // Rethrows `error` as "<source>:<line>: <field>: <problem>", with the line of the field in the
 // document whose root is `root` (the line of its nearest present ancestor when it is absent).
 [[noreturn]] void throwAtField(const YamlMap& root, const FieldError& error);

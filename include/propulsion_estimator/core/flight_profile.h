@@ -16,7 +16,7 @@ struct AutopilotParams {
   double pwm_min_us = 0.0;       // mixer output 0 while armed (PX4 PWM_MAIN_MIN, ArduPilot MOT_PWM_MIN/SPIN_ARM)
   double pwm_max_us = 0.0;       // mixer output 1
   double disarmed_pwm_us = 0.0;  // what the ESCs get while disarmed
-  double rc_out_rate_hz = 50.0;  // /mavros/rc/out (and /sim/truth) publication rate
+  double rc_out_rate_hz = 0.0;   // /mavros/rc/out (and /sim/truth) publication rate
 };
 
 struct VehicleSetup {
@@ -45,7 +45,7 @@ struct FlightSegment {
   double duration_s = 0.0;       // wait, hover, payload
   double height_m = 0.0;         // takeoff, climb, descend: target height
   double rate_m_s = 0.0;         // takeoff, climb, descend, land: vertical speed
-  double payload_mass_kg = 0.0;  // payload: the new payload (0 = none)
+  double payload_mass_kg = 0.0;  // payload: the new payload, 0.01..5 kg (0 = none)
 };
 
 struct FlightProfile {

@@ -20,7 +20,8 @@ class MotorMixer {
   const std::vector<double>& mix(double collective, double roll, double pitch, double yaw);
 
  private:
-  Eigen::MatrixXd matrix_;  // motors x (roll, pitch, yaw, collective)
+  Eigen::Matrix<double, Eigen::Dynamic, 4> matrix_;  // motors x (roll, pitch, yaw, collective)
+  Eigen::VectorXd commands_;                         // unclamped outputs, sized once: mix() does not allocate
   std::vector<double> outputs_;
 };
 

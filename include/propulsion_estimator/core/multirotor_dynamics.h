@@ -14,7 +14,10 @@ namespace propulsion_estimator {
 // (a spring-damper along the cable: a pendulum while taut, slack when the payload rests on the
 // ground). The vehicle stands on four feet of its landing gear; feet and payload meet the ground
 // through stiff spring-dampers with Coulomb friction. World frame ENU with the ground at z = 0,
-// body frame FLU at base_link. Semi-implicit Euler, for steps of about 2 ms.
+// body frame FLU at base_link. Semi-implicit Euler, for steps of about 2 ms; the cable's tension
+// by backward Euler along the cable, because the stretch mode of a light payload on a stiff,
+// damped cable (10 g on 1000 N/m and 10 N s/m: 316 rad/s, damping rate c/m = 1000 /s) is far
+// faster than the step, and an explicit step would diverge.
 class MultirotorDynamics {
  public:
   // `vehicle` needs its rotors' geometry and empty mass properties. The vehicle starts landed at
@@ -42,7 +45,15 @@ class MultirotorDynamics {
   double payloadMassKg() const { return payload_mass_kg_; }
   double vehicleMassKg() const { return mass_kg_; }
 
+  // Whether the whole state (vehicle and payload) is finite.
+  bool isFinite() const;
+
  private:
+  // Tension of the taut cable over the next step, given its direction from the attachment point
+  // to the payload, its stretch, and every other force on the payload and the vehicle.
+  double cableTension(const Eigen::Vector3d& along, double stretch_m, const Eigen::Vector3d& payload_force,
+                      const Eigen::Vector3d& vehicle_force, const Eigen::Vector3d& vehicle_torque_body,
+                      double dt_s) const;
   Eigen::Vector3d worldPoint(const Eigen::Vector3d& body_point) const;
   Eigen::Vector3d worldPointVelocity(const Eigen::Vector3d& body_point) const;
 
@@ -52,6 +63,8 @@ class MultirotorDynamics {
   Eigen::Matrix3d inertia_inverse_;
   Eigen::Vector3d centre_of_mass_body_;
   std::array<Eigen::Vector3d, 4> feet_body_;
+  double foot_stiffness_n_per_m_;
+  double foot_damping_n_s_per_m_;
   double drag_area_m2_;
   PayloadCable cable_;
 

@@ -36,7 +36,7 @@ class PowerTrain {
   // Electrical state at the present rotor speeds for these pulse widths (the ESC voltage solved
   // in closed form: with the speeds given, every ESC's input current is linear in it); then the
   // rotor speeds move towards their steady values and the windings heat or cool over dt_s.
-  // Returns the state at the start of the step.
+  // Returns the state at the start of the step; dt_s = 0 only evaluates it.
   const PowerTrainState& step(const std::vector<double>& pwm_us, const Supply& supply, const AirConditions& air,
                               double dt_s);
 

@@ -28,7 +28,6 @@ struct SimEffects {
 
   // Throws FieldError "<effect>.<parameter>" for a value outside its physical range.
   void validate() const;
-  bool any() const;
   // The effects a thrust stand shows (supply_resistance, air_density, motor_temperature); the others
   // need an airframe, the ground or flight, or (esc_offset) are by definition the bench's reference.
   SimEffects onTheBench() const;

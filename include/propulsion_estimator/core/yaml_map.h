@@ -60,5 +60,7 @@ YamlMap parseYamlDocument(const std::string& text, const std::string& source);
 YamlMap loadYamlFile(const std::string& path);
 // The whole content of a file; ConfigError naming it when it cannot be read.
 std::string readTextFile(const std::string& path);
+// Writes `text` as the whole content of a file; ConfigError naming it when it cannot be written.
+void writeTextFile(const std::string& path, const std::string& text);
 
 }  // namespace propulsion_estimator

@@ -48,12 +48,14 @@ class BagFlightSink : public FlightSink {
   void motorTemperature(const ScalarSample& sample) override;
   void truth(const TruthSample& sample) override;
 
-  // Finishes the bag (also done by the destructor).
+  // Finishes the bag (rosbag::BagException when it cannot be written). The destructor closes it
+  // too, reporting a failure on stderr since it cannot throw.
   void close();
 
  private:
   static ros::Time stamp(double time_s);
 
+  std::string path_;
   rosbag::Bag bag_;
   std::uint32_t rc_out_seq_ = 0;
 };
