@@ -7,7 +7,6 @@
 
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/units.h"
-#include "propulsion_estimator/core/yaml_map.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -162,7 +161,5 @@ BenchLog parseNativeBenchCsv(const std::string& text, const std::string& source)
   }
   return nativeBenchLogFromTable(table);
 }
-
-BenchLog readNativeBenchCsv(const std::string& path) { return parseNativeBenchCsv(readTextFile(path), path); }
 
 }  // namespace propulsion_estimator
