@@ -98,6 +98,22 @@ TEST_F(BenchTools, FitSurfacesRefusesOneVoltageLevelWithTheCoreMessage) {
   EXPECT_FALSE(fs::exists(dir_ / "l3.yaml"));
 }
 
+TEST_F(BenchTools, FitSurfacesReadsALogNamedTwiceOnce) {
+  const fs::path logs = dir_ / "logs";
+  fs::create_directories(logs);
+  fs::copy_file(strawson("g1_7.csv"), logs / "g1_7.csv");
+  fs::copy_file(strawson("g1_11.csv"), logs / "g1_11.csv");
+  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " " + metadata("T5040C") + " " +
+                                             (logs / "g1_7.csv").string() + " " + logs.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("note: " + (logs / "g1_7.csv").string() + ": named again by the argument " + logs.string() +
+                       ": read once\n"),
+            std::string::npos)
+      << r.out;
+  // 11 rows per sweep, each counted once.
+  EXPECT_NE(r.out.find("thrust     surface  (3,1)        22"), std::string::npos) << r.out;
+}
+
 TEST_F(BenchTools, FitSurfacesReportsButDoesNotWriteAModelTheLoaderWouldRefuse) {
   // A stand whose thrust reads negative, its sign kept as logged on purpose.
   std::ofstream(dir_ / "a.csv") << "# esc: E\n# motor: M\n# propeller: P\n# supply: battery\n"
