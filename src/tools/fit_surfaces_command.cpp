@@ -66,6 +66,7 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
   for (const std::string& name : args.without) options.without.insert(kOptional.at(name));
   if (args.supply) options.supply = *args.supply == "battery" ? SupplyKind::kBattery : SupplyKind::kRegulated;
 
+  if (!args.report.empty()) args.plotter.check();  // before the fit, which may take a while
   const std::vector<BenchLog> logs = readBenchLogs(args.logs, read_options);
   const BenchFit result = fitBenchModel(logs, options);
   for (const std::string& note : result.notes) std::printf("note: %s\n", note.c_str());

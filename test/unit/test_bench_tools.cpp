@@ -136,17 +136,32 @@ TEST_F(BenchTools, FitSurfacesReportsButDoesNotWriteAModelTheLoaderWouldRefuse) 
 }
 
 TEST_F(BenchTools, FitSurfacesSaysWhenThePlotsCannotBeDrawn) {
-  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() +
-                                             " " + metadata("T5040C") + " --python /bin/false " + strawson("g1_7.csv") +
-                                             " " + strawson("g1_11.csv"));
+  const std::string logs = " " + strawson("g1_7.csv") + " " + strawson("g1_11.csv");
+  const std::string out = "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() + " ";
+  const ToolRun r = run(PE_FIT_SURFACES, out + metadata("T5040C") + " --python /bin/false" + logs);
   EXPECT_EQ(r.status, 1);
+  // Debian's python3 has matplotlib (scripts/install_deps.sh): the message points at it.
   EXPECT_EQ(r.err,
-            "fit_surfaces: /bin/false cannot import matplotlib and numpy: the report's figures need them; install "
-            "python3-matplotlib (scripts/install_deps.sh) or pass --python /usr/bin/python3\n");
-  const ToolRun missing =
-      run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() + " " +
-                               metadata("T5040C") + " --plot-script /nonexistent.py " + strawson("g1_7.csv") + " " +
-                               strawson("g1_11.csv"));
+            "fit_surfaces: /bin/false cannot import matplotlib and numpy, which the report's figures need: pass "
+            "--python /usr/bin/python3, which has them\n");
+  // Refused before the fit: nothing written.
+  EXPECT_FALSE(fs::exists(dir_ / "r"));
+  EXPECT_FALSE(fs::exists(dir_ / "g1.yaml"));
+
+  // The default python3, when the first one on PATH lacks matplotlib (a pyenv or venv python).
+  const fs::path bin = dir_ / "bin";
+  fs::create_directories(bin);
+  std::ofstream(bin / "python3") << "#!/bin/sh\nexit 1\n";
+  fs::permissions(bin / "python3", fs::perms::owner_all);
+  const ToolRun pyenv = run("/usr/bin/env", "PATH=" + quoted(bin.string() + ":" + std::getenv("PATH")) + " " +
+                                                quoted(PE_FIT_SURFACES) + " " + out + metadata("T5040C") + logs);
+  EXPECT_EQ(pyenv.status, 1);
+  EXPECT_EQ(pyenv.err, "fit_surfaces: python3 (" + (bin / "python3").string() +
+                           ") cannot import matplotlib and numpy, which the report's figures need: pass --python "
+                           "/usr/bin/python3, which has them\n");
+
+  const ToolRun missing = run(PE_FIT_SURFACES, out + metadata("T5040C") + " --plot-script /nonexistent.py" + logs);
+  EXPECT_EQ(missing.status, 1);
   EXPECT_EQ(missing.err, "fit_surfaces: /nonexistent.py: plot script not found (--plot-script)\n");
 }
 
