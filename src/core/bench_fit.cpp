@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/field_error.h"
 #include "propulsion_estimator/core/grouped_least_squares.h"
 #include "propulsion_estimator/core/model_validation.h"
 #include "propulsion_estimator/core/number_format.h"
@@ -34,6 +35,17 @@ const char* fileUnit(Output output) {
   return "";
 }
 
+// "a, b and c" for up to `shown` names, then "a, b and 3 more".
+std::string nameList(const std::vector<std::string>& names, std::size_t shown) {
+  std::string text;
+  const std::size_t listed = names.size() > shown + 1 ? shown : names.size();
+  for (std::size_t k = 0; k < listed; ++k) {
+    text += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+  }
+  if (listed < names.size()) text += " and " + std::to_string(names.size() - listed) + " more";
+  return text;
+}
+
 // ---- metadata ---------------------------------------------------------------------------------
 
 // The one text value the logs agree on for `key`, or the option; ConfigError when they disagree
@@ -57,13 +69,18 @@ std::string metadataText(const std::vector<BenchLog>& logs, const std::string& k
 }
 
 // A bench condition: the option, else the mean of the logs' metadata values, else the mean of
-// a logged column; ConfigError naming the option when none gives it.
+// a logged column; ConfigError naming the option when none gives it. `origin` says where the
+// value came from, for a refusal of it.
 double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key, BenchColumn column,
                       const std::string& option_name, const std::optional<double>& option,
-                      std::vector<std::string>* notes) {
-  if (option) return *option;
+                      std::vector<std::string>* notes, std::string* origin) {
+  if (option) {
+    *origin = "given as " + option_name;
+    return *option;
+  }
   double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
   int count = 0;
+  std::vector<std::string> origins;
   for (const BenchLog& log : logs) {
     const auto found = log.metadata.find(key);
     double value = kNaN;
@@ -73,9 +90,11 @@ double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key,
       if (end == found->second.c_str() || *end != '\0' || !std::isfinite(value)) {
         throw ConfigError(log.source + ": metadata " + key + ": '" + found->second + "' is not a number");
       }
+      origins.push_back(log.source + " '# " + key + ":'");
     } else if (log.has(column)) {
       const std::vector<double>& values = log.column(column);
       value = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+      origins.push_back(log.source + " column " + benchColumnName(column));
     } else {
       continue;
     }
@@ -92,6 +111,7 @@ double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key,
     notes->push_back(key + ": mean of " + std::to_string(count) + " logs (" + formatPrintf("%g", lo) + " to " +
                      formatPrintf("%g", hi) + ")");
   }
+  *origin = "from " + nameList(origins, 2) + "; pass " + option_name;
   return sum / count;
 }
 
@@ -101,10 +121,20 @@ ModelMetadata resolveMetadata(const std::vector<BenchLog>& logs, const FitOption
   meta.esc = metadataText(logs, "esc", options.esc);
   meta.motor = metadataText(logs, "motor", options.motor);
   meta.propeller = metadataText(logs, "propeller", options.propeller);
+  std::string temperature_origin, pressure_origin;
   meta.bench_air_temperature_c = metadataNumber(logs, "air_temperature_c", BenchColumn::kAmbientTemp,
-                                                "--air-temperature-c", options.air_temperature_c, notes);
+                                                "--air-temperature-c", options.air_temperature_c, notes,
+                                                &temperature_origin);
   meta.bench_air_pressure_pa = metadataNumber(logs, "air_pressure_pa", BenchColumn::kPressure, "--air-pressure-pa",
-                                              options.air_pressure_pa, notes);
+                                              options.air_pressure_pa, notes, &pressure_origin);
+  // The loader's own check, so that fit_surfaces never writes a model it would refuse.
+  try {
+    meta.validate();
+  } catch (const FieldError& e) {
+    const bool temperature = e.field() == "metadata.bench_air_temperature_c";
+    throw ConfigError(e.field() + ": " + e.problem() + " (" + (temperature ? temperature_origin : pressure_origin) +
+                      ")");
+  }
   if (options.supply) {
     meta.supply = *options.supply;
   } else {

@@ -435,6 +435,56 @@ TEST(BenchFitRefusals, BadOptions) {
   options = {};
   options.without = {pe::Output::kThrust};
   EXPECT_EQ(refusal(logs, options), "thrust cannot be left out: it is what the estimator is for");
+  options = {};
+  options.levels.steady_voltage_mad_v = 0.0;
+  EXPECT_EQ(refusal(logs, options), "--steady-voltage-mad: 0 V is not positive");
+  options = {};
+  options.levels.voltage_bin_v = -0.3;
+  EXPECT_EQ(refusal(logs, options), "--voltage-bin: -0.3 V is not positive");
+}
+
+TEST(BenchFitRefusals, BenchAirTheModelLoaderWouldRefuse) {
+  std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                    gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)};
+  pe::FitOptions kelvin;
+  kelvin.air_temperature_c = 293.15;
+  EXPECT_EQ(refusal(logs, kelvin),
+            "metadata.bench_air_temperature_c: 293.15 is not an air temperature in deg C (given as "
+            "--air-temperature-c)");
+  // A pressure column logged in hPa.
+  for (pe::BenchLog& log : logs) {
+    log.metadata.erase("air_pressure_pa");
+    log.column(pe::BenchColumn::kPressure).assign(log.rows(), 1013.25);
+  }
+  EXPECT_EQ(refusal(logs),
+            "metadata.bench_air_pressure_pa: 1013.25 is not an air pressure in Pa (from a.csv column pressure_pa and "
+            "b.csv column pressure_pa; pass --air-pressure-pa)");
+  pe::FitOptions pascal;
+  pascal.air_pressure_pa = 101325.0;
+  EXPECT_DOUBLE_EQ(pe::fitBenchModel(logs, pascal).model.metadata().bench_air_pressure_pa, 101325.0);
+}
+
+TEST(BenchFitRefusals, LogsBuiltInCodeThatBreakTheReadersGuarantees) {
+  const pe::BenchLog good = gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust);
+  auto dataset = [&](const pe::BenchLog& log) {
+    try {
+      pe::buildBenchDataset({good, log}, {});
+    } catch (const pe::ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(dataset(gridLog("e.csv", {}, 12.0, smoothThrust)), "e.csv: the log has no rows");
+  pe::BenchLog short_column = gridLog("s.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust);
+  short_column.column(pe::BenchColumn::kCurrent).assign(8, 1.0);
+  EXPECT_EQ(dataset(short_column), "s.csv: column current_a has 8 values for 9 rows");
+  pe::BenchLog long_column = gridLog("l.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust);
+  long_column.column(pe::BenchColumn::kPwm).push_back(2000.0);
+  EXPECT_EQ(dataset(long_column), "l.csv: column pwm_us has 10 values for 9 rows");
+  pe::BenchLog no_voltage = gridLog("v.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust);
+  no_voltage.column(pe::BenchColumn::kVoltage).clear();
+  EXPECT_EQ(dataset(no_voltage), "v.csv: column voltage_v is missing (required: pwm_us, voltage_v, thrust_n)");
+  EXPECT_EQ(dataset(gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)), "accepted");
 }
 
 TEST(BenchFit, EfficiencyAsItsOwnSurfaceOnRequest) {

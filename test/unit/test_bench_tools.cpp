@@ -98,6 +98,19 @@ TEST_F(BenchTools, FitSurfacesRefusesOneVoltageLevelWithTheCoreMessage) {
   EXPECT_FALSE(fs::exists(dir_ / "l3.yaml"));
 }
 
+TEST_F(BenchTools, FitSurfacesWritesNoModelTheLoaderWouldRefuse) {
+  // The bench air temperature in kelvin: the loader's range check, applied before writing.
+  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() +
+                                             " --esc E --motor M --propeller P --air-temperature-c 293.15 "
+                                             "--air-pressure-pa 101325 --supply regulated " +
+                                             strawson("g1_7.csv") + " " + strawson("g1_11.csv"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: metadata.bench_air_temperature_c: 293.15 is not an air temperature in deg C (given as "
+            "--air-temperature-c)\n");
+  EXPECT_FALSE(fs::exists(dir_ / "g1.yaml"));
+}
+
 TEST_F(BenchTools, FitSurfacesReadsALogNamedTwiceOnce) {
   const fs::path logs = dir_ / "logs";
   fs::create_directories(logs);
