@@ -348,8 +348,26 @@ TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedThe
 TEST(BenchFitStrawson, RefusesAPairWhoseTwoFilesAreAtTheSameVoltage) {
   // l3_11.csv is named 3S but was logged at 2S: its voltage is 7.15..7.43 V like l3_7.csv.
   EXPECT_EQ(refusal(strawsonPair("l3"), strawsonOptions("T-Motor F30", "Gemfan 5x4.5")),
-            "cannot fit a surface: one voltage level only (all 22 rows are near 7.36 V, 7.13 to 7.44 V); log sweeps at "
-            "two or more supply voltages, or a battery discharge");
+            "cannot fit a surface: one voltage level only (all 22 rows of " + sharedPath(kStrawson + "l3_7.csv") +
+                " and " + sharedPath(kStrawson + "l3_11.csv") +
+                " have voltage_v near 7.36 V, 7.13 to 7.44 V); log sweeps at two or more supply voltages, or a "
+                "battery discharge");
+}
+
+TEST(BenchFitStrawson, RefusesAGroupingThatLeavesOneVoltageLevelPerFold) {
+  // Two supply levels: holding out a level, or one of the two logs, leaves nothing to fit voltage
+  // on, and every candidate would have voltage degree 0: a model that ignores voltage.
+  pe::FitOptions options = strawsonOptions("Lumenier RX2206-13 2000kv", "Cyclone T5040C 3-blade");
+  options.grouping = pe::FitGrouping::kVoltageLevel;
+  EXPECT_EQ(refusal(strawsonPair("g1"), options),
+            "cannot fit thrust: --group-by voltage leaves one voltage level in a training fold (without the 7.40 V "
+            "level only 11.07 V remains), so cross-validation cannot score a voltage term: use --group-by pwm or "
+            "auto");
+  options.grouping = pe::FitGrouping::kLog;
+  EXPECT_EQ(refusal(strawsonPair("g1"), options),
+            "cannot fit thrust: --group-by log leaves one voltage level in a training fold (without " +
+                sharedPath(kStrawson + "g1_7.csv") +
+                " only 11.07 V remains), so cross-validation cannot score a voltage term: use --group-by pwm or auto");
 }
 
 // --- refusals --------------------------------------------------------------------------------------
@@ -358,20 +376,21 @@ TEST(BenchFitRefusals, OneVoltageLevel) {
   EXPECT_EQ(
       refusal({gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
                gridLog("b.csv", pwmSteps(1150, 1850, 100), 11.12, smoothThrust)}),
-      "cannot fit a surface: one voltage level only (all 17 rows are near 11.11 V, 11.10 to 11.12 V); log sweeps at "
-      "two or more supply voltages, or a battery discharge");
+      "cannot fit a surface: one voltage level only (all 17 rows of a.csv and b.csv have voltage_v near 11.11 V, "
+      "11.10 to 11.12 V); log sweeps at two or more supply voltages, or a battery discharge");
 }
 
 TEST(BenchFitRefusals, TooFewPwmLevels) {
   EXPECT_EQ(
       refusal({gridLog("a.csv", {1500, 1600}, 11.1, smoothThrust), gridLog("b.csv", {1500, 1600}, 12.0, smoothThrust)}),
-      "cannot fit a surface: 2 PWM levels only (1500 us, 1600 us); log sweeps over at least 3 PWM values");
+      "cannot fit a surface: 2 PWM levels only (pwm_us of a.csv and b.csv: 1500 us, 1600 us); log sweeps over at "
+      "least 3 PWM values");
 }
 
 TEST(BenchFitRefusals, TooFewPoints) {
   EXPECT_EQ(refusal({gridLog("a.csv", {1200, 1500, 1800}, 11.1, smoothThrust),
                      gridLog("b.csv", {1200, 1500, 1800}, 12.0, smoothThrust)}),
-            "cannot fit thrust: 6 rows have it, at least 10 are needed");
+            "cannot fit thrust: 6 rows of a.csv and b.csv have thrust_n, at least 10 are needed");
 }
 
 TEST(BenchFitRefusals, ConstantColumn) {
@@ -380,7 +399,8 @@ TEST(BenchFitRefusals, ConstantColumn) {
   for (pe::BenchLog& log : logs) log.column(pe::BenchColumn::kRpm).assign(log.rows(), 0.0);
   EXPECT_EQ(
       refusal(logs),
-      "cannot fit rpm: it is 0 rpm in all 18 rows (a sensor that was not connected?); leave it out with --without rpm");
+      "cannot fit rpm: column rpm is 0 rpm in all 18 rows of a.csv and b.csv (a sensor that was not connected?); "
+      "leave it out with --without rpm");
   pe::FitOptions without_rpm;
   without_rpm.without = {pe::Output::kRpm};
   const pe::BenchFit fit = pe::fitBenchModel(logs, without_rpm);
@@ -388,7 +408,19 @@ TEST(BenchFitRefusals, ConstantColumn) {
   EXPECT_EQ(fit.model.output(pe::Output::kRpm).note, "left out on request (--without rpm)");
   for (pe::BenchLog& log : logs) log.column(pe::BenchColumn::kThrust).assign(log.rows(), 0.0);
   EXPECT_EQ(refusal(logs, without_rpm),
-            "cannot fit thrust: it is 0 g in all 18 rows (a sensor that was not connected?)");
+            "cannot fit thrust: column thrust_n is 0 g in all 18 rows of a.csv and b.csv (a sensor that was not "
+            "connected?)");
+}
+
+TEST(BenchFitRefusals, AnOutputLoggedAtOneVoltageLevelOnly) {
+  // rpm in the 11.1 V sweep only: its surface could not depend on voltage.
+  std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, smoothThrust),
+                                    gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, smoothThrust)};
+  for (double x : logs[0].column(pe::BenchColumn::kPwm)) {
+    logs[0].column(pe::BenchColumn::kRpm).push_back(SmoothChain::rpm(x, 11.1));
+  }
+  EXPECT_EQ(refusal(logs), "cannot fit rpm: all 17 rows of a.csv with rpm are at one voltage level (11.10 V); log it at "
+                           "two or more voltages or leave it out with --without rpm");
 }
 
 TEST(BenchFitRefusals, NaNInALog) {
@@ -503,4 +535,12 @@ TEST(BenchFit, GroupingByLogOnRequest) {
   const pe::BenchFit fit = pe::fitBenchModel(syntheticSweeps().logs, options);
   EXPECT_EQ(fit.grouping_description, "leave one log out (8 logs)");
   EXPECT_EQ(fit.model.output(pe::Output::kThrust).fit->grouping, "leave one log out (8 logs)");
+  // Two logs per voltage level: every fold keeps both levels, and voltage is fitted.
+  const pe::BenchFit repeated = pe::fitBenchModel({gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                                   gridLog("b.csv", pwmSteps(1150, 1850, 100), 11.1, smoothThrust),
+                                                   gridLog("c.csv", pwmSteps(1100, 1900, 100), 12.3, smoothThrust),
+                                                   gridLog("d.csv", pwmSteps(1150, 1850, 100), 12.3, smoothThrust)},
+                                                  options);
+  EXPECT_EQ(repeated.data.voltage_levels.size(), 2u);
+  EXPECT_EQ(repeated.model.output(pe::Output::kThrust).fit->voltage_degree, 1);
 }

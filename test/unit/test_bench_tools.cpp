@@ -92,10 +92,23 @@ TEST_F(BenchTools, FitSurfacesRefusesOneVoltageLevelWithTheCoreMessage) {
   const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "l3.yaml").string() + " " + metadata("Gemfan 5x4.5") + " " +
                                              strawson("l3_7.csv") + " " + strawson("l3_11.csv"));
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.err,
-            "fit_surfaces: cannot fit a surface: one voltage level only (all 22 rows are near 7.36 V, 7.13 to 7.44 V); "
-            "log sweeps at two or more supply voltages, or a battery discharge\n");
+  EXPECT_EQ(r.err, "fit_surfaces: cannot fit a surface: one voltage level only (all 22 rows of " +
+                       strawson("l3_7.csv") + " and " + strawson("l3_11.csv") +
+                       " have voltage_v near 7.36 V, 7.13 to 7.44 V); log sweeps at two or more supply voltages, or a "
+                       "battery discharge\n");
   EXPECT_FALSE(fs::exists(dir_ / "l3.yaml"));
+}
+
+TEST_F(BenchTools, FitSurfacesRefusesAGroupingThatLeavesOneVoltageLevelPerFold) {
+  const ToolRun r = run(PE_FIT_SURFACES, "--group-by voltage --out " + (dir_ / "g1.yaml").string() + " " +
+                                             metadata("T5040C") + " " + strawson("g1_7.csv") + " " +
+                                             strawson("g1_11.csv"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: cannot fit thrust: --group-by voltage leaves one voltage level in a training fold (without "
+            "the 7.40 V level only 11.07 V remains), so cross-validation cannot score a voltage term: use --group-by "
+            "pwm or auto\n");
+  EXPECT_FALSE(fs::exists(dir_ / "g1.yaml"));
 }
 
 TEST_F(BenchTools, FitSurfacesWritesNoModelTheLoaderWouldRefuse) {
