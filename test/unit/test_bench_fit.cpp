@@ -11,6 +11,7 @@
 #include "propulsion_estimator/core/bench_fit.h"
 #include "propulsion_estimator/tools/bench_log_reader.h"
 #include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/fit_report.h"
 #include "propulsion_estimator/core/model_yaml.h"
 #include "propulsion_estimator/core/units.h"
 #include "test_paths.h"
@@ -340,7 +341,16 @@ TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedThe
   EXPECT_NE(std::find(fit.notes.begin(), fit.notes.end(), expected), fit.notes.end());
   // The sagged rows are still two levels' worth of data, not four.
   EXPECT_EQ(fit.data.voltage_levels.size(), 2u);
+  // The domain is what the model was measured on: every row at its voltage. Its 7.14 V bound is
+  // a1_7's own top-of-sweep droop (0.18 V under its median), and the report says where it lies.
   EXPECT_NEAR(fit.model.domain().voltage_min_v, 7.14, 0.01);
+  const std::string report = pe::fitReportMarkdown(fit, "a1.yaml");
+  EXPECT_NE(report.find("- Domain: PWM 1050 to 2000 us, voltage 7.14 to 11.09 V: the bounding box of all rows at their "
+                        "measured voltage, supply droop and sag included (7.14 V was logged at 2000 us, 11.09 V at "
+                        "1050 us; the voltage levels are centred at 7.32 to 10.99 V); outside it the model will "
+                        "clamp.\n"),
+            std::string::npos)
+      << report;
   // At the collapsed point the surface matches the measured 377 gf at 8.30 V.
   EXPECT_NEAR(fit.model.evaluateRaw(pe::Output::kThrust, 2000.0, 8.304389367087847), 376.9, 6.0);
 }
