@@ -23,6 +23,25 @@ double median(std::vector<double> values) {
   return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + mid));
 }
 
+// A log built in code (a simulator, a test) can break what the readers guarantee.
+void requireShape(const BenchLog& log) {
+  if (log.rows() == 0) throw ConfigError(log.source + ": the log has no rows");
+  for (BenchColumn required : {BenchColumn::kPwm, BenchColumn::kVoltage, BenchColumn::kThrust}) {
+    if (!log.has(required)) {
+      throw ConfigError(log.source + ": column " + benchColumnName(required) +
+                        " is missing (required: pwm_us, voltage_v, thrust_n)");
+    }
+  }
+  for (int c = 0; c < kBenchColumnCount; ++c) {
+    const auto column = static_cast<BenchColumn>(c);
+    if (log.has(column) && log.column(column).size() != log.rows()) {
+      throw ConfigError(log.source + ": column " + benchColumnName(column) + " has " +
+                        std::to_string(log.column(column).size()) + " values for " + std::to_string(log.rows()) +
+                        " rows");
+    }
+  }
+}
+
 void requireFinite(const BenchLog& log, BenchColumn column) {
   const std::vector<double>& values = log.column(column);
   for (std::size_t row = 0; row < values.size(); ++row) {
@@ -179,8 +198,12 @@ void assignPwmLevels(const LevelOptions& options, BenchDataset* data) {
 }  // namespace
 
 void LevelOptions::validate() const {
-  if (!(steady_voltage_mad_v > 0.0)) throw ConfigError("steady voltage spread must be positive");
-  if (!(voltage_bin_v > 0.0)) throw ConfigError("voltage bin width must be positive");
+  if (!(steady_voltage_mad_v > 0.0)) {
+    throw ConfigError("--steady-voltage-mad: " + formatPrintf("%g", steady_voltage_mad_v) + " V is not positive");
+  }
+  if (!(voltage_bin_v > 0.0)) {
+    throw ConfigError("--voltage-bin: " + formatPrintf("%g", voltage_bin_v) + " V is not positive");
+  }
   if (!(same_level_v > 0.0)) throw ConfigError("same-level voltage tolerance must be positive");
   if (max_pwm_levels < 3) throw ConfigError("max PWM levels must be at least 3");
 }
@@ -194,6 +217,7 @@ BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOpt
             rpm = static_cast<int>(Output::kRpm);
   for (std::size_t l = 0; l < logs.size(); ++l) {
     const BenchLog& log = logs[l];
+    requireShape(log);
     for (int c = 0; c < kBenchColumnCount; ++c) {
       if (log.has(static_cast<BenchColumn>(c))) requireFinite(log, static_cast<BenchColumn>(c));
     }

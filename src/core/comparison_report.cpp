@@ -44,6 +44,13 @@ std::string comparisonTables(const std::vector<ModelComparison>& models, const C
        << number(m.peak_efficiency_g_per_w, "%.2f") << " at " << number(m.peak_efficiency_pwm_us, "%.0f") << " | "
        << (m.max_motor_temp_c ? number(*m.max_motor_temp_c, "%.1f") : "not logged") << " |\n";
   }
+  bool first_note = true;
+  for (const ModelComparison& m : models) {
+    for (const std::string& note : m.notes) {
+      md << (first_note ? "\n" : "") << "- " << m.label << ": " << note << "\n";
+      first_note = false;
+    }
+  }
   if (!options.hover) return md.str();
   const HoverOptions& h = *options.hover;
   md << "\nHover of a " << number(h.vehicle_mass_kg, "%.4g") << " kg vehicle on " << h.motors << " motors ("

@@ -181,9 +181,17 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
     md << "| " << baseName(data.sources[l]) << " | " << rows << " | " << number(xlo, "%.0f") << "-"
        << number(xhi, "%.0f") << " | " << number(vlo, "%.2f") << "-" << number(vhi, "%.2f") << " |\n";
   }
+  // The voltage bounds are single rows (a sweep's top under load); say where they were measured,
+  // since the domain is a box and its other corners were not.
+  const auto [vlo, vhi] = std::minmax_element(data.voltage_v.begin(), data.voltage_v.end());
   md << "\n- Domain: PWM " << number(domain.pwm_min_us, "%.0f") << " to " << number(domain.pwm_max_us, "%.0f")
      << " us, voltage " << number(domain.voltage_min_v, "%.2f") << " to " << number(domain.voltage_max_v, "%.2f")
-     << " V (the ranges the data cover); outside it the model will " << outsideDomainName(domain.outside) << ".\n";
+     << " V: the bounding box of all rows at their measured voltage, supply droop and sag included ("
+     << number(*vlo, "%.2f") << " V was logged at " << number(data.pwm_us[vlo - data.voltage_v.begin()], "%.0f")
+     << " us, " << number(*vhi, "%.2f") << " V at " << number(data.pwm_us[vhi - data.voltage_v.begin()], "%.0f")
+     << " us; the voltage levels are centred at " << number(data.voltage_levels.front().centre, "%.2f") << " to "
+     << number(data.voltage_levels.back().centre, "%.2f") << " V); outside it the model will "
+     << outsideDomainName(domain.outside) << ".\n";
   md << "- Bench: air " << number(meta.bench_air_temperature_c, "%.1f") << " deg C, "
      << number(meta.bench_air_pressure_pa, "%.0f") << " Pa (density " << number(meta.benchAirDensity(), "%.4f")
      << " kg/m^3), " << supplyKindName(meta.supply) << " supply.\n";

@@ -51,7 +51,7 @@ void integrateHover(const PropulsionModel& model, const HoverOptions& hover, Mod
   const double usable_ah = hover.usable_fraction * hover.capacity_mah / 1000.0;
   const double step_ah = usable_ah / hover.steps;
   double hours = 0.0;
-  int outside = 0;
+  int outside_voltage = 0, below_pwm = 0;
   for (int k = 0; k < hover.steps; ++k) {
     const double charge_ah = (k + 0.5) * step_ah;
     const double voltage = hover.fullVoltage() - (hover.fullVoltage() - hover.cutoffVoltage()) * charge_ah / usable_ah;
@@ -62,17 +62,33 @@ void integrateHover(const PropulsionModel& model, const HoverOptions& hover, Mod
                                     (domain.outside == OutsideDomain::kReject ? " (or the model rejects it)" : ""));
       break;
     }
-    outside += !point->in_domain;
     const double total_a = hover.motors * point->current_a;
+    // The current surface is floored at zero; a zero hover current would be an endless flight.
+    if (!(total_a > 0.0)) {
+      result->hover_notes.push_back("no endurance: the model's hover current is 0 A at " +
+                                    formatPrintf("%.2f V", voltage) + " and " + formatPrintf("%.0f us", point->pwm_us) +
+                                    " (its current surface is at or below zero there)");
+      break;
+    }
+    outside_voltage += voltage < domain.voltage_min_v || voltage > domain.voltage_max_v;
+    below_pwm += point->below_pwm_domain;
     hours += step_ah / total_a;
     result->discharge.push_back({60.0 * hours, voltage, total_a, point->pwm_us});
   }
-  if (outside > 0) {
+  if (outside_voltage > 0) {
     result->hover_notes.push_back(
         "the battery's " + formatPrintf("%.2f", hover.cutoffVoltage()) + "-" + formatPrintf("%.2f V", hover.fullVoltage()) +
         " leaves the model's " + formatPrintf("%.2f", domain.voltage_min_v) + "-" + formatPrintf("%.2f V", domain.voltage_max_v) +
-        " for " + formatPrintf("%.0f%%", 100.0 * outside / hover.steps) + " of the discharge; there the model " +
+        " for " + formatPrintf("%.0f%%", 100.0 * outside_voltage / hover.steps) +
+        " of the discharge; there the model " +
         (domain.outside == OutsideDomain::kClamp ? "clamps the voltage to its domain" : "extrapolates"));
+  }
+  if (below_pwm > 0) {
+    result->hover_notes.push_back(
+        "for " + formatPrintf("%.0f%%", 100.0 * below_pwm / hover.steps) +
+        " of the discharge the hover thrust is below the thrust at the model's lowest PWM (" +
+        formatPrintf("%.0f us", domain.pwm_min_us) + "): the current there is taken at " +
+        formatPrintf("%.0f us", domain.pwm_min_us) + ", so the endurance is likely underestimated");
   }
   if (static_cast<int>(result->discharge.size()) == hover.steps) result->endurance_min = 60.0 * hours;
 }
@@ -114,6 +130,8 @@ std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust
     below = x;
   }
   if (std::isnan(above)) return std::nullopt;
+  // Enough thrust already at the lowest PWM: the hover point lies below the measured range.
+  const bool below_pwm_domain = above == domain.pwm_min_us;
   for (int k = 0; k < kBisectionSteps && above > below; ++k) {
     const double middle = 0.5 * (below + above);
     (thrustAt(model, middle, voltage_v) >= thrust_n ? above : below) = middle;
@@ -125,7 +143,8 @@ std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust
                     modelled(model, Output::kCurrent, e.current_a),
                     modelled(model, Output::kPower, e.power_w),
                     modelled(model, Output::kEfficiency, e.efficiency_n_per_w / kNewtonPerGramForce),
-                    e.in_domain};
+                    below_pwm_domain,
+                    e.in_domain && !below_pwm_domain};
 }
 
 ModelComparison compareModel(const std::string& label, const PropulsionModel& model, const std::vector<BenchLog>& logs,
@@ -136,14 +155,29 @@ ModelComparison compareModel(const std::string& label, const PropulsionModel& mo
   result.label = label;
   result.metadata = model.metadata();
   result.voltage_v = options.voltage_v.value_or(domain.voltage_max_v);
+  if (result.voltage_v < domain.voltage_min_v || result.voltage_v > domain.voltage_max_v) {
+    const std::string outside = "--voltage " + formatPrintf("%.2f V", result.voltage_v) + " is outside the model's " +
+                                formatPrintf("%.2f", domain.voltage_min_v) + "-" +
+                                formatPrintf("%.2f V", domain.voltage_max_v) + " domain";
+    switch (domain.outside) {
+      case OutsideDomain::kReject:
+        throw ConfigError(label + ": " + outside + " and the model rejects it (policy reject): choose --voltage "
+                          "inside it");
+      case OutsideDomain::kClamp:
+        // Evaluating would clamp anyway; the row then says at which voltage its values are.
+        result.voltage_v = std::clamp(result.voltage_v, domain.voltage_min_v, domain.voltage_max_v);
+        result.notes.push_back(outside + ": its row is the model at " + formatPrintf("%.2f V", result.voltage_v) +
+                               ", where the model clamps the voltage");
+        break;
+      case OutsideDomain::kExtrapolate:
+        result.notes.push_back(outside + ": its row extrapolates the surfaces (policy extrapolate)");
+        break;
+    }
+  }
   for (int k = 0; k < options.curve_points; ++k) {
     const double x = domain.pwm_min_us + (domain.pwm_max_us - domain.pwm_min_us) * k / (options.curve_points - 1);
     const std::optional<ComparisonSample> s = sample(model, x, result.voltage_v);
-    if (!s) {
-      throw ConfigError(label + ": the model rejects " + formatPrintf("%.2f V", result.voltage_v) + " (outside its " +
-                        formatPrintf("%.2f", domain.voltage_min_v) + "-" + formatPrintf("%.2f V", domain.voltage_max_v) +
-                        " domain, policy reject): choose --voltage inside it");
-    }
+    if (!s) throw ConfigError(label + ": the model rejects " + formatPrintf("%.0f us", x));
     result.curve.push_back(*s);
   }
   result.max_current_a = result.max_power_w = result.max_rpm = -std::numeric_limits<double>::infinity();
@@ -190,9 +224,21 @@ ModelComparison compareModel(const std::string& label, const PropulsionModel& mo
     if (!result.hover) {
       result.hover_notes.push_back("cannot hover: the motors give less than the hover thrust at " +
                                    formatPrintf("%.2f V", options.hover->midVoltage()));
-    } else if (!result.hover->in_domain) {
-      result.hover_notes.push_back("the hover point's " + formatPrintf("%.2f V", options.hover->midVoltage()) +
-                                   " is outside the model's domain");
+    } else {
+      const double voltage = options.hover->midVoltage();
+      if (voltage < domain.voltage_min_v || voltage > domain.voltage_max_v) {
+        result.hover_notes.push_back("the hover point's " + formatPrintf("%.2f V", voltage) +
+                                     " is outside the model's domain");
+      }
+      if (result.hover->below_pwm_domain) {
+        OperatingPoint lowest;
+        model.evaluate(domain.pwm_min_us, voltage, &lowest);
+        result.hover_notes.push_back(
+            "the hover thrust (" + formatPrintf("%.1f g", options.hover->thrustPerMotorN() / kNewtonPerGramForce) +
+            " per motor) is below the model's " + formatPrintf("%.1f g", lowest.thrust_n / kNewtonPerGramForce) +
+            " at its lowest PWM, " + formatPrintf("%.0f us", domain.pwm_min_us) +
+            ": the hover point lies below the measured range and is shown at that PWM");
+      }
     }
     integrateHover(model, *options.hover, &result);
   }

@@ -8,6 +8,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/field_error.h"
 #include "propulsion_estimator/core/model_validation.h"
 #include "propulsion_estimator/core/number_format.h"
 #include "propulsion_estimator/core/yaml_map.h"
@@ -126,11 +127,10 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
   metadata.propeller = meta.text("propeller");
   metadata.bench_air_temperature_c = meta.number("bench_air_temperature_c");
   metadata.bench_air_pressure_pa = meta.number("bench_air_pressure_pa");
-  if (metadata.bench_air_temperature_c < -60.0 || metadata.bench_air_temperature_c > 60.0) {
-    meta.fail("bench_air_temperature_c", formatNumber(metadata.bench_air_temperature_c) + " is not an air temperature in deg C");
-  }
-  if (metadata.bench_air_pressure_pa < 30000.0 || metadata.bench_air_pressure_pa > 110000.0) {
-    meta.fail("bench_air_pressure_pa", formatNumber(metadata.bench_air_pressure_pa) + " is not an air pressure in Pa");
+  try {
+    metadata.validate();
+  } catch (const FieldError& e) {
+    throwAtField(root, e);
   }
   metadata.supply = meta.choice("supply", {"regulated", "battery"}) == "battery" ? SupplyKind::kBattery
                                                                                  : SupplyKind::kRegulated;

@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/field_error.h"
+#include "propulsion_estimator/core/number_format.h"
 #include "propulsion_estimator/core/units.h"
 
 namespace propulsion_estimator {
@@ -71,6 +73,19 @@ bool ModelDomain::contains(double pwm_us, double voltage_v) const {
 
 double ModelMetadata::benchAirDensity() const {
   return bench_air_pressure_pa / (kSpecificGasConstantDryAir * (bench_air_temperature_c + kZeroCelsiusInKelvin));
+}
+
+void ModelMetadata::validate() const {
+  // Beyond these the value is in another unit (K, hPa, psi) or a typo, and every density
+  // correction made from it would be wrong.
+  if (!(bench_air_temperature_c >= -60.0 && bench_air_temperature_c <= 60.0)) {
+    throw FieldError("metadata.bench_air_temperature_c",
+                     formatNumber(bench_air_temperature_c) + " is not an air temperature in deg C");
+  }
+  if (!(bench_air_pressure_pa >= 30000.0 && bench_air_pressure_pa <= 110000.0)) {
+    throw FieldError("metadata.bench_air_pressure_pa",
+                     formatNumber(bench_air_pressure_pa) + " is not an air pressure in Pa");
+  }
 }
 
 PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,

@@ -162,6 +162,4 @@ BenchLog parseNativeBenchCsv(const std::string& text, const std::string& source)
   return nativeBenchLogFromTable(table);
 }
 
-BenchLog readNativeBenchCsv(const std::string& path) { return parseNativeBenchCsv(readTextFile(path), path); }
-
 }  // namespace propulsion_estimator

@@ -49,7 +49,12 @@ BenchReadOptions BenchLogOptions::readOptions() const {
 
 std::vector<BenchLog> readBenchLogs(const std::vector<std::string>& arguments, const BenchReadOptions& options) {
   std::vector<BenchLog> logs;
-  for (const std::string& path : expandBenchLogPaths(arguments)) logs.push_back(readBenchLog(path, options));
+  for (const BenchLogFile& file : expandBenchLogPaths(arguments)) {
+    logs.push_back(readBenchLog(file.path, options));
+    for (const std::string& argument : file.also_named_by) {
+      logs.back().notes.push_back("named again by the argument " + argument + ": read once");
+    }
+  }
   return logs;
 }
 

@@ -22,7 +22,8 @@ class BenchLogOptions {
   std::string decimal_ = "auto";
 };
 
-// Reads every log; a directory argument stands for its *.csv files.
+// Reads every log once; a directory argument stands for its *.csv files. A file named twice
+// carries a note saying so.
 std::vector<BenchLog> readBenchLogs(const std::vector<std::string>& arguments, const BenchReadOptions& options);
 
 }  // namespace propulsion_estimator

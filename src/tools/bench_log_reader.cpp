@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 
 #include "propulsion_estimator/tools/bench_csv.h"
 #include "propulsion_estimator/core/config_error.h"
@@ -31,15 +32,24 @@ BenchLog readBenchLog(const std::string& path, const BenchReadOptions& options) 
   return parseBenchLog(readTextFile(path), path, options);
 }
 
-std::vector<std::string> expandBenchLogPaths(const std::vector<std::string>& arguments) {
+std::vector<BenchLogFile> expandBenchLogPaths(const std::vector<std::string>& arguments) {
   namespace fs = std::filesystem;
-  std::vector<std::string> paths;
+  std::vector<BenchLogFile> files;
+  std::map<fs::path, std::size_t> index;  // canonical path -> files
+  auto add = [&](const std::string& path, const std::string& argument) {
+    const auto [known, inserted] = index.emplace(fs::canonical(path), files.size());
+    if (inserted) {
+      files.push_back({path, {}});
+    } else {
+      files[known->second].also_named_by.push_back(argument);
+    }
+  };
   for (const std::string& argument : arguments) {
     std::error_code error;
     const fs::file_status status = fs::status(argument, error);
     if (!fs::exists(status)) throw ConfigError(argument + ": no such file or directory");
     if (!fs::is_directory(status)) {
-      paths.push_back(argument);
+      add(argument, argument);
       continue;
     }
     std::vector<std::string> found;
@@ -48,9 +58,9 @@ std::vector<std::string> expandBenchLogPaths(const std::vector<std::string>& arg
     }
     if (found.empty()) throw ConfigError(argument + ": directory has no *.csv files");
     std::sort(found.begin(), found.end());
-    paths.insert(paths.end(), found.begin(), found.end());
+    for (const std::string& path : found) add(path, argument);
   }
-  return paths;
+  return files;
 }
 
 BenchColumn benchColumnFromName(const std::string& name) {

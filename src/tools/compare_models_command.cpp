@@ -45,6 +45,7 @@ std::pair<std::string, std::vector<std::string>> splitModelArgument(const std::s
 
 int compare(Arguments args, const BenchReadOptions& read_options) {
   if (args.models.size() < 2) throw ConfigError("give two or more models to compare");
+  if (!args.report.empty()) args.plotter.check();
   ComparisonOptions options;
   options.voltage_v = args.voltage_v;
   if (args.mass_kg || args.cells || args.capacity_mah) {

@@ -66,11 +66,30 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
   for (const std::string& name : args.without) options.without.insert(kOptional.at(name));
   if (args.supply) options.supply = *args.supply == "battery" ? SupplyKind::kBattery : SupplyKind::kRegulated;
 
+  if (!args.report.empty()) args.plotter.check();  // before the fit, which may take a while
   const std::vector<BenchLog> logs = readBenchLogs(args.logs, read_options);
   const BenchFit result = fitBenchModel(logs, options);
+  // What the estimator will do with the file, done before anything is written: a model the loader
+  // refuses is never left on disk, nor reported as written.
+  std::string yaml;
+  if (result.validation_error.empty()) {
+    yaml = modelToYaml(result.model, "Response surfaces fitted by fit_surfaces from " + std::to_string(logs.size()) +
+                                         " bench logs; fit quality per output under 'fit'.");
+    try {
+      parseModelYaml(yaml, args.out);
+    } catch (const ConfigError& e) {
+      std::fprintf(stderr, "fit_surfaces: the fitted model would not load and was not written: %s\n", e.what());
+      return 1;
+    }
+  }
   for (const std::string& note : result.notes) std::printf("note: %s\n", note.c_str());
   std::printf("cross-validation: %s\n", result.grouping_description.c_str());
   printSummary(result);
+  if (result.validation_error.empty()) {
+    std::ofstream file(args.out);
+    file << yaml;
+    if (!file) throw ConfigError(args.out + ": cannot write");
+  }
 
   if (!args.report.empty()) {
     std::filesystem::create_directories(args.report);
@@ -87,10 +106,6 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
                  result.validation_error.c_str());
     return 1;
   }
-  saveModelFile(result.model, args.out,
-                "Response surfaces fitted by fit_surfaces from " + std::to_string(logs.size()) +
-                    " bench logs; fit quality per output under 'fit'.");
-  loadModelFile(args.out);  // what the estimator will do with it
   std::printf("model: %s\n", args.out.c_str());
   return 0;
 }

@@ -3,7 +3,9 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <vector>
 
@@ -15,6 +17,7 @@ namespace propulsion_estimator {
 namespace {
 
 constexpr const char* kScriptName = "plot_bench_report.py";
+constexpr const char* kDebianPython = "/usr/bin/python3";
 
 // Runs a program (searched on PATH) with its output going to ours, or its error output
 // discarded when `quiet`; its exit status, or -1 when it could not be started.
@@ -50,7 +53,46 @@ std::string findScript(const std::string& script) {
   return beside.string();
 }
 
+// Where the shell would find `program`: itself when it names a path, else the first executable
+// of that name on PATH (empty when there is none).
+std::string onPath(const std::string& program) {
+  if (program.find('/') != std::string::npos) return program;
+  const char* path = std::getenv("PATH");
+  std::string directories = path ? path : "";
+  for (std::size_t start = 0; start <= directories.size();) {
+    std::size_t colon = directories.find(':', start);
+    if (colon == std::string::npos) colon = directories.size();
+    const std::string candidate = directories.substr(start, colon - start) + "/" + program;
+    if (colon > start && access(candidate.c_str(), X_OK) == 0) return candidate;
+    start = colon + 1;
+  }
+  return "";
+}
+
+bool hasMatplotlib(const std::string& python) { return run({python, "-c", "import matplotlib, numpy"}, true) == 0; }
+
 }  // namespace
+
+void ReportPlotter::check() const {
+  findScript(script_);
+  const int status = run({python_, "-c", "import matplotlib, numpy"}, true);
+  if (status == 0) return;
+  const std::string found = onPath(python_);
+  const std::string named = found.empty() || found == python_ ? python_ : python_ + " (" + found + ")";
+  // Debian's interpreter is the one scripts/install_deps.sh gives matplotlib; a pyenv or venv
+  // python3 first on PATH usually lacks it.
+  const std::string debian = kDebianPython;
+  std::string advice;
+  if (found == debian) {
+    advice = "install Debian's python3-matplotlib (scripts/install_deps.sh)";
+  } else if (hasMatplotlib(debian)) {
+    advice = "pass --python " + debian + ", which has them";
+  } else {
+    advice = "install Debian's python3-matplotlib (scripts/install_deps.sh) and pass --python " + debian;
+  }
+  throw ConfigError(named + (status < 0 ? " cannot be run" : " cannot import matplotlib and numpy") +
+                    ", which the report's figures need: " + advice);
+}
 
 void ReportPlotter::addTo(CLI::App& app) {
   app.add_option("--python", python_, "Python interpreter with matplotlib, for the report's figures")
@@ -59,15 +101,9 @@ void ReportPlotter::addTo(CLI::App& app) {
 }
 
 void ReportPlotter::plot(const std::string& mode, const std::string& directory) const {
-  const std::string& python = python_;
+  check();
   const std::string path = findScript(script_);
-  const int check = run({python, "-c", "import matplotlib, numpy"}, true);
-  if (check != 0) {
-    throw ConfigError(python + (check < 0 ? " cannot be run" : " cannot import matplotlib and numpy") +
-                      ": the report's figures need them; install python3-matplotlib (scripts/install_deps.sh) or "
-                      "pass --python /usr/bin/python3");
-  }
-  const int status = run({python, path, mode, directory}, false);
+  const int status = run({python_, path, mode, directory}, false);
   if (status != 0)
     throw ConfigError(path + " " + mode + " " + directory + " failed (exit status " + std::to_string(status) + ")");
 }

@@ -12,8 +12,11 @@ namespace propulsion_estimator {
 class ReportPlotter {
  public:
   void addTo(CLI::App& app);
-  // Runs the script in `mode` ("fit" or "compare") on a report directory. Throws ConfigError when
-  // the script is missing, when the interpreter cannot import matplotlib, or when the script fails.
+  // Throws ConfigError when the script is missing or the interpreter cannot import matplotlib,
+  // saying what to do. The tools call it before their work, so that it is not lost.
+  void check() const;
+  // Runs the script in `mode` ("fit" or "compare") on a report directory. Throws ConfigError as
+  // check() does, or when the script fails.
   void plot(const std::string& mode, const std::string& directory) const;
 
  private:

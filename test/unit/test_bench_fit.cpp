@@ -11,6 +11,7 @@
 #include "propulsion_estimator/core/bench_fit.h"
 #include "propulsion_estimator/tools/bench_log_reader.h"
 #include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/core/fit_report.h"
 #include "propulsion_estimator/core/model_yaml.h"
 #include "propulsion_estimator/core/units.h"
 #include "test_paths.h"
@@ -340,7 +341,16 @@ TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedThe
   EXPECT_NE(std::find(fit.notes.begin(), fit.notes.end(), expected), fit.notes.end());
   // The sagged rows are still two levels' worth of data, not four.
   EXPECT_EQ(fit.data.voltage_levels.size(), 2u);
+  // The domain is what the model was measured on: every row at its voltage. Its 7.14 V bound is
+  // a1_7's own top-of-sweep droop (0.18 V under its median), and the report says where it lies.
   EXPECT_NEAR(fit.model.domain().voltage_min_v, 7.14, 0.01);
+  const std::string report = pe::fitReportMarkdown(fit, "a1.yaml");
+  EXPECT_NE(report.find("- Domain: PWM 1050 to 2000 us, voltage 7.14 to 11.09 V: the bounding box of all rows at their "
+                        "measured voltage, supply droop and sag included (7.14 V was logged at 2000 us, 11.09 V at "
+                        "1050 us; the voltage levels are centred at 7.32 to 10.99 V); outside it the model will "
+                        "clamp.\n"),
+            std::string::npos)
+      << report;
   // At the collapsed point the surface matches the measured 377 gf at 8.30 V.
   EXPECT_NEAR(fit.model.evaluateRaw(pe::Output::kThrust, 2000.0, 8.304389367087847), 376.9, 6.0);
 }
@@ -348,8 +358,26 @@ TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedThe
 TEST(BenchFitStrawson, RefusesAPairWhoseTwoFilesAreAtTheSameVoltage) {
   // l3_11.csv is named 3S but was logged at 2S: its voltage is 7.15..7.43 V like l3_7.csv.
   EXPECT_EQ(refusal(strawsonPair("l3"), strawsonOptions("T-Motor F30", "Gemfan 5x4.5")),
-            "cannot fit a surface: one voltage level only (all 22 rows are near 7.36 V, 7.13 to 7.44 V); log sweeps at "
-            "two or more supply voltages, or a battery discharge");
+            "cannot fit a surface: one voltage level only (all 22 rows of " + sharedPath(kStrawson + "l3_7.csv") +
+                " and " + sharedPath(kStrawson + "l3_11.csv") +
+                " have voltage_v near 7.36 V, 7.13 to 7.44 V); log sweeps at two or more supply voltages, or a "
+                "battery discharge");
+}
+
+TEST(BenchFitStrawson, RefusesAGroupingThatLeavesOneVoltageLevelPerFold) {
+  // Two supply levels: holding out a level, or one of the two logs, leaves nothing to fit voltage
+  // on, and every candidate would have voltage degree 0: a model that ignores voltage.
+  pe::FitOptions options = strawsonOptions("Lumenier RX2206-13 2000kv", "Cyclone T5040C 3-blade");
+  options.grouping = pe::FitGrouping::kVoltageLevel;
+  EXPECT_EQ(refusal(strawsonPair("g1"), options),
+            "cannot fit thrust: --group-by voltage leaves one voltage level in a training fold (without the 7.40 V "
+            "level only 11.07 V remains), so cross-validation cannot score a voltage term: use --group-by pwm or "
+            "auto");
+  options.grouping = pe::FitGrouping::kLog;
+  EXPECT_EQ(refusal(strawsonPair("g1"), options),
+            "cannot fit thrust: --group-by log leaves one voltage level in a training fold (without " +
+                sharedPath(kStrawson + "g1_7.csv") +
+                " only 11.07 V remains), so cross-validation cannot score a voltage term: use --group-by pwm or auto");
 }
 
 // --- refusals --------------------------------------------------------------------------------------
@@ -358,20 +386,21 @@ TEST(BenchFitRefusals, OneVoltageLevel) {
   EXPECT_EQ(
       refusal({gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
                gridLog("b.csv", pwmSteps(1150, 1850, 100), 11.12, smoothThrust)}),
-      "cannot fit a surface: one voltage level only (all 17 rows are near 11.11 V, 11.10 to 11.12 V); log sweeps at "
-      "two or more supply voltages, or a battery discharge");
+      "cannot fit a surface: one voltage level only (all 17 rows of a.csv and b.csv have voltage_v near 11.11 V, "
+      "11.10 to 11.12 V); log sweeps at two or more supply voltages, or a battery discharge");
 }
 
 TEST(BenchFitRefusals, TooFewPwmLevels) {
   EXPECT_EQ(
       refusal({gridLog("a.csv", {1500, 1600}, 11.1, smoothThrust), gridLog("b.csv", {1500, 1600}, 12.0, smoothThrust)}),
-      "cannot fit a surface: 2 PWM levels only (1500 us, 1600 us); log sweeps over at least 3 PWM values");
+      "cannot fit a surface: 2 PWM levels only (pwm_us of a.csv and b.csv: 1500 us, 1600 us); log sweeps over at "
+      "least 3 PWM values");
 }
 
 TEST(BenchFitRefusals, TooFewPoints) {
   EXPECT_EQ(refusal({gridLog("a.csv", {1200, 1500, 1800}, 11.1, smoothThrust),
                      gridLog("b.csv", {1200, 1500, 1800}, 12.0, smoothThrust)}),
-            "cannot fit thrust: 6 rows have it, at least 10 are needed");
+            "cannot fit thrust: 6 rows of a.csv and b.csv have thrust_n, at least 10 are needed");
 }
 
 TEST(BenchFitRefusals, ConstantColumn) {
@@ -380,7 +409,8 @@ TEST(BenchFitRefusals, ConstantColumn) {
   for (pe::BenchLog& log : logs) log.column(pe::BenchColumn::kRpm).assign(log.rows(), 0.0);
   EXPECT_EQ(
       refusal(logs),
-      "cannot fit rpm: it is 0 rpm in all 18 rows (a sensor that was not connected?); leave it out with --without rpm");
+      "cannot fit rpm: column rpm is 0 rpm in all 18 rows of a.csv and b.csv (a sensor that was not connected?); "
+      "leave it out with --without rpm");
   pe::FitOptions without_rpm;
   without_rpm.without = {pe::Output::kRpm};
   const pe::BenchFit fit = pe::fitBenchModel(logs, without_rpm);
@@ -388,7 +418,19 @@ TEST(BenchFitRefusals, ConstantColumn) {
   EXPECT_EQ(fit.model.output(pe::Output::kRpm).note, "left out on request (--without rpm)");
   for (pe::BenchLog& log : logs) log.column(pe::BenchColumn::kThrust).assign(log.rows(), 0.0);
   EXPECT_EQ(refusal(logs, without_rpm),
-            "cannot fit thrust: it is 0 g in all 18 rows (a sensor that was not connected?)");
+            "cannot fit thrust: column thrust_n is 0 g in all 18 rows of a.csv and b.csv (a sensor that was not "
+            "connected?)");
+}
+
+TEST(BenchFitRefusals, AnOutputLoggedAtOneVoltageLevelOnly) {
+  // rpm in the 11.1 V sweep only: its surface could not depend on voltage.
+  std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, smoothThrust),
+                                    gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, smoothThrust)};
+  for (double x : logs[0].column(pe::BenchColumn::kPwm)) {
+    logs[0].column(pe::BenchColumn::kRpm).push_back(SmoothChain::rpm(x, 11.1));
+  }
+  EXPECT_EQ(refusal(logs), "cannot fit rpm: all 17 rows of a.csv with rpm are at one voltage level (11.10 V); log it at "
+                           "two or more voltages or leave it out with --without rpm");
 }
 
 TEST(BenchFitRefusals, NaNInALog) {
@@ -435,6 +477,56 @@ TEST(BenchFitRefusals, BadOptions) {
   options = {};
   options.without = {pe::Output::kThrust};
   EXPECT_EQ(refusal(logs, options), "thrust cannot be left out: it is what the estimator is for");
+  options = {};
+  options.levels.steady_voltage_mad_v = 0.0;
+  EXPECT_EQ(refusal(logs, options), "--steady-voltage-mad: 0 V is not positive");
+  options = {};
+  options.levels.voltage_bin_v = -0.3;
+  EXPECT_EQ(refusal(logs, options), "--voltage-bin: -0.3 V is not positive");
+}
+
+TEST(BenchFitRefusals, BenchAirTheModelLoaderWouldRefuse) {
+  std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                    gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)};
+  pe::FitOptions kelvin;
+  kelvin.air_temperature_c = 293.15;
+  EXPECT_EQ(refusal(logs, kelvin),
+            "metadata.bench_air_temperature_c: 293.15 is not an air temperature in deg C (given as "
+            "--air-temperature-c)");
+  // A pressure column logged in hPa.
+  for (pe::BenchLog& log : logs) {
+    log.metadata.erase("air_pressure_pa");
+    log.column(pe::BenchColumn::kPressure).assign(log.rows(), 1013.25);
+  }
+  EXPECT_EQ(refusal(logs),
+            "metadata.bench_air_pressure_pa: 1013.25 is not an air pressure in Pa (from a.csv column pressure_pa and "
+            "b.csv column pressure_pa; pass --air-pressure-pa)");
+  pe::FitOptions pascal;
+  pascal.air_pressure_pa = 101325.0;
+  EXPECT_DOUBLE_EQ(pe::fitBenchModel(logs, pascal).model.metadata().bench_air_pressure_pa, 101325.0);
+}
+
+TEST(BenchFitRefusals, LogsBuiltInCodeThatBreakTheReadersGuarantees) {
+  const pe::BenchLog good = gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust);
+  auto dataset = [&](const pe::BenchLog& log) {
+    try {
+      pe::buildBenchDataset({good, log}, {});
+    } catch (const pe::ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(dataset(gridLog("e.csv", {}, 12.0, smoothThrust)), "e.csv: the log has no rows");
+  pe::BenchLog short_column = gridLog("s.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust);
+  short_column.column(pe::BenchColumn::kCurrent).assign(8, 1.0);
+  EXPECT_EQ(dataset(short_column), "s.csv: column current_a has 8 values for 9 rows");
+  pe::BenchLog long_column = gridLog("l.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust);
+  long_column.column(pe::BenchColumn::kPwm).push_back(2000.0);
+  EXPECT_EQ(dataset(long_column), "l.csv: column pwm_us has 10 values for 9 rows");
+  pe::BenchLog no_voltage = gridLog("v.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust);
+  no_voltage.column(pe::BenchColumn::kVoltage).clear();
+  EXPECT_EQ(dataset(no_voltage), "v.csv: column voltage_v is missing (required: pwm_us, voltage_v, thrust_n)");
+  EXPECT_EQ(dataset(gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)), "accepted");
 }
 
 TEST(BenchFit, EfficiencyAsItsOwnSurfaceOnRequest) {
@@ -453,4 +545,12 @@ TEST(BenchFit, GroupingByLogOnRequest) {
   const pe::BenchFit fit = pe::fitBenchModel(syntheticSweeps().logs, options);
   EXPECT_EQ(fit.grouping_description, "leave one log out (8 logs)");
   EXPECT_EQ(fit.model.output(pe::Output::kThrust).fit->grouping, "leave one log out (8 logs)");
+  // Two logs per voltage level: every fold keeps both levels, and voltage is fitted.
+  const pe::BenchFit repeated = pe::fitBenchModel({gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                                   gridLog("b.csv", pwmSteps(1150, 1850, 100), 11.1, smoothThrust),
+                                                   gridLog("c.csv", pwmSteps(1100, 1900, 100), 12.3, smoothThrust),
+                                                   gridLog("d.csv", pwmSteps(1150, 1850, 100), 12.3, smoothThrust)},
+                                                  options);
+  EXPECT_EQ(repeated.data.voltage_levels.size(), 2u);
+  EXPECT_EQ(repeated.model.output(pe::Output::kThrust).fit->voltage_degree, 1);
 }

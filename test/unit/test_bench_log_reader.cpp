@@ -247,14 +247,23 @@ TEST(TytoBenchCsv, RefusesMissingColumnAndTextCells) {
 
 // --- directories -------------------------------------------------------------------------------
 
-TEST(BenchLogPaths, ExpandsADirectoryToItsCsvFilesSorted) {
+TEST(BenchLogPaths, ExpandsADirectoryToItsCsvFilesSortedEachFileOnce) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / "pe_bench_paths";
   fs::remove_all(dir);
   fs::create_directories(dir / "sub");
   for (const char* name : {"b.csv", "a.csv", "notes.txt", "sub/c.csv"}) std::ofstream(dir / name) << "x\n";
-  EXPECT_EQ(pe::expandBenchLogPaths({(dir / "b.csv").string(), dir.string()}),
-            (std::vector<std::string>{(dir / "b.csv").string(), (dir / "a.csv").string(), (dir / "b.csv").string()}));
+  fs::create_symlink(dir / "a.csv", dir / "sub" / "link.csv");
+  // b.csv named alone, then again through its directory; a.csv through the directory and a link.
+  const std::vector<pe::BenchLogFile> files = pe::expandBenchLogPaths(
+      {(dir / "b.csv").string(), dir.string(), (dir / "sub" / "link.csv").string(), (dir / "sub" / "c.csv").string()});
+  ASSERT_EQ(files.size(), 3u);
+  EXPECT_EQ(files[0].path, (dir / "b.csv").string());
+  EXPECT_EQ(files[0].also_named_by, std::vector<std::string>{dir.string()});
+  EXPECT_EQ(files[1].path, (dir / "a.csv").string());
+  EXPECT_EQ(files[1].also_named_by, std::vector<std::string>{(dir / "sub" / "link.csv").string()});
+  EXPECT_EQ(files[2].path, (dir / "sub" / "c.csv").string());
+  EXPECT_TRUE(files[2].also_named_by.empty());
   try {
     pe::expandBenchLogPaths({(dir / "sub" / "none").string()});
     FAIL();

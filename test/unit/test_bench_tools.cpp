@@ -92,10 +92,52 @@ TEST_F(BenchTools, FitSurfacesRefusesOneVoltageLevelWithTheCoreMessage) {
   const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "l3.yaml").string() + " " + metadata("Gemfan 5x4.5") + " " +
                                              strawson("l3_7.csv") + " " + strawson("l3_11.csv"));
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.err,
-            "fit_surfaces: cannot fit a surface: one voltage level only (all 22 rows are near 7.36 V, 7.13 to 7.44 V); "
-            "log sweeps at two or more supply voltages, or a battery discharge\n");
+  EXPECT_EQ(r.err, "fit_surfaces: cannot fit a surface: one voltage level only (all 22 rows of " +
+                       strawson("l3_7.csv") + " and " + strawson("l3_11.csv") +
+                       " have voltage_v near 7.36 V, 7.13 to 7.44 V); log sweeps at two or more supply voltages, or a "
+                       "battery discharge\n");
   EXPECT_FALSE(fs::exists(dir_ / "l3.yaml"));
+}
+
+TEST_F(BenchTools, FitSurfacesRefusesAGroupingThatLeavesOneVoltageLevelPerFold) {
+  const ToolRun r = run(PE_FIT_SURFACES, "--group-by voltage --out " + (dir_ / "g1.yaml").string() + " " +
+                                             metadata("T5040C") + " " + strawson("g1_7.csv") + " " +
+                                             strawson("g1_11.csv"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: cannot fit thrust: --group-by voltage leaves one voltage level in a training fold (without "
+            "the 7.40 V level only 11.07 V remains), so cross-validation cannot score a voltage term: use --group-by "
+            "pwm or auto\n");
+  EXPECT_FALSE(fs::exists(dir_ / "g1.yaml"));
+}
+
+TEST_F(BenchTools, FitSurfacesWritesNoModelTheLoaderWouldRefuse) {
+  // The bench air temperature in kelvin: the loader's range check, applied before writing.
+  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() +
+                                             " --esc E --motor M --propeller P --air-temperature-c 293.15 "
+                                             "--air-pressure-pa 101325 --supply regulated " +
+                                             strawson("g1_7.csv") + " " + strawson("g1_11.csv"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: metadata.bench_air_temperature_c: 293.15 is not an air temperature in deg C (given as "
+            "--air-temperature-c)\n");
+  EXPECT_FALSE(fs::exists(dir_ / "g1.yaml"));
+}
+
+TEST_F(BenchTools, FitSurfacesReadsALogNamedTwiceOnce) {
+  const fs::path logs = dir_ / "logs";
+  fs::create_directories(logs);
+  fs::copy_file(strawson("g1_7.csv"), logs / "g1_7.csv");
+  fs::copy_file(strawson("g1_11.csv"), logs / "g1_11.csv");
+  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " " + metadata("T5040C") + " " +
+                                             (logs / "g1_7.csv").string() + " " + logs.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("note: " + (logs / "g1_7.csv").string() + ": named again by the argument " + logs.string() +
+                       ": read once\n"),
+            std::string::npos)
+      << r.out;
+  // 11 rows per sweep, each counted once.
+  EXPECT_NE(r.out.find("thrust     surface  (3,1)        22"), std::string::npos) << r.out;
 }
 
 TEST_F(BenchTools, FitSurfacesReportsButDoesNotWriteAModelTheLoaderWouldRefuse) {
@@ -120,17 +162,32 @@ TEST_F(BenchTools, FitSurfacesReportsButDoesNotWriteAModelTheLoaderWouldRefuse) 
 }
 
 TEST_F(BenchTools, FitSurfacesSaysWhenThePlotsCannotBeDrawn) {
-  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() +
-                                             " " + metadata("T5040C") + " --python /bin/false " + strawson("g1_7.csv") +
-                                             " " + strawson("g1_11.csv"));
+  const std::string logs = " " + strawson("g1_7.csv") + " " + strawson("g1_11.csv");
+  const std::string out = "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() + " ";
+  const ToolRun r = run(PE_FIT_SURFACES, out + metadata("T5040C") + " --python /bin/false" + logs);
   EXPECT_EQ(r.status, 1);
+  // Debian's python3 has matplotlib (scripts/install_deps.sh): the message points at it.
   EXPECT_EQ(r.err,
-            "fit_surfaces: /bin/false cannot import matplotlib and numpy: the report's figures need them; install "
-            "python3-matplotlib (scripts/install_deps.sh) or pass --python /usr/bin/python3\n");
-  const ToolRun missing =
-      run(PE_FIT_SURFACES, "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() + " " +
-                               metadata("T5040C") + " --plot-script /nonexistent.py " + strawson("g1_7.csv") + " " +
-                               strawson("g1_11.csv"));
+            "fit_surfaces: /bin/false cannot import matplotlib and numpy, which the report's figures need: pass "
+            "--python /usr/bin/python3, which has them\n");
+  // Refused before the fit: nothing written.
+  EXPECT_FALSE(fs::exists(dir_ / "r"));
+  EXPECT_FALSE(fs::exists(dir_ / "g1.yaml"));
+
+  // The default python3, when the first one on PATH lacks matplotlib (a pyenv or venv python).
+  const fs::path bin = dir_ / "bin";
+  fs::create_directories(bin);
+  std::ofstream(bin / "python3") << "#!/bin/sh\nexit 1\n";
+  fs::permissions(bin / "python3", fs::perms::owner_all);
+  const ToolRun pyenv = run("/usr/bin/env", "PATH=" + quoted(bin.string() + ":" + std::getenv("PATH")) + " " +
+                                                quoted(PE_FIT_SURFACES) + " " + out + metadata("T5040C") + logs);
+  EXPECT_EQ(pyenv.status, 1);
+  EXPECT_EQ(pyenv.err, "fit_surfaces: python3 (" + (bin / "python3").string() +
+                           ") cannot import matplotlib and numpy, which the report's figures need: pass --python "
+                           "/usr/bin/python3, which has them\n");
+
+  const ToolRun missing = run(PE_FIT_SURFACES, out + metadata("T5040C") + " --plot-script /nonexistent.py" + logs);
+  EXPECT_EQ(missing.status, 1);
   EXPECT_EQ(missing.err, "fit_surfaces: /nonexistent.py: plot script not found (--plot-script)\n");
 }
 

@@ -59,6 +59,24 @@ outputs:
                             "voltage_free.yaml");
 }
 
+// Thrust 100 g already at the lowest PWM, current `idle_a` there, both rising with PWM.
+pe::PropulsionModel idlingModel(double idle_a, const std::string& outside = "clamp") {
+  return pe::parseModelYaml(R"(format_version: 1
+metadata: {esc: E, motor: M, propeller: P, bench_air_temperature_c: 20, bench_air_pressure_pa: 101325,
+           supply: battery, source: test}
+domain: {pwm_us: [1000, 2000], voltage_v: [10, 13], outside: )" +
+                                outside + R"(}
+outputs:
+  thrust: {unit: g, polynomial: {p00: -900, p10: 1}}
+  current: {unit: A, polynomial: {p00: )" +
+                                std::to_string(idle_a - 10.0) + R"(, p10: 0.01}}
+  power: {unit: W, derived: voltage*current}
+  efficiency: {unit: g/W, derived: thrust/power}
+  rpm: {unit: rpm, none: no tachometer}
+)",
+                            "idling.yaml");
+}
+
 pe::HoverOptions quad(double mass_kg, int cells, double capacity_mah) {
   pe::HoverOptions hover;
   hover.vehicle_mass_kg = mass_kg;
@@ -155,6 +173,75 @@ TEST(ModelComparison, SaysWhenTheVehicleIsTooHeavyToHover) {
                                "hover ends at 12.59 V: the motors cannot give the hover thrust at that voltage"}));
   const std::string table = pe::comparisonTables({c}, options);
   EXPECT_NE(table.find("| e300 | n/a | n/a | n/a | n/a | n/a | n/a | cannot hover"), std::string::npos) << table;
+}
+
+TEST(ModelComparison, AVoltageOutsideTheDomainIsClampedWithANoteExtrapolatedOrRefused) {
+  pe::ComparisonOptions options;
+  options.voltage_v = 14.0;
+  const pe::ModelComparison clamped = pe::compareModel("flat", voltageFreeModel(), {}, options);
+  // The row is at the voltage its values are at, and says why.
+  EXPECT_DOUBLE_EQ(clamped.voltage_v, 13.0);
+  EXPECT_DOUBLE_EQ(clamped.curve.front().voltage_v, 13.0);
+  EXPECT_EQ(clamped.notes, std::vector<std::string>{"--voltage 14.00 V is outside the model's 10.00-13.00 V domain: "
+                                                    "its row is the model at 13.00 V, where the model clamps the "
+                                                    "voltage"});
+  const std::string table = pe::comparisonTables({clamped}, options);
+  EXPECT_NE(table.find("| flat | E | M | P | 13.00 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("|\n\n- flat: --voltage 14.00 V is outside the model's 10.00-13.00 V domain: its row is the "
+                       "model at 13.00 V, where the model clamps the voltage\n"),
+            std::string::npos)
+      << table;
+  EXPECT_TRUE(pe::compareModel("flat", voltageFreeModel(), {}, {}).notes.empty());
+
+  const pe::ModelComparison extrapolated = pe::compareModel("x", idlingModel(1.0, "extrapolate"), {}, options);
+  EXPECT_DOUBLE_EQ(extrapolated.voltage_v, 14.0);
+  EXPECT_EQ(extrapolated.notes, std::vector<std::string>{"--voltage 14.00 V is outside the model's 10.00-13.00 V "
+                                                         "domain: its row extrapolates the surfaces (policy "
+                                                         "extrapolate)"});
+  try {
+    pe::compareModel("r", idlingModel(1.0, "reject"), {}, options);
+    FAIL();
+  } catch (const pe::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "r: --voltage 14.00 V is outside the model's 10.00-13.00 V domain and the model rejects it (policy "
+              "reject): choose --voltage inside it");
+  }
+}
+
+TEST(ModelComparison, AHoverThrustBelowTheLowestPwmIsOutsideTheDomain) {
+  // 4 x 50 g: the motors give 100 g at the lowest PWM already.
+  pe::ComparisonOptions options;
+  options.hover = quad(4 * 50.0 * pe::kNewtonPerGramForce / pe::kStandardGravity, 3, 2000);
+  const pe::ModelComparison c = pe::compareModel("idle", idlingModel(1.0), {}, options);
+  ASSERT_TRUE(c.hover.has_value());
+  EXPECT_DOUBLE_EQ(c.hover->pwm_us, 1000.0);
+  EXPECT_TRUE(c.hover->below_pwm_domain);
+  EXPECT_FALSE(c.hover->in_domain);
+  EXPECT_DOUBLE_EQ(c.hover->current_a, 1.0);
+  // Every step hovers at the lowest PWM: 1 A per motor, 0.8 x 2 Ah at 4 A.
+  ASSERT_TRUE(c.endurance_min.has_value());
+  EXPECT_NEAR(*c.endurance_min, 60.0 * 0.8 * 2.0 / 4.0, 1e-9);
+  EXPECT_EQ(c.hover_notes,
+            (std::vector<std::string>{"the hover thrust (50.0 g per motor) is below the model's 100.0 g at its lowest "
+                                      "PWM, 1000 us: the hover point lies below the measured range and is shown at "
+                                      "that PWM",
+                                      "for 100% of the discharge the hover thrust is below the thrust at the model's "
+                                      "lowest PWM (1000 us): the current there is taken at 1000 us, so the endurance "
+                                      "is likely underestimated"}));
+}
+
+TEST(ModelComparison, AZeroHoverCurrentGivesNoEnduranceInsteadOfInfinity) {
+  // The current surface is 0 A at the lowest PWM, where this vehicle hovers.
+  pe::ComparisonOptions options;
+  options.hover = quad(4 * 50.0 * pe::kNewtonPerGramForce / pe::kStandardGravity, 3, 2000);
+  const pe::ModelComparison c = pe::compareModel("idle", idlingModel(0.0), {}, options);
+  ASSERT_TRUE(c.hover.has_value());
+  EXPECT_DOUBLE_EQ(c.hover->current_a, 0.0);
+  EXPECT_FALSE(c.endurance_min.has_value());
+  EXPECT_TRUE(c.discharge.empty());
+  EXPECT_EQ(c.hover_notes.back(),
+            "no endurance: the model's hover current is 0 A at 12.59 V and 1000 us (its current surface is at or "
+            "below zero there)");
 }
 
 TEST(ModelComparison, RefusesBadHoverOptions) {

@@ -123,6 +123,14 @@ TEST(ModelYaml, RefusesNonFiniteCoefficient) {
             "m.yaml:21: outputs.current.polynomial.p10: expected a finite number, got '-.inf'");
 }
 
+TEST(ModelYaml, RefusesBenchAirOutsideTheRangesOfAir) {
+  // The check is ModelMetadata::validate(), which fit_surfaces applies before it writes a model.
+  EXPECT_EQ(refusal(replaced("bench_air_temperature_c: 20", "bench_air_temperature_c: 293.15")),
+            "m.yaml:6: metadata.bench_air_temperature_c: 293.15 is not an air temperature in deg C");
+  EXPECT_EQ(refusal(replaced("bench_air_pressure_pa: 101325", "bench_air_pressure_pa: 1013.25")),
+            "m.yaml:7: metadata.bench_air_pressure_pa: 1013.25 is not an air pressure in Pa");
+}
+
 TEST(ModelYaml, RefusesEmptyDomain) {
   EXPECT_EQ(refusal(replaced("voltage_v: [10, 13]", "voltage_v: [13, 13]")),
             "m.yaml:12: domain.voltage_v: empty range [13, 13]");

@@ -56,7 +56,10 @@ struct HoverPoint {
   double current_a = 0.0;  // per motor
   double power_w = 0.0;    // per motor
   double efficiency_g_per_w = 0.0;
-  bool in_domain = false;  // false: the model clamped or extrapolated the voltage
+  // The hover thrust is below the model's thrust at the lowest PWM of its domain: the hover PWM
+  // lies below the measured range, and pwm_us (with its current and power) is that lowest PWM.
+  bool below_pwm_domain = false;
+  bool in_domain = false;  // false: the voltage was clamped or extrapolated, or below_pwm_domain
 };
 
 struct DischargeStep {
@@ -70,7 +73,8 @@ struct DischargeStep {
 struct ModelComparison {
   std::string label;
   ModelMetadata metadata;
-  double voltage_v = 0.0;
+  double voltage_v = 0.0;  // where the row's values are: --voltage, or the domain bound it was clamped to
+  std::vector<std::string> notes;        // on the chapter 7 row (a --voltage outside the domain)
   std::vector<ComparisonSample> curve;  // the model against PWM at voltage_v
   double max_thrust_g = 0.0;
   double max_current_a = 0.0;
@@ -96,7 +100,8 @@ std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust
 
 // Evaluates one combination: curve and maxima at the comparison voltage (default: the top of
 // the model's voltage domain), the motor temperature of its logs, and hover and endurance when
-// options.hover is set.
+// options.hover is set. A --voltage outside the domain is refused under the reject policy,
+// clamped to the domain (voltage_v says where) or extrapolated otherwise, with a note.
 ModelComparison compareModel(const std::string& label, const PropulsionModel& model, const std::vector<BenchLog>& logs,
                              const ComparisonOptions& options);
 

@@ -71,6 +71,9 @@ struct ModelMetadata {
 
   // Air density on the bench, p / (R T): the reference for density corrections.
   double benchAirDensity() const;
+  // FieldError ("metadata.bench_air_temperature_c", ...) for bench air outside the ranges the
+  // model loader accepts; fit_surfaces applies the same check before it writes a model.
+  void validate() const;
 };
 
 // Steady-state operating point of one motor from the surfaces, in SI units.

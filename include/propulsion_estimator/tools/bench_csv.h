@@ -21,15 +21,16 @@ namespace propulsion_estimator {
 enum class ThrustUnit { kGram, kNewton };
 
 // Writes the logged columns of `log` (thrust as thrust_g or thrust_n), then its extra columns,
-// metadata first; readNativeBenchCsv reads it back (numbers to 6 significant digits).
+// metadata first; parseNativeBenchCsv (or readBenchLog, for a file) reads it back (numbers to 6
+// significant digits).
 void writeNativeBenchCsv(const BenchLog& log, std::ostream& out, ThrustUnit thrust_unit = ThrustUnit::kGram);
 void saveNativeBenchCsv(const BenchLog& log, const std::string& path, ThrustUnit thrust_unit = ThrustUnit::kGram);
 
-// Reads a native log. Throws ConfigError "<file>:<line>: column <n> '<name>': <problem>" for a
-// cell that is empty, text, NaN or infinite, and "<file>:<line>: ..." for a missing required
-// column, a repeated column, a repeated metadata key, an empty file or one without rows.
+// Reads a native log from its text (files go through readBenchLog, which detects the format).
+// Throws ConfigError "<file>:<line>: column <n> '<name>': <problem>" for a cell that is empty,
+// text, NaN or infinite, and "<file>:<line>: ..." for a missing required column, a repeated
+// column, a repeated metadata key, an empty file or one without rows.
 BenchLog parseNativeBenchCsv(const std::string& text, const std::string& source);
-BenchLog readNativeBenchCsv(const std::string& path);
 // The same on an already split table (readBenchLog detects the format first).
 BenchLog nativeBenchLogFromTable(const CsvText& table, DecimalSeparator decimal = DecimalSeparator::kAuto);
 

@@ -39,9 +39,18 @@ BenchLog parseBenchLog(const std::string& text, const std::string& source, const
 BenchLog readBenchLog(const std::string& path, const BenchReadOptions& options = {});
 BenchLogFormat detectBenchLogFormat(const CsvText& table);
 
+// One log file of the command line, and the later arguments that named it again (a file and its
+// directory, a symbolic link; compared as canonical paths): it is read once, or it would count
+// twice in the fit and sit on both sides of a cross-validation fold.
+struct BenchLogFile {
+  std::string path;                        // as first named (an argument, or a file of a directory)
+  std::vector<std::string> also_named_by;  // arguments (files or directories) that named it again
+};
+
 // Command-line log arguments to files: a file stays, a directory stands for its *.csv files
-// (sorted by name, not recursive). Throws ConfigError for a missing path or an empty directory.
-std::vector<std::string> expandBenchLogPaths(const std::vector<std::string>& arguments);
+// (sorted by name, not recursive), each file once. Throws ConfigError for a missing path or an
+// empty directory.
+std::vector<BenchLogFile> expandBenchLogPaths(const std::vector<std::string>& arguments);
 
 // The BenchColumn named by its native name ("rpm", "motor_temp_c", "thrust_n"); ConfigError
 // listing the names when there is none.
