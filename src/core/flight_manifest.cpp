@@ -50,11 +50,7 @@ FlightManifest parseFlightManifest(const std::string& text, const std::string& s
     }
     manifest.flights.push_back(entry);
   }
-  try {
-    manifest.validate();
-  } catch (const FieldError& e) {
-    throwAtField(root, e);
-  }
+  validateAt(root, manifest);
   return manifest;
 }
 

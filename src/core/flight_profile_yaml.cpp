@@ -89,11 +89,7 @@ FlightProfile parseFlightProfileYaml(const std::string& text, const std::string&
   manifest.allowOnly({"settle_s"});
   profile.manifest_settle_s = manifest.number("settle_s");
   for (const YamlMap& segment : root.maps("segments")) profile.segments.push_back(readSegment(segment));
-  try {
-    profile.validate();
-  } catch (const FieldError& e) {
-    throwAtField(root, e);
-  }
+  validateAt(root, profile);
   return profile;
 }
 

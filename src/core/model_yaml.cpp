@@ -127,11 +127,7 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
   metadata.propeller = meta.text("propeller");
   metadata.bench_air_temperature_c = meta.number("bench_air_temperature_c");
   metadata.bench_air_pressure_pa = meta.number("bench_air_pressure_pa");
-  try {
-    metadata.validate();
-  } catch (const FieldError& e) {
-    throwAtField(root, e);
-  }
+  validateAt(root, metadata);
   metadata.supply = meta.choice("supply", {"regulated", "battery"}) == "battery" ? SupplyKind::kBattery
                                                                                  : SupplyKind::kRegulated;
   metadata.source = meta.text("source");

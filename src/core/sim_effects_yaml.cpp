@@ -33,11 +33,7 @@ SimEffects parseSimEffectsYaml(const std::string& text, const std::string& sourc
     if (effect == "climb_inflow") effects.climb_inflow_per_m_s = parameter(root, "climb_inflow", "per_m_s");
     if (effect == "esc_offset") effects.esc_offset_us = parameter(root, "esc_offset", "us");
   }
-  try {
-    effects.validate();
-  } catch (const FieldError& e) {
-    throwAtField(root, e);
-  }
+  validateAt(root, effects);
   return effects;
 }
 

@@ -93,11 +93,7 @@ SimParams parseSimParamsYaml(const std::string& text, const std::string& source)
   params.chain.propeller = readPropeller(root.map("propeller"));
   params.battery = readBattery(root.map("battery"));
   params.bench = readBench(root.map("bench"));
-  try {
-    params.validate();
-  } catch (const FieldError& e) {
-    throwAtField(root, e);
-  }
+  validateAt(root, params);
   return params;
 }
 

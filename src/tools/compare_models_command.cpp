@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <set>
 
 #include "bench_log_options.h"
@@ -11,6 +10,7 @@
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/model_comparison.h"
 #include "propulsion_estimator/core/model_yaml.h"
+#include "propulsion_estimator/core/yaml_map.h"
 #include "report_plotter.h"
 #include "tool_command.h"
 
@@ -74,9 +74,7 @@ int compare(Arguments args, const BenchReadOptions& read_options) {
     writeComparisonReportData(comparisons, options, args.report);
     args.plotter.plot("compare", args.report);
     const std::string path = args.report + "/compare_report.md";
-    std::ofstream markdown(path);
-    markdown << comparisonReportMarkdown(comparisons, options);
-    if (!markdown) throw ConfigError(path + ": cannot write");
+    writeTextFile(path, comparisonReportMarkdown(comparisons, options));
     std::printf("report: %s\n", path.c_str());
   }
   return 0;

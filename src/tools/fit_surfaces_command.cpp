@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 
@@ -12,6 +11,7 @@
 #include "propulsion_estimator/core/config_error.h"
 #include "propulsion_estimator/core/fit_report.h"
 #include "propulsion_estimator/core/model_yaml.h"
+#include "propulsion_estimator/core/yaml_map.h"
 #include "report_plotter.h"
 #include "tool_command.h"
 
@@ -86,9 +86,7 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
   std::printf("cross-validation: %s\n", result.grouping_description.c_str());
   printSummary(result);
   if (result.validation_error.empty()) {
-    std::ofstream file(args.out);
-    file << yaml;
-    if (!file) throw ConfigError(args.out + ": cannot write");
+    writeTextFile(args.out, yaml);
   }
 
   if (!args.report.empty()) {
@@ -96,9 +94,7 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
     writeFitReportData(result, args.report);
     args.plotter.plot("fit", args.report);
     const std::string markdown_path = args.report + "/fit_report.md";
-    std::ofstream markdown(markdown_path);
-    markdown << fitReportMarkdown(result, result.validation_error.empty() ? args.out : "");
-    if (!markdown) throw ConfigError(markdown_path + ": cannot write");
+    writeTextFile(markdown_path, fitReportMarkdown(result, result.validation_error.empty() ? args.out : ""));
     std::printf("report: %s\n", markdown_path.c_str());
   }
   if (!result.validation_error.empty()) {

@@ -33,4 +33,14 @@ void requirePositive(const std::string& field, double value, double hi, const st
 // document whose root is `root` (the line of its nearest present ancestor when it is absent).
 [[noreturn]] void throwAtField(const YamlMap& root, const FieldError& error);
 
+// Runs `config.validate()` and locates a refusal in the document it was read from.
+template <typename Config>
+void validateAt(const YamlMap& root, const Config& config) {
+  try {
+    config.validate();
+  } catch (const FieldError& error) {
+    throwAtField(root, error);
+  }
+}
+
 }  // namespace propulsion_estimator
