@@ -46,6 +46,7 @@ const char* payloadStateName(PayloadState state) {
 
 PayloadEstimator::PayloadEstimator(const PayloadConfig& config, std::size_t capacity)
     : config_(config), window_(config.averaging_window_s, capacity) {
+  updateStatistics();
   clearEmptyMass();
 }
 
@@ -55,15 +56,16 @@ const MassEstimate& PayloadEstimator::add(double stamp_s, double mass_kg, bool h
     window_.push(stamp_s, mass_kg);
     last_hover_stamp_s_ = stamp_s;
     hovered_before_ = true;
+    updateStatistics();
   }
-  update(hovering);
+  updateState(hovering);
   return estimate_;
 }
 
 void PayloadEstimator::setEmptyMass(double mass_kg, EmptyMassSource source) {
   estimate_.empty_mass_kg = mass_kg;
   estimate_.empty_mass_source = source;
-  update(estimate_.hovering);
+  updateState(estimate_.hovering);
 }
 
 void PayloadEstimator::clearEmptyMass() { setEmptyMass(std::numeric_limits<double>::quiet_NaN(), EmptyMassSource::kNone); }
@@ -71,18 +73,16 @@ void PayloadEstimator::clearEmptyMass() { setEmptyMass(std::numeric_limits<doubl
 void PayloadEstimator::clearWindow() {
   window_.clear();
   hovered_before_ = false;
-  update(false);
+  updateStatistics();
+  updateState(false);
 }
 
-void PayloadEstimator::update(bool hovering) {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+void PayloadEstimator::updateStatistics() {
   MassEstimate& e = estimate_;
-  e.hovering = hovering;
   e.window_samples = static_cast<std::uint32_t>(window_.size());
   e.window_s = window_.span();
   if (window_.size() < config_.min_samples) {
-    e.total_mass_kg = e.mass_std_kg = e.payload_mass_kg = kNaN;
-    e.state = PayloadState::kWaitingForHover;
+    e.total_mass_kg = e.mass_std_kg = std::numeric_limits<double>::quiet_NaN();
     return;
   }
   double sum = 0.0;
@@ -93,10 +93,16 @@ void PayloadEstimator::update(bool hovering) {
   for (std::size_t i = 0; i < window_.size(); ++i) squares += (window_[i] - mean) * (window_[i] - mean);
   e.total_mass_kg = mean;
   e.mass_std_kg = std::sqrt(squares / (n - 1.0));
-  e.payload_mass_kg = mean - e.empty_mass_kg;  // NaN while the empty mass is unknown
-  e.state = std::isnan(e.empty_mass_kg) ? PayloadState::kNoTareYet
-            : hovering                  ? PayloadState::kHovering
-                                        : PayloadState::kHolding;
+}
+
+void PayloadEstimator::updateState(bool hovering) {
+  MassEstimate& e = estimate_;
+  e.hovering = hovering;
+  e.payload_mass_kg = e.total_mass_kg - e.empty_mass_kg;  // NaN while either is unknown
+  e.state = std::isnan(e.total_mass_kg)   ? PayloadState::kWaitingForHover
+            : std::isnan(e.empty_mass_kg) ? PayloadState::kNoTareYet
+            : hovering                    ? PayloadState::kHovering
+                                          : PayloadState::kHolding;
 }
 
 }  // namespace propulsion_estimator

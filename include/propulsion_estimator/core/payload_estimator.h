@@ -53,7 +53,10 @@ class PayloadEstimator {
   void clearWindow();
 
  private:
-  void update(bool hovering);
+  // The window's statistics change only when a sample is added or the window cleared; the state
+  // also when hovering starts or stops, or the empty mass changes.
+  void updateStatistics();
+  void updateState(bool hovering);
 
   PayloadConfig config_;
   TimeWindow<double> window_;
