@@ -136,13 +136,7 @@ void BagFlightSink::staticPressure(const ScalarSample& sample) {
   bag_.write(kStaticPressureTopic, msg.header.stamp, msg);
 }
 
-void BagFlightSink::airTemperature(const ScalarSample& sample) {
-  sensor_msgs::Temperature msg;
-  msg.header = header(stamp(sample.time_s), sample.frame_id);
-  msg.temperature = sample.value;
-  msg.variance = sample.sigma * sample.sigma;
-  bag_.write(kAirTemperatureTopic, msg.header.stamp, msg);
-}
+void BagFlightSink::airTemperature(const ScalarSample& sample) { writeTemperature(kAirTemperatureTopic, sample); }
 
 void BagFlightSink::rangefinder(const RangeSample& sample) {
   sensor_msgs::Range msg;
@@ -156,11 +150,15 @@ void BagFlightSink::rangefinder(const RangeSample& sample) {
 }
 
 void BagFlightSink::motorTemperature(const ScalarSample& sample) {
+  writeTemperature(kMotorTemperatureTopic, sample);
+}
+
+void BagFlightSink::writeTemperature(const char* topic, const ScalarSample& sample) {
   sensor_msgs::Temperature msg;
   msg.header = header(stamp(sample.time_s), sample.frame_id);
   msg.temperature = sample.value;
   msg.variance = sample.sigma * sample.sigma;
-  bag_.write(kMotorTemperatureTopic, msg.header.stamp, msg);
+  bag_.write(topic, msg.header.stamp, msg);
 }
 
 void BagFlightSink::truth(const TruthSample& sample) {

@@ -54,6 +54,7 @@ class BagFlightSink : public FlightSink {
 
  private:
   static ros::Time stamp(double time_s);
+  void writeTemperature(const char* topic, const ScalarSample& sample);
 
   std::string path_;
   rosbag::Bag bag_;
