@@ -3,10 +3,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/model_yaml.h"
-#include "propulsion_estimator/core/tare_file.h"
-#include "propulsion_estimator/core/vehicle_urdf.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/estimation/tare_file.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
 
 namespace propulsion_estimator {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <ros/console.h>
 
-#include "propulsion_estimator/core/config_error.h"
+#include "propulsion_estimator/common/config_error.h"
 
 namespace propulsion_estimator {
 namespace {

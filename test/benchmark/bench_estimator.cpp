@@ -5,8 +5,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "propulsion_estimator/core/estimator.h"
-#include "propulsion_estimator/core/model_yaml.h"
+#include "propulsion_estimator/estimation/estimator.h"
+#include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
 namespace pe = propulsion_estimator;

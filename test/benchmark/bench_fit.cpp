@@ -1,6 +1,6 @@
 // fit_surfaces' core on a million bench rows: reading the rows into per-group Gram matrices once,
 // then choosing the degrees of every output by grouped cross-validation on those matrices.
-#include "propulsion_estimator/core/bench_fit.h"
+#include "propulsion_estimator/fitting/surface_fit.h"
 
 #include <benchmark/benchmark.h>
 
@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "propulsion_estimator/core/units.h"
+#include "propulsion_estimator/common/units.h"
 
 namespace pe = propulsion_estimator;
 

@@ -6,11 +6,11 @@
 
 #include <filesystem>
 
-#include "propulsion_estimator/core/flight_profile_yaml.h"
-#include "propulsion_estimator/core/flight_simulator.h"
-#include "propulsion_estimator/core/sim_params_yaml.h"
-#include "propulsion_estimator/core/vehicle_urdf.h"
-#include "propulsion_estimator/ros/bag_flight_sink.h"
+#include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
+#include "propulsion_estimator/sim/flight/flight_simulator.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
+#include "propulsion_estimator/bag/bag_flight_sink.h"
 
 namespace pe = propulsion_estimator;
 

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "propulsion_estimator/core/bench_log.h"
-#include "propulsion_estimator/core/bench_simulator.h"
-#include "propulsion_estimator/core/sim_params_yaml.h"
-#include "propulsion_estimator/core/units.h"
+#include "propulsion_estimator/logs/bench_log.h"
+#include "propulsion_estimator/sim/stand/bench_simulator.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/common/units.h"
 #include "test_paths.h"
 
 // Constant-voltage PWM sweeps like thesis 4.1 (1200..1900 us in 5 us steps at 8 supply voltages,

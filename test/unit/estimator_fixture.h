@@ -3,9 +3,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "propulsion_estimator/core/estimator.h"
-#include "propulsion_estimator/core/model_yaml.h"
-#include "propulsion_estimator/core/units.h"
+#include "propulsion_estimator/estimation/estimator.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/common/units.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "propulsion_estimator/core/flight_sink.h"
+#include "propulsion_estimator/sim/flight/flight_sink.h"
 
 // Keeps everything a simulated flight emits, for tests.
 struct RecordingFlightSink : propulsion_estimator::FlightSink {

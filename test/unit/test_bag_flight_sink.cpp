@@ -11,15 +11,16 @@
 #include <map>
 
 #include "propulsion_estimator/SimTruth.h"
-#include "propulsion_estimator/core/flight_manifest.h"
-#include "propulsion_estimator/core/flight_profile_yaml.h"
-#include "propulsion_estimator/core/flight_simulator.h"
-#include "propulsion_estimator/core/sim_params_yaml.h"
-#include "propulsion_estimator/core/vehicle_urdf.h"
-#include "propulsion_estimator/core/yaml_map.h"
-#include "propulsion_estimator/ros/bag_flight_sink.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/logs/flight_manifest.h"
+#include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
+#include "propulsion_estimator/sim/flight/flight_simulator.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
+#include "propulsion_estimator/common/yaml_map.h"
+#include "propulsion_estimator/bag/bag_flight_sink.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
-#include "propulsion_estimator/ros/simulate_command.h"
+#include "simulate_command.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;

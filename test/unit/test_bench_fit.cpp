@@ -8,19 +8,19 @@
 #include <string>
 
 #include "bench_sweep_fixture.h"
-#include "propulsion_estimator/core/bench_fit.h"
-#include "propulsion_estimator/tools/bench_log_reader.h"
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/fit_report.h"
-#include "propulsion_estimator/core/model_yaml.h"
-#include "propulsion_estimator/core/units.h"
+#include "propulsion_estimator/fitting/surface_fit.h"
+#include "propulsion_estimator/logs/bench_log_reader.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/fitting/fit_report.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/common/units.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;
 
 namespace {
 
-const std::string kStrawson = "data/strawson_motor_propeller/";
+const std::string kStrawson = "test/data/strawson_motor_propeller/";
 
 // Bench conditions the Strawson exports do not carry (the stand software writes no metadata).
 pe::FitOptions strawsonOptions(const std::string& motor, const std::string& propeller) {
@@ -35,8 +35,8 @@ pe::FitOptions strawsonOptions(const std::string& motor, const std::string& prop
 }
 
 std::vector<pe::BenchLog> strawsonPair(const std::string& combination) {
-  return {pe::readBenchLog(sharedPath(kStrawson + combination + "_7.csv")),
-          pe::readBenchLog(sharedPath(kStrawson + combination + "_11.csv"))};
+  return {pe::readBenchLog(repoPath(kStrawson + combination + "_7.csv")),
+          pe::readBenchLog(repoPath(kStrawson + combination + "_11.csv"))};
 }
 
 double rmseOn(const pe::PropulsionModel& model, pe::Output output, const pe::BenchLog& log) {
@@ -335,7 +335,7 @@ TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedThe
   // a1_11: at 1905 and 2000 us the supply's ~11 A limit pulled 11 V down to 9.35 and 8.30 V.
   const pe::BenchFit fit = pe::fitBenchModel(strawsonPair("a1"), strawsonOptions("EMAX RS2205S 2600kv", "T5040C"));
   ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
-  const std::string expected = sharedPath(kStrawson + "a1_11.csv") +
+  const std::string expected = repoPath(kStrawson + "a1_11.csv") +
                                ": 2 rows more than 0.5 V off the sweep's 10.99 V (down to 8.30 V at 2000 us, 10.96 A): "
                                "the supply sagged; these rows are fitted at their measured voltage";
   EXPECT_NE(std::find(fit.notes.begin(), fit.notes.end(), expected), fit.notes.end());
@@ -358,8 +358,8 @@ TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedThe
 TEST(BenchFitStrawson, RefusesAPairWhoseTwoFilesAreAtTheSameVoltage) {
   // l3_11.csv is named 3S but was logged at 2S: its voltage is 7.15..7.43 V like l3_7.csv.
   EXPECT_EQ(refusal(strawsonPair("l3"), strawsonOptions("T-Motor F30", "Gemfan 5x4.5")),
-            "cannot fit a surface: one voltage level only (all 22 rows of " + sharedPath(kStrawson + "l3_7.csv") +
-                " and " + sharedPath(kStrawson + "l3_11.csv") +
+            "cannot fit a surface: one voltage level only (all 22 rows of " + repoPath(kStrawson + "l3_7.csv") +
+                " and " + repoPath(kStrawson + "l3_11.csv") +
                 " have voltage_v near 7.36 V, 7.13 to 7.44 V); log sweeps at two or more supply voltages, or a "
                 "battery discharge");
 }
@@ -376,7 +376,7 @@ TEST(BenchFitStrawson, RefusesAGroupingThatLeavesOneVoltageLevelPerFold) {
   options.grouping = pe::FitGrouping::kLog;
   EXPECT_EQ(refusal(strawsonPair("g1"), options),
             "cannot fit thrust: --group-by log leaves one voltage level in a training fold (without " +
-                sharedPath(kStrawson + "g1_7.csv") +
+                repoPath(kStrawson + "g1_7.csv") +
                 " only 11.07 V remains), so cross-validation cannot score a voltage term: use --group-by pwm or auto");
 }
 

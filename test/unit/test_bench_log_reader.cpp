@@ -6,10 +6,10 @@
 #include <sstream>
 #include <string>
 
-#include "propulsion_estimator/tools/bench_csv.h"
-#include "propulsion_estimator/tools/bench_log_reader.h"
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/units.h"
+#include "propulsion_estimator/logs/bench_csv.h"
+#include "propulsion_estimator/logs/bench_log_reader.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/units.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;
@@ -27,7 +27,7 @@ std::string refusal(const std::string& text, const pe::BenchReadOptions& options
 
 const std::vector<double>& column(const pe::BenchLog& log, pe::BenchColumn c) { return log.column(c); }
 
-const std::string kStrawson = "data/strawson_motor_propeller/";
+const std::string kStrawson = "test/data/strawson_motor_propeller/";
 
 // The first lines of an RCbenchmark 1520 export, byte for byte as the stand writes them.
 const std::string kTytoHeader =
@@ -147,7 +147,7 @@ TEST(NativeBenchCsv, ReadsSemicolonsWithDecimalCommas) {
 // --- Tyto / RCbenchmark format -------------------------------------------------------------------
 
 TEST(TytoBenchCsv, ReadsTheRealStrawsonExport) {
-  const pe::BenchLog log = pe::readBenchLog(sharedPath(kStrawson + "a1_11.csv"));
+  const pe::BenchLog log = pe::readBenchLog(repoPath(kStrawson + "a1_11.csv"));
   ASSERT_EQ(log.rows(), 11u);
   EXPECT_EQ(log.line_numbers.front(), 2);
   // Row 1 of the file: 0,1050,,,,15.171654199725802,11.091128183929616,0.5113728685208023,3421,0,5.538...
@@ -173,7 +173,7 @@ TEST(TytoBenchCsv, ReadsTheRealStrawsonExport) {
 
 TEST(TytoBenchCsv, NegatesAThrustLoggedNegativeAndSaysSo) {
   // m7_11: a pusher-mounted run, thrust from -214 gf up to +1 gf of idle noise.
-  const pe::BenchLog log = pe::readBenchLog(sharedPath(kStrawson + "m7_11.csv"));
+  const pe::BenchLog log = pe::readBenchLog(repoPath(kStrawson + "m7_11.csv"));
   const auto& thrust = column(log, pe::BenchColumn::kThrust);
   EXPECT_GT(*std::max_element(thrust.begin(), thrust.end()), 200 * pe::kNewtonPerGramForce);
   ASSERT_EQ(log.notes.size(), 4u);

@@ -8,12 +8,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "propulsion_estimator/core/bench_simulator.h"
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/field_error.h"
-#include "propulsion_estimator/core/sim_params_yaml.h"
-#include "propulsion_estimator/core/units.h"
-#include "propulsion_estimator/tools/bench_csv.h"
+#include "propulsion_estimator/sim/stand/bench_simulator.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/logs/bench_csv.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "propulsion_estimator/core/model_yaml.h"
-#include "propulsion_estimator/core/propulsion_model.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/model/propulsion_model.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;
@@ -49,7 +49,7 @@ class BenchTools : public testing::Test {
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "out.txt"), slurp(dir_ / "err.txt")};
   }
 
-  static std::string strawson(const std::string& file) { return sharedPath("data/strawson_motor_propeller/" + file); }
+  static std::string strawson(const std::string& file) { return repoPath("test/data/strawson_motor_propeller/" + file); }
 
   static std::string metadata(const std::string& propeller) {
     return "--esc unknown --motor 'Lumenier RX2206-13 2000kv' --propeller " + quoted(propeller) +

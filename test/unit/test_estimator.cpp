@@ -4,9 +4,10 @@
 #include <gtest/gtest.h>
 
 #include "estimator_fixture.h"
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/payload_estimator.h"
-#include "propulsion_estimator/core/yaml_map.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/estimation/payload_estimator.h"
+#include "propulsion_estimator/common/yaml_map.h"
 
 namespace {
 

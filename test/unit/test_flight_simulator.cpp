@@ -4,12 +4,12 @@
 
 #include <cmath>
 
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/flight_profile_yaml.h"
-#include "propulsion_estimator/core/flight_simulator.h"
-#include "propulsion_estimator/core/sim_params_yaml.h"
-#include "propulsion_estimator/core/units.h"
-#include "propulsion_estimator/core/vehicle_urdf.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
+#include "propulsion_estimator/sim/flight/flight_simulator.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "recording_flight_sink.h"
 #include "test_paths.h"
 

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "propulsion_estimator/core/grouped_least_squares.h"
+#include "propulsion_estimator/fitting/grouped_least_squares.h"
 
 namespace pe = propulsion_estimator;
 

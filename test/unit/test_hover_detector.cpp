@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/hover_detector.h"
-#include "propulsion_estimator/core/time_window.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/estimation/hover_detector.h"
+#include "propulsion_estimator/estimation/time_window.h"
 
 namespace pe = propulsion_estimator;
 

@@ -5,13 +5,13 @@
 #include <map>
 #include <string>
 
-#include "propulsion_estimator/core/bench_fit.h"
-#include "propulsion_estimator/tools/bench_log_reader.h"
-#include "propulsion_estimator/core/comparison_report.h"
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/model_comparison.h"
-#include "propulsion_estimator/core/model_yaml.h"
-#include "propulsion_estimator/core/units.h"
+#include "propulsion_estimator/fitting/surface_fit.h"
+#include "propulsion_estimator/logs/bench_log_reader.h"
+#include "propulsion_estimator/fitting/comparison_report.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/fitting/model_comparison.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/common/units.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;
@@ -281,7 +281,7 @@ TEST(ModelComparisonStrawson, OneMotorWithAllItsPropellersOrdersAsPhysicsSays) {
   std::vector<pe::ModelComparison> all;
   for (int propeller = 1; propeller <= 8; ++propeller) {
     const std::string name = "g" + std::to_string(propeller);
-    const std::string base = sharedPath("data/strawson_motor_propeller/" + name);
+    const std::string base = repoPath("test/data/strawson_motor_propeller/" + name);
     const std::vector<pe::BenchLog> logs = {pe::readBenchLog(base + "_7.csv"), pe::readBenchLog(base + "_11.csv")};
     pe::FitOptions fit_options;
     fit_options.esc = "unknown";

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "estimator_fixture.h"
-#include "propulsion_estimator/core/motor_mixer.h"
+#include "propulsion_estimator/sim/flight/motor_mixer.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
 namespace {

@@ -2,7 +2,6 @@
 
 #include <string>
 
-// Paths of the repository and of ../shared (real data, CI and development only), resolved by
-// CMake from the repository's real path.
+// Paths in the repository, resolved by CMake from its real path. Tests read only what the
+// repository holds (public data copied into test/data/ with its licence), never ../shared.
 inline std::string repoPath(const std::string& relative) { return std::string(PE_REPO_DIR) + "/" + relative; }
-inline std::string sharedPath(const std::string& relative) { return std::string(PE_SHARED_DIR) + "/" + relative; }

@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/payload_estimator.h"
-#include "propulsion_estimator/core/tare_file.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/estimation/payload_estimator.h"
+#include "propulsion_estimator/estimation/tare_file.h"
 
 namespace pe = propulsion_estimator;
 

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "propulsion_estimator/core/polynomial_2d.h"
-#include "propulsion_estimator/core/response_surface.h"
+#include "propulsion_estimator/model/polynomial_2d.h"
+#include "propulsion_estimator/model/response_surface.h"
 
 namespace pe = propulsion_estimator;
 

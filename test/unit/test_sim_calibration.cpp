@@ -5,12 +5,12 @@
 
 #include <cmath>
 
-#include "propulsion_estimator/core/bench_simulator.h"
-#include "propulsion_estimator/core/model_yaml.h"
-#include "propulsion_estimator/core/propulsion_chain.h"
-#include "propulsion_estimator/core/sim_params_yaml.h"
-#include "propulsion_estimator/core/units.h"
-#include "propulsion_estimator/core/vehicle_urdf.h"
+#include "propulsion_estimator/sim/stand/bench_simulator.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/sim/physics/propulsion_chain.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;

@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "propulsion_estimator/core/bench_simulator.h"
-#include "propulsion_estimator/core/flight_profile_yaml.h"
-#include "propulsion_estimator/core/flight_simulator.h"
-#include "propulsion_estimator/core/power_train.h"
-#include "propulsion_estimator/core/sim_params_yaml.h"
-#include "propulsion_estimator/core/units.h"
-#include "propulsion_estimator/core/vehicle_urdf.h"
+#include "propulsion_estimator/sim/stand/bench_simulator.h"
+#include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
+#include "propulsion_estimator/sim/flight/flight_simulator.h"
+#include "propulsion_estimator/sim/physics/power_train.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "recording_flight_sink.h"
 #include "test_paths.h"
 

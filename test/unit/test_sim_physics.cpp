@@ -3,13 +3,13 @@
 
 #include <cmath>
 
-#include "propulsion_estimator/core/atmosphere.h"
-#include "propulsion_estimator/core/field_error.h"
-#include "propulsion_estimator/core/lipo_battery.h"
-#include "propulsion_estimator/core/power_train.h"
-#include "propulsion_estimator/core/propulsion_chain.h"
-#include "propulsion_estimator/core/sim_params_yaml.h"
-#include "propulsion_estimator/core/units.h"
+#include "propulsion_estimator/sim/physics/atmosphere.h"
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/sim/physics/lipo_battery.h"
+#include "propulsion_estimator/sim/physics/power_train.h"
+#include "propulsion_estimator/sim/physics/propulsion_chain.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/common/units.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;

@@ -2,12 +2,13 @@
 // refusal is one exact line naming the file, the line, the key and the value.
 #include <gtest/gtest.h>
 
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/flight_manifest.h"
-#include "propulsion_estimator/core/flight_profile_yaml.h"
-#include "propulsion_estimator/core/sim_effects_yaml.h"
-#include "propulsion_estimator/core/sim_params_yaml.h"
-#include "propulsion_estimator/core/yaml_map.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/logs/flight_manifest.h"
+#include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
+#include "propulsion_estimator/sim/physics/sim_effects_yaml.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/common/yaml_map.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;

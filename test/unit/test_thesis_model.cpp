@@ -3,10 +3,11 @@
 
 #include <gtest/gtest.h>
 
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/model_yaml.h"
-#include "propulsion_estimator/core/units.h"
-#include "propulsion_estimator/core/yaml_map.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/common/yaml_map.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;

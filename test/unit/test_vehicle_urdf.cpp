@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "propulsion_estimator/core/config_error.h"
-#include "propulsion_estimator/core/vehicle_urdf.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;

@@ -16,7 +16,7 @@
 #include "propulsion_estimator/MotorEstimates.h"
 #include "propulsion_estimator/PayloadEstimate.h"
 #include "propulsion_estimator/PropulsionTotals.h"
-#include "propulsion_estimator/core/estimator.h"
+#include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/ros/estimator_params.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 

@@ -4,7 +4,7 @@
 
 #include <ros/node_handle.h>
 
-#include "propulsion_estimator/core/estimator_config.h"
+#include "propulsion_estimator/estimation/estimator_config.h"
 
 namespace propulsion_estimator {
 

@@ -1,0 +1,64 @@
+#pragma once
+
+#include <ros/time.h>
+#include <rosbag/bag.h>
+
+#include <cstdint>
+#include <string>
+
+#include "propulsion_estimator/sim/flight/flight_sink.h"
+
+namespace propulsion_estimator {
+
+// Simulated bags start at this time (2020-09-13T12:26:40Z), so that the same inputs and seed give
+// the same bag.
+constexpr std::uint32_t kSimulatedBagStartSec = 1600000000;
+
+// Topics of a simulated flight, as MAVROS names them.
+constexpr const char* kRcOutTopic = "/mavros/rc/out";
+constexpr const char* kBatteryTopic = "/mavros/battery";
+constexpr const char* kImuTopic = "/mavros/imu/data";
+constexpr const char* kPoseTopic = "/mavros/local_position/pose";
+constexpr const char* kVelocityTopic = "/mavros/local_position/velocity_local";
+constexpr const char* kStaticPressureTopic = "/mavros/imu/static_pressure";
+constexpr const char* kAirTemperatureTopic = "/mavros/imu/temperature_baro";
+constexpr const char* kRangefinderTopic = "/mavros/rangefinder/rangefinder";
+constexpr const char* kMotorTemperatureTopic = "/motor_temperature";
+constexpr const char* kSimTruthTopic = "/sim/truth";
+
+// Writes a simulated flight into a bag: MAVROS topics with their message types
+// (/mavros/rc/out as mavros_msgs/RCOut through rcout_codec), the hottest motor's temperature as
+// sensor_msgs/Temperature, and the truth as propulsion_estimator/SimTruth. Message times are the
+// headers' stamps, kSimulatedBagStartSec + the sample's time. Frames: "map" (ENU world),
+// "base_link" (FLU body), "rangefinder", the motor's link.
+class BagFlightSink : public FlightSink {
+ public:
+  // Opens `path` for writing (rosbag::BagException for an unwritable path).
+  BagFlightSink(const std::string& path, rosbag::compression::CompressionType compression);
+  ~BagFlightSink() override;
+
+  void rcOut(const RcOutSample& sample) override;
+  void battery(const BatterySample& sample) override;
+  void imu(const ImuSample& sample) override;
+  void pose(const PoseSample& sample) override;
+  void velocity(const VelocitySample& sample) override;
+  void staticPressure(const ScalarSample& sample) override;
+  void airTemperature(const ScalarSample& sample) override;
+  void rangefinder(const RangeSample& sample) override;
+  void motorTemperature(const ScalarSample& sample) override;
+  void truth(const TruthSample& sample) override;
+
+  // Finishes the bag (rosbag::BagException when it cannot be written). The destructor closes it
+  // too, reporting a failure on stderr since it cannot throw.
+  void close();
+
+ private:
+  static ros::Time stamp(double time_s);
+  void writeTemperature(const char* topic, const ScalarSample& sample);
+
+  std::string path_;
+  rosbag::Bag bag_;
+  std::uint32_t rc_out_seq_ = 0;
+};
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,31 @@
+#pragma once
+
+#include <string>
+
+#include "propulsion_estimator/common/config_error.h"
+
+namespace propulsion_estimator {
+
+// A refused value of a configuration struct, named by its key path as the YAML file spells it
+// ("motor.kv_rpm_per_v", "segments[3].height_m"). validate() functions throw it without knowing
+// where the struct came from; a reader turns it into a located ConfigError with throwAtField.
+class FieldError : public ConfigError {
+ public:
+  FieldError(const std::string& field, const std::string& problem)
+      : ConfigError(field + ": " + problem), field_(field), problem_(problem) {}
+
+  const std::string& field() const { return field_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string field_;
+  std::string problem_;
+};
+
+// Range checks for validate() functions: throw FieldError(field, "<value> is outside <lo>..<hi><unit>")
+// unless lo <= value <= hi, and "<value> is outside 0..<hi><unit> (must be positive)" unless
+// 0 < value <= hi; NaN is outside every range. `unit` is appended as given (" m", " rpm/V").
+void requireWithin(const std::string& field, double value, double lo, double hi, const std::string& unit = "");
+void requirePositive(const std::string& field, double value, double hi, const std::string& unit = "");
+
+}  // namespace propulsion_estimator

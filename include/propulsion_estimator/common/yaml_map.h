@@ -1,0 +1,77 @@
+#pragma once
+
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "propulsion_estimator/common/field_error.h"
+
+namespace propulsion_estimator {
+
+// Strict, typed access to one YAML mapping of a configuration file. Every refusal throws
+// ConfigError as "<source>:<line>: <key.path>: <problem>", so that the user sees where to look.
+class YamlMap {
+ public:
+  // `path` is the dotted key path of this map ("" for the document root).
+  YamlMap(const YAML::Node& node, std::string source, std::string path);
+
+  // Refuses any key not in `allowed`.
+  void allowOnly(std::initializer_list<const char*> allowed) const;
+
+  bool has(const std::string& key) const;
+  std::vector<std::string> keys() const;
+
+  double number(const std::string& key) const;  // finite
+  std::optional<double> optionalNumber(const std::string& key) const;
+  int integer(const std::string& key) const;
+  bool boolean(const std::string& key) const;
+  std::string text(const std::string& key) const;
+  std::optional<std::string> optionalText(const std::string& key) const;
+  std::pair<double, double> range(const std::string& key) const;  // [lo, hi], finite, lo < hi
+  std::vector<double> numbers(const std::string& key) const;      // a sequence of finite numbers
+  YamlMap map(const std::string& key) const;
+  std::optional<YamlMap> optionalMap(const std::string& key) const;
+  std::vector<YamlMap> maps(const std::string& key) const;  // a sequence of mappings
+  // One of `choices`, reported with them when it is not.
+  std::string choice(const std::string& key, std::initializer_list<const char*> choices) const;
+
+  // "<source>:<line>: <path.key>" for messages about a key of this map.
+  std::string where(const std::string& key) const;
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
+
+  const std::string& source() const { return source_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  YAML::Node required(const std::string& key) const;
+  double toNumber(const YAML::Node& value, const std::string& key) const;
+  std::string keyPath(const std::string& key) const;
+
+  YAML::Node node_;
+  std::string source_;
+  std::string path_;
+};
+
+// Parses a whole document and returns its root mapping; `source` names it in messages.
+YamlMap parseYamlDocument(const std::string& text, const std::string& source);
+// Reads a file (refusing a missing or unreadable one) and parses it.
+YamlMap loadYamlFile(const std::string& path);
+// Rethrows `error` as "<source>:<line>: <field>: <problem>", with the line of the field in the
+// document whose root is `root` (the line of its nearest present ancestor when it is absent).
+[[noreturn]] void throwAtField(const YamlMap& root, const FieldError& error);
+
+// Runs `config.validate()` and locates a refusal in the document it was read from.
+template <typename Config>
+void validateAt(const YamlMap& root, const Config& config) {
+  try {
+    config.validate();
+  } catch (const FieldError& error) {
+    throwAtField(root, error);
+  }
+}
+
+}  // namespace propulsion_estimator

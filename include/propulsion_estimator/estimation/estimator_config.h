@@ -1,0 +1,36 @@
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "propulsion_estimator/estimation/hover_detector.h"
+#include "propulsion_estimator/estimation/payload_estimator.h"
+
+namespace propulsion_estimator {
+
+// Everything the estimator needs besides the model and the vehicle. Read from rosparam by the
+// node (ros/estimator_params.h); defaults are the documented ones (README, "Parameters").
+struct EstimatorConfig {
+  std::vector<int> motor_channels{1, 2, 3, 4};  // RCOut channels of the motors, 1-based, in rotor order
+  // PWM at or below this means a disarmed or stopped motor (PX4 sends 900, ArduPilot 1000 or 0;
+  // raise it to 1000 for ArduPilot).
+  double disarmed_pwm_max_us = 950.0;
+  double battery_timeout_s = 5.0;  // MAVROS on PX4 may publish the battery at 0.5-1 Hz
+  double imu_timeout_s = 0.5;
+  double velocity_timeout_s = 0.5;
+  bool compensate_tilt = true;          // vertical thrust = sum T_i (R a_i) . z, with the IMU's attitude
+  bool compensate_acceleration = true;  // mass = vertical thrust / (g + vertical acceleration)
+  double accel_filter_s = 0.3;          // low-pass of the vertical acceleration
+  double accel_bias_filter_s = 30.0;    // average taken as accelerometer bias
+  double max_rate_hz = 100.0;           // sizes the sample windows, allocated once
+  double clock_jump_reset_s = 1.0;      // the clock going back this far (a bag restarted) resets all
+  std::optional<double> empty_mass_kg;  // configured empty mass; a tare overrides it
+  HoverConfig hover;
+  PayloadConfig payload;
+
+  // ConfigError naming the parameter. `rotors`: how many rotors the vehicle has.
+  void validate(std::size_t rotors) const;
+};
+
+}  // namespace propulsion_estimator

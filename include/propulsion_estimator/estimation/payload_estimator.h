@@ -1,0 +1,68 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "propulsion_estimator/estimation/time_window.h"
+
+namespace propulsion_estimator {
+
+// Thesis eq. 2.1-2.3: in hover the motors' thrust equals the weight; the payload is the total
+// minus the empty weight recorded before. Single readings were up to 29 % off in the thesis, so
+// the estimate is the mean over the hover samples of the current hover episode (at most
+// averaging_window_s of them); a pause in hovering longer than episode_gap_s starts a new
+// episode, since the payload may change between hovers (picked up on a cable, or after landing).
+struct PayloadConfig {
+  double averaging_window_s = 10.0;
+  std::size_t min_samples = 25;  // before a mean is reported
+  double episode_gap_s = 1.0;
+
+  void validate() const;  // ConfigError naming the field
+};
+
+enum class EmptyMassSource { kNone, kUrdf, kParameter, kTareFile, kTare };
+const char* emptyMassSourceName(EmptyMassSource source);
+
+enum class PayloadState { kWaitingForHover, kNoTareYet, kHovering, kHolding };
+const char* payloadStateName(PayloadState state);
+
+struct MassEstimate {
+  PayloadState state = PayloadState::kWaitingForHover;
+  bool hovering = false;
+  double total_mass_kg = 0.0;  // NaN until min_samples hover samples
+  double mass_std_kg = 0.0;
+  double empty_mass_kg = 0.0;  // NaN when unknown
+  EmptyMassSource empty_mass_source = EmptyMassSource::kNone;
+  double payload_mass_kg = 0.0;  // NaN without total and empty mass
+  double window_s = 0.0;
+  std::uint32_t window_samples = 0;
+};
+
+class PayloadEstimator {
+ public:
+  // `capacity`: samples the averaging window can hold.
+  PayloadEstimator(const PayloadConfig& config, std::size_t capacity);
+
+  // The mass the thrust holds at `stamp_s`, and whether the vehicle hovers. Allocates nothing.
+  const MassEstimate& add(double stamp_s, double mass_kg, bool hovering);
+  const MassEstimate& estimate() const { return estimate_; }
+
+  void setEmptyMass(double mass_kg, EmptyMassSource source);
+  void clearEmptyMass();
+  // Forgets the hover samples (landing, clock reset, reset service).
+  void clearWindow();
+
+ private:
+  // The window's statistics change only when a sample is added or the window cleared; the state
+  // also when hovering starts or stops, or the empty mass changes.
+  void updateStatistics();
+  void updateState(bool hovering);
+
+  PayloadConfig config_;
+  TimeWindow<double> window_;
+  double last_hover_stamp_s_ = 0.0;
+  bool hovered_before_ = false;
+  MassEstimate estimate_;
+};
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,123 @@
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include "propulsion_estimator/model/response_surface.h"
+
+namespace propulsion_estimator {
+
+enum class Output { kThrust = 0, kCurrent, kPower, kEfficiency, kRpm };
+constexpr int kOutputCount = 5;
+constexpr std::array<Output, kOutputCount> kAllOutputs = {Output::kThrust, Output::kCurrent, Output::kPower,
+                                                          Output::kEfficiency, Output::kRpm};
+// "thrust", "current", ... as used for keys in model files and reports.
+const char* outputName(Output output);
+
+// How an output is obtained: its own surface, derived from the others (efficiency = thrust /
+// power, power = voltage * current, current = power / voltage), or not modelled at all (a bench
+// without tachometer has no rpm), in which case it is reported as NaN.
+enum class OutputSource { kSurface, kDerived, kNone };
+
+// How well a fitted surface matched its bench data (written by fit_surfaces, in the output's unit).
+struct FitQuality {
+  int pwm_degree = 0;
+  int voltage_degree = 0;
+  int points = 0;
+  double r2 = 0.0;
+  double rmse = 0.0;
+  double max_error = 0.0;
+  double held_out_rmse = 0.0;  // cross-validated, data grouped as `grouping` says
+  std::string grouping;
+};
+
+struct OutputDefinition {
+  std::string unit;  // unit of the surface values, as written in the file (g, N, A, W, g/W, rpm...)
+  OutputSource source = OutputSource::kNone;
+  std::optional<ResponseSurface> surface;  // set iff source == kSurface
+  std::string note;                        // why derived or absent; kept for the file's readers
+  std::optional<FitQuality> fit;
+};
+
+// Multiplier from a unit string to SI (N, A, W, N/W, rpm); nullopt when the unit does not fit
+// the output.
+std::optional<double> unitToSi(Output output, const std::string& unit);
+
+enum class OutsideDomain { kClamp, kExtrapolate, kReject };
+const char* outsideDomainName(OutsideDomain policy);
+
+struct ModelDomain {
+  double pwm_min_us = 0.0;
+  double pwm_max_us = 0.0;
+  double voltage_min_v = 0.0;
+  double voltage_max_v = 0.0;
+  OutsideDomain outside = OutsideDomain::kClamp;
+
+  bool contains(double pwm_us, double voltage_v) const;
+};
+
+enum class SupplyKind { kRegulated, kBattery };
+const char* supplyKindName(SupplyKind supply);
+
+struct ModelMetadata {
+  std::string esc;
+  std::string motor;
+  std::string propeller;
+  double bench_air_temperature_c = 0.0;
+  double bench_air_pressure_pa = 0.0;
+  SupplyKind supply = SupplyKind::kRegulated;
+  std::string source;
+
+  // Air density on the bench, p / (R T): the reference for density corrections.
+  double benchAirDensity() const;
+  // FieldError ("metadata.bench_air_temperature_c", ...) for bench air outside the ranges the
+  // model loader accepts; fit_surfaces applies the same check before it writes a model.
+  void validate() const;
+};
+
+// Steady-state operating point of one motor from the surfaces, in SI units.
+struct OperatingPoint {
+  double thrust_n = 0.0;
+  double current_a = 0.0;
+  double power_w = 0.0;
+  double efficiency_n_per_w = 0.0;
+  double rpm = 0.0;
+  bool in_domain = false;
+};
+
+// The response surfaces of one ESC-motor-propeller combination.
+class PropulsionModel {
+ public:
+  // Throws ConfigError (without file context) for a unit that does not fit its output, a
+  // derivation that is circular or refers to an absent output, thrust not modelled, or an
+  // empty domain.
+  PropulsionModel(ModelMetadata metadata, ModelDomain domain, std::array<OutputDefinition, kOutputCount> outputs);
+
+  // Evaluates all outputs. Outside the domain the inputs are clamped, or the surfaces
+  // extrapolated, as the model says, and in_domain is false; with the reject policy nothing is
+  // computed and false is returned. Thrust, current, power and rpm are floored at zero (an idling
+  // polynomial may dip below it); efficiency is zero where power is zero.
+  bool evaluate(double pwm_us, double voltage_v, OperatingPoint* estimate) const;
+
+  // One output in its file unit at any point, without clamping to the domain: a surface's own
+  // value (not floored), a derived output as evaluate() derives it, NaN if not modelled.
+  double evaluateRaw(Output output, double pwm_us, double voltage_v) const;
+
+  const ModelMetadata& metadata() const { return metadata_; }
+  const ModelDomain& domain() const { return domain_; }
+  const OutputDefinition& output(Output output) const { return outputs_[static_cast<int>(output)]; }
+
+ private:
+  // All outputs in SI, floored as evaluate() documents, in dependency order.
+  std::array<double, kOutputCount> computeSi(double pwm_us, double voltage_v) const;
+  double evaluateSi(Output output, double pwm_us, double voltage_v, const std::array<double, kOutputCount>& done) const;
+
+  ModelMetadata metadata_;
+  ModelDomain domain_;
+  std::array<OutputDefinition, kOutputCount> outputs_;
+  std::array<double, kOutputCount> to_si_{};
+  std::array<Output, kOutputCount> evaluation_order_{};
+};
+
+}  // namespace propulsion_estimator

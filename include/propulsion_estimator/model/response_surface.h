@@ -1,0 +1,39 @@
+#pragma once
+
+#include <optional>
+
+#include "propulsion_estimator/model/polynomial_2d.h"
+
+namespace propulsion_estimator {
+
+// Centring and scaling of the inputs, x' = (x - center) / scale, which keeps high-degree
+// polynomials in microseconds numerically sane.
+struct InputScaling {
+  double pwm_center_us = 0.0;
+  double pwm_scale_us = 1.0;
+  double voltage_center_v = 0.0;
+  double voltage_scale_v = 1.0;
+
+  bool isIdentity() const;
+};
+
+// One output of a propulsion model as a function of PWM (us) and voltage (V): a polynomial or a
+// ratio of two polynomials in the scaled inputs. Values are in the unit the model file states.
+class ResponseSurface {
+ public:
+  ResponseSurface(Polynomial2D numerator, InputScaling scaling);
+  ResponseSurface(Polynomial2D numerator, Polynomial2D denominator, InputScaling scaling);
+
+  double evaluate(double pwm_us, double voltage_v) const;
+
+  const Polynomial2D& numerator() const { return numerator_; }
+  const std::optional<Polynomial2D>& denominator() const { return denominator_; }
+  const InputScaling& scaling() const { return scaling_; }
+
+ private:
+  Polynomial2D numerator_;
+  std::optional<Polynomial2D> denominator_;
+  InputScaling scaling_;
+};
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+// The simulated vehicle as the flight physics and the autopilot see it: what a flight profile
+// sets besides its script of segments.
+namespace propulsion_estimator {
+
+// Autopilots differ in what MAVROS shows of them: PX4 outputs PWM_MAIN_DISARM (900 us) on a
+// disarmed ESC and its battery current arrives negated on /mavros/battery; ArduPilot outputs
+// MOT_PWM_MIN (1000 us), or nothing (0) with MOT_SAFE_DISARM, and a positive current.
+enum class AutopilotFlavour { kPx4, kArduPilot };
+
+struct AutopilotParams {
+  AutopilotFlavour flavour = AutopilotFlavour::kPx4;
+  double pwm_min_us = 0.0;       // mixer output 0 while armed (PX4 PWM_MAIN_MIN, ArduPilot MOT_PWM_MIN/SPIN_ARM)
+  double pwm_max_us = 0.0;       // mixer output 1
+  double disarmed_pwm_us = 0.0;  // what the ESCs get while disarmed
+  double rc_out_rate_hz = 0.0;   // /mavros/rc/out (and /sim/truth) publication rate
+};
+
+struct VehicleSetup {
+  std::string urdf_path;                                              // resolved against the profile's folder
+  Eigen::Vector3d centre_of_mass_offset_m = Eigen::Vector3d::Zero();  // added to the URDF's centre of mass
+  double landing_gear_height_m = 0.0;                                 // base_link above the ground when landed
+  double landing_gear_half_width_m = 0.0;                             // feet at (+-w, +-w) under base_link
+  double drag_area_m2 = 0.0;                                          // Cd A of the airframe
+  double battery_initial_soc = 1.0;
+};
+
+// A payload hangs on a cable from a point of the airframe; it is attached and changed while landed.
+struct PayloadCable {
+  double length_m = 0.0;
+  Eigen::Vector3d attach_point_m = Eigen::Vector3d::Zero();  // in base_link
+  double stiffness_n_per_m = 0.0;                            // along the cable, which only pulls
+  double damping_n_s_per_m = 0.0;
+};
+
+}  // namespace propulsion_estimator

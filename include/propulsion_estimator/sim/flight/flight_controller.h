@@ -1,0 +1,56 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "propulsion_estimator/sim/flight/airframe.h"
+#include "propulsion_estimator/sim/flight/motor_mixer.h"
+#include "propulsion_estimator/vehicle/vehicle.h"
+
+namespace propulsion_estimator {
+
+// The vehicle's state as the autopilot's estimator gives it (the simulator passes the true state).
+struct NavigationState {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // base_link, world ENU
+  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d angular_velocity_body_rad_s = Eigen::Vector3d::Zero();
+};
+
+struct HeightSetpoint {
+  double height_m = 0.0;
+  double vertical_speed_m_s = 0.0;  // feed-forward
+  bool landing = false;             // the land detector runs only while landing
+};
+
+// A cascaded PX4-style controller that, like a real one, knows the geometry but nothing of the
+// propulsion physics: height -> vertical speed -> collective throttle, whose hover value an
+// integrator learns (starting from PX4's MPC_THR_HOVER default of 0.5); horizontal position ->
+// tilt; attitude -> body rates -> roll, pitch, yaw commands with integrators that take up a
+// centre-of-gravity offset; a geometric mixer; throttle to PWM between the autopilot's end
+// points. Armed on the ground the motors idle until a climb is commanded, then the collective
+// ramps up (PX4's take-off ramp). A land detector (low, still, for a second) disarms.
+class FlightController {
+ public:
+  FlightController(const Vehicle& vehicle, const AutopilotParams& autopilot, double landed_height_m);
+
+  void arm();
+  // Pulse widths for the next control period.
+  const std::vector<double>& update(const HeightSetpoint& setpoint, const NavigationState& state, double dt_s);
+
+  bool armed() const { return armed_; }
+
+ private:
+  AutopilotParams autopilot_;
+  MotorMixer mixer_;
+  double landed_height_m_;
+  bool armed_ = false;
+  double hover_throttle_;
+  double takeoff_ramp_ = 0.0;  // upper limit of the collective while taking off
+  Eigen::Vector3d rate_integral_ = Eigen::Vector3d::Zero();
+  double landed_for_s_ = 0.0;
+  std::vector<double> pwm_us_;
+};
+
+}  // namespace propulsion_estimator

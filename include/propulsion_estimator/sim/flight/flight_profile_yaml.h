@@ -1,0 +1,15 @@
+#pragma once
+
+#include <string>
+
+#include "propulsion_estimator/sim/flight/flight_profile.h"
+
+namespace propulsion_estimator {
+
+// Reader of flight profiles (config/sim/*_flight.yaml; schema in the README and in
+// config/sim/default_flight.yaml). The URDF path is resolved against the profile's folder.
+// Refusals are ConfigError "<file>:<line>: <key>: <problem>", impossible segments included.
+FlightProfile parseFlightProfileYaml(const std::string& text, const std::string& source);
+FlightProfile loadFlightProfileFile(const std::string& path);
+
+}  // namespace propulsion_estimator

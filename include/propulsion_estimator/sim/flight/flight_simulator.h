@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "propulsion_estimator/logs/flight_manifest.h"
+#include "propulsion_estimator/sim/flight/flight_profile.h"
+#include "propulsion_estimator/sim/flight/flight_sensors.h"
+#include "propulsion_estimator/sim/flight/flight_sink.h"
+#include "propulsion_estimator/sim/physics/sim_effects.h"
+#include "propulsion_estimator/sim/physics/sim_params.h"
+#include "propulsion_estimator/vehicle/vehicle.h"
+
+namespace propulsion_estimator {
+
+// Physics step of the flight simulation; the controller runs at the same rate (PX4's rate loop
+// runs at 250 Hz-1 kHz).
+constexpr double kFlightStepS = 0.002;
+
+struct FlightResult {
+  // One segment per hover longer than the profile's settle time: from settle time after its start
+  // to its end, with the vehicle's mass plus the hanging payload's. Times from the first message.
+  std::vector<ManifestSegment> segments;
+  double duration_s = 0.0;
+  double final_state_of_charge = 0.0;
+};
+
+// The refusals simulateFlight makes before it flies, without flying (cheap: for callers that
+// open an output only for a flight that can start): FieldError or ConfigError for invalid
+// parameters, effects, sensors or profile; "<urdf>: ..." for a vehicle the simulator cannot fly
+// (no mass properties, a rotor layout the mixer cannot control); "<profile>: segments[i].mass_kg:
+// ..." when a payload makes the vehicle too heavy to hover on less than 80 % of its maximum thrust.
+void checkFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
+                 const Vehicle& vehicle, const FlightSensorParams& sensors = {});
+
+// Flies `profile` with the vehicle `vehicle` (rotors in motor order with positions, and empty mass
+// properties), every rotor driven by the chain of `params` and all fed by its battery, in the
+// bench's air unless the air_density effect sets another. Emits every reading to `sink` at its
+// rate, all streams starting at t = 0. The same inputs and seed give the same flight. Before it
+// flies it refuses what checkFlight refuses. While flying it throws ConfigError
+// "<profile>: segments[i].type: the vehicle ended its hover at ..." or "... had not landed and
+// disarmed ..." for a segment that did not end as scripted, "<profile>: vehicle.battery_initial_soc:
+// the battery is empty ..." when the flight outlasts the battery, and "<profile>: the simulation
+// diverged at t = X s" when the state stops being finite.
+FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
+                            const Vehicle& vehicle, std::uint64_t seed, FlightSink* sink,
+                            const FlightSensorParams& sensors = {});
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,28 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "propulsion_estimator/vehicle/vehicle.h"
+
+namespace propulsion_estimator {
+
+// A flight controller's mixer, built from the rotor geometry alone (like PX4's geometry files):
+// the pseudo-inverse of the normalised allocation matrix [y/max|y|; -x/max|x|; -spin; 1/N], its
+// roll, pitch and yaw columns scaled so that the largest motor share of each is 1 (a quad X mixes
+// u = collective + roll y_sign - pitch x_sign - yaw spin). Outputs are clamped to 0..1.
+class MotorMixer {
+ public:
+  explicit MotorMixer(const Vehicle& vehicle);  // needs rotor positions
+
+  // Normalised motor outputs for a collective throttle (0..1) and roll, pitch, yaw commands
+  // (positive about body x, y, z).
+  const std::vector<double>& mix(double collective, double roll, double pitch, double yaw);
+
+ private:
+  Eigen::Matrix<double, Eigen::Dynamic, 4> matrix_;  // motors x (roll, pitch, yaw, collective)
+  Eigen::VectorXd commands_;                         // unclamped outputs, sized once: mix() does not allocate
+  std::vector<double> outputs_;
+};
+
+}  // namespace propulsion_estimator

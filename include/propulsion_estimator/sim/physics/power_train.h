@@ -1,0 +1,59 @@
+#pragma once
+
+#include <vector>
+
+#include "propulsion_estimator/sim/physics/atmosphere.h"
+#include "propulsion_estimator/sim/physics/propulsion_chain.h"
+#include "propulsion_estimator/sim/physics/sim_effects.h"
+
+namespace propulsion_estimator {
+
+// What the ESCs hang on: an EMF behind a resistance (a battery's open-circuit voltage less its
+// polarisation, behind its series resistance), or a regulated source (no resistance). The
+// voltage sensor of a bench or a power module sits at its terminals.
+struct Supply {
+  double source_voltage_v = 0.0;
+  double internal_resistance_ohm = 0.0;
+};
+
+struct PowerTrainState {
+  std::vector<double> duty;
+  std::vector<ChainState> motors;  // isolated rotors: thrust before rotor effects
+  std::vector<double> winding_temperature_c;
+  double esc_voltage_v = 0.0;
+  double terminal_voltage_v = 0.0;  // at the supply's terminals, where the voltage is sensed
+  double current_a = 0.0;           // drawn from the supply by all ESCs
+};
+
+// N identical chains on one supply, with the rotor speeds' first-order lag and the motors'
+// thermal state. The supply_resistance effect adds a resistance between the supply's terminals
+// and the ESCs, esc_offset moves the ESCs' end points, and motor_temperature makes the electrical
+// constants follow the winding temperature (cooled through the effect's thermal resistance).
+class PowerTrain {
+ public:
+  PowerTrain(PropulsionChain chain, int motors, const SimEffects& effects, double initial_temperature_c);
+
+  // Electrical state at the present rotor speeds for these pulse widths (the ESC voltage solved
+  // in closed form: with the speeds given, every ESC's input current is linear in it); then the
+  // rotor speeds move towards their steady values and the windings heat or cool over dt_s.
+  // Returns the state at the start of the step; dt_s = 0 only evaluates it.
+  const PowerTrainState& step(const std::vector<double>& pwm_us, const Supply& supply, const AirConditions& air,
+                              double dt_s);
+
+  const PropulsionChain& chain() const { return chain_; }
+  int motors() const { return static_cast<int>(omega_rad_s_.size()); }
+  // The temperature the electrical constants of motor k are taken at.
+  double electricalTemperatureC(int k) const;
+
+ private:
+  PropulsionChain chain_;
+  double path_resistance_ohm_;
+  double esc_offset_us_;
+  bool temperature_coupled_;
+  double thermal_resistance_c_per_w_;
+  std::vector<double> omega_rad_s_;
+  std::vector<double> temperature_c_;
+  PowerTrainState state_;
+};
+
+}  // namespace propulsion_estimator

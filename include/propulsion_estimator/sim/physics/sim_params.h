@@ -1,0 +1,33 @@
+#pragma once
+
+#include <string>
+
+#include "propulsion_estimator/sim/physics/atmosphere.h"
+#include "propulsion_estimator/sim/physics/bench_sensors.h"
+#include "propulsion_estimator/sim/physics/lipo_battery.h"
+#include "propulsion_estimator/sim/physics/propulsion_chain.h"
+
+namespace propulsion_estimator {
+
+// The thrust stand the chain was characterised on.
+struct BenchParams {
+  AirConditions air;              // also the air of flights unless the air_density effect is on
+  double sweep_pwm_min_us = 0.0;  // the PWM range of this ESC's sweeps (thesis 4.1 and ch. 7)
+  double sweep_pwm_max_us = 0.0;
+  BenchSensors sensors;
+
+  void validate() const;  // FieldError bench.*
+};
+
+// Everything the simulator needs about one propulsion combination: the contents of a
+// config/sim/*.yaml parameter file.
+struct SimParams {
+  ChainParams chain;
+  LipoBatteryParams battery;
+  BenchParams bench;
+  std::string source;  // file it came from, for messages and metadata
+
+  void validate() const;
+};
+
+}  // namespace propulsion_estimator

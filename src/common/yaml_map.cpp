@@ -1,0 +1,219 @@
+#include "propulsion_estimator/common/yaml_map.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/text_file.h"
+
+namespace propulsion_estimator {
+namespace {
+
+std::string describe(const YAML::Node& value) {
+  if (value.IsScalar()) return "'" + value.Scalar() + "'";
+  if (value.IsSequence()) return "a list";
+  if (value.IsMap()) return "a mapping";
+  return "nothing";
+}
+
+std::string lineOf(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.line >= 0 ? std::to_string(mark.line + 1) : "?";
+}
+
+}  // namespace
+
+YamlMap::YamlMap(const YAML::Node& node, std::string source, std::string path)
+    : node_(node), source_(std::move(source)), path_(std::move(path)) {
+  if (!node_.IsMap()) {
+    throw ConfigError(source_ + ":" + lineOf(node_) + ": " + (path_.empty() ? "document" : path_) +
+                      ": expected a mapping, got " + describe(node_));
+  }
+  for (const auto& entry : node_) {
+    if (!entry.first.IsScalar()) {
+      throw ConfigError(source_ + ":" + lineOf(entry.first) + ": " + (path_.empty() ? "document" : path_) +
+                        ": a key must be a name, got " + describe(entry.first));
+    }
+  }
+}
+
+std::string YamlMap::keyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+std::string YamlMap::where(const std::string& key) const {
+  const YAML::Node value = node_[key];
+  return source_ + ":" + lineOf(value.IsDefined() ? value : node_) + ": " + keyPath(key);
+}
+
+void YamlMap::fail(const std::string& key, const std::string& problem) const {
+  throw ConfigError(where(key) + ": " + problem);
+}
+
+void YamlMap::allowOnly(std::initializer_list<const char*> allowed) const {
+  for (const auto& entry : node_) {
+    const std::string key = entry.first.as<std::string>();
+    bool known = false;
+    std::string list;
+    for (const char* name : allowed) {
+      known = known || key == name;
+      list += (list.empty() ? "" : ", ") + std::string(name);
+    }
+    if (!known) {
+      throw ConfigError(source_ + ":" + lineOf(entry.first) + ": " + keyPath(key) + ": unknown key (allowed: " + list +
+                        ")");
+    }
+  }
+}
+
+bool YamlMap::has(const std::string& key) const { return node_[key].IsDefined() && !node_[key].IsNull(); }
+
+std::vector<std::string> YamlMap::keys() const {
+  std::vector<std::string> result;
+  for (const auto& entry : node_) result.push_back(entry.first.as<std::string>());
+  return result;
+}
+
+YAML::Node YamlMap::required(const std::string& key) const {
+  const YAML::Node value = node_[key];
+  if (!value.IsDefined() || value.IsNull()) {
+    throw ConfigError(source_ + ":" + lineOf(node_) + ": " + keyPath(key) + ": missing key");
+  }
+  return value;
+}
+
+double YamlMap::toNumber(const YAML::Node& value, const std::string& key) const {
+  if (!value.IsScalar()) fail(key, "expected a number, got " + describe(value));
+  double number = 0.0;
+  try {
+    number = value.as<double>();
+  } catch (const YAML::Exception&) {
+    fail(key, "expected a number, got " + describe(value));
+  }
+  if (!std::isfinite(number)) fail(key, "expected a finite number, got " + describe(value));
+  return number;
+}
+
+double YamlMap::number(const std::string& key) const { return toNumber(required(key), key); }
+
+std::optional<double> YamlMap::optionalNumber(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return number(key);
+}
+
+int YamlMap::integer(const std::string& key) const {
+  const YAML::Node value = required(key);
+  const double number = toNumber(value, key);
+  if (number != std::floor(number) || std::fabs(number) > 1e9) fail(key, "expected an integer, got " + describe(value));
+  return static_cast<int>(number);
+}
+
+bool YamlMap::boolean(const std::string& key) const {
+  const YAML::Node value = required(key);
+  try {
+    if (value.IsScalar()) return value.as<bool>();
+  } catch (const YAML::Exception&) {
+  }
+  fail(key, "expected true or false, got " + describe(value));
+}
+
+std::string YamlMap::text(const std::string& key) const {
+  const YAML::Node value = required(key);
+  if (!value.IsScalar()) fail(key, "expected text, got " + describe(value));
+  return value.Scalar();
+}
+
+std::optional<std::string> YamlMap::optionalText(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return text(key);
+}
+
+std::pair<double, double> YamlMap::range(const std::string& key) const {
+  const YAML::Node value = required(key);
+  if (!value.IsSequence() || value.size() != 2) fail(key, "expected [min, max], got " + describe(value));
+  const double lo = toNumber(value[0], key);
+  const double hi = toNumber(value[1], key);
+  if (!(lo < hi)) {
+    std::ostringstream message;
+    message << "empty range [" << lo << ", " << hi << "]";
+    fail(key, message.str());
+  }
+  return {lo, hi};
+}
+
+std::vector<double> YamlMap::numbers(const std::string& key) const {
+  const YAML::Node value = required(key);
+  if (!value.IsSequence()) fail(key, "expected a list of numbers, got " + describe(value));
+  std::vector<double> result;
+  for (const YAML::Node& item : value) result.push_back(toNumber(item, key));
+  return result;
+}
+
+YamlMap YamlMap::map(const std::string& key) const { return YamlMap(required(key), source_, keyPath(key)); }
+
+std::optional<YamlMap> YamlMap::optionalMap(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return map(key);
+}
+
+std::vector<YamlMap> YamlMap::maps(const std::string& key) const {
+  const YAML::Node value = required(key);
+  if (!value.IsSequence()) fail(key, "expected a list, got " + describe(value));
+  std::vector<YamlMap> result;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    result.emplace_back(value[i], source_, keyPath(key) + "[" + std::to_string(i) + "]");
+  }
+  return result;
+}
+
+std::string YamlMap::choice(const std::string& key, std::initializer_list<const char*> choices) const {
+  const std::string value = text(key);
+  std::string list;
+  for (const char* option : choices) {
+    if (value == option) return value;
+    list += (list.empty() ? "" : ", ") + std::string(option);
+  }
+  fail(key, "'" + value + "' is not one of " + list);
+}
+
+YamlMap parseYamlDocument(const std::string& text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(source + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  if (!root.IsDefined() || root.IsNull()) throw ConfigError(source + ": the file is empty");
+  return YamlMap(root, source, "");
+}
+
+YamlMap loadYamlFile(const std::string& path) { return parseYamlDocument(readTextFile(path), path); }
+
+void throwAtField(const YamlMap& root, const FieldError& error) {
+  std::vector<std::string> parts;
+  std::istringstream stream(error.field());
+  for (std::string part; std::getline(stream, part, '.');) parts.push_back(part);
+
+  // Walk down "a.b[2].c" as far as the document goes; the last part present names the line.
+  YamlMap map = root;
+  std::string key = parts.empty() ? "" : parts.front();
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    const std::size_t bracket = part.find('[');
+    key = part.substr(0, bracket);
+    if (i + 1 == parts.size() || !map.has(key)) break;
+    if (bracket == std::string::npos) {
+      map = map.map(key);
+      continue;
+    }
+    const std::vector<YamlMap> items = map.maps(key);
+    const std::size_t index = std::stoul(part.substr(bracket + 1));
+    if (index >= items.size()) break;
+    map = items[index];
+  }
+  // where() gives "<source>:<line>: <path.key>"; keep the location, name the field as given.
+  const std::string where = map.where(key);
+  const std::string suffix = ": " + (map.path().empty() ? key : map.path() + "." + key);
+  throw ConfigError(where.substr(0, where.size() - suffix.size()) + ": " + error.field() + ": " + error.problem());
+}
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,276 @@
+#include "propulsion_estimator/estimation/estimator.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "propulsion_estimator/common/units.h"
+
+namespace propulsion_estimator {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::size_t windowCapacity(double span_s, double rate_hz) {
+  return static_cast<std::size_t>(std::ceil(span_s * rate_hz)) + 2;
+}
+
+}  // namespace
+
+const char* rejectionName(Rejection rejection) {
+  static const char* const kNames[kRejectionCount] = {
+      "none",           "bad_voltage",  "bad_imu",         "bad_velocity", "no_battery",    "stale_battery",
+      "disarmed",       "too_few_channels", "time_backwards", "outside_domain", "non_finite_estimate"};
+  return kNames[static_cast<int>(rejection)];
+}
+
+std::string describe(const RejectionDetail& d) {
+  std::ostringstream out;
+  switch (d.reason) {
+    case Rejection::kNone: return "none";
+    case Rejection::kBadVoltage: out << "battery voltage " << d.value << " V refused (must be finite and positive)"; break;
+    case Rejection::kBadImu: out << "IMU message refused (non-finite or non-unit orientation, or non-finite acceleration)"; break;
+    case Rejection::kBadVelocity: out << "vertical speed " << d.value << " m/s refused (not finite)"; break;
+    case Rejection::kNoBattery: out << "motor outputs ignored: no valid battery voltage received yet"; break;
+    case Rejection::kStaleBattery:
+      out << "motor outputs ignored: newest battery voltage is " << d.value << " s old (limit " << d.limit << " s)";
+      break;
+    case Rejection::kDisarmed:
+      out << "motor outputs ignored: channel " << d.channel << " at " << d.value << " us, at or below disarmed_pwm_max_us "
+          << d.limit << " (disarmed or stopped)";
+      break;
+    case Rejection::kTooFewChannels:
+      out << "motor outputs ignored: RCOut has " << d.value << " channels, motor channel " << d.limit << " is configured";
+      break;
+    case Rejection::kTimeBackwards:
+      out << "motor outputs ignored: stamp went back by " << d.value << " s";
+      break;
+    case Rejection::kOutsideDomain:
+      out << "motor outputs ignored: channel " << d.channel << " at " << d.value
+          << " us (or the voltage) outside the model's domain, which says reject";
+      break;
+    case Rejection::kNonFiniteEstimate:
+      out << "motor outputs ignored: the model gives a non-finite value for channel " << d.channel << " at "
+          << d.value << " us and " << d.limit << " V (a pole of a rational surface when extrapolating?)";
+      break;
+  }
+  return out.str();
+}
+
+Estimator::Estimator(PropulsionModel model, Vehicle vehicle, EstimatorConfig config)
+    : model_(std::move(model)),
+      vehicle_(std::move(vehicle)),
+      // Validated before the windows below are sized from it.
+      config_((config.validate(vehicle_.rotors.size()), std::move(config))),
+      hover_(config_.hover, windowCapacity(config_.hover.window_s, config_.max_rate_hz)),
+      payload_(config_.payload, windowCapacity(config_.payload.averaging_window_s, config_.max_rate_hz)),
+      accel_filter_(config_.accel_filter_s, config_.accel_bias_filter_s) {
+  if (config_.empty_mass_kg) {
+    configured_empty_mass_kg_ = config_.empty_mass_kg;
+    configured_source_ = EmptyMassSource::kParameter;
+  } else if (vehicle_.empty_mass) {
+    configured_empty_mass_kg_ = vehicle_.empty_mass->mass_kg;
+    configured_source_ = EmptyMassSource::kUrdf;
+  }
+  if (configured_empty_mass_kg_) payload_.setEmptyMass(*configured_empty_mass_kg_, configured_source_);
+  output_.motors.resize(vehicle_.rotors.size());
+  scratch_.resize(vehicle_.rotors.size());
+  for (std::size_t i = 0; i < output_.motors.size(); ++i) output_.motors[i].channel = config_.motor_channels[i];
+  output_.payload = payload_.estimate();
+}
+
+Rejection Estimator::reject(Rejection reason, int channel, double value, double limit) {
+  ++counters_.rejected[static_cast<int>(reason)];
+  last_rejection_ = RejectionDetail{reason, channel, value, limit};
+  return reason;
+}
+
+void Estimator::checkClock(double receipt_s) {
+  if (receipt_s < last_receipt_s_ - config_.clock_jump_reset_s) {
+    // The clock restarted (a bag played again): everything received belongs to another timeline.
+    clearWindows();
+    accel_filter_.clear();
+    have_voltage_ = have_imu_ = have_velocity_ = have_stamp_ = false;
+    ++counters_.clock_resets;
+  }
+  last_receipt_s_ = receipt_s;
+}
+
+Rejection Estimator::addBattery(double receipt_s, double voltage_v) {
+  checkClock(receipt_s);
+  if (!std::isfinite(voltage_v) || voltage_v <= 0.0) return reject(Rejection::kBadVoltage, 0, voltage_v);
+  voltage_v_ = voltage_v;
+  voltage_receipt_s_ = receipt_s;
+  have_voltage_ = true;
+  return Rejection::kNone;
+}
+
+Rejection Estimator::addImu(double receipt_s, const Eigen::Quaterniond& orientation,
+                            const Eigen::Vector3d& specific_force) {
+  checkClock(receipt_s);
+  if (!orientation.coeffs().allFinite() || std::fabs(orientation.norm() - 1.0) > 0.01 || !specific_force.allFinite()) {
+    return reject(Rejection::kBadImu);
+  }
+  body_to_world_ = orientation.normalized().toRotationMatrix();
+  const double vertical_specific_force = body_to_world_.row(2).dot(specific_force);
+  accel_filter_.add(receipt_s, vertical_specific_force - kStandardGravity);
+  imu_receipt_s_ = receipt_s;
+  have_imu_ = true;
+  return Rejection::kNone;
+}
+
+Rejection Estimator::addVerticalSpeed(double receipt_s, double vertical_speed_m_s) {
+  checkClock(receipt_s);
+  if (!std::isfinite(vertical_speed_m_s)) return reject(Rejection::kBadVelocity, 0, vertical_speed_m_s);
+  vertical_speed_m_s_ = vertical_speed_m_s;
+  velocity_receipt_s_ = receipt_s;
+  have_velocity_ = true;
+  return Rejection::kNone;
+}
+
+double Estimator::batteryAge(double now_s) const {
+  return have_voltage_ ? now_s - voltage_receipt_s_ : std::numeric_limits<double>::infinity();
+}
+
+Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std::uint16_t* channels,
+                                     std::size_t count) {
+  checkClock(receipt_s);
+  if (!have_voltage_) return reject(Rejection::kNoBattery);
+  const double battery_age = receipt_s - voltage_receipt_s_;
+  if (battery_age > config_.battery_timeout_s) {
+    return reject(Rejection::kStaleBattery, 0, battery_age, config_.battery_timeout_s);
+  }
+  for (int channel : config_.motor_channels) {
+    if (static_cast<std::size_t>(channel) > count) {
+      return reject(Rejection::kTooFewChannels, 0, static_cast<double>(count), channel);
+    }
+  }
+  for (int channel : config_.motor_channels) {
+    const double pwm = channels[channel - 1];
+    if (pwm <= config_.disarmed_pwm_max_us) {
+      // On the ground between flights: the next hover may carry another payload.
+      clearWindows();
+      return reject(Rejection::kDisarmed, channel, pwm, config_.disarmed_pwm_max_us);
+    }
+  }
+  if (stamp_s == 0.0) stamp_s = receipt_s;  // an unstamped message is taken as stamped on arrival
+  if (have_stamp_ && stamp_s < last_stamp_s_) {
+    // A message out of order is refused; stamps that restart (an autopilot reboot, a time-sync
+    // reset, a bag looped without --clock) would otherwise refuse everything that follows.
+    if (last_stamp_s_ - stamp_s <= config_.clock_jump_reset_s) {
+      return reject(Rejection::kTimeBackwards, 0, last_stamp_s_ - stamp_s);
+    }
+    clearWindows();
+    ++counters_.clock_resets;
+  }
+  // Every motor is evaluated before anything is committed, so that a refusal leaves the
+  // estimates as they were.
+  for (std::size_t i = 0; i < scratch_.size(); ++i) {
+    const int channel = config_.motor_channels[i];
+    const double pwm = channels[channel - 1];
+    if (!model_.evaluate(pwm, voltage_v_, &scratch_[i])) return reject(Rejection::kOutsideDomain, channel, pwm);
+    const OperatingPoint& p = scratch_[i];
+    if (!std::isfinite(p.thrust_n) || !std::isfinite(p.current_a) || !std::isfinite(p.power_w) ||
+        !std::isfinite(p.efficiency_n_per_w)) {
+      return reject(Rejection::kNonFiniteEstimate, channel, pwm, voltage_v_);
+    }
+  }
+
+  const bool imu_fresh = have_imu_ && receipt_s - imu_receipt_s_ <= config_.imu_timeout_s;
+  const bool velocity_fresh = have_velocity_ && receipt_s - velocity_receipt_s_ <= config_.velocity_timeout_s;
+  const bool tilt_known = imu_fresh && config_.compensate_tilt;
+
+  Totals totals;
+  totals.voltage_v = voltage_v_;
+  double moment_x = 0.0, moment_y = 0.0;
+  for (std::size_t i = 0; i < vehicle_.rotors.size(); ++i) {
+    MotorOutput& motor = output_.motors[i];
+    motor.pwm_us = channels[motor.channel - 1];
+    motor.estimate = scratch_[i];
+    const Rotor& rotor = vehicle_.rotors[i];
+    const double thrust = motor.estimate.thrust_n;
+    totals.thrust_n += thrust;
+    totals.vertical_thrust_n += thrust * (tilt_known ? body_to_world_.row(2).dot(rotor.thrust_axis) : rotor.thrust_axis.z());
+    totals.current_a += motor.estimate.current_a;
+    totals.power_w += motor.estimate.power_w;
+    totals.motors_out_of_domain += motor.estimate.in_domain ? 0 : 1;
+    moment_x += thrust * rotor.position_m.x();
+    moment_y += thrust * rotor.position_m.y();
+  }
+  const double vertical_accel = imu_fresh ? accel_filter_.value() : kNaN;
+  const double accel_used = imu_fresh && config_.compensate_acceleration ? vertical_accel : 0.0;
+  totals.efficiency_n_per_w = totals.power_w > 0.0 ? totals.thrust_n / totals.power_w : 0.0;
+  totals.mass_kg = totals.vertical_thrust_n / (kStandardGravity + accel_used);
+  totals.thrust_centre_x_m = totals.thrust_n > 0.0 ? moment_x / totals.thrust_n : kNaN;
+  totals.thrust_centre_y_m = totals.thrust_n > 0.0 ? moment_y / totals.thrust_n : kNaN;
+
+  HoverSample sample;
+  sample.vertical_thrust_n = totals.vertical_thrust_n;
+  sample.mass_kg = totals.mass_kg;
+  sample.tilt_rad = imu_fresh ? std::acos(std::clamp(body_to_world_(2, 2), -1.0, 1.0)) : kNaN;
+  sample.vertical_speed_m_s = velocity_fresh ? vertical_speed_m_s_ : kNaN;
+  sample.vertical_accel_m_s2 = vertical_accel;
+  output_.hover = hover_.add(stamp_s, sample);
+  output_.payload = payload_.add(stamp_s, totals.mass_kg, output_.hover.hovering);
+  output_.totals = totals;
+  output_.stamp_s = stamp_s;
+
+  counters_.motor_samples += vehicle_.rotors.size();
+  counters_.motor_samples_outside_domain += static_cast<std::uint64_t>(totals.motors_out_of_domain);
+  ++counters_.accepted;
+  last_stamp_s_ = stamp_s;
+  have_stamp_ = true;
+  return Rejection::kNone;
+}
+
+TareResult Estimator::tare() {
+  TareResult result;
+  const MassEstimate& estimate = payload_.estimate();
+  if (!hover_.verdict().hovering) {
+    result.message = "refused: " + describeHover();
+  } else if (std::isnan(estimate.total_mass_kg)) {
+    std::ostringstream message;
+    message << "refused: hovering, but only " << estimate.window_samples << " of the "
+            << config_.payload.min_samples << " hover samples needed are averaged yet";
+    result.message = message.str();
+  } else {
+    result.ok = true;
+    result.empty_mass_kg = estimate.total_mass_kg;
+    payload_.setEmptyMass(result.empty_mass_kg, EmptyMassSource::kTare);
+    output_.payload = payload_.estimate();
+    std::ostringstream message;
+    message.precision(4);
+    message << "empty mass " << result.empty_mass_kg << " kg (std " << estimate.mass_std_kg << " kg over "
+            << estimate.window_samples << " samples, " << estimate.window_s << " s)";
+    result.message = message.str();
+  }
+  return result;
+}
+
+void Estimator::setEmptyMass(double mass_kg, EmptyMassSource source) {
+  payload_.setEmptyMass(mass_kg, source);
+  output_.payload = payload_.estimate();
+}
+
+void Estimator::clearWindows() {
+  hover_.clear();
+  payload_.clearWindow();
+  output_.hover = hover_.verdict();
+  output_.payload = payload_.estimate();
+}
+
+void Estimator::reset() {
+  clearWindows();
+  accel_filter_.clear();
+  have_stamp_ = false;
+  if (configured_empty_mass_kg_) {
+    payload_.setEmptyMass(*configured_empty_mass_kg_, configured_source_);
+  } else {
+    payload_.clearEmptyMass();
+  }
+  output_.payload = payload_.estimate();
+}
+
+std::string Estimator::describeHover() const { return describe(hover_.verdict(), config_.hover); }
+
+}  // namespace propulsion_estimator

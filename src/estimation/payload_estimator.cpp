@@ -1,0 +1,108 @@
+#include "propulsion_estimator/estimation/payload_estimator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "propulsion_estimator/common/config_error.h"
+
+namespace propulsion_estimator {
+
+void PayloadConfig::validate() const {
+  std::ostringstream message;
+  if (!(averaging_window_s > 0.0) || !std::isfinite(averaging_window_s)) {
+    message << "payload/averaging_window_s: must be a positive number, got " << averaging_window_s;
+  } else if (min_samples < 2) {
+    message << "payload/min_samples: must be at least 2, got " << min_samples;
+  } else if (!(episode_gap_s > 0.0) || !std::isfinite(episode_gap_s)) {
+    message << "payload/episode_gap_s: must be a positive number, got " << episode_gap_s;
+  } else {
+    return;
+  }
+  throw ConfigError(message.str());
+}
+
+const char* emptyMassSourceName(EmptyMassSource source) {
+  switch (source) {
+    case EmptyMassSource::kNone: return "none";
+    case EmptyMassSource::kUrdf: return "urdf";
+    case EmptyMassSource::kParameter: return "parameter";
+    case EmptyMassSource::kTareFile: return "tare_file";
+    case EmptyMassSource::kTare: return "tare";
+  }
+  return "?";
+}
+
+const char* payloadStateName(PayloadState state) {
+  switch (state) {
+    case PayloadState::kWaitingForHover: return "waiting_for_hover";
+    case PayloadState::kNoTareYet: return "no_tare_yet";
+    case PayloadState::kHovering: return "hovering";
+    case PayloadState::kHolding: return "holding";
+  }
+  return "?";
+}
+
+PayloadEstimator::PayloadEstimator(const PayloadConfig& config, std::size_t capacity)
+    : config_(config), window_(config.averaging_window_s, capacity) {
+  updateStatistics();
+  clearEmptyMass();
+}
+
+const MassEstimate& PayloadEstimator::add(double stamp_s, double mass_kg, bool hovering) {
+  if (hovering) {
+    if (hovered_before_ && stamp_s - last_hover_stamp_s_ > config_.episode_gap_s) window_.clear();
+    window_.push(stamp_s, mass_kg);
+    last_hover_stamp_s_ = stamp_s;
+    hovered_before_ = true;
+    updateStatistics();
+  }
+  updateState(hovering);
+  return estimate_;
+}
+
+void PayloadEstimator::setEmptyMass(double mass_kg, EmptyMassSource source) {
+  estimate_.empty_mass_kg = mass_kg;
+  estimate_.empty_mass_source = source;
+  updateState(estimate_.hovering);
+}
+
+void PayloadEstimator::clearEmptyMass() { setEmptyMass(std::numeric_limits<double>::quiet_NaN(), EmptyMassSource::kNone); }
+
+void PayloadEstimator::clearWindow() {
+  window_.clear();
+  hovered_before_ = false;
+  updateStatistics();
+  updateState(false);
+}
+
+void PayloadEstimator::updateStatistics() {
+  MassEstimate& e = estimate_;
+  e.window_samples = static_cast<std::uint32_t>(window_.size());
+  e.window_s = window_.span();
+  if (window_.size() < config_.min_samples) {
+    e.total_mass_kg = e.mass_std_kg = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < window_.size(); ++i) sum += window_[i];
+  const double n = static_cast<double>(window_.size());
+  const double mean = sum / n;
+  double squares = 0.0;
+  for (std::size_t i = 0; i < window_.size(); ++i) squares += (window_[i] - mean) * (window_[i] - mean);
+  e.total_mass_kg = mean;
+  e.mass_std_kg = std::sqrt(squares / (n - 1.0));
+}
+
+void PayloadEstimator::updateState(bool hovering) {
+  MassEstimate& e = estimate_;
+  e.hovering = hovering;
+  e.payload_mass_kg = e.total_mass_kg - e.empty_mass_kg;  // NaN while either is unknown
+  e.state = std::isnan(e.total_mass_kg)   ? PayloadState::kWaitingForHover
+            : std::isnan(e.empty_mass_kg) ? PayloadState::kNoTareYet
+            : hovering                    ? PayloadState::kHovering
+                                          : PayloadState::kHolding;
+}
+
+}  // namespace propulsion_estimator

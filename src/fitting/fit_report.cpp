@@ -1,0 +1,277 @@
+#include "propulsion_estimator/fitting/fit_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/text_file.h"
+
+namespace propulsion_estimator {
+namespace {
+
+constexpr int kCurvePoints = 101;
+constexpr int kGridPwm = 61;
+constexpr int kGridVoltage = 31;
+constexpr std::size_t kMaxVoltageSections = 6;
+// Samples drawn per output: a million-row fit would make figures no one can read (and slow to draw).
+constexpr long kMaxPlottedPoints = 20000;
+
+long plotStride(long samples) { return (samples + kMaxPlottedPoints - 1) / kMaxPlottedPoints; }
+
+std::string number(double value, const char* pattern = "%.7g") {
+  return std::isnan(value) ? "" : formatPrintf(pattern, value);
+}
+
+std::string baseName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
+
+const char* sourceName(OutputSource source) {
+  switch (source) {
+    case OutputSource::kSurface:
+      return "surface";
+    case OutputSource::kDerived:
+      return "derived";
+    case OutputSource::kNone:
+      return "none";
+  }
+  return "?";
+}
+
+double lerp(double lo, double hi, int k, int n) { return lo + (hi - lo) * k / (n - 1); }
+
+// The PWM levels the voltage sections show: all of them, or evenly spread ones.
+std::vector<int> sectionPwmLevels(const BenchDataset& data) {
+  std::vector<int> levels;
+  const std::size_t n = data.pwm_levels.size();
+  const std::size_t shown = std::min(n, kMaxVoltageSections);
+  for (std::size_t k = 0; k < shown; ++k) {
+    levels.push_back(static_cast<int>(shown == 1 ? 0 : k * (n - 1) / (shown - 1)));
+  }
+  return levels;
+}
+
+std::vector<Output> modelled(const PropulsionModel& model) {
+  std::vector<Output> outputs;
+  for (Output output : kAllOutputs) {
+    if (model.output(output).source != OutputSource::kNone) outputs.push_back(output);
+  }
+  return outputs;
+}
+
+}  // namespace
+
+const std::vector<std::string>& fitReportFigures() {
+  static const std::vector<std::string> figures = {"fit_sections_pwm.png", "fit_sections_voltage.png",
+                                                   "fit_residuals.png", "fit_surfaces.png"};
+  return figures;
+}
+
+void writeFitReportData(const BenchFit& fit, const std::string& directory) {
+  const PropulsionModel& model = fit.model;
+  const BenchDataset& data = fit.data;
+  const ModelDomain& domain = model.domain();
+  const std::vector<Output> outputs = modelled(model);
+
+  std::ofstream kinds = openReportFile(directory, "fit_outputs.csv");
+  kinds << "output,unit,source\n";
+  for (Output output : kAllOutputs) {
+    kinds << outputName(output) << "," << model.output(output).unit << "," << sourceName(model.output(output).source)
+          << "\n";
+  }
+
+  std::ofstream points = openReportFile(directory, "fit_points.csv");
+  // measured_at_pwm_level: the sample moved along the surface from its PWM to its PWM level's,
+  // so that the voltage sections show the noise, not the width of a PWM bin.
+  points << "output,log,line,voltage_level_v,pwm_level_us,pwm_us,voltage_v,off_level,measured,fitted,residual,"
+            "measured_at_pwm_level\n";
+  for (Output output : outputs) {
+    const std::vector<double>& y = data.output(output);
+    const long stride = plotStride(fit.outputs[static_cast<int>(output)].points);
+    long seen = 0;
+    for (std::size_t row = 0; row < data.rows(); ++row) {
+      if (std::isnan(y[row]) || seen++ % stride != 0) continue;
+      const double level_v = data.voltage_levels[data.voltage_level[row]].centre;
+      const double pwm_level = data.pwm_levels[data.pwm_level[row]].centre;
+      const double fitted = model.evaluateRaw(output, data.pwm_us[row], data.voltage_v[row]);
+      const double at_level = y[row] + model.evaluateRaw(output, pwm_level, data.voltage_v[row]) - fitted;
+      points << outputName(output) << "," << baseName(data.sources[data.log[row]]) << "," << data.line[row] << ","
+             << number(level_v) << "," << number(pwm_level) << "," << number(data.pwm_us[row]) << ","
+             << number(data.voltage_v[row]) << "," << (std::abs(data.voltage_v[row] - level_v) > kSagNoteV ? 1 : 0)
+             << "," << number(y[row]) << "," << number(fitted) << "," << number(fitted - y[row]) << ","
+             << number(at_level) << "\n";
+    }
+  }
+
+  std::ofstream pwm_curves = openReportFile(directory, "fit_curves_pwm.csv");
+  pwm_curves << "output,voltage_v,pwm_us,fitted\n";
+  for (Output output : outputs) {
+    for (const Level& level : data.voltage_levels) {
+      for (int k = 0; k < kCurvePoints; ++k) {
+        const double x = lerp(domain.pwm_min_us, domain.pwm_max_us, k, kCurvePoints);
+        pwm_curves << outputName(output) << "," << number(level.centre) << "," << number(x) << ","
+                   << number(model.evaluateRaw(output, x, level.centre)) << "\n";
+      }
+    }
+  }
+
+  std::ofstream voltage_curves = openReportFile(directory, "fit_curves_voltage.csv");
+  voltage_curves << "output,pwm_us,voltage_v,fitted\n";
+  const std::vector<int> sections = sectionPwmLevels(data);
+  for (Output output : outputs) {
+    for (int level : sections) {
+      const double x = data.pwm_levels[level].centre;
+      for (int k = 0; k < kCurvePoints; ++k) {
+        const double v = lerp(domain.voltage_min_v, domain.voltage_max_v, k, kCurvePoints);
+        voltage_curves << outputName(output) << "," << number(x) << "," << number(v) << ","
+                       << number(model.evaluateRaw(output, x, v)) << "\n";
+      }
+    }
+  }
+
+  std::ofstream grid = openReportFile(directory, "fit_surface_grid.csv");
+  grid << "output,pwm_us,voltage_v,value\n";
+  for (Output output : outputs) {
+    for (int b = 0; b < kGridVoltage; ++b) {
+      const double v = lerp(domain.voltage_min_v, domain.voltage_max_v, b, kGridVoltage);
+      for (int a = 0; a < kGridPwm; ++a) {
+        const double x = lerp(domain.pwm_min_us, domain.pwm_max_us, a, kGridPwm);
+        grid << outputName(output) << "," << number(x) << "," << number(v) << ","
+             << number(model.evaluateRaw(output, x, v)) << "\n";
+      }
+    }
+  }
+  for (std::ofstream* file : {&kinds, &points, &pwm_curves, &voltage_curves, &grid}) {
+    file->flush();
+    if (!*file) throw ConfigError(directory + ": cannot write the report's data");
+  }
+}
+
+std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path) {
+  const PropulsionModel& model = fit.model;
+  const ModelMetadata& meta = model.metadata();
+  const ModelDomain& domain = model.domain();
+  const BenchDataset& data = fit.data;
+  std::ostringstream md;
+  md << "# Response surfaces: " << meta.esc << " / " << meta.motor << " / " << meta.propeller << "\n\n";
+  if (fit.validation_error.empty()) {
+    md << "Model written to `" << model_path << "`; it passes the loader's checks (`loadModelFile`).\n\n";
+  } else {
+    md << "**The fitted model fails the loader's check on its domain grid and was not written:** "
+       << fit.validation_error
+       << ". The data do not determine the surface there; see the figures, log more points where it fails, or "
+          "narrow the data to the range that will be flown.\n\n";
+  }
+
+  md << "## Data\n\n";
+  md << "| log | rows | PWM (us) | voltage (V) |\n|---|---:|---|---|\n";
+  for (std::size_t l = 0; l < data.sources.size(); ++l) {
+    double xlo = 1e300, xhi = -1e300, vlo = 1e300, vhi = -1e300;
+    int rows = 0;
+    for (std::size_t row = 0; row < data.rows(); ++row) {
+      if (data.log[row] != static_cast<int>(l)) continue;
+      xlo = std::min(xlo, data.pwm_us[row]);
+      xhi = std::max(xhi, data.pwm_us[row]);
+      vlo = std::min(vlo, data.voltage_v[row]);
+      vhi = std::max(vhi, data.voltage_v[row]);
+      ++rows;
+    }
+    md << "| " << baseName(data.sources[l]) << " | " << rows << " | " << number(xlo, "%.0f") << "-"
+       << number(xhi, "%.0f") << " | " << number(vlo, "%.2f") << "-" << number(vhi, "%.2f") << " |\n";
+  }
+  // The voltage bounds are single rows (a sweep's top under load); say where they were measured,
+  // since the domain is a box and its other corners were not.
+  const auto [vlo, vhi] = std::minmax_element(data.voltage_v.begin(), data.voltage_v.end());
+  md << "\n- Domain: PWM " << number(domain.pwm_min_us, "%.0f") << " to " << number(domain.pwm_max_us, "%.0f")
+     << " us, voltage " << number(domain.voltage_min_v, "%.2f") << " to " << number(domain.voltage_max_v, "%.2f")
+     << " V: the bounding box of all rows at their measured voltage, supply droop and sag included ("
+     << number(*vlo, "%.2f") << " V was logged at " << number(data.pwm_us[vlo - data.voltage_v.begin()], "%.0f")
+     << " us, " << number(*vhi, "%.2f") << " V at " << number(data.pwm_us[vhi - data.voltage_v.begin()], "%.0f")
+     << " us; the voltage levels are centred at " << number(data.voltage_levels.front().centre, "%.2f") << " to "
+     << number(data.voltage_levels.back().centre, "%.2f") << " V); outside it the model will "
+     << outsideDomainName(domain.outside) << ".\n";
+  md << "- Bench: air " << number(meta.bench_air_temperature_c, "%.1f") << " deg C, "
+     << number(meta.bench_air_pressure_pa, "%.0f") << " Pa (density " << number(meta.benchAirDensity(), "%.4f")
+     << " kg/m^3), " << supplyKindName(meta.supply) << " supply.\n";
+  md << "- Voltage levels (" << data.voltage_levels.size() << "):";
+  for (std::size_t k = 0; k < data.voltage_levels.size(); ++k) {
+    md << (k ? ", " : " ") << number(data.voltage_levels[k].centre, "%.2f") << " V (" << data.voltage_levels[k].rows
+       << " rows)";
+  }
+  md << ".\n- PWM levels: " << data.pwm_levels.size() << ", " << number(data.pwm_levels.front().centre, "%.0f") << " to "
+     << number(data.pwm_levels.back().centre, "%.0f") << " us.\n";
+  md << "- Cross-validation: " << fit.grouping_description
+     << ". Whole groups are held out, never random rows; candidates are the MATLAB polyXY degrees up to (5, 3) "
+        "that every fold determines, and the one with the fewest terms within "
+     << number(100.0 * fit.parsimony, "%g") << "% of the lowest held-out RMSE is chosen.\n\n";
+  if (!fit.notes.empty()) {
+    md << "### Notes\n\n";
+    for (const std::string& note : fit.notes) md << "- " << note << "\n";
+    md << "\n";
+  }
+
+  md << "## Fit quality\n\n";
+  md << "| output | unit | model | degrees (x, v) | points | R^2 | RMSE | max error | held-out RMSE |\n";
+  md << "|---|---|---|---|---:|---:|---:|---:|---:|\n";
+  for (Output output : kAllOutputs) {
+    const OutputDefinition& def = model.output(output);
+    const OutputFitReport& report = fit.outputs[static_cast<int>(output)];
+    md << "| " << outputName(output) << " | " << def.unit << " | " << sourceName(def.source);
+    if (def.source == OutputSource::kNone) {
+      md << ": " << def.note << " | | | | | | |\n";
+      continue;
+    }
+    if (def.source == OutputSource::kDerived) md << " (" << def.note << ")";
+    md << " | "
+       << (def.fit ? "(" + std::to_string(def.fit->pwm_degree) + ", " + std::to_string(def.fit->voltage_degree) + ")"
+                   : "")
+       << " | " << report.points << " | " << number(report.r2, "%.5f") << " | " << number(report.rmse, "%.4g") << " | "
+       << number(report.max_error, "%.4g") << " | " << (def.fit ? number(def.fit->held_out_rmse, "%.4g") : "")
+       << " |\n";
+  }
+  md << "\nDerived outputs are compared with the bench's own ratio where the row drew at least "
+     << number(100.0 * kEfficiencyMinPowerShare, "%.0f") << "% of its log's peak power.";
+  const long stride = plotStride(fit.outputs[static_cast<int>(Output::kThrust)].points);
+  if (stride > 1) md << " The figures show every " << stride << "th sample.";
+  md << "\n\n";
+
+  md << "### Held-out RMSE of every candidate (rows: PWM degree, columns: voltage degree; - : not determined)\n\n";
+  for (Output output : kAllOutputs) {
+    const OutputFitReport& report = fit.outputs[static_cast<int>(output)];
+    if (report.candidates.empty()) continue;
+    int max_dv = 0;
+    for (const CandidateScore& c : report.candidates) max_dv = std::max(max_dv, c.voltage_degree);
+    md << "**" << outputName(output) << "** (" << report.unit << ")\n\n| x \\ v |";
+    for (int dv = 0; dv <= max_dv; ++dv) md << " " << dv << " |";
+    md << "\n|---|";
+    for (int dv = 0; dv <= max_dv; ++dv) md << "---:|";
+    const FitQuality& chosen = *model.output(output).fit;
+    int last_dx = -1;
+    for (const CandidateScore& c : report.candidates) {
+      if (c.pwm_degree != last_dx) md << "\n| " << c.pwm_degree << " |";
+      last_dx = c.pwm_degree;
+      const bool is_chosen = c.pwm_degree == chosen.pwm_degree && c.voltage_degree == chosen.voltage_degree;
+      const std::string value = std::isnan(c.held_out_rmse) ? "-" : number(c.held_out_rmse, "%.4g");
+      md << " " << (is_chosen ? "**" + value + "**" : value) << " |";
+    }
+    md << "\n\n";
+  }
+
+  md << "## Figures\n\n";
+  const char* captions[] = {
+      "Outputs against PWM at each voltage level (thesis 4.1): bench points and the fitted surface's section at the "
+      "level's voltage; hollow points sit more than 0.5 V off their level (supply sag).",
+      "Outputs against voltage at fixed PWM (thesis 4.2): the surface's section and the points of that PWM level "
+      "(binned PWM: each point moved along the surface to the level's PWM, so the scatter is the noise).",
+      "Residuals (fitted - measured) against PWM, coloured by voltage.",
+      "The surfaces as contour maps over the domain, with the bench points (where data are missing, the surface "
+      "extrapolates)."};
+  for (std::size_t k = 0; k < fitReportFigures().size(); ++k) {
+    md << captions[k] << "\n\n![" << fitReportFigures()[k] << "](" << fitReportFigures()[k] << ")\n\n";
+  }
+  return md.str();
+}
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,91 @@
+#include "propulsion_estimator/logs/flight_manifest.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/common/yaml_map.h"
+
+namespace propulsion_estimator {
+
+void FlightManifest::validate() const {
+  if (flights.empty()) throw FieldError("flights", "no flights");
+  for (std::size_t f = 0; f < flights.size(); ++f) {
+    const std::string at = "flights[" + std::to_string(f) + "].";
+    if (flights[f].bag.empty()) throw FieldError(at + "bag", "is empty");
+    if (flights[f].segments.empty()) throw FieldError(at + "segments", "no segments");
+    for (std::size_t s = 0; s < flights[f].segments.size(); ++s) {
+      const ManifestSegment& segment = flights[f].segments[s];
+      const std::string field = at + "segments[" + std::to_string(s) + "].";
+      if (!(segment.start_s >= 0.0)) throw FieldError(field + "start", formatNumber(segment.start_s) + " is negative");
+      if (!(segment.end_s > segment.start_s)) {
+        throw FieldError(field + "end",
+                         formatNumber(segment.end_s) + " is not after start " + formatNumber(segment.start_s));
+      }
+      if (!(segment.mass_kg > 0.0 && segment.mass_kg <= 100.0)) {
+        throw FieldError(field + "mass_kg", formatNumber(segment.mass_kg) + " is outside 0..100 kg");
+      }
+      if (s > 0 && segment.start_s < flights[f].segments[s - 1].end_s) {
+        throw FieldError(field + "start", formatNumber(segment.start_s) + " is before the previous segment's end " +
+                                              formatNumber(flights[f].segments[s - 1].end_s));
+      }
+    }
+  }
+}
+
+FlightManifest parseFlightManifest(const std::string& text, const std::string& source) {
+  const YamlMap root = parseYamlDocument(text, source);
+  root.allowOnly({"flights"});
+  FlightManifest manifest;
+  for (const YamlMap& flight : root.maps("flights")) {
+    flight.allowOnly({"bag", "segments"});
+    ManifestFlight entry;
+    entry.bag = flight.text("bag");
+    for (const YamlMap& segment : flight.maps("segments")) {
+      segment.allowOnly({"start", "end", "mass_kg"});
+      entry.segments.push_back({segment.number("start"), segment.number("end"), segment.number("mass_kg")});
+    }
+    manifest.flights.push_back(entry);
+  }
+  validateAt(root, manifest);
+  return manifest;
+}
+
+FlightManifest loadFlightManifest(const std::string& path) { return parseFlightManifest(readTextFile(path), path); }
+
+std::string flightManifestToYaml(const FlightManifest& manifest, const std::string& comment) {
+  manifest.validate();
+  YAML::Emitter out;
+  if (!comment.empty()) out << YAML::Comment(comment) << YAML::Newline;
+  out << YAML::BeginMap << YAML::Key << "flights" << YAML::Value << YAML::BeginSeq;
+  for (const ManifestFlight& flight : manifest.flights) {
+    out << YAML::BeginMap << YAML::Key << "bag" << YAML::Value << flight.bag;
+    out << YAML::Key << "segments" << YAML::Value << YAML::BeginSeq;
+    for (const ManifestSegment& segment : flight.segments) {
+      out << YAML::Flow << YAML::BeginMap;
+      out << YAML::Key << "start" << YAML::Value << formatNumber(segment.start_s);
+      out << YAML::Key << "end" << YAML::Value << formatNumber(segment.end_s);
+      out << YAML::Key << "mass_kg" << YAML::Value << formatNumber(segment.mass_kg);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+void saveFlightManifest(const FlightManifest& manifest, const std::string& path, const std::string& comment) {
+  writeTextFile(path, flightManifestToYaml(manifest, comment));
+}
+
+std::string resolveBagPath(const std::string& manifest_path, const std::string& bag) {
+  const std::filesystem::path path(bag);
+  if (path.is_absolute()) return bag;
+  return (std::filesystem::path(manifest_path).parent_path() / path).string();
+}
+
+}  // namespace propulsion_estimator

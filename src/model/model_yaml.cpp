@@ -1,0 +1,251 @@
+#include "propulsion_estimator/model/model_yaml.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <regex>
+#include <stdexcept>
+
+#include <yaml-cpp/yaml.h>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/model/model_validation.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/yaml_map.h"
+
+namespace propulsion_estimator {
+namespace {
+
+constexpr int kFormatVersion = 1;
+
+const char* derivationText(Output output) {
+  switch (output) {
+    case Output::kEfficiency: return "thrust/power";
+    case Output::kPower: return "voltage*current";
+    case Output::kCurrent: return "power/voltage";
+    default: return "";
+  }
+}
+
+// Terms are written as p<i><j>: value, the thesis' own notation (p20 is the x^2 coefficient).
+Polynomial2D readPolynomial(const YamlMap& map) {
+  static const std::regex kTermKey("p([0-9])([0-9])");
+  std::vector<PolynomialTerm> terms;
+  for (const std::string& key : map.keys()) {
+    std::smatch match;
+    if (!std::regex_match(key, match, kTermKey)) {
+      map.fail(key, "unknown key (terms are named p<i><j> for p_ij * x^i * v^j)");
+    }
+    terms.push_back({std::stoi(match[1]), std::stoi(match[2]), map.number(key)});
+  }
+  if (terms.empty()) throw ConfigError(map.source() + ": " + map.path() + ": no terms");
+  return Polynomial2D(std::move(terms));
+}
+
+InputScaling readScaling(const YamlMap& map) {
+  map.allowOnly({"pwm_center_us", "pwm_scale_us", "voltage_center_v", "voltage_scale_v"});
+  InputScaling scaling{map.number("pwm_center_us"), map.number("pwm_scale_us"), map.number("voltage_center_v"),
+                       map.number("voltage_scale_v")};
+  if (scaling.pwm_scale_us <= 0.0) map.fail("pwm_scale_us", "must be positive");
+  if (scaling.voltage_scale_v <= 0.0) map.fail("voltage_scale_v", "must be positive");
+  return scaling;
+}
+
+FitQuality readFit(const YamlMap& map) {
+  map.allowOnly({"pwm_degree", "voltage_degree", "points", "r2", "rmse", "max_error", "held_out_rmse", "grouping"});
+  return FitQuality{map.integer("pwm_degree"), map.integer("voltage_degree"), map.integer("points"), map.number("r2"),
+                    map.number("rmse"),        map.number("max_error"),      map.number("held_out_rmse"),
+                    map.text("grouping")};
+}
+
+OutputDefinition readOutput(const YamlMap& map, Output output) {
+  map.allowOnly({"unit", "polynomial", "numerator", "denominator", "scaling", "derived", "none", "note", "fit"});
+  OutputDefinition def;
+  def.unit = map.text("unit");
+  if (!unitToSi(output, def.unit)) map.fail("unit", "'" + def.unit + "' is not a unit of " + outputName(output));
+  def.note = map.optionalText("note").value_or("");
+  const int kinds = map.has("polynomial") + map.has("numerator") + map.has("derived") + map.has("none");
+  if (kinds != 1) {
+    map.fail("unit", "give exactly one of polynomial, numerator+denominator, derived or none");
+  }
+  if (map.has("denominator") != map.has("numerator")) {
+    map.fail(map.has("numerator") ? "numerator" : "denominator", "numerator and denominator go together");
+  }
+  const InputScaling scaling = map.has("scaling") ? readScaling(map.map("scaling")) : InputScaling{};
+  if (map.has("scaling") && !map.has("polynomial") && !map.has("numerator")) {
+    map.fail("scaling", "scaling applies to a polynomial surface only");
+  }
+  try {
+    if (map.has("polynomial")) {
+      def.source = OutputSource::kSurface;
+      def.surface = ResponseSurface(readPolynomial(map.map("polynomial")), scaling);
+    } else if (map.has("numerator")) {
+      def.source = OutputSource::kSurface;
+      def.surface =
+          ResponseSurface(readPolynomial(map.map("numerator")), readPolynomial(map.map("denominator")), scaling);
+    } else if (map.has("derived")) {
+      def.source = OutputSource::kDerived;
+      const std::string formula = map.text("derived");
+      const std::string expected = derivationText(output);
+      if (expected.empty()) map.fail("derived", std::string(outputName(output)) + " cannot be derived");
+      if (formula != expected) map.fail("derived", "'" + formula + "': " + outputName(output) + " derives only as " + expected);
+    } else {
+      def.source = OutputSource::kNone;
+      def.note = map.text("none");
+    }
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(map.source() + ": outputs." + outputName(output) + ": " + e.what());
+  }
+  if (map.has("fit")) def.fit = readFit(map.map("fit"));
+  return def;
+}
+
+void writePolynomial(YAML::Emitter& out, const Polynomial2D& polynomial) {
+  out << YAML::BeginMap;
+  for (const PolynomialTerm& term : polynomial.terms()) {
+    out << YAML::Key << "p" + std::to_string(term.pwm_power) + std::to_string(term.voltage_power) << YAML::Value
+        << formatNumber(term.coefficient);
+  }
+  out << YAML::EndMap;
+}
+
+}  // namespace
+
+PropulsionModel parseModelYaml(const std::string& text, const std::string& source) {
+  const YamlMap root = parseYamlDocument(text, source);
+  root.allowOnly({"format_version", "metadata", "domain", "outputs"});
+  if (root.integer("format_version") != kFormatVersion) {
+    root.fail("format_version", std::to_string(root.integer("format_version")) + " is not supported (this reader knows " +
+                                    std::to_string(kFormatVersion) + ")");
+  }
+
+  const YamlMap meta = root.map("metadata");
+  meta.allowOnly({"esc", "motor", "propeller", "bench_air_temperature_c", "bench_air_pressure_pa", "supply", "source"});
+  ModelMetadata metadata;
+  metadata.esc = meta.text("esc");
+  metadata.motor = meta.text("motor");
+  metadata.propeller = meta.text("propeller");
+  metadata.bench_air_temperature_c = meta.number("bench_air_temperature_c");
+  metadata.bench_air_pressure_pa = meta.number("bench_air_pressure_pa");
+  validateAt(root, metadata);
+  metadata.supply = meta.choice("supply", {"regulated", "battery"}) == "battery" ? SupplyKind::kBattery
+                                                                                 : SupplyKind::kRegulated;
+  metadata.source = meta.text("source");
+
+  const YamlMap dom = root.map("domain");
+  dom.allowOnly({"pwm_us", "voltage_v", "outside"});
+  ModelDomain domain;
+  std::tie(domain.pwm_min_us, domain.pwm_max_us) = dom.range("pwm_us");
+  std::tie(domain.voltage_min_v, domain.voltage_max_v) = dom.range("voltage_v");
+  const std::string outside = dom.choice("outside", {"clamp", "extrapolate", "reject"});
+  domain.outside = outside == "clamp" ? OutsideDomain::kClamp
+                   : outside == "extrapolate" ? OutsideDomain::kExtrapolate
+                                              : OutsideDomain::kReject;
+
+  const YamlMap outs = root.map("outputs");
+  outs.allowOnly({"thrust", "current", "power", "efficiency", "rpm"});
+  std::array<OutputDefinition, kOutputCount> outputs;
+  for (Output output : kAllOutputs) outputs[static_cast<int>(output)] = readOutput(outs.map(outputName(output)), output);
+
+  try {
+    PropulsionModel model(std::move(metadata), domain, std::move(outputs));
+    validateModelOnGrid(model);
+    return model;
+  } catch (const ConfigError& e) {
+    throw ConfigError(source + ": " + e.what());
+  }
+}
+
+PropulsionModel loadModelFile(const std::string& path) { return parseModelYaml(readTextFile(path), path); }
+
+std::string modelToYaml(const PropulsionModel& model, const std::string& comment) {
+  YAML::Emitter out;
+  if (!comment.empty()) out << YAML::Comment(comment) << YAML::Newline;
+  out << YAML::BeginMap;
+  out << YAML::Key << "format_version" << YAML::Value << kFormatVersion;
+  const ModelMetadata& meta = model.metadata();
+  out << YAML::Key << "metadata" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "esc" << YAML::Value << meta.esc;
+  out << YAML::Key << "motor" << YAML::Value << meta.motor;
+  out << YAML::Key << "propeller" << YAML::Value << meta.propeller;
+  out << YAML::Key << "bench_air_temperature_c" << YAML::Value << formatNumber(meta.bench_air_temperature_c);
+  out << YAML::Key << "bench_air_pressure_pa" << YAML::Value << formatNumber(meta.bench_air_pressure_pa);
+  out << YAML::Key << "supply" << YAML::Value << supplyKindName(meta.supply);
+  out << YAML::Key << "source" << YAML::Value << meta.source;
+  out << YAML::EndMap;
+
+  const ModelDomain& domain = model.domain();
+  out << YAML::Key << "domain" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "pwm_us" << YAML::Value << YAML::Flow << YAML::BeginSeq << formatNumber(domain.pwm_min_us)
+      << formatNumber(domain.pwm_max_us) << YAML::EndSeq;
+  out << YAML::Key << "voltage_v" << YAML::Value << YAML::Flow << YAML::BeginSeq << formatNumber(domain.voltage_min_v)
+      << formatNumber(domain.voltage_max_v) << YAML::EndSeq;
+  out << YAML::Key << "outside" << YAML::Value << outsideDomainName(domain.outside);
+  out << YAML::EndMap;
+
+  out << YAML::Key << "outputs" << YAML::Value << YAML::BeginMap;
+  for (Output output : kAllOutputs) {
+    const OutputDefinition& def = model.output(output);
+    out << YAML::Key << outputName(output) << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "unit" << YAML::Value << def.unit;
+    if (!def.note.empty() && def.source != OutputSource::kNone) out << YAML::Key << "note" << YAML::Value << def.note;
+    if (def.source == OutputSource::kDerived) out << YAML::Key << "derived" << YAML::Value << derivationText(output);
+    if (def.source == OutputSource::kNone) out << YAML::Key << "none" << YAML::Value << def.note;
+    if (def.surface) {
+      const InputScaling& s = def.surface->scaling();
+      if (!s.isIdentity()) {
+        out << YAML::Key << "scaling" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        out << YAML::Key << "pwm_center_us" << YAML::Value << formatNumber(s.pwm_center_us);
+        out << YAML::Key << "pwm_scale_us" << YAML::Value << formatNumber(s.pwm_scale_us);
+        out << YAML::Key << "voltage_center_v" << YAML::Value << formatNumber(s.voltage_center_v);
+        out << YAML::Key << "voltage_scale_v" << YAML::Value << formatNumber(s.voltage_scale_v);
+        out << YAML::EndMap;
+      }
+      if (def.surface->denominator()) {
+        out << YAML::Key << "numerator" << YAML::Value;
+        writePolynomial(out, def.surface->numerator());
+        out << YAML::Key << "denominator" << YAML::Value;
+        writePolynomial(out, *def.surface->denominator());
+      } else {
+        out << YAML::Key << "polynomial" << YAML::Value;
+        writePolynomial(out, def.surface->numerator());
+      }
+    }
+    if (def.fit) {
+      const FitQuality& fit = *def.fit;
+      out << YAML::Key << "fit" << YAML::Value << YAML::BeginMap;
+      out << YAML::Key << "pwm_degree" << YAML::Value << fit.pwm_degree;
+      out << YAML::Key << "voltage_degree" << YAML::Value << fit.voltage_degree;
+      out << YAML::Key << "points" << YAML::Value << fit.points;
+      out << YAML::Key << "r2" << YAML::Value << formatNumber(fit.r2);
+      out << YAML::Key << "rmse" << YAML::Value << formatNumber(fit.rmse);
+      out << YAML::Key << "max_error" << YAML::Value << formatNumber(fit.max_error);
+      out << YAML::Key << "held_out_rmse" << YAML::Value << formatNumber(fit.held_out_rmse);
+      out << YAML::Key << "grouping" << YAML::Value << fit.grouping;
+      out << YAML::EndMap;
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+void saveModelFile(const PropulsionModel& model, const std::string& path, const std::string& comment) {
+  writeTextFile(path, modelToYaml(model, comment));
+}
+
+std::string modelFingerprint(const PropulsionModel& model) {
+  // FNV-1a, 64 bit: stable across runs and machines, unlike std::hash.
+  std::uint64_t hash = 14695981039346656037ULL;
+  for (const unsigned char byte : modelToYaml(model)) {
+    hash ^= byte;
+    hash *= 1099511628211ULL;
+  }
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+}  // namespace propulsion_estimator

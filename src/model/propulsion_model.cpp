@@ -1,0 +1,192 @@
+#include "propulsion_estimator/model/propulsion_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/units.h"
+
+namespace propulsion_estimator {
+namespace {
+
+int index(Output output) { return static_cast<int>(output); }
+
+// The single formula each derivable output has.
+bool derivable(Output output) {
+  return output == Output::kEfficiency || output == Output::kPower || output == Output::kCurrent;
+}
+
+}  // namespace
+
+const char* outputName(Output output) {
+  switch (output) {
+    case Output::kThrust: return "thrust";
+    case Output::kCurrent: return "current";
+    case Output::kPower: return "power";
+    case Output::kEfficiency: return "efficiency";
+    case Output::kRpm: return "rpm";
+  }
+  return "?";
+}
+
+std::optional<double> unitToSi(Output output, const std::string& unit) {
+  switch (output) {
+    case Output::kThrust:
+      if (unit == "N") return 1.0;
+      if (unit == "g") return kNewtonPerGramForce;
+      if (unit == "kgf") return kStandardGravity;
+      break;
+    case Output::kCurrent:
+      if (unit == "A") return 1.0;
+      break;
+    case Output::kPower:
+      if (unit == "W") return 1.0;
+      break;
+    case Output::kEfficiency:
+      if (unit == "N/W") return 1.0;
+      if (unit == "g/W") return kNewtonPerGramForce;
+      break;
+    case Output::kRpm:
+      if (unit == "rpm") return 1.0;
+      break;
+  }
+  return std::nullopt;
+}
+
+const char* outsideDomainName(OutsideDomain policy) {
+  switch (policy) {
+    case OutsideDomain::kClamp: return "clamp";
+    case OutsideDomain::kExtrapolate: return "extrapolate";
+    case OutsideDomain::kReject: return "reject";
+  }
+  return "?";
+}
+
+const char* supplyKindName(SupplyKind supply) { return supply == SupplyKind::kBattery ? "battery" : "regulated"; }
+
+bool ModelDomain::contains(double pwm_us, double voltage_v) const {
+  return pwm_us >= pwm_min_us && pwm_us <= pwm_max_us && voltage_v >= voltage_min_v && voltage_v <= voltage_max_v;
+}
+
+double ModelMetadata::benchAirDensity() const {
+  return bench_air_pressure_pa / (kSpecificGasConstantDryAir * (bench_air_temperature_c + kZeroCelsiusInKelvin));
+}
+
+void ModelMetadata::validate() const {
+  // Beyond these the value is in another unit (K, hPa, psi) or a typo, and every density
+  // correction made from it would be wrong.
+  if (!(bench_air_temperature_c >= -60.0 && bench_air_temperature_c <= 60.0)) {
+    throw FieldError("metadata.bench_air_temperature_c",
+                     formatNumber(bench_air_temperature_c) + " is not an air temperature in deg C");
+  }
+  if (!(bench_air_pressure_pa >= 30000.0 && bench_air_pressure_pa <= 110000.0)) {
+    throw FieldError("metadata.bench_air_pressure_pa",
+                     formatNumber(bench_air_pressure_pa) + " is not an air pressure in Pa");
+  }
+}
+
+PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,
+                                 std::array<OutputDefinition, kOutputCount> outputs)
+    : metadata_(std::move(metadata)), domain_(domain), outputs_(std::move(outputs)) {
+  if (!(domain_.pwm_min_us < domain_.pwm_max_us) || !(domain_.voltage_min_v < domain_.voltage_max_v)) {
+    throw ConfigError("domain is empty: pwm_us [" + std::to_string(domain_.pwm_min_us) + ", " +
+                      std::to_string(domain_.pwm_max_us) + "], voltage_v [" + std::to_string(domain_.voltage_min_v) +
+                      ", " + std::to_string(domain_.voltage_max_v) + "]");
+  }
+  for (Output output : kAllOutputs) {
+    const OutputDefinition& def = outputs_[index(output)];
+    const std::string name = outputName(output);
+    const std::optional<double> to_si = unitToSi(output, def.unit);
+    if (!to_si) throw ConfigError("outputs." + name + ".unit: '" + def.unit + "' is not a unit of " + name);
+    to_si_[index(output)] = *to_si;
+    if ((def.source == OutputSource::kSurface) != def.surface.has_value()) {
+      throw ConfigError("outputs." + name + ": a surface must be given exactly when the output is a surface");
+    }
+    if (def.source == OutputSource::kDerived && !derivable(output)) {
+      throw ConfigError("outputs." + name + ": " + name + " cannot be derived from other outputs");
+    }
+  }
+  if (outputs_[index(Output::kThrust)].source != OutputSource::kSurface) {
+    throw ConfigError("outputs.thrust: thrust must be a surface; it is what the estimator is for");
+  }
+  const OutputSource current = outputs_[index(Output::kCurrent)].source;
+  const OutputSource power = outputs_[index(Output::kPower)].source;
+  if (current == OutputSource::kDerived && power != OutputSource::kSurface) {
+    throw ConfigError("outputs.current: derived as power/voltage needs power to be a surface");
+  }
+  if (power == OutputSource::kDerived && current != OutputSource::kSurface) {
+    throw ConfigError("outputs.power: derived as voltage*current needs current to be a surface");
+  }
+  if (outputs_[index(Output::kEfficiency)].source == OutputSource::kDerived && power == OutputSource::kNone) {
+    throw ConfigError("outputs.efficiency: derived as thrust/power needs power to be modelled");
+  }
+  // Surfaces first, then what derives from them; efficiency last because it needs power.
+  int next = 0;
+  for (Output output : kAllOutputs) {
+    if (outputs_[index(output)].source != OutputSource::kDerived) evaluation_order_[next++] = output;
+  }
+  for (Output output : {Output::kCurrent, Output::kPower, Output::kEfficiency}) {
+    if (outputs_[index(output)].source == OutputSource::kDerived) evaluation_order_[next++] = output;
+  }
+}
+
+double PropulsionModel::evaluateSi(Output output, double pwm_us, double voltage_v,
+                                   const std::array<double, kOutputCount>& done) const {
+  const OutputDefinition& def = outputs_[index(output)];
+  switch (def.source) {
+    case OutputSource::kSurface:
+      return def.surface->evaluate(pwm_us, voltage_v) * to_si_[index(output)];
+    case OutputSource::kNone:
+      return std::numeric_limits<double>::quiet_NaN();
+    case OutputSource::kDerived:
+      break;
+  }
+  switch (output) {
+    case Output::kPower: return voltage_v * done[index(Output::kCurrent)];
+    case Output::kCurrent: return voltage_v > 0.0 ? done[index(Output::kPower)] / voltage_v : 0.0;
+    default: {
+      const double power = done[index(Output::kPower)];
+      return power > 0.0 ? done[index(Output::kThrust)] / power : 0.0;
+    }
+  }
+}
+
+std::array<double, kOutputCount> PropulsionModel::computeSi(double pwm_us, double voltage_v) const {
+  std::array<double, kOutputCount> si{};
+  for (Output output : evaluation_order_) {
+    const double value = evaluateSi(output, pwm_us, voltage_v, si);
+    // Floor a finite dip below zero; a non-finite value stays visible to the caller.
+    si[index(output)] = (output != Output::kEfficiency && value < 0.0 && std::isfinite(value)) ? 0.0 : value;
+  }
+  return si;
+}
+
+bool PropulsionModel::evaluate(double pwm_us, double voltage_v, OperatingPoint* estimate) const {
+  const bool inside = domain_.contains(pwm_us, voltage_v);
+  if (!inside) {
+    if (domain_.outside == OutsideDomain::kReject) return false;
+    if (domain_.outside == OutsideDomain::kClamp) {
+      pwm_us = std::clamp(pwm_us, domain_.pwm_min_us, domain_.pwm_max_us);
+      voltage_v = std::clamp(voltage_v, domain_.voltage_min_v, domain_.voltage_max_v);
+    }
+  }
+  const std::array<double, kOutputCount> si = computeSi(pwm_us, voltage_v);
+  estimate->thrust_n = si[index(Output::kThrust)];
+  estimate->current_a = si[index(Output::kCurrent)];
+  estimate->power_w = si[index(Output::kPower)];
+  estimate->efficiency_n_per_w = si[index(Output::kEfficiency)];
+  estimate->rpm = si[index(Output::kRpm)];
+  estimate->in_domain = inside;
+  return true;
+}
+
+double PropulsionModel::evaluateRaw(Output output, double pwm_us, double voltage_v) const {
+  const OutputDefinition& def = outputs_[index(output)];
+  if (def.source == OutputSource::kSurface) return def.surface->evaluate(pwm_us, voltage_v);
+  return computeSi(pwm_us, voltage_v)[index(output)] / to_si_[index(output)];
+}
+
+}  // namespace propulsion_estimator

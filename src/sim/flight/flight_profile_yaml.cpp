@@ -1,0 +1,101 @@
+#include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
+
+#include <filesystem>
+
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/common/yaml_map.h"
+
+namespace propulsion_estimator {
+namespace {
+
+Eigen::Vector3d readVector(const YamlMap& map, const std::string& key) {
+  const std::vector<double> values = map.numbers(key);
+  if (values.size() != 3) map.fail(key, "expected [x, y, z], got " + std::to_string(values.size()) + " numbers");
+  return Eigen::Vector3d(values[0], values[1], values[2]);
+}
+
+AutopilotParams readAutopilot(const YamlMap& map) {
+  map.allowOnly({"flavour", "pwm_min_us", "pwm_max_us", "disarmed_pwm_us", "rc_out_rate_hz"});
+  AutopilotParams autopilot;
+  autopilot.flavour =
+      map.choice("flavour", {"px4", "ardupilot"}) == "px4" ? AutopilotFlavour::kPx4 : AutopilotFlavour::kArduPilot;
+  autopilot.pwm_min_us = map.number("pwm_min_us");
+  autopilot.pwm_max_us = map.number("pwm_max_us");
+  autopilot.disarmed_pwm_us = map.number("disarmed_pwm_us");
+  autopilot.rc_out_rate_hz = map.number("rc_out_rate_hz");
+  return autopilot;
+}
+
+VehicleSetup readVehicle(const YamlMap& map, const std::string& folder) {
+  map.allowOnly({"urdf", "centre_of_mass_offset_m", "landing_gear", "drag_area_m2", "battery_initial_soc"});
+  VehicleSetup vehicle;
+  const std::string urdf = map.text("urdf");
+  vehicle.urdf_path =
+      std::filesystem::path(urdf).is_absolute() ? urdf : (std::filesystem::path(folder) / urdf).string();
+  vehicle.centre_of_mass_offset_m = readVector(map, "centre_of_mass_offset_m");
+  const YamlMap gear = map.map("landing_gear");
+  gear.allowOnly({"height_m", "half_width_m"});
+  vehicle.landing_gear_height_m = gear.number("height_m");
+  vehicle.landing_gear_half_width_m = gear.number("half_width_m");
+  vehicle.drag_area_m2 = map.number("drag_area_m2");
+  vehicle.battery_initial_soc = map.number("battery_initial_soc");
+  return vehicle;
+}
+
+PayloadCable readCable(const YamlMap& map) {
+  map.allowOnly({"length_m", "attach_point_m", "stiffness_n_per_m", "damping_n_s_per_m"});
+  return PayloadCable{map.number("length_m"), readVector(map, "attach_point_m"), map.number("stiffness_n_per_m"),
+                      map.number("damping_n_s_per_m")};
+}
+
+FlightSegment readSegment(const YamlMap& map) {
+  FlightSegment segment;
+  const std::string type = map.choice("type", {"wait", "takeoff", "hover", "climb", "descend", "land", "payload"});
+  if (type == "wait" || type == "hover") {
+    map.allowOnly({"type", "duration_s"});
+    segment.kind = type == "wait" ? SegmentKind::kWait : SegmentKind::kHover;
+    segment.duration_s = map.number("duration_s");
+  } else if (type == "payload") {
+    map.allowOnly({"type", "mass_kg", "duration_s"});
+    segment.kind = SegmentKind::kPayload;
+    segment.payload_mass_kg = map.number("mass_kg");
+    segment.duration_s = map.number("duration_s");
+  } else if (type == "land") {
+    map.allowOnly({"type", "rate_m_s"});
+    segment.kind = SegmentKind::kLand;
+    segment.rate_m_s = map.number("rate_m_s");
+  } else {
+    map.allowOnly({"type", "height_m", "rate_m_s"});
+    segment.kind = type == "takeoff" ? SegmentKind::kTakeoff
+                   : type == "climb" ? SegmentKind::kClimb
+                                     : SegmentKind::kDescend;
+    segment.height_m = map.number("height_m");
+    segment.rate_m_s = map.number("rate_m_s");
+  }
+  return segment;
+}
+
+}  // namespace
+
+FlightProfile parseFlightProfileYaml(const std::string& text, const std::string& source) {
+  const YamlMap root = parseYamlDocument(text, source);
+  root.allowOnly({"autopilot", "vehicle", "payload_cable", "manifest", "segments"});
+  FlightProfile profile;
+  profile.source = source;
+  profile.autopilot = readAutopilot(root.map("autopilot"));
+  profile.vehicle = readVehicle(root.map("vehicle"), std::filesystem::path(source).parent_path().string());
+  profile.cable = readCable(root.map("payload_cable"));
+  const YamlMap manifest = root.map("manifest");
+  manifest.allowOnly({"settle_s"});
+  profile.manifest_settle_s = manifest.number("settle_s");
+  for (const YamlMap& segment : root.maps("segments")) profile.segments.push_back(readSegment(segment));
+  validateAt(root, profile);
+  return profile;
+}
+
+FlightProfile loadFlightProfileFile(const std::string& path) {
+  return parseFlightProfileYaml(readTextFile(path), path);
+}
+
+}  // namespace propulsion_estimator

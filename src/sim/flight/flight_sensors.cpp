@@ -1,0 +1,50 @@
+#include "propulsion_estimator/sim/flight/flight_sensors.h"
+
+#include <string>
+
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
+
+namespace propulsion_estimator {
+namespace {
+
+void requireRate(const char* field, double rate_hz) {
+  if (!(rate_hz > 0.0 && rate_hz <= 500.0)) throw FieldError(field, formatNumber(rate_hz) + " is outside 0..500 Hz");
+}
+
+void requireSigma(const char* field, double sigma) {
+  if (!(sigma >= 0.0 && sigma < 1e3)) throw FieldError(field, formatNumber(sigma) + " is not a standard deviation");
+}
+
+}  // namespace
+
+void FlightSensorParams::validate() const {
+  requireRate("battery_rate_hz", battery_rate_hz);
+  requireRate("imu_rate_hz", imu_rate_hz);
+  requireRate("pose_rate_hz", pose_rate_hz);
+  requireRate("pressure_rate_hz", pressure_rate_hz);
+  requireRate("air_temperature_rate_hz", air_temperature_rate_hz);
+  requireRate("rangefinder_rate_hz", rangefinder_rate_hz);
+  requireRate("motor_temperature_rate_hz", motor_temperature_rate_hz);
+  requireSigma("battery_voltage_sigma_v", battery_voltage_sigma_v);
+  requireSigma("battery_current_sigma_a", battery_current_sigma_a);
+  requireSigma("gyro_sigma_rad_s", gyro_sigma_rad_s);
+  requireSigma("accel_sigma_m_s2", accel_sigma_m_s2);
+  requireSigma("orientation_sigma_rad", orientation_sigma_rad);
+  requireSigma("position_sigma_m", position_sigma_m);
+  requireSigma("velocity_sigma_m_s", velocity_sigma_m_s);
+  if (!(navigation_error_correlation_s > 0.0 && navigation_error_correlation_s <= 1000.0)) {
+    throw FieldError("navigation_error_correlation_s",
+                     formatNumber(navigation_error_correlation_s) + " is outside 0..1000 s");
+  }
+  requireSigma("pressure_sigma_pa", pressure_sigma_pa);
+  requireSigma("air_temperature_sigma_c", air_temperature_sigma_c);
+  requireSigma("rangefinder_sigma_m", rangefinder_sigma_m);
+  requireSigma("motor_temperature_sigma_c", motor_temperature_sigma_c);
+  if (!(rangefinder_min_m >= 0.0 && rangefinder_min_m < rangefinder_max_m)) {
+    throw FieldError("rangefinder_min_m", formatNumber(rangefinder_min_m) + " is not below rangefinder_max_m " +
+                                              formatNumber(rangefinder_max_m));
+  }
+}
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,357 @@
+#include "propulsion_estimator/sim/flight/flight_simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/sim/flight/flight_controller.h"
+#include "propulsion_estimator/sim/physics/lipo_battery.h"
+#include "propulsion_estimator/sim/flight/multirotor_dynamics.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/sim/physics/power_train.h"
+#include "propulsion_estimator/common/units.h"
+
+namespace propulsion_estimator {
+namespace {
+
+// A hover may use at most this share of the rotors' thrust, leaving the rest to attitude control.
+constexpr double kMaxHoverThrustShare = 0.8;
+constexpr double kEmptyStateOfCharge = 0.02;
+// A hover that ends farther than this from its height did not happen as scripted; its manifest
+// segment would be wrong.
+constexpr double kHoverToleranceM = 0.25;
+constexpr int kMinRcOutChannels = 8;  // MAVLink SERVO_OUTPUT_RAW carries 8 (or 16) outputs
+
+// Readings of one stream at k / rate, k = 0, 1, ...: at the first physics step at or after each.
+class Stream {
+ public:
+  explicit Stream(double rate_hz) : rate_hz_(rate_hz) {}
+  bool due(double time_s) {
+    if (time_s + 1e-9 < next_ / rate_hz_) return false;
+    next_ = static_cast<long>(std::floor(time_s * rate_hz_ + 1e-9)) + 1;
+    return true;
+  }
+
+ private:
+  double rate_hz_;
+  long next_ = 0;
+};
+
+HeightSetpoint setpointAt(const ScheduledSegment& scheduled, double time_s) {
+  const FlightSegment& segment = scheduled.segment;
+  const double elapsed = time_s - scheduled.start_s;
+  HeightSetpoint setpoint{scheduled.start_height_m, 0.0, false};
+  switch (segment.kind) {
+    case SegmentKind::kTakeoff:
+      if (elapsed < kTakeoffSpinUpS) break;
+      setpoint.height_m =
+          std::min(scheduled.end_height_m, scheduled.start_height_m + segment.rate_m_s * (elapsed - kTakeoffSpinUpS));
+      setpoint.vertical_speed_m_s = setpoint.height_m < scheduled.end_height_m ? segment.rate_m_s : 0.0;
+      break;
+    case SegmentKind::kClimb:
+    case SegmentKind::kDescend: {
+      const double direction = scheduled.end_height_m > scheduled.start_height_m ? 1.0 : -1.0;
+      const double travelled =
+          std::min(std::fabs(scheduled.end_height_m - scheduled.start_height_m), segment.rate_m_s * elapsed);
+      setpoint.height_m = scheduled.start_height_m + direction * travelled;
+      setpoint.vertical_speed_m_s = direction * segment.rate_m_s;
+      break;
+    }
+    case SegmentKind::kLand:
+      // Keeps descending below the ground, so that the controller presses the gear down.
+      setpoint.height_m = scheduled.start_height_m - segment.rate_m_s * elapsed;
+      setpoint.vertical_speed_m_s = -segment.rate_m_s;
+      setpoint.landing = true;
+      break;
+    case SegmentKind::kWait:
+    case SegmentKind::kHover:
+    case SegmentKind::kPayload: break;
+  }
+  return setpoint;
+}
+
+bool airborne(SegmentKind kind) { return kind != SegmentKind::kWait && kind != SegmentKind::kPayload; }
+
+// Refuses a payload whose hover would need more than kMaxHoverThrustShare of the rotors' thrust
+// at the autopilot's top pulse width from the battery as it starts.
+void checkThrustReserve(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
+                        const std::vector<ScheduledSegment>& schedule, double vehicle_mass_kg, int rotors,
+                        double air_density) {
+  const PropulsionChain chain(params.chain);
+  const double source_v = params.battery.openCircuitVoltage(profile.vehicle.battery_initial_soc);
+  const ChainInput input{params.chain.esc.duty(profile.autopilot.pwm_max_us, effects.esc_offset_us.value_or(0.0)), 0.0,
+                         air_density, params.chain.motor.reference_temperature_c};
+  const double series_ohm = params.battery.series_resistance_ohm + effects.supply_resistance_ohm.value_or(0.0);
+  const double max_thrust = chain.steadyFromSource(input, source_v, series_ohm, rotors, nullptr).thrust_n *
+                            (1.0 - effects.thrust_loss_fraction.value_or(0.0));
+  int payload_segment = -1;
+  for (const ScheduledSegment& scheduled : schedule) {
+    if (scheduled.segment.kind == SegmentKind::kPayload) payload_segment = scheduled.index;
+    if (!airborne(scheduled.segment.kind)) continue;
+    const double mass = vehicle_mass_kg + scheduled.payload_mass_kg;
+    const double needed = mass * kStandardGravity / rotors;
+    if (needed > kMaxHoverThrustShare * max_thrust) {
+      const std::string field =
+          payload_segment >= 0 ? "segments[" + std::to_string(payload_segment) + "].mass_kg" : "vehicle.urdf";
+      throw ConfigError(profile.source + ": " + field + ": " + formatPrintf("%.3g", mass) + " kg needs " +
+                        formatPrintf("%.3g", needed) + " N per rotor, more than " +
+                        formatPrintf("%.3g", 100.0 * kMaxHoverThrustShare) + " % of the " +
+                        formatPrintf("%.3g", max_thrust) + " N each gives at " +
+                        formatNumber(profile.autopilot.pwm_max_us) + " us from " + formatPrintf("%.3g", source_v) +
+                        " V");
+    }
+  }
+}
+
+// Refuses a segment that did not end as scripted: a hover away from its height (its manifest
+// segment would be wrong), a landing that has not disarmed.
+void checkSegmentEnd(const FlightProfile& profile, const ScheduledSegment& scheduled, double height_m, bool armed) {
+  const std::string at = profile.source + ": segments[" + std::to_string(scheduled.index) + "].type: ";
+  if (scheduled.segment.kind == SegmentKind::kHover &&
+      !(std::fabs(height_m - scheduled.end_height_m) <= kHoverToleranceM)) {
+    throw ConfigError(at + "the vehicle ended its hover at " + formatPrintf("%.3g", height_m) + " m instead of " +
+                      formatPrintf("%.3g", scheduled.end_height_m) + " m");
+  }
+  if (scheduled.segment.kind == SegmentKind::kLand && armed) {
+    throw ConfigError(at + "the vehicle had not landed and disarmed " + formatPrintf("%.3g", kTouchdownS) +
+                      " s after its descent");
+  }
+}
+
+// Everything a flight starts from, once every input has been checked.
+struct FlightSetup {
+  std::vector<ScheduledSegment> schedule;
+  MultirotorDynamics dynamics;
+  FlightController controller;
+};
+
+FlightSetup setUpFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
+                        const Vehicle& vehicle, const FlightSensorParams& sensors) {
+  params.validate();
+  effects.validate();
+  sensors.validate();
+  // The vehicle's refusals (no mass properties, a rotor layout the mixer cannot use) name its URDF.
+  const auto fromUrdf = [&profile](const auto& make) {
+    try {
+      return make();
+    } catch (const ConfigError& e) {
+      throw ConfigError(profile.vehicle.urdf_path + ": " + e.what());
+    }
+  };
+  FlightSetup setup{
+      scheduleFlight(profile), fromUrdf([&] { return MultirotorDynamics(vehicle, profile.vehicle, profile.cable); }),
+      fromUrdf([&] { return FlightController(vehicle, profile.autopilot, profile.vehicle.landing_gear_height_m); })};
+  checkThrustReserve(params, effects, profile, setup.schedule, setup.dynamics.vehicleMassKg(),
+                     static_cast<int>(vehicle.rotors.size()), effects.air.value_or(params.bench.air).densityKgM3());
+  return setup;
+}
+
+class Noise {
+ public:
+  explicit Noise(std::uint64_t seed) : rng_(seed) {}
+  double operator()(double sigma) { return sigma > 0.0 ? std::normal_distribution<double>(0.0, sigma)(rng_) : 0.0; }
+  Eigen::Vector3d vector(double sigma) { return Eigen::Vector3d((*this)(sigma), (*this)(sigma), (*this)(sigma)); }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+// Zero-mean error with standard deviation sigma and correlation time tau, sampled at `rate_hz`:
+// e <- a e + sqrt(1 - a^2) sigma n, a = exp(-1 / (rate tau)); starts in its stationary spread.
+class GaussMarkov3 {
+ public:
+  GaussMarkov3(double sigma, double correlation_s, double rate_hz, Noise* noise)
+      : sigma_(sigma),
+        decay_(std::exp(-1.0 / (rate_hz * correlation_s))),
+        noise_(noise),
+        error_(noise->vector(sigma)) {}
+  const Eigen::Vector3d& next() {
+    error_ = decay_ * error_ + std::sqrt(1.0 - decay_ * decay_) * noise_->vector(sigma_);
+    return error_;
+  }
+
+ private:
+  double sigma_;
+  double decay_;
+  Noise* noise_;
+  Eigen::Vector3d error_;
+};
+
+}  // namespace
+
+void checkFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
+                 const Vehicle& vehicle, const FlightSensorParams& sensors) {
+  setUpFlight(params, effects, profile, vehicle, sensors);
+}
+
+FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
+                            const Vehicle& vehicle, std::uint64_t seed, FlightSink* sink,
+                            const FlightSensorParams& sensors) {
+  FlightSetup setup = setUpFlight(params, effects, profile, vehicle, sensors);
+  const std::vector<ScheduledSegment>& schedule = setup.schedule;
+  MultirotorDynamics& dynamics = setup.dynamics;
+  FlightController& controller = setup.controller;
+  const int rotors = static_cast<int>(vehicle.rotors.size());
+  const AirConditions air = effects.air.value_or(params.bench.air);
+  const double density = air.densityKgM3();
+
+  PowerTrain train(PropulsionChain(params.chain), rotors, effects, air.temperature_c);
+  LipoBattery battery(params.battery, profile.vehicle.battery_initial_soc);
+  Noise noise(seed);
+  const double radius = params.chain.propeller.radiusM();
+  const Eigen::Vector3d origin = dynamics.basePosition();
+  const double current_sign = profile.autopilot.flavour == AutopilotFlavour::kPx4 ? -1.0 : 1.0;
+  GaussMarkov3 position_error(sensors.position_sigma_m, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
+                              &noise);
+  GaussMarkov3 velocity_error(sensors.velocity_sigma_m_s, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
+                              &noise);
+
+  Stream rc_out(profile.autopilot.rc_out_rate_hz), truth(profile.autopilot.rc_out_rate_hz),
+      battery_stream(sensors.battery_rate_hz), imu(sensors.imu_rate_hz), pose(sensors.pose_rate_hz),
+      pressure(sensors.pressure_rate_hz), air_temperature(sensors.air_temperature_rate_hz),
+      range(sensors.rangefinder_rate_hz), motor_temperature(sensors.motor_temperature_rate_hz);
+
+  std::vector<double> thrust(rotors), torque(rotors);
+  std::vector<RotorEffectTerms> terms(rotors);
+  FlightResult result;
+  const double end_s = schedule.back().end_s;
+  const long steps = std::lround(end_s / kFlightStepS);
+  std::size_t current = 0;
+  bool entered = false;
+  for (long step = 0; step <= steps; ++step) {
+    const double t = step * kFlightStepS;
+    while (current + 1 < schedule.size() && t >= schedule[current].end_s - 1e-9) {
+      checkSegmentEnd(profile, schedule[current], dynamics.basePosition().z(), controller.armed());
+      ++current;
+      entered = false;
+    }
+    const ScheduledSegment& segment = schedule[current];
+    if (!entered) {
+      if (segment.segment.kind == SegmentKind::kPayload) dynamics.setPayload(segment.segment.payload_mass_kg);
+      if (segment.segment.kind == SegmentKind::kTakeoff) controller.arm();
+      entered = true;
+    }
+
+    const NavigationState navigation{dynamics.basePosition(), dynamics.baseVelocity(), dynamics.attitude(),
+                                     dynamics.angularVelocityBody()};
+    const std::vector<double>& pwm = controller.update(setpointAt(segment, t), navigation, kFlightStepS);
+    const PowerTrainState& power =
+        train.step(pwm, Supply{battery.sourceVoltage(), battery.seriesResistanceOhm()}, air, kFlightStepS);
+    const double climb_rate = navigation.velocity_m_s.z();
+    for (int k = 0; k < rotors; ++k) {
+      terms[k] = rotorEffectTerms(effects, radius, dynamics.rotorPosition(k).z(), climb_rate);
+      thrust[k] = power.motors[k].thrust_n * terms[k].product();
+      torque[k] = power.motors[k].torque_nm;
+    }
+
+    if (sink) {
+      const double height = navigation.position_m.z();
+      const Eigen::Matrix3d rotation = navigation.attitude.toRotationMatrix();
+      if (rc_out.due(t)) {
+        RcOutSample sample{t, std::vector<std::uint16_t>(std::max(kMinRcOutChannels, rotors), 0)};
+        for (int k = 0; k < rotors; ++k) sample.channels[k] = static_cast<std::uint16_t>(pwm[k]);
+        sink->rcOut(sample);
+      }
+      if (truth.due(t)) {
+        TruthSample sample;
+        sample.time_s = t;
+        sample.payload_mass_kg = dynamics.payloadMassKg();
+        sample.total_mass_kg = dynamics.vehicleMassKg() + sample.payload_mass_kg;
+        sample.cable_tension_n = dynamics.cableTensionN();
+        sample.height_m = height;
+        sample.vertical_speed_m_s = climb_rate;
+        sample.air_density_kg_m3 = density;
+        sample.density_ratio = density / params.bench.air.densityKgM3();
+        sample.battery_voltage_v = power.terminal_voltage_v;
+        sample.esc_voltage_v = power.esc_voltage_v;
+        sample.battery_current_a = power.current_a;
+        sample.climb_factor = terms[0].climb;
+        sample.thrust_loss_factor = terms[0].thrust_loss;
+        for (int k = 0; k < rotors; ++k) {
+          const ChainState& motor = power.motors[k];
+          sample.motors.push_back({pwm[k], thrust[k], motor.input_current_a, motor.input_power_w, motor.rpm(),
+                                   terms[k].ground_effect, power.winding_temperature_c[k],
+                                   pwm[k] >= params.bench.sweep_pwm_min_us && pwm[k] <= params.bench.sweep_pwm_max_us});
+        }
+        sink->truth(sample);
+      }
+      if (battery_stream.due(t)) {
+        sink->battery({t, power.terminal_voltage_v + noise(sensors.battery_voltage_sigma_v),
+                       current_sign * (power.current_a + noise(sensors.battery_current_sigma_a)),
+                       std::round(100.0 * std::clamp(battery.stateOfCharge(), 0.0, 1.0)) / 100.0});
+      }
+      if (imu.due(t)) {
+        const Eigen::Vector3d tilt = noise.vector(sensors.orientation_sigma_rad);
+        ImuSample sample;
+        sample.time_s = t;
+        sample.orientation =
+            tilt.norm() > 0.0
+                ? navigation.attitude * Eigen::Quaterniond(Eigen::AngleAxisd(tilt.norm(), tilt.normalized()))
+                : navigation.attitude;
+        sample.angular_velocity_rad_s = navigation.angular_velocity_body_rad_s + noise.vector(sensors.gyro_sigma_rad_s);
+        sample.linear_acceleration_m_s2 = dynamics.specificForceBody() + noise.vector(sensors.accel_sigma_m_s2);
+        sample.orientation_sigma_rad = sensors.orientation_sigma_rad;
+        sample.angular_velocity_sigma_rad_s = sensors.gyro_sigma_rad_s;
+        sample.linear_acceleration_sigma_m_s2 = sensors.accel_sigma_m_s2;
+        sink->imu(sample);
+      }
+      if (pose.due(t)) {
+        sink->pose({t, navigation.position_m - origin + position_error.next(), navigation.attitude});
+        sink->velocity(
+            {t, navigation.velocity_m_s + velocity_error.next(), rotation * navigation.angular_velocity_body_rad_s});
+      }
+      if (pressure.due(t)) {
+        sink->staticPressure({t, air.pressureAtHeightPa(height) + noise(sensors.pressure_sigma_pa),
+                              sensors.pressure_sigma_pa, "base_link"});
+      }
+      if (air_temperature.due(t)) {
+        sink->airTemperature({t, air.temperature_c + noise(sensors.air_temperature_sigma_c),
+                              sensors.air_temperature_sigma_c, "base_link"});
+      }
+      if (range.due(t)) {
+        double reading = rotation(2, 2) > 0.1 ? height / rotation(2, 2) + noise(sensors.rangefinder_sigma_m)
+                                              : std::numeric_limits<double>::infinity();
+        if (reading < sensors.rangefinder_min_m) reading = -std::numeric_limits<double>::infinity();
+        if (reading > sensors.rangefinder_max_m) reading = std::numeric_limits<double>::infinity();
+        sink->rangefinder(
+            {t, reading, sensors.rangefinder_min_m, sensors.rangefinder_max_m, sensors.rangefinder_fov_rad});
+      }
+      if (motor_temperature.due(t)) {
+        const auto hottest = std::max_element(power.winding_temperature_c.begin(), power.winding_temperature_c.end());
+        const std::size_t k = static_cast<std::size_t>(hottest - power.winding_temperature_c.begin());
+        sink->motorTemperature({t, *hottest + noise(sensors.motor_temperature_sigma_c),
+                                sensors.motor_temperature_sigma_c, vehicle.rotors[k].name});
+      }
+    }
+
+    dynamics.step(thrust, torque, density, kFlightStepS);
+    if (!dynamics.isFinite()) {
+      throw ConfigError(profile.source +
+                        ": the simulation diverged at t = " + formatPrintf("%.3f", (step + 1) * kFlightStepS) + " s");
+    }
+    battery.draw(power.current_a, kFlightStepS);
+    if (battery.stateOfCharge() < kEmptyStateOfCharge) {
+      throw ConfigError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +
+                        formatPrintf("%.3g", t) + " s into the flight");
+    }
+  }
+
+  checkSegmentEnd(profile, schedule.back(), dynamics.basePosition().z(), controller.armed());
+
+  for (const ScheduledSegment& scheduled : schedule) {
+    if (scheduled.segment.kind != SegmentKind::kHover) continue;
+    const double start = scheduled.start_s + profile.manifest_settle_s;
+    if (start >= scheduled.end_s) continue;
+    // Microseconds and milligrams: enough for any use, and the manifest reads "16.88", not "16.879999999999999".
+    const auto micro = [](double value) { return std::round(value * 1e6) / 1e6; };
+    result.segments.push_back(
+        {micro(start), micro(scheduled.end_s), micro(dynamics.vehicleMassKg() + scheduled.payload_mass_kg)});
+  }
+  result.duration_s = steps * kFlightStepS;
+  result.final_state_of_charge = battery.stateOfCharge();
+  return result;
+}
+
+}  // namespace propulsion_estimator

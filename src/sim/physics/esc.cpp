@@ -1,0 +1,31 @@
+#include "propulsion_estimator/sim/physics/esc.h"
+
+#include <algorithm>
+
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
+
+namespace propulsion_estimator {
+
+void EscParams::validate() const {
+  if (!(pwm_zero_us >= 800.0 && pwm_zero_us <= 2200.0)) {
+    throw FieldError("esc.pwm_zero_us", formatNumber(pwm_zero_us) + " is outside 800..2200 us");
+  }
+  if (!(pwm_full_us >= 800.0 && pwm_full_us <= 2200.0)) {
+    throw FieldError("esc.pwm_full_us", formatNumber(pwm_full_us) + " is outside 800..2200 us");
+  }
+  if (!(pwm_full_us - pwm_zero_us >= 200.0)) {
+    throw FieldError("esc.pwm_full_us", formatNumber(pwm_full_us) + " must be at least 200 us above pwm_zero_us (" +
+                                            formatNumber(pwm_zero_us) + ")");
+  }
+  if (!(resistance_ohm >= 0.0 && resistance_ohm <= 1.0)) {
+    throw FieldError("esc.resistance_ohm", formatNumber(resistance_ohm) + " is outside 0..1 ohm");
+  }
+}
+
+double EscParams::duty(double pwm_us, double end_point_offset_us) const {
+  const double fraction = (pwm_us - pwm_zero_us - end_point_offset_us) / (pwm_full_us - pwm_zero_us);
+  return std::clamp(fraction, 0.0, 1.0);
+}
+
+}  // namespace propulsion_estimator

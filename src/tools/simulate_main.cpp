@@ -1,4 +1,0 @@
-// Physics simulator of the propulsion chain: thrust-stand logs and flight bags with ground truth.
-#include "propulsion_estimator/ros/simulate_command.h"
-
-int main(int argc, char** argv) { return propulsion_estimator::runSimulateCommand(argc, argv); }
