@@ -1,0 +1,123 @@
+#pragma once
+
+#include <array>
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace propulsion_estimator {
+namespace effects {
+
+/// The physical effects that response surfaces measured on a thrust stand leave out, and that
+/// the gap diagnosis can name, fit and hand to the node as a model's `effects:` section.
+enum class Kind {
+  kSupplyResistance = 0,  ///< wiring and connectors between the voltage sensor and the ESCs
+  kAirDensity,            ///< flight air thinner or denser than the bench's
+  kGroundEffect,          ///< thrust gain of rotors close to the ground
+  kThrustLoss,            ///< airframe blockage, rotor-rotor interaction (or an unweighed mass)
+  kMotorTemperature,      ///< winding resistance and magnet flux following the motor's temperature
+  kClimbInflow,           ///< thrust lost to the axial inflow of a climb (gained in a descent)
+  kEscOffset,             ///< the flying ESCs' end points differ from the bench ESC's
+};
+constexpr int kKindCount = 7;
+constexpr std::array<Kind, kKindCount> kAllKinds = {Kind::kSupplyResistance, Kind::kAirDensity, Kind::kGroundEffect,
+                                                    Kind::kThrustLoss,       Kind::kMotorTemperature,
+                                                    Kind::kClimbInflow,      Kind::kEscOffset};
+
+/// What an effect reads besides the ESC pulse width and the sensed battery voltage.
+enum class Signal { kNone, kBatteryCurrent, kAirDensity, kHeight, kMotorTemperature, kVerticalSpeed };
+
+/// The fitted parameter of an effect: its key in model files and reports (with the unit in the
+/// name), the range a real vehicle can show, and the value at which the effect vanishes.
+struct ParameterSpec {
+  const char* key;
+  double min;
+  double max;
+  double neutral;
+};
+
+/// "supply_resistance", "air_density", ...: the names in model files, reports and on the command line.
+const char* kindName(Kind kind);
+/// The kind named `name`; nullopt for any other string.
+std::optional<Kind> kindFromName(const std::string& name);
+Signal requiredSignal(Kind kind);
+/// "battery current", "air density (static pressure and air temperature)", ...: for messages.
+const char* signalName(Signal signal);
+const ParameterSpec& parameterSpec(Kind kind);
+
+/// The signals the corrections read, in SI units; NaN where a signal is missing or stale.
+struct Signals {
+  double battery_current_a = std::numeric_limits<double>::quiet_NaN();  ///< drawn by all ESCs, >= 0
+  double air_density_kg_m3 = std::numeric_limits<double>::quiet_NaN();
+  double height_m = std::numeric_limits<double>::quiet_NaN();  ///< of the height reference above the ground
+  double motor_temperature_c = std::numeric_limits<double>::quiet_NaN();
+  double vertical_speed_m_s = std::numeric_limits<double>::quiet_NaN();  ///< up positive (REP-103)
+
+  /// The value of `signal`; NaN for Signal::kNone.
+  double value(Signal signal) const;
+};
+
+/// The inputs the ESCs really see.
+struct Inputs {
+  double pwm_us = 0.0;
+  double voltage_v = 0.0;
+};
+
+/// A model's `effects:` section: each effect is off unless set. The corrections, in the order
+/// they apply to one motor's model evaluation at pulse width u and sensed voltage V:
+///   esc_offset         u' = u - offset_us
+///   supply_resistance  V' = V - resistance_ohm * battery current
+///   (the surfaces evaluated at u', V' give thrust T and every other output)
+///   air_density        T *= (rho / rho_bench)^exponent
+///   ground_effect      T *= 1 + coefficient_m2 / max(h + rotor_height_m, kMinGroundDistanceM)^2
+///                      (Cheeseman-Bennett's leading term: coefficient = strength * R^2 / 16)
+///   thrust_loss        T *= 1 - fraction
+///   motor_temperature  T *= 1 + per_c * (T_motor - reference_c)
+///   climb_inflow       T *= 1 - per_m_s * vertical speed
+struct ModelEffects {
+  std::optional<double> esc_offset_us;
+  std::optional<double> supply_resistance_ohm;
+  std::optional<double> air_density_exponent;
+  double bench_air_density_kg_m3 = std::numeric_limits<double>::quiet_NaN();  ///< reference of air_density
+  std::optional<double> ground_effect_coefficient_m2;
+  double rotor_height_m = 0.0;  ///< rotor discs above the height reference, for ground_effect
+  std::optional<double> thrust_loss_fraction;
+  std::optional<double> motor_temperature_per_c;
+  double motor_reference_c = std::numeric_limits<double>::quiet_NaN();  ///< reference of motor_temperature
+  std::optional<double> climb_inflow_per_m_s;
+
+  bool has(Kind kind) const;
+  /// The fitted parameter of `kind` (nullopt when the effect is off).
+  std::optional<double> parameter(Kind kind) const;
+  /// Switches `kind` on with `value` (or off with nullopt).
+  void setParameter(Kind kind, std::optional<double> value);
+  bool empty() const;
+
+  /// Throws FieldError "effects.<name>.<key>" for a parameter outside its ParameterSpec range or
+  /// non-finite, or a reference (bench air density, motor reference temperature) missing while the
+  /// effect that needs it is on.
+  void validate() const;
+};
+
+/// Below this the ground-effect law leaves its range of validity (a rotor disc on the ground).
+constexpr double kMinGroundDistanceM = 0.05;
+
+/// Bit k set: effect kAllKinds[k] (those on whose signal was missing were skipped).
+using KindMask = unsigned;
+constexpr KindMask bit(Kind kind) { return 1u << static_cast<unsigned>(kind); }
+
+/// esc_offset and supply_resistance applied to (pwm_us, voltage_v). A correction whose signal is
+/// NaN is skipped and its bit set in `*skipped` (when given).
+Inputs correctInputs(const ModelEffects& effects, double pwm_us, double voltage_v, const Signals& signals,
+                     KindMask* skipped = nullptr);
+
+/// The product of the thrust factors of the effects that are on (1 when none). A factor whose
+/// signal is NaN is skipped and its bit set in `*skipped` (when given).
+double thrustFactor(const ModelEffects& effects, const Signals& signals, KindMask* skipped = nullptr);
+
+/// One effect's thrust factor with parameter `value` (1 for esc_offset and supply_resistance,
+/// which act on the inputs); NaN when its signal is missing.
+double singleThrustFactor(Kind kind, double value, const ModelEffects& references, const Signals& signals);
+
+}  // namespace effects
+}  // namespace propulsion_estimator
