@@ -26,7 +26,7 @@ const std::map<std::string, std::set<std::string>> kMayInclude = {
     {"sim/stand", {"common", "model", "logs", "sim/physics"}},
     {"sim/flight", {"common", "model", "vehicle", "logs", "sim/physics"}},
     {"ros", {"common", "model", "vehicle", "estimation"}},
-    {"bag", {"common", "model", "vehicle", "logs", "sim/physics", "sim/flight", "ros"}},
+    {"bag", {"common", "model", "vehicle", "logs", "gap", "sim/physics", "sim/flight", "ros"}},
     {"apps", {"common", "model", "vehicle", "estimation", "logs", "fitting", "gap", "sim/physics", "sim/stand",
               "sim/flight", "ros", "bag"}},
 };

@@ -1,0 +1,143 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "propulsion_estimator/gap/flight_streams.h"
+#include "propulsion_estimator/logs/bench_log.h"
+#include "propulsion_estimator/model/model_effects.h"
+#include "propulsion_estimator/model/propulsion_model.h"
+#include "propulsion_estimator/vehicle/vehicle.h"
+
+namespace propulsion_estimator {
+namespace gap {
+
+/// Settings of a diagnosis. Everything has a stated default: the diagnosis is exploratory and
+/// each value is written into the report.
+struct DiagnosisConfig {
+  double rotor_diameter_m = 0.24;    ///< "near the ground" is within two diameters
+  double signal_timeout_s = 1.0;     ///< an older reading of a signal counts as missing
+  double accel_filter_s = 0.5;       ///< low-pass of the measured vertical force (cable swing, vibration)
+  int permutations = 200;            ///< of the permutation test on held-out improvement
+  double significance = 0.01;        ///< an effect is selected when p < this ...
+  double min_improvement_pct = 0.5;  ///< ... and the held-out RMSE falls by more than this many % of the truth
+  unsigned seed = 1;                 ///< of the permutations
+
+  /// Throws FieldError naming the setting.
+  void validate() const;
+};
+
+/// Bias and spread of residuals (model minus truth) in N and in percent of the truth.
+struct ResidualStats {
+  int samples = 0;
+  double bias_n = 0.0;
+  double rmse_n = 0.0;
+  double bias_pct = 0.0;
+  double rmse_pct = 0.0;
+};
+
+/// One bin of a breakdown of the residual.
+struct Bin {
+  std::string label;
+  ResidualStats stats;
+};
+
+/// The residual broken down by one quantity, or why it could not be.
+struct Breakdown {
+  std::string name;  ///< "height_above_ground_m", "phase", ...
+  std::vector<Bin> bins;
+  std::string unavailable;  ///< empty, or "needs /mavros/rangefinder/rangefinder"
+};
+
+/// In steady hover, each motor's model thrust against the share the roll and pitch moment
+/// balance demands.
+struct MotorGap {
+  int channel = 0;
+  double thrust_gap_pct = 0.0;  ///< model thrust above (+) the balanced share
+  double ci_pct = 0.0;          ///< half-width of its 95 % interval
+};
+
+struct MotorBalance {
+  std::vector<MotorGap> motors;
+  std::optional<int> suspect_channel;  ///< a motor whose model is off alone
+  double cg_offset_x_m = 0.0;          ///< centre of thrust against base_link, body frame
+  double cg_offset_y_m = 0.0;
+  std::string unavailable;  ///< empty, or why (no geometry, no hover, fewer than 4 motors)
+};
+
+/// One candidate effect, fitted on training flights and scored on held-out flights.
+struct EffectResult {
+  effects::Kind kind = effects::Kind::kThrustLoss;
+  bool testable = false;
+  std::string reason;                ///< why not testable, or what the fit says
+  double parameter = 0.0;            ///< fitted on all flights
+  double ci_low = 0.0;               ///< 95 % interval of the parameter
+  double ci_high = 0.0;
+  bool plausible = false;            ///< inside the effect's ParameterSpec range
+  double heldout_rmse_pct = 0.0;     ///< with this effect added to those selected before it
+  double p_value = 1.0;              ///< of the held-out improvement, permutation test
+  double current_view_ratio = 0.0;   ///< its predicted PWM-view change over current-view change
+};
+
+/// Held-out scores before and after the selected effects.
+struct HeldOut {
+  double before_rmse_pct = 0.0;
+  double after_rmse_pct = 0.0;
+  double before_bias_pct = 0.0;
+  double after_bias_pct = 0.0;
+  double before_payload_err_pct = 0.0;
+  double after_payload_err_pct = 0.0;
+};
+
+/// A flight's gap, and what could not be read of it.
+struct FlightGap {
+  std::string name;
+  ResidualStats stats;
+  double mean_mass_kg = 0.0;
+  std::vector<std::string> problems;  ///< one line each: a segment outside the log, a missing signal
+};
+
+/// One sample inside a weighed segment, with the signals and both views; for the figures.
+struct GapSample {
+  int flight = 0;
+  double time_s = 0.0;
+  double truth_n = 0.0;           ///< mass x vertical specific force
+  double model_n = 0.0;           ///< vertical thrust from PWM and voltage
+  double current_view_n = 0.0;    ///< vertical thrust from the measured current (NaN without)
+  double corrected_n = 0.0;       ///< with the selected effects
+  double pwm_us = 0.0;            ///< mean over the motors
+  double voltage_v = 0.0;
+  double current_a = 0.0;
+  double height_m = 0.0;
+  double vertical_speed_m_s = 0.0;
+  double air_density_kg_m3 = 0.0;
+  double motor_temperature_c = 0.0;
+  double flight_time_s = 0.0;
+  bool hover = false;
+};
+
+/// Everything diagnose_gap reports.
+struct Diagnosis {
+  ResidualStats overall;
+  double payload_err_pct = 0.0;  ///< of the node's payload estimate, tare on the lightest flight
+  std::vector<FlightGap> flights;
+  std::vector<Breakdown> where;
+  MotorBalance motors;
+  std::vector<EffectResult> effects;  ///< every candidate, in kAllKinds order
+  std::vector<effects::Kind> selected;
+  effects::ModelEffects fitted;  ///< the selected effects, fitted on all flights
+  HeldOut heldout;
+  std::string method;  ///< how selection was decided, for the report
+  std::vector<GapSample> samples;
+  std::vector<std::string> problems;  ///< what could not be done, one line each
+};
+
+/// Diagnoses the gap between `model` and the weighed flights. Flights or segments that cannot be
+/// used are listed in Diagnosis::problems and the rest is diagnosed; throws ConfigError only when
+/// nothing at all can be (no usable sample).
+Diagnosis diagnoseGap(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
+                      const DiagnosisConfig& config);
+
+}  // namespace gap
+}  // namespace propulsion_estimator

@@ -1,0 +1,71 @@
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "propulsion_estimator/logs/flight_manifest.h"
+
+namespace propulsion_estimator {
+namespace gap {
+
+/// The most motors a flight may have (RCOut carries up to 16 channels; multicopters use 4-8).
+constexpr int kMaxMotors = 8;
+
+/// One ESC command: the pulse width of each motor, in rotor order.
+struct RcOutFrame {
+  double time_s = 0.0;
+  std::array<double, kMaxMotors> pwm_us{};
+};
+
+/// One battery report as the autopilot sends it (MAVROS on PX4 negates the current: the sign is
+/// left as logged, and the diagnosis takes the discharge direction from the flight as a whole).
+struct BatteryReading {
+  double time_s = 0.0;
+  double voltage_v = 0.0;
+  double current_a = 0.0;  ///< NaN when the autopilot has no current sensor
+};
+
+/// One IMU message: the attitude (body to local ENU, REP-103) and the specific force the
+/// accelerometer measures (gravity included: +9.81 m/s^2 up at rest), in the body frame.
+struct ImuReading {
+  double time_s = 0.0;
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d specific_force_m_s2 = Eigen::Vector3d::Zero();
+};
+
+/// A scalar signal in time.
+struct ScalarReading {
+  double time_s = 0.0;
+  double value = 0.0;
+};
+
+/// Everything the diagnosis reads from one flight, as logged: times in seconds from the first
+/// message of the log (the manifest's clock), values in SI units. Only rc_out and battery are
+/// required; an empty stream is a signal the flight does not have.
+struct FlightStreams {
+  std::string source;  ///< the log it came from, for messages
+  int motors = 0;      ///< channels taken from each RcOutFrame
+  std::vector<RcOutFrame> rc_out;
+  std::vector<BatteryReading> battery;
+  std::vector<ImuReading> imu;
+  std::vector<ScalarReading> altitude_m;             ///< local position z (up)
+  std::vector<ScalarReading> vertical_speed_m_s;     ///< local velocity z (up)
+  std::vector<ScalarReading> static_pressure_pa;
+  std::vector<ScalarReading> air_temperature_c;
+  std::vector<ScalarReading> height_above_ground_m;  ///< rangefinder range (valid readings only)
+  std::vector<ScalarReading> motor_temperature_c;
+};
+
+/// A flight of the manifest: its streams and its weighed segments.
+struct Flight {
+  std::string name;  ///< the bag as the manifest names it
+  FlightStreams streams;
+  std::vector<ManifestSegment> segments;
+};
+
+}  // namespace gap
+}  // namespace propulsion_estimator
