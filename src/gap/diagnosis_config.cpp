@@ -1,0 +1,17 @@
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/gap/diagnosis.h"
+
+namespace propulsion_estimator {
+namespace gap {
+
+void DiagnosisConfig::validate() const {
+  requirePositive("rotor_diameter_m", rotor_diameter_m, 3.0, " m");
+  requirePositive("signal_timeout_s", signal_timeout_s, 60.0, " s");
+  requireWithin("accel_filter_s", accel_filter_s, 0.0, 10.0, " s");
+  requireWithin("permutations", permutations, 20, 100000);
+  requirePositive("significance", significance, 0.2);
+  requireWithin("min_improvement_pct", min_improvement_pct, 0.0, 50.0, " %");
+}
+
+}  // namespace gap
+}  // namespace propulsion_estimator
