@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +24,19 @@ struct DiagnosisConfig {
   double significance = 0.01;        ///< an effect is selected when p < this ...
   double min_improvement_pct = 0.5;  ///< ... and the held-out RMSE falls by more than this many % of the truth
   unsigned seed = 1;                 ///< of the permutations
+  double block_s = 0.5;              ///< samples are averaged over blocks this long
+  double group_s = 10.0;             ///< blocks within this long err together: the test's unit
+  int max_effects = 3;               ///< selected at the most
+  double motor_min_gap = 0.05;       ///< a motor is suspect when its model is off by more than this fraction
+  std::vector<int> channels;         ///< RCOut channel of each motor, 1-based; empty: 1..motors
+  /// Where each signal comes from, for "not testable: needs ..." lines.
+  std::map<effects::Signal, std::string> signal_sources = {
+      {effects::Signal::kBatteryCurrent, "/mavros/battery (current)"},
+      {effects::Signal::kAirDensity, "/mavros/imu/static_pressure and /mavros/imu/temperature_baro"},
+      {effects::Signal::kHeight, "/mavros/rangefinder/rangefinder"},
+      {effects::Signal::kMotorTemperature, "/motor_temperature"},
+      {effects::Signal::kVerticalSpeed, "/mavros/local_position/velocity_local"},
+  };
 
   /// Throws FieldError naming the setting.
   void validate() const;

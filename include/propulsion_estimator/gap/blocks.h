@@ -1,0 +1,62 @@
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "propulsion_estimator/gap/flight_streams.h"
+#include "propulsion_estimator/model/model_effects.h"
+#include "propulsion_estimator/vehicle/vehicle.h"
+
+namespace propulsion_estimator {
+namespace gap {
+
+/// A short stretch of a weighed segment (block_s long), averaged: the unit the diagnosis fits
+/// and scores. Averaging over a block filters the payload's swing and the motors' lag alike in
+/// the measured force and in the model's inputs.
+struct Block {
+  int flight = 0;   ///< index in the flights given
+  int segment = 0;  ///< index in its flight's segments
+  int group = 0;    ///< consecutive blocks of one segment share a group (the permutation test's unit)
+  double time_s = 0.0;         ///< middle of the block, on the flight's clock
+  double flight_time_s = 0.0;  ///< since the flight's first weighed segment began
+  double mass_kg = 0.0;
+  std::array<double, kMaxMotors> pwm_us{};
+  std::array<double, kMaxMotors> axis_up{};  ///< vertical component of each rotor's thrust axis
+  double voltage_v = 0.0;
+  double current_a = 0.0;        ///< battery discharge current, >= 0; NaN without a current sensor
+  double specific_force_up_m_s2 = 0.0;  ///< vertical specific force (g + vertical acceleration)
+  double truth_n = 0.0;          ///< mass x specific_force_up: the vertical thrust that flew
+  effects::Signals signals;      ///< height, vertical speed, air density, motor temperature; NaN if missing
+  double altitude_m = 0.0;       ///< local position z; NaN if missing
+  bool hover = false;            ///< steady: slow vertical speed, steady commands
+};
+
+/// How flights are cut into blocks.
+struct BlockConfig {
+  int motors = 4;
+  double block_s = 0.5;
+  double group_s = 10.0;
+  double signal_timeout_s = 1.0;
+  double hover_max_vertical_speed_m_s = 0.2;
+};
+
+/// The result of cutting one flight: its blocks and one line for each thing that could not be used.
+struct FlightBlocks {
+  std::vector<Block> blocks;
+  std::vector<std::string> problems;
+  bool has_imu = false;
+  bool has_current = false;
+};
+
+/// Cuts `flight` into blocks inside its weighed segments. A segment outside the log's time span,
+/// or with no rc/out and battery inside it, is listed in `problems` and skipped. Without IMU the
+/// vertical specific force is taken as g (level, unaccelerated flight), and said so.
+FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle& vehicle, const BlockConfig& config,
+                           int first_group);
+
+/// Air density from static pressure and air temperature (dry air), kg/m^3.
+double airDensity(double pressure_pa, double temperature_c);
+
+}  // namespace gap
+}  // namespace propulsion_estimator

@@ -1,0 +1,55 @@
+#pragma once
+
+#include <array>
+
+#include "propulsion_estimator/gap/blocks.h"
+#include "propulsion_estimator/model/model_effects.h"
+#include "propulsion_estimator/model/propulsion_model.h"
+
+namespace propulsion_estimator {
+namespace gap {
+
+/// Two views of the vertical thrust a block flew with, through the same surfaces:
+///  - the PWM view: each motor's thrust at its pulse width and the sensed voltage (what the node
+///    estimates);
+///  - the current view: the pulse widths shifted by one common offset until the current surface
+///    gives the measured battery current, and the thrust surface read there.
+/// Causes err differently in the two: an ESC end-point offset leaves the current view untouched,
+/// an electrical or air-density cause moves it several times less than the PWM view, a thrust
+/// loss or a hidden mass moves both equally, motor heating moves them in opposite directions.
+class ThrustViews {
+ public:
+  /// `model` must outlive the views; `motors` <= kMaxMotors.
+  ThrustViews(const PropulsionModel& model, int motors);
+
+  /// Vertical thrust of the PWM view with `effects` applied, N.
+  double pwmView(const Block& block, const effects::ModelEffects& effects) const;
+  /// Vertical thrust of the current view with `effects` applied, N; NaN without a measured
+  /// current or a current surface, or when no offset within +-400 us matches the current.
+  double currentView(const Block& block, const effects::ModelEffects& effects) const;
+  /// One motor's thrust from the surfaces, N (not clamped to the domain; floored at 0).
+  double motorThrust(double pwm_us, double voltage_v) const;
+
+  /// A per-motor factor on thrust (1 = as modelled), for a motor the balance shows to be off.
+  void setMotorScale(int motor, double scale) { motor_scale_[motor] = scale; }
+  bool hasCurrentSurface() const { return has_current_; }
+  int motors() const { return motors_; }
+
+ private:
+  double motorCurrent(double pwm_us, double voltage_v) const;
+  double verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs) const;
+
+  const PropulsionModel& model_;
+  int motors_;
+  double thrust_to_si_;
+  bool has_current_;
+  std::array<double, kMaxMotors> motor_scale_;
+};
+
+/// How much of an effect's thrust factor the current view sees (1: as much as the PWM view;
+/// 0: none; negative: the other way). Only for effects acting on thrust (not the input
+/// corrections, which the current view takes through the surfaces).
+double currentViewExponent(effects::Kind kind);
+
+}  // namespace gap
+}  // namespace propulsion_estimator

@@ -1,0 +1,200 @@
+#include "propulsion_estimator/gap/blocks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/units.h"
+
+namespace propulsion_estimator {
+namespace gap {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The latest reading at or before a time, walking forward through a time-ordered stream.
+template <typename Reading>
+class Cursor {
+ public:
+  explicit Cursor(const std::vector<Reading>& stream) : stream_(stream) {}
+
+  // The reading in force at `time_s` and no older than `timeout_s`, or nullptr.
+  const Reading* at(double time_s, double timeout_s) {
+    while (next_ < stream_.size() && stream_[next_].time_s <= time_s) ++next_;
+    if (next_ == 0) return nullptr;
+    const Reading& latest = stream_[next_ - 1];
+    return time_s - latest.time_s <= timeout_s ? &latest : nullptr;
+  }
+
+ private:
+  const std::vector<Reading>& stream_;
+  std::size_t next_ = 0;
+};
+
+// Sums of one block; a signal is averaged only when every frame of the block had it.
+struct Accumulator {
+  int frames = 0;
+  std::array<double, kMaxMotors> pwm{};
+  std::array<double, kMaxMotors> axis{};
+  double voltage = 0.0, current = 0.0, force_up = 0.0, time = 0.0;
+  int current_frames = 0, imu_frames = 0;
+  std::array<double, 5> signal{};
+  std::array<int, 5> signal_frames{};
+  double altitude = 0.0;
+  int altitude_frames = 0;
+
+  void addSignal(int k, double value) {
+    if (std::isfinite(value)) {
+      signal[k] += value;
+      ++signal_frames[k];
+    }
+  }
+  double meanSignal(int k) const { return signal_frames[k] == frames ? signal[k] / frames : kNaN; }
+};
+
+// Discharge current is positive: MAVROS on PX4 negates it, so the flight's own median decides.
+double currentSign(const std::vector<BatteryReading>& battery) {
+  std::vector<double> currents;
+  for (const BatteryReading& reading : battery) {
+    if (std::isfinite(reading.current_a)) currents.push_back(reading.current_a);
+  }
+  if (currents.empty()) return kNaN;
+  std::nth_element(currents.begin(), currents.begin() + currents.size() / 2, currents.end());
+  return currents[currents.size() / 2] < 0.0 ? -1.0 : 1.0;
+}
+
+std::string segmentName(const Flight& flight, int index) {
+  const ManifestSegment& segment = flight.segments[index];
+  return flight.name + ": segment " + std::to_string(index + 1) + " (" + formatNumber(segment.start_s) + "-" +
+         formatNumber(segment.end_s) + " s)";
+}
+
+}  // namespace
+
+double airDensity(double pressure_pa, double temperature_c) {
+  return pressure_pa / (kSpecificGasConstantDryAir * (temperature_c + kZeroCelsiusInKelvin));
+}
+
+FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle& vehicle, const BlockConfig& config,
+                           int first_group) {
+  FlightBlocks result;
+  const FlightStreams& streams = flight.streams;
+  result.has_imu = !streams.imu.empty();
+  const double sign = currentSign(streams.battery);
+  result.has_current = std::isfinite(sign);
+  if (streams.rc_out.empty() || streams.battery.empty()) {
+    result.problems.push_back(flight.name + ": no rc/out or battery messages");
+    return result;
+  }
+  if (!result.has_imu) {
+    result.problems.push_back(flight.name + ": no IMU; the vertical force is taken as the weight (level, steady flight)");
+  }
+  const double log_start = streams.rc_out.front().time_s;
+  const double log_end = streams.rc_out.back().time_s;
+  const double flight_start = flight.segments.empty() ? 0.0 : flight.segments.front().start_s;
+  const int motors = config.motors;
+  int group = first_group;
+
+  for (int s = 0; s < static_cast<int>(flight.segments.size()); ++s) {
+    const ManifestSegment& segment = flight.segments[s];
+    if (segment.start_s < log_start || segment.end_s > log_end) {
+      result.problems.push_back(segmentName(flight, s) + " lies outside the log's rc/out span " +
+                                formatPrintf("%.2f", log_start) + "-" + formatPrintf("%.2f", log_end) + " s; skipped");
+      continue;
+    }
+    Cursor<BatteryReading> battery(streams.battery);
+    Cursor<ImuReading> imu(streams.imu);
+    Cursor<ScalarReading> altitude(streams.altitude_m), speed(streams.vertical_speed_m_s),
+        pressure(streams.static_pressure_pa), air(streams.air_temperature_c), range(streams.height_above_ground_m),
+        motor_temperature(streams.motor_temperature_c);
+    const double timeout = config.signal_timeout_s;
+    const int blocks_per_group = std::max(1, static_cast<int>(std::lround(config.group_s / config.block_s)));
+    int block_in_segment = 0;
+    int usable = 0;
+
+    Accumulator acc;
+    int current_block = 0;
+    auto flush = [&]() {
+      if (acc.frames == 0) return;
+      Block block;
+      block.flight = flight_index;
+      block.segment = s;
+      block.group = group + block_in_segment / blocks_per_group;
+      block.time_s = acc.time / acc.frames;
+      block.flight_time_s = block.time_s - flight_start;
+      block.mass_kg = segment.mass_kg;
+      for (int k = 0; k < motors; ++k) {
+        block.pwm_us[k] = acc.pwm[k] / acc.frames;
+        block.axis_up[k] = acc.axis[k] / acc.frames;
+      }
+      block.voltage_v = acc.voltage / acc.frames;
+      block.current_a = acc.current_frames == acc.frames ? acc.current / acc.frames : kNaN;
+      block.specific_force_up_m_s2 = acc.imu_frames == acc.frames ? acc.force_up / acc.frames : kStandardGravity;
+      block.truth_n = block.mass_kg * block.specific_force_up_m_s2;
+      block.signals.height_m = acc.meanSignal(0);
+      block.signals.vertical_speed_m_s = acc.meanSignal(1);
+      block.signals.air_density_kg_m3 = acc.meanSignal(2);
+      block.signals.motor_temperature_c = acc.meanSignal(3);
+      block.signals.battery_current_a = block.current_a;
+      block.altitude_m = acc.altitude_frames == acc.frames ? acc.altitude / acc.frames : kNaN;
+      const double vertical_speed = block.signals.vertical_speed_m_s;
+      block.hover = !std::isfinite(vertical_speed) || std::abs(vertical_speed) < config.hover_max_vertical_speed_m_s;
+      if (acc.imu_frames == acc.frames || !result.has_imu) {
+        result.blocks.push_back(block);
+        ++usable;
+      }
+      ++block_in_segment;
+      acc = Accumulator();
+    };
+
+    for (const RcOutFrame& frame : streams.rc_out) {
+      if (frame.time_s < segment.start_s) continue;
+      if (frame.time_s > segment.end_s) break;
+      const int index = static_cast<int>((frame.time_s - segment.start_s) / config.block_s);
+      if (index != current_block) {
+        flush();
+        current_block = index;
+      }
+      const BatteryReading* b = battery.at(frame.time_s, timeout);
+      if (!b || !(b->voltage_v > 0.0)) continue;
+      ++acc.frames;
+      acc.time += frame.time_s;
+      acc.voltage += b->voltage_v;
+      if (std::isfinite(sign) && std::isfinite(b->current_a)) {
+        acc.current += sign * b->current_a;
+        ++acc.current_frames;
+      }
+      const ImuReading* i = imu.at(frame.time_s, timeout);
+      for (int k = 0; k < motors; ++k) {
+        acc.pwm[k] += frame.pwm_us[k];
+        acc.axis[k] += i ? (i->orientation * vehicle.rotors[k].thrust_axis).z() : vehicle.rotors[k].thrust_axis.z();
+      }
+      if (i) {
+        acc.force_up += (i->orientation * i->specific_force_m_s2).z();
+        ++acc.imu_frames;
+      }
+      const ScalarReading* r = range.at(frame.time_s, timeout);
+      acc.addSignal(0, r ? r->value : kNaN);
+      const ScalarReading* v = speed.at(frame.time_s, timeout);
+      acc.addSignal(1, v ? v->value : kNaN);
+      const ScalarReading* p = pressure.at(frame.time_s, timeout);
+      const ScalarReading* a = air.at(frame.time_s, timeout);
+      acc.addSignal(2, p && a ? airDensity(p->value, a->value) : kNaN);
+      const ScalarReading* m = motor_temperature.at(frame.time_s, timeout);
+      acc.addSignal(3, m ? m->value : kNaN);
+      const ScalarReading* z = altitude.at(frame.time_s, timeout);
+      if (z) {
+        acc.altitude += z->value;
+        ++acc.altitude_frames;
+      }
+    }
+    flush();
+    group += (block_in_segment + blocks_per_group - 1) / blocks_per_group;
+    if (usable == 0) result.problems.push_back(segmentName(flight, s) + " has no rc/out with a fresh battery voltage; skipped");
+  }
+  return result;
+}
+
+}  // namespace gap
+}  // namespace propulsion_estimator

@@ -1,0 +1,609 @@
+#include "propulsion_estimator/gap/diagnosis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <random>
+#include <set>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/gap/blocks.h"
+#include "propulsion_estimator/gap/effect_fit.h"
+#include "propulsion_estimator/gap/motor_balance.h"
+#include "propulsion_estimator/gap/thrust_views.h"
+
+namespace propulsion_estimator {
+namespace gap {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using effects::Kind;
+
+// Held-out predictions of one set of effects: each block's relative residual in both views,
+// from the fit on the folds that left its flight (or segment) out.
+struct HeldOutPrediction {
+  std::vector<double> pwm;      // per block
+  std::vector<double> current;  // NaN where the current view is unavailable
+  std::vector<double> view_n;   // PWM view, N
+};
+
+ResidualStats statsOf(const std::vector<const Block*>& blocks, const std::function<double(const Block&)>& view) {
+  ResidualStats stats;
+  double sum_rel = 0.0, sum_rel2 = 0.0, sum_n = 0.0, sum_n2 = 0.0;
+  for (const Block* block : blocks) {
+    const double v = view(*block);
+    if (!std::isfinite(v)) continue;
+    const double diff = v - block->truth_n;
+    const double rel = diff / block->truth_n;
+    sum_rel += rel;
+    sum_rel2 += rel * rel;
+    sum_n += diff;
+    sum_n2 += diff * diff;
+    ++stats.samples;
+  }
+  if (stats.samples == 0) return stats;
+  stats.bias_pct = 100.0 * sum_rel / stats.samples;
+  stats.rmse_pct = 100.0 * std::sqrt(sum_rel2 / stats.samples);
+  stats.bias_n = sum_n / stats.samples;
+  stats.rmse_n = std::sqrt(sum_n2 / stats.samples);
+  return stats;
+}
+
+// The payload error the node would make, tare on the lightest segment: RMS over the heavier
+// segments of (estimated payload - weighed payload) / weighed payload, %.
+double payloadErrorPct(const std::vector<Block>& blocks, const std::vector<double>& view_n) {
+  std::map<std::pair<int, int>, std::pair<double, int>> estimate;
+  std::map<std::pair<int, int>, double> weighed;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (!std::isfinite(view_n[i])) continue;
+    const auto key = std::make_pair(blocks[i].flight, blocks[i].segment);
+    estimate[key].first += view_n[i] / blocks[i].specific_force_up_m_s2;
+    estimate[key].second += 1;
+    weighed[key] = blocks[i].mass_kg;
+  }
+  if (estimate.size() < 2) return kNaN;
+  auto lightest = weighed.begin();
+  for (auto it = weighed.begin(); it != weighed.end(); ++it) {
+    if (it->second < lightest->second) lightest = it;
+  }
+  const double tare = estimate[lightest->first].first / estimate[lightest->first].second;
+  double sum = 0.0;
+  int count = 0;
+  for (const auto& [key, mass] : weighed) {
+    const double payload = mass - lightest->second;
+    if (payload < 0.02) continue;
+    const double estimated = estimate[key].first / estimate[key].second - tare;
+    const double error = (estimated - payload) / payload;
+    sum += error * error;
+    ++count;
+  }
+  return count > 0 ? 100.0 * std::sqrt(sum / count) : kNaN;
+}
+
+// The breakdown of the PWM view's residual by a quantity, over fixed edges.
+Breakdown breakdownBy(const std::string& name, const std::vector<const Block*>& blocks,
+                      const std::function<double(const Block&)>& value, const std::vector<double>& edges,
+                      const std::function<double(const Block&)>& view, const char* format, const std::string& needs) {
+  Breakdown breakdown;
+  breakdown.name = name;
+  std::vector<std::vector<const Block*>> bins(edges.size() + 1);
+  int with_value = 0;
+  for (const Block* block : blocks) {
+    const double v = value(*block);
+    if (!std::isfinite(v)) continue;
+    ++with_value;
+    const std::size_t bin = std::upper_bound(edges.begin(), edges.end(), v) - edges.begin();
+    bins[bin].push_back(block);
+  }
+  if (with_value == 0) {
+    breakdown.unavailable = "needs " + needs;
+    return breakdown;
+  }
+  for (std::size_t b = 0; b < bins.size(); ++b) {
+    if (bins[b].empty()) continue;
+    std::string label;
+    if (b == 0) {
+      label = "< " + formatPrintf(format, edges.front());
+    } else if (b == edges.size()) {
+      label = ">= " + formatPrintf(format, edges.back());
+    } else {
+      label = formatPrintf(format, edges[b - 1]) + " - " + formatPrintf(format, edges[b]);
+    }
+    breakdown.bins.push_back({label, statsOf(bins[b], view)});
+  }
+  return breakdown;
+}
+
+// Edges at quantiles of a quantity, rounded to the format, for quantities without natural bins.
+std::vector<double> quantileEdges(const std::vector<const Block*>& blocks, const std::function<double(const Block&)>& value,
+                                  int bins) {
+  std::vector<double> values;
+  for (const Block* block : blocks) {
+    const double v = value(*block);
+    if (std::isfinite(v)) values.push_back(v);
+  }
+  std::vector<double> edges;
+  if (values.size() < 2) return {0.0};
+  std::sort(values.begin(), values.end());
+  for (int i = 1; i < bins; ++i) {
+    const double edge = values[values.size() * i / bins];
+    if (edges.empty() || edge > edges.back() + 1e-9) edges.push_back(edge);
+  }
+  if (edges.empty()) edges.push_back(values.front());
+  return edges;
+}
+
+// Sign-flip permutation test on the per-group improvements: the share of random sign patterns
+// whose mean improvement reaches the observed one.
+double signFlipPValue(const std::vector<double>& improvements, int permutations, unsigned seed) {
+  if (improvements.empty()) return 1.0;
+  double observed = 0.0;
+  for (double d : improvements) observed += d;
+  if (observed <= 0.0) return 1.0;
+  std::mt19937_64 rng(seed);
+  std::bernoulli_distribution flip(0.5);
+  int reached = 0;
+  for (int i = 0; i < permutations; ++i) {
+    double sum = 0.0;
+    for (double d : improvements) sum += flip(rng) ? d : -d;
+    if (sum >= observed) ++reached;
+  }
+  return (1.0 + reached) / (1.0 + permutations);
+}
+
+class Diagnoser {
+ public:
+  Diagnoser(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
+            const DiagnosisConfig& config)
+      : model_(model), vehicle_(vehicle), flights_(flights), config_(config), views_(model, motorCount()) {}
+
+  Diagnosis run();
+
+ private:
+  int motorCount() const { return static_cast<int>(vehicle_.rotors.size()); }
+  void cut();
+  void findUnits();
+  effects::ModelEffects references() const;
+  std::string testability(Kind kind) const;
+  HeldOutPrediction predictHeldOut(const std::vector<Kind>& kinds) const;
+  // Sum over blocks of the joint squared error (PWM view plus current view where it exists).
+  std::vector<double> groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const;
+  double jointMeanSquare(const HeldOutPrediction& prediction) const;
+  double currentViewRatio(const effects::ModelEffects& fitted) const;
+
+  const PropulsionModel& model_;
+  const Vehicle& vehicle_;
+  const std::vector<Flight>& flights_;
+  const DiagnosisConfig& config_;
+  ThrustViews views_;
+  std::vector<Block> blocks_;
+  std::vector<const Block*> all_;
+  std::vector<int> unit_of_block_;  // the held-out unit (flight or segment) of each block
+  int units_ = 0;
+  std::string unit_name_;
+  Diagnosis diagnosis_;
+};
+
+void Diagnoser::cut() {
+  BlockConfig block_config;
+  block_config.motors = motorCount();
+  block_config.block_s = config_.block_s;
+  block_config.group_s = config_.group_s;
+  block_config.signal_timeout_s = config_.signal_timeout_s;
+  int group = 0;
+  for (int f = 0; f < static_cast<int>(flights_.size()); ++f) {
+    FlightBlocks cut = cutIntoBlocks(flights_[f], f, vehicle_, block_config, group);
+    for (const std::string& problem : cut.problems) diagnosis_.problems.push_back(problem);
+    for (const Block& block : cut.blocks) group = std::max(group, block.group + 1);
+    blocks_.insert(blocks_.end(), cut.blocks.begin(), cut.blocks.end());
+  }
+  if (blocks_.empty()) throw ConfigError("diagnose_gap: no usable sample in any weighed segment of any flight");
+  for (const Block& block : blocks_) all_.push_back(&block);
+}
+
+void Diagnoser::findUnits() {
+  std::set<int> flights;
+  std::set<std::pair<int, int>> segments;
+  for (const Block& block : blocks_) {
+    flights.insert(block.flight);
+    segments.insert({block.flight, block.segment});
+  }
+  const bool by_flight = flights.size() >= 2;
+  unit_name_ = by_flight ? "flight" : "segment";
+  std::map<std::pair<int, int>, int> index;
+  for (const Block& block : blocks_) {
+    const auto key = by_flight ? std::make_pair(block.flight, 0) : std::make_pair(block.flight, block.segment);
+    const auto found = index.emplace(key, static_cast<int>(index.size())).first;
+    unit_of_block_.push_back(found->second);
+  }
+  units_ = static_cast<int>(index.size());
+}
+
+effects::ModelEffects Diagnoser::references() const {
+  effects::ModelEffects references;
+  references.bench_air_density_kg_m3 = model_.metadata().benchAirDensity();
+  references.motor_reference_c = model_.metadata().bench_air_temperature_c;
+  if (vehicle_.hasGeometry()) {
+    double height = 0.0;
+    for (const Rotor& rotor : vehicle_.rotors) height += rotor.position_m.z() / vehicle_.rotors.size();
+    references.rotor_height_m = height;
+  }
+  return references;
+}
+
+std::string Diagnoser::testability(Kind kind) const {
+  const effects::Signal signal = effects::requiredSignal(kind);
+  if (kind == Kind::kAirDensity && !(references().bench_air_density_kg_m3 > 0.0)) {
+    return "the model has no bench air (metadata bench_air_temperature_c, bench_air_pressure_pa)";
+  }
+  if (signal == effects::Signal::kNone) return "";
+  int with_signal = 0, informative = 0;
+  for (const Block& block : blocks_) {
+    const double value = block.signals.value(signal);
+    if (!std::isfinite(value)) continue;
+    ++with_signal;
+    if (kind == Kind::kGroundEffect && value < 2.0 * config_.rotor_diameter_m) ++informative;
+    if (kind == Kind::kClimbInflow && std::abs(value) > 0.3) ++informative;
+  }
+  const auto source = config_.signal_sources.find(signal);
+  const std::string needs = source != config_.signal_sources.end() ? source->second : effects::signalName(signal);
+  if (with_signal < static_cast<int>(blocks_.size()) / 2) return "needs " + needs;
+  const int few = std::max(4, static_cast<int>(blocks_.size()) / 50);
+  if (kind == Kind::kGroundEffect && informative < few) {
+    return "no weighed flight within two rotor diameters (" + formatPrintf("%.2f", 2.0 * config_.rotor_diameter_m) +
+           " m) of the ground";
+  }
+  if (kind == Kind::kClimbInflow && informative < few) return "no weighed climb or descent faster than 0.3 m/s";
+  return "";
+}
+
+HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) const {
+  HeldOutPrediction prediction;
+  prediction.pwm.assign(blocks_.size(), kNaN);
+  prediction.current.assign(blocks_.size(), kNaN);
+  prediction.view_n.assign(blocks_.size(), kNaN);
+  const effects::ModelEffects base = references();
+  for (int unit = 0; unit < units_; ++unit) {
+    std::vector<const Block*> training;
+    for (std::size_t i = 0; i < blocks_.size(); ++i) {
+      if (unit_of_block_[i] != unit) training.push_back(&blocks_[i]);
+    }
+    // Neighbouring blocks carry little new information: a stride keeps long flights quick.
+    if (training.size() > 3000) {
+      const std::size_t stride = training.size() / 3000 + 1;
+      std::vector<const Block*> thinned;
+      for (std::size_t i = 0; i < training.size(); i += stride) thinned.push_back(training[i]);
+      training.swap(thinned);
+    }
+    const EffectFit fit = fitEffects(views_, training, kinds, base);
+    for (std::size_t i = 0; i < blocks_.size(); ++i) {
+      if (unit_of_block_[i] != unit) continue;
+      const double view = views_.pwmView(blocks_[i], fit.effects);
+      prediction.view_n[i] = view;
+      prediction.pwm[i] = relative(view, blocks_[i]);
+      prediction.current[i] = relative(views_.currentView(blocks_[i], fit.effects), blocks_[i]);
+    }
+  }
+  return prediction;
+}
+
+double Diagnoser::jointMeanSquare(const HeldOutPrediction& prediction) const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    sum += prediction.pwm[i] * prediction.pwm[i];
+    if (std::isfinite(prediction.current[i])) sum += prediction.current[i] * prediction.current[i];
+  }
+  return sum / blocks_.size();
+}
+
+std::vector<double> Diagnoser::groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const {
+  std::map<std::pair<int, int>, double> groups;
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    double d = before.pwm[i] * before.pwm[i] - after.pwm[i] * after.pwm[i];
+    if (std::isfinite(before.current[i]) && std::isfinite(after.current[i])) {
+      d += before.current[i] * before.current[i] - after.current[i] * after.current[i];
+    }
+    groups[{blocks_[i].flight, blocks_[i].group}] += d;
+  }
+  std::vector<double> improvements;
+  for (const auto& entry : groups) improvements.push_back(entry.second);
+  return improvements;
+}
+
+// How the current view's residual follows the effect's correction of the PWM view: 1 when both
+// views err alike, 0 when the current view does not see the effect.
+double Diagnoser::currentViewRatio(const effects::ModelEffects& fitted) const {
+  const effects::ModelEffects plain = references();
+  double sum_xy = 0.0, sum_xx = 0.0;
+  for (const Block& block : blocks_) {
+    const double current = views_.currentView(block, plain);
+    if (!std::isfinite(current)) continue;
+    const double correction = (views_.pwmView(block, fitted) - views_.pwmView(block, plain)) / block.truth_n;
+    sum_xy += -correction * relative(current, block);
+    sum_xx += correction * correction;
+  }
+  return sum_xx > 0.0 ? sum_xy / sum_xx : kNaN;
+}
+
+Diagnosis Diagnoser::run() {
+  config_.validate();
+  cut();
+  findUnits();
+  const effects::ModelEffects plain = references();
+  const auto pwm_view = [&](const Block& block) { return views_.pwmView(block, plain); };
+
+  // 1. The gap.
+  diagnosis_.overall = statsOf(all_, pwm_view);
+  std::vector<double> plain_view(blocks_.size());
+  for (std::size_t i = 0; i < blocks_.size(); ++i) plain_view[i] = pwm_view(blocks_[i]);
+  diagnosis_.payload_err_pct = payloadErrorPct(blocks_, plain_view);
+  for (int f = 0; f < static_cast<int>(flights_.size()); ++f) {
+    std::vector<const Block*> mine;
+    double mass = 0.0;
+    for (const Block* block : all_) {
+      if (block->flight != f) continue;
+      mine.push_back(block);
+      mass += block->mass_kg;
+    }
+    FlightGap flight{flights_[f].name, statsOf(mine, pwm_view), mine.empty() ? kNaN : mass / mine.size(), {}};
+    for (const std::string& problem : diagnosis_.problems) {
+      if (problem.rfind(flights_[f].name + ":", 0) == 0) flight.problems.push_back(problem);
+    }
+    diagnosis_.flights.push_back(flight);
+  }
+
+  // 2. Where it lies.
+  const ModelDomain& domain = model_.domain();
+  const auto mean_pwm = [&](const Block& block) {
+    double sum = 0.0;
+    for (int k = 0; k < motorCount(); ++k) sum += block.pwm_us[k];
+    return sum / motorCount();
+  };
+  {
+    Breakdown region;
+    region.name = "operating_region";
+    std::map<std::string, std::vector<const Block*>> bins;
+    const double pwm_step = (domain.pwm_max_us - domain.pwm_min_us) / 4.0;
+    const double voltage_step = (domain.voltage_max_v - domain.voltage_min_v) / 3.0;
+    for (const Block* block : all_) {
+      bool outside = false;
+      for (int k = 0; k < motorCount(); ++k) outside |= !domain.contains(block->pwm_us[k], block->voltage_v);
+      if (outside) {
+        bins["outside the model's domain"].push_back(block);
+        continue;
+      }
+      const int p = std::min(3, static_cast<int>((mean_pwm(*block) - domain.pwm_min_us) / pwm_step));
+      const int v = std::min(2, static_cast<int>((block->voltage_v - domain.voltage_min_v) / voltage_step));
+      const std::string label = formatPrintf("%.0f", domain.pwm_min_us + p * pwm_step) + "-" +
+                                formatPrintf("%.0f", domain.pwm_min_us + (p + 1) * pwm_step) + " us x " +
+                                formatPrintf("%.2f", domain.voltage_min_v + v * voltage_step) + "-" +
+                                formatPrintf("%.2f", domain.voltage_min_v + (v + 1) * voltage_step) + " V";
+      bins[label].push_back(block);
+    }
+    for (const auto& [label, members] : bins) region.bins.push_back({label, statsOf(members, pwm_view)});
+    diagnosis_.where.push_back(region);
+  }
+  {
+    Breakdown phase;
+    phase.name = "phase";
+    std::map<std::string, std::vector<const Block*>> bins;
+    for (const Block* block : all_) {
+      const double height = block->signals.height_m;
+      const double speed = block->signals.vertical_speed_m_s;
+      if (std::isfinite(height) && height < 2.0 * config_.rotor_diameter_m) {
+        bins["near the ground"].push_back(block);
+      } else if (std::isfinite(speed) && speed > 0.2) {
+        bins["climb"].push_back(block);
+      } else if (std::isfinite(speed) && speed < -0.2) {
+        bins["descent"].push_back(block);
+      } else {
+        bins["hover"].push_back(block);
+      }
+    }
+    for (const auto& [label, members] : bins) phase.bins.push_back({label, statsOf(members, pwm_view)});
+    diagnosis_.where.push_back(phase);
+  }
+  const auto source = [&](effects::Signal signal) { return config_.signal_sources.at(signal); };
+  const auto height = [](const Block& b) { return b.signals.height_m; };
+  const auto speed = [](const Block& b) { return b.signals.vertical_speed_m_s; };
+  const auto current = [](const Block& b) { return b.current_a; };
+  const auto motor_temperature = [](const Block& b) { return b.signals.motor_temperature_c; };
+  const auto density = [](const Block& b) { return b.signals.air_density_kg_m3; };
+  const auto time = [](const Block& b) { return b.flight_time_s; };
+  const double d = config_.rotor_diameter_m;
+  diagnosis_.where.push_back(breakdownBy("height_above_ground_m", all_, height, {d, 2 * d, 1.0, 2.0, 5.0}, pwm_view,
+                                         "%.2f", source(effects::Signal::kHeight)));
+  diagnosis_.where.push_back(breakdownBy("vertical_speed_m_s", all_, speed, {-1.0, -0.3, -0.1, 0.1, 0.3, 1.0}, pwm_view,
+                                         "%.1f", source(effects::Signal::kVerticalSpeed)));
+  diagnosis_.where.push_back(breakdownBy("total_current_a", all_, current, quantileEdges(all_, current, 4), pwm_view,
+                                         "%.1f", source(effects::Signal::kBatteryCurrent)));
+  diagnosis_.where.push_back(breakdownBy("motor_temperature_c", all_, motor_temperature,
+                                         quantileEdges(all_, motor_temperature, 4), pwm_view, "%.1f",
+                                         source(effects::Signal::kMotorTemperature)));
+  diagnosis_.where.push_back(breakdownBy("air_density_kg_m3", all_, density, quantileEdges(all_, density, 3), pwm_view,
+                                         "%.3f", source(effects::Signal::kAirDensity)));
+  diagnosis_.where.push_back(
+      breakdownBy("time_in_flight_s", all_, time, {60.0, 120.0, 300.0, 600.0}, pwm_view, "%.0f", "time"));
+  {
+    Breakdown by_flight;
+    by_flight.name = "flight";
+    for (const FlightGap& flight : diagnosis_.flights) {
+      if (flight.stats.samples > 0) by_flight.bins.push_back({flight.name, flight.stats});
+    }
+    diagnosis_.where.push_back(by_flight);
+  }
+  std::vector<int> channels = config_.channels;
+  if (channels.empty()) {
+    for (int k = 0; k < motorCount(); ++k) channels.push_back(k + 1);
+  }
+  diagnosis_.motors = balanceMotors(views_, vehicle_, blocks_, channels, config_.motor_min_gap);
+  // A motor the balance points at explains its share of the gap: the effects are sought in what
+  // remains, so that a weak propeller is not named as an effect of the whole vehicle.
+  if (diagnosis_.motors.suspect_channel) {
+    for (std::size_t k = 0; k < diagnosis_.motors.motors.size(); ++k) {
+      const MotorGap& motor = diagnosis_.motors.motors[k];
+      if (motor.channel == *diagnosis_.motors.suspect_channel) {
+        views_.setMotorScale(static_cast<int>(k), 1.0 - motor.thrust_gap_pct / 100.0);
+      }
+    }
+  }
+
+  // 3. Which effect: greedy forward selection on held-out flights.
+  std::vector<Kind> selected;
+  std::map<Kind, EffectResult> results;
+  for (Kind kind : effects::kAllKinds) {
+    EffectResult result;
+    result.kind = kind;
+    result.reason = testability(kind);
+    result.testable = result.reason.empty();
+    results[kind] = result;
+  }
+  const bool can_hold_out = units_ >= 2;
+  HeldOutPrediction current_best = predictHeldOut({});
+  const HeldOutPrediction before = current_best;
+  if (!can_hold_out) {
+    diagnosis_.problems.push_back("one weighed segment only: nothing can be held out, so no effect is selected");
+  }
+  for (int round = 0; can_hold_out && round < config_.max_effects; ++round) {
+    const double base_ms = jointMeanSquare(current_best);
+    double base_pwm = 0.0;
+    for (double r : current_best.pwm) base_pwm += r * r / blocks_.size();
+    Kind best_kind = Kind::kThrustLoss;
+    double best_ms = base_ms;
+    HeldOutPrediction best_prediction;
+    bool found = false;
+    for (Kind kind : effects::kAllKinds) {
+      EffectResult& result = results[kind];
+      if (!result.testable || std::find(selected.begin(), selected.end(), kind) != selected.end()) continue;
+      std::vector<Kind> kinds = selected;
+      kinds.push_back(kind);
+      const HeldOutPrediction prediction = predictHeldOut(kinds);
+      const double ms = jointMeanSquare(prediction);
+      double pwm_ms = 0.0;
+      for (double r : prediction.pwm) pwm_ms += r * r / blocks_.size();
+      result.heldout_rmse_pct = 100.0 * std::sqrt(pwm_ms);
+      result.p_value = signFlipPValue(groupImprovements(current_best, prediction), config_.permutations,
+                                      config_.seed + static_cast<unsigned>(kind));
+      const EffectFit fit = fitEffects(views_, all_, kinds, references());
+      result.parameter = *fit.effects.parameter(kind);
+      const double half = fit.ci_half.back();
+      result.ci_low = result.parameter - half;
+      result.ci_high = result.parameter + half;
+      const effects::ParameterSpec& spec = effects::parameterSpec(kind);
+      const double margin = 1e-3 * (spec.max - spec.min);
+      result.plausible = result.parameter > spec.min + margin && result.parameter < spec.max - margin;
+      result.current_view_ratio = currentViewRatio(fit.effects);
+      const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
+      const double drop_pct = 100.0 * (std::sqrt(base_pwm) - std::sqrt(pwm_ms));
+      const bool significant = result.p_value < config_.significance && drop_pct > config_.min_improvement_pct &&
+                               pwm_ms < 0.8 * base_pwm && ms < base_ms;
+      if (!significant) {
+        result.reason = "held-out error " + formatPrintf("%.2f", result.heldout_rmse_pct) + " % against " +
+                        formatPrintf("%.2f", 100.0 * std::sqrt(base_pwm)) + " % (p = " +
+                        formatPrintf("%.3f", result.p_value) + "): not significant";
+      } else if (!result.plausible) {
+        result.reason = "fitted at the edge of its plausible range " + formatNumber(spec.min) + ".." +
+                        formatNumber(spec.max) + ": the gap is not of this effect's shape";
+      } else if (!excludes_neutral) {
+        result.reason = "its 95 % interval includes no effect";
+      } else {
+        result.reason = "lowers the held-out error significantly";
+        if (ms < best_ms) {
+          best_ms = ms;
+          best_kind = kind;
+          best_prediction = prediction;
+          found = true;
+        }
+      }
+    }
+    if (!found) break;
+    selected.push_back(best_kind);
+    results[best_kind].reason = "selected in round " + std::to_string(round + 1) + ": held-out error " +
+                                formatPrintf("%.2f", results[best_kind].heldout_rmse_pct) + " % (p = " +
+                                formatPrintf("%.3f", results[best_kind].p_value) + ")";
+    current_best = best_prediction;
+  }
+  for (Kind kind : effects::kAllKinds) {
+    EffectResult& result = results[kind];
+    if (result.testable && std::find(selected.begin(), selected.end(), kind) == selected.end() &&
+        result.heldout_rmse_pct == 0.0) {
+      // Untried in a round (selection stopped before): fit it alone for the report.
+      const EffectFit fit = fitEffects(views_, all_, {kind}, references());
+      result.parameter = *fit.effects.parameter(kind);
+      result.ci_low = result.parameter - fit.ci_half.back();
+      result.ci_high = result.parameter + fit.ci_half.back();
+    }
+    diagnosis_.effects.push_back(result);
+  }
+  diagnosis_.selected = selected;
+  const EffectFit final_fit = fitEffects(views_, all_, selected, references());
+  diagnosis_.fitted = final_fit.effects;
+  for (std::size_t k = 0; k < selected.size(); ++k) {
+    for (EffectResult& result : diagnosis_.effects) {
+      if (result.kind != selected[k]) continue;
+      result.parameter = *final_fit.effects.parameter(selected[k]);
+      result.ci_low = result.parameter - final_fit.ci_half[k];
+      result.ci_high = result.parameter + final_fit.ci_half[k];
+    }
+  }
+
+  // 4. How far it shrinks, on held-out flights.
+  const auto held_stats = [&](const HeldOutPrediction& prediction, double* rmse, double* bias) {
+    double sum = 0.0, sum2 = 0.0;
+    for (double r : prediction.pwm) {
+      sum += r;
+      sum2 += r * r;
+    }
+    *rmse = 100.0 * std::sqrt(sum2 / prediction.pwm.size());
+    *bias = 100.0 * sum / prediction.pwm.size();
+  };
+  held_stats(before, &diagnosis_.heldout.before_rmse_pct, &diagnosis_.heldout.before_bias_pct);
+  held_stats(current_best, &diagnosis_.heldout.after_rmse_pct, &diagnosis_.heldout.after_bias_pct);
+  diagnosis_.heldout.before_payload_err_pct = payloadErrorPct(blocks_, before.view_n);
+  diagnosis_.heldout.after_payload_err_pct = payloadErrorPct(blocks_, current_best.view_n);
+  diagnosis_.method = "Forward selection over " + std::to_string(units_) + " held-out " + unit_name_ +
+                      "s (each fitted on the others). An effect is added when the held-out RMSE of the PWM view falls "
+                      "by more than " + formatPrintf("%.2f", config_.min_improvement_pct) +
+                      " % of the truth and by a fifth, the joint error of both views falls, a sign-flip permutation "
+                      "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +
+                      std::to_string(config_.permutations) + " permutations) gives p < " +
+                      formatNumber(config_.significance) +
+                      ", and the fitted parameter lies inside its plausible range with a 95 % interval excluding "
+                      "no effect; at most " + std::to_string(config_.max_effects) + " effects.";
+
+  // Samples for the figures.
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    const Block& block = blocks_[i];
+    GapSample sample;
+    sample.flight = block.flight;
+    sample.time_s = block.time_s;
+    sample.truth_n = block.truth_n;
+    sample.model_n = plain_view[i];
+    sample.current_view_n = views_.currentView(block, plain);
+    sample.corrected_n = views_.pwmView(block, diagnosis_.fitted);
+    sample.pwm_us = mean_pwm(block);
+    sample.voltage_v = block.voltage_v;
+    sample.current_a = block.current_a;
+    sample.height_m = block.signals.height_m;
+    sample.vertical_speed_m_s = block.signals.vertical_speed_m_s;
+    sample.air_density_kg_m3 = block.signals.air_density_kg_m3;
+    sample.motor_temperature_c = block.signals.motor_temperature_c;
+    sample.flight_time_s = block.flight_time_s;
+    sample.hover = block.hover;
+    diagnosis_.samples.push_back(sample);
+  }
+  return diagnosis_;
+}
+
+}  // namespace
+
+Diagnosis diagnoseGap(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
+                      const DiagnosisConfig& config) {
+  return Diagnoser(model, vehicle, flights, config).run();
+}
+
+}  // namespace gap
+}  // namespace propulsion_estimator

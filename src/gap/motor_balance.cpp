@@ -1,0 +1,89 @@
+#include "propulsion_estimator/gap/motor_balance.h"
+
+#include <cmath>
+#include <map>
+
+namespace propulsion_estimator {
+namespace gap {
+
+MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, const std::vector<Block>& blocks,
+                           const std::vector<int>& channels, double min_gap) {
+  MotorBalance balance;
+  const int motors = views.motors();
+  if (!vehicle.hasGeometry()) {
+    balance.unavailable = "no rotor geometry (give --urdf)";
+    return balance;
+  }
+  if (motors < 4) {
+    balance.unavailable = "fewer than four motors";
+    return balance;
+  }
+  // Mean model thrust of each motor, and the yaw residual, per independent group of hover blocks.
+  std::map<std::pair<int, int>, std::pair<std::vector<double>, int>> groups;
+  for (const Block& block : blocks) {
+    if (!block.hover) continue;
+    auto& [sums, count] = groups[{block.flight, block.group}];
+    sums.resize(motors, 0.0);
+    for (int k = 0; k < motors; ++k) sums[k] += views.motorThrust(block.pwm_us[k], block.voltage_v);
+    ++count;
+  }
+  if (groups.size() < 3) {
+    balance.unavailable = "fewer than three stretches of steady hover";
+    return balance;
+  }
+  std::vector<double> mean_thrust(motors, 0.0), yaw;
+  for (const auto& entry : groups) {
+    const auto& [sums, count] = entry.second;
+    double total = 0.0, spin = 0.0;
+    for (int k = 0; k < motors; ++k) {
+      const double thrust = sums[k] / count;
+      mean_thrust[k] += thrust / groups.size();
+      total += thrust;
+      spin += vehicle.rotors[k].spin_direction * thrust;
+    }
+    yaw.push_back(spin / total);
+  }
+  double yaw_mean = 0.0;
+  for (double y : yaw) yaw_mean += y / yaw.size();
+  double yaw_var = 0.0;
+  for (double y : yaw) yaw_var += (y - yaw_mean) * (y - yaw_mean) / (yaw.size() - 1);
+  const double yaw_ci = 1.96 * std::sqrt(yaw_var / yaw.size());
+
+  double total = 0.0;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (int k = 0; k < motors; ++k) {
+    total += mean_thrust[k];
+    centre += mean_thrust[k] * vehicle.rotors[k].position_m.head<2>();
+  }
+  centre /= total;
+  balance.cg_offset_x_m = centre.x();
+  balance.cg_offset_y_m = centre.y();
+  const Eigen::Vector2d prior =
+      vehicle.empty_mass ? Eigen::Vector2d(vehicle.empty_mass->centre_of_mass_m.head<2>()) : Eigen::Vector2d::Zero();
+
+  double best_distance = INFINITY;
+  int best = -1;
+  for (int j = 0; j < motors; ++j) {
+    const double gap = yaw_mean * total / (vehicle.rotors[j].spin_direction * mean_thrust[j]);
+    const double ci = std::abs(gap) * (std::abs(yaw_mean) > 0.0 ? yaw_ci / std::abs(yaw_mean) : 0.0);
+    balance.motors.push_back({channels[j], 100.0 * gap, 100.0 * ci});
+    // The centre of thrust if motor j alone gave (1 - gap) of its modelled thrust.
+    const double corrected_total = total - gap * mean_thrust[j];
+    const Eigen::Vector2d implied =
+        (centre * total - gap * mean_thrust[j] * vehicle.rotors[j].position_m.head<2>()) / corrected_total;
+    const double distance = (implied - prior).norm();
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = j;
+    }
+  }
+  const MotorGap& candidate = balance.motors[best];
+  // ci_pct is a 95 % half-width, about two standard errors: three standard errors are 1.5 of it.
+  if (std::abs(candidate.thrust_gap_pct) > 100.0 * min_gap && std::abs(candidate.thrust_gap_pct) > 1.5 * candidate.ci_pct) {
+    balance.suspect_channel = candidate.channel;
+  }
+  return balance;
+}
+
+}  // namespace gap
+}  // namespace propulsion_estimator

@@ -1,0 +1,98 @@
+#include "propulsion_estimator/gap/thrust_views.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace propulsion_estimator {
+namespace gap {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMaxShiftUs = 400.0;
+
+}  // namespace
+
+double currentViewExponent(effects::Kind kind) {
+  switch (kind) {
+    // Blockage and interaction act on the air the rotor has already moved: same rotor state,
+    // same torque and current, less net force, in both views.
+    case effects::Kind::kThrustLoss: return 1.0;
+    // At a given torque (current) a propeller's thrust T = (C_T / (C_Q D)) Q does not depend on
+    // density: the current view sees almost none of it.
+    case effects::Kind::kAirDensity: return 0.0;
+    // Cheeseman-Bennett's ratio is at constant power, and momentum theory gives a climb's loss
+    // at constant power about as at constant speed: both views see it alike.
+    case effects::Kind::kGroundEffect: return 1.0;
+    case effects::Kind::kClimbInflow: return 1.0;
+    // A hot motor spins faster at a given duty (weaker flux) but needs more current per newton
+    // metre: the PWM view under-reads thrust while the current view over-reads it.
+    case effects::Kind::kMotorTemperature: return -2.0;
+    case effects::Kind::kSupplyResistance:
+    case effects::Kind::kEscOffset: return 0.0;
+  }
+  return 0.0;
+}
+
+ThrustViews::ThrustViews(const PropulsionModel& model, int motors)
+    : model_(model),
+      motors_(motors),
+      thrust_to_si_(*unitToSi(Output::kThrust, model.output(Output::kThrust).unit)),
+      has_current_(model.output(Output::kCurrent).source != OutputSource::kNone) {
+  motor_scale_.fill(1.0);
+}
+
+double ThrustViews::motorThrust(double pwm_us, double voltage_v) const {
+  return std::max(0.0, model_.evaluateRaw(Output::kThrust, pwm_us, voltage_v) * thrust_to_si_);
+}
+
+double ThrustViews::motorCurrent(double pwm_us, double voltage_v) const {
+  return std::max(0.0, model_.evaluateRaw(Output::kCurrent, pwm_us, voltage_v));
+}
+
+double ThrustViews::verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs) const {
+  double thrust = 0.0;
+  for (int k = 0; k < motors_; ++k) {
+    thrust += motor_scale_[k] * motorThrust(inputs[k].pwm_us + pwm_shift_us, inputs[k].voltage_v) * block.axis_up[k];
+  }
+  return thrust;
+}
+
+double ThrustViews::pwmView(const Block& block, const effects::ModelEffects& effects) const {
+  std::array<effects::Inputs, kMaxMotors> inputs;
+  for (int k = 0; k < motors_; ++k) {
+    inputs[k] = effects::correctInputs(effects, block.pwm_us[k], block.voltage_v, block.signals);
+  }
+  return verticalThrust(block, 0.0, inputs.data()) * effects::thrustFactor(effects, block.signals);
+}
+
+double ThrustViews::currentView(const Block& block, const effects::ModelEffects& effects) const {
+  if (!has_current_ || !std::isfinite(block.current_a)) return kNaN;
+  std::array<effects::Inputs, kMaxMotors> inputs;
+  for (int k = 0; k < motors_; ++k) {
+    inputs[k] = effects::correctInputs(effects, block.pwm_us[k], block.voltage_v, block.signals);
+  }
+  auto total_current = [&](double shift) {
+    double current = 0.0;
+    for (int k = 0; k < motors_; ++k) current += motorCurrent(inputs[k].pwm_us + shift, inputs[k].voltage_v);
+    return current;
+  };
+  // The current surface rises with pulse width over the usable range: bisection on the shift.
+  double low = -kMaxShiftUs, high = kMaxShiftUs;
+  if (total_current(low) > block.current_a || total_current(high) < block.current_a) return kNaN;
+  for (int i = 0; i < 40; ++i) {
+    const double middle = 0.5 * (low + high);
+    (total_current(middle) < block.current_a ? low : high) = middle;
+  }
+  double factor = 1.0;
+  for (effects::Kind kind : effects::kAllKinds) {
+    const std::optional<double> value = effects.parameter(kind);
+    if (!value) continue;
+    const double single = effects::singleThrustFactor(kind, *value, effects, block.signals);
+    if (std::isfinite(single)) factor *= std::pow(single, currentViewExponent(kind));
+  }
+  return verticalThrust(block, 0.5 * (low + high), inputs.data()) * factor;
+}
+
+}  // namespace gap
+}  // namespace propulsion_estimator
