@@ -3,6 +3,7 @@
 
 Usage: plot_bench_report.py fit DIR       (fit_*.csv -> fit_*.png)
        plot_bench_report.py compare DIR   (compare_*.csv -> compare_*.png)
+       plot_bench_report.py gap DIR       (gap_samples.csv -> gap_*.png, diagnose_gap)
 
 The C++ tools compute every number; this script only draws. Needs matplotlib and numpy (Debian's
 python3-matplotlib).
@@ -227,11 +228,90 @@ def plot_compare(directory):
     save(figure, directory, "compare_endurance.png")
 
 
+def column(rows, name):
+    return np.array([float(r[name]) if r[name] != "" else np.nan for r in rows])
+
+
+def plot_gap(directory):
+    rows = read_rows(directory, "gap_samples.csv")
+    selected = [r["name"] for r in read_rows(directory, "gap_selected.csv")]
+    truth = column(rows, "truth_n")
+    model = 100.0 * (column(rows, "model_n") / truth - 1.0)
+    current = 100.0 * (column(rows, "current_view_n") / truth - 1.0)
+    corrected = 100.0 * (column(rows, "corrected_n") / truth - 1.0)
+    predicted = model - corrected
+    signals = [("pwm_us", "Mean pulse width (us)"), ("voltage_v", "Battery voltage (V)"),
+               ("current_a", "Battery current (A)"), ("height_m", "Height above ground (m)"),
+               ("vertical_speed_m_s", "Vertical speed (m/s)"), ("air_density_kg_m3", "Air density (kg/m^3)"),
+               ("motor_temperature_c", "Motor temperature (deg C)"), ("flight_time_s", "Time in flight (s)")]
+    present = [(name, label) for name, label in signals if np.isfinite(column(rows, name)).any()]
+    figure, axes = panel_grid(len(present), "Residual of the model (PWM view) against each signal")
+    for axis, (name, label) in zip(axes, present):
+        x = column(rows, name)
+        axis.scatter(x, model, s=4, alpha=0.35, label="model - truth")
+        if selected:
+            axis.scatter(x, predicted, s=4, alpha=0.35, color="tab:orange",
+                         label="predicted by " + ", ".join(selected))
+        axis.axhline(0.0, color="black", linewidth=0.6)
+        axis.set_xlabel(label)
+        axis.set_ylabel("Residual (% of truth)")
+        axis.grid(alpha=0.3)
+    axes[0].legend(fontsize=8, loc="best")
+    save(figure, directory, "gap_signals.png")
+
+    figure, axis = plt.subplots(figsize=(6.4, 5.6))
+    finite = np.isfinite(current)
+    if finite.any():
+        axis.scatter(model[finite], current[finite], s=5, alpha=0.4)
+        span = np.nanmax(np.abs(model[finite])) * 1.1 + 0.5
+        line = np.array([-span, span])
+        for slope, name in ((1.0, "thrust loss, hidden mass, ground effect, climb"),
+                            (0.3, "supply resistance, air density (several to one)"),
+                            (0.0, "ESC offset"), (-2.0, "motor temperature")):
+            axis.plot(line, slope * line, linewidth=1.0, label=name)
+        axis.set_ylim(-span * 1.5, span * 1.5)
+        axis.legend(fontsize=8, loc="best")
+    else:
+        axis.text(0.5, 0.5, "no measured battery current or no current surface", ha="center",
+                  transform=axis.transAxes)
+    axis.axhline(0.0, color="black", linewidth=0.6)
+    axis.axvline(0.0, color="black", linewidth=0.6)
+    axis.set_xlabel("PWM-view residual (% of truth)")
+    axis.set_ylabel("Current-view residual (% of truth)")
+    axis.set_title("Two views of the thrust")
+    axis.grid(alpha=0.3)
+    save(figure, directory, "gap_two_views.png")
+
+    flights = column(rows, "flight").astype(int)
+    time = column(rows, "time_s")
+    figure, (left, right) = plt.subplots(1, 2, figsize=(12.0, 4.4))
+    for flight in sorted(set(flights)):
+        mask = flights == flight
+        left.plot(time[mask], model[mask], ".", markersize=2, label="flight %d plain" % (flight + 1))
+        if selected:
+            left.plot(time[mask], corrected[mask], ".", markersize=2, label="flight %d corrected" % (flight + 1))
+    left.axhline(0.0, color="black", linewidth=0.6)
+    left.set_xlabel("Time in the log (s)")
+    left.set_ylabel("Residual (% of truth)")
+    left.grid(alpha=0.3)
+    left.legend(fontsize=7, loc="best", ncol=2)
+    bins = np.linspace(np.nanmin([model.min(), corrected.min()]), np.nanmax([model.max(), corrected.max()]), 60)
+    right.hist(model, bins=bins, alpha=0.6, label="plain model")
+    if selected:
+        right.hist(corrected, bins=bins, alpha=0.6, label="with " + ", ".join(selected))
+    right.set_xlabel("Residual (% of truth)")
+    right.set_ylabel("Blocks")
+    right.grid(alpha=0.3)
+    right.legend(fontsize=8)
+    save(figure, directory, "gap_before_after.png")
+
+
 def main(argv):
-    if len(argv) != 3 or argv[1] not in ("fit", "compare"):
+    modes = {"fit": plot_fit, "compare": plot_compare, "gap": plot_gap}
+    if len(argv) != 3 or argv[1] not in modes:
         sys.stderr.write(__doc__)
         return 2
-    (plot_fit if argv[1] == "fit" else plot_compare)(argv[2])
+    modes[argv[1]](argv[2])
     return 0
 
 

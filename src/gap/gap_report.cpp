@@ -1,0 +1,313 @@
+#include "propulsion_estimator/gap/gap_report.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/text_file.h"
+
+namespace propulsion_estimator {
+namespace gap {
+namespace {
+
+// Numbers in reports: fixed decimals, and "n/a" (YAML: null) where a figure could not be computed.
+std::string fixed(double value, const char* pattern = "%.2f") {
+  return std::isfinite(value) ? formatPrintf(pattern, value) : "n/a";
+}
+
+void emitNumber(YAML::Emitter& out, double value, const char* pattern = "%.4g") {
+  if (std::isfinite(value)) {
+    out << YAML::Value << formatPrintf(pattern, value);
+  } else {
+    out << YAML::Value << YAML::Null;
+  }
+}
+
+void emitStats(YAML::Emitter& out, const ResidualStats& stats) {
+  out << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "samples" << YAML::Value << stats.samples;
+  out << YAML::Key << "bias_pct";
+  emitNumber(out, stats.bias_pct);
+  out << YAML::Key << "rmse_pct";
+  emitNumber(out, stats.rmse_pct);
+  out << YAML::Key << "bias_n";
+  emitNumber(out, stats.bias_n);
+  out << YAML::Key << "rmse_n";
+  emitNumber(out, stats.rmse_n);
+  out << YAML::EndMap;
+}
+
+std::string statsRow(const std::string& label, const ResidualStats& stats) {
+  return "| " + label + " | " + std::to_string(stats.samples) + " | " + fixed(stats.bias_pct) + " | " +
+         fixed(stats.rmse_pct) + " | " + fixed(stats.bias_n, "%.3f") + " |\n";
+}
+
+const char* effectMeaning(effects::Kind kind) {
+  switch (kind) {
+    case effects::Kind::kSupplyResistance:
+      return "wiring, connectors or a power module between the voltage sensor and the ESCs: the ESCs see less voltage "
+             "than is measured, more so the more current flows";
+    case effects::Kind::kAirDensity:
+      return "the flight's air is thinner or denser than the bench's: a propeller's thrust at a given speed follows "
+             "the density";
+    case effects::Kind::kGroundEffect:
+      return "rotors near the ground push against it: more thrust for the same power within about two diameters";
+    case effects::Kind::kThrustLoss:
+      return "arms and frame under the rotors, and rotors in each other's wake, take part of the thrust; an unweighed "
+             "mass looks the same";
+    case effects::Kind::kMotorTemperature:
+      return "a warm motor has more winding resistance and less magnet flux than on the bench";
+    case effects::Kind::kClimbInflow:
+      return "a climb adds axial inflow, lowering the blades' angle of attack and the thrust; a descent the reverse";
+    case effects::Kind::kEscOffset:
+      return "the flying ESCs' calibrated end points differ from the bench ESC's: the same pulse width is another "
+             "throttle";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string gapReportYaml(const Diagnosis& diagnosis) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  out << YAML::Key << "gap" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "bias_pct";
+  emitNumber(out, diagnosis.overall.bias_pct);
+  out << YAML::Key << "rmse_pct";
+  emitNumber(out, diagnosis.overall.rmse_pct);
+  out << YAML::Key << "payload_err_pct";
+  emitNumber(out, diagnosis.payload_err_pct);
+  out << YAML::Key << "samples" << YAML::Value << diagnosis.overall.samples;
+  out << YAML::Key << "flights" << YAML::Value << YAML::BeginSeq;
+  for (const FlightGap& flight : diagnosis.flights) {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << flight.name;
+    out << YAML::Key << "mean_mass_kg";
+    emitNumber(out, flight.mean_mass_kg);
+    out << YAML::Key << "stats" << YAML::Value;
+    emitStats(out, flight.stats);
+    out << YAML::Key << "problems" << YAML::Value << YAML::Flow << flight.problems << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+
+  out << YAML::Key << "where" << YAML::Value << YAML::BeginMap;
+  for (const Breakdown& breakdown : diagnosis.where) {
+    out << YAML::Key << breakdown.name << YAML::Value;
+    if (!breakdown.unavailable.empty()) {
+      out << YAML::Flow << YAML::BeginMap << YAML::Key << "unavailable" << YAML::Value << breakdown.unavailable
+          << YAML::EndMap;
+      continue;
+    }
+    out << YAML::BeginSeq;
+    for (const Bin& bin : breakdown.bins) {
+      out << YAML::Flow << YAML::BeginMap << YAML::Key << "bin" << YAML::Value << bin.label;
+      out << YAML::Key << "samples" << YAML::Value << bin.stats.samples;
+      out << YAML::Key << "bias_pct";
+      emitNumber(out, bin.stats.bias_pct);
+      out << YAML::Key << "rmse_pct";
+      emitNumber(out, bin.stats.rmse_pct);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
+  out << YAML::Key << "motors" << YAML::Value << YAML::BeginSeq;
+  for (const MotorGap& motor : diagnosis.motors.motors) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "channel" << YAML::Value << motor.channel;
+    out << YAML::Key << "thrust_gap_pct";
+    emitNumber(out, motor.thrust_gap_pct);
+    out << YAML::Key << "ci_pct";
+    emitNumber(out, motor.ci_pct);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "suspect_motor" << YAML::Value;
+  if (diagnosis.motors.suspect_channel) {
+    out << *diagnosis.motors.suspect_channel;
+  } else {
+    out << YAML::Null;
+  }
+  out << YAML::Key << "centre_of_thrust_m" << YAML::Value << YAML::Flow << YAML::BeginSeq
+      << formatPrintf("%.4f", diagnosis.motors.cg_offset_x_m) << formatPrintf("%.4f", diagnosis.motors.cg_offset_y_m)
+      << YAML::EndSeq;
+  if (!diagnosis.motors.unavailable.empty()) {
+    out << YAML::Key << "motors_unavailable" << YAML::Value << diagnosis.motors.unavailable;
+  }
+  out << YAML::EndMap;
+
+  out << YAML::Key << "effects" << YAML::Value << YAML::BeginSeq;
+  for (const EffectResult& effect : diagnosis.effects) {
+    const effects::ParameterSpec& spec = effects::parameterSpec(effect.kind);
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << effects::kindName(effect.kind);
+    out << YAML::Key << "testable" << YAML::Value << effect.testable;
+    if (effect.testable) {
+      out << YAML::Key << "params" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << spec.key;
+      emitNumber(out, effect.parameter);
+      out << YAML::EndMap;
+      out << YAML::Key << "ci" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << spec.key
+          << YAML::Value << YAML::Flow << YAML::BeginSeq << formatPrintf("%.4g", effect.ci_low)
+          << formatPrintf("%.4g", effect.ci_high) << YAML::EndSeq << YAML::EndMap;
+      out << YAML::Key << "plausible" << YAML::Value << effect.plausible;
+      out << YAML::Key << "heldout_rmse_pct";
+      emitNumber(out, effect.heldout_rmse_pct);
+      out << YAML::Key << "p_value";
+      emitNumber(out, effect.p_value);
+      out << YAML::Key << "current_view_ratio";
+      emitNumber(out, effect.current_view_ratio, "%.3f");
+    }
+    out << YAML::Key << "reason" << YAML::Value << effect.reason;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "selected" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (effects::Kind kind : diagnosis.selected) out << effects::kindName(kind);
+  out << YAML::EndSeq;
+  out << YAML::Key << "heldout" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "before_rmse_pct";
+  emitNumber(out, diagnosis.heldout.before_rmse_pct);
+  out << YAML::Key << "after_rmse_pct";
+  emitNumber(out, diagnosis.heldout.after_rmse_pct);
+  out << YAML::Key << "before_bias_pct";
+  emitNumber(out, diagnosis.heldout.before_bias_pct);
+  out << YAML::Key << "after_bias_pct";
+  emitNumber(out, diagnosis.heldout.after_bias_pct);
+  out << YAML::Key << "before_payload_err_pct";
+  emitNumber(out, diagnosis.heldout.before_payload_err_pct);
+  out << YAML::Key << "after_payload_err_pct";
+  emitNumber(out, diagnosis.heldout.after_payload_err_pct);
+  out << YAML::EndMap;
+  out << YAML::Key << "method" << YAML::Value << diagnosis.method;
+  out << YAML::Key << "problems" << YAML::Value << diagnosis.problems;
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+void writeGapReportData(const Diagnosis& diagnosis, const std::string& directory) {
+  std::ofstream csv = openReportFile(directory, "gap_samples.csv");
+  csv << "flight,time_s,truth_n,model_n,current_view_n,corrected_n,pwm_us,voltage_v,current_a,height_m,"
+         "vertical_speed_m_s,air_density_kg_m3,motor_temperature_c,flight_time_s,hover\n";
+  const auto cell = [](double value) { return std::isfinite(value) ? formatPrintf("%.6g", value) : std::string(); };
+  for (const GapSample& s : diagnosis.samples) {
+    csv << s.flight << "," << cell(s.time_s) << "," << cell(s.truth_n) << "," << cell(s.model_n) << ","
+        << cell(s.current_view_n) << "," << cell(s.corrected_n) << "," << cell(s.pwm_us) << "," << cell(s.voltage_v)
+        << "," << cell(s.current_a) << "," << cell(s.height_m) << "," << cell(s.vertical_speed_m_s) << ","
+        << cell(s.air_density_kg_m3) << "," << cell(s.motor_temperature_c) << "," << cell(s.flight_time_s) << ","
+        << (s.hover ? 1 : 0) << "\n";
+  }
+  std::ofstream selected = openReportFile(directory, "gap_selected.csv");
+  selected << "name\n";
+  for (effects::Kind kind : diagnosis.selected) selected << effects::kindName(kind) << "\n";
+}
+
+const std::vector<std::string>& gapReportFigures() {
+  static const std::vector<std::string> figures = {"gap_signals.png", "gap_two_views.png", "gap_before_after.png"};
+  return figures;
+}
+
+std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel& model, const std::string& command) {
+  std::ostringstream md;
+  const ModelMetadata& meta = model.metadata();
+  md << "# Where the model and the flights part\n\n";
+  md << "Model: " << meta.esc << " / " << meta.motor << " / " << meta.propeller << " (" << meta.source << ").  \n";
+  md << "Command: `" << command << "`\n\n";
+  md << "The residual is the model's vertical thrust minus the thrust that flew (weighed mass x vertical specific "
+        "force from the IMU), in percent of the latter: positive when the model reads high.\n\n";
+
+  md << "## 1. The gap\n\n";
+  md << "| | samples | bias % | RMSE % | bias N |\n|---|---|---|---|---|\n";
+  md << statsRow("all flights", diagnosis.overall);
+  for (const FlightGap& flight : diagnosis.flights) md << statsRow(flight.name, flight.stats);
+  md << "\nPayload error of the node, tare on the lightest weighed segment: " << fixed(diagnosis.payload_err_pct)
+     << " % (RMS over the heavier segments).\n\n";
+  if (!diagnosis.problems.empty()) {
+    md << "What could not be used:\n\n";
+    for (const std::string& problem : diagnosis.problems) md << "- " << problem << "\n";
+    md << "\n";
+  }
+
+  md << "## 2. Where it lies\n\n";
+  for (const Breakdown& breakdown : diagnosis.where) {
+    md << "### " << breakdown.name << "\n\n";
+    if (!breakdown.unavailable.empty()) {
+      md << "Not available: " << breakdown.unavailable << ".\n\n";
+      continue;
+    }
+    md << "| bin | samples | bias % | RMSE % | bias N |\n|---|---|---|---|---|\n";
+    for (const Bin& bin : breakdown.bins) md << statsRow(bin.label, bin.stats);
+    md << "\n";
+  }
+  md << "### Motors (moment balance in steady hover)\n\n";
+  if (!diagnosis.motors.unavailable.empty()) {
+    md << "Not available: " << diagnosis.motors.unavailable << ".\n\n";
+  } else {
+    md << "If this motor alone were off, its model would read high by (negative: low):\n\n"
+          "| channel | thrust gap % | 95 % interval +- |\n|---|---|---|\n";
+    for (const MotorGap& motor : diagnosis.motors.motors) {
+      md << "| " << motor.channel << " | " << fixed(motor.thrust_gap_pct) << " | " << fixed(motor.ci_pct) << " |\n";
+    }
+    md << "\nCentre of thrust: x " << fixed(1000.0 * diagnosis.motors.cg_offset_x_m, "%.1f") << " mm, y "
+       << fixed(1000.0 * diagnosis.motors.cg_offset_y_m, "%.1f") << " mm from base_link. ";
+    if (diagnosis.motors.suspect_channel) {
+      md << "**Suspect motor: channel " << *diagnosis.motors.suspect_channel
+         << "** (the yaw balance breaks; of the motors that could explain it, this one leaves the centre of gravity "
+            "nearest the URDF's). Its share is taken out before effects are sought.\n\n";
+    } else {
+      md << "No motor stands out: the rotors' drag torques balance, so any offset of the centre of thrust is the "
+            "centre of gravity's, not a motor's.\n\n";
+    }
+  }
+
+  md << "## 3. Which effect\n\n" << diagnosis.method << "\n\n";
+  md << "| effect | testable | parameter | 95 % interval | held-out RMSE % | p | current-view ratio | verdict |\n"
+        "|---|---|---|---|---|---|---|---|\n";
+  for (const EffectResult& effect : diagnosis.effects) {
+    const effects::ParameterSpec& spec = effects::parameterSpec(effect.kind);
+    md << "| " << effects::kindName(effect.kind) << " | " << (effect.testable ? "yes" : "no") << " | ";
+    if (effect.testable) {
+      md << spec.key << " = " << formatPrintf("%.4g", effect.parameter) << " | " << formatPrintf("%.4g", effect.ci_low)
+         << " .. " << formatPrintf("%.4g", effect.ci_high) << " | " << fixed(effect.heldout_rmse_pct) << " | "
+         << fixed(effect.p_value, "%.3f") << " | " << fixed(effect.current_view_ratio) << " | ";
+    } else {
+      md << " | | | | | ";
+    }
+    md << effect.reason << " |\n";
+  }
+  md << "\n**Selected:** ";
+  if (diagnosis.selected.empty()) {
+    md << "none of the known effects explains the gap significantly.\n\n";
+  } else {
+    for (std::size_t k = 0; k < diagnosis.selected.size(); ++k) {
+      md << (k ? ", " : "") << effects::kindName(diagnosis.selected[k]);
+    }
+    md << ".\n\n";
+    for (effects::Kind kind : diagnosis.selected) md << "- `" << effects::kindName(kind) << "`: " << effectMeaning(kind) << ".\n";
+    md << "\n";
+  }
+  md << "The two views of thrust tell causes apart: the PWM view (what the node estimates) and the view through the "
+        "measured battery current. The current-view ratio is how much of an effect's correction the current view's "
+        "residual shows: about 1 for a thrust loss or a hidden mass, near 0 for an ESC offset, an electrical or an "
+        "air-density cause, negative for motor heating.\n\n";
+
+  md << "## 4. How far it shrinks (held-out flights)\n\n";
+  md << "| | before | after |\n|---|---|---|\n";
+  md << "| RMSE % | " << fixed(diagnosis.heldout.before_rmse_pct) << " | " << fixed(diagnosis.heldout.after_rmse_pct)
+     << " |\n";
+  md << "| bias % | " << fixed(diagnosis.heldout.before_bias_pct) << " | " << fixed(diagnosis.heldout.after_bias_pct)
+     << " |\n";
+  md << "| payload error % | " << fixed(diagnosis.heldout.before_payload_err_pct) << " | "
+     << fixed(diagnosis.heldout.after_payload_err_pct) << " |\n\n";
+
+  md << "## Figures\n\n";
+  md << "![Residual against each signal](gap_signals.png)\n\n"
+        "Residual against each signal; orange: what the selected effects predict.\n\n";
+  md << "![The two views](gap_two_views.png)\n\n"
+        "Current-view residual against PWM-view residual; the lines show how each family of causes moves them.\n\n";
+  md << "![Before and after](gap_before_after.png)\n\n"
+        "Residual over time per flight, with the plain model and with the selected effects.\n";
+  return md.str();
+}
+
+}  // namespace gap
+}  // namespace propulsion_estimator
