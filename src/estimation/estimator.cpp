@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/estimation/health_summary.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -226,13 +227,9 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
 TareResult Estimator::tare() {
   TareResult result;
   const MassEstimate& estimate = payload_.estimate();
-  if (!hover_.verdict().hovering) {
-    result.message = "refused: " + describeHover();
-  } else if (std::isnan(estimate.total_mass_kg)) {
-    std::ostringstream message;
-    message << "refused: hovering, but only " << estimate.window_samples << " of the "
-            << config_.payload.min_samples << " hover samples needed are averaged yet";
-    result.message = message.str();
+  const TareVerdict verdict = judgeTare(hover_.verdict(), estimate, config_);
+  if (!verdict.accepted) {
+    result.message = verdict.refusal;
   } else {
     result.ok = true;
     result.empty_mass_kg = estimate.total_mass_kg;

@@ -28,8 +28,18 @@ Vehicle loadVehicle(const ros::NodeHandle& nh, const EstimatorNodeParams& params
   return Vehicle::upwardRotors(static_cast<int>(params.estimator.motor_channels.size()));
 }
 
-double rate(std::uint64_t now, std::uint64_t before, double seconds) {
-  return seconds > 0.0 ? static_cast<double>(now - before) / seconds : 0.0;
+std::uint8_t diagnosticLevel(HealthLevel level) {
+  switch (level) {
+    case HealthLevel::kOk: return DiagnosticStatus::OK;
+    case HealthLevel::kWarn: return DiagnosticStatus::WARN;
+    case HealthLevel::kError: return DiagnosticStatus::ERROR;
+  }
+  return DiagnosticStatus::ERROR;
+}
+
+void copy(const HealthStatus& health, diagnostic_updater::DiagnosticStatusWrapper* status) {
+  for (const auto& [key, value] : health.values) status->add(key, value);
+  status->summary(diagnosticLevel(health.level), health.message);
 }
 
 }  // namespace
@@ -85,44 +95,59 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   reset_srv_ = private_nh.advertiseService("reset", &EstimatorNode::onReset, this);
 
   diagnostics_.setHardwareID(meta.esc + " / " + meta.motor + " / " + meta.propeller);
-  diagnostics_.add("Inputs", this, &EstimatorNode::diagnoseInputs);
-  diagnostics_.add("Motor outputs", this, &EstimatorNode::diagnoseMotorOutputs);
-  diagnostics_.add("Model domain", this, &EstimatorNode::diagnoseDomain);
-  diagnostics_.add("Payload", this, &EstimatorNode::diagnosePayload);
+  // Each task judges the period since its own previous run.
+  diagnostics_.add("Inputs", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    const HealthSnapshot now = takeSnapshot();
+    copy(judgeInputs(*estimator_, inputs_before_, now, params_.health), &status);
+    inputs_before_ = now;
+  });
+  diagnostics_.add("Motor outputs", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    const HealthSnapshot now = takeSnapshot();
+    copy(judgeMotorOutputs(*estimator_, outputs_before_, now, params_.health), &status);
+    outputs_before_ = now;
+  });
+  diagnostics_.add("Model domain", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    const HealthSnapshot now = takeSnapshot();
+    copy(judgeDomain(*estimator_, domain_before_, now, params_.health), &status);
+    domain_before_ = now;
+  });
+  diagnostics_.add("Payload", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    copy(judgePayload(*estimator_), &status);
+  });
   inputs_before_ = outputs_before_ = domain_before_ = takeSnapshot();
   diagnostics_timer_ = nh.createTimer(ros::Duration(0.1), [this](const ros::TimerEvent&) { diagnostics_.update(); });
 }
 
-EstimatorNode::Snapshot EstimatorNode::takeSnapshot() const {
-  return Snapshot{ros::Time::now(), received_, estimator_->counters()};
+HealthSnapshot EstimatorNode::takeSnapshot() const {
+  return HealthSnapshot{ros::Time::now().toSec(), inputs_, estimator_->counters()};
 }
 
 void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) {
-  ++received_[kRcOut];
-  if (!decoder_.decode(*message, &rc_out_, &decode_error_)) {
-    ++rc_out_undecodable_;
-    ROS_ERROR_STREAM_THROTTLE(5.0, params_.rc_out_topic << ": " << decode_error_);
+  ++inputs_.received[static_cast<int>(NodeInput::kRcOut)];
+  if (!decoder_.decode(*message, &rc_out_, &inputs_.last_decoding_error)) {
+    ++inputs_.rc_out_undecodable;
+    ROS_ERROR_STREAM_THROTTLE(5.0, params_.rc_out_topic << ": " << inputs_.last_decoding_error);
     return;
   }
-  last_rc_out_verdict_ = estimator_->addMotorOutputs(rc_out_.header.stamp.toSec(), ros::Time::now().toSec(),
-                                                      rc_out_.channels.data(), rc_out_.channels.size());
-  if (last_rc_out_verdict_ != Rejection::kNone) {
-    logRejection(last_rc_out_verdict_);
+  inputs_.last_rc_out_verdict = estimator_->addMotorOutputs(rc_out_.header.stamp.toSec(), ros::Time::now().toSec(),
+                                                            rc_out_.channels.data(), rc_out_.channels.size());
+  if (inputs_.last_rc_out_verdict != Rejection::kNone) {
+    logRejection(inputs_.last_rc_out_verdict);
     return;
   }
   publish();
 }
 
 void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message) {
-  ++received_[kBattery];
+  ++inputs_.received[static_cast<int>(NodeInput::kBattery)];
   logRejection(estimator_->addBattery(ros::Time::now().toSec(), message->voltage));
 }
 
 void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
-  ++received_[kImu];
+  ++inputs_.received[static_cast<int>(NodeInput::kImu)];
   // REP-145: a covariance of -1 says the orientation is not provided.
   if (message->orientation_covariance[0] == -1.0) {
-    ++imu_without_orientation_;
+    ++inputs_.imu_without_orientation;
     ROS_WARN_STREAM_THROTTLE(30.0, params_.imu_topic << " carries no orientation: tilt and acceleration not compensated");
     return;
   }
@@ -133,7 +158,7 @@ void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
 }
 
 void EstimatorNode::onVelocity(const geometry_msgs::TwistStamped::ConstPtr& message) {
-  ++received_[kVelocity];
+  ++inputs_.received[static_cast<int>(NodeInput::kVelocity)];
   logRejection(estimator_->addVerticalSpeed(ros::Time::now().toSec(), message->twist.linear.z));
 }
 
@@ -235,102 +260,6 @@ bool EstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   response.message = message.str();
   ROS_INFO_STREAM("~reset: " << response.message);
   return true;
-}
-
-void EstimatorNode::diagnoseInputs(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  const Snapshot now = takeSnapshot();
-  const double seconds = (now.time - inputs_before_.time).toSec();
-  const char* names[kInputCount] = {"rc_out rate (Hz)", "battery rate (Hz)", "imu rate (Hz)", "velocity rate (Hz)"};
-  for (int i = 0; i < kInputCount; ++i) status.add(names[i], rate(now.received[i], inputs_before_.received[i], seconds));
-  const double rc_out_rate = rate(now.received[kRcOut], inputs_before_.received[kRcOut], seconds);
-  const double age = estimator_->batteryAge(now.time.toSec());
-  status.add("battery age (s)", age);
-  status.add("imu messages without orientation", imu_without_orientation_);
-  const double timeout = params_.estimator.battery_timeout_s;
-  if (std::isinf(age)) {
-    status.summary(DiagnosticStatus::ERROR, "estimates stopped: no valid battery voltage received on " +
-                                                params_.battery_topic);
-  } else if (age > timeout) {
-    std::ostringstream message;
-    message.precision(3);
-    message << "estimates stopped: no battery voltage for " << age << " s (limit " << timeout << " s) on "
-            << params_.battery_topic;
-    status.summary(DiagnosticStatus::ERROR, message.str());
-  } else if (now.received[kRcOut] == inputs_before_.received[kRcOut]) {
-    status.summary(DiagnosticStatus::WARN, "no motor outputs on " + params_.rc_out_topic);
-  } else if (rc_out_rate > params_.estimator.max_rate_hz) {
-    std::ostringstream message;
-    message.precision(3);
-    message << params_.rc_out_topic << " at " << rc_out_rate << " Hz, above max_rate_hz "
-            << params_.estimator.max_rate_hz << ": the hover and averaging windows cover less time than configured";
-    status.summary(DiagnosticStatus::WARN, message.str());
-  } else {
-    status.summary(DiagnosticStatus::OK, "receiving");
-  }
-  inputs_before_ = now;
-}
-
-void EstimatorNode::diagnoseMotorOutputs(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  const Snapshot now = takeSnapshot();
-  const EstimatorCounters& c = now.counters;
-  status.add("accepted", c.accepted);
-  for (int r = 1; r < kRejectionCount; ++r) {
-    status.add(std::string("rejected ") + rejectionName(static_cast<Rejection>(r)), c.rejected[r]);
-  }
-  status.add("rejected undecodable", rc_out_undecodable_);
-  status.add("clock resets", c.clock_resets);
-  status.add("last rejection", describe(estimator_->lastRejection()));
-  if (rc_out_undecodable_ > 0) status.add("last decoding error", decode_error_);
-  std::uint64_t new_problems = 0;
-  for (int r = 1; r < kRejectionCount; ++r) {
-    if (r != static_cast<int>(Rejection::kDisarmed)) new_problems += c.rejected[r] - outputs_before_.counters.rejected[r];
-  }
-  if (rc_out_undecodable_ > rc_out_undecodable_before_) {
-    status.summary(DiagnosticStatus::ERROR, params_.rc_out_topic + ": " + decode_error_);
-  } else if (new_problems > 0) {
-    status.summary(DiagnosticStatus::WARN, describe(estimator_->lastRejection()));
-  } else if (last_rc_out_verdict_ == Rejection::kDisarmed) {
-    status.summary(DiagnosticStatus::OK, describe(estimator_->lastRejection()));
-  } else {
-    status.summary(DiagnosticStatus::OK, "ok");
-  }
-  outputs_before_ = now;
-  rc_out_undecodable_before_ = rc_out_undecodable_;
-}
-
-void EstimatorNode::diagnoseDomain(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  const Snapshot now = takeSnapshot();
-  const std::uint64_t samples = now.counters.motor_samples - domain_before_.counters.motor_samples;
-  const std::uint64_t outside =
-      now.counters.motor_samples_outside_domain - domain_before_.counters.motor_samples_outside_domain;
-  const double fraction = samples ? static_cast<double>(outside) / static_cast<double>(samples) : 0.0;
-  const ModelDomain& d = estimator_->model().domain();
-  status.add("fraction outside domain", fraction);
-  status.add("samples outside domain (total)", now.counters.motor_samples_outside_domain);
-  status.add("domain", std::to_string(d.pwm_min_us) + "-" + std::to_string(d.pwm_max_us) + " us, " +
-                           std::to_string(d.voltage_min_v) + "-" + std::to_string(d.voltage_max_v) + " V");
-  if (fraction > params_.domain_warn_fraction) {
-    std::ostringstream message;
-    message.precision(3);
-    message << 100.0 * fraction << " % of motor samples outside the model's domain (" << outsideDomainName(d.outside)
-            << "ed)";
-    status.summary(DiagnosticStatus::WARN, message.str());
-  } else {
-    status.summary(DiagnosticStatus::OK, "within the measured domain");
-  }
-  domain_before_ = now;
-}
-
-void EstimatorNode::diagnosePayload(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  const MassEstimate& p = estimator_->output().payload;
-  status.add("state", payloadStateName(p.state));
-  status.add("hovering", p.hovering);
-  status.add("total mass (kg)", p.total_mass_kg);
-  status.add("empty mass (kg)", p.empty_mass_kg);
-  status.add("empty mass source", emptyMassSourceName(p.empty_mass_source));
-  status.add("payload mass (kg)", p.payload_mass_kg);
-  status.add("hover", estimator_->describeHover());
-  status.summary(DiagnosticStatus::OK, payloadStateName(p.state));
 }
 
 }  // namespace propulsion_estimator

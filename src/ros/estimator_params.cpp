@@ -74,7 +74,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("rc_out_topic", &p.rc_out_topic);
   read.optional("imu_topic", &p.imu_topic);
   read.optional("velocity_topic", &p.velocity_topic);
-  read.optional("domain_warn_fraction", &p.domain_warn_fraction);
+  read.optional("domain_warn_fraction", &p.health.domain_warn_fraction);
 
   EstimatorConfig& c = p.estimator;
   read.optional("motor_channels", &c.motor_channels);
@@ -103,9 +103,9 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   c.payload.min_samples = static_cast<std::size_t>(min_samples);
   read.optional("payload/episode_gap_s", &c.payload.episode_gap_s);
   read.refuseUnknown();
-  if (!(p.domain_warn_fraction >= 0.0 && p.domain_warn_fraction <= 1.0)) {
-    throw ConfigError(nh.resolveName("domain_warn_fraction") + ": must be in [0, 1]");
-  }
+  p.health.battery_input = p.battery_topic;
+  p.health.rc_out_input = p.rc_out_topic;
+  p.health.validate();
 
   std::ostringstream channels;
   for (std::size_t i = 0; i < c.motor_channels.size(); ++i) channels << (i ? ", " : "") << c.motor_channels[i];
@@ -130,7 +130,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
                   << c.hover.min_mass_kg << "\n  payload: averaging_window_s " << c.payload.averaging_window_s
                   << ", min_samples " << c.payload.min_samples << ", episode_gap_s " << c.payload.episode_gap_s
                   << "\n  max_rate_hz: " << c.max_rate_hz << ", clock_jump_reset_s: " << c.clock_jump_reset_s
-                  << ", domain_warn_fraction: " << p.domain_warn_fraction);
+                  << ", domain_warn_fraction: " << p.health.domain_warn_fraction);
   return p;
 }
 

@@ -5,6 +5,7 @@
 #include <ros/node_handle.h>
 
 #include "propulsion_estimator/estimation/estimator_config.h"
+#include "propulsion_estimator/estimation/health_summary.h"
 
 namespace propulsion_estimator {
 
@@ -17,7 +18,7 @@ struct EstimatorNodeParams {
   std::string rc_out_topic = "/mavros/rc/out";
   std::string imu_topic = "/mavros/imu/data";          // "" disables
   std::string velocity_topic = "/mavros/local_position/velocity_local";  // "" disables
-  double domain_warn_fraction = 0.2;  // of motor samples outside the model's domain, per diagnostics period
+  HealthConfig health;  // domain_warn_fraction; its input names are the topics
   EstimatorConfig estimator;
 };
 

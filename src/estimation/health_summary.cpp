@@ -1,0 +1,168 @@
+#include "propulsion_estimator/estimation/health_summary.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "propulsion_estimator/common/config_error.h"
+
+namespace propulsion_estimator {
+namespace {
+
+// As diagnostic_updater's DiagnosticStatusWrapper::add formats a value, so that the node's
+// /diagnostics read as they did when it formatted them itself.
+template <typename T>
+std::string shown(const T& value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+std::string shown(bool value) { return value ? "True" : "False"; }
+
+template <typename T>
+void add(HealthStatus* status, const std::string& key, const T& value) {
+  status->values.emplace_back(key, shown(value));
+}
+
+double rate(std::uint64_t now, std::uint64_t before, double seconds) {
+  return seconds > 0.0 ? static_cast<double>(now - before) / seconds : 0.0;
+}
+
+}  // namespace
+
+void HealthConfig::validate() const {
+  if (!(domain_warn_fraction >= 0.0 && domain_warn_fraction <= 1.0)) {
+    std::ostringstream message;
+    message << "domain_warn_fraction: must be in [0, 1], got " << domain_warn_fraction;
+    throw ConfigError(message.str());
+  }
+}
+
+HealthStatus judgeInputs(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
+                         const HealthConfig& config) {
+  HealthStatus status;
+  const double seconds = now.time_s - before.time_s;
+  const char* const names[kNodeInputCount] = {"rc_out rate (Hz)", "battery rate (Hz)", "imu rate (Hz)",
+                                              "velocity rate (Hz)"};
+  for (int i = 0; i < kNodeInputCount; ++i) {
+    add(&status, names[i], rate(now.inputs.received[i], before.inputs.received[i], seconds));
+  }
+  const int rc_out = static_cast<int>(NodeInput::kRcOut);
+  const double rc_out_rate = rate(now.inputs.received[rc_out], before.inputs.received[rc_out], seconds);
+  const double age = estimator.batteryAge(now.time_s);
+  add(&status, "battery age (s)", age);
+  add(&status, "imu messages without orientation", now.inputs.imu_without_orientation);
+
+  const double timeout = estimator.config().battery_timeout_s;
+  const double max_rate = estimator.config().max_rate_hz;
+  std::ostringstream message;
+  message.precision(3);
+  if (std::isinf(age)) {
+    status.level = HealthLevel::kError;
+    message << "estimates stopped: no valid battery voltage received on " << config.battery_input;
+  } else if (age > timeout) {
+    status.level = HealthLevel::kError;
+    message << "estimates stopped: no battery voltage for " << age << " s (limit " << timeout << " s) on "
+            << config.battery_input;
+  } else if (now.inputs.received[rc_out] == before.inputs.received[rc_out]) {
+    status.level = HealthLevel::kWarn;
+    message << "no motor outputs on " << config.rc_out_input;
+  } else if (rc_out_rate > max_rate) {
+    status.level = HealthLevel::kWarn;
+    message << config.rc_out_input << " at " << rc_out_rate << " Hz, above max_rate_hz " << max_rate
+            << ": the hover and averaging windows cover less time than configured";
+  } else {
+    message << "receiving";
+  }
+  status.message = message.str();
+  return status;
+}
+
+HealthStatus judgeMotorOutputs(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
+                               const HealthConfig& config) {
+  HealthStatus status;
+  const EstimatorCounters& c = now.counters;
+  const InputActivity& inputs = now.inputs;
+  add(&status, "accepted", c.accepted);
+  for (int r = 1; r < kRejectionCount; ++r) {
+    add(&status, std::string("rejected ") + rejectionName(static_cast<Rejection>(r)), c.rejected[r]);
+  }
+  add(&status, "rejected undecodable", inputs.rc_out_undecodable);
+  add(&status, "clock resets", c.clock_resets);
+  const std::string last_rejection = describe(estimator.lastRejection());
+  add(&status, "last rejection", last_rejection);
+  if (inputs.rc_out_undecodable > 0) add(&status, "last decoding error", inputs.last_decoding_error);
+
+  // Disarmed is the normal state on the ground, not a problem.
+  std::uint64_t new_problems = 0;
+  for (int r = 1; r < kRejectionCount; ++r) {
+    if (r != static_cast<int>(Rejection::kDisarmed)) new_problems += c.rejected[r] - before.counters.rejected[r];
+  }
+  if (inputs.rc_out_undecodable > before.inputs.rc_out_undecodable) {
+    status.level = HealthLevel::kError;
+    status.message = config.rc_out_input + ": " + inputs.last_decoding_error;
+  } else if (new_problems > 0) {
+    status.level = HealthLevel::kWarn;
+    status.message = last_rejection;
+  } else if (inputs.last_rc_out_verdict == Rejection::kDisarmed) {
+    status.message = last_rejection;
+  } else {
+    status.message = "ok";
+  }
+  return status;
+}
+
+HealthStatus judgeDomain(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
+                         const HealthConfig& config) {
+  HealthStatus status;
+  const std::uint64_t samples = now.counters.motor_samples - before.counters.motor_samples;
+  const std::uint64_t outside =
+      now.counters.motor_samples_outside_domain - before.counters.motor_samples_outside_domain;
+  const double fraction = samples ? static_cast<double>(outside) / static_cast<double>(samples) : 0.0;
+  const ModelDomain& d = estimator.model().domain();
+  add(&status, "fraction outside domain", fraction);
+  add(&status, "samples outside domain (total)", now.counters.motor_samples_outside_domain);
+  add(&status, "domain", std::to_string(d.pwm_min_us) + "-" + std::to_string(d.pwm_max_us) + " us, " +
+                             std::to_string(d.voltage_min_v) + "-" + std::to_string(d.voltage_max_v) + " V");
+  if (fraction > config.domain_warn_fraction) {
+    std::ostringstream message;
+    message.precision(3);
+    message << 100.0 * fraction << " % of motor samples outside the model's domain (" << outsideDomainName(d.outside)
+            << "ed)";
+    status.level = HealthLevel::kWarn;
+    status.message = message.str();
+  } else {
+    status.message = "within the measured domain";
+  }
+  return status;
+}
+
+HealthStatus judgePayload(const Estimator& estimator) {
+  HealthStatus status;
+  const MassEstimate& p = estimator.output().payload;
+  add(&status, "state", std::string(payloadStateName(p.state)));
+  add(&status, "hovering", p.hovering);
+  add(&status, "total mass (kg)", p.total_mass_kg);
+  add(&status, "empty mass (kg)", p.empty_mass_kg);
+  add(&status, "empty mass source", std::string(emptyMassSourceName(p.empty_mass_source)));
+  add(&status, "payload mass (kg)", p.payload_mass_kg);
+  add(&status, "hover", estimator.describeHover());
+  status.message = payloadStateName(p.state);
+  return status;
+}
+
+TareVerdict judgeTare(const HoverVerdict& hover, const MassEstimate& estimate, const EstimatorConfig& config) {
+  TareVerdict verdict;
+  if (!hover.hovering) {
+    verdict.refusal = "refused: " + describe(hover, config.hover);
+  } else if (std::isnan(estimate.total_mass_kg)) {
+    std::ostringstream message;
+    message << "refused: hovering, but only " << estimate.window_samples << " of the " << config.payload.min_samples
+            << " hover samples needed are averaged yet";
+    verdict.refusal = message.str();
+  } else {
+    verdict.accepted = true;
+  }
+  return verdict;
+}
+
+}  // namespace propulsion_estimator
