@@ -37,6 +37,9 @@ class ParamReader {
     *value = mass;
   }
 
+  // A parameter another component reads from the same namespace: known, not read here.
+  void readElsewhere(const std::string& name) { known_.insert(name); }
+
   // A misspelt parameter would otherwise leave its default silently in force.
   void refuseUnknown() const {
     const std::string prefix = nh_.getNamespace() + "/";
@@ -45,7 +48,7 @@ class ParamReader {
     for (const std::string& name : names) {
       if (name.rfind(prefix, 0) != 0) continue;
       const std::string relative = name.substr(prefix.size());
-      if (known_.count(relative) == 0 && relative != "diagnostic_period") {
+      if (known_.count(relative) == 0) {
         throw ConfigError(name + ": unknown parameter (see the README's parameter table)");
       }
     }
@@ -102,6 +105,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   if (min_samples < 0) throw ConfigError(nh.resolveName("payload/min_samples") + ": must not be negative");
   c.payload.min_samples = static_cast<std::size_t>(min_samples);
   read.optional("payload/episode_gap_s", &c.payload.episode_gap_s);
+  read.readElsewhere("diagnostic_period");  // diagnostic_updater's, in seconds
   read.refuseUnknown();
   p.health.battery_input = p.battery_topic;
   p.health.rc_out_input = p.rc_out_topic;

@@ -1,0 +1,62 @@
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "parameter_template.h"
+#include "propulsion_estimator/ros/estimator_params.h"
+
+namespace pe = propulsion_estimator;
+
+// The template shows the defaults the node applies when a parameter is not set, so that loading
+// it changes nothing.
+TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
+  const ParameterTemplate file = loadParameterTemplate();
+  const pe::EstimatorNodeParams node;
+  const pe::EstimatorConfig& c = node.estimator;
+  std::set<std::string> checked;
+  const auto value = [&](const std::string& name) {
+    checked.insert(name);
+    EXPECT_EQ(file.values.count(name), 1u) << name << " is not set in the template";
+    return file.values.count(name) ? file.values.at(name) : YAML::Node();
+  };
+  const auto number = [&](const std::string& name) { return value(name).as<double>(-1.0); };
+  const auto text = [&](const std::string& name) { return value(name).as<std::string>("(none)"); };
+  const auto flag = [&](const std::string& name) { return value(name).as<std::string>("(none)") == "true"; };
+
+  EXPECT_EQ(value("motor_channels").as<std::vector<int>>(std::vector<int>{}), c.motor_channels);
+  EXPECT_EQ(text("urdf_file"), node.urdf_file);
+  EXPECT_EQ(text("tare_file"), node.tare_file);
+  EXPECT_EQ(text("battery_topic"), node.battery_topic);
+  EXPECT_EQ(text("rc_out_topic"), node.rc_out_topic);
+  EXPECT_EQ(text("imu_topic"), node.imu_topic);
+  EXPECT_EQ(text("velocity_topic"), node.velocity_topic);
+  EXPECT_EQ(number("disarmed_pwm_max_us"), c.disarmed_pwm_max_us);
+  EXPECT_EQ(number("battery_timeout_s"), c.battery_timeout_s);
+  EXPECT_EQ(number("imu/timeout_s"), c.imu_timeout_s);
+  EXPECT_EQ(flag("imu/compensate_tilt"), c.compensate_tilt);
+  EXPECT_EQ(flag("imu/compensate_acceleration"), c.compensate_acceleration);
+  EXPECT_EQ(number("imu/accel_filter_s"), c.accel_filter_s);
+  EXPECT_EQ(number("imu/accel_bias_filter_s"), c.accel_bias_filter_s);
+  EXPECT_EQ(number("velocity/timeout_s"), c.velocity_timeout_s);
+  EXPECT_EQ(number("hover/window_s"), c.hover.window_s);
+  EXPECT_EQ(number("hover/min_window_fill"), c.hover.min_window_fill);
+  EXPECT_EQ(number("hover/max_thrust_rel_std"), c.hover.max_thrust_rel_std);
+  EXPECT_EQ(number("hover/max_tilt_deg"), c.hover.max_tilt_deg);
+  EXPECT_EQ(number("hover/max_vertical_speed_m_s"), c.hover.max_vertical_speed_m_s);
+  EXPECT_EQ(number("hover/max_vertical_accel_m_s2"), c.hover.max_vertical_accel_m_s2);
+  EXPECT_EQ(number("hover/min_mass_kg"), c.hover.min_mass_kg);
+  EXPECT_EQ(number("payload/averaging_window_s"), c.payload.averaging_window_s);
+  EXPECT_EQ(number("payload/min_samples"), static_cast<double>(c.payload.min_samples));
+  EXPECT_EQ(number("payload/episode_gap_s"), c.payload.episode_gap_s);
+  EXPECT_EQ(number("max_rate_hz"), c.max_rate_hz);
+  EXPECT_EQ(number("clock_jump_reset_s"), c.clock_jump_reset_s);
+  EXPECT_EQ(number("domain_warn_fraction"), node.health.domain_warn_fraction);
+  EXPECT_EQ(number("diagnostic_period"), 1.0);  // diagnostic_updater's own default
+  EXPECT_FALSE(c.empty_mass_kg.has_value());     // commented in the template: not set
+
+  std::set<std::string> set_in_file;
+  for (const auto& [name, node_value] : file.values) set_in_file.insert(name);
+  EXPECT_EQ(checked, set_in_file) << "a parameter of the template is not compared with its default here";
+}
