@@ -48,13 +48,15 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : params_(readEstimatorNodeParams(private_nh)), diagnostics_(nh, private_nh) {
   PropulsionModel model = loadModelFile(params_.model);
   model_fingerprint_ = modelFingerprint(model);
-  const ModelMetadata& meta = model.metadata();
-  ROS_INFO_STREAM("model " << params_.model << ": " << meta.esc << " + " << meta.motor << " + " << meta.propeller
-                           << ", domain " << model.domain().pwm_min_us << "-" << model.domain().pwm_max_us << " us, "
-                           << model.domain().voltage_min_v << "-" << model.domain().voltage_max_v
-                           << " V, outside: " << outsideDomainName(model.domain().outside));
   Vehicle vehicle = loadVehicle(nh, params_);
   estimator_ = std::make_unique<Estimator>(std::move(model), std::move(vehicle), params_.estimator);
+  // The model now lives in the estimator: read its metadata there, not from the moved-from local.
+  const ModelMetadata& meta = estimator_->model().metadata();
+  const ModelDomain& domain = estimator_->model().domain();
+  ROS_INFO_STREAM("model " << params_.model << ": " << meta.esc << " + " << meta.motor << " + " << meta.propeller
+                           << ", domain " << domain.pwm_min_us << "-" << domain.pwm_max_us << " us, "
+                           << domain.voltage_min_v << "-" << domain.voltage_max_v
+                           << " V, outside: " << outsideDomainName(domain.outside));
 
   if (!params_.tare_file.empty()) {
     if (const std::optional<TareRecord> tare = loadTareFile(params_.tare_file)) {

@@ -7,6 +7,7 @@ import unittest
 import roslaunch
 import rospy
 import rostest
+import yaml
 from diagnostic_msgs.msg import DiagnosticStatus
 from propulsion_estimator.msg import PayloadEstimate
 from sensor_msgs.msg import Imu
@@ -171,6 +172,12 @@ class EstimatorNodeTest(unittest.TestCase):
         self.assertEqual(self.h.count(self.h.motors), before)
         status = self.h.wait_for_diagnostic("Inputs", "estimates stopped: no battery voltage for")
         self.assertEqual(status.level, DiagnosticStatus.ERROR)
+
+    def test_7_hardware_id_names_the_combination(self):
+        with open(rospy.get_param("/propulsion_estimator/model")) as f:
+            meta = yaml.safe_load(f)["metadata"]
+        status = self.h.wait_for_diagnostic("Payload", "")
+        self.assertEqual(status.hardware_id, "%s / %s / %s" % (meta["esc"], meta["motor"], meta["propeller"]))
 
 
 if __name__ == "__main__":
