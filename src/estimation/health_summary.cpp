@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -21,6 +22,16 @@ std::string shown(bool value) { return value ? "True" : "False"; }
 template <typename T>
 void add(HealthStatus* status, const std::string& key, const T& value) {
   status->values.emplace_back(key, shown(value));
+}
+
+// What the model did with the samples outside its domain, as the domain warning says it.
+const char* treatmentOutsideDomain(OutsideDomain policy) {
+  switch (policy) {
+    case OutsideDomain::kClamp: return "clamped";
+    case OutsideDomain::kExtrapolate: return "extrapolated";
+    case OutsideDomain::kReject: return "refused";
+  }
+  return "refused";
 }
 
 double rate(std::uint64_t now, std::uint64_t before, double seconds) {
@@ -121,13 +132,13 @@ HealthStatus judgeDomain(const Estimator& estimator, const HealthSnapshot& befor
   const ModelDomain& d = estimator.model().domain();
   add(&status, "fraction outside domain", fraction);
   add(&status, "samples outside domain (total)", now.counters.motor_samples_outside_domain);
-  add(&status, "domain", std::to_string(d.pwm_min_us) + "-" + std::to_string(d.pwm_max_us) + " us, " +
-                             std::to_string(d.voltage_min_v) + "-" + std::to_string(d.voltage_max_v) + " V");
+  add(&status, "domain", formatNumber(d.pwm_min_us) + "-" + formatNumber(d.pwm_max_us) + " us, " +
+                             formatNumber(d.voltage_min_v) + "-" + formatNumber(d.voltage_max_v) + " V");
   if (fraction > config.domain_warn_fraction) {
     std::ostringstream message;
     message.precision(3);
-    message << 100.0 * fraction << " % of motor samples outside the model's domain (" << outsideDomainName(d.outside)
-            << "ed)";
+    message << 100.0 * fraction << " % of motor samples outside the model's domain ("
+            << treatmentOutsideDomain(d.outside) << ")";
     status.level = HealthLevel::kWarn;
     status.message = message.str();
   } else {

@@ -7,6 +7,7 @@
 
 #include "estimator_fixture.h"
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/estimation/health_summary.h"
 
 namespace {
@@ -174,6 +175,8 @@ TEST(HealthSummary, DomainWarnsAboveTheConfiguredShareOutside) {
   EXPECT_EQ(valueOf(outside, "fraction outside domain"), "1");
   EXPECT_EQ(valueOf(outside, "samples outside domain (total)"), "200");
 
+  EXPECT_EQ(valueOf(outside, "domain"), "1200-1900 us, 10.5-12.6 V");
+
   pe::HealthConfig tolerant = nodeConfig();
   tolerant.domain_warn_fraction = 1.0;
   EXPECT_EQ(pe::judgeDomain(f.estimator, inside, snapshot(f.estimator, f.t), tolerant).level, pe::HealthLevel::kOk);
@@ -235,4 +238,20 @@ TEST(HealthSummary, ConfigRefusesAShareOutsideZeroToOne) {
       EXPECT_EQ(std::string(e.what()), text);
     }
   }
+}
+
+TEST(HealthSummary, DomainWarningSaysTheSamplesWereExtrapolated) {
+  std::string text = pe::readTextFile(repoPath("config/e300_dji2212_dji9443.yaml"));
+  const std::string clamp = "outside: clamp";
+  ASSERT_NE(text.find(clamp), std::string::npos);
+  text.replace(text.find(clamp), clamp.size(), "outside: extrapolate");
+  const pe::PropulsionModel extrapolating = pe::parseModelYaml(text, "extrapolating thesis model");
+  pe::Estimator estimator(extrapolating, pe::Vehicle::quadX(0.225), pe::EstimatorConfig{});
+  estimator.addBattery(0.0, 11.4);
+  const pe::HealthSnapshot before = snapshot(estimator, 0.0);
+  const std::vector<std::uint16_t> channels(4, 1950);  // above the model's 1900 us
+  ASSERT_EQ(estimator.addMotorOutputs(0.02, 0.02, channels.data(), channels.size()), pe::Rejection::kNone);
+  const pe::HealthStatus status = pe::judgeDomain(estimator, before, snapshot(estimator, 1.0), nodeConfig());
+  EXPECT_EQ(status.level, pe::HealthLevel::kWarn);
+  EXPECT_EQ(status.message, "100 % of motor samples outside the model's domain (extrapolated)");
 }
