@@ -192,9 +192,13 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
      << " us; the voltage levels are centred at " << number(data.voltage_levels.front().centre, "%.2f") << " to "
      << number(data.voltage_levels.back().centre, "%.2f") << " V); outside it the model will "
      << outsideDomainName(domain.outside) << ".\n";
-  md << "- Bench: air " << number(meta.bench_air_temperature_c, "%.1f") << " deg C, "
-     << number(meta.bench_air_pressure_pa, "%.0f") << " Pa (density " << number(meta.benchAirDensity(), "%.4f")
-     << " kg/m^3), " << supplyKindName(meta.supply) << " supply.\n";
+  if (meta.hasBenchAir()) {
+    md << "- Bench: air " << number(*meta.bench_air_temperature_c, "%.1f") << " deg C, "
+       << number(*meta.bench_air_pressure_pa, "%.0f") << " Pa (density " << number(meta.benchAirDensity(), "%.4f")
+       << " kg/m^3), " << supplyKindName(meta.supply) << " supply.\n";
+  } else {
+    md << "- Bench: air unknown, " << supplyKindName(meta.supply) << " supply.\n";
+  }
   md << "- Voltage levels (" << data.voltage_levels.size() << "):";
   for (std::size_t k = 0; k < data.voltage_levels.size(); ++k) {
     md << (k ? ", " : " ") << number(data.voltage_levels[k].centre, "%.2f") << " V (" << data.voltage_levels[k].rows

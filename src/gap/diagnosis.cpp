@@ -225,7 +225,8 @@ void Diagnoser::findUnits() {
 effects::ModelEffects Diagnoser::references() const {
   effects::ModelEffects references;
   references.bench_air_density_kg_m3 = model_.metadata().benchAirDensity();
-  references.motor_reference_c = model_.metadata().bench_air_temperature_c;
+  references.motor_reference_c =
+      model_.metadata().bench_air_temperature_c.value_or(std::numeric_limits<double>::quiet_NaN());
   if (vehicle_.hasGeometry()) {
     double height = 0.0;
     for (const Rotor& rotor : vehicle_.rotors) height += rotor.position_m.z() / vehicle_.rotors.size();

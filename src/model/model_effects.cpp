@@ -131,12 +131,32 @@ void ModelEffects::validate() const {
     const ParameterSpec& spec = parameterSpec(kind);
     requireWithin(std::string("effects.") + kindName(kind) + "." + spec.key, *value, spec.min, spec.max);
   }
+  if (air_density_exponent && std::isnan(bench_air_density_kg_m3)) {
+    throw FieldError("effects.air_density",
+                     "needs the bench air of the model's metadata (bench_air_temperature_c, bench_air_pressure_pa) "
+                     "as its reference, and the model has none");
+  }
   if (air_density_exponent && !(bench_air_density_kg_m3 > 0.3 && bench_air_density_kg_m3 < 1.6)) {
-    throw FieldError("effects.air_density", "needs the bench air of the model's metadata (bench density " +
-                                                formatNumber(bench_air_density_kg_m3) + " kg/m^3)");
+    throw FieldError("effects.air_density", "the bench air density " + formatNumber(bench_air_density_kg_m3) +
+                                                " kg/m^3 of the model's metadata is outside 0.3..1.6 kg/m^3");
   }
   if (motor_temperature_per_c) requireWithin("effects.motor_temperature.reference_c", motor_reference_c, -40.0, 150.0);
   if (ground_effect_coefficient_m2) requireWithin("effects.ground_effect.rotor_height_m", rotor_height_m, -1.0, 1.0);
+}
+
+std::string describeParameters(Kind kind, const ModelEffects& effects) {
+  const std::optional<double> value = effects.parameter(kind);
+  if (!value) return "off";
+  std::string text = std::string(parameterSpec(kind).key) + " " + formatNumber(*value);
+  switch (kind) {
+    case Kind::kAirDensity:
+      text += ", bench air " + formatPrintf("%.4f", effects.bench_air_density_kg_m3) + " kg/m^3";
+      break;
+    case Kind::kGroundEffect: text += ", rotor_height_m " + formatNumber(effects.rotor_height_m); break;
+    case Kind::kMotorTemperature: text += ", reference_c " + formatNumber(effects.motor_reference_c); break;
+    default: break;
+  }
+  return text;
 }
 
 Inputs correctInputs(const ModelEffects& effects, double pwm_us, double voltage_v, const Signals& signals,

@@ -101,6 +101,48 @@ OutputDefinition readOutput(const YamlMap& map, Output output) {
   return def;
 }
 
+// effects: {<name>: {<parameter key>: value[, reference: value]}, ...}; the keys are those of
+// effects::parameterSpec, the references those ModelEffects keeps beside the parameters.
+effects::ModelEffects readEffects(const YamlMap& map) {
+  map.allowOnly({"supply_resistance", "air_density", "ground_effect", "thrust_loss", "motor_temperature",
+                 "climb_inflow", "esc_offset"});
+  effects::ModelEffects result;
+  for (effects::Kind kind : effects::kAllKinds) {
+    const std::optional<YamlMap> entry = map.optionalMap(effects::kindName(kind));
+    if (!entry) continue;
+    const char* key = effects::parameterSpec(kind).key;
+    if (kind == effects::Kind::kGroundEffect) {
+      entry->allowOnly({key, "rotor_height_m"});
+      result.rotor_height_m = entry->number("rotor_height_m");
+    } else if (kind == effects::Kind::kMotorTemperature) {
+      entry->allowOnly({key, "reference_c"});
+      result.motor_reference_c = entry->number("reference_c");
+    } else {
+      entry->allowOnly({key});
+    }
+    result.setParameter(kind, entry->number(key));
+  }
+  return result;
+}
+
+void writeEffects(YAML::Emitter& out, const effects::ModelEffects& fx) {
+  out << YAML::Key << "effects" << YAML::Value << YAML::BeginMap;
+  for (effects::Kind kind : effects::kAllKinds) {
+    const std::optional<double> value = fx.parameter(kind);
+    if (!value) continue;
+    out << YAML::Key << effects::kindName(kind) << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << effects::parameterSpec(kind).key << YAML::Value << formatNumber(*value);
+    if (kind == effects::Kind::kGroundEffect) {
+      out << YAML::Key << "rotor_height_m" << YAML::Value << formatNumber(fx.rotor_height_m);
+    }
+    if (kind == effects::Kind::kMotorTemperature) {
+      out << YAML::Key << "reference_c" << YAML::Value << formatNumber(fx.motor_reference_c);
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+}
+
 void writePolynomial(YAML::Emitter& out, const Polynomial2D& polynomial) {
   out << YAML::BeginMap;
   for (const PolynomialTerm& term : polynomial.terms()) {
@@ -114,7 +156,7 @@ void writePolynomial(YAML::Emitter& out, const Polynomial2D& polynomial) {
 
 PropulsionModel parseModelYaml(const std::string& text, const std::string& source) {
   const YamlMap root = parseYamlDocument(text, source);
-  root.allowOnly({"format_version", "metadata", "domain", "outputs"});
+  root.allowOnly({"format_version", "metadata", "domain", "outputs", "effects"});
   if (root.integer("format_version") != kFormatVersion) {
     root.fail("format_version", std::to_string(root.integer("format_version")) + " is not supported (this reader knows " +
                                     std::to_string(kFormatVersion) + ")");
@@ -126,8 +168,8 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
   metadata.esc = meta.text("esc");
   metadata.motor = meta.text("motor");
   metadata.propeller = meta.text("propeller");
-  metadata.bench_air_temperature_c = meta.number("bench_air_temperature_c");
-  metadata.bench_air_pressure_pa = meta.number("bench_air_pressure_pa");
+  metadata.bench_air_temperature_c = meta.optionalNumber("bench_air_temperature_c");
+  metadata.bench_air_pressure_pa = meta.optionalNumber("bench_air_pressure_pa");
   validateAt(root, metadata);
   metadata.supply = meta.choice("supply", {"regulated", "battery"}) == "battery" ? SupplyKind::kBattery
                                                                                  : SupplyKind::kRegulated;
@@ -148,8 +190,15 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
   std::array<OutputDefinition, kOutputCount> outputs;
   for (Output output : kAllOutputs) outputs[static_cast<int>(output)] = readOutput(outs.map(outputName(output)), output);
 
+  effects::ModelEffects fx;
+  if (const std::optional<YamlMap> section = root.optionalMap("effects")) {
+    fx = readEffects(*section);
+    fx.bench_air_density_kg_m3 = metadata.benchAirDensity();
+    validateAt(root, fx);
+  }
+
   try {
-    PropulsionModel model(std::move(metadata), domain, std::move(outputs));
+    PropulsionModel model(std::move(metadata), domain, std::move(outputs), fx);
     validateModelOnGrid(model);
     return model;
   } catch (const ConfigError& e) {
@@ -169,8 +218,10 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
   out << YAML::Key << "esc" << YAML::Value << meta.esc;
   out << YAML::Key << "motor" << YAML::Value << meta.motor;
   out << YAML::Key << "propeller" << YAML::Value << meta.propeller;
-  out << YAML::Key << "bench_air_temperature_c" << YAML::Value << formatNumber(meta.bench_air_temperature_c);
-  out << YAML::Key << "bench_air_pressure_pa" << YAML::Value << formatNumber(meta.bench_air_pressure_pa);
+  if (meta.hasBenchAir()) {
+    out << YAML::Key << "bench_air_temperature_c" << YAML::Value << formatNumber(*meta.bench_air_temperature_c);
+    out << YAML::Key << "bench_air_pressure_pa" << YAML::Value << formatNumber(*meta.bench_air_pressure_pa);
+  }
   out << YAML::Key << "supply" << YAML::Value << supplyKindName(meta.supply);
   out << YAML::Key << "source" << YAML::Value << meta.source;
   out << YAML::EndMap;
@@ -228,6 +279,7 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
     out << YAML::EndMap;
   }
   out << YAML::EndMap;
+  if (!model.effects().empty()) writeEffects(out, model.effects());
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

@@ -72,25 +72,34 @@ bool ModelDomain::contains(double pwm_us, double voltage_v) const {
 }
 
 double ModelMetadata::benchAirDensity() const {
-  return bench_air_pressure_pa / (kSpecificGasConstantDryAir * (bench_air_temperature_c + kZeroCelsiusInKelvin));
+  if (!hasBenchAir()) return std::numeric_limits<double>::quiet_NaN();
+  return *bench_air_pressure_pa / (kSpecificGasConstantDryAir * (*bench_air_temperature_c + kZeroCelsiusInKelvin));
 }
 
 void ModelMetadata::validate() const {
+  // A density needs both; one alone is a half-copied metadata block, not a model without bench air.
+  if (bench_air_temperature_c.has_value() != bench_air_pressure_pa.has_value()) {
+    throw FieldError(bench_air_temperature_c ? "metadata.bench_air_pressure_pa" : "metadata.bench_air_temperature_c",
+                     "missing: bench air is given as temperature and pressure together, or not at all");
+  }
   // Beyond these the value is in another unit (K, hPa, psi) or a typo, and every density
   // correction made from it would be wrong.
-  if (!(bench_air_temperature_c >= -60.0 && bench_air_temperature_c <= 60.0)) {
+  if (bench_air_temperature_c && !(*bench_air_temperature_c >= -60.0 && *bench_air_temperature_c <= 60.0)) {
     throw FieldError("metadata.bench_air_temperature_c",
-                     formatNumber(bench_air_temperature_c) + " is not an air temperature in deg C");
+                     formatNumber(*bench_air_temperature_c) + " is not an air temperature in deg C");
   }
-  if (!(bench_air_pressure_pa >= 30000.0 && bench_air_pressure_pa <= 110000.0)) {
+  if (bench_air_pressure_pa && !(*bench_air_pressure_pa >= 30000.0 && *bench_air_pressure_pa <= 110000.0)) {
     throw FieldError("metadata.bench_air_pressure_pa",
-                     formatNumber(bench_air_pressure_pa) + " is not an air pressure in Pa");
+                     formatNumber(*bench_air_pressure_pa) + " is not an air pressure in Pa");
   }
 }
 
 PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,
-                                 std::array<OutputDefinition, kOutputCount> outputs)
-    : metadata_(std::move(metadata)), domain_(domain), outputs_(std::move(outputs)) {
+                                 std::array<OutputDefinition, kOutputCount> outputs, effects::ModelEffects effects)
+    : metadata_(std::move(metadata)), domain_(domain), outputs_(std::move(outputs)), effects_(effects) {
+  // One source for the reference: an effects section cannot claim other bench air than the metadata's.
+  effects_.bench_air_density_kg_m3 = metadata_.benchAirDensity();
+  effects_.validate();
   if (!(domain_.pwm_min_us < domain_.pwm_max_us) || !(domain_.voltage_min_v < domain_.voltage_max_v)) {
     throw ConfigError("domain is empty: pwm_us [" + std::to_string(domain_.pwm_min_us) + ", " +
                       std::to_string(domain_.pwm_max_us) + "], voltage_v [" + std::to_string(domain_.voltage_min_v) +
@@ -131,6 +140,14 @@ PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,
   for (Output output : {Output::kCurrent, Output::kPower, Output::kEfficiency}) {
     if (outputs_[index(output)].source == OutputSource::kDerived) evaluation_order_[next++] = output;
   }
+}
+
+PropulsionModel PropulsionModel::withEffects(effects::ModelEffects effects) const {
+  PropulsionModel copy = *this;
+  effects.bench_air_density_kg_m3 = metadata_.benchAirDensity();
+  effects.validate();
+  copy.effects_ = effects;
+  return copy;
 }
 
 double PropulsionModel::evaluateSi(Output output, double pwm_us, double voltage_v,

@@ -454,7 +454,7 @@ TEST(BenchFitRefusals, MissingOrContradictoryMetadata) {
             "--air-temperature-c");
   logs[0].column(pe::BenchColumn::kAmbientTemp).assign(logs[0].rows(), 24.0);
   const pe::BenchFit fit = pe::fitBenchModel(logs, motor);
-  EXPECT_DOUBLE_EQ(fit.model.metadata().bench_air_temperature_c, 24.0);
+  EXPECT_DOUBLE_EQ(fit.model.metadata().bench_air_temperature_c.value(), 24.0);
   EXPECT_EQ(fit.model.metadata().supply, pe::SupplyKind::kBattery);
 }
 
@@ -503,7 +503,7 @@ TEST(BenchFitRefusals, BenchAirTheModelLoaderWouldRefuse) {
             "b.csv column pressure_pa; pass --air-pressure-pa)");
   pe::FitOptions pascal;
   pascal.air_pressure_pa = 101325.0;
-  EXPECT_DOUBLE_EQ(pe::fitBenchModel(logs, pascal).model.metadata().bench_air_pressure_pa, 101325.0);
+  EXPECT_DOUBLE_EQ(pe::fitBenchModel(logs, pascal).model.metadata().bench_air_pressure_pa.value(), 101325.0);
 }
 
 TEST(BenchFitRefusals, LogsBuiltInCodeThatBreakTheReadersGuarantees) {

@@ -200,3 +200,154 @@ TEST(ModelYaml, RoundTripsThroughTheWriter) {
     }
   }
 }
+
+namespace {
+
+// Every effect on, in the layout of the README; appended to kValid from line 31.
+const std::string kAllEffects = R"(effects:
+  supply_resistance: {resistance_ohm: 0.035}
+  ground_effect: {coefficient_m2: 0.0011, rotor_height_m: 0.05}
+  motor_temperature: {per_c: 0.0012, reference_c: 22}
+  air_density: {exponent: 0.85}
+  thrust_loss: {fraction: 0.04}
+  climb_inflow: {per_m_s: 0.03}
+  esc_offset: {offset_us: 12}
+)";
+
+std::string withEffects(const std::string& effects) { return kValid + "effects:\n" + effects; }
+
+std::string withoutBenchAir() {
+  std::string text = replaced("  bench_air_temperature_c: 20\n", "");
+  const std::string pressure = "  bench_air_pressure_pa: 101325\n";
+  text.replace(text.find(pressure), pressure.size(), "");
+  return text;
+}
+
+}  // namespace
+
+TEST(ModelYaml, ReadsTheEffectsSection) {
+  const pe::PropulsionModel model = pe::parseModelYaml(kValid + kAllEffects, "m.yaml");
+  const pe::effects::ModelEffects& fx = model.effects();
+  EXPECT_EQ(fx.supply_resistance_ohm, 0.035);
+  EXPECT_EQ(fx.ground_effect_coefficient_m2, 0.0011);
+  EXPECT_EQ(fx.rotor_height_m, 0.05);
+  EXPECT_EQ(fx.motor_temperature_per_c, 0.0012);
+  EXPECT_EQ(fx.motor_reference_c, 22.0);
+  EXPECT_EQ(fx.air_density_exponent, 0.85);
+  EXPECT_DOUBLE_EQ(fx.bench_air_density_kg_m3, model.metadata().benchAirDensity());
+  EXPECT_NEAR(fx.bench_air_density_kg_m3, 1.2041, 1e-4);  // 101325 Pa, 20 deg C
+  EXPECT_EQ(fx.thrust_loss_fraction, 0.04);
+  EXPECT_EQ(fx.climb_inflow_per_m_s, 0.03);
+  EXPECT_EQ(fx.esc_offset_us, 12.0);
+  EXPECT_TRUE(pe::parseModelYaml(kValid, "m.yaml").effects().empty());
+}
+
+TEST(ModelYaml, RoundTripsEveryEffect) {
+  const pe::PropulsionModel original = pe::parseModelYaml(kValid + kAllEffects, "original");
+  const std::string written = pe::modelToYaml(original);
+  const pe::PropulsionModel reread = pe::parseModelYaml(written, "reread");
+  EXPECT_EQ(pe::modelToYaml(reread), written);
+  for (pe::effects::Kind kind : pe::effects::kAllKinds) {
+    ASSERT_TRUE(original.effects().has(kind)) << pe::effects::kindName(kind);
+    EXPECT_EQ(reread.effects().parameter(kind), original.effects().parameter(kind)) << pe::effects::kindName(kind);
+  }
+  EXPECT_EQ(reread.effects().rotor_height_m, original.effects().rotor_height_m);
+  EXPECT_EQ(reread.effects().motor_reference_c, original.effects().motor_reference_c);
+  EXPECT_EQ(reread.effects().bench_air_density_kg_m3, original.effects().bench_air_density_kg_m3);
+  // A corrected model is another model: a tare taken with the plain one does not apply to it.
+  EXPECT_NE(pe::modelFingerprint(reread), pe::modelFingerprint(pe::parseModelYaml(kValid, "plain")));
+}
+
+TEST(ModelYaml, WithEffectsAddsTheSectionAndTakesTheBenchAirFromTheMetadata) {
+  const pe::PropulsionModel plain = pe::parseModelYaml(kValid, "m.yaml");
+  pe::effects::ModelEffects fx;
+  fx.air_density_exponent = 0.8;
+  fx.bench_air_density_kg_m3 = 0.9;  // not the metadata's: overridden
+  fx.thrust_loss_fraction = 0.05;
+  const pe::PropulsionModel corrected = plain.withEffects(fx);
+  EXPECT_DOUBLE_EQ(corrected.effects().bench_air_density_kg_m3, plain.metadata().benchAirDensity());
+  const std::string written = pe::modelToYaml(corrected);
+  EXPECT_NE(written.find("effects:\n  air_density: {exponent: 0.8}\n  thrust_loss: {fraction: 0.05}\n"),
+            std::string::npos)
+      << written;
+  EXPECT_EQ(pe::parseModelYaml(written, "corrected").effects().thrust_loss_fraction, 0.05);
+  EXPECT_TRUE(plain.effects().empty()) << "withEffects returns a copy";
+}
+
+TEST(ModelYaml, RefusesAnUnknownEffectOrKey) {
+  EXPECT_EQ(refusal(withEffects("  thrust_loss: {fraction: 0.04}\n  wind: {speed_m_s: 3}\n")),
+            "m.yaml:33: effects.wind: unknown key (allowed: supply_resistance, air_density, ground_effect, "
+            "thrust_loss, motor_temperature, climb_inflow, esc_offset)");
+  EXPECT_EQ(refusal(withEffects("  thrust_loss: {fraction: 0.04, percent: 4}\n")),
+            "m.yaml:32: effects.thrust_loss.percent: unknown key (allowed: fraction)");
+  EXPECT_EQ(refusal(withEffects("  ground_effect: {coefficient_m2: 0.001, rotor_height_m: 0.05, strength: 1}\n")),
+            "m.yaml:32: effects.ground_effect.strength: unknown key (allowed: coefficient_m2, rotor_height_m)");
+}
+
+TEST(ModelYaml, RefusesAnEffectWithoutItsParameterOrReference) {
+  EXPECT_EQ(refusal(withEffects("  supply_resistance: {}\n")),
+            "m.yaml:32: effects.supply_resistance.resistance_ohm: missing key");
+  EXPECT_EQ(refusal(withEffects("  ground_effect: {coefficient_m2: 0.001}\n")),
+            "m.yaml:32: effects.ground_effect.rotor_height_m: missing key");
+  EXPECT_EQ(refusal(withEffects("  motor_temperature: {per_c: 0.001}\n")),
+            "m.yaml:32: effects.motor_temperature.reference_c: missing key");
+}
+
+TEST(ModelYaml, RefusesAnEffectThatIsNotAMappingOrNotANumber) {
+  EXPECT_EQ(refusal(withEffects("  esc_offset: 12\n")), "m.yaml:32: effects.esc_offset: expected a mapping, got '12'");
+  EXPECT_EQ(refusal(withEffects("  esc_offset: {offset_us: twelve}\n")),
+            "m.yaml:32: effects.esc_offset.offset_us: expected a number, got 'twelve'");
+  EXPECT_EQ(refusal(withEffects("  climb_inflow: {per_m_s: .nan}\n")),
+            "m.yaml:32: effects.climb_inflow.per_m_s: expected a finite number, got '.nan'");
+}
+
+TEST(ModelYaml, RefusesEffectValuesOutsideTheirRanges) {
+  // The check is ModelEffects::validate(), located in the file.
+  EXPECT_EQ(refusal(withEffects("  thrust_loss: {fraction: 0.04}\n  supply_resistance: {resistance_ohm: 35}\n")),
+            "m.yaml:33: effects.supply_resistance.resistance_ohm: 35 is outside 0..0.5");
+  EXPECT_EQ(refusal(withEffects("  esc_offset: {offset_us: -150}\n")),
+            "m.yaml:32: effects.esc_offset.offset_us: -150 is outside -100..100");
+  EXPECT_EQ(refusal(withEffects("  motor_temperature: {per_c: 0.001, reference_c: 295}\n")),
+            "m.yaml:32: effects.motor_temperature.reference_c: 295 is outside -40..150");
+  EXPECT_EQ(refusal(withEffects("  ground_effect: {coefficient_m2: 0.001, rotor_height_m: 5}\n")),
+            "m.yaml:32: effects.ground_effect.rotor_height_m: 5 is outside -1..1");
+}
+
+TEST(ModelYaml, LoadsAModelWithoutBenchAir) {
+  const pe::PropulsionModel model = pe::parseModelYaml(withoutBenchAir(), "m.yaml");
+  EXPECT_FALSE(model.metadata().hasBenchAir());
+  EXPECT_TRUE(std::isnan(model.metadata().benchAirDensity()));
+  const std::string written = pe::modelToYaml(model);
+  EXPECT_EQ(written.find("bench_air"), std::string::npos) << written;
+  EXPECT_EQ(pe::modelToYaml(pe::parseModelYaml(written, "reread")), written);
+  // Every effect but air_density is corrected without it.
+  EXPECT_EQ(pe::parseModelYaml(withoutBenchAir() + "effects:\n  thrust_loss: {fraction: 0.04}\n", "m.yaml")
+                .effects()
+                .thrust_loss_fraction,
+            0.04);
+}
+
+TEST(ModelYaml, RefusesAirDensityWithoutBenchAir) {
+  EXPECT_EQ(refusal(withoutBenchAir() + "effects:\n  air_density: {exponent: 0.85}\n"),
+            "m.yaml:30: effects.air_density: needs the bench air of the model's metadata (bench_air_temperature_c, "
+            "bench_air_pressure_pa) as its reference, and the model has none");
+  pe::effects::ModelEffects fx;
+  fx.air_density_exponent = 0.85;
+  try {
+    pe::parseModelYaml(withoutBenchAir(), "m.yaml").withEffects(fx);
+    FAIL() << "accepted";
+  } catch (const pe::ConfigError& e) {
+    EXPECT_STREQ(e.what(),
+                 "effects.air_density: needs the bench air of the model's metadata (bench_air_temperature_c, "
+                 "bench_air_pressure_pa) as its reference, and the model has none");
+  }
+}
+
+TEST(ModelYaml, RefusesHalfTheBenchAir) {
+  EXPECT_EQ(refusal(replaced("  bench_air_pressure_pa: 101325\n", "")),
+            "m.yaml:3: metadata.bench_air_pressure_pa: missing: bench air is given as temperature and pressure "
+            "together, or not at all");
+  EXPECT_EQ(refusal(replaced("  bench_air_temperature_c: 20\n", "")),
+            "m.yaml:3: metadata.bench_air_temperature_c: missing: bench air is given as temperature and pressure "
+            "together, or not at all");
+}

@@ -99,6 +99,10 @@ struct ModelEffects {
   void validate() const;
 };
 
+/// "resistance_ohm 0.035", "coefficient_m2 0.0011, rotor_height_m 0.05", ...: the parameter of
+/// `kind` and its references as the model file names them, for logs and diagnostics; "off".
+std::string describeParameters(Kind kind, const ModelEffects& effects);
+
 /// Below this the ground-effect law leaves its range of validity (a rotor disc on the ground).
 constexpr double kMinGroundDistanceM = 0.05;
 

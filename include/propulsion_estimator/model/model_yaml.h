@@ -9,8 +9,10 @@ namespace propulsion_estimator {
 // Reader and writer of the model file (one ESC-motor-propeller combination; schema in README).
 // Both throw ConfigError with one line naming the file, the line, the key and the value.
 
-// Parses and validates a model: structure, types, units, finiteness, and the values of every
-// output on a grid over the domain (model_validation.h). `source` names the text in messages.
+// Parses and validates a model: structure, types, units, finiteness, the values of every output
+// on a grid over the domain (model_validation.h), and the optional `effects:` section
+// (effects::ModelEffects::validate(); an air_density effect needs the metadata's bench air).
+// `source` names the text in messages.
 PropulsionModel parseModelYaml(const std::string& text, const std::string& source);
 PropulsionModel loadModelFile(const std::string& path);
 
@@ -19,8 +21,9 @@ PropulsionModel loadModelFile(const std::string& path);
 std::string modelToYaml(const PropulsionModel& model, const std::string& comment = "");
 void saveModelFile(const PropulsionModel& model, const std::string& path, const std::string& comment = "");
 
-// 16 hex digits identifying the surfaces, domain and metadata of a model (a hash of what
-// modelToYaml writes), whatever file it was read from: a tare is valid only with its model.
+// 16 hex digits identifying the surfaces, domain, metadata and effects of a model (a hash of
+// what modelToYaml writes), whatever file it was read from: a tare is valid only with its model,
+// and a corrected model (effects added) estimates another empty mass than the plain one.
 std::string modelFingerprint(const PropulsionModel& model);
 
 }  // namespace propulsion_estimator

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/model/response_surface.h"
 
 namespace propulsion_estimator {
@@ -64,15 +65,20 @@ struct ModelMetadata {
   std::string esc;
   std::string motor;
   std::string propeller;
-  double bench_air_temperature_c = 0.0;
-  double bench_air_pressure_pa = 0.0;
+  // Air on the bench, both or neither: a model whose bench air is unknown estimates as well,
+  // but cannot be corrected for the flight air's density (the air_density effect).
+  std::optional<double> bench_air_temperature_c;
+  std::optional<double> bench_air_pressure_pa;
   SupplyKind supply = SupplyKind::kRegulated;
   std::string source;
 
-  // Air density on the bench, p / (R T): the reference for density corrections.
+  bool hasBenchAir() const { return bench_air_temperature_c && bench_air_pressure_pa; }
+  // Air density on the bench, p / (R T), kg/m^3: the reference of the air_density effect; NaN
+  // without bench air.
   double benchAirDensity() const;
   // FieldError ("metadata.bench_air_temperature_c", ...) for bench air outside the ranges the
-  // model loader accepts; fit_surfaces applies the same check before it writes a model.
+  // model loader accepts, or only one of the two given; fit_surfaces applies the same check
+  // before it writes a model.
   void validate() const;
 };
 
@@ -86,13 +92,19 @@ struct OperatingPoint {
   bool in_domain = false;
 };
 
-// The response surfaces of one ESC-motor-propeller combination.
+// The response surfaces of one ESC-motor-propeller combination, and the effects measured in
+// flight that they leave out (the model file's optional `effects:` section).
 class PropulsionModel {
  public:
   // Throws ConfigError (without file context) for a unit that does not fit its output, a
   // derivation that is circular or refers to an absent output, thrust not modelled, or an
-  // empty domain.
-  PropulsionModel(ModelMetadata metadata, ModelDomain domain, std::array<OutputDefinition, kOutputCount> outputs);
+  // empty domain; FieldError ("effects.<name>.<key>") for effects that ModelEffects::validate()
+  // refuses. The effects' bench air density is taken from the metadata, whatever `effects` says.
+  PropulsionModel(ModelMetadata metadata, ModelDomain domain, std::array<OutputDefinition, kOutputCount> outputs,
+                  effects::ModelEffects effects = {});
+
+  // The same surfaces with other effects (a corrected model); throws as the constructor does.
+  PropulsionModel withEffects(effects::ModelEffects effects) const;
 
   // Evaluates all outputs. Outside the domain the inputs are clamped, or the surfaces
   // extrapolated, as the model says, and in_domain is false; with the reject policy nothing is
@@ -107,6 +119,9 @@ class PropulsionModel {
   const ModelMetadata& metadata() const { return metadata_; }
   const ModelDomain& domain() const { return domain_; }
   const OutputDefinition& output(Output output) const { return outputs_[static_cast<int>(output)]; }
+  // What the surfaces leave out; evaluate() does not apply it (the Estimator does, with the
+  // signals the effects read).
+  const effects::ModelEffects& effects() const { return effects_; }
 
  private:
   // All outputs in SI, floored as evaluate() documents, in dependency order.
@@ -116,6 +131,7 @@ class PropulsionModel {
   ModelMetadata metadata_;
   ModelDomain domain_;
   std::array<OutputDefinition, kOutputCount> outputs_;
+  effects::ModelEffects effects_;
   std::array<double, kOutputCount> to_si_{};
   std::array<Output, kOutputCount> evaluation_order_{};
 };
