@@ -1,5 +1,6 @@
 #include "propulsion_estimator/estimation/estimator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -11,6 +12,17 @@ namespace propulsion_estimator {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// What the effects' signals can be; beyond, the reading is in another unit (mA, hPa, K) or broken.
+constexpr double kMaxBatteryCurrentA = 1000.0;
+constexpr double kMinStaticPressurePa = 30000.0;  // the bench air's range (ModelMetadata::validate)
+constexpr double kMaxStaticPressurePa = 110000.0;
+// A barometer's die, which PX4 reports as the air's temperature, runs warmer than the air.
+constexpr double kMinAirTemperatureC = -60.0;
+constexpr double kMaxAirTemperatureC = 85.0;
+constexpr double kMinMotorTemperatureC = -40.0;
+constexpr double kMaxMotorTemperatureC = 200.0;
 
 std::size_t windowCapacity(double span_s, double rate_hz) {
   return static_cast<std::size_t>(std::ceil(span_s * rate_hz)) + 2;
@@ -21,7 +33,8 @@ std::size_t windowCapacity(double span_s, double rate_hz) {
 const char* rejectionName(Rejection rejection) {
   static const char* const kNames[kRejectionCount] = {
       "none",           "bad_voltage",  "bad_imu",         "bad_velocity", "no_battery",    "stale_battery",
-      "disarmed",       "too_few_channels", "time_backwards", "outside_domain", "non_finite_estimate"};
+      "disarmed",       "too_few_channels", "time_backwards", "outside_domain", "non_finite_estimate",
+      "bad_battery_current", "bad_static_pressure", "bad_air_temperature", "bad_range", "bad_motor_temperature"};
   return kNames[static_cast<int>(rejection)];
 }
 
@@ -54,6 +67,26 @@ std::string describe(const RejectionDetail& d) {
       out << "motor outputs ignored: the model gives a non-finite value for channel " << d.channel << " at "
           << d.value << " us and " << d.limit << " V (a pole of a rational surface when extrapolating?)";
       break;
+    case Rejection::kBadBatteryCurrent:
+      out << "battery current " << d.value << " A refused (must be finite, at most " << kMaxBatteryCurrentA
+          << " A either way)";
+      break;
+    case Rejection::kBadStaticPressure:
+      out << "static pressure " << d.value << " Pa refused (outside " << kMinStaticPressurePa << ".."
+          << kMaxStaticPressurePa << " Pa)";
+      break;
+    case Rejection::kBadAirTemperature:
+      out << "air temperature " << d.value << " deg C refused (outside " << kMinAirTemperatureC << ".."
+          << kMaxAirTemperatureC << " deg C)";
+      break;
+    case Rejection::kBadRange:
+      out << "rangefinder range " << d.value << " m refused (NaN, or outside the sensor's min_range..max_range "
+          << d.limit << ".." << d.limit_high << " m, which sensor_msgs/Range says to discard)";
+      break;
+    case Rejection::kBadMotorTemperature:
+      out << "motor temperature " << d.value << " deg C refused (outside " << kMinMotorTemperatureC << ".."
+          << kMaxMotorTemperatureC << " deg C)";
+      break;
   }
   return out.str();
 }
@@ -80,10 +113,14 @@ Estimator::Estimator(PropulsionModel model, Vehicle vehicle, EstimatorConfig con
   output_.payload = payload_.estimate();
 }
 
-Rejection Estimator::reject(Rejection reason, int channel, double value, double limit) {
+Rejection Estimator::reject(Rejection reason, int channel, double value, double limit, double limit_high) {
   ++counters_.rejected[static_cast<int>(reason)];
-  last_rejection_ = RejectionDetail{reason, channel, value, limit};
+  last_rejection_ = RejectionDetail{reason, channel, value, limit, limit_high};
   return reason;
+}
+
+double Estimator::Reading::at(double now_s, double timeout_s) const {
+  return have && now_s - receipt_s <= timeout_s ? value : kNaN;
 }
 
 void Estimator::checkClock(double receipt_s) {
@@ -92,6 +129,10 @@ void Estimator::checkClock(double receipt_s) {
     clearWindows();
     accel_filter_.clear();
     have_voltage_ = have_imu_ = have_velocity_ = have_stamp_ = false;
+    for (Reading* reading : {&battery_current_a_, &static_pressure_pa_, &air_temperature_c_, &range_m_,
+                             &motor_temperature_c_}) {
+      reading->have = false;
+    }
     ++counters_.clock_resets;
   }
   last_receipt_s_ = receipt_s;
@@ -127,6 +168,79 @@ Rejection Estimator::addVerticalSpeed(double receipt_s, double vertical_speed_m_
   velocity_receipt_s_ = receipt_s;
   have_velocity_ = true;
   return Rejection::kNone;
+}
+
+Rejection Estimator::addBatteryCurrent(double receipt_s, double current_a) {
+  checkClock(receipt_s);
+  if (std::isnan(current_a)) return Rejection::kNone;
+  if (!(std::fabs(current_a) <= kMaxBatteryCurrentA)) return reject(Rejection::kBadBatteryCurrent, 0, current_a);
+  battery_current_a_.set(receipt_s, std::fabs(current_a));
+  return Rejection::kNone;
+}
+
+Rejection Estimator::addStaticPressure(double receipt_s, double pressure_pa) {
+  checkClock(receipt_s);
+  if (!(pressure_pa >= kMinStaticPressurePa && pressure_pa <= kMaxStaticPressurePa)) {
+    return reject(Rejection::kBadStaticPressure, 0, pressure_pa);
+  }
+  static_pressure_pa_.set(receipt_s, pressure_pa);
+  return Rejection::kNone;
+}
+
+Rejection Estimator::addAirTemperature(double receipt_s, double temperature_c) {
+  checkClock(receipt_s);
+  if (!(temperature_c >= kMinAirTemperatureC && temperature_c <= kMaxAirTemperatureC)) {
+    return reject(Rejection::kBadAirTemperature, 0, temperature_c);
+  }
+  air_temperature_c_.set(receipt_s, temperature_c);
+  return Rejection::kNone;
+}
+
+Rejection Estimator::addRange(double receipt_s, double range_m, double min_range_m, double max_range_m) {
+  checkClock(receipt_s);
+  double usable = range_m;
+  if (!(min_range_m >= 0.0 && min_range_m < max_range_m && std::isfinite(max_range_m)) || std::isnan(range_m)) {
+    return reject(Rejection::kBadRange, 0, range_m, min_range_m, max_range_m);
+  }
+  if (range_m == -kInf) {
+    usable = min_range_m;
+  } else if (range_m != kInf && !(range_m >= min_range_m && range_m <= max_range_m)) {
+    return reject(Rejection::kBadRange, 0, range_m, min_range_m, max_range_m);
+  }
+  range_m_.set(receipt_s, usable);
+  return Rejection::kNone;
+}
+
+Rejection Estimator::addMotorTemperature(double receipt_s, double temperature_c) {
+  checkClock(receipt_s);
+  if (!(temperature_c >= kMinMotorTemperatureC && temperature_c <= kMaxMotorTemperatureC)) {
+    return reject(Rejection::kBadMotorTemperature, 0, temperature_c);
+  }
+  motor_temperature_c_.set(receipt_s, temperature_c);
+  return Rejection::kNone;
+}
+
+effects::Signals Estimator::effectSignals(double now_s) const {
+  effects::Signals signals;
+  signals.battery_current_a = battery_current_a_.at(now_s, config_.battery_timeout_s);
+  const double pressure = static_pressure_pa_.at(now_s, config_.static_pressure_timeout_s);
+  const double temperature = air_temperature_c_.at(now_s, config_.air_temperature_timeout_s);
+  signals.air_density_kg_m3 = pressure / (kSpecificGasConstantDryAir * (temperature + kZeroCelsiusInKelvin));
+  // The rangefinder looks along the body's -z: the ground is range * cos(tilt) below it (and
+  // unseen when the vehicle is on its side).
+  const double cos_tilt = imuFresh(now_s) ? body_to_world_(2, 2) : 1.0;
+  signals.height_m = cos_tilt > 0.0 ? range_m_.at(now_s, config_.rangefinder_timeout_s) * cos_tilt : kNaN;
+  signals.motor_temperature_c = motor_temperature_c_.at(now_s, config_.motor_temperature_timeout_s);
+  signals.vertical_speed_m_s = velocityFresh(now_s) ? vertical_speed_m_s_ : kNaN;
+  return signals;
+}
+
+bool Estimator::imuFresh(double now_s) const {
+  return have_imu_ && now_s - imu_receipt_s_ <= config_.imu_timeout_s;
+}
+
+bool Estimator::velocityFresh(double now_s) const {
+  return have_velocity_ && now_s - velocity_receipt_s_ <= config_.velocity_timeout_s;
 }
 
 double Estimator::batteryAge(double now_s) const {
@@ -165,20 +279,31 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
     ++counters_.clock_resets;
   }
   // Every motor is evaluated before anything is committed, so that a refusal leaves the
-  // estimates as they were.
+  // estimates as they were. The surfaces are evaluated at the inputs the ESCs really see.
+  const effects::ModelEffects& model_effects = model_.effects();
+  const effects::Signals signals = effectSignals(receipt_s);
+  effects::KindMask skipped = 0;
+  // Floored as the surfaces' thrust is: a linear law (climb inflow) pushed far past its range.
+  const double thrust_factor = std::max(0.0, effects::thrustFactor(model_effects, signals, &skipped));
   for (std::size_t i = 0; i < scratch_.size(); ++i) {
     const int channel = config_.motor_channels[i];
-    const double pwm = channels[channel - 1];
-    if (!model_.evaluate(pwm, voltage_v_, &scratch_[i])) return reject(Rejection::kOutsideDomain, channel, pwm);
-    const OperatingPoint& p = scratch_[i];
+    const effects::Inputs in =
+        effects::correctInputs(model_effects, channels[channel - 1], voltage_v_, signals, &skipped);
+    if (!model_.evaluate(in.pwm_us, in.voltage_v, &scratch_[i])) {
+      return reject(Rejection::kOutsideDomain, channel, in.pwm_us);
+    }
+    OperatingPoint& p = scratch_[i];
+    // Efficiency is thrust over power: it follows the thrust, the power stays the surfaces'.
+    p.thrust_n *= thrust_factor;
+    p.efficiency_n_per_w *= thrust_factor;
     if (!std::isfinite(p.thrust_n) || !std::isfinite(p.current_a) || !std::isfinite(p.power_w) ||
         !std::isfinite(p.efficiency_n_per_w)) {
-      return reject(Rejection::kNonFiniteEstimate, channel, pwm, voltage_v_);
+      return reject(Rejection::kNonFiniteEstimate, channel, in.pwm_us, in.voltage_v);
     }
   }
 
-  const bool imu_fresh = have_imu_ && receipt_s - imu_receipt_s_ <= config_.imu_timeout_s;
-  const bool velocity_fresh = have_velocity_ && receipt_s - velocity_receipt_s_ <= config_.velocity_timeout_s;
+  const bool imu_fresh = imuFresh(receipt_s);
+  const bool velocity_fresh = velocityFresh(receipt_s);
   const bool tilt_known = imu_fresh && config_.compensate_tilt;
 
   Totals totals;
@@ -215,6 +340,12 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   output_.payload = payload_.add(stamp_s, totals.mass_kg, output_.hover.hovering);
   output_.totals = totals;
   output_.stamp_s = stamp_s;
+  output_.effects_skipped = skipped;
+  for (effects::Kind kind : effects::kAllKinds) {
+    if (!model_effects.has(kind)) continue;
+    const std::size_t k = static_cast<std::size_t>(kind);
+    ++((skipped & effects::bit(kind)) ? counters_.effect_skipped[k] : counters_.effect_applied[k]);
+  }
 
   counters_.motor_samples += vehicle_.rotors.size();
   counters_.motor_samples_outside_domain += static_cast<std::uint64_t>(totals.motors_out_of_domain);

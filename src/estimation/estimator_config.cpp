@@ -45,6 +45,10 @@ void EstimatorConfig::validate(std::size_t rotors) const {
   requirePositive(battery_timeout_s, "battery_timeout_s");
   requirePositive(imu_timeout_s, "imu/timeout_s");
   requirePositive(velocity_timeout_s, "velocity/timeout_s");
+  requirePositive(static_pressure_timeout_s, "static_pressure/timeout_s");
+  requirePositive(air_temperature_timeout_s, "air_temperature/timeout_s");
+  requirePositive(rangefinder_timeout_s, "rangefinder/timeout_s");
+  requirePositive(motor_temperature_timeout_s, "motor_temperature/timeout_s");
   requirePositive(accel_filter_s, "imu/accel_filter_s");
   requirePositive(accel_bias_filter_s, "imu/accel_bias_filter_s");
   requirePositive(max_rate_hz, "max_rate_hz");

@@ -10,11 +10,13 @@
 
 namespace pe = propulsion_estimator;
 
-// The thesis model on the thesis quad, fed at 50 Hz like MAVROS' rc/out.
+// The thesis model on the thesis quad, fed at 50 Hz like MAVROS' rc/out; with `effects`, the
+// model corrected by them.
 class EstimatorFixture {
  public:
-  explicit EstimatorFixture(pe::EstimatorConfig config = {}, pe::Vehicle vehicle = pe::Vehicle::quadX(0.225))
-      : model(pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"))),
+  explicit EstimatorFixture(pe::EstimatorConfig config = {}, pe::Vehicle vehicle = pe::Vehicle::quadX(0.225),
+                            const pe::effects::ModelEffects& effects = {})
+      : model(pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml")).withEffects(effects)),
         estimator(model, std::move(vehicle), std::move(config)) {}
 
   // Motor outputs at `pwm` on all four motors for `seconds`, with a fresh voltage every second.

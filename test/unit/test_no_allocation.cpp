@@ -38,6 +38,40 @@ TEST(Estimator, EvaluatesMotorOutputsWithoutHeapAllocation) {
   EXPECT_TRUE(f.estimator.output().hover.hovering);
 }
 
+TEST(Estimator, AppliesEveryEffectWithoutHeapAllocation) {
+  pe::effects::ModelEffects effects;
+  effects.esc_offset_us = 10.0;
+  effects.supply_resistance_ohm = 0.04;
+  effects.air_density_exponent = 0.9;
+  effects.ground_effect_coefficient_m2 = 0.001;
+  effects.rotor_height_m = 0.1;
+  effects.thrust_loss_fraction = 0.03;
+  effects.motor_temperature_per_c = 0.001;
+  effects.motor_reference_c = 22.0;
+  effects.climb_inflow_per_m_s = 0.03;
+  EstimatorFixture f({}, pe::Vehicle::quadX(0.225), effects);
+  f.fly(1690.0, 20.0);
+  const std::vector<std::uint16_t> channels{1690, 1700, 1680, 1695, 1000, 1000, 1000, 1000};
+  const Eigen::Quaterniond level = Eigen::Quaterniond::Identity();
+  const long before = g_allocations.load();
+  for (int k = 0; k < 1000; ++k, f.t += 0.02) {
+    f.estimator.addImu(f.t, level, Eigen::Vector3d(0, 0, 9.81));
+    f.estimator.addVerticalSpeed(f.t, 0.1);
+    f.estimator.addRange(f.t, 2.0, 0.1, 12.0);
+    f.estimator.addStaticPressure(f.t, 98000.0);
+    if (k % 50 == 0) {
+      f.estimator.addBattery(f.t, 11.4);
+      f.estimator.addBatteryCurrent(f.t, -17.0);
+      f.estimator.addAirTemperature(f.t, 24.0);
+      f.estimator.addMotorTemperature(f.t, 45.0);
+    }
+    ASSERT_EQ(f.estimator.addMotorOutputs(f.t, f.t, channels.data(), channels.size()), pe::Rejection::kNone);
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(f.estimator.output().effects_skipped, 0u);
+  EXPECT_TRUE(f.estimator.output().hover.hovering);
+}
+
 TEST(RcOutDecoder, DecodesWithoutHeapAllocationOnceWarm) {
   pe::RcOutMessage sent;
   sent.header.frame_id = "a_frame_id_longer_than_the_small_string_buffer";

@@ -12,6 +12,7 @@
 #include "propulsion_estimator/estimation/estimator_config.h"
 #include "propulsion_estimator/estimation/hover_detector.h"
 #include "propulsion_estimator/estimation/payload_estimator.h"
+#include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 #include "propulsion_estimator/estimation/vertical_acceleration_filter.h"
@@ -32,8 +33,14 @@ enum class Rejection {
   kTimeBackwards,   // RCOut stamp older than the previous accepted one
   kOutsideDomain,   // outside the model's domain and the model says reject
   kNonFiniteEstimate,  // the model gives NaN or infinity (a rational surface extrapolated to its pole)
+  // Signals of the model's effects, refused outside what the quantity can be (a unit error):
+  kBadBatteryCurrent,   // infinite, or more than 1000 A either way
+  kBadStaticPressure,   // outside 30000..110000 Pa (the bench air's range)
+  kBadAirTemperature,   // outside -60..85 deg C
+  kBadRange,            // NaN, or finite outside the sensor's own min_range..max_range
+  kBadMotorTemperature,  // outside -40..200 deg C
 };
-constexpr int kRejectionCount = 11;
+constexpr int kRejectionCount = 16;
 const char* rejectionName(Rejection rejection);
 
 // The last refusal with what it was about, turned into text only when someone asks.
@@ -42,6 +49,7 @@ struct RejectionDetail {
   int channel = 0;     // 1-based, for kDisarmed
   double value = 0.0;  // offending value (voltage, PWM, channel count, seconds)
   double limit = 0.0;  // what it was checked against
+  double limit_high = 0.0;  // upper end where the check is a range (kBadRange)
 };
 std::string describe(const RejectionDetail& detail);
 
@@ -68,6 +76,8 @@ struct EstimatorOutput {
   double stamp_s = 0.0;
   std::vector<MotorOutput> motors;  // sized once, one per rotor
   Totals totals;
+  // The model's effects not applied to this message because their signal was missing or stale.
+  effects::KindMask effects_skipped = 0;
   HoverVerdict hover;
   MassEstimate payload;
 };
@@ -78,6 +88,10 @@ struct EstimatorCounters {
   std::uint64_t motor_samples = 0;
   std::uint64_t motor_samples_outside_domain = 0;
   std::uint64_t clock_resets = 0;
+  // Accepted messages on which each of the model's effects was applied, or skipped (its signal
+  // missing or stale), indexed by effects::Kind.
+  std::array<std::uint64_t, effects::kKindCount> effect_applied{};
+  std::array<std::uint64_t, effects::kKindCount> effect_skipped{};
 };
 
 // Answer of tare(): the new empty mass, or why there is none.
@@ -90,6 +104,11 @@ struct TareResult {
 // The whole onboard estimation, free of ROS: inputs in, estimates out. `receipt_s` is the time
 // an input arrived on the estimator's clock (ROS time, simulated when replaying a bag); it drives
 // staleness. Stamps are the inputs' own header times. Evaluating motor outputs allocates nothing.
+//
+// The model's effects (effects::ModelEffects) are applied to every motor: the surfaces are
+// evaluated at effects::correctInputs() and thrust and efficiency multiplied by
+// effects::thrustFactor() (floored at zero, as the surfaces' thrust is). A correction whose signal
+// is missing or older than its timeout is skipped for that message and counted.
 class Estimator {
  public:
   // Throws ConfigError if the configuration does not fit the vehicle.
@@ -100,6 +119,24 @@ class Estimator {
   // the body frame (about +9.81 m/s^2 on z at rest), as MAVROS publishes them.
   Rejection addImu(double receipt_s, const Eigen::Quaterniond& orientation, const Eigen::Vector3d& specific_force);
   Rejection addVerticalSpeed(double receipt_s, double vertical_speed_m_s);
+
+  // Signals of the model's effects; each is used until its timeout (EstimatorConfig).
+  // Battery current as the autopilot reports it: its magnitude is the current drawn, since the
+  // sign conventions differ (sensor_msgs/BatteryState and PX4's MAVROS: negative when
+  // discharging) and a flying multicopter only discharges. NaN is BatteryState's "not measured":
+  // ignored, not refused. Ages like the voltage (battery_timeout_s).
+  Rejection addBatteryCurrent(double receipt_s, double current_a);
+  // Static pressure (Pa) and air temperature (deg C) give the air density p / (R T).
+  Rejection addStaticPressure(double receipt_s, double pressure_pa);
+  Rejection addAirTemperature(double receipt_s, double temperature_c);
+  // A downward rangefinder's reading (m), REP-117: +inf (nothing within max_range) is out of
+  // ground effect, -inf (closer than min_range) is taken as min_range, the farthest the ground
+  // can then be, so that the correction is never overdone. The height is the range times the
+  // cosine of the tilt while the IMU is fresh.
+  Rejection addRange(double receipt_s, double range_m, double min_range_m, double max_range_m);
+  Rejection addMotorTemperature(double receipt_s, double temperature_c);
+  // The signals as the corrections read them at `now_s`: NaN where missing or stale.
+  effects::Signals effectSignals(double now_s) const;
 
   // One RCOut message: PWM of all channels (0-based array of the message's channels). Returns
   // kNone and fills output(), or the reason nothing was computed.
@@ -124,8 +161,26 @@ class Estimator {
   const EstimatorConfig& config() const { return config_; }
 
  private:
-  Rejection reject(Rejection reason, int channel = 0, double value = 0.0, double limit = 0.0);
+  // The latest valid reading of one signal and when it arrived.
+  struct Reading {
+    double value = 0.0;
+    double receipt_s = 0.0;
+    bool have = false;
+
+    void set(double receipt, double v) {
+      value = v;
+      receipt_s = receipt;
+      have = true;
+    }
+    // NaN when missing or older than `timeout_s` at `now_s`.
+    double at(double now_s, double timeout_s) const;
+  };
+
+  Rejection reject(Rejection reason, int channel = 0, double value = 0.0, double limit = 0.0,
+                   double limit_high = 0.0);
   void checkClock(double receipt_s);
+  bool imuFresh(double now_s) const;
+  bool velocityFresh(double now_s) const;
   void clearWindows();
 
   PropulsionModel model_;
@@ -147,6 +202,7 @@ class Estimator {
   double vertical_speed_m_s_ = 0.0;
   double velocity_receipt_s_ = 0.0;
   bool have_velocity_ = false;
+  Reading battery_current_a_, static_pressure_pa_, air_temperature_c_, range_m_, motor_temperature_c_;
   double last_stamp_s_ = 0.0;
   bool have_stamp_ = false;
   double last_receipt_s_ = 0.0;

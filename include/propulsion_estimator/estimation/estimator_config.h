@@ -19,6 +19,15 @@ struct EstimatorConfig {
   double battery_timeout_s = 5.0;  // MAVROS on PX4 may publish the battery at 0.5-1 Hz
   double imu_timeout_s = 0.5;
   double velocity_timeout_s = 0.5;
+  // How long a reading of a signal of the model's effects stays in use; older, the correction that
+  // reads it is skipped. The battery current ages with the voltage (battery_timeout_s), the
+  // vertical speed with the velocity (velocity_timeout_s). Defaults: a few periods of what MAVROS
+  // publishes (static pressure 10-50 Hz, its temperature and a motor temperature about 1 Hz, a
+  // rangefinder 10-50 Hz).
+  double static_pressure_timeout_s = 1.0;
+  double air_temperature_timeout_s = 5.0;
+  double rangefinder_timeout_s = 0.5;
+  double motor_temperature_timeout_s = 5.0;
   bool compensate_tilt = true;          // vertical thrust = sum T_i (R a_i) . z, with the IMU's attitude
   bool compensate_acceleration = true;  // mass = vertical thrust / (g + vertical acceleration)
   double accel_filter_s = 0.3;          // low-pass of the vertical acceleration
