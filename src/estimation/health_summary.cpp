@@ -161,6 +161,56 @@ HealthStatus judgePayload(const Estimator& estimator) {
   return status;
 }
 
+std::string signalSource(effects::Signal signal, const HealthConfig& config) {
+  switch (signal) {
+    case effects::Signal::kBatteryCurrent: return "battery current on " + config.battery_input;
+    case effects::Signal::kAirDensity:
+      return "static pressure on " + config.static_pressure_input + " and air temperature on " +
+             config.air_temperature_input;
+    case effects::Signal::kHeight: return "height above the ground on " + config.rangefinder_input;
+    case effects::Signal::kMotorTemperature: return "motor temperature on " + config.motor_temperature_input;
+    case effects::Signal::kVerticalSpeed: return "vertical speed on " + config.velocity_input;
+    case effects::Signal::kNone: break;
+  }
+  return "no signal";
+}
+
+HealthStatus judgeEffects(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
+                          const HealthConfig& config) {
+  HealthStatus status;
+  const effects::ModelEffects& fx = estimator.model().effects();
+  if (fx.empty()) {
+    status.message = "none: the model has no effects";
+    return status;
+  }
+  const effects::Signals signals = estimator.effectSignals(now.time_s);
+  std::string applied, skipped;
+  for (effects::Kind kind : effects::kAllKinds) {
+    if (!fx.has(kind)) continue;
+    const std::size_t k = static_cast<std::size_t>(kind);
+    const std::uint64_t skips = now.counters.effect_skipped[k] - before.counters.effect_skipped[k];
+    const std::uint64_t applications = now.counters.effect_applied[k] - before.counters.effect_applied[k];
+    const effects::Signal signal = effects::requiredSignal(kind);
+    // Skipped on a message of the period, or about to be: the signal is missing now.
+    const bool missing = signal != effects::Signal::kNone && std::isnan(signals.value(signal));
+    std::ostringstream value;
+    value << effects::describeParameters(kind, fx) << "; applied to " << applications << ", skipped on " << skips
+          << " messages since the last report";
+    if (missing) value << "; " << signalSource(signal, config) << " missing or stale";
+    add(&status, effects::kindName(kind), value.str());
+    std::string& list = skips > 0 || missing ? skipped : applied;
+    list += (list.empty() ? "" : ", ") + std::string(effects::kindName(kind));
+    if (skips > 0 || missing) list += " (" + signalSource(signal, config) + " missing or stale)";
+  }
+  if (!skipped.empty()) {
+    status.level = HealthLevel::kWarn;
+    status.message = "skipped: " + skipped + (applied.empty() ? std::string() : "; applied: " + applied);
+  } else {
+    status.message = "applied: " + applied;
+  }
+  return status;
+}
+
 TareVerdict judgeTare(const HoverVerdict& hover, const MassEstimate& estimate, const EstimatorConfig& config) {
   TareVerdict verdict;
   if (!hover.hovering) {

@@ -92,6 +92,7 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (!params_.velocity_topic.empty()) {
     velocity_sub_ = nh.subscribe(params_.velocity_topic, 20, &EstimatorNode::onVelocity, this, hints);
   }
+  subscribeEffectSignals(nh, private_nh, hints);
   tare_srv_ = private_nh.advertiseService("tare", &EstimatorNode::onTare, this);
   detect_hover_srv_ = private_nh.advertiseService("detect_hover", &EstimatorNode::onDetectHover, this);
   reset_srv_ = private_nh.advertiseService("reset", &EstimatorNode::onReset, this);
@@ -116,8 +117,59 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   diagnostics_.add("Payload", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     copy(judgePayload(*estimator_), &status);
   });
-  inputs_before_ = outputs_before_ = domain_before_ = takeSnapshot();
+  diagnostics_.add("Effects", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    const HealthSnapshot now = takeSnapshot();
+    copy(judgeEffects(*estimator_, effects_before_, now, params_.health), &status);
+    effects_before_ = now;
+  });
+  inputs_before_ = outputs_before_ = domain_before_ = effects_before_ = takeSnapshot();
   diagnostics_timer_ = nh.createTimer(ros::Duration(0.1), [this](const ros::TimerEvent&) { diagnostics_.update(); });
+}
+
+void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+                                           const ros::TransportHints& hints) {
+  const effects::ModelEffects& fx = estimator_->model().effects();
+  if (fx.empty()) {
+    ROS_INFO_STREAM("effects: none (" << params_.model << " has no effects: section)");
+    return;
+  }
+  // A needed topic set to "" would skip its correction for the whole flight: refused at start.
+  auto require = [this, &private_nh](effects::Kind kind, const char* parameter, const std::string& topic) {
+    if (topic.empty()) {
+      throw ConfigError(private_nh.resolveName(parameter) + ": empty, but the model's " +
+                        effects::kindName(kind) + " effect (" + params_.model + ") reads it");
+    }
+  };
+  for (effects::Kind kind : effects::kAllKinds) {
+    if (!fx.has(kind)) continue;
+    const effects::Signal signal = effects::requiredSignal(kind);
+    switch (signal) {
+      case effects::Signal::kBatteryCurrent: pass_battery_current_ = true; break;
+      case effects::Signal::kAirDensity:
+        require(kind, "static_pressure_topic", params_.static_pressure_topic);
+        require(kind, "air_temperature_topic", params_.air_temperature_topic);
+        static_pressure_sub_ =
+            nh.subscribe(params_.static_pressure_topic, 20, &EstimatorNode::onStaticPressure, this, hints);
+        air_temperature_sub_ =
+            nh.subscribe(params_.air_temperature_topic, 5, &EstimatorNode::onAirTemperature, this, hints);
+        break;
+      case effects::Signal::kHeight:
+        require(kind, "rangefinder_topic", params_.rangefinder_topic);
+        range_sub_ = nh.subscribe(params_.rangefinder_topic, 20, &EstimatorNode::onRange, this, hints);
+        break;
+      case effects::Signal::kMotorTemperature:
+        require(kind, "motor_temperature_topic", params_.motor_temperature_topic);
+        motor_temperature_sub_ =
+            nh.subscribe(params_.motor_temperature_topic, 5, &EstimatorNode::onMotorTemperature, this, hints);
+        break;
+      case effects::Signal::kVerticalSpeed: require(kind, "velocity_topic", params_.velocity_topic); break;
+      case effects::Signal::kNone: break;
+    }
+    ROS_INFO_STREAM("effect applied: " << effects::kindName(kind) << " (" << effects::describeParameters(kind, fx)
+                                       << (signal == effects::Signal::kNone
+                                               ? std::string(")")
+                                               : "; reads the " + signalSource(signal, params_.health) + ")"));
+  }
 }
 
 HealthSnapshot EstimatorNode::takeSnapshot() const {
@@ -142,7 +194,9 @@ void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) 
 
 void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message) {
   ++inputs_.received[static_cast<int>(NodeInput::kBattery)];
-  logRejection(estimator_->addBattery(ros::Time::now().toSec(), message->voltage));
+  const double now = ros::Time::now().toSec();
+  logRejection(estimator_->addBattery(now, message->voltage));
+  if (pass_battery_current_) logRejection(estimator_->addBatteryCurrent(now, message->current));
 }
 
 void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
@@ -162,6 +216,23 @@ void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
 void EstimatorNode::onVelocity(const geometry_msgs::TwistStamped::ConstPtr& message) {
   ++inputs_.received[static_cast<int>(NodeInput::kVelocity)];
   logRejection(estimator_->addVerticalSpeed(ros::Time::now().toSec(), message->twist.linear.z));
+}
+
+void EstimatorNode::onStaticPressure(const sensor_msgs::FluidPressure::ConstPtr& message) {
+  logRejection(estimator_->addStaticPressure(ros::Time::now().toSec(), message->fluid_pressure));
+}
+
+void EstimatorNode::onAirTemperature(const sensor_msgs::Temperature::ConstPtr& message) {
+  logRejection(estimator_->addAirTemperature(ros::Time::now().toSec(), message->temperature));
+}
+
+void EstimatorNode::onRange(const sensor_msgs::Range::ConstPtr& message) {
+  logRejection(estimator_->addRange(ros::Time::now().toSec(), message->range, message->min_range,
+                                    message->max_range));
+}
+
+void EstimatorNode::onMotorTemperature(const sensor_msgs::Temperature::ConstPtr& message) {
+  logRejection(estimator_->addMotorTemperature(ros::Time::now().toSec(), message->temperature));
 }
 
 void EstimatorNode::logRejection(Rejection rejection) {

@@ -77,6 +77,10 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("rc_out_topic", &p.rc_out_topic);
   read.optional("imu_topic", &p.imu_topic);
   read.optional("velocity_topic", &p.velocity_topic);
+  read.optional("static_pressure_topic", &p.static_pressure_topic);
+  read.optional("air_temperature_topic", &p.air_temperature_topic);
+  read.optional("rangefinder_topic", &p.rangefinder_topic);
+  read.optional("motor_temperature_topic", &p.motor_temperature_topic);
   read.optional("domain_warn_fraction", &p.health.domain_warn_fraction);
 
   EstimatorConfig& c = p.estimator;
@@ -89,6 +93,10 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("imu/accel_filter_s", &c.accel_filter_s);
   read.optional("imu/accel_bias_filter_s", &c.accel_bias_filter_s);
   read.optional("velocity/timeout_s", &c.velocity_timeout_s);
+  read.optional("static_pressure/timeout_s", &c.static_pressure_timeout_s);
+  read.optional("air_temperature/timeout_s", &c.air_temperature_timeout_s);
+  read.optional("rangefinder/timeout_s", &c.rangefinder_timeout_s);
+  read.optional("motor_temperature/timeout_s", &c.motor_temperature_timeout_s);
   read.optional("max_rate_hz", &c.max_rate_hz);
   read.optional("clock_jump_reset_s", &c.clock_jump_reset_s);
   read.optionalMass("empty_mass_kg", &c.empty_mass_kg);
@@ -109,6 +117,11 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.refuseUnknown();
   p.health.battery_input = p.battery_topic;
   p.health.rc_out_input = p.rc_out_topic;
+  p.health.velocity_input = p.velocity_topic;
+  p.health.static_pressure_input = p.static_pressure_topic;
+  p.health.air_temperature_input = p.air_temperature_topic;
+  p.health.rangefinder_input = p.rangefinder_topic;
+  p.health.motor_temperature_input = p.motor_temperature_topic;
   p.health.validate();
 
   std::ostringstream channels;
@@ -127,6 +140,12 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
                   << ", compensate_acceleration " << c.compensate_acceleration << ", accel_filter_s "
                   << c.accel_filter_s << ", accel_bias_filter_s " << c.accel_bias_filter_s
                   << "\n  velocity: timeout_s " << c.velocity_timeout_s
+                  << "\n  effect signals (subscribed when the model's effects read them): static_pressure_topic "
+                  << p.static_pressure_topic << " (timeout_s " << c.static_pressure_timeout_s
+                  << "), air_temperature_topic " << p.air_temperature_topic << " (timeout_s "
+                  << c.air_temperature_timeout_s << "), rangefinder_topic " << p.rangefinder_topic << " (timeout_s "
+                  << c.rangefinder_timeout_s << "), motor_temperature_topic " << p.motor_temperature_topic
+                  << " (timeout_s " << c.motor_temperature_timeout_s << ")"
                   << "\n  hover: window_s " << c.hover.window_s << ", min_window_fill " << c.hover.min_window_fill
                   << ", max_thrust_rel_std " << c.hover.max_thrust_rel_std << ", max_tilt_deg "
                   << c.hover.max_tilt_deg << ", max_vertical_speed_m_s " << c.hover.max_vertical_speed_m_s

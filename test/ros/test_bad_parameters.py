@@ -4,6 +4,7 @@ parameter or file, and exits with status 1 (no crash, no silent default)."""
 import os
 import re
 import subprocess
+import tempfile
 import unittest
 
 import roslib.packages
@@ -55,6 +56,25 @@ class BadParametersTest(unittest.TestCase):
         urdf = os.path.join(os.path.dirname(MODEL), "f450_quad.urdf")
         self.assertEqual(start("f", {"model": MODEL, "urdf_file": urdf, "motor_channels": [1, 2, 3, 4, 5, 6]}),
                          (1, "motor_channels: 6 channels for a vehicle with 4 rotors"))
+
+    def test_topic_of_an_effect_disabled(self):
+        model = os.path.join(tempfile.mkdtemp(prefix="pe_effects_"), "ground_effect.yaml")
+        with open(MODEL) as f:
+            text = f.read()
+        with open(model, "w") as f:
+            f.write(text + "\neffects:\n  ground_effect: {coefficient_m2: 0.0011, rotor_height_m: 0.05}\n")
+        self.assertEqual(start("g", {"model": model, "rangefinder_topic": ""}),
+                         (1, "/g/rangefinder_topic: empty, but the model's ground_effect effect (%s) reads it" % model))
+
+    def test_effect_outside_its_range(self):
+        model = os.path.join(tempfile.mkdtemp(prefix="pe_effects_"), "thrust_loss.yaml")
+        with open(MODEL) as f:
+            text = f.read()
+        with open(model, "w") as f:
+            f.write(text + "effects:\n  thrust_loss: {fraction: 4}\n")
+        line = text.count("\n") + 2  # the model's lines, then effects:, then thrust_loss
+        self.assertEqual(start("h", {"model": model}),
+                         (1, "%s:%d: effects.thrust_loss.fraction: 4 is outside -0.1..0.4" % (model, line)))
 
 
 if __name__ == "__main__":

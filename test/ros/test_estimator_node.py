@@ -2,20 +2,34 @@
 """rostest of estimator_node as a black box: inputs on MAVROS topics, estimates on ~motors,
 ~totals and ~payload, services, /diagnostics. Expected values come as test parameters."""
 import os
+import tempfile
 import unittest
 
+import rosgraph
 import roslaunch
 import rospy
 import rostest
 import yaml
-from diagnostic_msgs.msg import DiagnosticStatus
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from propulsion_estimator.msg import PayloadEstimate
-from sensor_msgs.msg import Imu
+from sensor_msgs.msg import Imu, Range
 
 from estimator_harness import EstimatorHarness, is_nan
 
 G = 9.80665
 HOVER = [1690, 1690, 1690, 1690, 1000, 1000, 1000, 1000]
+# Every effect of model/model_effects.h, appended to the thesis model for test_7.
+ALL_EFFECTS = """effects:
+  supply_resistance: {resistance_ohm: 0.035}
+  ground_effect: {coefficient_m2: 0.0011, rotor_height_m: 0.05}
+  motor_temperature: {per_c: 0.0012, reference_c: 22}
+  air_density: {exponent: 0.85}
+  thrust_loss: {fraction: 0.04}
+  climb_inflow: {per_m_s: 0.03}
+  esc_offset: {offset_us: 12}
+"""
+EFFECT_TOPICS = ("/mavros/imu/static_pressure", "/mavros/imu/temperature_baro", "/mavros/rangefinder/rangefinder",
+                 "/motor_temperature")
 
 
 class EstimatorNodeTest(unittest.TestCase):
@@ -178,6 +192,72 @@ class EstimatorNodeTest(unittest.TestCase):
             meta = yaml.safe_load(f)["metadata"]
         status = self.h.wait_for_diagnostic("Payload", "")
         self.assertEqual(status.hardware_id, "%s / %s / %s" % (meta["esc"], meta["motor"], meta["propeller"]))
+
+    def test_8_effect_topics_and_diagnostic(self):
+        """A node whose model has every effect subscribes to each effect's topic (the node with the
+        plain model to none of them) and names, in its Effects diagnostic, each correction whose
+        signal is missing."""
+        model = os.path.join(tempfile.mkdtemp(prefix="pe_effects_"), "all_effects.yaml")
+        with open(rospy.get_param("/propulsion_estimator/model")) as f:
+            text = f.read()
+        with open(model, "w") as f:
+            f.write(text + "\n" + ALL_EFFECTS)
+        rospy.set_param("/effects_node/model", model)
+        statuses = {}
+
+        def on_diagnostics(message):
+            for status in message.status:
+                node, _, task = status.name.partition(": ")
+                if node.endswith("effects_node"):
+                    statuses[task] = status
+
+        def subscribers(topic):
+            return dict(rosgraph.Master("/test_estimator_node").getSystemState()[1]).get(topic, [])
+
+        def effects_message():
+            return statuses["Effects"].message if "Effects" in statuses else "none"
+
+        diagnostics = rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
+        launch = roslaunch.scriptapi.ROSLaunch()
+        launch.start()
+        process = launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name="effects_node",
+                                                    namespace="/", output="log"))
+        try:
+            rospy.wait_for_service("/effects_node/tare", timeout=30.0)
+            self.h.wait_for(lambda: all("/effects_node" in subscribers(t) for t in EFFECT_TOPICS), 10.0,
+                            "the subscriptions to the effects' topics")
+            for topic in EFFECT_TOPICS:
+                self.assertNotIn("/propulsion_estimator", subscribers(topic))
+
+            # The battery's current (0 A in the harness's messages) is fresh, the other signals missing.
+            missing = ("air_density (static pressure on /mavros/imu/static_pressure and air temperature on "
+                       "/mavros/imu/temperature_baro missing or stale), ground_effect (height above the ground on "
+                       "/mavros/rangefinder/rangefinder missing or stale), motor_temperature (motor temperature on "
+                       "/motor_temperature missing or stale), climb_inflow (vertical speed on "
+                       "/mavros/local_position/velocity_local missing or stale)")
+            expected = "skipped: " + missing + "; applied: supply_resistance, thrust_loss, esc_offset"
+            end = rospy.Time.now() + rospy.Duration(10.0)
+            while effects_message() != expected:
+                self.assertLess(rospy.Time.now(), end, "Effects diagnostic: " + effects_message())
+                self.h.battery(11.4)
+                rospy.sleep(0.2)
+            self.assertEqual(statuses["Effects"].level, DiagnosticStatus.WARN)
+
+            # A rangefinder: ground_effect moves to the applied corrections.
+            ranges = rospy.Publisher("/mavros/rangefinder/rangefinder", Range, queue_size=10)
+            expected = expected.replace("ground_effect (height above the ground on /mavros/rangefinder/rangefinder "
+                                        "missing or stale), ", "").replace(
+                "applied: supply_resistance", "applied: supply_resistance, ground_effect")
+            end = rospy.Time.now() + rospy.Duration(10.0)
+            while effects_message() != expected:
+                self.assertLess(rospy.Time.now(), end, "Effects diagnostic: " + effects_message())
+                self.h.battery(11.4)
+                ranges.publish(Range(range=1.0, min_range=0.1, max_range=12.0))
+                rospy.sleep(0.05)
+        finally:
+            diagnostics.unregister()
+            process.stop()
+            launch.stop()
 
 
 if __name__ == "__main__":

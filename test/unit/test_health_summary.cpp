@@ -255,3 +255,53 @@ TEST(HealthSummary, DomainWarningSaysTheSamplesWereExtrapolated) {
   EXPECT_EQ(status.level, pe::HealthLevel::kWarn);
   EXPECT_EQ(status.message, "100 % of motor samples outside the model's domain (extrapolated)");
 }
+
+TEST(HealthSummary, EffectsNoneForAPlainModel) {
+  EstimatorFixture f;
+  const pe::HealthStatus status =
+      pe::judgeEffects(f.estimator, snapshot(f.estimator, 0.0), snapshot(f.estimator, 1.0), nodeConfig());
+  EXPECT_EQ(status.level, pe::HealthLevel::kOk);
+  EXPECT_EQ(status.message, "none: the model has no effects");
+  EXPECT_TRUE(status.values.empty());
+}
+
+TEST(HealthSummary, EffectsWarnNamingEachCorrectionSkippedForItsSignal) {
+  pe::effects::ModelEffects effects;
+  effects.supply_resistance_ohm = 0.04;
+  effects.ground_effect_coefficient_m2 = 0.0011;
+  effects.rotor_height_m = 0.05;
+  effects.thrust_loss_fraction = 0.03;
+  EstimatorFixture f({}, pe::Vehicle::quadX(0.225), effects);
+  pe::HealthConfig config = nodeConfig();
+  config.rangefinder_input = "/mavros/rangefinder/rangefinder";
+  const pe::HealthSnapshot start = snapshot(f.estimator, f.t);
+  f.estimator.addBatteryCurrent(f.t, -15.0);
+  f.fly(1690.0, 0.1);  // no rangefinder yet
+  const pe::HealthStatus missing = pe::judgeEffects(f.estimator, start, snapshot(f.estimator, f.t), config);
+  EXPECT_EQ(missing.level, pe::HealthLevel::kWarn);
+  EXPECT_EQ(missing.message,
+            "skipped: ground_effect (height above the ground on /mavros/rangefinder/rangefinder missing or stale); "
+            "applied: supply_resistance, thrust_loss");
+  EXPECT_EQ(valueOf(missing, "ground_effect"),
+            "coefficient_m2 0.0011, rotor_height_m 0.05; applied to 0, skipped on 5 messages since the last report; "
+            "height above the ground on /mavros/rangefinder/rangefinder missing or stale");
+  EXPECT_EQ(valueOf(missing, "supply_resistance"),
+            "resistance_ohm 0.04; applied to 5, skipped on 0 messages since the last report");
+
+  // Fresh now, but skipped earlier in the period: still a warning for this period.
+  const pe::HealthSnapshot before = snapshot(f.estimator, f.t);
+  f.fly(1690.0, 0.1);
+  f.estimator.addRange(f.t, 1.0, 0.1, 12.0);
+  const pe::HealthStatus late = pe::judgeEffects(f.estimator, before, snapshot(f.estimator, f.t), config);
+  EXPECT_EQ(late.level, pe::HealthLevel::kWarn);
+  EXPECT_EQ(late.message,
+            "skipped: ground_effect (height above the ground on /mavros/rangefinder/rangefinder missing or stale); "
+            "applied: supply_resistance, thrust_loss");
+
+  // A period with the rangefinder fresh throughout.
+  const pe::HealthSnapshot next = snapshot(f.estimator, f.t);
+  f.fly(1690.0, 0.02);
+  const pe::HealthStatus ok = pe::judgeEffects(f.estimator, next, snapshot(f.estimator, f.t), config);
+  EXPECT_EQ(ok.level, pe::HealthLevel::kOk);
+  EXPECT_EQ(ok.message, "applied: supply_resistance, ground_effect, thrust_loss");
+}

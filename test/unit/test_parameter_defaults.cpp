@@ -40,6 +40,14 @@ TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
   EXPECT_EQ(number("imu/accel_filter_s"), c.accel_filter_s);
   EXPECT_EQ(number("imu/accel_bias_filter_s"), c.accel_bias_filter_s);
   EXPECT_EQ(number("velocity/timeout_s"), c.velocity_timeout_s);
+  EXPECT_EQ(text("static_pressure_topic"), node.static_pressure_topic);
+  EXPECT_EQ(text("air_temperature_topic"), node.air_temperature_topic);
+  EXPECT_EQ(text("rangefinder_topic"), node.rangefinder_topic);
+  EXPECT_EQ(text("motor_temperature_topic"), node.motor_temperature_topic);
+  EXPECT_EQ(number("static_pressure/timeout_s"), c.static_pressure_timeout_s);
+  EXPECT_EQ(number("air_temperature/timeout_s"), c.air_temperature_timeout_s);
+  EXPECT_EQ(number("rangefinder/timeout_s"), c.rangefinder_timeout_s);
+  EXPECT_EQ(number("motor_temperature/timeout_s"), c.motor_temperature_timeout_s);
   EXPECT_EQ(number("hover/window_s"), c.hover.window_s);
   EXPECT_EQ(number("hover/min_window_fill"), c.hover.min_window_fill);
   EXPECT_EQ(number("hover/max_thrust_rel_std"), c.hover.max_thrust_rel_std);

@@ -46,6 +46,12 @@ struct HealthSnapshot {
 struct HealthConfig {
   std::string battery_input = "battery";     ///< e.g. the battery topic
   std::string rc_out_input = "motor outputs";  ///< e.g. the RCOut topic
+  /// Where the effects' signals come from (the topics), for the Effects verdict.
+  std::string velocity_input = "velocity";
+  std::string static_pressure_input = "static pressure";
+  std::string air_temperature_input = "air temperature";
+  std::string rangefinder_input = "rangefinder";
+  std::string motor_temperature_input = "motor temperature";
   /// Share of motor samples outside the model's domain per period above which "Model domain" warns.
   double domain_warn_fraction = 0.2;
 
@@ -71,6 +77,15 @@ HealthStatus judgeDomain(const Estimator& estimator, const HealthSnapshot& befor
 
 /// "Payload": always OK, with the payload state, the masses and the hover detector's verdict.
 HealthStatus judgePayload(const Estimator& estimator);
+
+/// "battery current on /mavros/battery", ...: a signal of the model's effects and where it comes from.
+std::string signalSource(effects::Signal signal, const HealthConfig& config);
+
+/// "Effects": per effect of the model, its parameters and on how many messages of the period it was
+/// applied or skipped. WARN naming each correction skipped in the period or whose signal is missing
+/// or stale now (before take-off too), with the corrections applied; OK listing them, or "none".
+HealthStatus judgeEffects(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
+                          const HealthConfig& config);
 
 /// Whether a tare would be accepted now, and if not why.
 struct TareVerdict {

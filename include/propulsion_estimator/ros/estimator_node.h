@@ -7,7 +7,10 @@
 #include <geometry_msgs/TwistStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/BatteryState.h>
+#include <sensor_msgs/FluidPressure.h>
 #include <sensor_msgs/Imu.h>
+#include <sensor_msgs/Range.h>
+#include <sensor_msgs/Temperature.h>
 #include <std_srvs/Trigger.h>
 #include <topic_tools/shape_shifter.h>
 
@@ -33,6 +36,14 @@ class EstimatorNode {
   void onBattery(const sensor_msgs::BatteryState::ConstPtr& message);
   void onImu(const sensor_msgs::Imu::ConstPtr& message);
   void onVelocity(const geometry_msgs::TwistStamped::ConstPtr& message);
+  void onStaticPressure(const sensor_msgs::FluidPressure::ConstPtr& message);
+  void onAirTemperature(const sensor_msgs::Temperature::ConstPtr& message);
+  void onRange(const sensor_msgs::Range::ConstPtr& message);
+  void onMotorTemperature(const sensor_msgs::Temperature::ConstPtr& message);
+  // Subscribes to what the model's effects read (and refuses a needed topic set to ""); logs
+  // which effects apply with which parameters.
+  void subscribeEffectSignals(ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+                              const ros::TransportHints& hints);
   void logRejection(Rejection rejection);
   void publish();
 
@@ -47,6 +58,8 @@ class EstimatorNode {
   std::unique_ptr<Estimator> estimator_;
 
   ros::Subscriber rc_out_sub_, battery_sub_, imu_sub_, velocity_sub_;
+  ros::Subscriber static_pressure_sub_, air_temperature_sub_, range_sub_, motor_temperature_sub_;
+  bool pass_battery_current_ = false;  // only a supply_resistance effect reads it
   ros::Publisher motors_pub_, totals_pub_, payload_pub_;
   ros::ServiceServer tare_srv_, detect_hover_srv_, reset_srv_;
   diagnostic_updater::Updater diagnostics_;
@@ -60,7 +73,7 @@ class EstimatorNode {
   ros::Timer diagnostics_timer_;
   InputActivity inputs_;
   // Counts at each diagnostics task's previous run, from which it derives rates and fractions.
-  HealthSnapshot inputs_before_, outputs_before_, domain_before_;
+  HealthSnapshot inputs_before_, outputs_before_, domain_before_, effects_before_;
 };
 
 }  // namespace propulsion_estimator

@@ -18,6 +18,11 @@ struct EstimatorNodeParams {
   std::string rc_out_topic = "/mavros/rc/out";
   std::string imu_topic = "/mavros/imu/data";          // "" disables
   std::string velocity_topic = "/mavros/local_position/velocity_local";  // "" disables
+  // Signals of the model's effects, subscribed only when an effect of the model reads them.
+  std::string static_pressure_topic = "/mavros/imu/static_pressure";     // sensor_msgs/FluidPressure
+  std::string air_temperature_topic = "/mavros/imu/temperature_baro";    // sensor_msgs/Temperature
+  std::string rangefinder_topic = "/mavros/rangefinder/rangefinder";     // sensor_msgs/Range
+  std::string motor_temperature_topic = "/motor_temperature";            // sensor_msgs/Temperature
   HealthConfig health;  // domain_warn_fraction; its input names are the topics
   EstimatorConfig estimator;
 };
