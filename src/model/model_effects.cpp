@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
@@ -174,6 +175,10 @@ Inputs correctInputs(const ModelEffects& effects, double pwm_us, double voltage_
 }
 
 double singleThrustFactor(Kind kind, double value, const ModelEffects& references, const Signals& signals) {
+  // Checked here, not left to the arithmetic: pow(NaN, 0) is 1, and an air_density exponent of 0
+  // would count as applied without its signal.
+  const Signal signal = requiredSignal(kind);
+  if (signal != Signal::kNone && std::isnan(signals.value(signal))) return std::numeric_limits<double>::quiet_NaN();
   switch (kind) {
     case Kind::kAirDensity:
       return std::pow(signals.air_density_kg_m3 / references.bench_air_density_kg_m3, value);

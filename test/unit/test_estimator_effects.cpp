@@ -184,6 +184,18 @@ TEST(EstimatorEffects, WithoutItsSignalACorrectionIsSkippedAndTheOthersApply) {
   EXPECT_EQ(f.estimator.counters().effect_skipped[static_cast<int>(fx::Kind::kEscOffset)], 0u) << "not in the model";
 }
 
+TEST(EstimatorEffects, AnEffectAtItsNeutralValueIsStillSkippedWithoutItsSignal) {
+  // (rho / rho_bench)^0 is 1 for any density, but a missing density must show as skipped.
+  EstimatorFixture f({}, pe::Vehicle::quadX(0.225), only(fx::Kind::kAirDensity, 0.0));
+  f.fly(kPwm, 0.1);
+  EXPECT_TRUE(skipped(f, fx::Kind::kAirDensity));
+  f.estimator.addStaticPressure(f.t, 97000.0);
+  f.estimator.addAirTemperature(f.t, 25.0);
+  f.fly(kPwm, 0.02);
+  EXPECT_FALSE(skipped(f, fx::Kind::kAirDensity));
+  expectMotor(f, kPwm, kVoltage, 1.0);
+}
+
 TEST(EstimatorEffects, AStaleSignalSkipsItsCorrectionAfterItsTimeout) {
   const pe::EstimatorConfig config;
   struct Case {
