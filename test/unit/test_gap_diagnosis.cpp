@@ -1,0 +1,189 @@
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/gap/diagnosis.h"
+#include "propulsion_estimator/gap/gap_report.h"
+#include "propulsion_estimator/gap/thrust_views.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+namespace gap = propulsion_estimator::gap;
+using pe::effects::Kind;
+
+namespace {
+
+// The world a synthetic flight is flown in: the thesis surfaces are the truth of the propulsion
+// chain, and one cause (or none) sits between them and the flight.
+struct World {
+  double thrust_loss = 0.0;        // fraction of thrust the airframe takes
+  double supply_resistance = 0.0;  // ohm between the voltage sensor and the ESCs
+  double esc_offset_us = 0.0;      // the flying ESCs need this much more pulse width
+  int weak_motor = -1;             // index of a motor whose propeller gives weak_factor of its thrust
+  double weak_factor = 1.0;
+};
+
+class SyntheticFlights : public ::testing::Test {
+ protected:
+  SyntheticFlights()
+      : model_(pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"))),
+        vehicle_(pe::Vehicle::quadX(0.225)),
+        views_(model_, 4) {}
+
+  // A pulse width giving `thrust_n` on one motor at `voltage_v` (bisection on the surfaces).
+  double pwmFor(double thrust_n, double voltage_v) const {
+    double low = 1100.0, high = 2000.0;
+    for (int i = 0; i < 60; ++i) {
+      const double middle = 0.5 * (low + high);
+      (views_.motorThrust(middle, voltage_v) < thrust_n ? low : high) = middle;
+    }
+    return 0.5 * (low + high);
+  }
+
+  double motorCurrent(double pwm_us, double voltage_v) const {
+    return model_.evaluateRaw(pe::Output::kCurrent, pwm_us, voltage_v);
+  }
+
+  // A flight of three 40 s hovers at the given masses, the battery sagging from `voltage_v`.
+  gap::Flight fly(const std::string& name, const World& world, const std::vector<double>& masses, double voltage_v,
+                  unsigned seed) const {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> force_noise(0.0, 0.3), pwm_noise(0.0, 2.0);
+    gap::Flight flight;
+    flight.name = name;
+    flight.streams.source = name;
+    flight.streams.motors = 4;
+    double t = 0.0;
+    for (std::size_t s = 0; s < masses.size(); ++s) {
+      const double start = t + 2.0;
+      for (int i = 0; i < 50 * 42; ++i, t += 0.02) {
+        const double sensed = voltage_v - 0.3 * (t / 150.0);
+        // What the ESCs see and what each rotor must give so that the vehicle hovers.
+        double esc_voltage = sensed;
+        double current = 0.0;
+        std::array<double, 4> pwm{};
+        for (int pass = 0; pass < 3; ++pass) {
+          current = 0.0;
+          for (int k = 0; k < 4; ++k) {
+            const double factor = (k == world.weak_motor ? world.weak_factor : 1.0) * (1.0 - world.thrust_loss);
+            pwm[k] = pwmFor(masses[s] * pe::kStandardGravity / 4.0 / factor, esc_voltage) + world.esc_offset_us;
+            current += motorCurrent(pwm[k] - world.esc_offset_us, esc_voltage) *
+                       (k == world.weak_motor ? std::pow(world.weak_factor, 1.5) : 1.0);
+          }
+          esc_voltage = sensed - world.supply_resistance * current;
+        }
+        gap::RcOutFrame frame;
+        frame.time_s = t;
+        for (int k = 0; k < 4; ++k) frame.pwm_us[k] = pwm[k] + pwm_noise(rng);
+        flight.streams.rc_out.push_back(frame);
+        if (i % 5 == 0) flight.streams.battery.push_back({t, sensed, -current});  // PX4 through MAVROS: negated
+        gap::ImuReading imu;
+        imu.time_s = t;
+        imu.specific_force_m_s2 = Eigen::Vector3d(0.0, 0.0, pe::kStandardGravity + force_noise(rng));
+        flight.streams.imu.push_back(imu);
+      }
+      flight.segments.push_back({start, t - 1.0, masses[s]});
+      t += 5.0;
+    }
+    return flight;
+  }
+
+  std::vector<gap::Flight> flights(const World& world) const {
+    return {fly("f1.bag", world, {1.3, 1.6, 1.75}, 12.4, 1), fly("f2.bag", world, {1.35, 1.5, 1.8}, 11.8, 2),
+            fly("f3.bag", world, {1.3, 1.7, 1.55}, 11.3, 3), fly("f4.bag", world, {1.45, 1.65, 1.4}, 12.2, 4),
+            fly("f5.bag", world, {1.6, 1.35, 1.8}, 11.6, 5)};
+  }
+
+  gap::Diagnosis diagnose(const World& world) const {
+    gap::DiagnosisConfig config;
+    return gap::diagnoseGap(model_, vehicle_, flights(world), config);
+  }
+
+  pe::PropulsionModel model_;
+  pe::Vehicle vehicle_;
+  gap::ThrustViews views_;
+};
+
+}  // namespace
+
+TEST_F(SyntheticFlights, NamesNothingWhenTheModelIsTheTruth) {
+  const gap::Diagnosis diagnosis = diagnose(World{});
+  EXPECT_TRUE(diagnosis.selected.empty());
+  EXPECT_LT(std::abs(diagnosis.overall.bias_pct), 0.5);
+  EXPECT_FALSE(diagnosis.motors.suspect_channel);
+  for (const gap::EffectResult& effect : diagnosis.effects) {
+    // Synthetic flights have neither height, vertical speed, air nor motor temperature.
+    const bool needs_signal = pe::effects::requiredSignal(effect.kind) != pe::effects::Signal::kNone &&
+                              effect.kind != Kind::kSupplyResistance;
+    EXPECT_EQ(effect.testable, !needs_signal) << pe::effects::kindName(effect.kind);
+  }
+}
+
+TEST_F(SyntheticFlights, NamesAThrustLossAndShrinksTheGap) {
+  World world;
+  world.thrust_loss = 0.06;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  ASSERT_EQ(diagnosis.selected, std::vector<Kind>{Kind::kThrustLoss});
+  EXPECT_NEAR(*diagnosis.fitted.thrust_loss_fraction, 0.06, 0.005);
+  EXPECT_GT(diagnosis.overall.bias_pct, 5.0);
+  EXPECT_LT(diagnosis.heldout.after_rmse_pct, 0.3 * diagnosis.heldout.before_rmse_pct);
+}
+
+TEST_F(SyntheticFlights, TellsASupplyResistanceFromAThrustLossByTheCurrent) {
+  World world;
+  world.supply_resistance = 0.08;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  ASSERT_EQ(diagnosis.selected, std::vector<Kind>{Kind::kSupplyResistance});
+  EXPECT_NEAR(*diagnosis.fitted.supply_resistance_ohm, 0.08, 0.01);
+  EXPECT_LT(diagnosis.heldout.after_rmse_pct, 0.3 * diagnosis.heldout.before_rmse_pct);
+}
+
+TEST_F(SyntheticFlights, NamesAnEscOffset) {
+  World world;
+  world.esc_offset_us = 25.0;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  ASSERT_EQ(diagnosis.selected, std::vector<Kind>{Kind::kEscOffset});
+  EXPECT_NEAR(*diagnosis.fitted.esc_offset_us, 25.0, 3.0);
+}
+
+TEST_F(SyntheticFlights, PointsAtAWeakPropellerAndNamesNoEffect) {
+  World world;
+  world.weak_motor = 2;
+  world.weak_factor = 0.85;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  ASSERT_TRUE(diagnosis.motors.suspect_channel);
+  EXPECT_EQ(*diagnosis.motors.suspect_channel, 3);
+  EXPECT_TRUE(diagnosis.selected.empty());
+}
+
+TEST_F(SyntheticFlights, ReportsWhatItCannotUseAndDiagnosesTheRest) {
+  std::vector<gap::Flight> all = flights(World{});
+  all[1].segments.push_back({1000.0, 1010.0, 1.4});
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{});
+  ASSERT_EQ(diagnosis.problems.size(), 1u);
+  EXPECT_EQ(diagnosis.problems[0], "f2.bag: segment 4 (1000-1010 s) lies outside the log's rc/out span 0.00-135.98 s; skipped");
+  EXPECT_GT(diagnosis.overall.samples, 1000);
+}
+
+TEST_F(SyntheticFlights, RefusesWhenNothingIsUsable) {
+  std::vector<gap::Flight> all = flights(World{});
+  for (gap::Flight& flight : all) flight.segments = {{5000.0, 5010.0, 1.4}};
+  EXPECT_THROW(gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{}), pe::ConfigError);
+}
+
+TEST_F(SyntheticFlights, ReportYamlHoldsTheContract) {
+  World world;
+  world.thrust_loss = 0.06;
+  const std::string yaml = gap::gapReportYaml(diagnose(world));
+  for (const char* key : {"gap:", "bias_pct:", "rmse_pct:", "payload_err_pct:", "where:", "motors:", "suspect_motor:",
+                          "effects:", "selected: [thrust_loss]", "heldout:", "before_rmse_pct:", "after_rmse_pct:",
+                          "before_payload_err_pct:", "after_payload_err_pct:"}) {
+    EXPECT_NE(yaml.find(key), std::string::npos) << key;
+  }
+}
