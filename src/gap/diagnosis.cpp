@@ -172,7 +172,7 @@ class Diagnoser {
   // Sum over blocks of the joint squared error (PWM view plus current view where it exists).
   std::vector<double> groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const;
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
-  double currentViewRatio(const effects::ModelEffects& fitted) const;
+  double currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const;
 
   const PropulsionModel& model_;
   const Vehicle& vehicle_;
@@ -314,15 +314,14 @@ std::vector<double> Diagnoser::groupImprovements(const HeldOutPrediction& before
   return improvements;
 }
 
-// How the current view's residual follows the effect's correction of the PWM view: 1 when both
-// views err alike, 0 when the current view does not see the effect.
-double Diagnoser::currentViewRatio(const effects::ModelEffects& fitted) const {
-  const effects::ModelEffects plain = references();
+// How the current view's residual follows an effect's correction of the PWM view (from `without`
+// to `with`): 1 when both views err alike, 0 when the current view does not see the effect.
+double Diagnoser::currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const {
   double sum_xy = 0.0, sum_xx = 0.0;
   for (const Block& block : blocks_) {
-    const double current = views_.currentView(block, plain);
+    const double current = views_.currentView(block, without);
     if (!std::isfinite(current)) continue;
-    const double correction = (views_.pwmView(block, fitted) - views_.pwmView(block, plain)) / block.truth_n;
+    const double correction = (views_.pwmView(block, with) - views_.pwmView(block, without)) / block.truth_n;
     sum_xy += -correction * relative(current, block);
     sum_xx += correction * correction;
   }
@@ -470,6 +469,7 @@ Diagnosis Diagnoser::run() {
   }
   for (int round = 0; can_hold_out && round < config_.max_effects; ++round) {
     const double base_ms = jointMeanSquare(current_best);
+    const effects::ModelEffects round_base = fitEffects(views_, all_, selected, references()).effects;
     double base_pwm = 0.0;
     for (double r : current_best.pwm) base_pwm += r * r / blocks_.size();
     Kind best_kind = Kind::kThrustLoss;
@@ -496,7 +496,7 @@ Diagnosis Diagnoser::run() {
       const effects::ParameterSpec& spec = effects::parameterSpec(kind);
       const double margin = 1e-3 * (spec.max - spec.min);
       result.plausible = result.parameter > spec.min + margin && result.parameter < spec.max - margin;
-      result.current_view_ratio = currentViewRatio(fit.effects);
+      result.current_view_ratio = currentViewRatio(round_base, fit.effects);
       const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
       const double drop_pct = 100.0 * (std::sqrt(base_pwm) - std::sqrt(pwm_ms));
       const bool significant = result.p_value < config_.significance && drop_pct > config_.min_improvement_pct &&
