@@ -19,10 +19,15 @@ bool RcOutDecoder::decode(const topic_tools::ShapeShifter& message, RcOutMessage
   }
   const std::uint32_t size = message.size();
   if (buffer_.size() < size) buffer_.resize(size);
+  ros::serialization::OStream writer(buffer_.data(), size);
+  message.write(writer);
+  return decodePayload(buffer_.data(), size, out, error);
+}
+
+bool RcOutDecoder::decodePayload(const std::uint8_t* data, std::uint32_t size, RcOutMessage* out, std::string* error) {
   try {
-    ros::serialization::OStream writer(buffer_.data(), size);
-    message.write(writer);
-    ros::serialization::IStream reader(buffer_.data(), size);
+    // IStream only reads, but takes a mutable pointer.
+    ros::serialization::IStream reader(const_cast<std::uint8_t*>(data), size);
     // The header by hand: roscpp's string deserializer builds a temporary std::string, which
     // allocates for a frame_id longer than the small-string buffer; assign() reuses capacity.
     std_msgs::Header& header = out->header;

@@ -62,3 +62,21 @@ TEST(RcOutCodec, RefusesATruncatedPayload) {
   EXPECT_EQ(error, "malformed mavros_msgs/RCOut: 1000 channels announced, 8 bytes left");
 }
 
+
+TEST(RcOutCodec, DecodesAPayloadWhoseTypeWasCheckedElsewhere) {
+  pe::RcOutMessage sent;
+  sent.header.stamp = ros::Time(3, 0);
+  sent.channels = {1600, 1610, 1590, 1605};
+  std::vector<std::uint8_t> bytes(ros::serialization::serializationLength(sent.header) + 4 + 8);
+  ros::serialization::OStream writer(bytes.data(), bytes.size());
+  ros::serialization::serialize(writer, sent.header);
+  ros::serialization::serialize(writer, sent.channels);
+  pe::RcOutMessage received;
+  std::string error;
+  ASSERT_TRUE(pe::RcOutDecoder::decodePayload(bytes.data(), bytes.size(), &received, &error)) << error;
+  EXPECT_EQ(received.header.stamp, sent.header.stamp);
+  EXPECT_EQ(received.channels, sent.channels);
+  // Cut inside the channels: refused, not read past the end.
+  EXPECT_FALSE(pe::RcOutDecoder::decodePayload(bytes.data(), bytes.size() - 3, &received, &error));
+  EXPECT_EQ(error, "malformed mavros_msgs/RCOut: 4 channels announced, 5 bytes left");
+}

@@ -27,6 +27,9 @@ struct RcOutMessage {
 class RcOutDecoder {
  public:
   bool decode(const topic_tools::ShapeShifter& message, RcOutMessage* out, std::string* error);
+  // The serialized message alone, for a reader that has checked the type itself (a bag's
+  // connection): false with a one-line reason for a malformed payload.
+  static bool decodePayload(const std::uint8_t* data, std::uint32_t size, RcOutMessage* out, std::string* error);
 
  private:
   std::vector<std::uint8_t> buffer_;

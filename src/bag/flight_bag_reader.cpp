@@ -1,0 +1,275 @@
+#include "propulsion_estimator/bag/flight_bag_reader.h"
+
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/TwistStamped.h>
+#include <rosbag/exceptions.h>
+#include <rosbag/view.h>
+#include <ros/serialization.h>
+#include <sensor_msgs/BatteryState.h>
+#include <sensor_msgs/FluidPressure.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/Range.h>
+#include <sensor_msgs/Temperature.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <mutex>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/ros/rcout_codec.h"
+
+namespace propulsion_estimator {
+namespace {
+
+enum class Signal {
+  kRcOut,
+  kBattery,
+  kImu,
+  kPose,
+  kVelocity,
+  kStaticPressure,
+  kAirTemperature,
+  kRangefinder,
+  kMotorTemperature
+};
+
+// A signal to read: where, of which type, and whether the flight is refused without it.
+struct Source {
+  Signal signal;
+  const std::string* topic;
+  std::string datatype;
+  std::string md5sum;
+  bool required;
+};
+
+template <typename Message>
+Source sourceOf(Signal signal, const std::string& topic, bool required = false) {
+  return {signal, &topic, ros::message_traits::DataType<Message>::value(),
+          ros::message_traits::MD5Sum<Message>::value(), required};
+}
+
+std::vector<Source> sourcesOf(const FlightBagTopics& topics) {
+  return {{Signal::kRcOut, &topics.rc_out, kRcOutDataType, kRcOutMd5Sum, true},
+          sourceOf<sensor_msgs::BatteryState>(Signal::kBattery, topics.battery, true),
+          sourceOf<sensor_msgs::Imu>(Signal::kImu, topics.imu),
+          sourceOf<geometry_msgs::PoseStamped>(Signal::kPose, topics.pose),
+          sourceOf<geometry_msgs::TwistStamped>(Signal::kVelocity, topics.velocity),
+          sourceOf<sensor_msgs::FluidPressure>(Signal::kStaticPressure, topics.static_pressure),
+          sourceOf<sensor_msgs::Temperature>(Signal::kAirTemperature, topics.air_temperature),
+          sourceOf<sensor_msgs::Range>(Signal::kRangefinder, topics.rangefinder),
+          sourceOf<sensor_msgs::Temperature>(Signal::kMotorTemperature, topics.motor_temperature)};
+}
+
+// The messages of one pass, decoded into storage reused from message to message: the streams'
+// vectors grow, nothing else is allocated per message (a frame_id longer than the small-string
+// buffer aside).
+class StreamBuilder {
+ public:
+  StreamBuilder(gap::FlightStreams* streams, int motors) : streams_(streams), motors_(motors) {}
+
+  // Decodes one message of `signal`; false with the reason in `error` for a malformed one or an
+  // RCOut message with too few channels.
+  bool add(Signal signal, double time_s, std::uint8_t* data, std::uint32_t size, std::string* error) {
+    ros::serialization::IStream stream(data, size);
+    switch (signal) {
+      case Signal::kRcOut:
+        return addRcOut(time_s, data, size, error);
+      case Signal::kBattery:
+        ros::serialization::deserialize(stream, battery_);
+        streams_->battery.push_back({time_s, battery_.voltage, battery_.current});
+        return true;
+      case Signal::kImu:
+        ros::serialization::deserialize(stream, imu_);
+        // REP-145: covariance -1 says the message carries no orientation.
+        if (imu_.orientation_covariance[0] == -1.0) return true;
+        streams_->imu.push_back({time_s,
+                                 Eigen::Quaterniond(imu_.orientation.w, imu_.orientation.x, imu_.orientation.y,
+                                                    imu_.orientation.z),
+                                 Eigen::Vector3d(imu_.linear_acceleration.x, imu_.linear_acceleration.y,
+                                                 imu_.linear_acceleration.z)});
+        return true;
+      case Signal::kPose:
+        ros::serialization::deserialize(stream, pose_);
+        streams_->altitude_m.push_back({time_s, pose_.pose.position.z});
+        return true;
+      case Signal::kVelocity:
+        ros::serialization::deserialize(stream, velocity_);
+        streams_->vertical_speed_m_s.push_back({time_s, velocity_.twist.linear.z});
+        return true;
+      case Signal::kStaticPressure:
+        ros::serialization::deserialize(stream, pressure_);
+        streams_->static_pressure_pa.push_back({time_s, pressure_.fluid_pressure});
+        return true;
+      case Signal::kAirTemperature:
+        ros::serialization::deserialize(stream, temperature_);
+        streams_->air_temperature_c.push_back({time_s, temperature_.temperature});
+        return true;
+      case Signal::kRangefinder:
+        ros::serialization::deserialize(stream, range_);
+        // REP-117: -inf and +inf say below and beyond the sensor's reach; NaN fails both tests.
+        if (range_.range >= range_.min_range && range_.range <= range_.max_range) {
+          streams_->height_above_ground_m.push_back({time_s, range_.range});
+        }
+        return true;
+      case Signal::kMotorTemperature:
+        ros::serialization::deserialize(stream, temperature_);
+        streams_->motor_temperature_c.push_back({time_s, temperature_.temperature});
+        return true;
+    }
+    return true;
+  }
+
+ private:
+  bool addRcOut(double time_s, const std::uint8_t* data, std::uint32_t size, std::string* error) {
+    if (!RcOutDecoder::decodePayload(data, size, &rc_out_, error)) return false;
+    if (static_cast<int>(rc_out_.channels.size()) < motors_) {
+      *error = std::to_string(rc_out_.channels.size()) + " channels, fewer than the " + std::to_string(motors_) +
+               " motors";
+      return false;
+    }
+    gap::RcOutFrame& frame = streams_->rc_out.emplace_back();
+    frame.time_s = time_s;
+    for (int k = 0; k < motors_; ++k) frame.pwm_us[k] = rc_out_.channels[k];
+    return true;
+  }
+
+  gap::FlightStreams* streams_;
+  int motors_;
+  RcOutMessage rc_out_;
+  sensor_msgs::BatteryState battery_;
+  sensor_msgs::Imu imu_;
+  geometry_msgs::PoseStamped pose_;
+  geometry_msgs::TwistStamped velocity_;
+  sensor_msgs::FluidPressure pressure_;
+  sensor_msgs::Temperature temperature_;
+  sensor_msgs::Range range_;
+};
+
+// Capacity for every message of `topic`, from the bag's index.
+template <typename Reading>
+void reserveFor(const rosbag::Bag& bag, const std::string& topic, std::vector<Reading>* stream) {
+  stream->reserve(stream->size() + rosbag::View(bag, rosbag::TopicQuery(topic)).size());
+}
+
+void reserve(const rosbag::Bag& bag, const Source& source, gap::FlightStreams* streams) {
+  const std::string& topic = *source.topic;
+  switch (source.signal) {
+    case Signal::kRcOut: return reserveFor(bag, topic, &streams->rc_out);
+    case Signal::kBattery: return reserveFor(bag, topic, &streams->battery);
+    case Signal::kImu: return reserveFor(bag, topic, &streams->imu);
+    case Signal::kPose: return reserveFor(bag, topic, &streams->altitude_m);
+    case Signal::kVelocity: return reserveFor(bag, topic, &streams->vertical_speed_m_s);
+    case Signal::kStaticPressure: return reserveFor(bag, topic, &streams->static_pressure_pa);
+    case Signal::kAirTemperature: return reserveFor(bag, topic, &streams->air_temperature_c);
+    case Signal::kRangefinder: return reserveFor(bag, topic, &streams->height_above_ground_m);
+    case Signal::kMotorTemperature: return reserveFor(bag, topic, &streams->motor_temperature_c);
+  }
+}
+
+// rosbag::Bag loads its encryption plugin through class_loader when it is made and opened, and
+// unloads it when destroyed; class_loader does not guard loading against unloading on another
+// thread (two bags opened at once fail with "Could not create object of class type
+// rosbag::NoEncryptor"). Bags are made, opened and destroyed under this lock; reading needs none.
+std::mutex& bagLifetimeMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+}  // namespace
+
+const std::vector<std::string>& FlightBagTopics::names() {
+  static const std::vector<std::string> kNames = {"rc_out",          "battery",         "imu",
+                                                  "pose",            "velocity",        "static_pressure",
+                                                  "air_temperature", "rangefinder",     "motor_temperature"};
+  return kNames;
+}
+
+std::string* FlightBagTopics::find(const std::string& name) {
+  std::string* const topics[] = {&rc_out,          &battery,         &imu,         &pose,
+                                 &velocity,        &static_pressure, &air_temperature, &rangefinder,
+                                 &motor_temperature};
+  for (std::size_t i = 0; i < names().size(); ++i) {
+    if (names()[i] == name) return topics[i];
+  }
+  return nullptr;
+}
+
+FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw ConfigError(path + ": no such file");
+  // Declared after the lock, a bag refused here is destroyed before the lock is released.
+  const std::lock_guard<std::mutex> lock(bagLifetimeMutex());
+  auto bag = std::make_unique<rosbag::Bag>();
+  try {
+    bag->open(path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagException& e) {
+    throw ConfigError(path + ": not a readable bag: " + e.what());
+  }
+  rosbag::View all(*bag);
+  if (all.size() == 0) throw ConfigError(path + ": no messages");
+  start_ = all.getBeginTime();
+  duration_s_ = (all.getEndTime() - start_).toSec();
+  bag_ = std::move(bag);
+}
+
+FlightBagReader::~FlightBagReader() {
+  const std::lock_guard<std::mutex> lock(bagLifetimeMutex());
+  bag_.reset();
+}
+
+gap::FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int motors) const {
+  if (motors < 1 || motors > gap::kMaxMotors) {
+    throw ConfigError(path_ + ": " + std::to_string(motors) + " motors, expected 1.." + std::to_string(gap::kMaxMotors));
+  }
+  gap::FlightStreams streams;
+  streams.source = path_;
+  streams.motors = motors;
+  const std::vector<Source> sources = sourcesOf(topics);
+  std::vector<std::string> requested;
+  for (const Source& source : sources) {
+    rosbag::View view(*bag_, rosbag::TopicQuery(*source.topic));
+    if (view.size() == 0) {
+      if (source.required) throw ConfigError(path_ + ": " + *source.topic + ": no messages (a required topic)");
+      continue;
+    }
+    for (const rosbag::ConnectionInfo* connection : view.getConnections()) {
+      if (connection->datatype != source.datatype || connection->md5sum != source.md5sum) {
+        throw ConfigError(path_ + ": " + *source.topic + ": expected " + source.datatype + " (md5sum " +
+                          source.md5sum + "), got " + connection->datatype + " (md5sum " + connection->md5sum + ")");
+      }
+    }
+    reserve(*bag_, source, &streams);
+    requested.push_back(*source.topic);
+  }
+
+  StreamBuilder builder(&streams, motors);
+  std::vector<std::uint8_t> buffer;
+  std::string error;
+  double time_s = 0.0;
+  try {
+    for (const rosbag::MessageInstance& message : rosbag::View(*bag_, rosbag::TopicQuery(requested))) {
+      time_s = (message.getTime() - start_).toSec();
+      const std::uint32_t size = message.size();
+      if (buffer.size() < size) buffer.resize(size);
+      ros::serialization::OStream out(buffer.data(), size);
+      message.write(out);
+      // Two signals may share a topic (both temperatures on one, say): each gets the message.
+      for (const Source& source : sources) {
+        if (*source.topic != message.getTopic()) continue;
+        bool added = false;
+        try {
+          added = builder.add(source.signal, time_s, buffer.data(), size, &error);
+        } catch (const ros::serialization::StreamOverrunException& e) {
+          error = "malformed " + source.datatype + ": " + e.what();
+        }
+        if (!added) throw ConfigError(path_ + ": " + message.getTopic() + ": at " + formatPrintf("%.3f", time_s) + " s: " + error);
+      }
+    }
+  } catch (const rosbag::BagException& e) {
+    throw ConfigError(path_ + ": reading failed after " + formatPrintf("%.3f", time_s) + " s: " + e.what());
+  }
+  return streams;
+}
+
+}  // namespace propulsion_estimator

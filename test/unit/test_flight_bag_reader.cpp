@@ -1,0 +1,260 @@
+// The flight bag reader on bags written here: what the simulator's bag writer writes comes back
+// on the manifest's clock, and each refused bag gives its one-line message.
+#include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/BatteryState.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/Temperature.h>
+#include <std_msgs/Float64.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <thread>
+
+#include "propulsion_estimator/bag/bag_flight_sink.h"
+#include "propulsion_estimator/bag/flight_bag_reader.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/ros/rcout_codec.h"
+
+namespace pe = propulsion_estimator;
+namespace fs = std::filesystem;
+
+namespace {
+
+const ros::Time kStart(1600000000);
+
+class FlightBagReader : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pe_bag_reader_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+  // The message on `reader.read(topics, motors)`'s ConfigError, or "" when it reads.
+  static std::string refusal(const std::string& path, const pe::FlightBagTopics& topics = {}, int motors = 4) {
+    try {
+      pe::FlightBagReader(path).read(topics, motors);
+    } catch (const pe::ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  fs::path dir_;
+};
+
+pe::RcOutSample rcOut(double time_s, std::vector<std::uint16_t> channels) { return {time_s, std::move(channels)}; }
+
+pe::RcOutMessage rcOutMessage(std::vector<std::uint16_t> channels) {
+  pe::RcOutMessage message;
+  message.channels = std::move(channels);
+  return message;
+}
+
+sensor_msgs::BatteryState battery(double voltage_v) {
+  sensor_msgs::BatteryState message;
+  message.voltage = static_cast<float>(voltage_v);
+  return message;
+}
+
+// A bag with rc/out and battery only, for the refusals; `extra` writes more into it.
+void writeMinimalBag(const std::string& path, const std::function<void(rosbag::Bag&)>& extra = {}) {
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  bag.write(pe::kRcOutTopic, kStart, pe::encodeRcOut(rcOutMessage({1500, 1500, 1500, 1500})));
+  bag.write(pe::kBatteryTopic, kStart, battery(12.0));
+  if (extra) extra(bag);
+}
+
+}  // namespace
+
+TEST_F(FlightBagReader, ReadsWhatTheSimulatorWritesOnTheManifestsClock) {
+  pe::ImuSample imu;
+  imu.time_s = 0.1;
+  imu.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()));
+  imu.linear_acceleration_m_s2 = Eigen::Vector3d(0.1, -0.2, 9.9);
+  {
+    pe::BagFlightSink sink(file("flight.bag"), rosbag::compression::Uncompressed);
+    // The truth comes first: the clock starts at the bag's first message whatever its topic.
+    pe::TruthSample truth;
+    truth.total_mass_kg = 1.315;
+    sink.truth(truth);
+    sink.rcOut(rcOut(0.02, {1600, 1610, 1620, 1630, 900, 900, 0, 0}));
+    sink.rcOut(rcOut(0.04, {1601, 1611, 1621, 1631, 900, 900, 0, 0}));
+    sink.battery({0.5, 12.25, -8.5, 0.9});
+    sink.imu(imu);
+    sink.pose({0.2, Eigen::Vector3d(1.0, 2.0, 3.5), Eigen::Quaterniond::Identity()});
+    sink.velocity({0.3, Eigen::Vector3d(0.1, 0.2, -0.4), Eigen::Vector3d::Zero()});
+    sink.staticPressure({0.4, 101000.5, 1.0, "base_link"});
+    sink.airTemperature({0.6, 21.5, 0.1, "base_link"});
+    sink.motorTemperature({0.7, 45.25, 0.5, "rotor_2_link"});
+    sink.rangefinder({0.8, 2.5, 0.2, 8.0, 0.5});
+    sink.rangefinder({0.85, std::numeric_limits<double>::infinity(), 0.2, 8.0, 0.5});  // beyond reach
+    sink.rangefinder({0.9, -std::numeric_limits<double>::infinity(), 0.2, 8.0, 0.5});  // below reach
+  }
+  const pe::FlightBagReader reader(file("flight.bag"));
+  EXPECT_NEAR(reader.durationS(), 0.9, 1e-9);
+  const pe::gap::FlightStreams streams = reader.read({}, 4);
+
+  EXPECT_EQ(streams.source, file("flight.bag"));
+  EXPECT_EQ(streams.motors, 4);
+  ASSERT_EQ(streams.rc_out.size(), 2u);
+  EXPECT_NEAR(streams.rc_out[0].time_s, 0.02, 1e-9);
+  EXPECT_EQ(streams.rc_out[0].pwm_us[0], 1600);
+  EXPECT_EQ(streams.rc_out[1].pwm_us[3], 1631);
+  EXPECT_EQ(streams.rc_out[1].pwm_us[4], 0);  // channels past the motors are not taken
+  ASSERT_EQ(streams.battery.size(), 1u);
+  EXPECT_NEAR(streams.battery[0].time_s, 0.5, 1e-9);
+  EXPECT_DOUBLE_EQ(streams.battery[0].voltage_v, static_cast<double>(12.25f));
+  EXPECT_DOUBLE_EQ(streams.battery[0].current_a, -8.5);  // PX4's sign, as logged
+  ASSERT_EQ(streams.imu.size(), 1u);
+  EXPECT_NEAR(streams.imu[0].time_s, 0.1, 1e-9);
+  EXPECT_TRUE(streams.imu[0].orientation.isApprox(imu.orientation, 1e-12));
+  EXPECT_TRUE(streams.imu[0].specific_force_m_s2.isApprox(Eigen::Vector3d(0.1, -0.2, 9.9), 1e-12));
+  ASSERT_EQ(streams.altitude_m.size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.altitude_m[0].value, 3.5);
+  ASSERT_EQ(streams.vertical_speed_m_s.size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.vertical_speed_m_s[0].value, -0.4);
+  ASSERT_EQ(streams.static_pressure_pa.size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.static_pressure_pa[0].value, 101000.5);
+  ASSERT_EQ(streams.air_temperature_c.size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.air_temperature_c[0].value, 21.5);
+  ASSERT_EQ(streams.motor_temperature_c.size(), 1u);
+  EXPECT_NEAR(streams.motor_temperature_c[0].time_s, 0.7, 1e-9);
+  EXPECT_DOUBLE_EQ(streams.motor_temperature_c[0].value, 45.25);
+  ASSERT_EQ(streams.height_above_ground_m.size(), 1u);  // the readings out of reach are left out
+  EXPECT_NEAR(streams.height_above_ground_m[0].time_s, 0.8, 1e-9);
+  EXPECT_DOUBLE_EQ(streams.height_above_ground_m[0].value, 2.5);
+}
+
+TEST_F(FlightBagReader, LeavesTheStreamsOfMissingOptionalTopicsEmpty) {
+  writeMinimalBag(file("minimal.bag"));
+  const pe::gap::FlightStreams streams = pe::FlightBagReader(file("minimal.bag")).read({}, 4);
+  EXPECT_EQ(streams.rc_out.size(), 1u);
+  EXPECT_EQ(streams.battery.size(), 1u);
+  EXPECT_TRUE(streams.imu.empty());
+  EXPECT_TRUE(streams.altitude_m.empty());
+  EXPECT_TRUE(streams.vertical_speed_m_s.empty());
+  EXPECT_TRUE(streams.static_pressure_pa.empty());
+  EXPECT_TRUE(streams.air_temperature_c.empty());
+  EXPECT_TRUE(streams.height_above_ground_m.empty());
+  EXPECT_TRUE(streams.motor_temperature_c.empty());
+}
+
+TEST_F(FlightBagReader, SkipsImuMessagesWithoutOrientation) {
+  writeMinimalBag(file("imu.bag"), [](rosbag::Bag& bag) {
+    sensor_msgs::Imu imu;
+    imu.orientation.w = 1.0;
+    imu.linear_acceleration.z = 9.8;
+    bag.write(pe::kImuTopic, kStart + ros::Duration(0.1), imu);
+    imu.orientation_covariance[0] = -1.0;  // REP-145: no orientation
+    bag.write(pe::kImuTopic, kStart + ros::Duration(0.2), imu);
+  });
+  const pe::gap::FlightStreams streams = pe::FlightBagReader(file("imu.bag")).read({}, 4);
+  ASSERT_EQ(streams.imu.size(), 1u);
+  EXPECT_NEAR(streams.imu[0].time_s, 0.1, 1e-9);
+}
+
+TEST_F(FlightBagReader, ReadsTheTopicsItIsGiven) {
+  writeMinimalBag(file("renamed.bag"), [](rosbag::Bag& bag) {
+    sensor_msgs::Temperature temperature;
+    temperature.temperature = 30.0;
+    bag.write("/esc/temperature", kStart + ros::Duration(1.0), temperature);
+  });
+  pe::FlightBagTopics topics;
+  *topics.find("motor_temperature") = "/esc/temperature";
+  // Two signals may read one topic.
+  *topics.find("air_temperature") = "/esc/temperature";
+  const pe::gap::FlightStreams streams = pe::FlightBagReader(file("renamed.bag")).read(topics, 4);
+  ASSERT_EQ(streams.motor_temperature_c.size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.motor_temperature_c[0].value, 30.0);
+  ASSERT_EQ(streams.air_temperature_c.size(), 1u);
+  EXPECT_NEAR(streams.air_temperature_c[0].time_s, 1.0, 1e-9);
+}
+
+TEST_F(FlightBagReader, NamesItsSignals) {
+  pe::FlightBagTopics topics;
+  EXPECT_EQ(pe::FlightBagTopics::names(),
+            (std::vector<std::string>{"rc_out", "battery", "imu", "pose", "velocity", "static_pressure",
+                                      "air_temperature", "rangefinder", "motor_temperature"}));
+  EXPECT_EQ(*topics.find("rc_out"), "/mavros/rc/out");
+  EXPECT_EQ(*topics.find("velocity"), "/mavros/local_position/velocity_local");
+  EXPECT_EQ(*topics.find("motor_temperature"), "/motor_temperature");
+  EXPECT_EQ(topics.find("truth"), nullptr);
+}
+
+TEST_F(FlightBagReader, RefusesAFileThatIsNotABag) {
+  EXPECT_EQ(refusal(file("absent.bag")), file("absent.bag") + ": no such file");
+  std::ofstream(file("text.bag")) << "not a bag\n";
+  EXPECT_EQ(refusal(file("text.bag")), file("text.bag") + ": not a readable bag: Error reading version line");
+  { rosbag::Bag empty(file("empty.bag"), rosbag::bagmode::Write); }
+  EXPECT_EQ(refusal(file("empty.bag")), file("empty.bag") + ": no messages");
+}
+
+TEST_F(FlightBagReader, RefusesABagWithoutARequiredTopic) {
+  {
+    rosbag::Bag bag(file("no_battery.bag"), rosbag::bagmode::Write);
+    bag.write(pe::kRcOutTopic, kStart, pe::encodeRcOut(rcOutMessage({1500, 1500, 1500, 1500})));
+  }
+  EXPECT_EQ(refusal(file("no_battery.bag")), file("no_battery.bag") + ": /mavros/battery: no messages (a required topic)");
+  {
+    rosbag::Bag bag(file("no_rc_out.bag"), rosbag::bagmode::Write);
+    bag.write(pe::kBatteryTopic, kStart, battery(12.0));
+  }
+  EXPECT_EQ(refusal(file("no_rc_out.bag")), file("no_rc_out.bag") + ": /mavros/rc/out: no messages (a required topic)");
+  pe::FlightBagTopics topics;
+  topics.battery = "/battery";
+  writeMinimalBag(file("minimal.bag"));
+  EXPECT_EQ(refusal(file("minimal.bag"), topics), file("minimal.bag") + ": /battery: no messages (a required topic)");
+}
+
+TEST_F(FlightBagReader, RefusesATopicOfAnotherType) {
+  writeMinimalBag(file("imu_as_float.bag"), [](rosbag::Bag& bag) {
+    bag.write(pe::kImuTopic, kStart, std_msgs::Float64());
+  });
+  EXPECT_EQ(refusal(file("imu_as_float.bag")),
+            file("imu_as_float.bag") +
+                ": /mavros/imu/data: expected sensor_msgs/Imu (md5sum 6a62c6daae103f4ff57a132d6f95cec2), got "
+                "std_msgs/Float64 (md5sum fdb28210bfa9d7c91146260178d9a584)");
+  {
+    rosbag::Bag bag(file("rc_out_as_float.bag"), rosbag::bagmode::Write);
+    bag.write(pe::kRcOutTopic, kStart, std_msgs::Float64());
+    bag.write(pe::kBatteryTopic, kStart, battery(12.0));
+  }
+  EXPECT_EQ(refusal(file("rc_out_as_float.bag")),
+            file("rc_out_as_float.bag") +
+                ": /mavros/rc/out: expected mavros_msgs/RCOut (md5sum 52cacf104bab5ae3b103cfe176590713), got "
+                "std_msgs/Float64 (md5sum fdb28210bfa9d7c91146260178d9a584)");
+}
+
+TEST_F(FlightBagReader, RefusesRcOutWithFewerChannelsThanMotors) {
+  writeMinimalBag(file("quad.bag"), [](rosbag::Bag& bag) {
+    bag.write(pe::kRcOutTopic, kStart + ros::Duration(2.5), pe::encodeRcOut(rcOutMessage({1500, 1500, 1500})));
+  });
+  EXPECT_EQ(refusal(file("quad.bag"), {}, 6), file("quad.bag") + ": /mavros/rc/out: at 0.000 s: 4 channels, fewer than the 6 motors");
+  EXPECT_EQ(refusal(file("quad.bag"), {}, 4), file("quad.bag") + ": /mavros/rc/out: at 2.500 s: 3 channels, fewer than the 4 motors");
+  EXPECT_EQ(refusal(file("quad.bag"), {}, 3), "");
+}
+
+TEST_F(FlightBagReader, ReadersOfDifferentBagsWorkOnThreads) {
+  // rosbag loads and unloads a plugin per bag: unguarded, two threads opening bags soon fail.
+  for (int t = 0; t < 4; ++t) writeMinimalBag(file("bag_" + std::to_string(t) + ".bag"));
+  std::vector<std::thread> threads;
+  std::vector<int> read(4, 0);
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int i = 0; i < 50; ++i) {
+        const pe::FlightBagReader reader(file("bag_" + std::to_string(t) + ".bag"));
+        read[t] += static_cast<int>(reader.read({}, 4).rc_out.size());
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  EXPECT_EQ(read, std::vector<int>(4, 50));
+}
