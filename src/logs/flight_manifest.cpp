@@ -12,35 +12,38 @@
 
 namespace propulsion_estimator {
 
-void FlightManifest::validate() const {
-  if (flights.empty()) throw FieldError("flights", "no flights");
-  for (std::size_t f = 0; f < flights.size(); ++f) {
-    const std::string at = "flights[" + std::to_string(f) + "].";
-    if (flights[f].bag.empty()) throw FieldError(at + "bag", "is empty");
-    if (flights[f].segments.empty()) throw FieldError(at + "segments", "no segments");
-    for (std::size_t s = 0; s < flights[f].segments.size(); ++s) {
-      const ManifestSegment& segment = flights[f].segments[s];
-      const std::string field = at + "segments[" + std::to_string(s) + "].";
-      if (!(segment.start_s >= 0.0)) throw FieldError(field + "start", formatNumber(segment.start_s) + " is negative");
-      if (!(segment.end_s > segment.start_s)) {
-        throw FieldError(field + "end",
-                         formatNumber(segment.end_s) + " is not after start " + formatNumber(segment.start_s));
-      }
-      if (!(segment.mass_kg > 0.0 && segment.mass_kg <= 100.0)) {
-        throw FieldError(field + "mass_kg", formatNumber(segment.mass_kg) + " is outside 0..100 kg");
-      }
-      if (s > 0 && segment.start_s < flights[f].segments[s - 1].end_s) {
-        throw FieldError(field + "start", formatNumber(segment.start_s) + " is before the previous segment's end " +
-                                              formatNumber(flights[f].segments[s - 1].end_s));
-      }
+void ManifestFlight::validate(const std::string& at) const {
+  if (bag.empty()) throw FieldError(at + ".bag", "is empty");
+  if (segments.empty()) throw FieldError(at + ".segments", "no segments");
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const ManifestSegment& segment = segments[s];
+    const std::string field = at + ".segments[" + std::to_string(s) + "].";
+    if (!(segment.start_s >= 0.0)) throw FieldError(field + "start", formatNumber(segment.start_s) + " is negative");
+    if (!(segment.end_s > segment.start_s)) {
+      throw FieldError(field + "end",
+                       formatNumber(segment.end_s) + " is not after start " + formatNumber(segment.start_s));
+    }
+    if (!(segment.mass_kg > 0.0 && segment.mass_kg <= 100.0)) {
+      throw FieldError(field + "mass_kg", formatNumber(segment.mass_kg) + " is outside 0..100 kg");
+    }
+    if (s > 0 && segment.start_s < segments[s - 1].end_s) {
+      throw FieldError(field + "start", formatNumber(segment.start_s) + " is before the previous segment's end " +
+                                            formatNumber(segments[s - 1].end_s));
     }
   }
 }
 
-FlightManifest parseFlightManifest(const std::string& text, const std::string& source) {
-  const YamlMap root = parseYamlDocument(text, source);
+void FlightManifest::validate() const {
+  if (flights.empty()) throw FieldError("flights", "no flights");
+  for (std::size_t f = 0; f < flights.size(); ++f) flights[f].validate("flights[" + std::to_string(f) + "]");
+}
+
+namespace {
+
+// The file's structure and keys, not yet its values.
+std::vector<ManifestFlight> readFlights(const YamlMap& root) {
   root.allowOnly({"flights"});
-  FlightManifest manifest;
+  std::vector<ManifestFlight> flights;
   for (const YamlMap& flight : root.maps("flights")) {
     flight.allowOnly({"bag", "segments"});
     ManifestFlight entry;
@@ -49,13 +52,40 @@ FlightManifest parseFlightManifest(const std::string& text, const std::string& s
       segment.allowOnly({"start", "end", "mass_kg"});
       entry.segments.push_back({segment.number("start"), segment.number("end"), segment.number("mass_kg")});
     }
-    manifest.flights.push_back(entry);
+    flights.push_back(entry);
   }
+  return flights;
+}
+
+}  // namespace
+
+FlightManifest parseFlightManifest(const std::string& text, const std::string& source) {
+  const YamlMap root = parseYamlDocument(text, source);
+  FlightManifest manifest{readFlights(root)};
   validateAt(root, manifest);
   return manifest;
 }
 
 FlightManifest loadFlightManifest(const std::string& path) { return parseFlightManifest(readTextFile(path), path); }
+
+std::vector<ManifestEntry> loadFlightManifestEntries(const std::string& path) {
+  const YamlMap root = parseYamlDocument(readTextFile(path), path);
+  std::vector<ManifestEntry> entries;
+  for (ManifestFlight& flight : readFlights(root)) entries.push_back({std::move(flight), ""});
+  if (entries.empty()) throwAtField(root, FieldError("flights", "no flights"));
+  for (std::size_t f = 0; f < entries.size(); ++f) {
+    try {
+      entries[f].flight.validate("flights[" + std::to_string(f) + "]");
+    } catch (const FieldError& error) {
+      try {
+        throwAtField(root, error);
+      } catch (const ConfigError& located) {
+        entries[f].refusal = located.what();
+      }
+    }
+  }
+  return entries;
+}
 
 std::string flightManifestToYaml(const FlightManifest& manifest, const std::string& comment) {
   manifest.validate();

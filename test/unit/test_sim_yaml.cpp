@@ -2,6 +2,8 @@
 // refusal is one exact line naming the file, the line, the key and the value.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
@@ -282,4 +284,25 @@ TEST(FlightManifest, RefusesBadSegments) {
   EXPECT_EQ(manifestRefusal("  - bag: a.bag\n", "  - file: a.bag\n"),
             "m.yaml:2: flights[0].file: unknown key (allowed: bag, segments)");
   EXPECT_EQ(refusal([] { pe::parseFlightManifest("flights: []\n", "m.yaml"); }), "m.yaml:1: flights: no flights");
+}
+
+TEST(FlightManifest, EntriesKeepAFlightsRefusalAndTheOtherFlights) {
+  const std::string path = (std::filesystem::temp_directory_path() / "pe_manifest_entries.yaml").string();
+  pe::writeTextFile(path, kManifest + "  - bag: b.bag\n    segments:\n      - {start: 1, end: 2, mass_kg: 0}\n" +
+                              "  - bag: c.bag\n    segments:\n      - {start: 3, end: 4, mass_kg: 1.5}\n");
+  const std::vector<pe::ManifestEntry> entries = pe::loadFlightManifestEntries(path);
+  ASSERT_EQ(entries.size(), 3u);
+  EXPECT_EQ(entries[0].refusal, "");
+  EXPECT_EQ(entries[0].flight.segments.size(), 2u);
+  EXPECT_EQ(entries[1].flight.bag, "b.bag");
+  EXPECT_EQ(entries[1].refusal, path + ":8: flights[1].segments[0].mass_kg: 0 is outside 0..100 kg");
+  EXPECT_EQ(entries[2].refusal, "");
+  EXPECT_EQ(entries[2].flight.segments[0].mass_kg, 1.5);
+  // What is wrong with the file itself still refuses it.
+  pe::writeTextFile(path, "flights: []\n");
+  EXPECT_EQ(refusal([&] { pe::loadFlightManifestEntries(path); }), path + ":1: flights: no flights");
+  pe::writeTextFile(path, replaced(kManifest, "  - bag: a.bag\n", "  - file: a.bag\n"));
+  EXPECT_EQ(refusal([&] { pe::loadFlightManifestEntries(path); }),
+            path + ":2: flights[0].file: unknown key (allowed: bag, segments)");
+  std::filesystem::remove(path);
 }

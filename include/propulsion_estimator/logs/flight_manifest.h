@@ -16,6 +16,11 @@ struct ManifestSegment {
 struct ManifestFlight {
   std::string bag;  // as written in the manifest: relative to the manifest's folder, or absolute
   std::vector<ManifestSegment> segments;
+
+  // Throws FieldError named from `at` ("flights[1]" gives "flights[1].segments[2].end") for a
+  // flight without bag or segments, a segment with start < 0, end <= start, mass outside
+  // 0..100 kg, or segments out of order or overlapping.
+  void validate(const std::string& at) const;
 };
 
 // A set of flights:
@@ -26,9 +31,7 @@ struct ManifestFlight {
 struct FlightManifest {
   std::vector<ManifestFlight> flights;
 
-  // Throws FieldError ("flights[0].segments[2].end") for no flights, a flight without bag or
-  // segments, a segment with start < 0, end <= start, mass outside 0..100 kg, or segments of a
-  // flight out of order or overlapping.
+  // Throws FieldError for no flights, or the first flight ManifestFlight::validate refuses.
   void validate() const;
 };
 
@@ -38,6 +41,17 @@ FlightManifest parseFlightManifest(const std::string& text, const std::string& s
 FlightManifest loadFlightManifest(const std::string& path);
 std::string flightManifestToYaml(const FlightManifest& manifest, const std::string& comment = "");
 void saveFlightManifest(const FlightManifest& manifest, const std::string& path, const std::string& comment = "");
+
+// A manifest for a tool that goes on with the flights it can use: read as loadFlightManifest
+// reads it (a refusal of the file as a whole, no flights included, throws ConfigError), except
+// that a flight ManifestFlight::validate refuses is kept with its refusal, located as
+// loadFlightManifest would locate it ("<file>:<line>: flights[1].segments[0].mass_kg: 0 is
+// outside 0..100 kg").
+struct ManifestEntry {
+  ManifestFlight flight;
+  std::string refusal;  // empty for a usable flight
+};
+std::vector<ManifestEntry> loadFlightManifestEntries(const std::string& path);
 
 // A flight's bag path as a file path: relative paths are taken from the manifest's folder.
 std::string resolveBagPath(const std::string& manifest_path, const std::string& bag);
