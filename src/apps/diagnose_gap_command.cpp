@@ -1,0 +1,258 @@
+#include "diagnose_gap_command.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <optional>
+#include <thread>
+
+#include "propulsion_estimator/bag/flight_bag_reader.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/gap/diagnosis.h"
+#include "propulsion_estimator/gap/gap_report.h"
+#include "propulsion_estimator/logs/flight_manifest.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
+#include "report_plotter.h"
+#include "tool_command.h"
+
+namespace propulsion_estimator {
+namespace {
+
+// Without a URDF: the thesis' quadcopter, its rotors at unknown positions.
+constexpr int kDefaultMotors = 4;
+
+struct Arguments {
+  std::string model;
+  std::string manifest;
+  std::string out;
+  std::string urdf;
+  std::vector<std::string> topics;
+  double rotor_diameter_m = gap::DiagnosisConfig{}.rotor_diameter_m;
+  int jobs = 1;
+  ReportPlotter plotter;
+  std::string command;  // as given, for the report
+};
+
+// A flight of the manifest, read, or refused with one line.
+struct FlightRead {
+  std::optional<gap::Flight> flight;
+  std::string refusal;
+};
+
+std::string signalNames() {
+  std::string names;
+  for (const std::string& name : FlightBagTopics::names()) names += (names.empty() ? "" : ", ") + name;
+  return names;
+}
+
+FlightBagTopics topicsOf(const std::vector<std::string>& arguments) {
+  FlightBagTopics topics;
+  for (const std::string& argument : arguments) {
+    const std::size_t equals = argument.find('=');
+    if (equals == std::string::npos || equals + 1 == argument.size()) {
+      throw ConfigError("--topic " + argument + ": expected NAME=TOPIC");
+    }
+    const std::string name = argument.substr(0, equals);
+    std::string* topic = topics.find(name);
+    if (topic == nullptr) {
+      throw ConfigError("--topic " + argument + ": '" + name + "' is not a signal (one of " + signalNames() + ")");
+    }
+    *topic = argument.substr(equals + 1);
+  }
+  return topics;
+}
+
+Vehicle vehicleOf(const std::string& urdf) {
+  if (urdf.empty()) {
+    std::printf("note: no --urdf: %d motors on RCOut channels 1-%d, thrusting up at unknown positions (the motor "
+                "balance needs the geometry)\n",
+                kDefaultMotors, kDefaultMotors);
+    return Vehicle::upwardRotors(kDefaultMotors);
+  }
+  Vehicle vehicle = loadVehicleUrdf(urdf);
+  const int rotors = static_cast<int>(vehicle.rotors.size());
+  if (rotors > gap::kMaxMotors) {
+    throw ConfigError(urdf + ": " + std::to_string(rotors) + " rotors, more than the " +
+                      std::to_string(gap::kMaxMotors) + " diagnose_gap reads");
+  }
+  return vehicle;
+}
+
+gap::DiagnosisConfig configOf(const Arguments& args, const FlightBagTopics& topics) {
+  gap::DiagnosisConfig config;
+  config.rotor_diameter_m = args.rotor_diameter_m;
+  try {
+    config.validate();
+  } catch (const FieldError& e) {
+    throw ConfigError("--rotor-diameter-m: " + e.problem());
+  }
+  // The report says which topic an untestable effect needs: the topics read, not the defaults.
+  using effects::Signal;
+  config.signal_sources = {
+      {Signal::kBatteryCurrent, topics.battery + " (current)"},
+      {Signal::kAirDensity, topics.static_pressure + " and " + topics.air_temperature},
+      {Signal::kHeight, topics.rangefinder},
+      {Signal::kMotorTemperature, topics.motor_temperature},
+      {Signal::kVerticalSpeed, topics.velocity},
+  };
+  return config;
+}
+
+FlightRead readFlight(const std::string& manifest, std::size_t index, const ManifestEntry& entry,
+                      const FlightBagTopics& topics, int motors) {
+  if (!entry.refusal.empty()) return {std::nullopt, entry.refusal};
+  const std::string at = manifest + ": flights[" + std::to_string(index) + "]";
+  try {
+    const FlightBagReader reader(resolveBagPath(manifest, entry.flight.bag));
+    const std::vector<ManifestSegment>& segments = entry.flight.segments;
+    for (std::size_t s = 0; s < segments.size(); ++s) {
+      if (segments[s].end_s > reader.durationS()) {
+        return {std::nullopt, at + ".segments[" + std::to_string(s) + "]: " + formatNumber(segments[s].start_s) +
+                                  ".." + formatNumber(segments[s].end_s) + " s is outside " + reader.path() +
+                                  " (0.." + formatPrintf("%.3f", reader.durationS()) + " s)"};
+      }
+    }
+    return {gap::Flight{entry.flight.bag, reader.read(topics, motors), segments}, ""};
+  } catch (const ConfigError& e) {
+    return {std::nullopt, at + ": " + e.what()};
+  }
+}
+
+// Reads the flights on `jobs` threads; the results in manifest order.
+std::vector<FlightRead> readFlights(const std::string& manifest, const std::vector<ManifestEntry>& entries,
+                                    const FlightBagTopics& topics, int motors, int jobs) {
+  std::vector<FlightRead> reads(entries.size());
+  std::vector<std::exception_ptr> failures(entries.size());
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i = next++; i < entries.size(); i = next++) {
+      try {
+        reads[i] = readFlight(manifest, i, entries[i], topics, motors);
+      } catch (...) {
+        failures[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const int threads = std::min<int>(jobs, static_cast<int>(entries.size()));
+  for (int j = 1; j < threads; ++j) pool.emplace_back(work);
+  work();
+  for (std::thread& thread : pool) thread.join();
+  for (const std::exception_ptr& failure : failures) {
+    if (failure) std::rethrow_exception(failure);
+  }
+  return reads;
+}
+
+// "rc_out 90115, battery 1803, ..., no rangefinder, ...": the readings of each signal.
+std::string streamSummary(const gap::FlightStreams& streams, std::size_t* readings) {
+  const std::size_t counts[] = {streams.rc_out.size(),
+                                streams.battery.size(),
+                                streams.imu.size(),
+                                streams.altitude_m.size(),
+                                streams.vertical_speed_m_s.size(),
+                                streams.static_pressure_pa.size(),
+                                streams.air_temperature_c.size(),
+                                streams.height_above_ground_m.size(),
+                                streams.motor_temperature_c.size()};  // in FlightBagTopics::names() order
+  std::string text;
+  for (std::size_t i = 0; i < FlightBagTopics::names().size(); ++i) {
+    const std::string& name = FlightBagTopics::names()[i];
+    text += (text.empty() ? "" : ", ") + (counts[i] == 0 ? "no " + name : name + " " + std::to_string(counts[i]));
+    *readings += counts[i];
+  }
+  return text;
+}
+
+// The diagnosis of the flights read, and its report in `out`: report.md, report.yaml, the
+// figures and their data. The flights refused are listed among what could not be used.
+void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, const Vehicle& vehicle,
+                       const std::vector<gap::Flight>& flights, const gap::DiagnosisConfig& config,
+                       const std::vector<std::string>& refusals) {
+  gap::Diagnosis diagnosis = gap::diagnoseGap(model, vehicle, flights, config);
+  diagnosis.problems.insert(diagnosis.problems.begin(), refusals.begin(), refusals.end());
+  writeTextFile(args.out + "/report.yaml", gap::gapReportYaml(diagnosis));
+  gap::writeGapReportData(diagnosis, args.out);
+  args.plotter.plot("gap", args.out);
+  writeTextFile(args.out + "/report.md", gap::gapReportMarkdown(diagnosis, model, args.command));
+
+  const gap::ResidualStats& overall = diagnosis.overall;
+  std::printf("gap: %d samples, model minus flight: bias %s %%, RMSE %s %%\n", overall.samples,
+              formatPrintf("%.2f", overall.bias_pct).c_str(), formatPrintf("%.2f", overall.rmse_pct).c_str());
+  std::string selected;
+  for (effects::Kind kind : diagnosis.selected) selected += (selected.empty() ? "" : ", ") + std::string(effects::kindName(kind));
+  std::printf("selected: %s; held-out RMSE %s %% -> %s %%\n", selected.empty() ? "none" : selected.c_str(),
+              formatPrintf("%.2f", diagnosis.heldout.before_rmse_pct).c_str(),
+              formatPrintf("%.2f", diagnosis.heldout.after_rmse_pct).c_str());
+  std::printf("report: %s/report.md\n", args.out.c_str());
+}
+
+int diagnose(const Arguments& args) {
+  const PropulsionModel model = loadModelFile(args.model);
+  const Vehicle vehicle = vehicleOf(args.urdf);
+  const FlightBagTopics topics = topicsOf(args.topics);
+  const gap::DiagnosisConfig config = configOf(args, topics);
+  const std::vector<ManifestEntry> entries = loadFlightManifestEntries(args.manifest);
+  // What would stop the report comes before the long read.
+  args.plotter.check();
+  std::filesystem::create_directories(args.out);
+
+  const auto started = std::chrono::steady_clock::now();
+  std::vector<FlightRead> reads =
+      readFlights(args.manifest, entries, topics, static_cast<int>(vehicle.rotors.size()), args.jobs);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  std::vector<gap::Flight> flights;
+  std::vector<std::string> refusals;
+  std::size_t readings = 0;
+  for (FlightRead& read : reads) {
+    if (!read.flight) {
+      std::fprintf(stderr, "diagnose_gap: %s\n", read.refusal.c_str());
+      refusals.push_back(read.refusal);
+      continue;
+    }
+    std::printf("read %s: %s\n", read.flight->streams.source.c_str(),
+                streamSummary(read.flight->streams, &readings).c_str());
+    flights.push_back(std::move(*read.flight));
+  }
+  std::printf("read %zu of %zu flights, %zu readings, in %s s with %d jobs\n", flights.size(), reads.size(), readings,
+              formatPrintf("%.2f", seconds).c_str(), args.jobs);
+
+  if (!flights.empty()) diagnoseAndReport(args, model, vehicle, flights, config, refusals);
+  if (refusals.empty()) return 0;
+  std::fprintf(stderr, "diagnose_gap: %zu of %zu flights refused\n", refusals.size(), reads.size());
+  return 1;
+}
+
+}  // namespace
+
+int runDiagnoseGap(int argc, char** argv) {
+  CLI::App app{
+      "Diagnoses the gap between a propulsion model and weighed flights: reads each flight's bag (MAVROS topics) "
+      "and the manifest's segments of known mass."};
+  Arguments args;
+  app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
+  app.add_option("--manifest", args.manifest, "Flight manifest: bags and their weighed segments (YAML)")->required();
+  app.add_option("--out", args.out, "Directory for the report")->required();
+  app.add_option("--urdf", args.urdf,
+                 "Vehicle URDF: rotors (rotor_<k>_joint, in motor-channel order) and geometry (default: a quadcopter "
+                 "on channels 1-4, geometry unknown)");
+  app.add_option("--topic", args.topics,
+                 "NAME=TOPIC: read signal NAME from TOPIC instead of MAVROS' (repeatable); names: " + signalNames());
+  app.add_option("--rotor-diameter-m", args.rotor_diameter_m, "Rotor diameter (ground effect within two diameters)")
+      ->capture_default_str();
+  app.add_option("--jobs", args.jobs, "Bags read in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+  args.plotter.addTo(app);
+  for (int i = 0; i < argc; ++i) args.command += (i == 0 ? "diagnose_gap" : " " + std::string(argv[i]));
+  return runToolCommand("diagnose_gap", app, argc, argv, [&] { return diagnose(args); });
+}
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,189 @@
+// diagnose_gap run as a user runs it (the built executable) on bags written here: the flights it
+// can use are read, each one it cannot is refused with one line, and the exit status says so.
+#include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/BatteryState.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "propulsion_estimator/bag/bag_flight_sink.h"
+#include "propulsion_estimator/ros/rcout_codec.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ToolRun {
+  int status = 0;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string quoted(const std::string& text) { return "'" + text + "'"; }
+
+// rc/out at 10 Hz and the battery at 1 Hz for `duration_s`, on `battery_topic`.
+void writeFlightBag(const std::string& path, double duration_s, const std::string& battery_topic = pe::kBatteryTopic) {
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  const ros::Time start(1600000000);
+  pe::RcOutMessage rc_out;
+  rc_out.channels = {1600, 1610, 1620, 1630, 900, 900, 0, 0};
+  for (int i = 0; i <= static_cast<int>(duration_s * 10); ++i) {
+    bag.write(pe::kRcOutTopic, start + ros::Duration(0.1 * i), pe::encodeRcOut(rc_out));
+    if (i % 10 != 0) continue;
+    sensor_msgs::BatteryState battery;
+    battery.voltage = 12.0f;
+    bag.write(battery_topic, start + ros::Duration(0.1 * i), battery);
+  }
+}
+
+class DiagnoseGapTool : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pe_diagnose_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+  ToolRun run(const std::string& arguments) const {
+    const std::string command = quoted(PE_DIAGNOSE_GAP) + " " + arguments + " > " + quoted(file("out.txt")) + " 2> " +
+                                quoted(file("err.txt"));
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(file("out.txt")), slurp(file("err.txt"))};
+  }
+
+  // The required options for `manifest`, and `more`.
+  ToolRun diagnose(const std::string& manifest, const std::string& more = "") const {
+    return run("--model " + repoPath("config/e300_dji2212_dji9443.yaml") + " --manifest " + file(manifest) +
+               " --out " + file("report") + " --python /usr/bin/python3 " + more);
+  }
+
+  void writeManifest(const std::string& name, const std::string& text) const { std::ofstream(file(name)) << text; }
+
+  fs::path dir_;
+};
+
+// What the tool says about the flights it read, without the time it took.
+std::string readLines(const std::string& out) {
+  std::string lines;
+  std::istringstream stream(out);
+  for (std::string line; std::getline(stream, line);) {
+    if (line.rfind("read ", 0) == 0) lines += line.substr(0, line.find(" in ")) + "\n";
+  }
+  return lines;
+}
+
+}  // namespace
+
+TEST_F(DiagnoseGapTool, ReadsEveryFlightInManifestOrderWhateverTheJobs) {
+  writeFlightBag(file("a.bag"), 10.0);
+  writeFlightBag(file("b.bag"), 20.0);
+  writeManifest("m.yaml",
+                "flights:\n"
+                "  - bag: a.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.315}\n"
+                "  - bag: b.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.315}\n"
+                "      - {start: 10, end: 19.5, mass_kg: 1.711}\n");
+  const ToolRun one = diagnose("m.yaml", "--jobs 1");
+  ASSERT_EQ(one.status, 0) << one.err;
+  EXPECT_EQ(one.err, "");
+  EXPECT_EQ(readLines(one.out),
+            "read " + file("a.bag") +
+                ": rc_out 101, battery 11, no imu, no pose, no velocity, no static_pressure, no air_temperature, no "
+                "rangefinder, no motor_temperature\n"
+                "read " + file("b.bag") +
+                ": rc_out 201, battery 21, no imu, no pose, no velocity, no static_pressure, no air_temperature, no "
+                "rangefinder, no motor_temperature\n"
+                "read 2 of 2 flights, 334 readings,\n");
+  EXPECT_NE(one.out.find("note: no --urdf: 4 motors on RCOut channels 1-4"), std::string::npos) << one.out;
+  EXPECT_NE(one.out.find("report: " + file("report") + "/report.md\n"), std::string::npos) << one.out;
+  for (const char* written : {"report.md", "report.yaml", "gap_samples.csv", "gap_signals.png"}) {
+    EXPECT_TRUE(fs::exists(dir_ / "report" / written)) << written;
+  }
+  const ToolRun two = diagnose("m.yaml", "--jobs 2 --urdf " + repoPath("config/f450_quad.urdf"));
+  ASSERT_EQ(two.status, 0) << two.err;
+  EXPECT_EQ(readLines(two.out), readLines(one.out));
+  EXPECT_EQ(two.out.find("note:"), std::string::npos) << two.out;
+}
+
+TEST_F(DiagnoseGapTool, GoesOnWithTheFlightsItCanUse) {
+  writeFlightBag(file("a.bag"), 10.0);
+  writeFlightBag(file("no_battery.bag"), 10.0, "/power");
+  writeManifest("m.yaml",
+                "flights:\n"
+                "  - bag: a.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.315}\n"
+                "  - bag: missing.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.315}\n"
+                "  - bag: no_battery.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.315}\n"
+                "  - bag: a.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.315}\n"
+                "      - {start: 9, end: 12.5, mass_kg: 1.315}\n"
+                "  - bag: a.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 0}\n");
+  for (const char* jobs : {"1", "3"}) {
+    const ToolRun r = diagnose("m.yaml", std::string("--jobs ") + jobs);
+    EXPECT_EQ(r.status, 1);
+    const std::string m = file("m.yaml");
+    EXPECT_EQ(r.err, "diagnose_gap: " + m + ": flights[1]: " + file("missing.bag") + ": no such file\n" +
+                         "diagnose_gap: " + m + ": flights[2]: " + file("no_battery.bag") +
+                         ": /mavros/battery: no messages (a required topic)\n" +
+                         "diagnose_gap: " + m + ": flights[3].segments[1]: 9..12.5 s is outside " + file("a.bag") +
+                         " (0..10.000 s)\n" +
+                         "diagnose_gap: " + m + ":17: flights[4].segments[0].mass_kg: 0 is outside 0..100 kg\n" +
+                         "diagnose_gap: 4 of 5 flights refused\n");
+    EXPECT_NE(r.out.find("read 1 of 5 flights, 112 readings, in "), std::string::npos) << r.out;
+    // The flight it could use is diagnosed, and the report lists those it could not.
+    const std::string report = slurp(dir_ / "report" / "report.md");
+    EXPECT_NE(report.find("- " + m + ": flights[1]: " + file("missing.bag") + ": no such file\n"), std::string::npos)
+        << report;
+  }
+  // The battery on another topic.
+  writeManifest("other.yaml", "flights:\n  - bag: no_battery.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.3}\n");
+  const ToolRun renamed = diagnose("other.yaml", "--topic battery=/power");
+  EXPECT_EQ(renamed.status, 0) << renamed.err;
+  EXPECT_NE(renamed.out.find("read 1 of 1 flights, 112 readings"), std::string::npos) << renamed.out;
+}
+
+TEST_F(DiagnoseGapTool, RefusesBadArgumentsWithOneLine) {
+  writeFlightBag(file("a.bag"), 10.0);
+  writeManifest("m.yaml", "flights:\n  - bag: a.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.315}\n");
+  EXPECT_EQ(run("--model x.yaml --manifest " + file("m.yaml")).status, 2);  // no --out
+  EXPECT_EQ(diagnose("m.yaml", "--jobs 0").status, 2);
+
+  const ToolRun topic = diagnose("m.yaml", "--topic truth=/sim/truth");
+  EXPECT_EQ(topic.status, 1);
+  EXPECT_EQ(topic.err,
+            "diagnose_gap: --topic truth=/sim/truth: 'truth' is not a signal (one of rc_out, battery, imu, pose, "
+            "velocity, static_pressure, air_temperature, rangefinder, motor_temperature)\n");
+  const ToolRun bare = diagnose("m.yaml", "--topic imu");
+  EXPECT_EQ(bare.status, 1);
+  EXPECT_EQ(bare.err, "diagnose_gap: --topic imu: expected NAME=TOPIC\n");
+
+  const ToolRun diameter = diagnose("m.yaml", "--rotor-diameter-m 5");
+  EXPECT_EQ(diameter.status, 1);
+  EXPECT_EQ(diameter.err, "diagnose_gap: --rotor-diameter-m: 5 is outside 0..3 m (must be positive)\n");
+
+  writeManifest("empty.yaml", "flights: []\n");
+  const ToolRun empty = diagnose("empty.yaml");
+  EXPECT_EQ(empty.status, 1);
+  EXPECT_EQ(empty.err, "diagnose_gap: " + file("empty.yaml") + ":1: flights: no flights\n");
+
+  const ToolRun model = run("--model " + file("absent.yaml") + " --manifest " + file("m.yaml") + " --out " +
+                            file("report"));
+  EXPECT_EQ(model.status, 1);
+  EXPECT_EQ(model.err.rfind("diagnose_gap: " + file("absent.yaml") + ": ", 0), 0u) << model.err;
+  EXPECT_EQ(std::count(model.err.begin(), model.err.end(), '\n'), 1) << model.err;
+}
