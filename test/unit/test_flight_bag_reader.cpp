@@ -258,3 +258,20 @@ TEST_F(FlightBagReader, ReadersOfDifferentBagsWorkOnThreads) {
   for (std::thread& thread : threads) thread.join();
   EXPECT_EQ(read, std::vector<int>(4, 50));
 }
+
+TEST_F(FlightBagReader, RefusesAMalformedMessage) {
+  {
+    rosbag::Bag bag(file("short_battery.bag"), rosbag::bagmode::Write);
+    bag.write(pe::kRcOutTopic, kStart, pe::encodeRcOut(rcOutMessage({1500, 1500, 1500, 1500})));
+    // The battery's type and md5sum over three bytes: a header alone needs twelve.
+    std::vector<std::uint8_t> bytes = {1, 2, 3};
+    topic_tools::ShapeShifter shifter;
+    shifter.morph(ros::message_traits::MD5Sum<sensor_msgs::BatteryState>::value(), "sensor_msgs/BatteryState",
+                  ros::message_traits::Definition<sensor_msgs::BatteryState>::value(), "0");
+    ros::serialization::IStream stream(bytes.data(), bytes.size());
+    shifter.read(stream);
+    bag.write(pe::kBatteryTopic, kStart + ros::Duration(1.5), shifter);
+  }
+  EXPECT_EQ(refusal(file("short_battery.bag")),
+            file("short_battery.bag") + ": /mavros/battery: at 1.500 s: malformed sensor_msgs/BatteryState: Buffer Overrun");
+}
