@@ -1,0 +1,58 @@
+#!/bin/sh
+# Times diagnose_gap's reading of an hour of flight: two simulated 30-minute flights, rc/out at
+# 50 Hz and every MAVROS topic at its rate (the bags also hold /sim/truth, which is not read),
+# read with --jobs 1 and --jobs 2 (the figures need Debian's python3 with matplotlib). The bags
+# are simulated once and kept in the cache directory.
+# Usage: scripts/bench_diagnose_gap.sh [CACHE_DIR] (default /tmp/pe_bench_diagnose_gap), after
+# `make build` and `source .ws/install/setup.sh` (diagnose_gap and simulate on the ROS path).
+set -eu
+repo="$(cd "$(dirname "$0")/.." && pwd)"
+cache="${1:-/tmp/pe_bench_diagnose_gap}"
+mkdir -p "$cache"
+
+if [ ! -f "$cache/flights.yaml" ]; then
+  # The thesis' hardware, with a pack large enough for half an hour of hover (the 4 Ah pack lasts
+  # about ten minutes); only the reading is measured here.
+  sed 's/^  capacity_ah: 4.0 .*/  capacity_ah: 24.0/' "$repo/config/sim/e300_dji2212_dji9443.yaml" >"$cache/params.yaml"
+  grep -q '^  capacity_ah: 24.0$' "$cache/params.yaml"
+  cat >"$cache/profile.yaml" <<EOF
+autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, rc_out_rate_hz: 50}
+vehicle:
+  urdf: $repo/config/f450_quad.urdf
+  centre_of_mass_offset_m: [0.008, -0.005, 0.0]
+  landing_gear: {height_m: 0.12, half_width_m: 0.12}
+  drag_area_m2: 0.04
+  battery_initial_soc: 0.95
+payload_cable: {length_m: 1.0, attach_point_m: [0.0, 0.0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: 10}
+manifest: {settle_s: 8}
+segments:
+  - {type: wait, duration_s: 5}
+  - {type: takeoff, height_m: 2.0, rate_m_s: 1.0}
+  - {type: hover, duration_s: 600}
+  - {type: climb, height_m: 5.0, rate_m_s: 1.0}
+  - {type: hover, duration_s: 600}
+  - {type: descend, height_m: 2.0, rate_m_s: 0.8}
+  - {type: hover, duration_s: 575}
+  - {type: land, rate_m_s: 0.5}
+  - {type: wait, duration_s: 5}
+EOF
+  echo "flights:" >"$cache/flights.yaml.part"
+  for seed in 1 2; do
+    rosrun propulsion_estimator simulate flight --params "$cache/params.yaml" --profile "$cache/profile.yaml" \
+      --seed "$seed" --bag "$cache/flight_$seed.bag" --manifest "$cache/flight_$seed.yaml"
+    sed '1,/^flights:/d' "$cache/flight_$seed.yaml" >>"$cache/flights.yaml.part"
+  done
+  mv "$cache/flights.yaml.part" "$cache/flights.yaml"
+fi
+
+messages=$(rosbag info "$cache"/flight_*.bag | awk '/^messages:/ { total += $2 } END { print total }')
+echo "bags: $(du -ch "$cache"/flight_*.bag | tail -1 | cut -f1), $messages messages (/sim/truth included)"
+for jobs in 1 2; do
+  start=$(date +%s.%N)
+  rosrun propulsion_estimator diagnose_gap --model "$repo/config/e300_dji2212_dji9443.yaml" \
+    --urdf "$repo/config/f450_quad.urdf" --manifest "$cache/flights.yaml" --out "$cache/report_$jobs" \
+    --jobs "$jobs" --python /usr/bin/python3 >"$cache/run_$jobs.txt"
+  end=$(date +%s.%N)
+  grep '^read [0-9]' "$cache/run_$jobs.txt"
+  echo "  whole run (reading, diagnosis, report, figures): $(awk "BEGIN { printf \"%.2f\", $end - $start }") s"
+done
