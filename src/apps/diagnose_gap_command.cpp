@@ -17,6 +17,7 @@
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/gap_report.h"
+#include "propulsion_estimator/logs/bench_log_reader.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
@@ -35,6 +36,7 @@ struct Arguments {
   std::string out;
   std::string urdf;
   std::vector<std::string> topics;
+  std::vector<std::string> bench;
   double rotor_diameter_m = gap::DiagnosisConfig{}.rotor_diameter_m;
   int jobs = 1;
   ReportPlotter plotter;
@@ -176,8 +178,8 @@ std::string streamSummary(const gap::FlightStreams& streams, std::size_t* readin
 // figures and their data. The flights refused are listed among what could not be used.
 void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, const Vehicle& vehicle,
                        const std::vector<gap::Flight>& flights, const gap::DiagnosisConfig& config,
-                       const std::vector<std::string>& refusals) {
-  gap::Diagnosis diagnosis = gap::diagnoseGap(model, vehicle, flights, config);
+                       const std::vector<BenchLog>& bench, const std::vector<std::string>& refusals) {
+  gap::Diagnosis diagnosis = gap::diagnoseGap(model, vehicle, flights, config, bench);
   diagnosis.problems.insert(diagnosis.problems.begin(), refusals.begin(), refusals.end());
   writeTextFile(args.out + "/report.yaml", gap::gapReportYaml(diagnosis));
   gap::writeGapReportData(diagnosis, args.out);
@@ -201,6 +203,8 @@ int diagnose(const Arguments& args) {
   const FlightBagTopics topics = topicsOf(args.topics);
   const gap::DiagnosisConfig config = configOf(args, topics);
   const std::vector<ManifestEntry> entries = loadFlightManifestEntries(args.manifest);
+  std::vector<BenchLog> bench;
+  for (const std::string& path : args.bench) bench.push_back(readBenchLog(path));
   // What would stop the report comes before the long read.
   args.plotter.check();
   std::filesystem::create_directories(args.out);
@@ -226,7 +230,7 @@ int diagnose(const Arguments& args) {
   std::printf("read %zu of %zu flights, %zu readings, in %s s with %d jobs\n", flights.size(), reads.size(), readings,
               formatPrintf("%.2f", seconds).c_str(), args.jobs);
 
-  if (!flights.empty()) diagnoseAndReport(args, model, vehicle, flights, config, refusals);
+  if (!flights.empty()) diagnoseAndReport(args, model, vehicle, flights, config, bench, refusals);
   if (refusals.empty()) return 0;
   std::fprintf(stderr, "diagnose_gap: %zu of %zu flights refused\n", refusals.size(), reads.size());
   return 1;
@@ -247,6 +251,9 @@ int runDiagnoseGap(int argc, char** argv) {
                  "on channels 1-4, geometry unknown)");
   app.add_option("--topic", args.topics,
                  "NAME=TOPIC: read signal NAME from TOPIC instead of MAVROS' (repeatable); names: " + signalNames());
+  app.add_option("--bench", args.bench,
+                 "Bench log measured under other conditions than the model's (another day, a battery, a warm motor): "
+                 "its load cell is the truth (repeatable)");
   app.add_option("--rotor-diameter-m", args.rotor_diameter_m, "Rotor diameter (ground effect within two diameters)")
       ->capture_default_str();
   app.add_option("--jobs", args.jobs, "Bags read in parallel")->check(CLI::Range(1, 64))->capture_default_str();

@@ -154,11 +154,43 @@ double signFlipPValue(const std::vector<double>& improvements, int permutations,
   return (1.0 + reached) / (1.0 + permutations);
 }
 
+// The load cell against the model at each row's pulse width and voltage.
+BenchGap benchGap(const ThrustViews& views, const BenchLog& log) {
+  BenchGap gap;
+  gap.source = log.source;
+  const std::vector<double>& pwm = log.column(BenchColumn::kPwm);
+  const std::vector<double>& voltage = log.column(BenchColumn::kVoltage);
+  const std::vector<double>& thrust = log.column(BenchColumn::kThrust);
+  const double max_thrust = thrust.empty() ? 0.0 : *std::max_element(thrust.begin(), thrust.end());
+  // Rows as blocks: the truth is the load cell, the "view" the model at the logged inputs.
+  std::vector<Block> rows;
+  for (std::size_t i = 0; i < log.rows(); ++i) {
+    if (!(thrust[i] > 0.05 * max_thrust)) continue;
+    Block row;
+    row.pwm_us[0] = pwm[i];
+    row.voltage_v = voltage[i];
+    row.truth_n = thrust[i];
+    row.signals.motor_temperature_c = log.has(BenchColumn::kMotorTemp) ? log.column(BenchColumn::kMotorTemp)[i] : kNaN;
+    rows.push_back(row);
+  }
+  std::vector<const Block*> all;
+  for (const Block& row : rows) all.push_back(&row);
+  const auto view = [&](const Block& row) { return views.motorThrust(row.pwm_us[0], row.voltage_v); };
+  gap.stats = statsOf(all, view);
+  gap.where.push_back(breakdownBy("voltage_v", all, [](const Block& row) { return row.voltage_v; },
+                                  quantileEdges(all, [](const Block& row) { return row.voltage_v; }, 4), view, "%.2f",
+                                  "a voltage column"));
+  const auto temperature = [](const Block& row) { return row.signals.motor_temperature_c; };
+  gap.where.push_back(breakdownBy("motor_temperature_c", all, temperature, quantileEdges(all, temperature, 4), view,
+                                  "%.1f", "a motor_temp_c column"));
+  return gap;
+}
+
 class Diagnoser {
  public:
   Diagnoser(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
-            const DiagnosisConfig& config)
-      : model_(model), vehicle_(vehicle), flights_(flights), config_(config), views_(model, motorCount()) {}
+            const DiagnosisConfig& config, const std::vector<BenchLog>& bench)
+      : model_(model), vehicle_(vehicle), flights_(flights), bench_(bench), config_(config), views_(model, motorCount()) {}
 
   Diagnosis run();
 
@@ -177,6 +209,7 @@ class Diagnoser {
   const PropulsionModel& model_;
   const Vehicle& vehicle_;
   const std::vector<Flight>& flights_;
+  const std::vector<BenchLog>& bench_;
   const DiagnosisConfig& config_;
   ThrustViews views_;
   std::vector<Block> blocks_;
@@ -354,6 +387,9 @@ Diagnosis Diagnoser::run() {
     }
     diagnosis_.flights.push_back(flight);
   }
+
+  const ThrustViews single(model_, 1);
+  for (const BenchLog& log : bench_) diagnosis_.bench.push_back(benchGap(single, log));
 
   // 2. Where it lies.
   const ModelDomain& domain = model_.domain();
@@ -602,8 +638,8 @@ Diagnosis Diagnoser::run() {
 }  // namespace
 
 Diagnosis diagnoseGap(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
-                      const DiagnosisConfig& config) {
-  return Diagnoser(model, vehicle, flights, config).run();
+                      const DiagnosisConfig& config, const std::vector<BenchLog>& bench) {
+  return Diagnoser(model, vehicle, flights, config, bench).run();
 }
 
 }  // namespace gap

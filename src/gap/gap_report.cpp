@@ -91,6 +91,14 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
     emitStats(out, flight.stats);
     out << YAML::Key << "problems" << YAML::Value << YAML::Flow << flight.problems << YAML::EndMap;
   }
+  out << YAML::EndSeq;
+  out << YAML::Key << "bench" << YAML::Value << YAML::BeginSeq;
+  for (const BenchGap& bench : diagnosis.bench) {
+    out << YAML::BeginMap << YAML::Key << "source" << YAML::Value << bench.source;
+    out << YAML::Key << "stats" << YAML::Value;
+    emitStats(out, bench.stats);
+    out << YAML::EndMap;
+  }
   out << YAML::EndSeq << YAML::EndMap;
 
   out << YAML::Key << "where" << YAML::Value << YAML::BeginMap;
@@ -219,6 +227,7 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
   md << "| | samples | bias % | RMSE % | bias N |\n|---|---|---|---|---|\n";
   md << statsRow("all flights", diagnosis.overall);
   for (const FlightGap& flight : diagnosis.flights) md << statsRow(flight.name, flight.stats);
+  for (const BenchGap& bench : diagnosis.bench) md << statsRow("bench: " + bench.source, bench.stats);
   md << "\nPayload error of the node, tare on the lightest weighed segment: " << fixed(diagnosis.payload_err_pct)
      << " % (RMS over the heavier segments).\n\n";
   if (!diagnosis.problems.empty()) {
@@ -237,6 +246,18 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
     md << "| bin | samples | bias % | RMSE % | bias N |\n|---|---|---|---|---|\n";
     for (const Bin& bin : breakdown.bins) md << statsRow(bin.label, bin.stats);
     md << "\n";
+  }
+  for (const BenchGap& bench : diagnosis.bench) {
+    for (const Breakdown& breakdown : bench.where) {
+      md << "### bench " << bench.source << ": " << breakdown.name << "\n\n";
+      if (!breakdown.unavailable.empty()) {
+        md << "Not available: " << breakdown.unavailable << ".\n\n";
+        continue;
+      }
+      md << "| bin | samples | bias % | RMSE % | bias N |\n|---|---|---|---|---|\n";
+      for (const Bin& bin : breakdown.bins) md << statsRow(bin.label, bin.stats);
+      md << "\n";
+    }
   }
   md << "### Motors (moment balance in steady hover)\n\n";
   if (!diagnosis.motors.unavailable.empty()) {

@@ -112,6 +112,13 @@ struct FlightGap {
   std::vector<std::string> problems;  ///< one line each: a segment outside the log, a missing signal
 };
 
+/// A bench log measured under other conditions than the model's: the load cell is the truth.
+struct BenchGap {
+  std::string source;
+  ResidualStats stats;                 ///< model thrust minus the load cell, rows with thrust above 5 % of the log's maximum
+  std::vector<Breakdown> where;        ///< by voltage, and by motor temperature where logged
+};
+
 /// One sample inside a weighed segment, with the signals and both views; for the figures.
 struct GapSample {
   int flight = 0;
@@ -136,6 +143,7 @@ struct Diagnosis {
   ResidualStats overall;
   double payload_err_pct = 0.0;  ///< of the node's payload estimate, tare on the lightest flight
   std::vector<FlightGap> flights;
+  std::vector<BenchGap> bench;
   std::vector<Breakdown> where;
   MotorBalance motors;
   std::vector<EffectResult> effects;  ///< every candidate, in kAllKinds order
@@ -147,11 +155,11 @@ struct Diagnosis {
   std::vector<std::string> problems;  ///< what could not be done, one line each
 };
 
-/// Diagnoses the gap between `model` and the weighed flights. Flights or segments that cannot be
-/// used are listed in Diagnosis::problems and the rest is diagnosed; throws ConfigError only when
-/// nothing at all can be (no usable sample).
+/// Diagnoses the gap between `model` and the weighed flights, and the extra bench logs' gap.
+/// Flights or segments that cannot be used are listed in Diagnosis::problems and the rest is
+/// diagnosed; throws ConfigError only when nothing at all can be (no usable flight sample).
 Diagnosis diagnoseGap(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
-                      const DiagnosisConfig& config);
+                      const DiagnosisConfig& config, const std::vector<BenchLog>& bench = {});
 
 }  // namespace gap
 }  // namespace propulsion_estimator
