@@ -185,6 +185,14 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   gap::writeGapReportData(diagnosis, args.out);
   args.plotter.plot("gap", args.out);
   writeTextFile(args.out + "/report.md", gap::gapReportMarkdown(diagnosis, model, args.command));
+  // The input model with the selected effects: what estimator_node loads to correct online.
+  std::string selected_names;
+  for (effects::Kind kind : diagnosis.selected) {
+    selected_names += (selected_names.empty() ? "" : ", ") + std::string(effects::kindName(kind));
+  }
+  saveModelFile(model.withEffects(diagnosis.fitted), args.out + "/corrected_model.yaml",
+                args.model + " with the effects diagnose_gap selected (" +
+                    (selected_names.empty() ? std::string("none") : selected_names) + "); see report.md");
 
   const gap::ResidualStats& overall = diagnosis.overall;
   std::printf("gap: %d samples, model minus flight: bias %s %%, RMSE %s %%\n", overall.samples,
@@ -194,7 +202,7 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   std::printf("selected: %s; held-out RMSE %s %% -> %s %%\n", selected.empty() ? "none" : selected.c_str(),
               formatPrintf("%.2f", diagnosis.heldout.before_rmse_pct).c_str(),
               formatPrintf("%.2f", diagnosis.heldout.after_rmse_pct).c_str());
-  std::printf("report: %s/report.md\n", args.out.c_str());
+  std::printf("report: %s/report.md, corrected model: %s/corrected_model.yaml\n", args.out.c_str(), args.out.c_str());
 }
 
 int diagnose(const Arguments& args) {

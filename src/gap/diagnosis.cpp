@@ -273,6 +273,9 @@ std::string Diagnoser::testability(Kind kind) const {
   if (kind == Kind::kAirDensity && !(references().bench_air_density_kg_m3 > 0.0)) {
     return "the model has no bench air (metadata bench_air_temperature_c, bench_air_pressure_pa)";
   }
+  if (kind == Kind::kMotorTemperature && !std::isfinite(references().motor_reference_c)) {
+    return "the model has no bench air temperature, the reference of the motor's temperature";
+  }
   if (signal == effects::Signal::kNone) return "";
   int with_signal = 0, informative = 0;
   for (const Block& block : blocks_) {

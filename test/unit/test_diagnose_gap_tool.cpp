@@ -12,6 +12,7 @@
 #include <string>
 
 #include "propulsion_estimator/bag/bag_flight_sink.h"
+#include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 #include "test_paths.h"
 
@@ -112,10 +113,15 @@ TEST_F(DiagnoseGapTool, ReadsEveryFlightInManifestOrderWhateverTheJobs) {
                 "rangefinder, no motor_temperature\n"
                 "read 2 of 2 flights, 334 readings,\n");
   EXPECT_NE(one.out.find("note: no --urdf: 4 motors on RCOut channels 1-4"), std::string::npos) << one.out;
-  EXPECT_NE(one.out.find("report: " + file("report") + "/report.md\n"), std::string::npos) << one.out;
-  for (const char* written : {"report.md", "report.yaml", "gap_samples.csv", "gap_signals.png"}) {
+  EXPECT_NE(one.out.find("report: " + file("report") + "/report.md, corrected model: " + file("report") +
+                         "/corrected_model.yaml\n"),
+            std::string::npos)
+      << one.out;
+  for (const char* written : {"report.md", "report.yaml", "gap_samples.csv", "gap_signals.png", "corrected_model.yaml"}) {
     EXPECT_TRUE(fs::exists(dir_ / "report" / written)) << written;
   }
+  // The corrected model is a model file the node loads: the input model, plus the effects selected.
+  EXPECT_NO_THROW(pe::loadModelFile(file("report/corrected_model.yaml")));
   const ToolRun two = diagnose("m.yaml", "--jobs 2 --urdf " + repoPath("config/f450_quad.urdf"));
   ASSERT_EQ(two.status, 0) << two.err;
   EXPECT_EQ(readLines(two.out), readLines(one.out));
@@ -186,4 +192,25 @@ TEST_F(DiagnoseGapTool, RefusesBadArgumentsWithOneLine) {
   EXPECT_EQ(model.status, 1);
   EXPECT_EQ(model.err.rfind("diagnose_gap: " + file("absent.yaml") + ": ", 0), 0u) << model.err;
   EXPECT_EQ(std::count(model.err.begin(), model.err.end(), '\n'), 1) << model.err;
+}
+
+// A model without bench air can be diagnosed; air_density is then not testable, and says why.
+TEST_F(DiagnoseGapTool, ModelWithoutBenchAirLeavesAirDensityUntestable) {
+  std::string model = slurp(repoPath("config/e300_dji2212_dji9443.yaml"));
+  for (const char* key : {"  bench_air_temperature_c: 22\n", "  bench_air_pressure_pa: 101325\n"}) {
+    const std::size_t at = model.find(key);
+    ASSERT_NE(at, std::string::npos) << key;
+    model.erase(at, std::string(key).size());
+  }
+  std::ofstream(file("no_air.yaml")) << model;
+  writeFlightBag(file("a.bag"), 10.0);
+  writeManifest("m.yaml", "flights:\n  - bag: a.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.315}\n");
+  const ToolRun r = run("--model " + file("no_air.yaml") + " --manifest " + file("m.yaml") + " --out " +
+                        file("report") + " --python /usr/bin/python3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string report = slurp(dir_ / "report" / "report.yaml");
+  EXPECT_NE(report.find("name: air_density\n    testable: false\n    reason: the model has no bench air "
+                        "(metadata bench_air_temperature_c, bench_air_pressure_pa)"),
+            std::string::npos)
+      << report;
 }
