@@ -150,7 +150,7 @@ def run_case(case, args):
         yaml.safe_dump({"flights": flights}, handle, default_flow_style=None)
     out = os.path.join(folder, "diagnosis")
     code = run([tool("diagnose_gap"), "--model", model, "--manifest", manifest, "--urdf", urdf, "--out", out,
-                "--no-plots"], log)
+                "--python", sys.executable], log)
     report_path = os.path.join(out, "report.yaml")
     if not os.path.exists(report_path):
         return dict(case, error="diagnose_gap wrote no report (exit %d, see %s)" % (code, log))
