@@ -196,7 +196,7 @@ TEST(BenchSimulator, AppliesOnlyTheEffectsABenchShows) {
   flight_only.esc_offset_us = 30.0;
   flight_only.ground_effect_strength = 1.0;
   flight_only.thrust_loss_fraction = 0.1;
-  flight_only.climb_inflow_per_m_s = 0.1;
+  flight_only.climb_inflow_strength = 1.0;
   const pe::BenchLog with = pe::simulateBench(params, flight_only, sweep, 9);
   const pe::BenchLog without = pe::simulateBench(params, {}, sweep, 9);
   EXPECT_EQ(with.column(pe::BenchColumn::kThrust), without.column(pe::BenchColumn::kThrust));

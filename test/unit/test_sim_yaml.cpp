@@ -119,11 +119,17 @@ TEST(SimParamsYaml, RefusesUnknownMissingAndOutOfRangeValues) {
   EXPECT_EQ(paramsRefusal("  thrust_coefficient: 0.0807", "  thrust_coefficient: .nan"),
             "p.yaml:47: propeller.thrust_coefficient: expected a finite number, got '.nan'");
   EXPECT_EQ(paramsRefusal("3.80, 3.84", "3.90, 3.84"),
-            "p.yaml:59: battery.open_circuit_voltage.cell_v: must increase with soc (3.84 after 3.9)");
+            "p.yaml:62: battery.open_circuit_voltage.cell_v: must increase with soc (3.84 after 3.9)");
   EXPECT_EQ(paramsRefusal("{sigma_a: 0.106", "{sigma_a: -0.106"),
-            "p.yaml:77: bench.sensors.current.sigma_a: -0.106 is outside 0..10");
+            "p.yaml:80: bench.sensors.current.sigma_a: -0.106 is outside 0..10");
   EXPECT_EQ(paramsRefusal("  rotor_inertia_kg_m2: 5.0e-6", "  rotor_inertia_kg_m2: 0"),
             "p.yaml:36: motor.rotor_inertia_kg_m2: 0 is outside 0..0.01 kg m^2 (must be positive)");
+  EXPECT_EQ(paramsRefusal("  solidity: 0.09", "  solidity: 0.9"),
+            "p.yaml:53: propeller.solidity: 0.9 is outside 0.02..0.5");
+  // A torque too small for the thrust: figure of merit 1.16, beyond the 1/1.15 = 0.87 kappa allows.
+  EXPECT_EQ(paramsRefusal("  torque_coefficient: 0.00445", "  torque_coefficient: 0.0025"),
+            "p.yaml:48: propeller.torque_coefficient: 0.0025 is below the induced torque of thrust coefficient "
+            "0.0807 (figure of merit 1.16, at most 1/1.15)");
   EXPECT_EQ(paramsRefusal("format_version: 1", "format_version: 2"),
             "p.yaml:15: format_version: 2 is not supported (this reader knows 1)");
 }
@@ -132,11 +138,11 @@ TEST(SimEffectsYaml, ReadsEveryEffectWithItsParameter) {
   const pe::SimEffects effects = pe::parseSimEffectsYaml(
       "supply_resistance: {ohm: 0.05}\nair_density: {temperature_c: 35, pressure_pa: 90000}\n"
       "ground_effect: {strength: 1.0}\nthrust_loss: {fraction: 0.05}\n"
-      "motor_temperature: {thermal_resistance_c_per_w: 2.0}\nclimb_inflow: {per_m_s: 0.05}\nesc_offset: {us: -15}\n",
+      "motor_temperature: {thermal_resistance_c_per_w: 2.0}\nclimb_inflow: {strength: 0.5}\nesc_offset: {us: -15}\n",
       "e.yaml");
   EXPECT_EQ(effects.summary(),
             "supply_resistance(ohm=0.05) air_density(temperature_c=35,pressure_pa=90000) ground_effect(strength=1) "
-            "thrust_loss(fraction=0.05) motor_temperature(thermal_resistance_c_per_w=2) climb_inflow(per_m_s=0.05) "
+            "thrust_loss(fraction=0.05) motor_temperature(thermal_resistance_c_per_w=2) climb_inflow(strength=0.5) "
             "esc_offset(us=-15)");
   EXPECT_EQ(pe::parseSimEffectsYaml("{}", "e.yaml").summary(), "none");
 }
@@ -152,8 +158,9 @@ TEST(SimEffectsYaml, RefusesUnknownEffectsAndBadParameters) {
             "e.yaml:2: thrust_loss.fraction: 0.7 is outside 0..0.5");
   EXPECT_EQ(effectsRefusal("air_density: {temperature_c: 20, pressure_pa: 9000}\n"),
             "e.yaml:1: air_density.pressure_pa: 9000 is outside 50000..110000 Pa");
-  EXPECT_EQ(effectsRefusal("climb_inflow: {per_m_s: 0.3}\n"),
-            "e.yaml:1: climb_inflow.per_m_s: 0.3 is outside 0..0.25 per m/s");
+  EXPECT_EQ(effectsRefusal("climb_inflow: {strength: 3.5}\n"), "e.yaml:1: climb_inflow.strength: 3.5 is outside 0..3");
+  EXPECT_EQ(effectsRefusal("climb_inflow: {per_m_s: 0.05}\n"),
+            "e.yaml:1: climb_inflow.per_m_s: unknown key (allowed: strength)");
   EXPECT_EQ(effectsRefusal("supply_resistance: {ohm: ten}\n"),
             "e.yaml:1: supply_resistance.ohm: expected a number, got 'ten'");
 }

@@ -200,7 +200,6 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
   PowerTrain train(PropulsionChain(params.chain), rotors, effects, air.temperature_c);
   LipoBattery battery(params.battery, profile.vehicle.battery_initial_soc);
   Noise noise(seed);
-  const double radius = params.chain.propeller.radiusM();
   const Eigen::Vector3d origin = dynamics.basePosition();
   const double current_sign = profile.autopilot.flavour == AutopilotFlavour::kPx4 ? -1.0 : 1.0;
   GaussMarkov3 position_error(sensors.position_sigma_m, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
@@ -214,7 +213,8 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
       range(sensors.rangefinder_rate_hz), motor_temperature(sensors.motor_temperature_rate_hz);
 
   std::vector<double> thrust(rotors), torque(rotors);
-  std::vector<RotorEffectTerms> terms(rotors);
+  std::vector<RotorInflow> inflows(rotors);
+  const double airframe_share = 1.0 - effects.thrust_loss_fraction.value_or(0.0);
   FlightResult result;
   const double end_s = schedule.back().end_s;
   const long steps = std::lround(end_s / kFlightStepS);
@@ -237,12 +237,16 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
     const NavigationState navigation{dynamics.basePosition(), dynamics.baseVelocity(), dynamics.attitude(),
                                      dynamics.angularVelocityBody()};
     const std::vector<double>& pwm = controller.update(setpointAt(segment, t), navigation, kFlightStepS);
+    for (int k = 0; k < rotors; ++k) {
+      const double axial_speed = dynamics.rotorVelocity(k).dot(navigation.attitude * vehicle.rotors[k].thrust_axis);
+      inflows[k] = rotorInflow(effects, train.chain(k).params().propeller.radiusM(), dynamics.rotorPosition(k).z(),
+                               axial_speed);
+      train.setInflow(k, inflows[k]);
+    }
     const PowerTrainState& power =
         train.step(pwm, Supply{battery.sourceVoltage(), battery.seriesResistanceOhm()}, air, kFlightStepS);
-    const double climb_rate = navigation.velocity_m_s.z();
     for (int k = 0; k < rotors; ++k) {
-      terms[k] = rotorEffectTerms(effects, radius, dynamics.rotorPosition(k).z(), climb_rate);
-      thrust[k] = power.motors[k].thrust_n * terms[k].product();
+      thrust[k] = power.motors[k].thrust_n * airframe_share;
       torque[k] = power.motors[k].torque_nm;
     }
 
@@ -261,20 +265,29 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
         sample.total_mass_kg = dynamics.vehicleMassKg() + sample.payload_mass_kg;
         sample.cable_tension_n = dynamics.cableTensionN();
         sample.height_m = height;
-        sample.vertical_speed_m_s = climb_rate;
+        sample.vertical_speed_m_s = navigation.velocity_m_s.z();
         sample.air_density_kg_m3 = density;
         sample.density_ratio = density / params.bench.air.densityKgM3();
         sample.battery_voltage_v = power.terminal_voltage_v;
         sample.esc_voltage_v = power.esc_voltage_v;
         sample.battery_current_a = power.current_a;
-        sample.climb_factor = terms[0].climb;
-        sample.thrust_loss_factor = terms[0].thrust_loss;
+        sample.thrust_loss_factor = airframe_share;
+        double static_thrust = 0.0, climb_thrust = 0.0;
         for (int k = 0; k < rotors; ++k) {
           const ChainState& motor = power.motors[k];
+          // The two inflow effects split as thrust(climb, ground) = static x climb x ground at
+          // the rotor's speed: climb without the ground, the ground on top of the climb.
+          const RotorAerodynamics& rotor = train.chain(k).rotor();
+          const double climb = rotor.load(motor.omega_rad_s, {inflows[k].axial_speed_m_s, 1.0}).thrust;
+          const double with_ground = rotor.load(motor.omega_rad_s, inflows[k]).thrust;
+          const double isolated = train.chain(k).params().propeller.thrustN(density, motor.omega_rad_s / kTwoPi);
+          static_thrust += isolated;
+          climb_thrust += isolated * climb;
           sample.motors.push_back({pwm[k], thrust[k], motor.input_current_a, motor.input_power_w, motor.rpm(),
-                                   terms[k].ground_effect, power.winding_temperature_c[k],
+                                   climb > 0.0 ? with_ground / climb : 1.0, climb, power.winding_temperature_c[k],
                                    pwm[k] >= params.bench.sweep_pwm_min_us && pwm[k] <= params.bench.sweep_pwm_max_us});
         }
+        sample.climb_factor = static_thrust > 0.0 ? climb_thrust / static_thrust : 1.0;
         sink->truth(sample);
       }
       if (battery_stream.due(t)) {

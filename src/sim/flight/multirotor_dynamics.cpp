@@ -84,6 +84,7 @@ Eigen::Vector3d MultirotorDynamics::worldPointVelocity(const Eigen::Vector3d& bo
 Eigen::Vector3d MultirotorDynamics::basePosition() const { return worldPoint(Eigen::Vector3d::Zero()); }
 Eigen::Vector3d MultirotorDynamics::baseVelocity() const { return worldPointVelocity(Eigen::Vector3d::Zero()); }
 Eigen::Vector3d MultirotorDynamics::rotorPosition(int k) const { return worldPoint(rotors_[k].position_m); }
+Eigen::Vector3d MultirotorDynamics::rotorVelocity(int k) const { return worldPointVelocity(rotors_[k].position_m); }
 
 void MultirotorDynamics::setPayload(double mass_kg) {
   payload_mass_kg_ = mass_kg;

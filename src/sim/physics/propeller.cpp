@@ -1,14 +1,34 @@
 #include "propulsion_estimator/sim/physics/propeller.h"
 
+#include <cmath>
+
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
 
 void PropellerParams::validate() const {
   requireWithin("propeller.diameter_m", diameter_m, 0.02, 2.0);
   requireWithin("propeller.thrust_coefficient", thrust_coefficient, 0.001, 0.5);
   requireWithin("propeller.torque_coefficient", torque_coefficient, 0.0001, 0.1);
   requireWithin("propeller.inertia_kg_m2", inertia_kg_m2, 0.0, 0.1);
+  // Two thin blades of a racing propeller to the wide blades of a heavy-lift one.
+  requireWithin("propeller.solidity", solidity, 0.02, 0.5);
+  // Momentum theory's ideal torque, C_T^1.5 / sqrt(2), times kappa: below it the rotor model
+  // would need a negative profile torque.
+  const double induced = kInducedPowerFactor * std::pow(rotorThrustCoefficient(), 1.5) / std::sqrt(2.0);
+  if (!(rotorTorqueCoefficient() > induced)) {
+    throw FieldError("propeller.torque_coefficient",
+                     formatNumber(torque_coefficient) + " is below the induced torque of thrust coefficient " +
+                         formatNumber(thrust_coefficient) + " (figure of merit " +
+                         formatPrintf("%.3g", induced / kInducedPowerFactor / rotorTorqueCoefficient()) +
+                         ", at most 1/" + formatNumber(kInducedPowerFactor) + ")");
+  }
 }
 
 double PropellerParams::thrustN(double air_density_kg_m3, double rev_per_s) const {
@@ -20,5 +40,8 @@ double PropellerParams::torqueNm(double air_density_kg_m3, double rev_per_s) con
   const double d2 = diameter_m * diameter_m;
   return torque_coefficient * air_density_kg_m3 * rev_per_s * rev_per_s * d2 * d2 * diameter_m;
 }
+
+double PropellerParams::rotorThrustCoefficient() const { return 4.0 * thrust_coefficient / (kPi * kPi * kPi); }
+double PropellerParams::rotorTorqueCoefficient() const { return 8.0 * torque_coefficient / (kPi * kPi * kPi); }
 
 }  // namespace propulsion_estimator

@@ -22,10 +22,9 @@ void SimEffects::validate() const {
   requireWithinIfOn(thrust_loss_fraction, "thrust_loss.fraction", 0.0, 0.5, "");
   requireWithinIfOn(motor_thermal_resistance_c_per_w, "motor_temperature.thermal_resistance_c_per_w", 0.01, 100.0,
                     " deg C/W");
-  // Blade-element momentum theory gives a small fixed-pitch rotor (hover inflow ratio ~0.06) a
-  // thrust loss of 5-10 % per m/s of climb at fixed speed. 0.25 allows well beyond that and still
-  // leaves half the thrust at the autopilot's 2 m/s climb limit, where 0.5 would leave none.
-  requireWithinIfOn(climb_inflow_per_m_s, "climb_inflow.per_m_s", 0.0, 0.25, " per m/s");
+  // Strength 1 gives the thesis quad's rotors -4.8 % of thrust per m/s of climb at fixed speed;
+  // 3 (-14 % per m/s) still leaves the autopilot's 2 m/s climb about two thirds of the thrust.
+  requireWithinIfOn(climb_inflow_strength, "climb_inflow.strength", 0.0, 3.0, "");
   requireWithinIfOn(esc_offset_us, "esc_offset.us", -200.0, 200.0, " us");
 }
 
@@ -50,7 +49,7 @@ std::string SimEffects::summary() const {
   if (motor_thermal_resistance_c_per_w) {
     add("motor_temperature(thermal_resistance_c_per_w=" + formatNumber(*motor_thermal_resistance_c_per_w) + ")");
   }
-  if (climb_inflow_per_m_s) add("climb_inflow(per_m_s=" + formatNumber(*climb_inflow_per_m_s) + ")");
+  if (climb_inflow_strength) add("climb_inflow(strength=" + formatNumber(*climb_inflow_strength) + ")");
   if (esc_offset_us) add("esc_offset(us=" + formatNumber(*esc_offset_us) + ")");
   return text.empty() ? "none" : text;
 }
@@ -61,15 +60,15 @@ double groundEffectFactor(double rotor_radius_m, double rotor_height_m, double s
   return 1.0 + strength * (1.0 / (1.0 - ratio * ratio) - 1.0);
 }
 
-RotorEffectTerms rotorEffectTerms(const SimEffects& effects, double rotor_radius_m, double rotor_height_m,
-                                  double climb_rate_m_s) {
-  RotorEffectTerms terms;
+RotorInflow rotorInflow(const SimEffects& effects, double rotor_radius_m, double rotor_height_m,
+                        double axial_speed_m_s) {
+  RotorInflow inflow;
   if (effects.ground_effect_strength) {
-    terms.ground_effect = groundEffectFactor(rotor_radius_m, rotor_height_m, *effects.ground_effect_strength);
+    inflow.ground_inflow_ratio =
+        1.0 / groundEffectFactor(rotor_radius_m, rotor_height_m, *effects.ground_effect_strength);
   }
-  if (effects.climb_inflow_per_m_s) terms.climb = std::max(0.0, 1.0 - *effects.climb_inflow_per_m_s * climb_rate_m_s);
-  if (effects.thrust_loss_fraction) terms.thrust_loss = 1.0 - *effects.thrust_loss_fraction;
-  return terms;
+  if (effects.climb_inflow_strength) inflow.axial_speed_m_s = *effects.climb_inflow_strength * axial_speed_m_s;
+  return inflow;
 }
 
 }  // namespace propulsion_estimator

@@ -31,7 +31,7 @@ SimEffects parseSimEffectsYaml(const std::string& text, const std::string& sourc
     if (effect == "motor_temperature") {
       effects.motor_thermal_resistance_c_per_w = parameter(root, "motor_temperature", "thermal_resistance_c_per_w");
     }
-    if (effect == "climb_inflow") effects.climb_inflow_per_m_s = parameter(root, "climb_inflow", "per_m_s");
+    if (effect == "climb_inflow") effects.climb_inflow_strength = parameter(root, "climb_inflow", "strength");
     if (effect == "esc_offset") effects.esc_offset_us = parameter(root, "esc_offset", "us");
   }
   validateAt(root, effects);

@@ -34,9 +34,9 @@ BldcMotorParams readMotor(const YamlMap& map) {
 }
 
 PropellerParams readPropeller(const YamlMap& map) {
-  map.allowOnly({"name", "diameter_m", "thrust_coefficient", "torque_coefficient", "inertia_kg_m2"});
-  return PropellerParams{map.text("name"), map.number("diameter_m"), map.number("thrust_coefficient"),
-                         map.number("torque_coefficient"), map.number("inertia_kg_m2")};
+  map.allowOnly({"name", "diameter_m", "thrust_coefficient", "torque_coefficient", "inertia_kg_m2", "solidity"});
+  return PropellerParams{map.text("name"),         map.number("diameter_m"),    map.number("thrust_coefficient"),
+                         map.number("torque_coefficient"), map.number("inertia_kg_m2"), map.number("solidity")};
 }
 
 LipoBatteryParams readBattery(const YamlMap& map) {

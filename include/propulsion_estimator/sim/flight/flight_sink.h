@@ -70,7 +70,10 @@ struct MotorTruth {
   double current_a = 0.0;  // ESC input current
   double power_w = 0.0;    // ESC input power
   double rpm = 0.0;
+  // The inflow effects' thrust factors at the rotor's speed: the climb's, and the ground's on top
+  // of it (thrust = the propeller's static thrust x climb x ground; 1 when off).
   double ground_effect_factor = 1.0;
+  double climb_factor = 1.0;
   double winding_temperature_c = 0.0;
   bool in_bench_range = false;  // pulse width within the parameter file's bench sweep range
 };
@@ -88,7 +91,7 @@ struct TruthSample {
   double battery_voltage_v = 0.0;  // at the terminals, without sensor noise
   double esc_voltage_v = 0.0;      // after the supply path
   double battery_current_a = 0.0;
-  double climb_factor = 1.0;
+  double climb_factor = 1.0;  // summed rotor thrust with the climb's inflow over without, at the rotors' speeds
   double thrust_loss_factor = 1.0;
   std::vector<MotorTruth> motors;
 };

@@ -41,6 +41,7 @@ class MultirotorDynamics {
   // there reads (the IMU's lever arm of a few centimetres is neglected).
   const Eigen::Vector3d& specificForceBody() const { return specific_force_body_; }
   Eigen::Vector3d rotorPosition(int k) const;  // in the world
+  Eigen::Vector3d rotorVelocity(int k) const;  // of rotor k's hub, in the world
   double cableTensionN() const { return cable_tension_n_; }
   double payloadMassKg() const { return payload_mass_kg_; }
   double vehicleMassKg() const { return mass_kg_; }

@@ -3,6 +3,7 @@
 #include "propulsion_estimator/sim/physics/bldc_motor.h"
 #include "propulsion_estimator/sim/physics/esc.h"
 #include "propulsion_estimator/sim/physics/propeller.h"
+#include "propulsion_estimator/sim/physics/rotor_inflow.h"
 
 namespace propulsion_estimator {
 
@@ -24,7 +25,8 @@ struct ChainInput {
   double winding_temperature_c = 0.0;
 };
 
-// State of one chain. Thrust is the isolated rotor's (no ground, climb or airframe effects).
+// State of one chain. Thrust is the rotor's in its inflow (the `load` it was evaluated with),
+// without airframe effects.
 struct ChainState {
   double omega_rad_s = 0.0;
   double thrust_n = 0.0;
@@ -37,22 +39,26 @@ struct ChainState {
   double rpm() const;
 };
 
+// `load` in the functions below: the factors the rotor's inflow puts on the propeller's static
+// thrust and torque (RotorAerodynamics::load); the default is still air out of ground effect.
 class PropulsionChain {
  public:
   explicit PropulsionChain(ChainParams params);  // validates
 
   // Steady operating point: the motor torque Kt (I - I0) balances the propeller's torque, with
   // I = (duty V - Kt w) / R and R the winding plus the ESC's resistance; a quadratic in w,
-  // solved in closed form. Below the voltage that overcomes the no-load current the rotor stands.
-  ChainState steady(const ChainInput& input) const;
+  // solved in closed form with the load factors held (they depend on w only through the inflow;
+  // the power train re-evaluates them every step). Below the voltage that overcomes the no-load
+  // current the rotor stands.
+  ChainState steady(const ChainInput& input, const RotorLoad& load = {}) const;
 
   // Electrical state at a given rotor speed (during a speed change the motor current is set by
   // the voltage balance alone, its electrical time constant being microseconds).
-  ChainState atSpeed(const ChainInput& input, double omega_rad_s) const;
+  ChainState atSpeed(const ChainInput& input, double omega_rad_s, const RotorLoad& load = {}) const;
 
   // Time constant of the rotor speed's first-order response at `omega_rad_s`: rotor and propeller
   // inertia over the derivative of the net torque, J / (Kt^2 / R + 2 kQ w).
-  double speedTimeConstantS(const ChainInput& input, double omega_rad_s) const;
+  double speedTimeConstantS(const ChainInput& input, double omega_rad_s, const RotorLoad& load = {}) const;
 
   // Steady operating point of `motors` identical chains at the same duty fed from a source of EMF
   // `source_v` through `path_ohm`: the ESC voltage solves V = source_v - path_ohm * motors * I(V)
@@ -61,16 +67,18 @@ class PropulsionChain {
                               double* esc_voltage_v) const;
 
   // Deceleration of a rotor whose ESC is off: propeller drag and no-load friction only.
-  double coastingDecelerationRadS2(const ChainInput& input, double omega_rad_s) const;
+  double coastingDecelerationRadS2(const ChainInput& input, double omega_rad_s, const RotorLoad& load = {}) const;
 
   const ChainParams& params() const { return params_; }
+  const RotorAerodynamics& rotor() const { return rotor_; }
   double inertiaKgM2() const { return params_.motor.rotor_inertia_kg_m2 + params_.propeller.inertia_kg_m2; }
 
  private:
-  // kQ of Q = kQ w^2.
-  double torqueFactor(double air_density_kg_m3) const;
+  // kQ of Q = kQ w^2, with the load's torque factor.
+  double torqueFactor(double air_density_kg_m3, const RotorLoad& load) const;
 
   ChainParams params_;
+  RotorAerodynamics rotor_;
 };
 
 }  // namespace propulsion_estimator

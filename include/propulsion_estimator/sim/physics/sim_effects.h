@@ -4,6 +4,7 @@
 #include <string>
 
 #include "propulsion_estimator/sim/physics/atmosphere.h"
+#include "propulsion_estimator/sim/physics/rotor_inflow.h"
 
 namespace propulsion_estimator {
 
@@ -11,19 +12,19 @@ namespace propulsion_estimator {
 // set; any combination may be on. Where each applies:
 //   supply_resistance  bench, flight  the ESCs see the sensed voltage minus R times the current
 //   air_density        bench, flight  the run's air replaces the bench air of the parameter file
-//   ground_effect      flight         Cheeseman-Bennett thrust gain near the ground
+//   ground_effect      flight         the ground lowers the rotors' induced inflow (Cheeseman-Bennett)
 //   thrust_loss        flight         airframe blockage and rotor-rotor interaction
 //   motor_temperature  bench, flight  winding resistance and magnet flux follow the motor's
 //                                     temperature (otherwise they stay at the reference temperature)
-//   climb_inflow       flight         thrust change with vertical speed
+//   climb_inflow       flight         the axial inflow of a climb or descent through the rotors
 //   esc_offset         flight         the flying ESCs' end points differ from the bench ESC's
 struct SimEffects {
   std::optional<double> supply_resistance_ohm;
   std::optional<AirConditions> air;
-  std::optional<double> ground_effect_strength;  // 1 = Cheeseman-Bennett
+  std::optional<double> ground_effect_strength;  // 1 = Cheeseman-Bennett's image rotor
   std::optional<double> thrust_loss_fraction;
   std::optional<double> motor_thermal_resistance_c_per_w;  // the motors' cooling during the run
-  std::optional<double> climb_inflow_per_m_s;              // thrust fraction lost per m/s of climb
+  std::optional<double> climb_inflow_strength;             // 1 = the rotor's axial speed, all of it
   std::optional<double> esc_offset_us;
 
   // Throws FieldError "<effect>.<parameter>" for a value outside its physical range.
@@ -36,23 +37,19 @@ struct SimEffects {
   std::string summary() const;
 };
 
-// Factors on an isolated rotor's thrust at fixed rotor speed. The propeller's torque, and so the
-// motor's operating point, is left unchanged by all three: at the low advance ratios of hover
-// manoeuvres the change of thrust dominates.
-struct RotorEffectTerms {
-  double ground_effect = 1.0;
-  double climb = 1.0;
-  double thrust_loss = 1.0;
-
-  double product() const { return ground_effect * climb * thrust_loss; }
-};
-
-// Ground effect after Cheeseman and Bennett (ARC R&M 3021, 1955), T_IGE / T_OGE = 1 / (1 - (R / 4z)^2),
-// with its excess over 1 scaled by `strength`; z is taken no lower than R/2, the formula's
-// range of validity.
+// Ground effect after Cheeseman and Bennett (ARC R&M 3021, 1955): the thrust ratio at equal
+// power T_IGE / T_OGE = 1 / (1 - (R / 4z)^2), with its excess over 1 scaled by `strength`; z is
+// taken no lower than R/2, the formula's range of validity. Its inverse is the ratio of the
+// induced inflows at equal thrust (the image rotor's upwash), which is what the rotor model takes.
 double groundEffectFactor(double rotor_radius_m, double rotor_height_m, double strength);
 
-RotorEffectTerms rotorEffectTerms(const SimEffects& effects, double rotor_radius_m, double rotor_height_m,
-                                  double climb_rate_m_s);
+// What the ground_effect and climb_inflow effects make a rotor's disc see, for a rotor of
+// `rotor_radius_m` whose hub is `rotor_height_m` above the ground and moves at `axial_speed_m_s`
+// along its thrust axis (climb positive): ground_inflow_ratio = 1 / groundEffectFactor and
+// axial_speed = strength x axial speed (still air where an effect is off). RotorAerodynamics
+// turns it into thrust and torque at the rotor's speed. thrust_loss acts on the airframe, not on
+// the rotor: the flight applies it to the thrust alone.
+RotorInflow rotorInflow(const SimEffects& effects, double rotor_radius_m, double rotor_height_m,
+                        double axial_speed_m_s);
 
 }  // namespace propulsion_estimator

@@ -12,7 +12,7 @@ namespace propulsion_estimator {
 //   ground_effect: {strength: 1.0}
 //   thrust_loss: {fraction: 0.05}
 //   motor_temperature: {thermal_resistance_c_per_w: 2.0}
-//   climb_inflow: {per_m_s: 0.05}
+//   climb_inflow: {strength: 1.0}
 //   esc_offset: {us: 20}
 // `{}` is the file of no effects. Unknown effects or parameters, missing parameters and values
 // out of range are refused with ConfigError "<file>:<line>: <key>: <problem>".
