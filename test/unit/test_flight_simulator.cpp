@@ -333,6 +333,22 @@ TEST(FlightSimulator, RefusesALandingThatDoesNotLandAlsoAtTheEnd) {
   EXPECT_EQ(refusal(profile), expected);
 }
 
+TEST(FlightSimulator, RefusesAFlightThatFlipsOverRatherThanCountItLanded) {
+  // The centre of gravity 10 cm out towards the front-left motor, beyond what the attitude
+  // integrators can hold: the quad leans after take-off and rolls over on its left side as the
+  // landing begins. Upside down on the ground it comes to rest low and still, which the land
+  // detector took for landed: without the attitude check this flight was accepted.
+  pe::FlightProfile profile = defaultProfile();
+  profile.vehicle.centre_of_mass_offset_m = Eigen::Vector3d(0.07, 0.07, 0.0);
+  profile.segments = {{pe::SegmentKind::kWait, 2.0, 0.0, 0.0, 0.0},
+                      {pe::SegmentKind::kTakeoff, 0.0, 1.0, 1.0, 0.0},
+                      {pe::SegmentKind::kLand, 0.0, 0.0, 0.5, 0.0},
+                      {pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0}};
+  EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
+                                  ": segments[2].type: the vehicle flipped over: roll -170 deg, pitch 6 deg at "
+                                  "t = 5.622 s, beyond 60 deg since 5.322 s");
+}
+
 TEST(FlightSimulator, RefusesAVehicleItCannotFlyNamingItsUrdf) {
   const pe::FlightProfile profile = defaultProfile();
   const pe::Vehicle quad = pe::loadVehicleUrdf(profile.vehicle.urdf_path);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 
 #include "propulsion_estimator/common/config_error.h"
@@ -23,6 +24,11 @@ constexpr double kEmptyStateOfCharge = 0.02;
 // segment would be wrong.
 constexpr double kHoverToleranceM = 0.25;
 constexpr int kMinRcOutChannels = 8;  // MAVLink SERVO_OUTPUT_RAW carries 8 (or 16) outputs
+// A vehicle whose roll or pitch stays beyond kFlipAngleDeg for kFlipTriggerS has flipped over:
+// PX4's failure detector (FD_FAIL_R, FD_FAIL_P, FD_FAIL_R_TTRI) gives up on the attitude there;
+// the controller itself tilts at most 20 deg.
+constexpr double kFlipAngleDeg = 60.0;
+constexpr double kFlipTriggerS = 0.3;
 
 // Readings of one stream at k / rate, k = 0, 1, ...: at the first physics step at or after each.
 class Stream {
@@ -118,6 +124,34 @@ void checkSegmentEnd(const FlightProfile& profile, const ScheduledSegment& sched
     throw ConfigError(at + "the vehicle had not landed and disarmed " + formatPrintf("%.3g", kTouchdownS) +
                       " s after its descent");
   }
+}
+
+// Roll and pitch in degrees (ZYX Euler angles, as PX4 reports them).
+Eigen::Vector2d rollPitchDeg(const Eigen::Quaterniond& attitude) {
+  const Eigen::Matrix3d rotation = attitude.toRotationMatrix();
+  const double degrees_per_rad = 360.0 / kTwoPi;
+  return Eigen::Vector2d(std::atan2(rotation(2, 1), rotation(2, 2)),
+                         std::asin(std::clamp(-rotation(2, 0), -1.0, 1.0))) *
+         degrees_per_rad;
+}
+
+// Refuses a flip (see kFlipAngleDeg): a vehicle lying on its side or back may rest low and still,
+// where the land detector would take it for landed. `beyond_since_s` carries the time the
+// attitude went beyond the limit from one step to the next.
+void checkAttitude(const FlightProfile& profile, const ScheduledSegment& scheduled, const Eigen::Quaterniond& attitude,
+                   double time_s, std::optional<double>* beyond_since_s) {
+  const Eigen::Vector2d roll_pitch = rollPitchDeg(attitude);
+  if (roll_pitch.cwiseAbs().maxCoeff() <= kFlipAngleDeg) {
+    beyond_since_s->reset();
+    return;
+  }
+  if (!*beyond_since_s) *beyond_since_s = time_s;
+  if (time_s - **beyond_since_s < kFlipTriggerS - 1e-9) return;
+  throw ConfigError(profile.source + ": segments[" + std::to_string(scheduled.index) +
+                    "].type: the vehicle flipped over: roll " + formatPrintf("%.0f", roll_pitch.x()) + " deg, pitch " +
+                    formatPrintf("%.0f", roll_pitch.y()) + " deg at t = " + formatPrintf("%.3f", time_s) +
+                    " s, beyond " + formatNumber(kFlipAngleDeg) + " deg since " +
+                    formatPrintf("%.3f", **beyond_since_s) + " s");
 }
 
 // Everything a flight starts from, once every input has been checked.
@@ -220,6 +254,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
   const long steps = std::lround(end_s / kFlightStepS);
   std::size_t current = 0;
   bool entered = false;
+  std::optional<double> flipping_since;
   for (long step = 0; step <= steps; ++step) {
     const double t = step * kFlightStepS;
     while (current + 1 < schedule.size() && t >= schedule[current].end_s - 1e-9) {
@@ -344,6 +379,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
       throw ConfigError(profile.source +
                         ": the simulation diverged at t = " + formatPrintf("%.3f", (step + 1) * kFlightStepS) + " s");
     }
+    checkAttitude(profile, segment, dynamics.attitude(), (step + 1) * kFlightStepS, &flipping_since);
     battery.draw(power.current_a, kFlightStepS);
     if (battery.stateOfCharge() < kEmptyStateOfCharge) {
       throw ConfigError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +

@@ -39,7 +39,11 @@ void checkFlight(const SimParams& params, const SimEffects& effects, const Fligh
 // rate, all streams starting at t = 0. The same inputs and seed give the same flight. Before it
 // flies it refuses what checkFlight refuses. While flying it throws ConfigError
 // "<profile>: segments[i].type: the vehicle ended its hover at ..." or "... had not landed and
-// disarmed ..." for a segment that did not end as scripted, "<profile>: vehicle.battery_initial_soc:
+// disarmed ..." for a segment that did not end as scripted, "<profile>: segments[i].type: the
+// vehicle flipped over: roll R deg, pitch P deg at t = X s, beyond 60 deg since Y s" when roll or
+// pitch stays beyond 60 deg for 0.3 s (PX4's failure detector; on the ground too: upside down
+// and still is not landed),
+// "<profile>: vehicle.battery_initial_soc:
 // the battery is empty ..." when the flight outlasts the battery, and "<profile>: the simulation
 // diverged at t = X s" when the state stops being finite.
 FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
