@@ -137,13 +137,18 @@ void runFlight(const FlightOptions& options) {
   FlightManifest manifest;
   manifest.flights.push_back(
       {std::filesystem::proximate(std::filesystem::absolute(options.bag), folder).string(), result.segments});
+  const bool airborne = profile.manifest_spans == ManifestSpans::kAirborne;
+  const std::string settle = formatNumber(profile.manifest_settle_s);
   saveFlightManifest(manifest, options.manifest,
                      "Simulated by: simulate flight --params " + options.params + " --profile " + options.profile +
                          (options.effects.empty() ? "" : " --effects " + options.effects) + " --seed " +
-                         std::to_string(options.seed) + "\nEffects: " + effects.summary() + "\nHover segments from " +
-                         formatNumber(profile.manifest_settle_s) +
-                         " s after each hover starts; times in seconds from the bag's first message.");
-  std::cout << "simulate flight: " << result.segments.size() << " hover segments -> " << options.manifest << "\n";
+                         std::to_string(options.seed) + "\nEffects: " + effects.summary() +
+                         (airborne ? "\nAirborne segments from " + settle +
+                                         " s after each lift-off to 0.2 m above touchdown"
+                                   : "\nHover segments from " + settle + " s after each hover starts") +
+                         "; times in seconds from the bag's first message.");
+  std::cout << "simulate flight: " << result.segments.size() << (airborne ? " airborne" : " hover") << " segments -> "
+            << options.manifest << "\n";
 }
 
 }  // namespace
@@ -196,7 +201,7 @@ int runSimulateCommand(int argc, char** argv) {
   flight_command->add_option("--seed", flight.seed, "Seed of the sensor noise (default 1)");
   flight_command->add_option("--bag", flight.bag, "Bag to write")->required();
   flight_command->add_option("--manifest", flight.manifest,
-                             "Manifest to write (hover segments with their true masses)");
+                             "Manifest to write (hover or airborne segments with their true masses)");
   flight_command->add_option("--compression", flight.compression, "Bag compression: none (default), bz2 or lz4")
       ->check(CLI::IsMember({"none", "bz2", "lz4"}));
 

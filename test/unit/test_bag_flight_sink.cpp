@@ -183,6 +183,32 @@ TEST(SimulateCommand, WritesAFlightBagAndItsManifest) {
   EXPECT_NE(text.find("# Effects: thrust_loss(fraction=0.03)\n"), std::string::npos) << text;
 }
 
+TEST(SimulateCommand, WritesAirborneManifestSegmentsWhenAsked) {
+  // Take-off at 1 s, climb from 3 s (after the spin-up): the segment starts 3 s (settle) later, at
+  // 6 s; the landing starts from 1 m at 11.88 s and brings the feet within 0.2 m of the ground
+  // (base_link at 0.32 m) 0.68 s later.
+  TempDir dir;
+  std::string profile = shortProfile();
+  profile.replace(profile.find("manifest: {settle_s: 3}"), 23, "manifest: {settle_s: 3, spans: airborne}");
+  writeFile(dir.file("profile.yaml"), profile);
+  testing::internal::CaptureStdout();
+  const int code = runCommand({"flight", "--params", repoPath("config/sim/e300_dji2212_dji9443.yaml"), "--profile",
+                               dir.file("profile.yaml"), "--bag", dir.file("flight.bag"), "--manifest",
+                               dir.file("flight.manifest.yaml")});
+  const std::string out = testing::internal::GetCapturedStdout();
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("simulate flight: 1 airborne segments -> "), std::string::npos) << out;
+  const pe::FlightManifest manifest = pe::loadFlightManifest(dir.file("flight.manifest.yaml"));
+  ASSERT_EQ(manifest.flights.at(0).segments.size(), 1u);
+  EXPECT_DOUBLE_EQ(manifest.flights[0].segments[0].start_s, 6.0);
+  EXPECT_DOUBLE_EQ(manifest.flights[0].segments[0].end_s, 12.56);
+  EXPECT_EQ(manifest.flights[0].segments[0].mass_kg, 1.315);
+  EXPECT_NE(pe::readTextFile(dir.file("flight.manifest.yaml"))
+                .find("# Airborne segments from 3 s after each lift-off to 0.2 m above touchdown; times in seconds "
+                      "from the bag's first message.\n"),
+            std::string::npos);
+}
+
 TEST(SimulateCommand, WritesABenchCsv) {
   TempDir dir;
   testing::internal::CaptureStdout();

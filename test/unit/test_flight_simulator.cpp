@@ -76,6 +76,64 @@ TEST(FlightSimulator, ManifestSegmentsAreTheHoversWithTheirTrueMasses) {
   EXPECT_EQ(flight.result.segments[3].mass_kg, 1.711);  // 1.315 kg + the 396 g payload (thesis table 6.4)
 }
 
+TEST(FlightSimulator, AirborneManifestSpansRunFromLiftOffToBeforeTouchdown) {
+  pe::FlightProfile profile = defaultProfile();
+  profile.manifest_spans = pe::ManifestSpans::kAirborne;
+  const Flight flight = fly(profile);
+  // By hand from the schedule. Segment 1 takes off empty: the feet leave the ground as the climb
+  // starts after the 2 s spin-up, and the span starts the 8 s settle time later; segment 7 lands
+  // from 0.2 m, already below the 0.32 m at which the feet come within 0.2 m of the ground, so
+  // the span ends as the landing starts. Segment 9 takes off with the 396 g payload, whose 1 m
+  // cable from 4 cm under base_link is taut at 1.04 m, 0.92 s into the 1 m/s climb; segment 11
+  // lands from 2.5 m at 0.6 m/s and brings the payload within 0.2 m of the ground 2.1 s later.
+  // The 0.8 m/s descent of segment 5 to 0.2 m overshoots by 8 cm, onto the feet: the ground
+  // carries part of the weight for a moment, which splits the first stretch there, the second
+  // part starting the settle time after the touch.
+  const std::vector<pe::ScheduledSegment>& s = flight.schedule;
+  ASSERT_EQ(s[1].segment.kind, pe::SegmentKind::kTakeoff);
+  ASSERT_EQ(s[5].segment.kind, pe::SegmentKind::kDescend);
+  ASSERT_EQ(s[7].segment.kind, pe::SegmentKind::kLand);
+  ASSERT_EQ(s[9].segment.kind, pe::SegmentKind::kTakeoff);
+  ASSERT_EQ(s[11].segment.kind, pe::SegmentKind::kLand);
+  const std::vector<pe::ManifestSegment>& spans = flight.result.segments;
+  ASSERT_EQ(spans.size(), 3u);
+  EXPECT_NEAR(spans[0].start_s, s[1].start_s + 2.0 + 8.0, 1e-6);
+  EXPECT_GT(spans[0].end_s, s[5].end_s - 0.5);
+  EXPECT_LT(spans[0].end_s, s[5].end_s + 1.0);
+  EXPECT_GT(spans[1].start_s, spans[0].end_s + 8.0);
+  EXPECT_LT(spans[1].start_s, spans[0].end_s + 9.0);
+  EXPECT_NEAR(spans[1].end_s, s[7].start_s, 1e-6);
+  EXPECT_NEAR(spans[2].start_s, s[9].start_s + 2.0 + 0.92 + 8.0, 1e-6);
+  EXPECT_NEAR(spans[2].end_s, s[11].start_s + 2.1, 1e-6);
+  EXPECT_EQ(spans[0].mass_kg, 1.315);
+  EXPECT_EQ(spans[1].mass_kg, 1.315);
+  EXPECT_EQ(spans[2].mass_kg, 1.711);
+  // The first span holds the climb to 5 m and most of the descent, not only the hovers.
+  EXPECT_LT(spans[0].start_s, s[3].start_s);
+  EXPECT_GT(spans[0].end_s, s[5].start_s + 5.0);
+  // Throughout each span the weighed mass is in the air: the feet clear the ground, a payload
+  // hangs on a taut cable, and the rotors' thrust averages the weight (the climbs and descents
+  // cancel; tilt stays within a degree, drag is a few grams).
+  for (const pe::ManifestSegment& span : spans) {
+    const bool loaded = span.mass_kg > 1.315;
+    double thrust = 0.0;
+    int n = 0;
+    forSegment(flight.sink.truths, span, [&](const pe::TruthSample& t) {
+      // (At a span's end the ground may be touched: the span stops there.)
+      if (t.time_s < span.end_s) {
+        EXPECT_GT(t.height_m, loaded ? 1.1 : 0.12) << t.time_s;
+      }
+      if (loaded) {
+        EXPECT_GT(t.cable_tension_n, 0.0) << t.time_s;
+      }
+      EXPECT_DOUBLE_EQ(t.total_mass_kg, span.mass_kg);
+      for (const pe::MotorTruth& motor : t.motors) thrust += motor.thrust_n;
+      ++n;
+    });
+    EXPECT_NEAR(thrust / n, span.mass_kg * pe::kStandardGravity, 0.005 * span.mass_kg * pe::kStandardGravity);
+  }
+}
+
 TEST(FlightSimulator, HoldsTheCommandedHeights) {
   const Flight& flight = defaultFlight();
   const double targets[] = {2.0, 5.0, 0.2, 2.5};

@@ -189,6 +189,29 @@ TEST(FlightProfileYaml, SchedulesClimbsByRateAndLandingsWithTouchdownTime) {
   EXPECT_DOUBLE_EQ(schedule[2].payload_mass_kg, 0.0);
 }
 
+TEST(FlightProfileYaml, ManifestSpansAreHoversUnlessAirborneIsAsked) {
+  EXPECT_EQ(pe::parseFlightProfileYaml(kProfile, "f.yaml").manifest_spans, pe::ManifestSpans::kHovers);
+  const std::string hovers = replaced(kProfile, "{settle_s: 5}", "{settle_s: 5, spans: hovers}");
+  EXPECT_EQ(pe::parseFlightProfileYaml(hovers, "f.yaml").manifest_spans, pe::ManifestSpans::kHovers);
+  const std::string airborne = replaced(kProfile, "{settle_s: 5}", "{settle_s: 5, spans: airborne}");
+  EXPECT_EQ(pe::parseFlightProfileYaml(airborne, "f.yaml").manifest_spans, pe::ManifestSpans::kAirborne);
+  EXPECT_EQ(profileRefusal("{settle_s: 5}", "{settle_s: 5, spans: legs}"),
+            "config/sim/f.yaml:14: manifest.spans: 'legs' is not one of hovers, airborne");
+  EXPECT_EQ(profileRefusal("{settle_s: 5}", "{settle_s: 5, span: airborne}"),
+            "config/sim/f.yaml:14: manifest.span: unknown key (allowed: settle_s, spans)");
+  // An airborne span must carry its payload from lift-off to touchdown: the payload may not rest
+  // on the ground in between, not even in a climb or a descent.
+  const std::string second_hover = "mass_kg: 0.3, duration_s: 2}\n  - {type: takeoff, height_m: 2.0, rate_m_s: 1.0}\n"
+                                   "  - {type: hover, duration_s: 10}\n";
+  const std::string low =
+      replaced(airborne, second_hover, second_hover + "  - {type: descend, height_m: 1.0, rate_m_s: 1.0}\n");
+  EXPECT_EQ(refusal([&] { pe::parseFlightProfileYaml(low, "config/sim/f.yaml"); }),
+            "config/sim/f.yaml:23: segments[7].height_m: descend to 1 m with the 0.3 kg payload on a 1 m cable: the "
+            "payload would rest on the ground within an airborne manifest span (stay at 1.24 m or higher)");
+  EXPECT_EQ(refusal([&] { pe::parseFlightProfileYaml(replaced(low, "spans: airborne", "spans: hovers"), "f.yaml"); }),
+            "accepted");
+}
+
 TEST(FlightProfileYaml, RefusesImpossibleSegments) {
   EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
                            "  - {type: takeoff, height_m: 3, rate_m_s: 1}\n  - {type: land"),

@@ -1,5 +1,6 @@
 #include "propulsion_estimator/sim/flight/flight_profile.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "propulsion_estimator/common/field_error.h"
@@ -21,6 +22,13 @@ constexpr double kSlowestRateM_S = 0.05;
 constexpr double kLightestPayloadKg = 0.01;
 
 std::string metres(double value) { return formatNumber(value) + " m"; }
+
+// Height of base_link at which the lowest point of the vehicle touches the ground: its feet, or
+// the payload hanging on the taut cable below the attachment point.
+double touchdownHeight(const FlightProfile& profile, double payload_kg) {
+  return payload_kg > 0.0 ? profile.cable.length_m - profile.cable.attach_point_m.z()
+                          : profile.vehicle.landing_gear_height_m;
+}
 
 }  // namespace
 
@@ -59,6 +67,7 @@ void FlightProfile::validate() const {
   requirePositive("payload_cable.stiffness_n_per_m", cable.stiffness_n_per_m, 1e5, " N/m");
   requireWithin("payload_cable.damping_n_s_per_m", cable.damping_n_s_per_m, 0.0, 1e3, " N s/m");
   requireWithin("manifest.settle_s", manifest_settle_s, 0.0, 60.0, " s");
+  const bool airborne_spans = manifest_spans == ManifestSpans::kAirborne;
   if (segments.empty()) throw FieldError("segments", "no segments");
 
   const double landed = vehicle.landing_gear_height_m;
@@ -67,6 +76,8 @@ void FlightProfile::validate() const {
   bool flying = false;
   double height = landed;
   double payload = 0.0;
+  // How high base_link must stay for a hanging payload to clear the ground.
+  const double needed = std::round((cable.length_m - cable.attach_point_m.z() + kPayloadClearanceM) * 1e6) / 1e6;
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const FlightSegment& s = segments[i];
     const std::string at = "segments[" + std::to_string(i) + "].";
@@ -99,6 +110,13 @@ void FlightProfile::validate() const {
           throw FieldError(at + "height_m",
                            "descend to " + metres(s.height_m) + " from " + metres(height) + " (use climb)");
         }
+        if (airborne_spans && payload > 0.0 && s.height_m < needed) {
+          throw FieldError(at + "height_m", kind + " to " + metres(s.height_m) + " with the " + formatNumber(payload) +
+                                                " kg payload on a " + metres(cable.length_m) +
+                                                " cable: the payload would rest on the ground within an airborne "
+                                                "manifest span (stay at " +
+                                                metres(needed) + " or higher)");
+        }
         height = s.height_m;
         flying = true;
         break;
@@ -108,7 +126,6 @@ void FlightProfile::validate() const {
         flying = false;
         break;
     }
-    const double needed = std::round((cable.length_m - cable.attach_point_m.z() + kPayloadClearanceM) * 1e6) / 1e6;
     if (s.kind == SegmentKind::kHover && payload > 0.0 && height < needed) {
       throw FieldError(at + "type", "hover at " + metres(height) + " with the " + formatNumber(payload) +
                                         " kg payload on a " + metres(cable.length_m) +
@@ -154,6 +171,31 @@ std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile) {
     time = scheduled.end_s;
   }
   return schedule;
+}
+
+std::vector<ManifestSpan> manifestSpans(const FlightProfile& profile, const std::vector<ScheduledSegment>& schedule) {
+  std::vector<ManifestSpan> spans;
+  const auto add = [&](double start_s, double end_s, double payload_kg) {
+    if (start_s + profile.manifest_settle_s < end_s) spans.push_back({start_s + profile.manifest_settle_s, end_s, payload_kg});
+  };
+  for (std::size_t i = 0; i < schedule.size(); ++i) {
+    const ScheduledSegment& takeoff = schedule[i];
+    if (profile.manifest_spans == ManifestSpans::kHovers) {
+      if (takeoff.segment.kind == SegmentKind::kHover) add(takeoff.start_s, takeoff.end_s, takeoff.payload_mass_kg);
+      continue;
+    }
+    if (takeoff.segment.kind != SegmentKind::kTakeoff) continue;
+    std::size_t j = i + 1;
+    while (schedule[j].segment.kind != SegmentKind::kLand) ++j;  // validated: every flight lands
+    const ScheduledSegment& land = schedule[j];
+    const double touchdown = touchdownHeight(profile, takeoff.payload_mass_kg);
+    const double lift_off = takeoff.start_s + kTakeoffSpinUpS +
+                            (touchdown - takeoff.start_height_m) / takeoff.segment.rate_m_s;
+    const double stop = land.start_s + std::max(0.0, land.start_height_m - (touchdown + kPayloadClearanceM)) /
+                                           land.segment.rate_m_s;
+    add(lift_off, stop, takeoff.payload_mass_kg);
+  }
+  return spans;
 }
 
 }  // namespace propulsion_estimator

@@ -87,8 +87,11 @@ FlightProfile parseFlightProfileYaml(const std::string& text, const std::string&
   profile.vehicle = readVehicle(root.map("vehicle"), std::filesystem::path(source).parent_path().string());
   profile.cable = readCable(root.map("payload_cable"));
   const YamlMap manifest = root.map("manifest");
-  manifest.allowOnly({"settle_s"});
+  manifest.allowOnly({"settle_s", "spans"});
   profile.manifest_settle_s = manifest.number("settle_s");
+  if (manifest.has("spans") && manifest.choice("spans", {"hovers", "airborne"}) == "airborne") {
+    profile.manifest_spans = ManifestSpans::kAirborne;
+  }
   for (const YamlMap& segment : root.maps("segments")) profile.segments.push_back(readSegment(segment));
   validateAt(root, profile);
   return profile;

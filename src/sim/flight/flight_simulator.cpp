@@ -255,6 +255,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
   std::size_t current = 0;
   bool entered = false;
   std::optional<double> flipping_since;
+  std::vector<std::pair<double, double>> ground_contacts;  // [from, to] in s, merged step by step
   for (long step = 0; step <= steps; ++step) {
     const double t = step * kFlightStepS;
     while (current + 1 < schedule.size() && t >= schedule[current].end_s - 1e-9) {
@@ -380,6 +381,12 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
                         ": the simulation diverged at t = " + formatPrintf("%.3f", (step + 1) * kFlightStepS) + " s");
     }
     checkAttitude(profile, segment, dynamics.attitude(), (step + 1) * kFlightStepS, &flipping_since);
+    if (dynamics.touchedGround()) {
+      if (ground_contacts.empty() || ground_contacts.back().second < t - 0.5 * kFlightStepS) {
+        ground_contacts.emplace_back(t, t);
+      }
+      ground_contacts.back().second = t + kFlightStepS;
+    }
     battery.draw(power.current_a, kFlightStepS);
     if (battery.stateOfCharge() < kEmptyStateOfCharge) {
       throw ConfigError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +
@@ -389,14 +396,19 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
 
   checkSegmentEnd(profile, schedule.back(), dynamics.basePosition().z(), controller.armed());
 
-  for (const ScheduledSegment& scheduled : schedule) {
-    if (scheduled.segment.kind != SegmentKind::kHover) continue;
-    const double start = scheduled.start_s + profile.manifest_settle_s;
-    if (start >= scheduled.end_s) continue;
-    // Microseconds and milligrams: enough for any use, and the manifest reads "16.88", not "16.879999999999999".
-    const auto micro = [](double value) { return std::round(value * 1e6) / 1e6; };
-    result.segments.push_back(
-        {micro(start), micro(scheduled.end_s), micro(dynamics.vehicleMassKg() + scheduled.payload_mass_kg)});
+  // Microseconds and milligrams: enough for any use, and the manifest reads "16.88", not "16.879999999999999".
+  const auto micro = [](double value) { return std::round(value * 1e6) / 1e6; };
+  for (const ManifestSpan& span : manifestSpans(profile, schedule)) {
+    // The ground carries part of the weight while a foot or the payload touches it (a descent
+    // that overshoots onto the ground): that time is left out, and the settle time after it.
+    const double mass = micro(dynamics.vehicleMassKg() + span.payload_mass_kg);
+    double start = span.start_s;
+    for (const auto& [from, to] : ground_contacts) {
+      if (to < start || from > span.end_s) continue;
+      if (from > start) result.segments.push_back({micro(start), micro(from), mass});
+      start = to + profile.manifest_settle_s;
+    }
+    if (start < span.end_s) result.segments.push_back({micro(start), micro(span.end_s), mass});
   }
   result.duration_s = steps * kFlightStepS;
   result.final_state_of_charge = battery.stateOfCharge();

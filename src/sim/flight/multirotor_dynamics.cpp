@@ -137,17 +137,20 @@ void MultirotorDynamics::step(const std::vector<double>& thrust_n, const std::ve
     torque_body -= rotors_[k].spin_direction * torque_nm[k] * rotors_[k].thrust_axis;
   }
 
+  touched_ground_ = false;
   for (const Eigen::Vector3d& foot : feet_body_) {
     const Eigen::Vector3d contact =
         groundForce(worldPoint(foot), worldPointVelocity(foot), foot_stiffness_n_per_m_, foot_damping_n_s_per_m_);
+    touched_ground_ = touched_ground_ || contact.z() > 0.0;
     applyBody(foot, attitude_.conjugate() * contact);
   }
 
   cable_tension_n_ = 0.0;
   if (payload_mass_kg_ > 0.0) {
-    Eigen::Vector3d payload_force = groundForce(payload_position_, payload_velocity_,
-                                                contactStiffness(payload_mass_kg_), contactDamping(payload_mass_kg_)) +
-                                    drag(payload_velocity_, air_density_kg_m3, kPayloadDragAreaM2);
+    const Eigen::Vector3d payload_contact = groundForce(
+        payload_position_, payload_velocity_, contactStiffness(payload_mass_kg_), contactDamping(payload_mass_kg_));
+    touched_ground_ = touched_ground_ || payload_contact.z() > 0.0;
+    Eigen::Vector3d payload_force = payload_contact + drag(payload_velocity_, air_density_kg_m3, kPayloadDragAreaM2);
     const Eigen::Vector3d span = payload_position_ - worldPoint(cable_.attach_point_m);
     const double length = span.norm();
     if (length > cable_.length_m) {

@@ -19,19 +19,25 @@ struct FlightSegment {
   double payload_mass_kg = 0.0;  // payload: the new payload, 0.01..5 kg (0 = none)
 };
 
+// What the manifest of a flight holds (see manifestSpans): its hovers, or every stretch in the
+// air between a take-off and a landing.
+enum class ManifestSpans { kHovers, kAirborne };
+
 struct FlightProfile {
   std::string source;  // file it came from, for messages
   AutopilotParams autopilot;
   VehicleSetup vehicle;
   PayloadCable cable;
-  double manifest_settle_s = 0.0;  // a hover enters the manifest this long after it starts
+  double manifest_settle_s = 0.0;  // a span enters the manifest this long after it starts
+  ManifestSpans manifest_spans = ManifestSpans::kHovers;
   std::vector<FlightSegment> segments;
 
   // Throws FieldError naming the key ("segments[3].height_m", "autopilot.pwm_max_us") for values
   // out of range and for segments impossible where they stand: taking off or changing the payload
   // while flying, hovering, climbing, descending or landing while on the ground, climbing to a
   // lower or descending to a higher height, hovering so low that the payload would rest on the
-  // ground, and a profile that does not end on the ground.
+  // ground (with airborne manifest spans: taking off, climbing or descending so low), and a
+  // profile that does not end on the ground.
   void validate() const;
 };
 
@@ -54,5 +60,22 @@ constexpr double kTouchdownS = 4.0;
 // The profile's segments in time, starting at 0 on the ground: climbs last height / rate (plus
 // the spin-up for a take-off), landings their descent plus kTouchdownS. Validates first.
 std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile);
+
+// A stretch of a flight in which the vehicle carries a known payload, for the manifest.
+struct ManifestSpan {
+  double start_s = 0.0;
+  double end_s = 0.0;
+  double payload_mass_kg = 0.0;
+};
+
+// The spans of the profile's manifest, in time order, from its schedule:
+//   kHovers    every hover from manifest_settle_s after it starts to its end;
+//   kAirborne  every stretch from a take-off to the next landing (its payload cannot change in
+//              between): from manifest_settle_s after the lowest point left the ground (the
+//              feet, or the payload hanging on its cable once it is taut) to the moment the
+//              landing brings that point within 0.2 m of the ground, as scripted.
+// A span the settle time leaves empty is left out. The flight simulator also leaves out any time
+// a foot or the payload actually touched the ground within a span, and the settle time after it.
+std::vector<ManifestSpan> manifestSpans(const FlightProfile& profile, const std::vector<ScheduledSegment>& schedule);
 
 }  // namespace propulsion_estimator

@@ -18,8 +18,10 @@ namespace propulsion_estimator {
 constexpr double kFlightStepS = 0.002;
 
 struct FlightResult {
-  // One segment per hover longer than the profile's settle time: from settle time after its start
-  // to its end, with the vehicle's mass plus the hanging payload's. Times from the first message.
+  // One segment per span of the profile's manifest (manifestSpans: its hovers, or its stretches in
+  // the air), with the vehicle's mass plus the hanging payload's; a span in which a foot or the
+  // payload touched the ground is cut there and resumes the settle time after the touch. Times
+  // from the first message.
   std::vector<ManifestSegment> segments;
   double duration_s = 0.0;
   double final_state_of_charge = 0.0;

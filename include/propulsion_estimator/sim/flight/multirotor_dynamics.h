@@ -43,6 +43,8 @@ class MultirotorDynamics {
   Eigen::Vector3d rotorPosition(int k) const;  // in the world
   Eigen::Vector3d rotorVelocity(int k) const;  // of rotor k's hub, in the world
   double cableTensionN() const { return cable_tension_n_; }
+  // Whether a foot or the payload pressed on the ground during the last step.
+  bool touchedGround() const { return touched_ground_; }
   double payloadMassKg() const { return payload_mass_kg_; }
   double vehicleMassKg() const { return mass_kg_; }
 
@@ -80,6 +82,7 @@ class MultirotorDynamics {
   Eigen::Vector3d payload_position_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d payload_velocity_ = Eigen::Vector3d::Zero();
   double cable_tension_n_ = 0.0;
+  bool touched_ground_ = true;  // it starts landed
 };
 
 }  // namespace propulsion_estimator
