@@ -407,6 +407,64 @@ TEST(FlightSimulator, RefusesAFlightThatFlipsOverRatherThanCountItLanded) {
                                   "t = 5.622 s, beyond 60 deg since 5.322 s");
 }
 
+TEST(FlightSimulator, AWeakPropellerIsMadeUpByItsMotorAndTheVehicleHoldsItsHeight) {
+  // Motor 3's propeller makes 85 % of the thrust at the same speed (and 82 % of the torque). The
+  // attitude integrators, knowing nothing of it, raise its pulse width until the moments balance
+  // again: its rotor spins sqrt(1/0.85) = 8.5 % faster for the same share of the weight, and the
+  // vehicle, with the default flight's offset centre of gravity too, holds its heights.
+  pe::FlightProfile profile = defaultProfile();
+  profile.faults.weak_propeller = pe::PropellerFault{3, 0.85};
+  const Flight weak = fly(profile);
+  const Flight& intact = defaultFlight();
+  ASSERT_EQ(weak.result.segments.size(), 4u);
+  const double targets[] = {2.0, 5.0, 0.2, 2.5};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const pe::ManifestSegment& segment = weak.result.segments[i];
+    std::vector<double> pwm(4, 0.0), intact_pwm(4, 0.0), rpm(4, 0.0), intact_rpm(4, 0.0);
+    double height = 0.0, worst = 0.0, thrust = 0.0;
+    int n = 0;
+    forSegment(weak.sink.truths, segment, [&](const pe::TruthSample& t) {
+      for (int k = 0; k < 4; ++k) {
+        pwm[k] += t.motors[k].pwm_us;
+        rpm[k] += t.motors[k].rpm;
+        thrust += t.motors[k].thrust_n;
+      }
+      height += t.height_m;
+      worst = std::max(worst, std::fabs(t.height_m - targets[i]));
+      ++n;
+    });
+    int intact_n = 0;
+    forSegment(intact.sink.truths, intact.result.segments[i], [&](const pe::TruthSample& t) {
+      for (int k = 0; k < 4; ++k) {
+        intact_pwm[k] += t.motors[k].pwm_us;
+        intact_rpm[k] += t.motors[k].rpm;
+      }
+      ++intact_n;
+    });
+    for (int k = 0; k < 4; ++k) {
+      pwm[k] /= n;
+      rpm[k] /= n;
+      intact_pwm[k] /= intact_n;
+      intact_rpm[k] /= intact_n;
+    }
+    EXPECT_GT(pwm[2], intact_pwm[2] + 25.0) << "hover " << i;
+    for (int k : {0, 1, 3}) EXPECT_GT(pwm[2], pwm[k] + 25.0) << "hover " << i << ", motor " << k + 1;
+    EXPECT_NEAR(rpm[2] / intact_rpm[2], 1.085, 0.03) << "hover " << i;
+    EXPECT_NEAR(height / n, targets[i], 0.02) << "hover " << i;
+    EXPECT_LT(worst, 0.05) << "hover " << i;
+    EXPECT_NEAR(thrust / n, segment.mass_kg * pe::kStandardGravity, 0.003 * segment.mass_kg * pe::kStandardGravity)
+        << "hover " << i;
+  }
+  EXPECT_EQ(refusal([&] {
+              pe::FlightProfile five = profile;
+              five.faults.weak_propeller->motor = 5;
+              return five;
+            }()),
+            repoPath("config/sim/default_flight.yaml") +
+                ": faults.weak_propeller.motor: 5 is not a motor of " + repoPath("config/sim/../f450_quad.urdf") +
+                " (4 rotors)");
+}
+
 TEST(FlightSimulator, RefusesAVehicleItCannotFlyNamingItsUrdf) {
   const pe::FlightProfile profile = defaultProfile();
   const pe::Vehicle quad = pe::loadVehicleUrdf(profile.vehicle.urdf_path);

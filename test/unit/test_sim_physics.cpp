@@ -93,6 +93,21 @@ TEST(Propeller, ThrustAndTorqueFollowTheCoefficientLaws) {
   EXPECT_NEAR(propeller.torqueNm(1.2, 100.0), 0.005 * 1.2 * 1e4 * std::pow(0.25, 5), 1e-12);
 }
 
+TEST(Propeller, AScaledPropellerMakesTheThrustFactorAndLessTorqueLikeASmallerOne) {
+  // Geometrically similar, diameter x 0.85^(1/4): T ~ D^4 gives 0.85 of the thrust at the same
+  // speed, Q ~ D^5 gives 0.85^(5/4) = 0.816 of the torque.
+  const pe::PropellerParams intact = thesisParams().chain.propeller;
+  const pe::PropellerParams weak = pe::scaledPropeller(intact, 0.85);
+  EXPECT_NEAR(weak.diameter_m, intact.diameter_m * std::pow(0.85, 0.25), 1e-15);
+  EXPECT_NEAR(weak.thrustN(1.2, 100.0), 0.85 * intact.thrustN(1.2, 100.0), 1e-12);
+  EXPECT_NEAR(weak.torqueNm(1.2, 100.0), std::pow(0.85, 1.25) * intact.torqueNm(1.2, 100.0), 1e-12);
+  EXPECT_NEAR(std::pow(0.85, 1.25), 0.816, 0.001);
+  EXPECT_NEAR(weak.inertia_kg_m2, std::pow(0.85, 1.25) * intact.inertia_kg_m2, 1e-18);
+  EXPECT_EQ(weak.thrust_coefficient, intact.thrust_coefficient);
+  EXPECT_EQ(weak.torque_coefficient, intact.torque_coefficient);
+  EXPECT_EQ(weak.solidity, intact.solidity);
+}
+
 TEST(PropulsionChain, SteadyStateBalancesTorqueAndVoltage) {
   const pe::SimParams params = thesisParams();
   const pe::PropulsionChain chain(params.chain);

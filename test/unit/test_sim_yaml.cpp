@@ -212,6 +212,27 @@ TEST(FlightProfileYaml, ManifestSpansAreHoversUnlessAirborneIsAsked) {
             "accepted");
 }
 
+TEST(FlightProfileYaml, ReadsAWeakPropellerFault) {
+  EXPECT_FALSE(pe::parseFlightProfileYaml(kProfile, "f.yaml").faults.weak_propeller);
+  const std::string faulty = replaced(kProfile, "manifest:", "faults: {weak_propeller: {motor: 3, thrust_factor: 0.85}}\nmanifest:");
+  const pe::FlightProfile profile = pe::parseFlightProfileYaml(faulty, "f.yaml");
+  ASSERT_TRUE(profile.faults.weak_propeller);
+  EXPECT_EQ(profile.faults.weak_propeller->motor, 3);
+  EXPECT_EQ(profile.faults.weak_propeller->thrust_factor, 0.85);
+  const auto faultRefusal = [&](const std::string& from, const std::string& to) {
+    const std::string text = replaced(faulty, from, to);
+    return refusal([&] { pe::parseFlightProfileYaml(text, "config/sim/f.yaml"); });
+  };
+  EXPECT_EQ(faultRefusal("thrust_factor: 0.85", "thrust_factor: 1.2"),
+            "config/sim/f.yaml:14: faults.weak_propeller.thrust_factor: 1.2 is outside 0.1..1");
+  EXPECT_EQ(faultRefusal("motor: 3", "motor: 0"),
+            "config/sim/f.yaml:14: faults.weak_propeller.motor: 0 is not a motor (they count from 1)");
+  EXPECT_EQ(faultRefusal("motor: 3", "motor: three"),
+            "config/sim/f.yaml:14: faults.weak_propeller.motor: expected a number, got 'three'");
+  EXPECT_EQ(faultRefusal("weak_propeller:", "bent_arm:"),
+            "config/sim/f.yaml:14: faults.bent_arm: unknown key (allowed: weak_propeller)");
+}
+
 TEST(FlightProfileYaml, RefusesImpossibleSegments) {
   EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
                            "  - {type: takeoff, height_m: 3, rate_m_s: 1}\n  - {type: land"),

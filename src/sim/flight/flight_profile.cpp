@@ -66,6 +66,14 @@ void FlightProfile::validate() const {
   }
   requirePositive("payload_cable.stiffness_n_per_m", cable.stiffness_n_per_m, 1e5, " N/m");
   requireWithin("payload_cable.damping_n_s_per_m", cable.damping_n_s_per_m, 0.0, 1e3, " N s/m");
+  if (faults.weak_propeller) {
+    if (faults.weak_propeller->motor < 1) {
+      throw FieldError("faults.weak_propeller.motor",
+                       std::to_string(faults.weak_propeller->motor) + " is not a motor (they count from 1)");
+    }
+    // Down to a propeller that lost most of a blade; 1 is an intact one.
+    requireWithin("faults.weak_propeller.thrust_factor", faults.weak_propeller->thrust_factor, 0.1, 1.0, "");
+  }
   requireWithin("manifest.settle_s", manifest_settle_s, 0.0, 60.0, " s");
   const bool airborne_spans = manifest_spans == ManifestSpans::kAirborne;
   if (segments.empty()) throw FieldError("segments", "no segments");

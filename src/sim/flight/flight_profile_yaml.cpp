@@ -49,6 +49,17 @@ PayloadCable readCable(const YamlMap& map) {
                       map.number("damping_n_s_per_m")};
 }
 
+VehicleFaults readFaults(const YamlMap& map) {
+  map.allowOnly({"weak_propeller"});
+  VehicleFaults faults;
+  if (map.has("weak_propeller")) {
+    const YamlMap weak = map.map("weak_propeller");
+    weak.allowOnly({"motor", "thrust_factor"});
+    faults.weak_propeller = PropellerFault{weak.integer("motor"), weak.number("thrust_factor")};
+  }
+  return faults;
+}
+
 FlightSegment readSegment(const YamlMap& map) {
   FlightSegment segment;
   const std::string type = map.choice("type", {"wait", "takeoff", "hover", "climb", "descend", "land", "payload"});
@@ -80,12 +91,13 @@ FlightSegment readSegment(const YamlMap& map) {
 
 FlightProfile parseFlightProfileYaml(const std::string& text, const std::string& source) {
   const YamlMap root = parseYamlDocument(text, source);
-  root.allowOnly({"autopilot", "vehicle", "payload_cable", "manifest", "segments"});
+  root.allowOnly({"autopilot", "vehicle", "payload_cable", "faults", "manifest", "segments"});
   FlightProfile profile;
   profile.source = source;
   profile.autopilot = readAutopilot(root.map("autopilot"));
   profile.vehicle = readVehicle(root.map("vehicle"), std::filesystem::path(source).parent_path().string());
   profile.cable = readCable(root.map("payload_cable"));
+  if (root.has("faults")) profile.faults = readFaults(root.map("faults"));
   const YamlMap manifest = root.map("manifest");
   manifest.allowOnly({"settle_s", "spans"});
   profile.manifest_settle_s = manifest.number("settle_s");

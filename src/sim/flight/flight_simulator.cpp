@@ -177,8 +177,15 @@ FlightSetup setUpFlight(const SimParams& params, const SimEffects& effects, cons
   FlightSetup setup{
       scheduleFlight(profile), fromUrdf([&] { return MultirotorDynamics(vehicle, profile.vehicle, profile.cable); }),
       fromUrdf([&] { return FlightController(vehicle, profile.autopilot, profile.vehicle.landing_gear_height_m); })};
+  const int rotors = static_cast<int>(vehicle.rotors.size());
+  if (profile.faults.weak_propeller && profile.faults.weak_propeller->motor > rotors) {
+    throw ConfigError(profile.source + ": faults.weak_propeller.motor: " +
+                      std::to_string(profile.faults.weak_propeller->motor) + " is not a motor of " +
+                      profile.vehicle.urdf_path + " (" + std::to_string(rotors) + " rotors)");
+  }
+  // The reserve is the intact propellers': a weak one the others cannot balance shows as a flip.
   checkThrustReserve(params, effects, profile, setup.schedule, setup.dynamics.vehicleMassKg(),
-                     static_cast<int>(vehicle.rotors.size()), effects.air.value_or(params.bench.air).densityKgM3());
+                     rotors, effects.air.value_or(params.bench.air).densityKgM3());
   return setup;
 }
 
@@ -231,7 +238,14 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
   const AirConditions air = effects.air.value_or(params.bench.air);
   const double density = air.densityKgM3();
 
-  PowerTrain train(PropulsionChain(params.chain), rotors, effects, air.temperature_c);
+  std::vector<PropulsionChain> chains;
+  for (int k = 0; k < rotors; ++k) {
+    ChainParams chain = params.chain;
+    const std::optional<PropellerFault>& weak = profile.faults.weak_propeller;
+    if (weak && weak->motor == k + 1) chain.propeller = scaledPropeller(chain.propeller, weak->thrust_factor);
+    chains.emplace_back(chain);
+  }
+  PowerTrain train(std::move(chains), effects, air.temperature_c);
   LipoBattery battery(params.battery, profile.vehicle.battery_initial_soc);
   Noise noise(seed);
   const Eigen::Vector3d origin = dynamics.basePosition();

@@ -44,4 +44,11 @@ double PropellerParams::torqueNm(double air_density_kg_m3, double rev_per_s) con
 double PropellerParams::rotorThrustCoefficient() const { return 4.0 * thrust_coefficient / (kPi * kPi * kPi); }
 double PropellerParams::rotorTorqueCoefficient() const { return 8.0 * torque_coefficient / (kPi * kPi * kPi); }
 
+PropellerParams scaledPropeller(const PropellerParams& propeller, double thrust_factor) {
+  PropellerParams scaled = propeller;
+  scaled.diameter_m *= std::pow(thrust_factor, 0.25);
+  scaled.inertia_kg_m2 *= std::pow(thrust_factor, 1.25);
+  return scaled;
+}
+
 }  // namespace propulsion_estimator

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 
 // The simulated vehicle as the flight physics and the autopilot see it: what a flight profile
@@ -35,6 +36,20 @@ struct PayloadCable {
   Eigen::Vector3d attach_point_m = Eigen::Vector3d::Zero();  // in base_link
   double stiffness_n_per_m = 0.0;                            // along the cable, which only pulls
   double damping_n_s_per_m = 0.0;
+};
+
+// A propeller that makes less thrust than the others at the same speed (chipped, bent, the wrong
+// size): flown as a geometrically similar smaller propeller (scaledPropeller), so it absorbs less
+// torque too.
+struct PropellerFault {
+  int motor = 0;               // 1-based, in the vehicle's rotor order (its RC channel)
+  double thrust_factor = 1.0;  // of the intact propeller's thrust at the same rotor speed
+};
+
+// Faults of the vehicle that the library of effects does not hold, for validating the gap
+// diagnosis (a centre of gravity off the centre is VehicleSetup::centre_of_mass_offset_m).
+struct VehicleFaults {
+  std::optional<PropellerFault> weak_propeller;
 };
 
 }  // namespace propulsion_estimator

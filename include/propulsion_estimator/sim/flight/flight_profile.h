@@ -28,6 +28,7 @@ struct FlightProfile {
   AutopilotParams autopilot;
   VehicleSetup vehicle;
   PayloadCable cable;
+  VehicleFaults faults;
   double manifest_settle_s = 0.0;  // a span enters the manifest this long after it starts
   ManifestSpans manifest_spans = ManifestSpans::kHovers;
   std::vector<FlightSegment> segments;
@@ -37,7 +38,8 @@ struct FlightProfile {
   // while flying, hovering, climbing, descending or landing while on the ground, climbing to a
   // lower or descending to a higher height, hovering so low that the payload would rest on the
   // ground (with airborne manifest spans: taking off, climbing or descending so low), and a
-  // profile that does not end on the ground.
+  // profile that does not end on the ground. A weak propeller's motor is checked against the
+  // vehicle by checkFlight.
   void validate() const;
 };
 

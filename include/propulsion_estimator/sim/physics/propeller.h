@@ -34,4 +34,10 @@ struct PropellerParams {
   double rotorTorqueCoefficient() const;
 };
 
+// A geometrically similar propeller that makes `thrust_factor` of this one's thrust at the same
+// rotor speed, as a cut-down or damaged one: diameter x f^(1/4) (T ~ D^4), so its torque is
+// x f^(5/4) (Q ~ D^5) and its inertia x f^(5/4) (mass ~ D^3, radius of gyration ~ D). The factor
+// is checked by the caller.
+PropellerParams scaledPropeller(const PropellerParams& propeller, double thrust_factor);
+
 }  // namespace propulsion_estimator
