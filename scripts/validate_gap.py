@@ -48,7 +48,7 @@ def draw_effect(name, rng):
     if name == "motor_temperature":
         return {"thermal_resistance_c_per_w": round(rng.uniform(4.0, 10.0), 2)}
     if name == "climb_inflow":
-        return {"per_m_s": round(rng.uniform(0.04, 0.10), 4)}
+        return {"strength": round(rng.uniform(0.8, 1.6), 3)}
     if name == "esc_offset":
         return {"us": round(rng.choice([-1, 1]) * rng.uniform(15, 40), 1)}
     raise ValueError(name)

@@ -188,7 +188,11 @@ double singleThrustFactor(Kind kind, double value, const ModelEffects& reference
     }
     case Kind::kThrustLoss: return 1.0 - value;
     case Kind::kMotorTemperature: return 1.0 + value * (signals.motor_temperature_c - references.motor_reference_c);
-    case Kind::kClimbInflow: return 1.0 - value * signals.vertical_speed_m_s;
+    // Momentum theory: a climb's axial inflow lowers the blades' angle of attack, while a slow
+    // descent (into the vortex-ring region) barely changes thrust at a given rotor speed.
+    case Kind::kClimbInflow:
+      return std::isnan(signals.vertical_speed_m_s) ? signals.vertical_speed_m_s
+                                                     : 1.0 - value * std::max(signals.vertical_speed_m_s, 0.0);
     case Kind::kSupplyResistance:
     case Kind::kEscOffset: return 1.0;
   }

@@ -16,7 +16,7 @@ enum class Kind {
   kGroundEffect,          ///< thrust gain of rotors close to the ground
   kThrustLoss,            ///< airframe blockage, rotor-rotor interaction (or an unweighed mass)
   kMotorTemperature,      ///< winding resistance and magnet flux following the motor's temperature
-  kClimbInflow,           ///< thrust lost to the axial inflow of a climb (gained in a descent)
+  kClimbInflow,           ///< thrust lost to the axial inflow of a climb
   kEscOffset,             ///< the flying ESCs' end points differ from the bench ESC's
 };
 constexpr int kKindCount = 7;
@@ -73,7 +73,7 @@ struct Inputs {
 ///                      (Cheeseman-Bennett's leading term: coefficient = strength * R^2 / 16)
 ///   thrust_loss        T *= 1 - fraction
 ///   motor_temperature  T *= 1 + per_c * (T_motor - reference_c)
-///   climb_inflow       T *= 1 - per_m_s * vertical speed
+///   climb_inflow       T *= 1 - per_m_s * max(vertical speed, 0)   (climbs; a slow descent barely changes thrust)
 struct ModelEffects {
   std::optional<double> esc_offset_us;
   std::optional<double> supply_resistance_ohm;
