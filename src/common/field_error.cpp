@@ -1,6 +1,6 @@
 #include "propulsion_estimator/common/field_error.h"
 
-#include <sstream>
+#include <cmath>
 
 #include "propulsion_estimator/common/number_format.h"
 
@@ -13,6 +13,10 @@ void requireWithin(const std::string& field, double value, double lo, double hi,
 }
 
 void requirePositive(const std::string& field, double value, double hi, const std::string& unit) {
+  if (std::isinf(hi)) {
+    if (!(value > 0.0 && value < hi)) throw FieldError(field, "must be a positive number, got " + formatNumber(value));
+    return;
+  }
   if (!(value > 0.0 && value <= hi)) {
     throw FieldError(field, formatNumber(value) + " is outside 0.." + formatNumber(hi) + unit + " (must be positive)");
   }

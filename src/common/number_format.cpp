@@ -1,5 +1,6 @@
 #include "propulsion_estimator/common/number_format.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -14,10 +15,13 @@ std::string formatNumber(double value) {
   return buffer;
 }
 
-std::string formatPrintf(const char* pattern, double value) {
+std::string formatPrintf(const char* pattern, double value, const char* nan_text) {
+  if (nan_text != nullptr && std::isnan(value)) return nan_text;
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), pattern, value);
   return buffer;
 }
+
+std::string formatCsvNumber(double value) { return formatPrintf("%.7g", value, ""); }
 
 }  // namespace propulsion_estimator

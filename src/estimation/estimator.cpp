@@ -5,13 +5,13 @@
 #include <limits>
 #include <sstream>
 
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/units.h"
 #include "propulsion_estimator/estimation/health_summary.h"
 
 namespace propulsion_estimator {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // What the effects' signals can be; beyond, the reading is in another unit (mA, hPa, K) or broken.

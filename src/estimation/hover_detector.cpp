@@ -4,35 +4,23 @@
 #include <cmath>
 #include <sstream>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
 
 namespace propulsion_estimator {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-void requirePositive(double value, const char* name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    std::ostringstream message;
-    message << "hover/" << name << ": must be a positive number, got " << value;
-    throw ConfigError(message.str());
-  }
-}
-
 }  // namespace
 
 void HoverConfig::validate() const {
-  requirePositive(window_s, "window_s");
-  requirePositive(max_thrust_rel_std, "max_thrust_rel_std");
-  requirePositive(max_tilt_deg, "max_tilt_deg");
-  requirePositive(max_vertical_speed_m_s, "max_vertical_speed_m_s");
-  requirePositive(max_vertical_accel_m_s2, "max_vertical_accel_m_s2");
-  requirePositive(min_mass_kg, "min_mass_kg");
-  if (!(min_window_fill > 0.0 && min_window_fill <= 1.0)) {
-    std::ostringstream message;
-    message << "hover/min_window_fill: must be in (0, 1], got " << min_window_fill;
-    throw ConfigError(message.str());
-  }
+  requirePositive("hover/window_s", window_s);
+  requirePositive("hover/min_window_fill", min_window_fill, 1.0);
+  requirePositive("hover/max_thrust_rel_std", max_thrust_rel_std);
+  requirePositive("hover/max_tilt_deg", max_tilt_deg);
+  requirePositive("hover/max_vertical_speed_m_s", max_vertical_speed_m_s);
+  requirePositive("hover/max_vertical_accel_m_s2", max_vertical_accel_m_s2);
+  requirePositive("hover/min_mass_kg", min_mass_kg);
 }
 
 HoverDetector::HoverDetector(const HoverConfig& config, std::size_t capacity)

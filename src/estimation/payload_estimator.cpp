@@ -2,25 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <sstream>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/not_a_number.h"
 
 namespace propulsion_estimator {
 
 void PayloadConfig::validate() const {
-  std::ostringstream message;
-  if (!(averaging_window_s > 0.0) || !std::isfinite(averaging_window_s)) {
-    message << "payload/averaging_window_s: must be a positive number, got " << averaging_window_s;
-  } else if (min_samples < 2) {
-    message << "payload/min_samples: must be at least 2, got " << min_samples;
-  } else if (!(episode_gap_s > 0.0) || !std::isfinite(episode_gap_s)) {
-    message << "payload/episode_gap_s: must be a positive number, got " << episode_gap_s;
-  } else {
-    return;
+  requirePositive("payload/averaging_window_s", averaging_window_s);
+  if (min_samples < 2) {
+    throw FieldError("payload/min_samples", "must be at least 2, got " + std::to_string(min_samples));
   }
-  throw ConfigError(message.str());
+  requirePositive("payload/episode_gap_s", episode_gap_s);
 }
 
 const char* emptyMassSourceName(EmptyMassSource source) {
@@ -68,7 +61,7 @@ void PayloadEstimator::setEmptyMass(double mass_kg, EmptyMassSource source) {
   updateState(estimate_.hovering);
 }
 
-void PayloadEstimator::clearEmptyMass() { setEmptyMass(std::numeric_limits<double>::quiet_NaN(), EmptyMassSource::kNone); }
+void PayloadEstimator::clearEmptyMass() { setEmptyMass(kNaN, EmptyMassSource::kNone); }
 
 void PayloadEstimator::clearWindow() {
   window_.clear();
@@ -82,7 +75,7 @@ void PayloadEstimator::updateStatistics() {
   e.window_samples = static_cast<std::uint32_t>(window_.size());
   e.window_s = window_.span();
   if (window_.size() < config_.min_samples) {
-    e.total_mass_kg = e.mass_std_kg = std::numeric_limits<double>::quiet_NaN();
+    e.total_mass_kg = e.mass_std_kg = kNaN;
     return;
   }
   double sum = 0.0;

@@ -3,17 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <map>
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double median(std::vector<double> values) {
   const std::size_t mid = values.size() / 2;

@@ -14,17 +14,11 @@
 namespace propulsion_estimator {
 namespace {
 
-std::string number(double value, const char* pattern) {
-  return std::isnan(value) ? "n/a" : formatPrintf(pattern, value);
-}
-
-std::string cell(double value) { return std::isnan(value) ? "" : number(value, "%.7g"); }
-
 void writeSamples(std::ofstream& out, const std::string& label, const std::vector<ComparisonSample>& samples) {
   for (const ComparisonSample& s : samples) {
-    out << label << "," << cell(s.voltage_v) << "," << cell(s.pwm_us) << "," << cell(s.thrust_g) << ","
-        << cell(s.current_a) << "," << cell(s.power_w) << "," << cell(s.efficiency_g_per_w) << "," << cell(s.rpm)
-        << "\n";
+    out << label << "," << formatCsvNumber(s.voltage_v) << "," << formatCsvNumber(s.pwm_us) << ","
+        << formatCsvNumber(s.thrust_g) << "," << formatCsvNumber(s.current_a) << "," << formatCsvNumber(s.power_w)
+        << "," << formatCsvNumber(s.efficiency_g_per_w) << "," << formatCsvNumber(s.rpm) << "\n";
   }
 }
 
@@ -38,11 +32,13 @@ std::string comparisonTables(const std::vector<ModelComparison>& models, const C
   md << "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const ModelComparison& m : models) {
     md << "| " << m.label << " | " << m.metadata.esc << " | " << m.metadata.motor << " | " << m.metadata.propeller
-       << " | " << number(m.voltage_v, "%.2f") << " | " << number(m.max_thrust_g, "%.1f") << " | "
-       << number(m.max_current_a, "%.2f") << " | " << number(m.max_power_w, "%.1f") << " | "
-       << number(m.max_rpm, "%.0f") << " | " << number(m.efficiency_at_max_power_g_per_w, "%.2f") << " | "
-       << number(m.peak_efficiency_g_per_w, "%.2f") << " at " << number(m.peak_efficiency_pwm_us, "%.0f") << " | "
-       << (m.max_motor_temp_c ? number(*m.max_motor_temp_c, "%.1f") : "not logged") << " |\n";
+       << " | " << formatPrintf("%.2f", m.voltage_v, "n/a") << " | " << formatPrintf("%.1f", m.max_thrust_g, "n/a")
+       << " | " << formatPrintf("%.2f", m.max_current_a, "n/a") << " | " << formatPrintf("%.1f", m.max_power_w, "n/a")
+       << " | " << formatPrintf("%.0f", m.max_rpm, "n/a") << " | "
+       << formatPrintf("%.2f", m.efficiency_at_max_power_g_per_w, "n/a") << " | "
+       << formatPrintf("%.2f", m.peak_efficiency_g_per_w, "n/a") << " at "
+       << formatPrintf("%.0f", m.peak_efficiency_pwm_us, "n/a") << " | "
+       << (m.max_motor_temp_c ? formatPrintf("%.1f", *m.max_motor_temp_c, "n/a") : "not logged") << " |\n";
   }
   bool first_note = true;
   for (const ModelComparison& m : models) {
@@ -53,10 +49,10 @@ std::string comparisonTables(const std::vector<ModelComparison>& models, const C
   }
   if (!options.hover) return md.str();
   const HoverOptions& h = *options.hover;
-  md << "\nHover of a " << number(h.vehicle_mass_kg, "%.4g") << " kg vehicle on " << h.motors << " motors ("
-     << number(h.thrustPerMotorN() / kNewtonPerGramForce, "%.1f") << " g each), " << h.cells << "S "
-     << number(h.capacity_mah, "%.0f") << " mAh; operating point at the mid-discharge "
-     << number(h.midVoltage(), "%.2f") << " V:\n\n";
+  md << "\nHover of a " << formatPrintf("%.4g", h.vehicle_mass_kg, "n/a") << " kg vehicle on " << h.motors
+     << " motors (" << formatPrintf("%.1f", h.thrustPerMotorN() / kNewtonPerGramForce, "n/a") << " g each), " << h.cells
+     << "S " << formatPrintf("%.0f", h.capacity_mah, "n/a") << " mAh; operating point at the mid-discharge "
+     << formatPrintf("%.2f", h.midVoltage(), "n/a") << " V:\n\n";
   md << "| combination | PWM (us) | current per motor (A) | power per motor (W) | efficiency (g/W) | total current (A) "
         "| "
         "hover endurance (min) | notes |\n";
@@ -64,13 +60,14 @@ std::string comparisonTables(const std::vector<ModelComparison>& models, const C
   for (const ModelComparison& m : models) {
     md << "| " << m.label << " | ";
     if (m.hover) {
-      md << number(m.hover->pwm_us, "%.0f") << " | " << number(m.hover->current_a, "%.2f") << " | "
-         << number(m.hover->power_w, "%.1f") << " | " << number(m.hover->efficiency_g_per_w, "%.2f") << " | "
-         << number(h.motors * m.hover->current_a, "%.1f") << " | ";
+      md << formatPrintf("%.0f", m.hover->pwm_us, "n/a") << " | " << formatPrintf("%.2f", m.hover->current_a, "n/a")
+         << " | " << formatPrintf("%.1f", m.hover->power_w, "n/a") << " | "
+         << formatPrintf("%.2f", m.hover->efficiency_g_per_w, "n/a") << " | "
+         << formatPrintf("%.1f", h.motors * m.hover->current_a, "n/a") << " | ";
     } else {
       md << "n/a | n/a | n/a | n/a | n/a | ";
     }
-    md << (m.endurance_min ? number(*m.endurance_min, "%.1f") : "n/a") << " | ";
+    md << (m.endurance_min ? formatPrintf("%.1f", *m.endurance_min, "n/a") : "n/a") << " | ";
     for (std::size_t k = 0; k < m.hover_notes.size(); ++k) md << (k ? "; " : "") << m.hover_notes[k];
     md << " |\n";
   }
@@ -92,17 +89,18 @@ void writeComparisonReportData(const std::vector<ModelComparison>& models, const
     writeSamples(curves, m.label, m.curve);
     writeSamples(points, m.label, m.logged_near);
     if (!options.hover) continue;
-    hover << m.label << "," << cell(options.hover->thrustPerMotorN() / kNewtonPerGramForce) << ",";
+    hover << m.label << "," << formatCsvNumber(options.hover->thrustPerMotorN() / kNewtonPerGramForce) << ",";
     if (m.hover) {
-      hover << cell(m.hover->voltage_v) << "," << cell(m.hover->pwm_us) << "," << cell(m.hover->current_a) << ","
-            << cell(m.hover->power_w) << "," << cell(m.hover->efficiency_g_per_w) << ",";
+      hover << formatCsvNumber(m.hover->voltage_v) << "," << formatCsvNumber(m.hover->pwm_us) << ","
+            << formatCsvNumber(m.hover->current_a) << "," << formatCsvNumber(m.hover->power_w) << ","
+            << formatCsvNumber(m.hover->efficiency_g_per_w) << ",";
     } else {
       hover << ",,,,,";
     }
-    hover << (m.endurance_min ? cell(*m.endurance_min) : "") << "\n";
+    hover << (m.endurance_min ? formatCsvNumber(*m.endurance_min) : "") << "\n";
     for (const DischargeStep& step : m.discharge) {
-      discharge << m.label << "," << cell(step.time_min) << "," << cell(step.voltage_v) << ","
-                << cell(step.total_current_a) << "," << cell(step.pwm_us) << "\n";
+      discharge << m.label << "," << formatCsvNumber(step.time_min) << "," << formatCsvNumber(step.voltage_v) << ","
+                << formatCsvNumber(step.total_current_a) << "," << formatCsvNumber(step.pwm_us) << "\n";
     }
   }
   for (std::ofstream* file : {&curves, &points, &hover, &discharge}) {
@@ -121,20 +119,21 @@ std::string comparisonReportMarkdown(const std::vector<ModelComparison>& models,
   std::ostringstream md;
   md << "# Comparison of " << models.size() << " ESC-motor-propeller combinations\n\n";
   md << "Maxima over each model's PWM domain at "
-     << (options.voltage_v ? number(*options.voltage_v, "%.2f V")
+     << (options.voltage_v ? formatPrintf("%.2f V", *options.voltage_v, "n/a")
                            : std::string("the top of each model's voltage domain"))
      << ", as thesis chapter 7 tabulates them. Peak efficiency is taken where the motor draws at least "
-     << number(100.0 * kEfficiencyMinPowerShare, "%.0f")
+     << formatPrintf("%.0f", 100.0 * kEfficiencyMinPowerShare, "n/a")
      << "% of its maximum power (near idle thrust / power is a ratio of two near-zero numbers).\n\n";
   md << comparisonTables(models, options) << "\n";
   if (options.hover) {
     const HoverOptions& h = *options.hover;
     md << "Endurance integrates the hover current of all motors while the battery voltage falls linearly with the "
           "charge drawn, from "
-       << number(h.fullVoltage(), "%.2f") << " V (" << number(h.cell_full_v, "%.2f") << " V per cell) to "
-       << number(h.cutoffVoltage(), "%.2f") << " V (" << number(h.cell_cutoff_v, "%.2f") << " V per cell) over "
-       << number(100.0 * h.usable_fraction, "%.0f") << "% of " << number(h.capacity_mah, "%.0f") << " mAh, in "
-       << h.steps
+       << formatPrintf("%.2f", h.fullVoltage(), "n/a") << " V (" << formatPrintf("%.2f", h.cell_full_v, "n/a")
+       << " V per cell) to " << formatPrintf("%.2f", h.cutoffVoltage(), "n/a") << " V ("
+       << formatPrintf("%.2f", h.cell_cutoff_v, "n/a") << " V per cell) over "
+       << formatPrintf("%.0f", 100.0 * h.usable_fraction, "n/a") << "% of "
+       << formatPrintf("%.0f", h.capacity_mah, "n/a") << " mAh, in " << h.steps
        << " steps, the hover PWM solved anew at each voltage. It counts propulsion current only (no avionics), "
           "ignores the battery's internal resistance beyond that linear fall, and uses each model as its domain and "
           "outside policy allow.\n\n";

@@ -22,10 +22,6 @@ constexpr long kMaxPlottedPoints = 20000;
 
 long plotStride(long samples) { return (samples + kMaxPlottedPoints - 1) / kMaxPlottedPoints; }
 
-std::string number(double value, const char* pattern = "%.7g") {
-  return std::isnan(value) ? "" : formatPrintf(pattern, value);
-}
-
 std::string baseName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
 
 const char* sourceName(OutputSource source) {
@@ -98,10 +94,11 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
       const double fitted = model.evaluateRaw(output, data.pwm_us[row], data.voltage_v[row]);
       const double at_level = y[row] + model.evaluateRaw(output, pwm_level, data.voltage_v[row]) - fitted;
       points << outputName(output) << "," << baseName(data.sources[data.log[row]]) << "," << data.line[row] << ","
-             << number(level_v) << "," << number(pwm_level) << "," << number(data.pwm_us[row]) << ","
-             << number(data.voltage_v[row]) << "," << (std::abs(data.voltage_v[row] - level_v) > kSagNoteV ? 1 : 0)
-             << "," << number(y[row]) << "," << number(fitted) << "," << number(fitted - y[row]) << ","
-             << number(at_level) << "\n";
+             << formatCsvNumber(level_v) << "," << formatCsvNumber(pwm_level) << ","
+             << formatCsvNumber(data.pwm_us[row]) << "," << formatCsvNumber(data.voltage_v[row]) << ","
+             << (std::abs(data.voltage_v[row] - level_v) > kSagNoteV ? 1 : 0) << "," << formatCsvNumber(y[row]) << ","
+             << formatCsvNumber(fitted) << "," << formatCsvNumber(fitted - y[row]) << "," << formatCsvNumber(at_level)
+             << "\n";
     }
   }
 
@@ -111,8 +108,8 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
     for (const Level& level : data.voltage_levels) {
       for (int k = 0; k < kCurvePoints; ++k) {
         const double x = lerp(domain.pwm_min_us, domain.pwm_max_us, k, kCurvePoints);
-        pwm_curves << outputName(output) << "," << number(level.centre) << "," << number(x) << ","
-                   << number(model.evaluateRaw(output, x, level.centre)) << "\n";
+        pwm_curves << outputName(output) << "," << formatCsvNumber(level.centre) << "," << formatCsvNumber(x) << ","
+                   << formatCsvNumber(model.evaluateRaw(output, x, level.centre)) << "\n";
       }
     }
   }
@@ -125,8 +122,8 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
       const double x = data.pwm_levels[level].centre;
       for (int k = 0; k < kCurvePoints; ++k) {
         const double v = lerp(domain.voltage_min_v, domain.voltage_max_v, k, kCurvePoints);
-        voltage_curves << outputName(output) << "," << number(x) << "," << number(v) << ","
-                       << number(model.evaluateRaw(output, x, v)) << "\n";
+        voltage_curves << outputName(output) << "," << formatCsvNumber(x) << "," << formatCsvNumber(v) << ","
+                       << formatCsvNumber(model.evaluateRaw(output, x, v)) << "\n";
       }
     }
   }
@@ -138,8 +135,8 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
       const double v = lerp(domain.voltage_min_v, domain.voltage_max_v, b, kGridVoltage);
       for (int a = 0; a < kGridPwm; ++a) {
         const double x = lerp(domain.pwm_min_us, domain.pwm_max_us, a, kGridPwm);
-        grid << outputName(output) << "," << number(x) << "," << number(v) << ","
-             << number(model.evaluateRaw(output, x, v)) << "\n";
+        grid << outputName(output) << "," << formatCsvNumber(x) << "," << formatCsvNumber(v) << ","
+             << formatCsvNumber(model.evaluateRaw(output, x, v)) << "\n";
       }
     }
   }
@@ -178,38 +175,43 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
       vhi = std::max(vhi, data.voltage_v[row]);
       ++rows;
     }
-    md << "| " << baseName(data.sources[l]) << " | " << rows << " | " << number(xlo, "%.0f") << "-"
-       << number(xhi, "%.0f") << " | " << number(vlo, "%.2f") << "-" << number(vhi, "%.2f") << " |\n";
+    md << "| " << baseName(data.sources[l]) << " | " << rows << " | " << formatPrintf("%.0f", xlo, "") << "-"
+       << formatPrintf("%.0f", xhi, "") << " | " << formatPrintf("%.2f", vlo, "") << "-"
+       << formatPrintf("%.2f", vhi, "") << " |\n";
   }
   // The voltage bounds are single rows (a sweep's top under load); say where they were measured,
   // since the domain is a box and its other corners were not.
   const auto [vlo, vhi] = std::minmax_element(data.voltage_v.begin(), data.voltage_v.end());
-  md << "\n- Domain: PWM " << number(domain.pwm_min_us, "%.0f") << " to " << number(domain.pwm_max_us, "%.0f")
-     << " us, voltage " << number(domain.voltage_min_v, "%.2f") << " to " << number(domain.voltage_max_v, "%.2f")
+  md << "\n- Domain: PWM " << formatPrintf("%.0f", domain.pwm_min_us, "") << " to "
+     << formatPrintf("%.0f", domain.pwm_max_us, "") << " us, voltage " << formatPrintf("%.2f", domain.voltage_min_v, "")
+     << " to " << formatPrintf("%.2f", domain.voltage_max_v, "")
      << " V: the bounding box of all rows at their measured voltage, supply droop and sag included ("
-     << number(*vlo, "%.2f") << " V was logged at " << number(data.pwm_us[vlo - data.voltage_v.begin()], "%.0f")
-     << " us, " << number(*vhi, "%.2f") << " V at " << number(data.pwm_us[vhi - data.voltage_v.begin()], "%.0f")
-     << " us; the voltage levels are centred at " << number(data.voltage_levels.front().centre, "%.2f") << " to "
-     << number(data.voltage_levels.back().centre, "%.2f") << " V); outside it the model will "
+     << formatPrintf("%.2f", *vlo, "") << " V was logged at "
+     << formatPrintf("%.0f", data.pwm_us[vlo - data.voltage_v.begin()], "") << " us, " << formatPrintf("%.2f", *vhi, "")
+     << " V at " << formatPrintf("%.0f", data.pwm_us[vhi - data.voltage_v.begin()], "")
+     << " us; the voltage levels are centred at " << formatPrintf("%.2f", data.voltage_levels.front().centre, "")
+     << " to " << formatPrintf("%.2f", data.voltage_levels.back().centre, "") << " V); outside it the model will "
      << outsideDomainName(domain.outside) << ".\n";
   if (meta.hasBenchAir()) {
-    md << "- Bench: air " << number(*meta.bench_air_temperature_c, "%.1f") << " deg C, "
-       << number(*meta.bench_air_pressure_pa, "%.0f") << " Pa (density " << number(meta.benchAirDensity(), "%.4f")
-       << " kg/m^3), " << supplyKindName(meta.supply) << " supply.\n";
+    md << "- Bench: air " << formatPrintf("%.1f", *meta.bench_air_temperature_c, "") << " deg C, "
+       << formatPrintf("%.0f", *meta.bench_air_pressure_pa, "") << " Pa (density "
+       << formatPrintf("%.4f", meta.benchAirDensity(), "") << " kg/m^3), " << supplyKindName(meta.supply)
+       << " supply.\n";
   } else {
     md << "- Bench: air unknown, " << supplyKindName(meta.supply) << " supply.\n";
   }
   md << "- Voltage levels (" << data.voltage_levels.size() << "):";
   for (std::size_t k = 0; k < data.voltage_levels.size(); ++k) {
-    md << (k ? ", " : " ") << number(data.voltage_levels[k].centre, "%.2f") << " V (" << data.voltage_levels[k].rows
-       << " rows)";
+    md << (k ? ", " : " ") << formatPrintf("%.2f", data.voltage_levels[k].centre, "") << " V ("
+       << data.voltage_levels[k].rows << " rows)";
   }
-  md << ".\n- PWM levels: " << data.pwm_levels.size() << ", " << number(data.pwm_levels.front().centre, "%.0f") << " to "
-     << number(data.pwm_levels.back().centre, "%.0f") << " us.\n";
+  md << ".\n- PWM levels: " << data.pwm_levels.size() << ", "
+     << formatPrintf("%.0f", data.pwm_levels.front().centre, "") << " to "
+     << formatPrintf("%.0f", data.pwm_levels.back().centre, "") << " us.\n";
   md << "- Cross-validation: " << fit.grouping_description
      << ". Whole groups are held out, never random rows; candidates are the MATLAB polyXY degrees up to (5, 3) "
         "that every fold determines, and the one with the fewest terms within "
-     << number(100.0 * fit.parsimony, "%g") << "% of the lowest held-out RMSE is chosen.\n\n";
+     << formatPrintf("%g", 100.0 * fit.parsimony, "") << "% of the lowest held-out RMSE is chosen.\n\n";
   if (!fit.notes.empty()) {
     md << "### Notes\n\n";
     for (const std::string& note : fit.notes) md << "- " << note << "\n";
@@ -231,12 +233,12 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
     md << " | "
        << (def.fit ? "(" + std::to_string(def.fit->pwm_degree) + ", " + std::to_string(def.fit->voltage_degree) + ")"
                    : "")
-       << " | " << report.points << " | " << number(report.r2, "%.5f") << " | " << number(report.rmse, "%.4g") << " | "
-       << number(report.max_error, "%.4g") << " | " << (def.fit ? number(def.fit->held_out_rmse, "%.4g") : "")
-       << " |\n";
+       << " | " << report.points << " | " << formatPrintf("%.5f", report.r2, "") << " | "
+       << formatPrintf("%.4g", report.rmse, "") << " | " << formatPrintf("%.4g", report.max_error, "") << " | "
+       << (def.fit ? formatPrintf("%.4g", def.fit->held_out_rmse, "") : "") << " |\n";
   }
   md << "\nDerived outputs are compared with the bench's own ratio where the row drew at least "
-     << number(100.0 * kEfficiencyMinPowerShare, "%.0f") << "% of its log's peak power.";
+     << formatPrintf("%.0f", 100.0 * kEfficiencyMinPowerShare, "") << "% of its log's peak power.";
   const long stride = plotStride(fit.outputs[static_cast<int>(Output::kThrust)].points);
   if (stride > 1) md << " The figures show every " << stride << "th sample.";
   md << "\n\n";
@@ -257,7 +259,7 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
       if (c.pwm_degree != last_dx) md << "\n| " << c.pwm_degree << " |";
       last_dx = c.pwm_degree;
       const bool is_chosen = c.pwm_degree == chosen.pwm_degree && c.voltage_degree == chosen.voltage_degree;
-      const std::string value = std::isnan(c.held_out_rmse) ? "-" : number(c.held_out_rmse, "%.4g");
+      const std::string value = std::isnan(c.held_out_rmse) ? "-" : formatPrintf("%.4g", c.held_out_rmse, "");
       md << " " << (is_chosen ? "**" + value + "**" : value) << " |";
     }
     md << "\n\n";

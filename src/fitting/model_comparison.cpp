@@ -8,12 +8,12 @@
 #include "propulsion_estimator/fitting/bench_dataset.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kBisectionSteps = 60;
 
 double modelled(const PropulsionModel& model, Output output, double value) {

@@ -12,12 +12,11 @@
 #include "propulsion_estimator/fitting/grouped_least_squares.h"
 #include "propulsion_estimator/model/model_validation.h"
 #include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/model/polynomial_2d.h"
 
 namespace propulsion_estimator {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 const char* fileUnit(Output output) {
   switch (output) {

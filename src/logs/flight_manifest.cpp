@@ -23,9 +23,7 @@ void ManifestFlight::validate(const std::string& at) const {
       throw FieldError(field + "end",
                        formatNumber(segment.end_s) + " is not after start " + formatNumber(segment.start_s));
     }
-    if (!(segment.mass_kg > 0.0 && segment.mass_kg <= 100.0)) {
-      throw FieldError(field + "mass_kg", formatNumber(segment.mass_kg) + " is outside 0..100 kg");
-    }
+    requirePositive(field + "mass_kg", segment.mass_kg, 100.0, " kg");
     if (s > 0 && segment.start_s < segments[s - 1].end_s) {
       throw FieldError(field + "start", formatNumber(segment.start_s) + " is before the previous segment's end " +
                                             formatNumber(segments[s - 1].end_s));

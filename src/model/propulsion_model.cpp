@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/units.h"
 
@@ -157,7 +157,7 @@ double PropulsionModel::evaluateSi(Output output, double pwm_us, double voltage_
     case OutputSource::kSurface:
       return def.surface->evaluate(pwm_us, voltage_v) * to_si_[index(output)];
     case OutputSource::kNone:
-      return std::numeric_limits<double>::quiet_NaN();
+      return kNaN;
     case OutputSource::kDerived:
       break;
   }

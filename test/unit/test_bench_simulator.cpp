@@ -251,7 +251,7 @@ TEST(BenchSimulator, RefusesImpossibleExperiments) {
   EXPECT_EQ(refusal(sweep), "voltages_v: no supply voltage to sweep at");
   sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
   sweep.pwm_step_us = 0.0;
-  EXPECT_EQ(refusal(sweep), "pwm_step_us: 0 must be positive");
+  EXPECT_EQ(refusal(sweep), "pwm_step_us: must be a positive number, got 0");
   sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
   sweep.pwm_start_us = 1900.0;
   sweep.pwm_end_us = 1200.0;

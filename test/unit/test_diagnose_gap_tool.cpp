@@ -148,7 +148,8 @@ TEST_F(DiagnoseGapTool, GoesOnWithTheFlightsItCanUse) {
                          ": /mavros/battery: no messages (a required topic)\n" +
                          "diagnose_gap: " + m + ": flights[3].segments[1]: 9..12.5 s is outside " + file("a.bag") +
                          " (0..10.000 s)\n" +
-                         "diagnose_gap: " + m + ":17: flights[4].segments[0].mass_kg: 0 is outside 0..100 kg\n" +
+                         "diagnose_gap: " + m +
+                         ":17: flights[4].segments[0].mass_kg: 0 is outside 0..100 kg (must be positive)\n" +
                          "diagnose_gap: 4 of 5 flights refused\n");
     EXPECT_NE(r.out.find("read 1 of 5 flights, 112 readings, in "), std::string::npos) << r.out;
     // The flight it could use is diagnosed, and the report lists those it could not.

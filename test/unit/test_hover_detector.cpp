@@ -99,6 +99,6 @@ TEST(HoverConfig, RefusesNonsense) {
     config.validate();
     FAIL();
   } catch (const pe::ConfigError& e) {
-    EXPECT_STREQ(e.what(), "hover/min_window_fill: must be in (0, 1], got 1.5");
+    EXPECT_STREQ(e.what(), "hover/min_window_fill: 1.5 is outside 0..1 (must be positive)");
   }
 }

@@ -329,7 +329,7 @@ TEST(FlightManifest, RefusesBadSegments) {
   EXPECT_EQ(manifestRefusal("{start: 40, end: 70.5,", "{start: 20, end: 70.5,"),
             "m.yaml:5: flights[0].segments[1].start: 20 is before the previous segment's end 30");
   EXPECT_EQ(manifestRefusal("mass_kg: 1.315}", "mass_kg: 0}"),
-            "m.yaml:4: flights[0].segments[0].mass_kg: 0 is outside 0..100 kg");
+            "m.yaml:4: flights[0].segments[0].mass_kg: 0 is outside 0..100 kg (must be positive)");
   EXPECT_EQ(manifestRefusal("mass_kg: 1.315}", "mass_kg: 1.315, weight_g: 1315}"),
             "m.yaml:4: flights[0].segments[0].weight_g: unknown key (allowed: start, end, mass_kg)");
   EXPECT_EQ(manifestRefusal("  - bag: a.bag\n", "  - file: a.bag\n"),
@@ -346,7 +346,8 @@ TEST(FlightManifest, EntriesKeepAFlightsRefusalAndTheOtherFlights) {
   EXPECT_EQ(entries[0].refusal, "");
   EXPECT_EQ(entries[0].flight.segments.size(), 2u);
   EXPECT_EQ(entries[1].flight.bag, "b.bag");
-  EXPECT_EQ(entries[1].refusal, path + ":8: flights[1].segments[0].mass_kg: 0 is outside 0..100 kg");
+  EXPECT_EQ(entries[1].refusal,
+            path + ":8: flights[1].segments[0].mass_kg: 0 is outside 0..100 kg (must be positive)");
   EXPECT_EQ(entries[2].refusal, "");
   EXPECT_EQ(entries[2].flight.segments[0].mass_kg, 1.5);
   // What is wrong with the file itself still refuses it.

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "propulsion_estimator/common/config_error.h"
@@ -24,8 +25,10 @@ class FieldError : public ConfigError {
 
 // Range checks for validate() functions: throw FieldError(field, "<value> is outside <lo>..<hi><unit>")
 // unless lo <= value <= hi, and "<value> is outside 0..<hi><unit> (must be positive)" unless
-// 0 < value <= hi; NaN is outside every range. `unit` is appended as given (" m", " rpm/V").
+// 0 < value <= hi; without an upper bound "must be a positive number, got <value>" unless
+// 0 < value < infinity. NaN is outside every range. `unit` is appended as given (" m", " rpm/V").
 void requireWithin(const std::string& field, double value, double lo, double hi, const std::string& unit = "");
-void requirePositive(const std::string& field, double value, double hi, const std::string& unit = "");
+void requirePositive(const std::string& field, double value, double hi = std::numeric_limits<double>::infinity(),
+                     const std::string& unit = "");
 
 }  // namespace propulsion_estimator

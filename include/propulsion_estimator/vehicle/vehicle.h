@@ -1,18 +1,19 @@
 #pragma once
 
-#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "propulsion_estimator/common/not_a_number.h"
+
 namespace propulsion_estimator {
 
 // One rotor in the body frame (REP-103: x forward, y left, z up), origin at the base link.
 struct Rotor {
   std::string name;
-  Eigen::Vector3d position_m = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d position_m = Eigen::Vector3d::Constant(kNaN);
   Eigen::Vector3d thrust_axis = Eigen::Vector3d::UnitZ();  // unit vector
   int spin_direction = 1;                                  // +1 counter-clockwise seen from above
 };

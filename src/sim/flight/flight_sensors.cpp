@@ -8,13 +8,9 @@
 namespace propulsion_estimator {
 namespace {
 
-void requireRate(const char* field, double rate_hz) {
-  if (!(rate_hz > 0.0 && rate_hz <= 500.0)) throw FieldError(field, formatNumber(rate_hz) + " is outside 0..500 Hz");
-}
+void requireRate(const char* field, double rate_hz) { requirePositive(field, rate_hz, 500.0, " Hz"); }
 
-void requireSigma(const char* field, double sigma) {
-  if (!(sigma >= 0.0 && sigma < 1e3)) throw FieldError(field, formatNumber(sigma) + " is not a standard deviation");
-}
+void requireSigma(const char* field, double sigma) { requireWithin(field, sigma, 0.0, 1e3); }
 
 }  // namespace
 
@@ -33,10 +29,7 @@ void FlightSensorParams::validate() const {
   requireSigma("orientation_sigma_rad", orientation_sigma_rad);
   requireSigma("position_sigma_m", position_sigma_m);
   requireSigma("velocity_sigma_m_s", velocity_sigma_m_s);
-  if (!(navigation_error_correlation_s > 0.0 && navigation_error_correlation_s <= 1000.0)) {
-    throw FieldError("navigation_error_correlation_s",
-                     formatNumber(navigation_error_correlation_s) + " is outside 0..1000 s");
-  }
+  requirePositive("navigation_error_correlation_s", navigation_error_correlation_s, 1000.0, " s");
   requireSigma("pressure_sigma_pa", pressure_sigma_pa);
   requireSigma("air_temperature_sigma_c", air_temperature_sigma_c);
   requireSigma("rangefinder_sigma_m", rangefinder_sigma_m);

@@ -8,6 +8,7 @@
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/sim/flight/flight_controller.h"
+#include "propulsion_estimator/sim/physics/gaussian_noise.h"
 #include "propulsion_estimator/sim/physics/lipo_battery.h"
 #include "propulsion_estimator/sim/flight/multirotor_dynamics.h"
 #include "propulsion_estimator/common/number_format.h"
@@ -192,7 +193,7 @@ FlightSetup setUpFlight(const SimParams& params, const SimEffects& effects, cons
 class Noise {
  public:
   explicit Noise(std::uint64_t seed) : rng_(seed) {}
-  double operator()(double sigma) { return sigma > 0.0 ? std::normal_distribution<double>(0.0, sigma)(rng_) : 0.0; }
+  double operator()(double sigma) { return gaussianNoise(sigma, rng_); }
   Eigen::Vector3d vector(double sigma) { return Eigen::Vector3d((*this)(sigma), (*this)(sigma), (*this)(sigma)); }
 
  private:

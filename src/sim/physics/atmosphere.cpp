@@ -4,7 +4,6 @@
 #include <string>
 
 #include "propulsion_estimator/common/field_error.h"
-#include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
@@ -20,12 +19,8 @@ double AirConditions::pressureAtHeightPa(double height_m) const {
 
 void AirConditions::validate(const char* field) const {
   const std::string prefix = field;
-  if (!(temperature_c >= -40.0 && temperature_c <= 60.0)) {
-    throw FieldError(prefix + ".temperature_c", formatNumber(temperature_c) + " is outside -40..60 deg C");
-  }
-  if (!(pressure_pa >= 50000.0 && pressure_pa <= 110000.0)) {
-    throw FieldError(prefix + ".pressure_pa", formatNumber(pressure_pa) + " is outside 50000..110000 Pa");
-  }
+  requireWithin(prefix + ".temperature_c", temperature_c, -40.0, 60.0, " deg C");
+  requireWithin(prefix + ".pressure_pa", pressure_pa, 50000.0, 110000.0, " Pa");
 }
 
 }  // namespace propulsion_estimator

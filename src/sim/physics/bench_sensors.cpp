@@ -4,7 +4,7 @@
 #include <string>
 
 #include "propulsion_estimator/common/field_error.h"
-#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/sim/physics/gaussian_noise.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -12,20 +12,14 @@ namespace {
 // Field names as the parameter file spells them: bench.sensors.<name>.sigma_<unit>.
 void validateSensor(const SensorNoise& sensor, const std::string& name, const std::string& unit, double limit) {
   const std::string field = "bench.sensors." + name + ".";
-  if (!(sensor.sigma >= 0.0 && sensor.sigma <= limit)) {
-    throw FieldError(field + "sigma_" + unit, formatNumber(sensor.sigma) + " is outside 0.." + formatNumber(limit));
-  }
-  if (!(sensor.resolution >= 0.0 && sensor.resolution <= limit)) {
-    throw FieldError(field + "resolution_" + unit,
-                     formatNumber(sensor.resolution) + " is outside 0.." + formatNumber(limit));
-  }
+  requireWithin(field + "sigma_" + unit, sensor.sigma, 0.0, limit);
+  requireWithin(field + "resolution_" + unit, sensor.resolution, 0.0, limit);
 }
 
 }  // namespace
 
 double SensorNoise::measure(double true_value, std::mt19937_64& rng) const {
-  double value = true_value;
-  if (sigma > 0.0) value += std::normal_distribution<double>(0.0, sigma)(rng);
+  double value = true_value + gaussianNoise(sigma, rng);
   if (resolution > 0.0) value = resolution * std::round(value / resolution);
   return value;
 }

@@ -8,19 +8,13 @@
 namespace propulsion_estimator {
 
 void EscParams::validate() const {
-  if (!(pwm_zero_us >= 800.0 && pwm_zero_us <= 2200.0)) {
-    throw FieldError("esc.pwm_zero_us", formatNumber(pwm_zero_us) + " is outside 800..2200 us");
-  }
-  if (!(pwm_full_us >= 800.0 && pwm_full_us <= 2200.0)) {
-    throw FieldError("esc.pwm_full_us", formatNumber(pwm_full_us) + " is outside 800..2200 us");
-  }
+  requireWithin("esc.pwm_zero_us", pwm_zero_us, 800.0, 2200.0, " us");
+  requireWithin("esc.pwm_full_us", pwm_full_us, 800.0, 2200.0, " us");
   if (!(pwm_full_us - pwm_zero_us >= 200.0)) {
     throw FieldError("esc.pwm_full_us", formatNumber(pwm_full_us) + " must be at least 200 us above pwm_zero_us (" +
                                             formatNumber(pwm_zero_us) + ")");
   }
-  if (!(resistance_ohm >= 0.0 && resistance_ohm <= 1.0)) {
-    throw FieldError("esc.resistance_ohm", formatNumber(resistance_ohm) + " is outside 0..1 ohm");
-  }
+  requireWithin("esc.resistance_ohm", resistance_ohm, 0.0, 1.0, " ohm");
 }
 
 double EscParams::duty(double pwm_us, double end_point_offset_us) const {

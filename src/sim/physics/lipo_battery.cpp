@@ -9,10 +9,8 @@
 namespace propulsion_estimator {
 
 void LipoBatteryParams::validate() const {
-  if (cells < 1 || cells > 14) throw FieldError("battery.cells", std::to_string(cells) + " is outside 1..14");
-  if (!(capacity_ah > 0.0 && capacity_ah <= 1000.0)) {
-    throw FieldError("battery.capacity_ah", formatNumber(capacity_ah) + " is outside 0..1000 Ah");
-  }
+  requireWithin("battery.cells", cells, 1, 14);
+  requirePositive("battery.capacity_ah", capacity_ah, 1000.0, " Ah");
   if (ocv_soc.size() < 2 || ocv_soc.size() != ocv_cell_v.size()) {
     throw FieldError("battery.open_circuit_voltage", "soc and cell_v need the same number of points, at least 2 (got " +
                                                          std::to_string(ocv_soc.size()) + " and " +
@@ -30,19 +28,11 @@ void LipoBatteryParams::validate() const {
       throw FieldError("battery.open_circuit_voltage.cell_v", "must increase with soc (" + formatNumber(ocv_cell_v[i]) +
                                                                   " after " + formatNumber(ocv_cell_v[i - 1]) + ")");
     }
-    if (!(ocv_cell_v[i] >= 2.5 && ocv_cell_v[i] <= 4.4)) {
-      throw FieldError("battery.open_circuit_voltage.cell_v", formatNumber(ocv_cell_v[i]) + " is outside 2.5..4.4 V");
-    }
+    requireWithin("battery.open_circuit_voltage.cell_v", ocv_cell_v[i], 2.5, 4.4, " V");
   }
-  if (!(series_resistance_ohm > 0.0 && series_resistance_ohm < 1.0)) {
-    throw FieldError("battery.series_resistance_ohm", formatNumber(series_resistance_ohm) + " is outside 0..1 ohm");
-  }
-  if (!(rc_resistance_ohm > 0.0 && rc_resistance_ohm < 1.0)) {
-    throw FieldError("battery.rc_resistance_ohm", formatNumber(rc_resistance_ohm) + " is outside 0..1 ohm");
-  }
-  if (!(rc_capacitance_f > 0.0 && rc_capacitance_f < 1e7)) {
-    throw FieldError("battery.rc_capacitance_f", formatNumber(rc_capacitance_f) + " is outside 0..1e7 F");
-  }
+  requirePositive("battery.series_resistance_ohm", series_resistance_ohm, 1.0, " ohm");
+  requirePositive("battery.rc_resistance_ohm", rc_resistance_ohm, 1.0, " ohm");
+  requirePositive("battery.rc_capacitance_f", rc_capacitance_f, 1e7, " F");
 }
 
 double LipoBatteryParams::openCircuitVoltage(double state_of_charge) const {
@@ -55,9 +45,7 @@ double LipoBatteryParams::openCircuitVoltage(double state_of_charge) const {
 
 LipoBattery::LipoBattery(LipoBatteryParams params, double initial_soc) : params_(std::move(params)), soc_(initial_soc) {
   params_.validate();
-  if (!(initial_soc >= 0.0 && initial_soc <= 1.0)) {
-    throw FieldError("initial_soc", formatNumber(initial_soc) + " is outside 0..1");
-  }
+  requireWithin("initial_soc", initial_soc, 0.0, 1.0);
 }
 
 double LipoBattery::sourceVoltage() const { return params_.openCircuitVoltage(soc_) - polarisation_v_; }

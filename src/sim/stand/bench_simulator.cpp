@@ -176,27 +176,19 @@ const char* benchExperimentName(BenchExperimentKind kind) {
 }
 
 void BenchExperiment::validate() const {
-  const auto positive = [](const char* field, double value) {
-    if (!(value > 0.0)) throw FieldError(field, formatNumber(value) + " must be positive");
-  };
   // From one integration step to an hour.
   requireWithin("sample_interval_s", sample_interval_s, kStepS, 3600.0, " s");
-  positive("cutoff_voltage_v", cutoff_voltage_v);
-  if (!(initial_soc > 0.0 && initial_soc <= 1.0)) {
-    throw FieldError("initial_soc", formatNumber(initial_soc) + " is outside 0..1");
-  }
+  requirePositive("cutoff_voltage_v", cutoff_voltage_v);
+  requirePositive("initial_soc", initial_soc, 1.0);
   switch (kind) {
     case BenchExperimentKind::kPwmSweep:
       if (voltages_v.empty()) throw FieldError("voltages_v", "no supply voltage to sweep at");
-      for (double voltage : voltages_v) {
-        if (!(voltage > 0.0 && voltage <= 60.0))
-          throw FieldError("voltages_v", formatNumber(voltage) + " is outside 0..60 V");
-      }
+      for (double voltage : voltages_v) requirePositive("voltages_v", voltage, 60.0, " V");
       if (!(pwm_start_us >= 800.0 && pwm_end_us <= 2200.0 && pwm_start_us < pwm_end_us)) {
         throw FieldError("pwm_start_us", "[" + formatNumber(pwm_start_us) + ", " + formatNumber(pwm_end_us) +
                                              "] is not a range within 800..2200 us");
       }
-      positive("pwm_step_us", pwm_step_us);
+      requirePositive("pwm_step_us", pwm_step_us);
       if (sweepPulseWidthCount(*this) > kMaxSweepPulseWidths) {
         throw FieldError("pwm_step_us", formatNumber(pwm_step_us) + " gives " +
                                             formatNumber(sweepPulseWidthCount(*this)) + " pulse widths from " +
@@ -207,15 +199,12 @@ void BenchExperiment::validate() const {
       break;
     case BenchExperimentKind::kDischarge:
       if (pwms_us.empty()) throw FieldError("pwms_us", "no pulse width to discharge at");
-      for (double pwm : pwms_us) {
-        if (!(pwm >= 800.0 && pwm <= 2200.0))
-          throw FieldError("pwms_us", formatNumber(pwm) + " is outside 800..2200 us");
-      }
+      for (double pwm : pwms_us) requireWithin("pwms_us", pwm, 800.0, 2200.0, " us");
       break;
     case BenchExperimentKind::kConstantThrust:
       if (thrusts_n.empty()) throw FieldError("thrusts_n", "no thrust to hold");
-      for (double thrust : thrusts_n) positive("thrusts_n", thrust);
-      positive("thrust_gain_us_per_n_s", thrust_gain_us_per_n_s);
+      for (double thrust : thrusts_n) requirePositive("thrusts_n", thrust);
+      requirePositive("thrust_gain_us_per_n_s", thrust_gain_us_per_n_s);
       break;
   }
 }
