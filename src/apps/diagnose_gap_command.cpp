@@ -13,6 +13,7 @@
 #include "propulsion_estimator/bag/flight_bag_reader.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/gap/diagnosis.h"
@@ -123,7 +124,7 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
       }
     }
     return {gap::Flight{entry.flight.bag, reader.read(topics, motors), segments}, ""};
-  } catch (const ConfigError& e) {
+  } catch (const InputError& e) {
     return {std::nullopt, at + ": " + e.what()};
   }
 }

@@ -128,7 +128,7 @@ void runFlight(const FlightOptions& options) {
   }
   std::error_code error;
   std::filesystem::rename(active, options.bag, error);
-  if (error) throw ConfigError(options.bag + ": cannot move " + active + " there: " + error.message());
+  if (error) throw InputError(options.bag + ": cannot move " + active + " there: " + error.message());
   std::cout << "simulate flight: " << formatNumber(result.duration_s) << " s, battery from "
             << formatNumber(100.0 * profile.vehicle.battery_initial_soc) << " % to "
             << formatNumber(std::round(100.0 * result.final_state_of_charge)) << " % -> " << options.bag << "\n";
@@ -213,7 +213,7 @@ int runSimulateCommand(int argc, char** argv) {
   try {
     if (bench_command->parsed()) runBench(bench);
     if (flight_command->parsed()) runFlight(flight);
-  } catch (const ConfigError& e) {
+  } catch (const InputError& e) {
     std::cerr << "simulate " << (bench_command->parsed() ? "bench" : "flight") << ": " << e.what() << "\n";
     return 1;
   } catch (const rosbag::BagException& e) {

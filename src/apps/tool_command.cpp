@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 
 namespace propulsion_estimator {
 
@@ -15,7 +15,7 @@ int runToolCommand(const char* name, CLI::App& app, int argc, char** argv, const
   }
   try {
     return run();
-  } catch (const ConfigError& e) {
+  } catch (const InputError& e) {
     std::fprintf(stderr, "%s: %s\n", name, e.what());
   } catch (const std::filesystem::filesystem_error& e) {
     std::fprintf(stderr, "%s: %s\n", name, e.what());

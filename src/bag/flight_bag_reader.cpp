@@ -16,6 +16,8 @@
 #include <mutex>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
@@ -197,17 +199,17 @@ std::string* FlightBagTopics::find(const std::string& name) {
 
 FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) throw ConfigError(path + ": no such file");
+  if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
   // Declared after the lock, a bag refused here is destroyed before the lock is released.
   const std::lock_guard<std::mutex> lock(bagLifetimeMutex());
   auto bag = std::make_unique<rosbag::Bag>();
   try {
     bag->open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagException& e) {
-    throw ConfigError(path + ": not a readable bag: " + e.what());
+    throw DataError(path + ": not a readable bag: " + e.what());
   }
   rosbag::View all(*bag);
-  if (all.size() == 0) throw ConfigError(path + ": no messages");
+  if (all.size() == 0) throw DataError(path + ": no messages");
   start_ = all.getBeginTime();
   duration_s_ = (all.getEndTime() - start_).toSec();
   bag_ = std::move(bag);
@@ -230,13 +232,13 @@ gap::FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int moto
   for (const Source& source : sources) {
     rosbag::View view(*bag_, rosbag::TopicQuery(*source.topic));
     if (view.size() == 0) {
-      if (source.required) throw ConfigError(path_ + ": " + *source.topic + ": no messages (a required topic)");
+      if (source.required) throw DataError(path_ + ": " + *source.topic + ": no messages (a required topic)");
       continue;
     }
     for (const rosbag::ConnectionInfo* connection : view.getConnections()) {
       if (connection->datatype != source.datatype || connection->md5sum != source.md5sum) {
-        throw ConfigError(path_ + ": " + *source.topic + ": expected " + source.datatype + " (md5sum " +
-                          source.md5sum + "), got " + connection->datatype + " (md5sum " + connection->md5sum + ")");
+        throw DataError(path_ + ": " + *source.topic + ": expected " + source.datatype + " (md5sum " + source.md5sum +
+                        "), got " + connection->datatype + " (md5sum " + connection->md5sum + ")");
       }
     }
     reserve(*bag_, source, &streams);
@@ -263,11 +265,13 @@ gap::FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int moto
         } catch (const ros::serialization::StreamOverrunException& e) {
           error = "malformed " + source.datatype + ": " + e.what();
         }
-        if (!added) throw ConfigError(path_ + ": " + message.getTopic() + ": at " + formatPrintf("%.3f", time_s) + " s: " + error);
+        if (!added) {
+          throw DataError(path_ + ": " + message.getTopic() + ": at " + formatPrintf("%.3f", time_s) + " s: " + error);
+        }
       }
     }
   } catch (const rosbag::BagException& e) {
-    throw ConfigError(path_ + ": reading failed after " + formatPrintf("%.3f", time_s) + " s: " + e.what());
+    throw DataError(path_ + ": reading failed after " + formatPrintf("%.3f", time_s) + " s: " + e.what());
   }
   return streams;
 }

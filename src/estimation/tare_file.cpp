@@ -6,7 +6,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/yaml_map.h"
 
@@ -37,7 +37,7 @@ void saveTareFile(const std::string& path, const TareRecord& record) {
     writeTextFile(temporary, std::string(yaml.c_str()) + "\n");
   }
   std::filesystem::rename(temporary, target, error);
-  if (error) throw ConfigError(path + ": cannot write the tare file: " + error.message());
+  if (error) throw InputError(path + ": cannot write the tare file: " + error.message());
 }
 
 void removeTareFile(const std::string& path) {

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/units.h"
@@ -23,19 +24,19 @@ double median(std::vector<double> values) {
 
 // A log built in code (a simulator, a test) can break what the readers guarantee.
 void requireShape(const BenchLog& log) {
-  if (log.rows() == 0) throw ConfigError(log.source + ": the log has no rows");
+  if (log.rows() == 0) throw DataError(log.source + ": the log has no rows");
   for (BenchColumn required : {BenchColumn::kPwm, BenchColumn::kVoltage, BenchColumn::kThrust}) {
     if (!log.has(required)) {
-      throw ConfigError(log.source + ": column " + benchColumnName(required) +
-                        " is missing (required: pwm_us, voltage_v, thrust_n)");
+      throw DataError(log.source + ": column " + benchColumnName(required) +
+                      " is missing (required: pwm_us, voltage_v, thrust_n)");
     }
   }
   for (int c = 0; c < kBenchColumnCount; ++c) {
     const auto column = static_cast<BenchColumn>(c);
     if (log.has(column) && log.column(column).size() != log.rows()) {
-      throw ConfigError(log.source + ": column " + benchColumnName(column) + " has " +
-                        std::to_string(log.column(column).size()) + " values for " + std::to_string(log.rows()) +
-                        " rows");
+      throw DataError(log.source + ": column " + benchColumnName(column) + " has " +
+                      std::to_string(log.column(column).size()) + " values for " + std::to_string(log.rows()) +
+                      " rows");
     }
   }
 }
@@ -44,8 +45,8 @@ void requireFinite(const BenchLog& log, BenchColumn column) {
   const std::vector<double>& values = log.column(column);
   for (std::size_t row = 0; row < values.size(); ++row) {
     if (!std::isfinite(values[row])) {
-      throw ConfigError(log.source + ":" + std::to_string(log.line_numbers[row]) + ": " + benchColumnName(column) +
-                        ": " + formatPrintf("%g", values[row]) + " is not a finite number");
+      throw DataError(log.source + ":" + std::to_string(log.line_numbers[row]) + ": " + benchColumnName(column) + ": " +
+                      formatPrintf("%g", values[row]) + " is not a finite number");
     }
   }
 }

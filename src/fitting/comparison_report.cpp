@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "propulsion_estimator/fitting/bench_dataset.h"
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/units.h"
@@ -105,7 +105,7 @@ void writeComparisonReportData(const std::vector<ModelComparison>& models, const
   }
   for (std::ofstream* file : {&curves, &points, &hover, &discharge}) {
     file->flush();
-    if (!*file) throw ConfigError(directory + ": cannot write the report's data");
+    if (!*file) throw InputError(directory + ": cannot write the report's data");
   }
 }
 

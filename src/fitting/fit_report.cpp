@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
 
@@ -142,7 +142,7 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
   }
   for (std::ofstream* file : {&kinds, &points, &pwm_curves, &voltage_curves, &grid}) {
     file->flush();
-    if (!*file) throw ConfigError(directory + ": cannot write the report's data");
+    if (!*file) throw InputError(directory + ": cannot write the report's data");
   }
 }
 

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/fitting/grouped_least_squares.h"
 #include "propulsion_estimator/model/model_validation.h"
@@ -47,7 +48,7 @@ std::string nameList(const std::vector<std::string>& names, std::size_t shown) {
 
 // ---- metadata ---------------------------------------------------------------------------------
 
-// The one text value the logs agree on for `key`, or the option; ConfigError when they disagree
+// The one text value the logs agree on for `key`, or the option; DataError when they disagree
 // or none gives it.
 std::string metadataText(const std::vector<BenchLog>& logs, const std::string& key,
                          const std::optional<std::string>& option) {
@@ -57,18 +58,18 @@ std::string metadataText(const std::vector<BenchLog>& logs, const std::string& k
     const auto found = log.metadata.find(key);
     if (found == log.metadata.end()) continue;
     if (!from.empty() && found->second != value) {
-      throw ConfigError("logs disagree on " + key + ": '" + value + "' (" + from + ") and '" + found->second + "' (" +
-                        log.source + "); pass --" + key + " to say which the model records");
+      throw DataError("logs disagree on " + key + ": '" + value + "' (" + from + ") and '" + found->second + "' (" +
+                      log.source + "); pass --" + key + " to say which the model records");
     }
     value = found->second;
     from = log.source;
   }
-  if (from.empty()) throw ConfigError(key + " unknown: no log has a '# " + key + ":' line; pass --" + key);
+  if (from.empty()) throw DataError(key + " unknown: no log has a '# " + key + ":' line; pass --" + key);
   return value;
 }
 
 // A bench condition: the option, else the mean of the logs' metadata values, else the mean of
-// a logged column; ConfigError naming the option when none gives it. `origin` says where the
+// a logged column; DataError naming the option when none gives it. `origin` says where the
 // value came from, for a refusal of it.
 double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key, BenchColumn column,
                       const std::string& option_name, const std::optional<double>& option,
@@ -87,7 +88,7 @@ double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key,
       char* end = nullptr;
       value = std::strtod(found->second.c_str(), &end);
       if (end == found->second.c_str() || *end != '\0' || !std::isfinite(value)) {
-        throw ConfigError(log.source + ": metadata " + key + ": '" + found->second + "' is not a number");
+        throw DataError(log.source + ": metadata " + key + ": '" + found->second + "' is not a number");
       }
       origins.push_back(log.source + " '# " + key + ":'");
     } else if (log.has(column)) {
@@ -103,8 +104,8 @@ double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key,
     ++count;
   }
   if (count == 0) {
-    throw ConfigError(key + " unknown: no log has a '# " + key + ":' line or a " + benchColumnName(column) +
-                      " column; pass " + option_name);
+    throw DataError(key + " unknown: no log has a '# " + key + ":' line or a " + benchColumnName(column) +
+                    " column; pass " + option_name);
   }
   if (count > 1 && hi > lo) {
     notes->push_back(key + ": mean of " + std::to_string(count) + " logs (" + formatPrintf("%g", lo) + " to " +
@@ -131,15 +132,14 @@ ModelMetadata resolveMetadata(const std::vector<BenchLog>& logs, const FitOption
     meta.validate();
   } catch (const FieldError& e) {
     const bool temperature = e.field() == "metadata.bench_air_temperature_c";
-    throw ConfigError(e.field() + ": " + e.problem() + " (" + (temperature ? temperature_origin : pressure_origin) +
-                      ")");
+    throw DataError(e.field() + ": " + e.problem() + " (" + (temperature ? temperature_origin : pressure_origin) + ")");
   }
   if (options.supply) {
     meta.supply = *options.supply;
   } else {
     const std::string supply = metadataText(logs, "supply", std::nullopt);
     if (supply != "regulated" && supply != "battery") {
-      throw ConfigError("metadata supply: '" + supply + "' is neither regulated nor battery");
+      throw DataError("metadata supply: '" + supply + "' is neither regulated nor battery");
     }
     meta.supply = supply == "battery" ? SupplyKind::kBattery : SupplyKind::kRegulated;
   }
@@ -178,16 +178,16 @@ std::string allLogNames(const BenchDataset& data) {
 void requireSurfaceData(const BenchDataset& data) {
   const auto [vlo, vhi] = std::minmax_element(data.voltage_v.begin(), data.voltage_v.end());
   if (data.voltage_levels.size() < 2) {
-    throw ConfigError("cannot fit a surface: one voltage level only (all " + std::to_string(data.rows()) + " rows of " +
-                      allLogNames(data) + " have voltage_v near " +
-                      formatPrintf("%.2f V", data.voltage_levels[0].centre) + ", " + formatPrintf("%.2f", *vlo) +
-                      " to " + formatPrintf("%.2f V", *vhi) +
-                      "); log sweeps at two or more supply voltages, or a battery discharge");
+    throw DataError("cannot fit a surface: one voltage level only (all " + std::to_string(data.rows()) + " rows of " +
+                    allLogNames(data) + " have voltage_v near " +
+                    formatPrintf("%.2f V", data.voltage_levels[0].centre) + ", " + formatPrintf("%.2f", *vlo) + " to " +
+                    formatPrintf("%.2f V", *vhi) +
+                    "); log sweeps at two or more supply voltages, or a battery discharge");
   }
   if (data.pwm_levels.size() < 3) {
-    throw ConfigError("cannot fit a surface: " + std::to_string(data.pwm_levels.size()) + " PWM level" +
-                      (data.pwm_levels.size() > 1 ? "s" : "") + " only (pwm_us of " + allLogNames(data) + ": " +
-                      levelList(data.pwm_levels, "%.0f us") + "); log sweeps over at least 3 PWM values");
+    throw DataError("cannot fit a surface: " + std::to_string(data.pwm_levels.size()) + " PWM level" +
+                    (data.pwm_levels.size() > 1 ? "s" : "") + " only (pwm_us of " + allLogNames(data) + ": " +
+                    levelList(data.pwm_levels, "%.0f us") + "); log sweeps over at least 3 PWM values");
   }
 }
 
@@ -309,10 +309,10 @@ void requireVoltageLevelsPerFold(const BenchDataset& data, Output output, const 
     const auto level = std::find_if(voltage_presence.total.begin(), voltage_presence.total.end(),
                                     [](int rows) { return rows > 0; }) -
                        voltage_presence.total.begin();
-    throw ConfigError("cannot fit " + name + ": all " + std::to_string(points) + " rows of " +
-                      logNames(data, logs_with_output) + " with " + sampleColumn(output) +
-                      " are at one voltage level (" + formatPrintf("%.2f V", data.voltage_levels[level].centre) +
-                      "); log it at two or more voltages or leave it out with --without " + name);
+    throw DataError("cannot fit " + name + ": all " + std::to_string(points) + " rows of " +
+                    logNames(data, logs_with_output) + " with " + sampleColumn(output) + " are at one voltage level (" +
+                    formatPrintf("%.2f V", data.voltage_levels[level].centre) +
+                    "); log it at two or more voltages or leave it out with --without " + name);
   }
   for (int g = 0; g < grouping.groups(); ++g) {
     if (rows_per_group[g] == 0 || voltage_presence.presentWithout(g) >= 2) continue;
@@ -324,8 +324,8 @@ void requireVoltageLevelsPerFold(const BenchDataset& data, Output output, const 
         remaining < 0 ? "leaves no rows in a training fold (without " + grouping.group_names[g] + ")"
                       : "leaves one voltage level in a training fold (without " + grouping.group_names[g] + " only " +
                             formatPrintf("%.2f V", data.voltage_levels[remaining].centre) + " remains)";
-    throw ConfigError("cannot fit " + name + ": " + groupingFlag(grouping) + " " + leaves +
-                      ", so cross-validation cannot score a voltage term: " + advice);
+    throw DataError("cannot fit " + name + ": " + groupingFlag(grouping) + " " + leaves +
+                    ", so cross-validation cannot score a voltage term: " + advice);
   }
 }
 
@@ -356,15 +356,15 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const Grouping
     ++points;
   }
   if (points < options.min_points) {
-    throw ConfigError("cannot fit " + name + ": " + std::to_string(points) + " rows" +
-                      (points > 0 ? " of " + logNames(data, logs_with_output) : std::string()) + " have " +
-                      sampleColumn(output) + ", at least " + std::to_string(options.min_points) + " are needed");
+    throw DataError("cannot fit " + name + ": " + std::to_string(points) + " rows" +
+                    (points > 0 ? " of " + logNames(data, logs_with_output) : std::string()) + " have " +
+                    sampleColumn(output) + ", at least " + std::to_string(options.min_points) + " are needed");
   }
   if (hi == lo) {
-    throw ConfigError("cannot fit " + name + ": column " + sampleColumn(output) + " is " + formatPrintf("%g", lo) +
-                      " " + fileUnit(output) + " in all " + std::to_string(points) + " rows of " +
-                      logNames(data, logs_with_output) + " (a sensor that was not connected?)" +
-                      (output == Output::kThrust ? "" : "; leave it out with --without " + name));
+    throw DataError("cannot fit " + name + ": column " + sampleColumn(output) + " is " + formatPrintf("%g", lo) + " " +
+                    fileUnit(output) + " in all " + std::to_string(points) + " rows of " +
+                    logNames(data, logs_with_output) + " (a sensor that was not connected?)" +
+                    (output == Output::kThrust ? "" : "; leave it out with --without " + name));
   }
   std::vector<long> rows_per_group(groups);
   for (int g = 0; g < groups; ++g) rows_per_group[g] = static_cast<long>(gy[g].size());
@@ -394,8 +394,8 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const Grouping
     if (std::isfinite(c.held_out_rmse)) best = std::min(best, c.held_out_rmse);
   }
   if (!std::isfinite(best)) {
-    throw ConfigError("cannot fit " + name + ": no polynomial degree is determined with one group held out (" +
-                      grouping.description + ")");
+    throw DataError("cannot fit " + name + ": no polynomial degree is determined with one group held out (" +
+                    grouping.description + ")");
   }
   const CandidateScore* chosen = nullptr;
   for (const CandidateScore& c : candidates) {
@@ -406,7 +406,7 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const Grouping
   }
   const std::vector<int> terms = GroupedLeastSquares::subBasis(chosen->pwm_degree, chosen->voltage_degree);
   const std::optional<Eigen::VectorXd> beta = squares.solve(terms);
-  if (!beta) throw ConfigError("cannot fit " + name + ": the normal equations are singular on all data");
+  if (!beta) throw DataError("cannot fit " + name + ": the normal equations are singular on all data");
   std::vector<PolynomialTerm> polynomial;
   for (std::size_t t = 0; t < terms.size(); ++t) {
     const auto [i, j] = GroupedLeastSquares::fullBasis()[terms[t]];

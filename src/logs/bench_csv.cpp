@@ -5,7 +5,7 @@
 #include <regex>
 #include <sstream>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/units.h"
 #include "propulsion_estimator/common/yaml_map.h"
@@ -78,8 +78,8 @@ BenchLog nativeBenchLogFromTable(const CsvText& table, DecimalSeparator decimal)
     const std::string key = match[1];
     const auto [known, inserted] = metadata_line.emplace(key, comment.line);
     if (!inserted) {
-      throw ConfigError(table.source + ":" + std::to_string(comment.line) + ": metadata key '" + key +
-                        "' given twice (first on line " + std::to_string(known->second) + ")");
+      throw DataError(table.source + ":" + std::to_string(comment.line) + ": metadata key '" + key +
+                      "' given twice (first on line " + std::to_string(known->second) + ")");
     }
     log.metadata[key] = match[2];
   }
@@ -93,14 +93,14 @@ BenchLog nativeBenchLogFromTable(const CsvText& table, DecimalSeparator decimal)
   for (std::size_t c = 0; c < table.header.size(); ++c) {
     const std::string& name = table.header[c];
     if (name.empty()) {
-      throw ConfigError(table.source + ":" + std::to_string(table.header_line) + ": column " + std::to_string(c + 1) +
-                        " has no name");
+      throw DataError(table.source + ":" + std::to_string(table.header_line) + ": column " + std::to_string(c + 1) +
+                      " has no name");
     }
     const auto [first, inserted] = seen.emplace(name, c);
     if (!inserted) {
-      throw ConfigError(table.source + ":" + std::to_string(table.header_line) + ": column '" + name +
-                        "' appears twice (columns " + std::to_string(first->second + 1) + " and " +
-                        std::to_string(c + 1) + ")");
+      throw DataError(table.source + ":" + std::to_string(table.header_line) + ": column '" + name +
+                      "' appears twice (columns " + std::to_string(first->second + 1) + " and " +
+                      std::to_string(c + 1) + ")");
     }
     int quantity = -1;
     for (int q = 0; q < kBenchColumnCount; ++q) {
@@ -112,8 +112,8 @@ BenchLog nativeBenchLogFromTable(const CsvText& table, DecimalSeparator decimal)
     }
     if (quantity < 0) continue;
     if (column_of[quantity] >= 0) {
-      throw ConfigError(table.source + ":" + std::to_string(table.header_line) +
-                        ": both thrust_g and thrust_n are given; keep one");
+      throw DataError(table.source + ":" + std::to_string(table.header_line) +
+                      ": both thrust_g and thrust_n are given; keep one");
     }
     column_of[quantity] = static_cast<int>(c);
     numeric_columns.push_back(c);
@@ -121,11 +121,11 @@ BenchLog nativeBenchLogFromTable(const CsvText& table, DecimalSeparator decimal)
   for (BenchColumn required : {BenchColumn::kPwm, BenchColumn::kVoltage, BenchColumn::kThrust}) {
     if (column_of[static_cast<int>(required)] < 0) {
       const std::string name = required == BenchColumn::kThrust ? "thrust_g' or 'thrust_n" : benchColumnName(required);
-      throw ConfigError(table.source + ":" + std::to_string(table.header_line) + ": missing column '" + name +
-                        "' (required: pwm_us, voltage_v, and thrust_g or thrust_n)");
+      throw DataError(table.source + ":" + std::to_string(table.header_line) + ": missing column '" + name +
+                      "' (required: pwm_us, voltage_v, and thrust_g or thrust_n)");
     }
   }
-  if (table.rows.empty()) throw ConfigError(table.source + ": no data rows after the header");
+  if (table.rows.empty()) throw DataError(table.source + ": no data rows after the header");
 
   const bool decimal_comma = usesDecimalComma(table, numeric_columns, decimal);
   if (decimal_comma) log.notes.push_back("numbers read with a decimal comma (';'-separated file)");
@@ -135,8 +135,8 @@ BenchLog nativeBenchLogFromTable(const CsvText& table, DecimalSeparator decimal)
     if (!values) {
       const auto column = static_cast<BenchColumn>(q);
       if (column == BenchColumn::kPwm || column == BenchColumn::kVoltage || column == BenchColumn::kThrust) {
-        throw ConfigError(table.source + ":" + std::to_string(table.header_line) + ": column '" +
-                          table.header[column_of[q]] + "' has no values");
+        throw DataError(table.source + ":" + std::to_string(table.header_line) + ": column '" +
+                        table.header[column_of[q]] + "' has no values");
       }
       continue;
     }
@@ -157,8 +157,8 @@ BenchLog nativeBenchLogFromTable(const CsvText& table, DecimalSeparator decimal)
 BenchLog parseNativeBenchCsv(const std::string& text, const std::string& source) {
   const CsvText table = splitCsvText(text, source);
   if (!isNativeBenchHeader(table.header)) {
-    throw ConfigError(source + ":" + std::to_string(table.header_line) +
-                      ": missing column 'pwm_us' (required: pwm_us, voltage_v, and thrust_g or thrust_n)");
+    throw DataError(source + ":" + std::to_string(table.header_line) +
+                    ": missing column 'pwm_us' (required: pwm_us, voltage_v, and thrust_g or thrust_n)");
   }
   return nativeBenchLogFromTable(table);
 }

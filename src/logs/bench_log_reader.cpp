@@ -7,6 +7,7 @@
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/logs/bench_csv.h"
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/logs/tyto_csv.h"
 #include "propulsion_estimator/common/yaml_map.h"
 
@@ -15,9 +16,9 @@ namespace propulsion_estimator {
 BenchLogFormat detectBenchLogFormat(const CsvText& table) {
   if (isNativeBenchHeader(table.header)) return BenchLogFormat::kNative;
   if (isTytoHeader(table.header)) return BenchLogFormat::kTyto;
-  throw ConfigError(table.source + ":" + std::to_string(table.header_line) +
-                    ": not a bench log: the header has neither the native columns (pwm_us, voltage_v, thrust_g or "
-                    "thrust_n) nor an RCbenchmark/Tyto 'ESC signal (\xC2\xB5s)' column");
+  throw DataError(table.source + ":" + std::to_string(table.header_line) +
+                  ": not a bench log: the header has neither the native columns (pwm_us, voltage_v, thrust_g or "
+                  "thrust_n) nor an RCbenchmark/Tyto 'ESC signal (\xC2\xB5s)' column");
 }
 
 BenchLog parseBenchLog(const std::string& text, const std::string& source, const BenchReadOptions& options) {
@@ -48,7 +49,7 @@ std::vector<BenchLogFile> expandBenchLogPaths(const std::vector<std::string>& ar
   for (const std::string& argument : arguments) {
     std::error_code error;
     const fs::file_status status = fs::status(argument, error);
-    if (!fs::exists(status)) throw ConfigError(argument + ": no such file or directory");
+    if (!fs::exists(status)) throw InputError(argument + ": no such file or directory");
     if (!fs::is_directory(status)) {
       add(argument, argument);
       continue;
@@ -57,7 +58,7 @@ std::vector<BenchLogFile> expandBenchLogPaths(const std::vector<std::string>& ar
     for (const fs::directory_entry& entry : fs::directory_iterator(argument)) {
       if (entry.is_regular_file() && entry.path().extension() == ".csv") found.push_back(entry.path().string());
     }
-    if (found.empty()) throw ConfigError(argument + ": directory has no *.csv files");
+    if (found.empty()) throw InputError(argument + ": directory has no *.csv files");
     std::sort(found.begin(), found.end());
     for (const std::string& path : found) add(path, argument);
   }

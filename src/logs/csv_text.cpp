@@ -6,7 +6,7 @@
 #include <cmath>
 #include <memory>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -42,7 +42,7 @@ CsvText splitCsvText(const std::string& text, const std::string& source) {
   }
 
   csv_parser parser;
-  if (csv_init(&parser, CSV_STRICT | CSV_STRICT_FINI) != 0) throw ConfigError(source + ": cannot start the CSV parser");
+  if (csv_init(&parser, CSV_STRICT | CSV_STRICT_FINI) != 0) throw DataError(source + ": cannot start the CSV parser");
   std::unique_ptr<csv_parser, void (*)(csv_parser*)> guard(&parser, csv_free);
 
   Collector collector;
@@ -59,8 +59,8 @@ CsvText splitCsvText(const std::string& text, const std::string& source) {
     } else {
       dropTrailingEmpty(&collector.fields, table.header.size());
       if (collector.fields.size() != table.header.size()) {
-        throw ConfigError(source + ":" + std::to_string(row_line) + ": " + std::to_string(collector.fields.size()) +
-                          " fields, the header has " + std::to_string(table.header.size()) + " columns");
+        throw DataError(source + ":" + std::to_string(row_line) + ": " + std::to_string(collector.fields.size()) +
+                        " fields, the header has " + std::to_string(table.header.size()) + " columns");
       }
       table.rows.push_back({row_line, std::move(collector.fields)});
     }
@@ -91,19 +91,19 @@ CsvText splitCsvText(const std::string& text, const std::string& source) {
     }
     line.push_back('\n');
     if (csv_parse(&parser, line.data(), line.size(), onField, onRowEnd, &collector) != line.size()) {
-      throw ConfigError(source + ":" + std::to_string(line_number) + ": " + csv_strerror(csv_error(&parser)) +
-                        " (a quote inside an unquoted field, or text after a closing quote)");
+      throw DataError(source + ":" + std::to_string(line_number) + ": " + csv_strerror(csv_error(&parser)) +
+                      " (a quote inside an unquoted field, or text after a closing quote)");
     }
     if (collector.row_ended) finishRow();
   }
   if (in_row) {
     if (csv_fini(&parser, onField, onRowEnd, &collector) != 0) {
-      throw ConfigError(source + ":" + std::to_string(row_line) +
-                        ": a quoted field is not closed before the end of the file");
+      throw DataError(source + ":" + std::to_string(row_line) +
+                      ": a quoted field is not closed before the end of the file");
     }
     finishRow();
   }
-  if (!have_header) throw ConfigError(source + ": empty file (no header line)");
+  if (!have_header) throw DataError(source + ": empty file (no header line)");
   return table;
 }
 
@@ -133,7 +133,7 @@ std::optional<double> parseDecimal(const std::string& field, bool decimal_comma)
 bool usesDecimalComma(const CsvText& table, const std::vector<std::size_t>& columns, DecimalSeparator separator) {
   if (separator != DecimalSeparator::kAuto) {
     if (separator == DecimalSeparator::kComma && table.delimiter == ',') {
-      throw ConfigError(table.source + ": decimal commas were asked for, but the fields are separated by ','");
+      throw DataError(table.source + ": decimal commas were asked for, but the fields are separated by ','");
     }
     return separator == DecimalSeparator::kComma;
   }
@@ -163,17 +163,16 @@ std::optional<std::vector<double>> numericColumn(const CsvText& table, std::size
       if (!decimal_comma && table.delimiter == ';' && field.find(',') != std::string::npos) {
         why += " (decimal points were asked for)";
       }
-      throw ConfigError(cellWhere(table, row.line, column) + ": " + why);
+      throw DataError(cellWhere(table, row.line, column) + ": " + why);
     }
     if (!std::isfinite(*value)) {
-      throw ConfigError(cellWhere(table, row.line, column) + ": '" + field + "' is not a finite number");
+      throw DataError(cellWhere(table, row.line, column) + ": '" + field + "' is not a finite number");
     }
     values.push_back(*value);
   }
   if (values.empty()) return std::nullopt;
   if (first_empty) {
-    throw ConfigError(cellWhere(table, first_empty->line, column) +
-                      ": empty cell (the column has values in other rows)");
+    throw DataError(cellWhere(table, first_empty->line, column) + ": empty cell (the column has values in other rows)");
   }
   return values;
 }

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <optional>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
@@ -119,8 +119,8 @@ void applySign(const CsvText& table, const std::string& header, const std::strin
   if (policy == SignPolicy::kAuto) {
     if (negative <= kSignNoiseShare * positive) return;
     if (positive > kSignNoiseShare * negative) {
-      throw ConfigError(table.source + ": column '" + header + "' has both signs (" + range +
-                        "): say how the stand was mounted with " + option + " as-logged or " + option + " negate");
+      throw DataError(table.source + ": column '" + header + "' has both signs (" + range +
+                      "): say how the stand was mounted with " + option + " as-logged or " + option + " negate");
     }
   }
   for (double& value : *values) value = -value;
@@ -143,7 +143,7 @@ BenchLog tytoBenchLogFromTable(const CsvText& table, const BenchReadOptions& opt
   BenchLog log;
   log.source = table.source;
   const std::string header_where = table.source + ":" + std::to_string(table.header_line);
-  if (table.rows.empty()) throw ConfigError(table.source + ": no data rows after the header");
+  if (table.rows.empty()) throw DataError(table.source + ": no data rows after the header");
 
   // Candidate columns of each quantity: the user's choice, else the format's names.
   std::array<std::vector<std::size_t>, kBenchColumnCount> candidates;
@@ -153,8 +153,8 @@ BenchLog tytoBenchLogFromTable(const CsvText& table, const BenchReadOptions& opt
     if (chosen != options.columns.end()) {
       const auto at = std::find(table.header.begin(), table.header.end(), chosen->second);
       if (at == table.header.end()) {
-        throw ConfigError(header_where + ": no column '" + chosen->second + "' for " + benchColumnName(quantity) +
-                          " (--map " + benchColumnName(quantity) + "=...)");
+        throw DataError(header_where + ": no column '" + chosen->second + "' for " + benchColumnName(quantity) +
+                        " (--map " + benchColumnName(quantity) + "=...)");
       }
       candidates[q] = {static_cast<std::size_t>(at - table.header.begin())};
       continue;
@@ -197,22 +197,22 @@ BenchLog tytoBenchLogFromTable(const CsvText& table, const BenchReadOptions& opt
         const std::string names = quantity == BenchColumn::kPwm       ? "ESC signal (\xC2\xB5s)"
                                   : quantity == BenchColumn::kVoltage ? "Voltage (V)"
                                                                       : "Thrust (kgf, gf, N, lbf or ozf)";
-        throw ConfigError(header_where + ": " + what + " '" + names + "'");
+        throw DataError(header_where + ": " + what + " '" + names + "'");
       }
       if (!silent.empty()) log.notes.push_back("no " + quantity_name + ": " + silent.front());
       continue;
     }
     if (logged.size() > 1) {
-      throw ConfigError(header_where + ": two " + quantity_name + " columns with values, '" +
-                        table.header[logged[0].first] + "' and '" + table.header[logged[1].first] +
-                        "': choose one with --map " + quantity_name + "=<column>");
+      throw DataError(header_where + ": two " + quantity_name + " columns with values, '" +
+                      table.header[logged[0].first] + "' and '" + table.header[logged[1].first] +
+                      "': choose one with --map " + quantity_name + "=<column>");
     }
     auto& [column, values] = logged.front();
     const std::string unit = nameAndUnit(table.header[column]).second;
     const std::optional<double> factor = toLogUnit(quantity, unit);
     if (!factor) {
-      throw ConfigError(header_where + ": column '" + table.header[column] + "': unit '" + unit +
-                        "' is not a unit of " + quantity_name);
+      throw DataError(header_where + ": column '" + table.header[column] + "': unit '" + unit + "' is not a unit of " +
+                      quantity_name);
     }
     if (quantity == BenchColumn::kThrust) {
       applySign(table, table.header[column], "--thrust-sign", options.thrust_sign, &values, &log.notes);

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/estimation/tare_file.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
@@ -299,7 +300,7 @@ bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
     try {
       saveTareFile(params_.tare_file, TareRecord{tare.empty_mass_kg, params_.model, model_fingerprint_});
       response.message += ", saved to " + params_.tare_file;
-    } catch (const ConfigError& e) {
+    } catch (const InputError& e) {
       response.message += std::string(", NOT persisted: ") + e.what();
     }
   }

@@ -10,7 +10,8 @@
 #include "bench_sweep_fixture.h"
 #include "propulsion_estimator/fitting/surface_fit.h"
 #include "propulsion_estimator/logs/bench_log_reader.h"
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/fitting/fit_report.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/common/units.h"
@@ -68,7 +69,7 @@ double rmseOn(const pe::PropulsionModel& model, pe::Output output, const pe::Ben
 std::string refusal(const std::vector<pe::BenchLog>& logs, const pe::FitOptions& options = {}) {
   try {
     pe::fitBenchModel(logs, options);
-  } catch (const pe::ConfigError& e) {
+  } catch (const pe::InputError& e) {
     return e.what();
   }
   return "accepted";
@@ -511,7 +512,7 @@ TEST(BenchFitRefusals, LogsBuiltInCodeThatBreakTheReadersGuarantees) {
   auto dataset = [&](const pe::BenchLog& log) {
     try {
       pe::buildBenchDataset({good, log}, {});
-    } catch (const pe::ConfigError& e) {
+    } catch (const pe::DataError& e) {
       return std::string(e.what());
     }
     return std::string("accepted");

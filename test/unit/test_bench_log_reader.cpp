@@ -8,7 +8,8 @@
 
 #include "propulsion_estimator/logs/bench_csv.h"
 #include "propulsion_estimator/logs/bench_log_reader.h"
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/units.h"
 #include "test_paths.h"
 
@@ -19,7 +20,7 @@ namespace {
 std::string refusal(const std::string& text, const pe::BenchReadOptions& options = {}) {
   try {
     pe::parseBenchLog(text, "log.csv", options);
-  } catch (const pe::ConfigError& e) {
+  } catch (const pe::DataError& e) {
     return e.what();
   }
   return "accepted";
@@ -267,7 +268,7 @@ TEST(BenchLogPaths, ExpandsADirectoryToItsCsvFilesSortedEachFileOnce) {
   try {
     pe::expandBenchLogPaths({(dir / "sub" / "none").string()});
     FAIL();
-  } catch (const pe::ConfigError& e) {
+  } catch (const pe::InputError& e) {
     EXPECT_EQ(std::string(e.what()), (dir / "sub" / "none").string() + ": no such file or directory");
   }
   fs::remove_all(dir / "sub");
@@ -276,7 +277,7 @@ TEST(BenchLogPaths, ExpandsADirectoryToItsCsvFilesSortedEachFileOnce) {
   try {
     pe::expandBenchLogPaths({dir.string()});
     FAIL();
-  } catch (const pe::ConfigError& e) {
+  } catch (const pe::InputError& e) {
     EXPECT_EQ(std::string(e.what()), dir.string() + ": directory has no *.csv files");
   }
   fs::remove_all(dir);

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "propulsion_estimator/sim/stand/bench_simulator.h"
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/sim/physics/sim_params_yaml.h"
 #include "propulsion_estimator/common/units.h"
@@ -56,7 +56,7 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
 std::string refusal(const pe::BenchExperiment& experiment) {
   try {
     pe::simulateBench(thesisParams(), {}, experiment, 1);
-  } catch (const pe::ConfigError& e) {
+  } catch (const pe::InputError& e) {
     return e.what();
   }
   return "accepted";

@@ -15,7 +15,7 @@
 
 #include "propulsion_estimator/bag/bag_flight_sink.h"
 #include "propulsion_estimator/bag/flight_bag_reader.h"
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
 namespace pe = propulsion_estimator;
@@ -37,11 +37,11 @@ class FlightBagReader : public testing::Test {
 
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
 
-  // The message on `reader.read(topics, motors)`'s ConfigError, or "" when it reads.
+  // The message on `reader.read(topics, motors)`'s refusal, or "" when it reads.
   static std::string refusal(const std::string& path, const pe::FlightBagTopics& topics = {}, int motors = 4) {
     try {
       pe::FlightBagReader(path).read(topics, motors);
-    } catch (const pe::ConfigError& e) {
+    } catch (const pe::InputError& e) {
       return e.what();
     }
     return "";

@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/common/simulation_error.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_simulator.h"
 #include "propulsion_estimator/sim/physics/sim_params_yaml.h"
@@ -50,7 +52,7 @@ void forSegment(const std::vector<Sample>& samples, const pe::ManifestSegment& s
 std::string refusal(const pe::FlightProfile& profile) {
   try {
     fly(profile);
-  } catch (const pe::ConfigError& e) {
+  } catch (const pe::InputError& e) {
     return e.what();
   }
   return "accepted";
@@ -370,7 +372,7 @@ TEST(FlightSimulator, RefusesAFlightThatDiverges) {
   try {
     pe::simulateFlight(thesisParams(), {}, profile, vehicle, 1, &sink);
     ADD_FAILURE() << "accepted";
-  } catch (const pe::ConfigError& e) {
+  } catch (const pe::SimulationError& e) {
     EXPECT_EQ(std::string(e.what()),
               repoPath("config/sim/default_flight.yaml") + ": the simulation diverged at t = 0.016 s");
   }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/common/yaml_map.h"
@@ -172,7 +173,7 @@ TEST(ModelYaml, RefusesUnreadableAndEmptyFiles) {
   try {
     pe::loadModelFile("/nonexistent/model.yaml");
     FAIL();
-  } catch (const pe::ConfigError& e) {
+  } catch (const pe::InputError& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/model.yaml: cannot open file");
   }
 }

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
@@ -28,7 +28,7 @@ template <typename F>
 std::string refusal(F parse) {
   try {
     parse();
-  } catch (const pe::ConfigError& e) {
+  } catch (const pe::InputError& e) {
     return e.what();
   }
   return "accepted";

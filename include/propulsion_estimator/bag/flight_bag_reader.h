@@ -38,7 +38,7 @@ struct FlightBagTopics {
 // lock, since rosbag loads and unloads a plugin then; no other rosbag::Bag may come or go meanwhile.
 class FlightBagReader {
  public:
-  // Opens `path`. ConfigError "<path>: no such file", "<path>: not a readable bag: <why>",
+  // Opens `path`. InputError "<path>: no such file"; DataError "<path>: not a readable bag: <why>",
   // "<path>: no messages".
   explicit FlightBagReader(const std::string& path);
   ~FlightBagReader();
@@ -53,7 +53,7 @@ class FlightBagReader {
   // channels 1..`motors`. Values are as logged (the battery current keeps the autopilot's sign),
   // except that IMU messages without orientation (covariance -1, REP-145) and rangefinder readings
   // outside the sensor's min_range..max_range are left out. An optional topic that the bag lacks
-  // leaves its stream empty. ConfigError "<path>: <topic>: <problem>" for a required topic
+  // leaves its stream empty. DataError "<path>: <topic>: <problem>" for a required topic
   // without messages, a topic of another type or md5sum than expected, an RCOut message with
   // fewer channels than `motors`, or a malformed message; "<path>: <problem>" when the bag
   // cannot be read to its end.

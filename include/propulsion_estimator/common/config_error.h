@@ -1,15 +1,16 @@
 #pragma once
 
-#include <stdexcept>
 #include <string>
+
+#include "propulsion_estimator/common/input_error.h"
 
 namespace propulsion_estimator {
 
-// Raised for any refused input (file, key, row, parameter). what() is one line that names
-// the source and the offending value, ready to be shown to the user as is.
-class ConfigError : public std::runtime_error {
+// A refused configuration: a key or value of a YAML file (model, simulator parameters, profile,
+// effects, manifest, tare file), a URDF, a node parameter or a command-line option.
+class ConfigError : public InputError {
  public:
-  explicit ConfigError(const std::string& message) : std::runtime_error(message) {}
+  explicit ConfigError(const std::string& message) : InputError(message) {}
 };
 
 }  // namespace propulsion_estimator

@@ -19,7 +19,8 @@ struct TareRecord {
 
 // nullopt when the file does not exist; ConfigError naming the file for anything unreadable.
 std::optional<TareRecord> loadTareFile(const std::string& path);
-// Writes atomically (temporary file + rename) so that a crash never leaves half a file.
+// Writes atomically (temporary file + rename) so that a crash never leaves half a file; InputError
+// naming the file when it cannot be written.
 void saveTareFile(const std::string& path, const TareRecord& record);
 // Removes the file if it exists.
 void removeTareFile(const std::string& path);

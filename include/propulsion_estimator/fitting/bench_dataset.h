@@ -61,9 +61,9 @@ constexpr double kSagNoteV = 0.5;
 
 // Joins the logs: converts units, takes power as voltage x current where a log has current but
 // no power (and says so), derives efficiency samples as thrust / power, and assigns levels.
-// Throws ConfigError "<file>:<line>: <column>: <value> is not a finite number" for a NaN or
-// infinite value, "<file>: ..." for a log without rows, without pwm_us, voltage_v or thrust_n, or
-// with a column whose length is not its number of rows, and for an empty list of logs.
+// Throws DataError "<file>:<line>: <column>: <value> is not a finite number" for a NaN or infinite
+// value, "<file>: ..." for a log without rows, without pwm_us, voltage_v or thrust_n, or with a
+// column whose length is not its number of rows; ConfigError for an empty list of logs.
 BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOptions& options);
 
 }  // namespace propulsion_estimator

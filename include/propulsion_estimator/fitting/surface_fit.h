@@ -79,7 +79,7 @@ struct BenchFit {
 
 // Fits the model: per output the polyXY degrees (up to the option's maxima) with the least
 // held-out error, on inputs centred and scaled to [-1, 1] over the data's domain. Throws
-// ConfigError when the data cannot determine a surface (one voltage level, fewer than 3 PWM
+// DataError when the data cannot determine a surface (one voltage level, fewer than 3 PWM
 // levels, too few points, a constant output) or the metadata is missing or contradictory,
 // saying what is missing.
 BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& options);

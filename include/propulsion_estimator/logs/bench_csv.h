@@ -27,7 +27,7 @@ void writeNativeBenchCsv(const BenchLog& log, std::ostream& out, ThrustUnit thru
 void saveNativeBenchCsv(const BenchLog& log, const std::string& path, ThrustUnit thrust_unit = ThrustUnit::kGram);
 
 // Reads a native log from its text (files go through readBenchLog, which detects the format).
-// Throws ConfigError "<file>:<line>: column <n> '<name>': <problem>" for a cell that is empty,
+// Throws DataError "<file>:<line>: column <n> '<name>': <problem>" for a cell that is empty,
 // text, NaN or infinite, and "<file>:<line>: ..." for a missing required column, a repeated
 // column, a repeated metadata key, an empty file or one without rows.
 BenchLog parseNativeBenchCsv(const std::string& text, const std::string& source);

@@ -13,8 +13,8 @@ enum class BenchLogFormat { kNative, kTyto };
 
 // Detects the format from the header (native column names, or an RCbenchmark/Tyto "ESC signal"
 // column) and reads the log. What the reader decided (a negated thrust, the rpm column it took,
-// decimal commas) is appended to BenchLog::notes. Throws ConfigError naming the file, and the
-// line and column where one is at fault.
+// decimal commas) is appended to BenchLog::notes. Throws DataError naming the file, and the line
+// and column where one is at fault (InputError for a file that cannot be read).
 BenchLog parseBenchLog(const std::string& text, const std::string& source, const BenchReadOptions& options);
 BenchLog readBenchLog(const std::string& path, const BenchReadOptions& options = {});
 BenchLogFormat detectBenchLogFormat(const CsvText& table);
@@ -28,7 +28,7 @@ struct BenchLogFile {
 };
 
 // Command-line log arguments to files: a file stays, a directory stands for its *.csv files
-// (sorted by name, not recursive), each file once. Throws ConfigError for a missing path or an
+// (sorted by name, not recursive), each file once. Throws InputError for a missing path or an
 // empty directory.
 std::vector<BenchLogFile> expandBenchLogPaths(const std::vector<std::string>& arguments);
 

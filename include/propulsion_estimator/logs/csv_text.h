@@ -30,7 +30,7 @@ struct CsvText {
 
 // Splits `text`: strips a UTF-8 byte-order mark, takes lines starting with '#' as comments and
 // skips blank lines; the first other line is the header. The delimiter is ';' when the header
-// line holds a ';', ',' otherwise. Throws ConfigError ("<source>: empty file (no header line)",
+// line holds a ';', ',' otherwise. Throws DataError ("<source>: empty file (no header line)",
 // "<source>:<line>: 5 fields, the header has 4 columns", malformed quoting) naming the line.
 CsvText splitCsvText(const std::string& text, const std::string& source);
 
@@ -43,7 +43,7 @@ enum class DecimalSeparator { kAuto, kPoint, kComma };
 bool usesDecimalComma(const CsvText& table, const std::vector<std::size_t>& columns, DecimalSeparator separator);
 
 // The values of one column as finite numbers; nullopt when every cell is empty (not logged).
-// Throws ConfigError naming the cell for an empty cell among values, text, NaN or infinity.
+// Throws DataError naming the cell for an empty cell among values, text, NaN or infinity.
 std::optional<std::vector<double>> numericColumn(const CsvText& table, std::size_t column, bool decimal_comma);
 
 // A decimal number in a cell: optional sign, digits, one decimal separator ('.' or, when

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/simulation_error.h"
 #include "propulsion_estimator/sim/flight/flight_controller.h"
 #include "propulsion_estimator/sim/physics/gaussian_noise.h"
 #include "propulsion_estimator/sim/physics/lipo_battery.h"
@@ -118,12 +119,12 @@ void checkSegmentEnd(const FlightProfile& profile, const ScheduledSegment& sched
   const std::string at = profile.source + ": segments[" + std::to_string(scheduled.index) + "].type: ";
   if (scheduled.segment.kind == SegmentKind::kHover &&
       !(std::fabs(height_m - scheduled.end_height_m) <= kHoverToleranceM)) {
-    throw ConfigError(at + "the vehicle ended its hover at " + formatPrintf("%.3g", height_m) + " m instead of " +
-                      formatPrintf("%.3g", scheduled.end_height_m) + " m");
+    throw SimulationError(at + "the vehicle ended its hover at " + formatPrintf("%.3g", height_m) + " m instead of " +
+                          formatPrintf("%.3g", scheduled.end_height_m) + " m");
   }
   if (scheduled.segment.kind == SegmentKind::kLand && armed) {
-    throw ConfigError(at + "the vehicle had not landed and disarmed " + formatPrintf("%.3g", kTouchdownS) +
-                      " s after its descent");
+    throw SimulationError(at + "the vehicle had not landed and disarmed " + formatPrintf("%.3g", kTouchdownS) +
+                          " s after its descent");
   }
 }
 
@@ -392,8 +393,8 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
 
     dynamics.step(thrust, torque, density, kFlightStepS);
     if (!dynamics.isFinite()) {
-      throw ConfigError(profile.source +
-                        ": the simulation diverged at t = " + formatPrintf("%.3f", (step + 1) * kFlightStepS) + " s");
+      throw SimulationError(profile.source + ": the simulation diverged at t = " +
+                            formatPrintf("%.3f", (step + 1) * kFlightStepS) + " s");
     }
     checkAttitude(profile, segment, dynamics.attitude(), (step + 1) * kFlightStepS, &flipping_since);
     if (dynamics.touchedGround()) {
@@ -404,8 +405,8 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
     }
     battery.draw(power.current_a, kFlightStepS);
     if (battery.stateOfCharge() < kEmptyStateOfCharge) {
-      throw ConfigError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +
-                        formatPrintf("%.3g", t) + " s into the flight");
+      throw SimulationError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +
+                            formatPrintf("%.3g", t) + " s into the flight");
     }
   }
 

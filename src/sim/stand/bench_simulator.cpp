@@ -6,6 +6,7 @@
 #include <random>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/simulation_error.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/sim/physics/lipo_battery.h"
 #include "propulsion_estimator/common/number_format.h"
@@ -142,8 +143,8 @@ void runOnBattery(const SimParams& params, const SimEffects& effects, const Benc
   for (;; ++step) {
     const double t = step * kStepS;
     if (t > kMaxRunS) {
-      throw ConfigError(what + " did not reach the " + formatNumber(experiment.cutoff_voltage_v) + " V cut-off in " +
-                        formatNumber(kMaxRunS / 3600.0) + " h");
+      throw SimulationError(what + " did not reach the " + formatNumber(experiment.cutoff_voltage_v) +
+                            " V cut-off in " + formatNumber(kMaxRunS / 3600.0) + " h");
     }
     // The state at t; the call then advances the rotor and the windings to t + step.
     const PowerTrainState& state =
@@ -157,8 +158,8 @@ void runOnBattery(const SimParams& params, const SimEffects& effects, const Benc
     }
     battery.draw(state.current_a, kStepS);
     if (battery.stateOfCharge() <= 0.0) {
-      throw ConfigError(what + " emptied the battery before the measured voltage fell below the " +
-                        formatNumber(experiment.cutoff_voltage_v) + " V cut-off");
+      throw SimulationError(what + " emptied the battery before the measured voltage fell below the " +
+                            formatNumber(experiment.cutoff_voltage_v) + " V cut-off");
     }
   }
   *time += step * kStepS;

@@ -42,7 +42,7 @@ void checkFlight(const SimParams& params, const SimEffects& effects, const Fligh
 // any, scaled down: scaledPropeller) and all fed by its battery, in the bench's air unless the
 // air_density effect sets another. Emits every reading to `sink` at its
 // rate, all streams starting at t = 0. The same inputs and seed give the same flight. Before it
-// flies it refuses what checkFlight refuses. While flying it throws ConfigError
+// flies it refuses what checkFlight refuses. While flying it throws SimulationError
 // "<profile>: segments[i].type: the vehicle ended its hover at ..." or "... had not landed and
 // disarmed ..." for a segment that did not end as scripted, "<profile>: segments[i].type: the
 // vehicle flipped over: roll R deg, pitch P deg at t = X s, beyond 60 deg since Y s" when roll or

@@ -58,7 +58,8 @@ BenchExperiment thesisBenchExperiment(BenchExperimentKind kind, const SimParams&
 // the same log. `truth`, when given, receives the same rows without sensor noise. Throws
 // ConfigError "constant thrust of 2000 g: only 683 g at 1900 us" (or "already ... at" the bottom
 // of the range) for a thrust the PWM range cannot give from the run's charged battery, by more
-// than three load-cell sigmas.
+// than three load-cell sigmas; SimulationError for a discharge or constant-thrust run that does not
+// reach its cut-off voltage in time or empties the battery before.
 BenchLog simulateBench(const SimParams& params, const SimEffects& effects, const BenchExperiment& experiment,
                        std::uint64_t seed, BenchLog* truth = nullptr);
 
