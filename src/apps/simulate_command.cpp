@@ -11,6 +11,7 @@
 #include "propulsion_estimator/sim/stand/bench_simulator.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_simulator.h"
@@ -21,6 +22,7 @@
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "propulsion_estimator/bag/bag_flight_sink.h"
 #include "propulsion_estimator/logs/bench_csv.h"
+#include "tool_command.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -117,13 +119,19 @@ void runFlight(const FlightOptions& options) {
   checkFlight(params, effects, profile, vehicle);
   const std::string active = options.bag + ".active";
   FlightResult result;
+  const auto remove_active = [&] {
+    std::error_code ignored;
+    std::filesystem::remove(active, ignored);
+  };
   try {
     BagFlightSink sink(active, compression);
     result = simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
     sink.close();
+  } catch (const rosbag::BagException& e) {
+    remove_active();
+    throw InputError(options.bag + ": " + e.what());
   } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(active, ignored);
+    remove_active();
     throw;
   }
   std::error_code error;
@@ -205,22 +213,11 @@ int runSimulateCommand(int argc, char** argv) {
   flight_command->add_option("--compression", flight.compression, "Bag compression: none (default), bz2 or lz4")
       ->check(CLI::IsMember({"none", "bz2", "lz4"}));
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  try {
+  return runToolCommand("simulate", app, argc, argv, [&] {
     if (bench_command->parsed()) runBench(bench);
     if (flight_command->parsed()) runFlight(flight);
-  } catch (const InputError& e) {
-    std::cerr << "simulate " << (bench_command->parsed() ? "bench" : "flight") << ": " << e.what() << "\n";
-    return 1;
-  } catch (const rosbag::BagException& e) {
-    std::cerr << "simulate flight: " << flight.bag << ": " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }
 
 }  // namespace propulsion_estimator

@@ -7,18 +7,31 @@
 
 namespace propulsion_estimator {
 
-int runToolCommand(const char* name, CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
+namespace {
+
+// The tool's name and the subcommand the command line chose, for messages: "simulate bench".
+std::string commandName(const std::string& name, const CLI::App& app) {
+  std::string command = name;
+  for (const CLI::App* subcommand : app.get_subcommands()) command += " " + subcommand->get_name();
+  return command;
+}
+
+}  // namespace
+
+int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help
+    std::fprintf(stderr, "%s: %s (see --help)\n", commandName(name, app).c_str(), e.what());
+    return 2;
   }
   try {
     return run();
   } catch (const InputError& e) {
-    std::fprintf(stderr, "%s: %s\n", name, e.what());
+    std::fprintf(stderr, "%s: %s\n", commandName(name, app).c_str(), e.what());
   } catch (const std::filesystem::filesystem_error& e) {
-    std::fprintf(stderr, "%s: %s\n", name, e.what());
+    std::fprintf(stderr, "%s: %s\n", commandName(name, app).c_str(), e.what());
   }
   return 1;
 }

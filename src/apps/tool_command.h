@@ -1,14 +1,16 @@
 #pragma once
 
 #include <functional>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 namespace propulsion_estimator {
 
-// Parses the command line of tool `name` and runs it: exit status 2 for a usage error (CLI11
-// prints it), 1 with one line "<name>: <reason>" on stderr for a refused input, else what `run`
-// returns.
-int runToolCommand(const char* name, CLI::App& app, int argc, char** argv, const std::function<int()>& run);
+// Parses the command line of tool `name` and runs it. Every failure is one line on stderr,
+// "<name> <subcommand>: <reason>" (the subcommand when one was given): exit status 2 for a usage
+// error, 1 for a refused input (InputError) or a file system error; --help prints the help and
+// exits 0; otherwise the status is what `run` returns.
+int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv, const std::function<int()>& run);
 
 }  // namespace propulsion_estimator

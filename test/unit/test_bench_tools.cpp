@@ -1,5 +1,5 @@
-// The two installed command lines, run as a user runs them (the built executables, which find
-// the plot script next to themselves).
+// The installed command lines, run as a user runs them (the built executables, which find the
+// plot script next to themselves).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -202,6 +202,37 @@ TEST_F(BenchTools, FitSurfacesUsageAndReaderErrors) {
   EXPECT_EQ(map.err,
             "fit_surfaces: 'speed' is not a bench quantity (one of time_s, pwm_us, voltage_v, thrust_n, current_a, "
             "power_w, rpm, ambient_temp_c, motor_temp_c, pressure_pa)\n");
+}
+
+TEST_F(BenchTools, SimulateAnswersLikeTheOtherTools) {
+  const std::string params = repoPath("config/sim/e300_dji2212_dji9443.yaml");
+  const std::string csv = (dir_ / "sweep.csv").string();
+  const ToolRun bad_option =
+      run(PE_SIMULATE, "bench --params " + params + " --experiment pwm_sweep --output " + csv + " --bogus");
+  EXPECT_EQ(bad_option.status, 2);
+  EXPECT_EQ(bad_option.err, "simulate bench: The following argument was not expected: --bogus (see --help)\n");
+  const ToolRun bad_value =
+      run(PE_SIMULATE, "flight --params " + params + " --profile p.yaml --bag f.bag --compression zip");
+  EXPECT_EQ(bad_value.status, 2);
+  EXPECT_EQ(bad_value.err, "simulate flight: --compression: zip not in {none,bz2,lz4} (see --help)\n");
+  const ToolRun no_command = run(PE_SIMULATE, "");
+  EXPECT_EQ(no_command.status, 2);
+  EXPECT_EQ(no_command.err, "simulate: A subcommand is required (see --help)\n");
+  const ToolRun refused =
+      run(PE_SIMULATE, "bench --params " + (dir_ / "none.yaml").string() + " --experiment pwm_sweep --output " + csv);
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_EQ(refused.err, "simulate bench: " + (dir_ / "none.yaml").string() + ": cannot open file\n");
+  EXPECT_FALSE(fs::exists(csv));
+  const ToolRun help = run(PE_SIMULATE, "bench --help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("--experiment"), std::string::npos) << help.out;
+  // The same line for the other tools.
+  const ToolRun fit = run(PE_FIT_SURFACES, "--out x.yaml --bogus a.csv");
+  EXPECT_EQ(fit.status, 2);
+  EXPECT_EQ(fit.err, "fit_surfaces: The following argument was not expected: --bogus (see --help)\n");
+  const ToolRun compare = run(PE_COMPARE_MODELS, "--bogus a.yaml b.yaml");
+  EXPECT_EQ(compare.status, 2);
+  EXPECT_EQ(compare.err, "compare_models: The following argument was not expected: --bogus (see --help)\n");
 }
 
 TEST_F(BenchTools, CompareModelsPrintsTheChapter7TableAndWritesTheReport) {
