@@ -133,8 +133,10 @@ int runFitSurfaces(int argc, char** argv) {
                  "derived (thrust / power) or surface (fitted to thrust / power samples)")
       ->check(CLI::IsMember({"derived", "surface"}))
       ->capture_default_str();
+  // One output per --without: the logs may follow it.
   app.add_option("--without", args.without, "Leave an output out of the model: current, power, rpm (repeatable)")
-      ->check(CLI::IsMember({"current", "power", "rpm"}));
+      ->check(CLI::IsMember({"current", "power", "rpm"}))
+      ->allow_extra_args(false);
   app.add_option("--outside", args.outside, "What the model does outside its domain: clamp, extrapolate, reject")
       ->check(CLI::IsMember({"clamp", "extrapolate", "reject"}))
       ->capture_default_str();

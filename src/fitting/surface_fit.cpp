@@ -19,6 +19,8 @@
 namespace propulsion_estimator {
 namespace {
 
+constexpr char kUnknownName[] = "unknown";
+
 const char* fileUnit(Output output) {
   switch (output) {
     case Output::kThrust:
@@ -48,35 +50,45 @@ std::string nameList(const std::vector<std::string>& names, std::size_t shown) {
 
 // ---- metadata ---------------------------------------------------------------------------------
 
-// The one text value the logs agree on for `key`, or the option; DataError when they disagree
-// or none gives it.
-std::string metadataText(const std::vector<BenchLog>& logs, const std::string& key,
-                         const std::optional<std::string>& option) {
-  if (option) return *option;
-  std::string value, from;
+// The one text value the logs agree on for `key`, or the option; nullopt when neither gives one,
+// DataError when the logs disagree.
+std::optional<std::string> metadataText(const std::vector<BenchLog>& logs, const std::string& key,
+                                        const std::optional<std::string>& option) {
+  if (option) return option;
+  std::optional<std::string> value;
+  std::string from;
   for (const BenchLog& log : logs) {
     const auto found = log.metadata.find(key);
     if (found == log.metadata.end()) continue;
-    if (!from.empty() && found->second != value) {
-      throw DataError("logs disagree on " + key + ": '" + value + "' (" + from + ") and '" + found->second + "' (" +
+    if (value && found->second != *value) {
+      throw DataError("logs disagree on " + key + ": '" + *value + "' (" + from + ") and '" + found->second + "' (" +
                       log.source + "); pass --" + key + " to say which the model records");
     }
     value = found->second;
     from = log.source;
   }
-  if (from.empty()) throw DataError(key + " unknown: no log has a '# " + key + ":' line; pass --" + key);
   return value;
 }
 
+// A name that only describes the combination (esc, motor, propeller): without one the model
+// records kUnknownName, and a note says so.
+std::string describingName(const std::vector<BenchLog>& logs, const std::string& key,
+                           const std::optional<std::string>& option, std::vector<std::string>* notes) {
+  if (const std::optional<std::string> name = metadataText(logs, key, option)) return *name;
+  notes->push_back(key + ": no log has a '# " + key + ":' line; the model records '" + kUnknownName + "' (pass --" +
+                   key + " to name it)");
+  return kUnknownName;
+}
+
 // A bench condition: the option, else the mean of the logs' metadata values, else the mean of
-// a logged column; DataError naming the option when none gives it. `origin` says where the
-// value came from, for a refusal of it.
-double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key, BenchColumn column,
-                      const std::string& option_name, const std::optional<double>& option,
-                      std::vector<std::string>* notes, std::string* origin) {
+// a logged column; nullopt when none gives it. `origin` says where the value came from, for a
+// refusal of it.
+std::optional<double> metadataNumber(const std::vector<BenchLog>& logs, const std::string& key, BenchColumn column,
+                                     const std::string& option_name, const std::optional<double>& option,
+                                     std::vector<std::string>* notes, std::string* origin) {
   if (option) {
     *origin = "given as " + option_name;
-    return *option;
+    return option;
   }
   double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
   int count = 0;
@@ -103,10 +115,7 @@ double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key,
     hi = std::max(hi, value);
     ++count;
   }
-  if (count == 0) {
-    throw DataError(key + " unknown: no log has a '# " + key + ":' line or a " + benchColumnName(column) +
-                    " column; pass " + option_name);
-  }
+  if (count == 0) return std::nullopt;
   if (count > 1 && hi > lo) {
     notes->push_back(key + ": mean of " + std::to_string(count) + " logs (" + formatPrintf("%g", lo) + " to " +
                      formatPrintf("%g", hi) + ")");
@@ -115,18 +124,54 @@ double metadataNumber(const std::vector<BenchLog>& logs, const std::string& key,
   return sum / count;
 }
 
+// What supplies a bench condition, for the refusal that lists the missing ones.
+std::string conditionSources(const std::string& key, std::optional<BenchColumn> column) {
+  std::string sources = key + " (a '# " + key + ":' line";
+  if (column) {
+    const std::string name = benchColumnName(*column);
+    sources += std::string(" or ") + (name.find_first_of("aeiou") == 0 ? "an " : "a ") + name + " column";
+  }
+  return sources + ")";
+}
+
 ModelMetadata resolveMetadata(const std::vector<BenchLog>& logs, const FitOptions& options,
                               std::vector<std::string>* notes) {
   ModelMetadata meta;
-  meta.esc = metadataText(logs, "esc", options.esc);
-  meta.motor = metadataText(logs, "motor", options.motor);
-  meta.propeller = metadataText(logs, "propeller", options.propeller);
+  meta.esc = describingName(logs, "esc", options.esc, notes);
+  meta.motor = describingName(logs, "motor", options.motor, notes);
+  meta.propeller = describingName(logs, "propeller", options.propeller, notes);
+  // The physics: the air the thrust was measured in and the kind of supply. Every one missing is
+  // named at once.
+  std::vector<std::string> missing, missing_options;
   std::string temperature_origin, pressure_origin;
-  meta.bench_air_temperature_c = metadataNumber(logs, "air_temperature_c", BenchColumn::kAmbientTemp,
-                                                "--air-temperature-c", options.air_temperature_c, notes,
-                                                &temperature_origin);
-  meta.bench_air_pressure_pa = metadataNumber(logs, "air_pressure_pa", BenchColumn::kPressure, "--air-pressure-pa",
-                                              options.air_pressure_pa, notes, &pressure_origin);
+  const std::optional<double> temperature_c =
+      metadataNumber(logs, "air_temperature_c", BenchColumn::kAmbientTemp, "--air-temperature-c",
+                     options.air_temperature_c, notes, &temperature_origin);
+  if (!temperature_c) {
+    missing.push_back(conditionSources("air_temperature_c", BenchColumn::kAmbientTemp));
+    missing_options.push_back("--air-temperature-c");
+  }
+  const std::optional<double> pressure_pa =
+      metadataNumber(logs, "air_pressure_pa", BenchColumn::kPressure, "--air-pressure-pa", options.air_pressure_pa,
+                     notes, &pressure_origin);
+  if (!pressure_pa) {
+    missing.push_back(conditionSources("air_pressure_pa", BenchColumn::kPressure));
+    missing_options.push_back("--air-pressure-pa");
+  }
+  std::optional<std::string> supply;
+  if (!options.supply) {
+    supply = metadataText(logs, "supply", std::nullopt);
+    if (!supply) {
+      missing.push_back(conditionSources("supply", std::nullopt));
+      missing_options.push_back("--supply");
+    }
+  }
+  if (!missing.empty()) {
+    throw DataError("no log gives the bench's " + nameList(missing, missing.size()) + ": pass " +
+                    nameList(missing_options, missing_options.size()));
+  }
+  meta.bench_air_temperature_c = *temperature_c;
+  meta.bench_air_pressure_pa = *pressure_pa;
   // The loader's own check, so that fit_surfaces never writes a model it would refuse.
   try {
     meta.validate();
@@ -136,12 +181,10 @@ ModelMetadata resolveMetadata(const std::vector<BenchLog>& logs, const FitOption
   }
   if (options.supply) {
     meta.supply = *options.supply;
+  } else if (*supply == "regulated" || *supply == "battery") {
+    meta.supply = *supply == "battery" ? SupplyKind::kBattery : SupplyKind::kRegulated;
   } else {
-    const std::string supply = metadataText(logs, "supply", std::nullopt);
-    if (supply != "regulated" && supply != "battery") {
-      throw DataError("metadata supply: '" + supply + "' is neither regulated nor battery");
-    }
-    meta.supply = supply == "battery" ? SupplyKind::kBattery : SupplyKind::kRegulated;
+    throw DataError("metadata supply: '" + *supply + "' is neither regulated nor battery");
   }
   std::string names;
   for (std::size_t l = 0; l < logs.size() && l < 4; ++l) {
@@ -572,8 +615,14 @@ BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& opti
   std::string validation_error;
   try {
     validateModelOnGrid(final_model);
-  } catch (const ConfigError& e) {
+  } catch (const FieldError& e) {
     validation_error = e.what();
+    // An output the model can do without: say how to have the rest.
+    for (Output output : {Output::kCurrent, Output::kPower, Output::kRpm}) {
+      if (e.field() == std::string("outputs.") + outputName(output)) {
+        validation_error += std::string("; --without ") + outputName(output) + " writes the rest of the model";
+      }
+    }
   }
   return BenchFit{std::move(final_model), validation_error, std::move(data), grouping.kind, grouping.description,
                   reports, notes, options.parsimony};

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -15,10 +15,9 @@ double gridValue(double lo, double hi, int k, int n) { return n == 1 ? lo : lo +
 
 [[noreturn]] void refuse(Output output, double value, const std::string& unit, double x, double v,
                          const std::string& why) {
-  std::ostringstream message;
-  message << "outputs." << outputName(output) << ": " << value << " " << unit << " at pwm_us=" << x
-          << ", voltage_v=" << v << ": " << why;
-  throw ConfigError(message.str());
+  std::ostringstream problem;
+  problem << value << " " << unit << " at pwm_us=" << x << ", voltage_v=" << v << ": " << why;
+  throw FieldError(std::string("outputs.") + outputName(output), problem.str());
 }
 
 }  // namespace

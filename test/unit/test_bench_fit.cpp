@@ -451,12 +451,41 @@ TEST(BenchFitRefusals, MissingOrContradictoryMetadata) {
   pe::FitOptions motor;
   motor.motor = "M";
   EXPECT_EQ(refusal(logs, motor),
-            "air_temperature_c unknown: no log has a '# air_temperature_c:' line or a ambient_temp_c column; pass "
-            "--air-temperature-c");
+            "no log gives the bench's air_temperature_c (a '# air_temperature_c:' line or an ambient_temp_c column): "
+            "pass --air-temperature-c");
   logs[0].column(pe::BenchColumn::kAmbientTemp).assign(logs[0].rows(), 24.0);
   const pe::BenchFit fit = pe::fitBenchModel(logs, motor);
   EXPECT_DOUBLE_EQ(fit.model.metadata().bench_air_temperature_c.value(), 24.0);
   EXPECT_EQ(fit.model.metadata().supply, pe::SupplyKind::kBattery);
+}
+
+TEST(BenchFitRefusals, EveryMissingBenchConditionInOneMessageAndUnknownNames) {
+  std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                    gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)};
+  for (pe::BenchLog& log : logs) log.metadata.clear();
+  EXPECT_EQ(refusal(logs),
+            "no log gives the bench's air_temperature_c (a '# air_temperature_c:' line or an ambient_temp_c column), "
+            "air_pressure_pa (a '# air_pressure_pa:' line or a pressure_pa column) and supply (a '# supply:' line): "
+            "pass --air-temperature-c, --air-pressure-pa and --supply");
+  pe::FitOptions physics;
+  physics.supply = pe::SupplyKind::kRegulated;
+  physics.air_pressure_pa = 101325.0;
+  EXPECT_EQ(refusal(logs, physics),
+            "no log gives the bench's air_temperature_c (a '# air_temperature_c:' line or an ambient_temp_c column): "
+            "pass --air-temperature-c");
+  // The names only describe the combination: without them the model says "unknown", and the notes why.
+  physics.air_temperature_c = 20.0;
+  physics.propeller = "DJI 9443";
+  const pe::BenchFit fit = pe::fitBenchModel(logs, physics);
+  EXPECT_EQ(fit.model.metadata().esc, "unknown");
+  EXPECT_EQ(fit.model.metadata().motor, "unknown");
+  EXPECT_EQ(fit.model.metadata().propeller, "DJI 9443");
+  for (const char* key : {"esc", "motor"}) {
+    const std::string note = std::string(key) + ": no log has a '# " + key + ":' line; the model records 'unknown' " +
+                             "(pass --" + key + " to name it)";
+    EXPECT_NE(std::find(fit.notes.begin(), fit.notes.end(), note), fit.notes.end()) << note;
+    EXPECT_NE(pe::fitReportMarkdown(fit, "m.yaml").find("- " + note + "\n"), std::string::npos) << note;
+  }
 }
 
 TEST(BenchFitRefusals, ReportsAModelThatFailsTheLoadersGridCheckInsteadOfHidingIt) {

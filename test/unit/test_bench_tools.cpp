@@ -161,6 +161,68 @@ TEST_F(BenchTools, FitSurfacesReportsButDoesNotWriteAModelTheLoaderWouldRefuse) 
             std::string::npos);
 }
 
+TEST_F(BenchTools, FitSurfacesNamesEveryMissingBenchConditionAtOnceAndLeavesNamesUnknown) {
+  // Real RCbenchmark exports: no '# key: value' lines at all.
+  const std::string logs = " " + strawson("g1_7.csv") + " " + strawson("g1_11.csv");
+  const std::string out = "--out " + (dir_ / "g1.yaml").string();
+  const ToolRun bare = run(PE_FIT_SURFACES, out + logs);
+  EXPECT_EQ(bare.status, 1);
+  EXPECT_EQ(bare.err,
+            "fit_surfaces: no log gives the bench's air_temperature_c (a '# air_temperature_c:' line or an "
+            "ambient_temp_c column), air_pressure_pa (a '# air_pressure_pa:' line or a pressure_pa column) and supply "
+            "(a '# supply:' line): pass --air-temperature-c, --air-pressure-pa and --supply\n");
+  EXPECT_FALSE(fs::exists(dir_ / "g1.yaml"));
+  const ToolRun pressure = run(PE_FIT_SURFACES, out + " --supply regulated --air-temperature-c 20" + logs);
+  EXPECT_EQ(pressure.status, 1);
+  EXPECT_EQ(pressure.err,
+            "fit_surfaces: no log gives the bench's air_pressure_pa (a '# air_pressure_pa:' line or a pressure_pa "
+            "column): pass --air-pressure-pa\n");
+  // The names only describe the combination: what neither the logs nor the options give is "unknown".
+  const ToolRun named = run(PE_FIT_SURFACES, out +
+                                                 " --supply regulated --air-temperature-c 20 --air-pressure-pa 101325 "
+                                                 "--motor 'Lumenier RX2206-13 2000kv'" +
+                                                 logs);
+  ASSERT_EQ(named.status, 0) << named.err;
+  for (const char* key : {"esc", "propeller"}) {
+    EXPECT_NE(named.out.find("note: " + std::string(key) + ": no log has a '# " + key +
+                             ":' line; the model records 'unknown' (pass --" + key + " to name it)\n"),
+              std::string::npos)
+        << named.out;
+  }
+  EXPECT_EQ(named.out.find("note: motor:"), std::string::npos) << named.out;
+  const pe::PropulsionModel model = pe::loadModelFile((dir_ / "g1.yaml").string());
+  EXPECT_EQ(model.metadata().esc, "unknown");
+  EXPECT_EQ(model.metadata().motor, "Lumenier RX2206-13 2000kv");
+  EXPECT_EQ(model.metadata().propeller, "unknown");
+}
+
+TEST_F(BenchTools, FitSurfacesRefusesAModelWhoseRpmFailsTheLoadersCheckAndSaysHowToWriteTheRest) {
+  // An ESC whose telemetry sends the electrical rpm as a signed 16-bit number: above 32767 the
+  // column reads negative, and the rpm surface with it at the top of the PWM range.
+  for (double volts : {11.1, 12.0}) {
+    std::ofstream log(dir_ / ("sweep_" + std::to_string(static_cast<int>(volts)) + ".csv"));
+    log << "# esc: E\n# motor: M\n# propeller: P\n# supply: regulated\n# air_temperature_c: 20\n"
+           "# air_pressure_pa: 100000\npwm_us,voltage_v,thrust_g,rpm\n";
+    for (int x = 1100; x <= 1900; x += 100) {
+      const int electrical_rpm = static_cast<int>(60.0 * (x - 1000) * volts / 11.1);
+      log << x << "," << volts << "," << 0.001 * (x - 1000) * (x - 1000) * volts / 11.1 << ","
+          << (electrical_rpm > 32767 ? electrical_rpm - 65536 : electrical_rpm) << "\n";
+    }
+  }
+  const std::string logs = " " + (dir_ / "sweep_11.csv").string() + " " + (dir_ / "sweep_12.csv").string();
+  const ToolRun r = run(PE_FIT_SURFACES, "--out " + (dir_ / "m.yaml").string() + logs);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: the fitted model fails the loader's check and was not written: outputs.rpm: -16628.9 rpm at "
+            "pwm_us=1900, voltage_v=11.1: rpm must not be negative at the top of the PWM range; --without rpm writes "
+            "the rest of the model\n");
+  EXPECT_FALSE(fs::exists(dir_ / "m.yaml"));
+  // As the message says (and before the logs: --without takes one output at a time).
+  const ToolRun without = run(PE_FIT_SURFACES, "--out " + (dir_ / "m.yaml").string() + " --without rpm" + logs);
+  ASSERT_EQ(without.status, 0) << without.err;
+  EXPECT_EQ(pe::loadModelFile((dir_ / "m.yaml").string()).output(pe::Output::kRpm).source, pe::OutputSource::kNone);
+}
+
 TEST_F(BenchTools, FitSurfacesSaysWhenThePlotsCannotBeDrawn) {
   const std::string logs = " " + strawson("g1_7.csv") + " " + strawson("g1_11.csv");
   const std::string out = "--out " + (dir_ / "g1.yaml").string() + " --report " + (dir_ / "r").string() + " ";

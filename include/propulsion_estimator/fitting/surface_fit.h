@@ -35,6 +35,8 @@ struct FitOptions {
   LevelOptions levels;
   // Model metadata; each overrides the logs' "# key: value" lines (esc, motor, propeller,
   // air_temperature_c, air_pressure_pa, supply) and their ambient_temp_c / pressure_pa columns.
+  // A name neither gives is recorded as "unknown" with a note; the bench air and the supply are
+  // physics and required.
   std::optional<std::string> esc, motor, propeller;
   std::optional<double> air_temperature_c, air_pressure_pa;
   std::optional<SupplyKind> supply;
@@ -67,7 +69,8 @@ struct OutputFitReport {
 struct BenchFit {
   PropulsionModel model;
   // Empty when the model passes the loader's grid check (model_validation.h); otherwise why
-  // not: such a model must not be written.
+  // not: such a model must not be written. When current, power or rpm fails, it adds that
+  // --without that output writes the rest.
   std::string validation_error;
   BenchDataset data;
   FitGrouping grouping = FitGrouping::kVoltageLevel;  // the one used (never kAuto)
@@ -80,8 +83,8 @@ struct BenchFit {
 // Fits the model: per output the polyXY degrees (up to the option's maxima) with the least
 // held-out error, on inputs centred and scaled to [-1, 1] over the data's domain. Throws
 // DataError when the data cannot determine a surface (one voltage level, fewer than 3 PWM
-// levels, too few points, a constant output) or the metadata is missing or contradictory,
-// saying what is missing.
+// levels, too few points, a constant output), when the logs contradict each other's metadata, and
+// when neither the logs nor the options give the bench air or the supply, naming every one missing.
 BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& options);
 
 }  // namespace propulsion_estimator

@@ -4,7 +4,7 @@
 
 namespace propulsion_estimator {
 
-// Refuses (ConfigError naming the output and a grid point) a model whose outputs are not finite
+// Refuses (FieldError "outputs.<output>" naming a grid point) a model whose outputs are not finite
 // anywhere on a 36 x 15 grid over its domain (ends included), whose rational surfaces have a pole
 // in the domain, whose thrust, current, power or rpm is negative at the top of the PWM range, or
 // whose efficiency is negative anywhere.
