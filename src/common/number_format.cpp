@@ -15,8 +15,8 @@ std::string formatNumber(double value) {
   return buffer;
 }
 
-std::string formatPrintf(const char* pattern, double value, const char* nan_text) {
-  if (nan_text != nullptr && std::isnan(value)) return nan_text;
+std::string formatPrintf(const char* pattern, double value, const char* missing) {
+  if (missing != nullptr && !std::isfinite(value)) return missing;
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), pattern, value);
   return buffer;

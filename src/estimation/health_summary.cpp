@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
@@ -40,13 +40,7 @@ double rate(std::uint64_t now, std::uint64_t before, double seconds) {
 
 }  // namespace
 
-void HealthConfig::validate() const {
-  if (!(domain_warn_fraction >= 0.0 && domain_warn_fraction <= 1.0)) {
-    std::ostringstream message;
-    message << "domain_warn_fraction: must be in [0, 1], got " << domain_warn_fraction;
-    throw ConfigError(message.str());
-  }
-}
+void HealthConfig::validate() const { requireWithin("domain_warn_fraction", domain_warn_fraction, 0.0, 1.0); }
 
 HealthStatus judgeInputs(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
                          const HealthConfig& config) {

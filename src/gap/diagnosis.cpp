@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <limits>
 #include <map>
 #include <random>
 #include <set>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/gap/blocks.h"
 #include "propulsion_estimator/gap/effect_fit.h"
@@ -19,7 +19,6 @@ namespace propulsion_estimator {
 namespace gap {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 using effects::Kind;
 
 // Held-out predictions of one set of effects: each block's relative residual in both views,
@@ -233,7 +232,7 @@ void Diagnoser::cut() {
     for (const Block& block : cut.blocks) group = std::max(group, block.group + 1);
     blocks_.insert(blocks_.end(), cut.blocks.begin(), cut.blocks.end());
   }
-  if (blocks_.empty()) throw ConfigError("diagnose_gap: no usable sample in any weighed segment of any flight");
+  if (blocks_.empty()) throw DataError("diagnose_gap: no usable sample in any weighed segment of any flight");
   for (const Block& block : blocks_) all_.push_back(&block);
 }
 
@@ -258,8 +257,7 @@ void Diagnoser::findUnits() {
 effects::ModelEffects Diagnoser::references() const {
   effects::ModelEffects references;
   references.bench_air_density_kg_m3 = model_.metadata().benchAirDensity();
-  references.motor_reference_c =
-      model_.metadata().bench_air_temperature_c.value_or(std::numeric_limits<double>::quiet_NaN());
+  references.motor_reference_c = model_.metadata().bench_air_temperature_c.value_or(kNaN);
   if (vehicle_.hasGeometry()) {
     double height = 0.0;
     for (const Rotor& rotor : vehicle_.rotors) height += rotor.position_m.z() / vehicle_.rotors.size();

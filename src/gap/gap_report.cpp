@@ -13,11 +13,6 @@ namespace propulsion_estimator {
 namespace gap {
 namespace {
 
-// Numbers in reports: fixed decimals, and "n/a" (YAML: null) where a figure could not be computed.
-std::string fixed(double value, const char* pattern = "%.2f") {
-  return std::isfinite(value) ? formatPrintf(pattern, value) : "n/a";
-}
-
 void emitNumber(YAML::Emitter& out, double value, const char* pattern = "%.4g") {
   if (std::isfinite(value)) {
     out << YAML::Value << formatPrintf(pattern, value);
@@ -41,8 +36,9 @@ void emitStats(YAML::Emitter& out, const ResidualStats& stats) {
 }
 
 std::string statsRow(const std::string& label, const ResidualStats& stats) {
-  return "| " + label + " | " + std::to_string(stats.samples) + " | " + fixed(stats.bias_pct) + " | " +
-         fixed(stats.rmse_pct) + " | " + fixed(stats.bias_n, "%.3f") + " |\n";
+  return "| " + label + " | " + std::to_string(stats.samples) + " | " + formatPrintf("%.2f", stats.bias_pct, "n/a") +
+         " | " + formatPrintf("%.2f", stats.rmse_pct, "n/a") + " | " + formatPrintf("%.3f", stats.bias_n, "n/a") +
+         " |\n";
 }
 
 const char* effectMeaning(effects::Kind kind) {
@@ -228,8 +224,8 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
   md << statsRow("all flights", diagnosis.overall);
   for (const FlightGap& flight : diagnosis.flights) md << statsRow(flight.name, flight.stats);
   for (const BenchGap& bench : diagnosis.bench) md << statsRow("bench: " + bench.source, bench.stats);
-  md << "\nPayload error of the node, tare on the lightest weighed segment: " << fixed(diagnosis.payload_err_pct)
-     << " % (RMS over the heavier segments).\n\n";
+  md << "\nPayload error of the node, tare on the lightest weighed segment: "
+     << formatPrintf("%.2f", diagnosis.payload_err_pct, "n/a") << " % (RMS over the heavier segments).\n\n";
   if (!diagnosis.problems.empty()) {
     md << "What could not be used:\n\n";
     for (const std::string& problem : diagnosis.problems) md << "- " << problem << "\n";
@@ -266,10 +262,11 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
     md << "If this motor alone were off, its model would read high by (negative: low):\n\n"
           "| channel | thrust gap % | 95 % interval +- |\n|---|---|---|\n";
     for (const MotorGap& motor : diagnosis.motors.motors) {
-      md << "| " << motor.channel << " | " << fixed(motor.thrust_gap_pct) << " | " << fixed(motor.ci_pct) << " |\n";
+      md << "| " << motor.channel << " | " << formatPrintf("%.2f", motor.thrust_gap_pct, "n/a") << " | "
+         << formatPrintf("%.2f", motor.ci_pct, "n/a") << " |\n";
     }
-    md << "\nCentre of thrust: x " << fixed(1000.0 * diagnosis.motors.cg_offset_x_m, "%.1f") << " mm, y "
-       << fixed(1000.0 * diagnosis.motors.cg_offset_y_m, "%.1f") << " mm from base_link. ";
+    md << "\nCentre of thrust: x " << formatPrintf("%.1f", 1000.0 * diagnosis.motors.cg_offset_x_m, "n/a") << " mm, y "
+       << formatPrintf("%.1f", 1000.0 * diagnosis.motors.cg_offset_y_m, "n/a") << " mm from base_link. ";
     if (diagnosis.motors.suspect_channel) {
       md << "**Suspect motor: channel " << *diagnosis.motors.suspect_channel
          << "** (the yaw balance breaks; of the motors that could explain it, this one leaves the centre of gravity "
@@ -288,8 +285,9 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
     md << "| " << effects::kindName(effect.kind) << " | " << (effect.testable ? "yes" : "no") << " | ";
     if (effect.testable) {
       md << spec.key << " = " << formatPrintf("%.4g", effect.parameter) << " | " << formatPrintf("%.4g", effect.ci_low)
-         << " .. " << formatPrintf("%.4g", effect.ci_high) << " | " << fixed(effect.heldout_rmse_pct) << " | "
-         << fixed(effect.p_value, "%.3f") << " | " << fixed(effect.current_view_ratio) << " | ";
+         << " .. " << formatPrintf("%.4g", effect.ci_high) << " | "
+         << formatPrintf("%.2f", effect.heldout_rmse_pct, "n/a") << " | " << formatPrintf("%.3f", effect.p_value, "n/a")
+         << " | " << formatPrintf("%.2f", effect.current_view_ratio, "n/a") << " | ";
     } else {
       md << " | | | | | ";
     }
@@ -313,12 +311,12 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
 
   md << "## 4. How far it shrinks (held-out flights)\n\n";
   md << "| | before | after |\n|---|---|---|\n";
-  md << "| RMSE % | " << fixed(diagnosis.heldout.before_rmse_pct) << " | " << fixed(diagnosis.heldout.after_rmse_pct)
-     << " |\n";
-  md << "| bias % | " << fixed(diagnosis.heldout.before_bias_pct) << " | " << fixed(diagnosis.heldout.after_bias_pct)
-     << " |\n";
-  md << "| payload error % | " << fixed(diagnosis.heldout.before_payload_err_pct) << " | "
-     << fixed(diagnosis.heldout.after_payload_err_pct) << " |\n\n";
+  md << "| RMSE % | " << formatPrintf("%.2f", diagnosis.heldout.before_rmse_pct, "n/a") << " | "
+     << formatPrintf("%.2f", diagnosis.heldout.after_rmse_pct, "n/a") << " |\n";
+  md << "| bias % | " << formatPrintf("%.2f", diagnosis.heldout.before_bias_pct, "n/a") << " | "
+     << formatPrintf("%.2f", diagnosis.heldout.after_bias_pct, "n/a") << " |\n";
+  md << "| payload error % | " << formatPrintf("%.2f", diagnosis.heldout.before_payload_err_pct, "n/a") << " | "
+     << formatPrintf("%.2f", diagnosis.heldout.after_payload_err_pct, "n/a") << " |\n\n";
 
   md << "## Figures\n\n";
   md << "![Residual against each signal](gap_signals.png)\n\n"

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+
+#include "propulsion_estimator/common/not_a_number.h"
 
 namespace propulsion_estimator {
 namespace gap {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMaxShiftUs = 400.0;
 
 }  // namespace

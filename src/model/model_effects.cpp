@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
@@ -91,7 +91,7 @@ double Signals::value(Signal signal) const {
     case Signal::kVerticalSpeed: return vertical_speed_m_s;
     case Signal::kNone: break;
   }
-  return std::numeric_limits<double>::quiet_NaN();
+  return kNaN;
 }
 
 std::optional<double> ModelEffects::parameter(Kind kind) const {
@@ -178,7 +178,7 @@ double singleThrustFactor(Kind kind, double value, const ModelEffects& reference
   // Checked here, not left to the arithmetic: pow(NaN, 0) is 1, and an air_density exponent of 0
   // would count as applied without its signal.
   const Signal signal = requiredSignal(kind);
-  if (signal != Signal::kNone && std::isnan(signals.value(signal))) return std::numeric_limits<double>::quiet_NaN();
+  if (signal != Signal::kNone && std::isnan(signals.value(signal))) return kNaN;
   switch (kind) {
     case Kind::kAirDensity:
       return std::pow(signals.air_density_kg_m3 / references.bench_air_density_kg_m3, value);

@@ -72,7 +72,7 @@ bool ModelDomain::contains(double pwm_us, double voltage_v) const {
 }
 
 double ModelMetadata::benchAirDensity() const {
-  if (!hasBenchAir()) return std::numeric_limits<double>::quiet_NaN();
+  if (!hasBenchAir()) return kNaN;
   return *bench_air_pressure_pa / (kSpecificGasConstantDryAir * (*bench_air_temperature_c + kZeroCelsiusInKelvin));
 }
 

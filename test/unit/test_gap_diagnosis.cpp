@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/units.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/gap_report.h"
@@ -174,7 +174,7 @@ TEST_F(SyntheticFlights, ReportsWhatItCannotUseAndDiagnosesTheRest) {
 TEST_F(SyntheticFlights, RefusesWhenNothingIsUsable) {
   std::vector<gap::Flight> all = flights(World{});
   for (gap::Flight& flight : all) flight.segments = {{5000.0, 5010.0, 1.4}};
-  EXPECT_THROW(gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{}), pe::ConfigError);
+  EXPECT_THROW(gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{}), pe::DataError);
 }
 
 TEST_F(SyntheticFlights, ReportYamlHoldsTheContract) {

@@ -226,10 +226,10 @@ TEST(HealthSummary, TareNeedsAHoverAndEnoughSamples) {
 TEST(HealthSummary, ConfigRefusesAShareOutsideZeroToOne) {
   pe::HealthConfig config;
   EXPECT_NO_THROW(config.validate());
-  for (const auto& [value, text] : std::vector<std::pair<double, std::string>>{
-           {1.5, "domain_warn_fraction: must be in [0, 1], got 1.5"},
-           {-0.1, "domain_warn_fraction: must be in [0, 1], got -0.1"},
-           {std::nan(""), "domain_warn_fraction: must be in [0, 1], got nan"}}) {
+  for (const auto& [value, text] :
+       std::vector<std::pair<double, std::string>>{{1.5, "domain_warn_fraction: 1.5 is outside 0..1"},
+                                                   {-0.1, "domain_warn_fraction: -0.1 is outside 0..1"},
+                                                   {std::nan(""), "domain_warn_fraction: nan is outside 0..1"}}) {
     config.domain_warn_fraction = value;
     try {
       config.validate();

@@ -8,12 +8,12 @@ namespace propulsion_estimator {
 // for files that must round-trip and for messages that quote a value.
 std::string formatNumber(double value);
 
-// `value` formatted with one printf conversion ("%.2f", "%.4g"): for reports and messages. NaN, a
-// value not measured or not modelled, is written as `nan_text` when one is given ("" in a CSV cell,
-// "n/a" in a table), else as printf writes it.
-std::string formatPrintf(const char* pattern, double value, const char* nan_text = nullptr);
+// `value` formatted with one printf conversion ("%.2f", "%.4g"): for reports and messages. A value
+// that is not finite (not measured, not modelled, not computable) is written as `missing` when one
+// is given ("" in a CSV cell, "n/a" in a table), else as printf writes it ("nan", "inf").
+std::string formatPrintf(const char* pattern, double value, const char* missing = nullptr);
 
-// A number in a CSV cell of a report: 7 significant digits, an empty cell for NaN.
+// A number in a CSV cell of a report: 7 significant digits, an empty cell when not finite.
 std::string formatCsvNumber(double value);
 
 }  // namespace propulsion_estimator

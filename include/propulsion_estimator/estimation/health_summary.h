@@ -55,7 +55,7 @@ struct HealthConfig {
   /// Share of motor samples outside the model's domain per period above which "Model domain" warns.
   double domain_warn_fraction = 0.2;
 
-  /// Throws ConfigError naming domain_warn_fraction and its value unless it is in [0, 1].
+  /// Throws FieldError naming domain_warn_fraction and its value unless it is in [0, 1].
   void validate() const;
 };
 

@@ -157,7 +157,7 @@ struct Diagnosis {
 
 /// Diagnoses the gap between `model` and the weighed flights, and the extra bench logs' gap.
 /// Flights or segments that cannot be used are listed in Diagnosis::problems and the rest is
-/// diagnosed; throws ConfigError only when nothing at all can be (no usable flight sample).
+/// diagnosed; throws DataError only when nothing at all can be (no usable flight sample).
 Diagnosis diagnoseGap(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
                       const DiagnosisConfig& config, const std::vector<BenchLog>& bench = {});
 

@@ -12,7 +12,7 @@ namespace gap {
 std::string gapReportYaml(const Diagnosis& diagnosis);
 
 /// gap_samples.csv in `directory`: one row per block (truth, both views, corrected, signals),
-/// which `plot_bench_report.py gap DIR` draws. Throws ConfigError when it cannot be written.
+/// which `plot_bench_report.py gap DIR` draws. Throws InputError when it cannot be written.
 void writeGapReportData(const Diagnosis& diagnosis, const std::string& directory);
 
 /// The figures the plot script draws, in report order.

@@ -1,9 +1,10 @@
 #pragma once
 
 #include <array>
-#include <limits>
 #include <optional>
 #include <string>
+
+#include "propulsion_estimator/common/not_a_number.h"
 
 namespace propulsion_estimator {
 namespace effects {
@@ -47,11 +48,11 @@ const ParameterSpec& parameterSpec(Kind kind);
 
 /// The signals the corrections read, in SI units; NaN where a signal is missing or stale.
 struct Signals {
-  double battery_current_a = std::numeric_limits<double>::quiet_NaN();  ///< drawn by all ESCs, >= 0
-  double air_density_kg_m3 = std::numeric_limits<double>::quiet_NaN();
-  double height_m = std::numeric_limits<double>::quiet_NaN();  ///< of the height reference above the ground
-  double motor_temperature_c = std::numeric_limits<double>::quiet_NaN();
-  double vertical_speed_m_s = std::numeric_limits<double>::quiet_NaN();  ///< up positive (REP-103)
+  double battery_current_a = kNaN;  ///< drawn by all ESCs, >= 0
+  double air_density_kg_m3 = kNaN;
+  double height_m = kNaN;  ///< of the height reference above the ground
+  double motor_temperature_c = kNaN;
+  double vertical_speed_m_s = kNaN;  ///< up positive (REP-103)
 
   /// The value of `signal`; NaN for Signal::kNone.
   double value(Signal signal) const;
@@ -78,12 +79,12 @@ struct ModelEffects {
   std::optional<double> esc_offset_us;
   std::optional<double> supply_resistance_ohm;
   std::optional<double> air_density_exponent;
-  double bench_air_density_kg_m3 = std::numeric_limits<double>::quiet_NaN();  ///< reference of air_density
+  double bench_air_density_kg_m3 = kNaN;  ///< reference of air_density
   std::optional<double> ground_effect_coefficient_m2;
   double rotor_height_m = 0.0;  ///< rotor discs above the height reference, for ground_effect
   std::optional<double> thrust_loss_fraction;
   std::optional<double> motor_temperature_per_c;
-  double motor_reference_c = std::numeric_limits<double>::quiet_NaN();  ///< reference of motor_temperature
+  double motor_reference_c = kNaN;  ///< reference of motor_temperature
   std::optional<double> climb_inflow_per_m_s;
 
   bool has(Kind kind) const;
