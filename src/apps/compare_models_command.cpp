@@ -24,7 +24,7 @@ struct Arguments {
   std::optional<double> mass_kg;
   std::optional<int> cells;
   std::optional<double> capacity_mah;
-  HoverOptions hover;
+  fitting::HoverOptions hover;
   std::string report;
   ReportPlotter plotter;
 };
@@ -47,7 +47,7 @@ std::pair<std::string, std::vector<std::string>> splitModelArgument(const std::s
 int compare(Arguments args, const BenchReadOptions& read_options) {
   if (args.models.size() < 2) throw ConfigError("give two or more models to compare");
   if (!args.report.empty()) args.plotter.check();
-  ComparisonOptions options;
+  fitting::ComparisonOptions options;
   options.voltage_v = args.voltage_v;
   if (args.mass_kg || args.cells || args.capacity_mah) {
     if (!args.mass_kg || !args.cells || !args.capacity_mah) {
@@ -58,7 +58,7 @@ int compare(Arguments args, const BenchReadOptions& read_options) {
     args.hover.capacity_mah = *args.capacity_mah;
     options.hover = args.hover;
   }
-  std::vector<ModelComparison> comparisons;
+  std::vector<fitting::ModelComparison> comparisons;
   std::set<std::string> labels;
   for (const std::string& argument : args.models) {
     const auto [path, log_arguments] = splitModelArgument(argument);
@@ -67,15 +67,15 @@ int compare(Arguments args, const BenchReadOptions& read_options) {
     if (!log_arguments.empty()) logs = readBenchLogs(log_arguments, read_options);
     std::string label = std::filesystem::path(path).stem().string();
     if (!labels.insert(label).second) label = path;
-    comparisons.push_back(compareModel(label, model, logs, options));
+    comparisons.push_back(fitting::compareModel(label, model, logs, options));
   }
-  std::printf("%s", comparisonTables(comparisons, options).c_str());
+  std::printf("%s", fitting::comparisonTables(comparisons, options).c_str());
   if (!args.report.empty()) {
     std::filesystem::create_directories(args.report);
-    writeComparisonReportData(comparisons, options, args.report);
+    fitting::writeComparisonReportData(comparisons, options, args.report);
     args.plotter.plot("compare", args.report);
     const std::string path = args.report + "/compare_report.md";
-    writeTextFile(path, comparisonReportMarkdown(comparisons, options));
+    writeTextFile(path, fitting::comparisonReportMarkdown(comparisons, options));
     std::printf("report: %s\n", path.c_str());
   }
   return 0;

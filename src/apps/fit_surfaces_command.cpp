@@ -31,12 +31,12 @@ struct Arguments {
   ReportPlotter plotter;
 };
 
-void printSummary(const BenchFit& fit) {
+void printSummary(const fitting::BenchFit& fit) {
   std::printf("%-10s %-8s %-8s %6s %9s %10s %10s %10s\n", "output", "model", "degrees", "points", "R^2", "RMSE",
               "max error", "held-out");
   for (Output output : kAllOutputs) {
     const OutputDefinition& def = fit.model.output(output);
-    const OutputFitReport& report = fit.outputs[static_cast<int>(output)];
+    const fitting::OutputFitReport& report = fit.outputs[static_cast<int>(output)];
     if (def.source == OutputSource::kNone) {
       std::printf("%-10s none: %s\n", outputName(output), def.note.c_str());
       continue;
@@ -51,11 +51,12 @@ void printSummary(const BenchFit& fit) {
   }
 }
 
-int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_options) {
-  static const std::map<std::string, FitGrouping> kGroupings = {{"auto", FitGrouping::kAuto},
-                                                                {"voltage", FitGrouping::kVoltageLevel},
-                                                                {"pwm", FitGrouping::kPwmLevel},
-                                                                {"log", FitGrouping::kLog}};
+int fit(const Arguments& args, fitting::FitOptions options, const BenchReadOptions& read_options) {
+  static const std::map<std::string, fitting::FitGrouping> kGroupings = {
+      {"auto", fitting::FitGrouping::kAuto},
+      {"voltage", fitting::FitGrouping::kVoltageLevel},
+      {"pwm", fitting::FitGrouping::kPwmLevel},
+      {"log", fitting::FitGrouping::kLog}};
   static const std::map<std::string, OutsideDomain> kOutside = {{"clamp", OutsideDomain::kClamp},
                                                                 {"extrapolate", OutsideDomain::kExtrapolate},
                                                                 {"reject", OutsideDomain::kReject}};
@@ -69,7 +70,7 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
 
   if (!args.report.empty()) args.plotter.check();  // before the fit, which may take a while
   const std::vector<BenchLog> logs = readBenchLogs(args.logs, read_options);
-  const BenchFit result = fitBenchModel(logs, options);
+  const fitting::BenchFit result = fitting::fitBenchModel(logs, options);
   // What the estimator will do with the file, done before anything is written: a model the loader
   // refuses is never left on disk, nor reported as written.
   std::string yaml;
@@ -92,10 +93,10 @@ int fit(const Arguments& args, FitOptions options, const BenchReadOptions& read_
 
   if (!args.report.empty()) {
     std::filesystem::create_directories(args.report);
-    writeFitReportData(result, args.report);
+    fitting::writeFitReportData(result, args.report);
     args.plotter.plot("fit", args.report);
     const std::string markdown_path = args.report + "/fit_report.md";
-    writeTextFile(markdown_path, fitReportMarkdown(result, result.validation_error.empty() ? args.out : ""));
+    writeTextFile(markdown_path, fitting::fitReportMarkdown(result, result.validation_error.empty() ? args.out : ""));
     std::printf("report: %s\n", markdown_path.c_str());
   }
   if (!result.validation_error.empty()) {
@@ -114,7 +115,7 @@ int runFitSurfaces(int argc, char** argv) {
       "Fits the response surfaces of one ESC-motor-propeller combination to thrust-stand logs (native CSV or "
       "Tyto/RCbenchmark exports) and writes the model file estimator_node loads."};
   Arguments args;
-  FitOptions options;
+  fitting::FitOptions options;
   BenchLogOptions log_options;
   app.add_option("logs", args.logs, "Bench logs, or directories of *.csv logs")->required();
   app.add_option("--out", args.out, "Model file to write (YAML)")->required();

@@ -54,7 +54,9 @@ struct FlightOptions {
   std::string compression = "none";
 };
 
-SimEffects loadEffects(const std::string& path) { return path.empty() ? SimEffects{} : loadSimEffectsFile(path); }
+sim::SimEffects loadEffects(const std::string& path) {
+  return path.empty() ? sim::SimEffects{} : sim::loadSimEffectsFile(path);
+}
 
 // The command-line option behind each field of BenchExperiment, for refusals.
 std::string optionOf(const std::string& field) {
@@ -71,12 +73,12 @@ std::string optionOf(const std::string& field) {
 }
 
 void runBench(const BenchOptions& options) {
-  const SimParams params = loadSimParamsFile(options.params);
-  const SimEffects effects = loadEffects(options.effects);
-  const BenchExperimentKind kind = options.experiment == "pwm_sweep"   ? BenchExperimentKind::kPwmSweep
-                                   : options.experiment == "discharge" ? BenchExperimentKind::kDischarge
-                                                                       : BenchExperimentKind::kConstantThrust;
-  BenchExperiment experiment = thesisBenchExperiment(kind, params);
+  const sim::SimParams params = sim::loadSimParamsFile(options.params);
+  const sim::SimEffects effects = loadEffects(options.effects);
+  const sim::BenchExperimentKind kind = options.experiment == "pwm_sweep"   ? sim::BenchExperimentKind::kPwmSweep
+                                        : options.experiment == "discharge" ? sim::BenchExperimentKind::kDischarge
+                                                                            : sim::BenchExperimentKind::kConstantThrust;
+  sim::BenchExperiment experiment = sim::thesisBenchExperiment(kind, params);
   if (!options.voltages_v.empty()) experiment.voltages_v = options.voltages_v;
   if (!options.pwm_range_us.empty()) {
     experiment.pwm_start_us = options.pwm_range_us[0];
@@ -98,17 +100,17 @@ void runBench(const BenchOptions& options) {
   }
   BenchLog truth;
   const BenchLog log =
-      simulateBench(params, effects, experiment, options.seed, options.truth.empty() ? nullptr : &truth);
+      sim::simulateBench(params, effects, experiment, options.seed, options.truth.empty() ? nullptr : &truth);
   saveNativeBenchCsv(log, options.output);
   if (!options.truth.empty()) saveNativeBenchCsv(truth, options.truth);
-  std::cout << "simulate bench: " << log.rows() << " rows of " << benchExperimentName(kind) << " -> " << options.output
-            << "\n";
+  std::cout << "simulate bench: " << log.rows() << " rows of " << sim::benchExperimentName(kind) << " -> "
+            << options.output << "\n";
 }
 
 void runFlight(const FlightOptions& options) {
-  const SimParams params = loadSimParamsFile(options.params);
-  const FlightProfile profile = loadFlightProfileFile(options.profile);
-  const SimEffects effects = loadEffects(options.effects);
+  const sim::SimParams params = sim::loadSimParamsFile(options.params);
+  const sim::FlightProfile profile = sim::loadFlightProfileFile(options.profile);
+  const sim::SimEffects effects = loadEffects(options.effects);
   const Vehicle vehicle = loadVehicleUrdf(profile.vehicle.urdf_path);
   const rosbag::compression::CompressionType compression = options.compression == "bz2" ? rosbag::compression::BZ2
                                                            : options.compression == "lz4"
@@ -116,16 +118,16 @@ void runFlight(const FlightOptions& options) {
                                                                : rosbag::compression::Uncompressed;
   // The refusals that need no flying come before any file is touched; the bag is written under
   // another name and takes its own only when the flight has been flown to its end.
-  checkFlight(params, effects, profile, vehicle);
+  sim::checkFlight(params, effects, profile, vehicle);
   const std::string active = options.bag + ".active";
-  FlightResult result;
+  sim::FlightResult result;
   const auto remove_active = [&] {
     std::error_code ignored;
     std::filesystem::remove(active, ignored);
   };
   try {
     BagFlightSink sink(active, compression);
-    result = simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
+    result = sim::simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
     sink.close();
   } catch (const rosbag::BagException& e) {
     remove_active();
@@ -145,7 +147,7 @@ void runFlight(const FlightOptions& options) {
   FlightManifest manifest;
   manifest.flights.push_back(
       {std::filesystem::proximate(std::filesystem::absolute(options.bag), folder).string(), result.segments});
-  const bool airborne = profile.manifest_spans == ManifestSpans::kAirborne;
+  const bool airborne = profile.manifest_spans == sim::ManifestSpans::kAirborne;
   const std::string settle = formatNumber(profile.manifest_settle_s);
   saveFlightManifest(manifest, options.manifest,
                      "Simulated by: simulate flight --params " + options.params + " --profile " + options.profile +

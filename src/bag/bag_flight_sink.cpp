@@ -70,7 +70,7 @@ void BagFlightSink::close() {
 
 ros::Time BagFlightSink::stamp(double time_s) { return ros::Time(kSimulatedBagStartSec) + ros::Duration(time_s); }
 
-void BagFlightSink::rcOut(const RcOutSample& sample) {
+void BagFlightSink::rcOut(const sim::RcOutSample& sample) {
   RcOutMessage message;
   message.header = header(stamp(sample.time_s), "");
   message.header.seq = rc_out_seq_++;
@@ -78,7 +78,7 @@ void BagFlightSink::rcOut(const RcOutSample& sample) {
   bag_.write(kRcOutTopic, message.header.stamp, encodeRcOut(message));
 }
 
-void BagFlightSink::battery(const BatterySample& sample) {
+void BagFlightSink::battery(const sim::BatterySample& sample) {
   sensor_msgs::BatteryState msg;
   msg.header = header(stamp(sample.time_s), "");
   msg.voltage = static_cast<float>(sample.voltage_v);
@@ -98,7 +98,7 @@ void BagFlightSink::battery(const BatterySample& sample) {
   bag_.write(kBatteryTopic, msg.header.stamp, msg);
 }
 
-void BagFlightSink::imu(const ImuSample& sample) {
+void BagFlightSink::imu(const sim::ImuSample& sample) {
   sensor_msgs::Imu msg;
   msg.header = header(stamp(sample.time_s), "base_link");
   msg.orientation = toMsg(sample.orientation);
@@ -110,7 +110,7 @@ void BagFlightSink::imu(const ImuSample& sample) {
   bag_.write(kImuTopic, msg.header.stamp, msg);
 }
 
-void BagFlightSink::pose(const PoseSample& sample) {
+void BagFlightSink::pose(const sim::PoseSample& sample) {
   geometry_msgs::PoseStamped msg;
   msg.header = header(stamp(sample.time_s), "map");
   msg.pose.position.x = sample.position_m.x();
@@ -120,7 +120,7 @@ void BagFlightSink::pose(const PoseSample& sample) {
   bag_.write(kPoseTopic, msg.header.stamp, msg);
 }
 
-void BagFlightSink::velocity(const VelocitySample& sample) {
+void BagFlightSink::velocity(const sim::VelocitySample& sample) {
   geometry_msgs::TwistStamped msg;
   msg.header = header(stamp(sample.time_s), "map");
   msg.twist.linear = toMsg(sample.linear_m_s);
@@ -128,7 +128,7 @@ void BagFlightSink::velocity(const VelocitySample& sample) {
   bag_.write(kVelocityTopic, msg.header.stamp, msg);
 }
 
-void BagFlightSink::staticPressure(const ScalarSample& sample) {
+void BagFlightSink::staticPressure(const sim::ScalarSample& sample) {
   sensor_msgs::FluidPressure msg;
   msg.header = header(stamp(sample.time_s), sample.frame_id);
   msg.fluid_pressure = sample.value;
@@ -136,9 +136,9 @@ void BagFlightSink::staticPressure(const ScalarSample& sample) {
   bag_.write(kStaticPressureTopic, msg.header.stamp, msg);
 }
 
-void BagFlightSink::airTemperature(const ScalarSample& sample) { writeTemperature(kAirTemperatureTopic, sample); }
+void BagFlightSink::airTemperature(const sim::ScalarSample& sample) { writeTemperature(kAirTemperatureTopic, sample); }
 
-void BagFlightSink::rangefinder(const RangeSample& sample) {
+void BagFlightSink::rangefinder(const sim::RangeSample& sample) {
   sensor_msgs::Range msg;
   msg.header = header(stamp(sample.time_s), "rangefinder");
   msg.radiation_type = sensor_msgs::Range::INFRARED;
@@ -149,11 +149,11 @@ void BagFlightSink::rangefinder(const RangeSample& sample) {
   bag_.write(kRangefinderTopic, msg.header.stamp, msg);
 }
 
-void BagFlightSink::motorTemperature(const ScalarSample& sample) {
+void BagFlightSink::motorTemperature(const sim::ScalarSample& sample) {
   writeTemperature(kMotorTemperatureTopic, sample);
 }
 
-void BagFlightSink::writeTemperature(const char* topic, const ScalarSample& sample) {
+void BagFlightSink::writeTemperature(const char* topic, const sim::ScalarSample& sample) {
   sensor_msgs::Temperature msg;
   msg.header = header(stamp(sample.time_s), sample.frame_id);
   msg.temperature = sample.value;
@@ -161,7 +161,7 @@ void BagFlightSink::writeTemperature(const char* topic, const ScalarSample& samp
   bag_.write(topic, msg.header.stamp, msg);
 }
 
-void BagFlightSink::truth(const TruthSample& sample) {
+void BagFlightSink::truth(const sim::TruthSample& sample) {
   SimTruth msg;
   msg.header = header(stamp(sample.time_s), "base_link");
   msg.total_mass_kg = sample.total_mass_kg;
@@ -177,7 +177,7 @@ void BagFlightSink::truth(const TruthSample& sample) {
   msg.climb_factor = sample.climb_factor;
   msg.thrust_loss_factor = sample.thrust_loss_factor;
   for (std::size_t k = 0; k < sample.motors.size(); ++k) {
-    const MotorTruth& motor = sample.motors[k];
+    const sim::MotorTruth& motor = sample.motors[k];
     msg.ground_effect_factor.push_back(motor.ground_effect_factor);
     msg.motor_temperature_c.push_back(motor.winding_temperature_c);
     MotorEstimate estimate;

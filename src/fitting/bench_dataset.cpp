@@ -12,6 +12,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 namespace {
 
 double median(std::vector<double> values) {
@@ -257,4 +258,5 @@ BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOpt
   return data;
 }
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

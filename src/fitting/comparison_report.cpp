@@ -12,6 +12,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 namespace {
 
 void writeSamples(std::ofstream& out, const std::string& label, const std::vector<ComparisonSample>& samples) {
@@ -143,4 +144,5 @@ std::string comparisonReportMarkdown(const std::vector<ModelComparison>& models,
   return md.str();
 }
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

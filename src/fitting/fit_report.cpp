@@ -11,6 +11,7 @@
 #include "propulsion_estimator/common/text_file.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 namespace {
 
 constexpr int kCurvePoints = 101;
@@ -280,4 +281,5 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
   return md.str();
 }
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

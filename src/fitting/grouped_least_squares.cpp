@@ -7,6 +7,7 @@
 #include "propulsion_estimator/model/polynomial_2d.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 namespace {
 
 // Rows turned into basis rows and added as one rank update.
@@ -128,4 +129,5 @@ std::optional<double> GroupedLeastSquares::heldOutRmse(const std::vector<int>& t
   return std::sqrt(sse / static_cast<double>(rows));
 }
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

@@ -12,6 +12,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 namespace {
 
 constexpr int kBisectionSteps = 60;
@@ -245,4 +246,5 @@ ModelComparison compareModel(const std::string& label, const PropulsionModel& mo
   return result;
 }
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

@@ -17,6 +17,7 @@
 #include "propulsion_estimator/model/polynomial_2d.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 namespace {
 
 constexpr char kUnknownName[] = "unknown";
@@ -628,4 +629,5 @@ BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& opti
                   reports, notes, options.parsimony};
 }
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

@@ -58,7 +58,7 @@ std::vector<pe::BenchLog> rampLogs(int rows) {
 void BM_FitMillionRows(benchmark::State& state) {
   const std::vector<pe::BenchLog> logs = rampLogs(static_cast<int>(state.range(0)));
   for (auto _ : state) {
-    pe::BenchFit fit = pe::fitBenchModel(logs, {});
+    pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(logs, {});
     benchmark::DoNotOptimize(fit);
   }
   state.SetItemsProcessed(state.iterations() * state.range(0));

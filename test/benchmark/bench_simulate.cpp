@@ -17,8 +17,10 @@ namespace pe = propulsion_estimator;
 namespace {
 
 struct Inputs {
-  pe::SimParams params = pe::loadSimParamsFile(std::string(PE_REPO_DIR) + "/config/sim/e300_dji2212_dji9443.yaml");
-  pe::FlightProfile profile = pe::loadFlightProfileFile(std::string(PE_REPO_DIR) + "/config/sim/default_flight.yaml");
+  pe::sim::SimParams params =
+      pe::sim::loadSimParamsFile(std::string(PE_REPO_DIR) + "/config/sim/e300_dji2212_dji9443.yaml");
+  pe::sim::FlightProfile profile =
+      pe::sim::loadFlightProfileFile(std::string(PE_REPO_DIR) + "/config/sim/default_flight.yaml");
   pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
 };
 
@@ -28,18 +30,18 @@ const Inputs& inputs() {
 }
 
 // Receives every reading and keeps nothing.
-struct DiscardingSink : pe::FlightSink {
+struct DiscardingSink : pe::sim::FlightSink {
   std::size_t messages = 0;
-  void rcOut(const pe::RcOutSample&) override { ++messages; }
-  void battery(const pe::BatterySample&) override { ++messages; }
-  void imu(const pe::ImuSample&) override { ++messages; }
-  void pose(const pe::PoseSample&) override { ++messages; }
-  void velocity(const pe::VelocitySample&) override { ++messages; }
-  void staticPressure(const pe::ScalarSample&) override { ++messages; }
-  void airTemperature(const pe::ScalarSample&) override { ++messages; }
-  void rangefinder(const pe::RangeSample&) override { ++messages; }
-  void motorTemperature(const pe::ScalarSample&) override { ++messages; }
-  void truth(const pe::TruthSample&) override { ++messages; }
+  void rcOut(const pe::sim::RcOutSample&) override { ++messages; }
+  void battery(const pe::sim::BatterySample&) override { ++messages; }
+  void imu(const pe::sim::ImuSample&) override { ++messages; }
+  void pose(const pe::sim::PoseSample&) override { ++messages; }
+  void velocity(const pe::sim::VelocitySample&) override { ++messages; }
+  void staticPressure(const pe::sim::ScalarSample&) override { ++messages; }
+  void airTemperature(const pe::sim::ScalarSample&) override { ++messages; }
+  void rangefinder(const pe::sim::RangeSample&) override { ++messages; }
+  void motorTemperature(const pe::sim::ScalarSample&) override { ++messages; }
+  void truth(const pe::sim::TruthSample&) override { ++messages; }
 };
 
 void BM_FlightCore(benchmark::State& state) {
@@ -47,7 +49,7 @@ void BM_FlightCore(benchmark::State& state) {
   double simulated_s = 0.0;
   for (auto _ : state) {
     DiscardingSink sink;
-    simulated_s = pe::simulateFlight(in.params, {}, in.profile, in.vehicle, 1, &sink).duration_s;
+    simulated_s = pe::sim::simulateFlight(in.params, {}, in.profile, in.vehicle, 1, &sink).duration_s;
     benchmark::DoNotOptimize(sink.messages);
   }
   state.counters["simulated_s"] = simulated_s;
@@ -61,7 +63,7 @@ void BM_FlightToBag(benchmark::State& state) {
       (std::filesystem::temp_directory_path() / ("bench_simulate_" + std::to_string(::getpid()) + ".bag")).string();
   for (auto _ : state) {
     pe::BagFlightSink sink(path, compression);
-    pe::simulateFlight(in.params, {}, in.profile, in.vehicle, 1, &sink);
+    pe::sim::simulateFlight(in.params, {}, in.profile, in.vehicle, 1, &sink);
     sink.close();
   }
   state.counters["bag_mb"] = std::filesystem::file_size(path) / 1e6;

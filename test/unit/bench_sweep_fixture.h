@@ -84,10 +84,11 @@ inline SweepSet syntheticSweeps(unsigned seed = 42) {
 // power is measured voltage times measured current, as on the thesis bench).
 inline SweepSet simulatedSweeps(unsigned seed = 3) {
   namespace pe = propulsion_estimator;
-  const pe::SimParams params = pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
+  const pe::sim::SimParams params = pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
   pe::BenchLog truth;
-  const pe::BenchLog logged = pe::simulateBench(
-      params, pe::SimEffects{}, pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params), seed, &truth);
+  const pe::BenchLog logged = pe::sim::simulateBench(
+      params, pe::sim::SimEffects{}, pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params),
+      seed, &truth);
   const std::vector<std::string>& run = logged.extra_columns.at("run");
   SweepSet set;
   auto rms = [&](pe::BenchColumn column, double scale) {

@@ -15,7 +15,7 @@ struct HandRotor {
 
   double radius, ct0, cq0, k, lambda0, theta, profile;
 
-  explicit HandRotor(const propulsion_estimator::PropellerParams& propeller)
+  explicit HandRotor(const propulsion_estimator::sim::PropellerParams& propeller)
       : radius(propeller.diameter_m / 2.0),
         ct0(4.0 * propeller.thrust_coefficient / (kPi * kPi * kPi)),
         cq0(8.0 * propeller.torque_coefficient / (kPi * kPi * kPi)),
@@ -32,7 +32,7 @@ struct HandRotor {
   }
 
   // Thrust and torque over their static values at rotor speed omega, axial speed v, ground ratio G.
-  propulsion_estimator::RotorLoad load(double omega, double axial_m_s, double ground) const {
+  propulsion_estimator::sim::RotorLoad load(double omega, double axial_m_s, double ground) const {
     const double climb = axial_m_s / (omega * radius);
     double ct = ct0;
     for (int i = 0; i < 400; ++i) ct = 0.5 * ct + 0.5 * k * (theta - climb - induced(ct, climb, ground));

@@ -75,13 +75,13 @@ void writeFile(const std::string& path, const std::string& text) { std::ofstream
 
 TEST(BagFlightSink, WritesMavrosTopicsWithTheirTypesAndRates) {
   TempDir dir;
-  const pe::FlightProfile profile = pe::parseFlightProfileYaml(shortProfile(), dir.file("profile.yaml"));
+  const pe::sim::FlightProfile profile = pe::sim::parseFlightProfileYaml(shortProfile(), dir.file("profile.yaml"));
   const pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
-  pe::FlightResult result;
+  pe::sim::FlightResult result;
   {
     pe::BagFlightSink sink(dir.file("flight.bag"), rosbag::compression::Uncompressed);
-    result = pe::simulateFlight(pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")), {}, profile,
-                                vehicle, 1, &sink);
+    result = pe::sim::simulateFlight(pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")), {},
+                                     profile, vehicle, 1, &sink);
   }
   rosbag::Bag bag(dir.file("flight.bag"), rosbag::bagmode::Read);
   rosbag::View view(bag);
@@ -155,7 +155,7 @@ TEST(BagFlightSink, WritesMavrosTopicsWithTheirTypesAndRates) {
   const auto expected = [&](double rate_hz) {
     return static_cast<std::size_t>(std::floor(duration * rate_hz + 1e-6)) + 1;
   };
-  const pe::FlightSensorParams sensors;
+  const pe::sim::FlightSensorParams sensors;
   EXPECT_EQ(counts["/mavros/rc/out"], expected(25.0));
   EXPECT_EQ(counts["/sim/truth"], expected(25.0));
   EXPECT_EQ(counts["/mavros/battery"], expected(sensors.battery_rate_hz));
@@ -174,12 +174,12 @@ TEST(BagFlightSink, CarriesEverySignalTheGapDiagnosisReads) {
   // temperature, local position and velocity (vertical speed), battery voltage and PX4's negated
   // current (the current view of the thrust), IMU (attitude, acceleration).
   TempDir dir;
-  const pe::FlightProfile profile = pe::parseFlightProfileYaml(shortProfile(), dir.file("profile.yaml"));
+  const pe::sim::FlightProfile profile = pe::sim::parseFlightProfileYaml(shortProfile(), dir.file("profile.yaml"));
   const pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
-  const pe::SimParams params = pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
+  const pe::sim::SimParams params = pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
   {
     pe::BagFlightSink sink(dir.file("flight.bag"), rosbag::compression::Uncompressed);
-    pe::simulateFlight(params, {}, profile, vehicle, 1, &sink);
+    pe::sim::simulateFlight(params, {}, profile, vehicle, 1, &sink);
   }
   rosbag::Bag bag(dir.file("flight.bag"), rosbag::bagmode::Read);
   std::map<long, pe::SimTruth> truths;  // by stamp in units of 40 ms
@@ -190,8 +190,8 @@ TEST(BagFlightSink, CarriesEverySignalTheGapDiagnosisReads) {
   const auto truthAt = [&](const ros::Time& stamp) -> const pe::SimTruth& {
     return truths.at(std::lround((stamp - ros::Time(pe::kSimulatedBagStartSec)).toSec() * 25.0));
   };
-  const pe::FlightSensorParams sensors;
-  const pe::AirConditions air = params.bench.air;
+  const pe::sim::FlightSensorParams sensors;
+  const pe::sim::AirConditions air = params.bench.air;
   std::map<std::string, int> checked;
   for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
     const std::string topic = m.getTopic();

@@ -24,8 +24,8 @@ namespace {
 const std::string kStrawson = "test/data/strawson_motor_propeller/";
 
 // Bench conditions the Strawson exports do not carry (the stand software writes no metadata).
-pe::FitOptions strawsonOptions(const std::string& motor, const std::string& propeller) {
-  pe::FitOptions options;
+pe::fitting::FitOptions strawsonOptions(const std::string& motor, const std::string& propeller) {
+  pe::fitting::FitOptions options;
   options.esc = "unknown BLHeli ESC";
   options.motor = motor;
   options.propeller = propeller;
@@ -66,9 +66,9 @@ double rmseOn(const pe::PropulsionModel& model, pe::Output output, const pe::Ben
   return std::sqrt(sse / static_cast<double>(log.rows()));
 }
 
-std::string refusal(const std::vector<pe::BenchLog>& logs, const pe::FitOptions& options = {}) {
+std::string refusal(const std::vector<pe::BenchLog>& logs, const pe::fitting::FitOptions& options = {}) {
   try {
-    pe::fitBenchModel(logs, options);
+    pe::fitting::fitBenchModel(logs, options);
   } catch (const pe::InputError& e) {
     return e.what();
   }
@@ -118,9 +118,9 @@ TEST(BenchFit, RecoversEachHeldOutVoltageLevelOfTheSimulatedSweepWithinItsNoise)
     for (std::size_t k = 0; k < set.logs.size(); ++k) {
       if (k != held_out) training.push_back(set.logs[k]);
     }
-    const pe::BenchFit fit = pe::fitBenchModel(training, {});
+    const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(training, {});
     ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
-    EXPECT_EQ(fit.grouping, pe::FitGrouping::kVoltageLevel);
+    EXPECT_EQ(fit.grouping, pe::fitting::FitGrouping::kVoltageLevel);
     const pe::BenchLog& test = set.logs[held_out];
     EXPECT_LT(rmseOn(fit.model, pe::Output::kThrust, test), 1.5 * set.thrust_sigma_g) << held_out;
     EXPECT_LT(rmseOn(fit.model, pe::Output::kCurrent, test), 1.5 * set.current_sigma_a) << held_out;
@@ -131,7 +131,7 @@ TEST(BenchFit, RecoversEachHeldOutVoltageLevelOfTheSimulatedSweepWithinItsNoise)
 
 TEST(BenchFit, SurfaceFollowsTheNoiseFreeChainAndReportsHonestErrors) {
   const SweepSet set = syntheticSweeps(7);
-  const pe::BenchFit fit = pe::fitBenchModel(set.logs, {});
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(set.logs, {});
   ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
   EXPECT_EQ(fit.grouping_description, "leave one voltage level out (8 levels, 10.50 to 12.60 V)");
   // Against the truth on a grid, the surface is much closer than one noise sigma (1128 samples).
@@ -145,7 +145,7 @@ TEST(BenchFit, SurfaceFollowsTheNoiseFreeChainAndReportsHonestErrors) {
     }
   }
   EXPECT_LT(std::sqrt(sse / n), 0.5 * set.thrust_sigma_g);
-  const pe::OutputFitReport& thrust = fit.outputs[static_cast<int>(pe::Output::kThrust)];
+  const pe::fitting::OutputFitReport& thrust = fit.outputs[static_cast<int>(pe::Output::kThrust)];
   EXPECT_EQ(thrust.points, 8 * 141);
   // In-sample and held-out errors both estimate the noise.
   EXPECT_NEAR(thrust.rmse, set.thrust_sigma_g, 0.15 * set.thrust_sigma_g);
@@ -174,7 +174,7 @@ TEST(BenchFit, SurfaceFollowsTheNoiseFreeChainAndReportsHonestErrors) {
 }
 
 TEST(BenchFit, FittedModelFileLoadsUnchanged) {
-  const pe::BenchFit fit = pe::fitBenchModel(syntheticSweeps().logs, {});
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(syntheticSweeps().logs, {});
   const std::string path = (std::filesystem::temp_directory_path() / "pe_fitted_model.yaml").string();
   pe::saveModelFile(fit.model, path);
   const pe::PropulsionModel loaded = pe::loadModelFile(path);
@@ -219,11 +219,11 @@ TEST(BenchFit, BinsContinuousBatteryDischargesIntoVoltageLevels) {
     }
     logs.push_back(std::move(log));
   }
-  const pe::BenchFit fit = pe::fitBenchModel(logs, {});
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(logs, {});
   // 10.5..12.6 V in 0.3 V bins anchored at 0 V: [10.5, 10.8), ..., [12.3, 12.6), [12.6, 12.9).
   ASSERT_EQ(fit.data.voltage_levels.size(), 8u);
   EXPECT_NEAR(fit.data.voltage_levels.front().centre, 10.65, 1e-9);
-  EXPECT_EQ(fit.grouping, pe::FitGrouping::kVoltageLevel);
+  EXPECT_EQ(fit.grouping, pe::fitting::FitGrouping::kVoltageLevel);
   EXPECT_EQ(fit.notes[0],
             "discharge_1600.csv: voltage varies (10.50 to 12.60 V): its rows are binned by voltage in 0.3 V bins");
   // Four PWM levels: a held-out voltage bin still sees all four, so PWM degree <= 3.
@@ -261,7 +261,7 @@ TEST(BenchFit, ThesisSurfacesSampledOnItsGridReproduceChapter7Maxima) {
     }
     logs.push_back(std::move(log));
   }
-  const pe::BenchFit fit = pe::fitBenchModel(logs, {});
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(logs, {});
   ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
   // Chapter 7, table 7.1-7.6, E300-2212 with the 9443 propeller at 12.6 V.
   double thrust = 0, current = 0, power = 0, efficiency_at_max_power = 0, rpm = 0;
@@ -292,10 +292,10 @@ TEST(BenchFit, ThesisSurfacesSampledOnItsGridReproduceChapter7Maxima) {
 
 TEST(BenchFitStrawson, FitsAMotorPropellerPairFromItsTwoSupplyLevels) {
   // Lumenier RX2206-13 2000kv with the Cyclone T5040C: no current limit was hit.
-  const pe::BenchFit fit =
-      pe::fitBenchModel(strawsonPair("g1"), strawsonOptions("Lumenier RX2206-13 2000kv", "Cyclone T5040C 3-blade"));
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(
+      strawsonPair("g1"), strawsonOptions("Lumenier RX2206-13 2000kv", "Cyclone T5040C 3-blade"));
   ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
-  EXPECT_EQ(fit.grouping, pe::FitGrouping::kPwmLevel);
+  EXPECT_EQ(fit.grouping, pe::fitting::FitGrouping::kPwmLevel);
   EXPECT_EQ(fit.grouping_description,
             "leave one PWM level out (11 levels, 1050 to 2000 us); 2 voltage levels only, so the voltage degree is at "
             "most 1");
@@ -309,7 +309,7 @@ TEST(BenchFitStrawson, FitsAMotorPropellerPairFromItsTwoSupplyLevels) {
   };
   for (const Bound& b : {Bound{pe::Output::kThrust, 0.999, 3.0, 8.0}, Bound{pe::Output::kCurrent, 0.998, 0.1, 0.25},
                          Bound{pe::Output::kPower, 0.998, 1.0, 2.5}, Bound{pe::Output::kRpm, 0.995, 250.0, 700.0}}) {
-    const pe::OutputFitReport& report = fit.outputs[static_cast<int>(b.output)];
+    const pe::fitting::OutputFitReport& report = fit.outputs[static_cast<int>(b.output)];
     const pe::FitQuality& q = *fit.model.output(b.output).fit;
     EXPECT_EQ(report.points, 22) << pe::outputName(b.output);
     EXPECT_GT(report.r2, b.min_r2) << pe::outputName(b.output);
@@ -334,7 +334,8 @@ TEST(BenchFitStrawson, FitsAMotorPropellerPairFromItsTwoSupplyLevels) {
 
 TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedTheVoltage) {
   // a1_11: at 1905 and 2000 us the supply's ~11 A limit pulled 11 V down to 9.35 and 8.30 V.
-  const pe::BenchFit fit = pe::fitBenchModel(strawsonPair("a1"), strawsonOptions("EMAX RS2205S 2600kv", "T5040C"));
+  const pe::fitting::BenchFit fit =
+      pe::fitting::fitBenchModel(strawsonPair("a1"), strawsonOptions("EMAX RS2205S 2600kv", "T5040C"));
   ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
   const std::string expected = repoPath(kStrawson + "a1_11.csv") +
                                ": 2 rows more than 0.5 V off the sweep's 10.99 V (down to 8.30 V at 2000 us, 10.96 A): "
@@ -345,7 +346,7 @@ TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedThe
   // The domain is what the model was measured on: every row at its voltage. Its 7.14 V bound is
   // a1_7's own top-of-sweep droop (0.18 V under its median), and the report says where it lies.
   EXPECT_NEAR(fit.model.domain().voltage_min_v, 7.14, 0.01);
-  const std::string report = pe::fitReportMarkdown(fit, "a1.yaml");
+  const std::string report = pe::fitting::fitReportMarkdown(fit, "a1.yaml");
   EXPECT_NE(report.find("- Domain: PWM 1050 to 2000 us, voltage 7.14 to 11.09 V: the bounding box of all rows at their "
                         "measured voltage, supply droop and sag included (7.14 V was logged at 2000 us, 11.09 V at "
                         "1050 us; the voltage levels are centred at 7.32 to 10.99 V); outside it the model will "
@@ -368,13 +369,13 @@ TEST(BenchFitStrawson, RefusesAPairWhoseTwoFilesAreAtTheSameVoltage) {
 TEST(BenchFitStrawson, RefusesAGroupingThatLeavesOneVoltageLevelPerFold) {
   // Two supply levels: holding out a level, or one of the two logs, leaves nothing to fit voltage
   // on, and every candidate would have voltage degree 0: a model that ignores voltage.
-  pe::FitOptions options = strawsonOptions("Lumenier RX2206-13 2000kv", "Cyclone T5040C 3-blade");
-  options.grouping = pe::FitGrouping::kVoltageLevel;
+  pe::fitting::FitOptions options = strawsonOptions("Lumenier RX2206-13 2000kv", "Cyclone T5040C 3-blade");
+  options.grouping = pe::fitting::FitGrouping::kVoltageLevel;
   EXPECT_EQ(refusal(strawsonPair("g1"), options),
             "cannot fit thrust: --group-by voltage leaves one voltage level in a training fold (without the 7.40 V "
             "level only 11.07 V remains), so cross-validation cannot score a voltage term: use --group-by pwm or "
             "auto");
-  options.grouping = pe::FitGrouping::kLog;
+  options.grouping = pe::fitting::FitGrouping::kLog;
   EXPECT_EQ(refusal(strawsonPair("g1"), options),
             "cannot fit thrust: --group-by log leaves one voltage level in a training fold (without " +
                 repoPath(kStrawson + "g1_7.csv") +
@@ -412,9 +413,9 @@ TEST(BenchFitRefusals, ConstantColumn) {
       refusal(logs),
       "cannot fit rpm: column rpm is 0 rpm in all 18 rows of a.csv and b.csv (a sensor that was not connected?); "
       "leave it out with --without rpm");
-  pe::FitOptions without_rpm;
+  pe::fitting::FitOptions without_rpm;
   without_rpm.without = {pe::Output::kRpm};
-  const pe::BenchFit fit = pe::fitBenchModel(logs, without_rpm);
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(logs, without_rpm);
   EXPECT_EQ(fit.model.output(pe::Output::kRpm).source, pe::OutputSource::kNone);
   EXPECT_EQ(fit.model.output(pe::Output::kRpm).note, "left out on request (--without rpm)");
   for (pe::BenchLog& log : logs) log.column(pe::BenchColumn::kThrust).assign(log.rows(), 0.0);
@@ -448,13 +449,13 @@ TEST(BenchFitRefusals, MissingOrContradictoryMetadata) {
   EXPECT_EQ(refusal(logs),
             "logs disagree on motor: 'M' (a.csv) and 'other' (b.csv); pass --motor to say which the model records");
   for (pe::BenchLog& log : logs) log.metadata.erase("air_temperature_c");
-  pe::FitOptions motor;
+  pe::fitting::FitOptions motor;
   motor.motor = "M";
   EXPECT_EQ(refusal(logs, motor),
             "no log gives the bench's air_temperature_c (a '# air_temperature_c:' line or an ambient_temp_c column): "
             "pass --air-temperature-c");
   logs[0].column(pe::BenchColumn::kAmbientTemp).assign(logs[0].rows(), 24.0);
-  const pe::BenchFit fit = pe::fitBenchModel(logs, motor);
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(logs, motor);
   EXPECT_DOUBLE_EQ(fit.model.metadata().bench_air_temperature_c.value(), 24.0);
   EXPECT_EQ(fit.model.metadata().supply, pe::SupplyKind::kBattery);
 }
@@ -467,7 +468,7 @@ TEST(BenchFitRefusals, EveryMissingBenchConditionInOneMessageAndUnknownNames) {
             "no log gives the bench's air_temperature_c (a '# air_temperature_c:' line or an ambient_temp_c column), "
             "air_pressure_pa (a '# air_pressure_pa:' line or a pressure_pa column) and supply (a '# supply:' line): "
             "pass --air-temperature-c, --air-pressure-pa and --supply");
-  pe::FitOptions physics;
+  pe::fitting::FitOptions physics;
   physics.supply = pe::SupplyKind::kRegulated;
   physics.air_pressure_pa = 101325.0;
   EXPECT_EQ(refusal(logs, physics),
@@ -476,7 +477,7 @@ TEST(BenchFitRefusals, EveryMissingBenchConditionInOneMessageAndUnknownNames) {
   // The names only describe the combination: without them the model says "unknown", and the notes why.
   physics.air_temperature_c = 20.0;
   physics.propeller = "DJI 9443";
-  const pe::BenchFit fit = pe::fitBenchModel(logs, physics);
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(logs, physics);
   EXPECT_EQ(fit.model.metadata().esc, "unknown");
   EXPECT_EQ(fit.model.metadata().motor, "unknown");
   EXPECT_EQ(fit.model.metadata().propeller, "DJI 9443");
@@ -484,16 +485,17 @@ TEST(BenchFitRefusals, EveryMissingBenchConditionInOneMessageAndUnknownNames) {
     const std::string note = std::string(key) + ": no log has a '# " + key + ":' line; the model records 'unknown' " +
                              "(pass --" + key + " to name it)";
     EXPECT_NE(std::find(fit.notes.begin(), fit.notes.end(), note), fit.notes.end()) << note;
-    EXPECT_NE(pe::fitReportMarkdown(fit, "m.yaml").find("- " + note + "\n"), std::string::npos) << note;
+    EXPECT_NE(pe::fitting::fitReportMarkdown(fit, "m.yaml").find("- " + note + "\n"), std::string::npos) << note;
   }
 }
 
 TEST(BenchFitRefusals, ReportsAModelThatFailsTheLoadersGridCheckInsteadOfHidingIt) {
   // A stand wired so that thrust reads negative, passed on without a sign correction.
   auto negative = [](double x, double v) { return -0.1 * (x - 1100.0) + 0.0 * v; };
-  const pe::BenchFit fit = pe::fitBenchModel({gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, negative),
-                                              gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, negative)},
-                                             {});
+  const pe::fitting::BenchFit fit =
+      pe::fitting::fitBenchModel({gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, negative),
+                                  gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, negative)},
+                                 {});
   EXPECT_EQ(fit.validation_error,
             "outputs.thrust: -80 g at pwm_us=1900, voltage_v=11.1: thrust must not be negative at the top of the PWM "
             "range");
@@ -501,7 +503,7 @@ TEST(BenchFitRefusals, ReportsAModelThatFailsTheLoadersGridCheckInsteadOfHidingI
 
 TEST(BenchFitRefusals, BadOptions) {
   const std::vector<pe::BenchLog> logs = syntheticSweeps().logs;
-  pe::FitOptions options;
+  pe::fitting::FitOptions options;
   options.max_pwm_degree = 6;
   EXPECT_EQ(refusal(logs, options), "max PWM degree 6 is outside 1..5");
   options = {};
@@ -518,7 +520,7 @@ TEST(BenchFitRefusals, BadOptions) {
 TEST(BenchFitRefusals, BenchAirTheModelLoaderWouldRefuse) {
   std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
                                     gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)};
-  pe::FitOptions kelvin;
+  pe::fitting::FitOptions kelvin;
   kelvin.air_temperature_c = 293.15;
   EXPECT_EQ(refusal(logs, kelvin),
             "metadata.bench_air_temperature_c: 293.15 is not an air temperature in deg C (given as "
@@ -531,16 +533,16 @@ TEST(BenchFitRefusals, BenchAirTheModelLoaderWouldRefuse) {
   EXPECT_EQ(refusal(logs),
             "metadata.bench_air_pressure_pa: 1013.25 is not an air pressure in Pa (from a.csv column pressure_pa and "
             "b.csv column pressure_pa; pass --air-pressure-pa)");
-  pe::FitOptions pascal;
+  pe::fitting::FitOptions pascal;
   pascal.air_pressure_pa = 101325.0;
-  EXPECT_DOUBLE_EQ(pe::fitBenchModel(logs, pascal).model.metadata().bench_air_pressure_pa.value(), 101325.0);
+  EXPECT_DOUBLE_EQ(pe::fitting::fitBenchModel(logs, pascal).model.metadata().bench_air_pressure_pa.value(), 101325.0);
 }
 
 TEST(BenchFitRefusals, LogsBuiltInCodeThatBreakTheReadersGuarantees) {
   const pe::BenchLog good = gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust);
   auto dataset = [&](const pe::BenchLog& log) {
     try {
-      pe::buildBenchDataset({good, log}, {});
+      pe::fitting::buildBenchDataset({good, log}, {});
     } catch (const pe::DataError& e) {
       return std::string(e.what());
     }
@@ -560,9 +562,9 @@ TEST(BenchFitRefusals, LogsBuiltInCodeThatBreakTheReadersGuarantees) {
 }
 
 TEST(BenchFit, EfficiencyAsItsOwnSurfaceOnRequest) {
-  pe::FitOptions options;
+  pe::fitting::FitOptions options;
   options.efficiency_surface = true;
-  const pe::BenchFit fit = pe::fitBenchModel(syntheticSweeps().logs, options);
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(syntheticSweeps().logs, options);
   ASSERT_EQ(fit.model.output(pe::Output::kEfficiency).source, pe::OutputSource::kSurface);
   // Thrust / power of the chain at 1700 us, 11.7 V.
   const double truth = SmoothChain::thrustGrams(1700, 11.7) / SmoothChain::powerWatts(1700, 11.7);
@@ -570,17 +572,18 @@ TEST(BenchFit, EfficiencyAsItsOwnSurfaceOnRequest) {
 }
 
 TEST(BenchFit, GroupingByLogOnRequest) {
-  pe::FitOptions options;
-  options.grouping = pe::FitGrouping::kLog;
-  const pe::BenchFit fit = pe::fitBenchModel(syntheticSweeps().logs, options);
+  pe::fitting::FitOptions options;
+  options.grouping = pe::fitting::FitGrouping::kLog;
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(syntheticSweeps().logs, options);
   EXPECT_EQ(fit.grouping_description, "leave one log out (8 logs)");
   EXPECT_EQ(fit.model.output(pe::Output::kThrust).fit->grouping, "leave one log out (8 logs)");
   // Two logs per voltage level: every fold keeps both levels, and voltage is fitted.
-  const pe::BenchFit repeated = pe::fitBenchModel({gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
-                                                   gridLog("b.csv", pwmSteps(1150, 1850, 100), 11.1, smoothThrust),
-                                                   gridLog("c.csv", pwmSteps(1100, 1900, 100), 12.3, smoothThrust),
-                                                   gridLog("d.csv", pwmSteps(1150, 1850, 100), 12.3, smoothThrust)},
-                                                  options);
+  const pe::fitting::BenchFit repeated =
+      pe::fitting::fitBenchModel({gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                  gridLog("b.csv", pwmSteps(1150, 1850, 100), 11.1, smoothThrust),
+                                  gridLog("c.csv", pwmSteps(1100, 1900, 100), 12.3, smoothThrust),
+                                  gridLog("d.csv", pwmSteps(1150, 1850, 100), 12.3, smoothThrust)},
+                                 options);
   EXPECT_EQ(repeated.data.voltage_levels.size(), 2u);
   EXPECT_EQ(repeated.model.output(pe::Output::kThrust).fit->voltage_degree, 1);
 }

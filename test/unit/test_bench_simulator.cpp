@@ -20,7 +20,9 @@ namespace pe = propulsion_estimator;
 
 namespace {
 
-pe::SimParams thesisParams() { return pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")); }
+pe::sim::SimParams thesisParams() {
+  return pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
+}
 
 struct RunRows {
   std::vector<double> voltage, thrust_g, current, rpm, pwm;
@@ -53,9 +55,9 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
   return a.colPivHouseholderQr().solve(b)(0);
 }
 
-std::string refusal(const pe::BenchExperiment& experiment) {
+std::string refusal(const pe::sim::BenchExperiment& experiment) {
   try {
-    pe::simulateBench(thesisParams(), {}, experiment, 1);
+    pe::sim::simulateBench(thesisParams(), {}, experiment, 1);
   } catch (const pe::InputError& e) {
     return e.what();
   }
@@ -65,13 +67,14 @@ std::string refusal(const pe::BenchExperiment& experiment) {
 }  // namespace
 
 TEST(BenchSimulator, SensorNoiseMatchesTheConfiguredSigmas) {
-  const pe::SimParams params = thesisParams();
-  const pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  const pe::sim::SimParams params = thesisParams();
+  const pe::sim::BenchExperiment sweep =
+      pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   pe::BenchLog truth;
-  const pe::BenchLog log = pe::simulateBench(params, {}, sweep, 11, &truth);
+  const pe::BenchLog log = pe::sim::simulateBench(params, {}, sweep, 11, &truth);
   ASSERT_EQ(log.rows(), 8u * 141u);
-  const pe::BenchSensors& sensors = params.bench.sensors;
-  const std::pair<pe::BenchColumn, const pe::SensorNoise*> checks[] = {
+  const pe::sim::BenchSensors& sensors = params.bench.sensors;
+  const std::pair<pe::BenchColumn, const pe::sim::SensorNoise*> checks[] = {
       {pe::BenchColumn::kThrust, &sensors.thrust_n},         {pe::BenchColumn::kCurrent, &sensors.current_a},
       {pe::BenchColumn::kVoltage, &sensors.voltage_v},       {pe::BenchColumn::kRpm, &sensors.rpm},
       {pe::BenchColumn::kMotorTemp, &sensors.temperature_c}, {pe::BenchColumn::kAmbientTemp, &sensors.temperature_c}};
@@ -98,12 +101,12 @@ TEST(BenchSimulator, SensorNoiseMatchesTheConfiguredSigmas) {
 }
 
 TEST(BenchSimulator, MetadataDescribesTheRunAndItsNoise) {
-  const pe::SimParams params = thesisParams();
-  pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::BenchExperiment sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.voltages_v = {11.1};
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.supply_resistance_ohm = 0.02;
-  const pe::BenchLog log = pe::simulateBench(params, effects, sweep, 5);
+  const pe::BenchLog log = pe::sim::simulateBench(params, effects, sweep, 5);
   const auto& meta = log.metadata;
   EXPECT_EQ(meta.at("esc"), "DJI E300 Opto");
   EXPECT_EQ(meta.at("motor"), "DJI 2212 920KV");
@@ -121,19 +124,21 @@ TEST(BenchSimulator, MetadataDescribesTheRunAndItsNoise) {
   EXPECT_EQ(meta.at("resolution_voltage_v"), "0.0244");
   EXPECT_EQ(meta.at("noise_sigma_rpm"), "10");
   EXPECT_EQ(meta.at("noise_sigma_temperature_c"), "0.05");
-  const pe::BenchExperiment discharge = pe::thesisBenchExperiment(pe::BenchExperimentKind::kDischarge, params);
-  pe::BenchExperiment one = discharge;
+  const pe::sim::BenchExperiment discharge =
+      pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kDischarge, params);
+  pe::sim::BenchExperiment one = discharge;
   one.pwms_us = {1900.0};
-  const pe::BenchLog on_battery = pe::simulateBench(params, {}, one, 5);
+  const pe::BenchLog on_battery = pe::sim::simulateBench(params, {}, one, 5);
   EXPECT_EQ(on_battery.metadata.at("supply"), "battery");
   EXPECT_EQ(on_battery.metadata.at("battery"), "Turnigy 3S 4000 mAh");
 }
 
 TEST(BenchSimulator, SweepsThePwmRangeAtEachVoltage) {
-  const pe::SimParams params = thesisParams();
-  const pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  const pe::sim::SimParams params = thesisParams();
+  const pe::sim::BenchExperiment sweep =
+      pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   pe::BenchLog truth;
-  pe::simulateBench(params, {}, sweep, 1, &truth);
+  pe::sim::simulateBench(params, {}, sweep, 1, &truth);
   for (int run = 1; run <= 8; ++run) {
     const RunRows rows = rowsOfRun(truth, run);
     ASSERT_EQ(rows.pwm.size(), 141u);
@@ -150,10 +155,11 @@ TEST(BenchSimulator, SweepsThePwmRangeAtEachVoltage) {
 TEST(BenchSimulator, DischargeAtConstantPwmReproducesTheThesisSlopes) {
   // Thesis 4.2 at 1600 us, thrust, current and rpm against voltage: tables 4.6 (42.62 g/V),
   // 4.7 (0.3432 A/V), 4.10 (420.7 rpm/V).
-  const pe::SimParams params = thesisParams();
-  const pe::BenchExperiment discharge = pe::thesisBenchExperiment(pe::BenchExperimentKind::kDischarge, params);
+  const pe::sim::SimParams params = thesisParams();
+  const pe::sim::BenchExperiment discharge =
+      pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kDischarge, params);
   ASSERT_EQ(discharge.pwms_us, (std::vector<double>{1600.0, 1700.0, 1800.0, 1900.0}));
-  const pe::BenchLog log = pe::simulateBench(params, {}, discharge, 2);
+  const pe::BenchLog log = pe::sim::simulateBench(params, {}, discharge, 2);
   const RunRows at_1600 = rowsOfRun(log, 1);
   EXPECT_NEAR(slope(at_1600.voltage, at_1600.thrust_g), 42.62, 0.10 * 42.62);
   EXPECT_NEAR(slope(at_1600.voltage, at_1600.current), 0.3432, 0.15 * 0.3432);
@@ -172,10 +178,10 @@ TEST(BenchSimulator, DischargeAtConstantPwmReproducesTheThesisSlopes) {
 
 TEST(BenchSimulator, ConstantThrustRunsHoldTheThrustAndReproduceTheThesisSlopes) {
   // Thesis 4.3 at 300 g: PWM against voltage -50.11 us/V (table 4.12), current -0.2325 A/V (4.13).
-  const pe::SimParams params = thesisParams();
-  pe::BenchExperiment held = pe::thesisBenchExperiment(pe::BenchExperimentKind::kConstantThrust, params);
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::BenchExperiment held = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kConstantThrust, params);
   held.thrusts_n = {300.0 * pe::kNewtonPerGramForce, 500.0 * pe::kNewtonPerGramForce};
-  const pe::BenchLog log = pe::simulateBench(params, {}, held, 3);
+  const pe::BenchLog log = pe::sim::simulateBench(params, {}, held, 3);
   const RunRows at_300 = rowsOfRun(log, 1);
   double mean = 0.0;
   for (double t : at_300.thrust_g) mean += t / at_300.thrust_g.size();
@@ -189,39 +195,39 @@ TEST(BenchSimulator, ConstantThrustRunsHoldTheThrustAndReproduceTheThesisSlopes)
 }
 
 TEST(BenchSimulator, AppliesOnlyTheEffectsABenchShows) {
-  const pe::SimParams params = thesisParams();
-  pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::BenchExperiment sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.voltages_v = {12.0};
-  pe::SimEffects flight_only;
+  pe::sim::SimEffects flight_only;
   flight_only.esc_offset_us = 30.0;
   flight_only.ground_effect_strength = 1.0;
   flight_only.thrust_loss_fraction = 0.1;
   flight_only.climb_inflow_strength = 1.0;
-  const pe::BenchLog with = pe::simulateBench(params, flight_only, sweep, 9);
-  const pe::BenchLog without = pe::simulateBench(params, {}, sweep, 9);
+  const pe::BenchLog with = pe::sim::simulateBench(params, flight_only, sweep, 9);
+  const pe::BenchLog without = pe::sim::simulateBench(params, {}, sweep, 9);
   EXPECT_EQ(with.column(pe::BenchColumn::kThrust), without.column(pe::BenchColumn::kThrust));
   EXPECT_EQ(with.metadata.at("effects"), "none");
-  pe::SimEffects mixed = flight_only;
+  pe::sim::SimEffects mixed = flight_only;
   mixed.supply_resistance_ohm = 0.05;
-  EXPECT_EQ(pe::simulateBench(params, mixed, sweep, 9).metadata.at("effects"), "supply_resistance(ohm=0.05)");
+  EXPECT_EQ(pe::sim::simulateBench(params, mixed, sweep, 9).metadata.at("effects"), "supply_resistance(ohm=0.05)");
 }
 
 TEST(BenchSimulator, TheSeedFixesTheNoise) {
-  const pe::SimParams params = thesisParams();
-  pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::BenchExperiment sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.voltages_v = {12.0};
-  const pe::BenchLog a = pe::simulateBench(params, {}, sweep, 21);
-  const pe::BenchLog b = pe::simulateBench(params, {}, sweep, 21);
-  const pe::BenchLog c = pe::simulateBench(params, {}, sweep, 22);
+  const pe::BenchLog a = pe::sim::simulateBench(params, {}, sweep, 21);
+  const pe::BenchLog b = pe::sim::simulateBench(params, {}, sweep, 21);
+  const pe::BenchLog c = pe::sim::simulateBench(params, {}, sweep, 22);
   EXPECT_EQ(a.column(pe::BenchColumn::kThrust), b.column(pe::BenchColumn::kThrust));
   EXPECT_NE(a.column(pe::BenchColumn::kThrust), c.column(pe::BenchColumn::kThrust));
 }
 
 TEST(BenchSimulator, WritesANativeBenchCsvThatReadsBack) {
-  const pe::SimParams params = thesisParams();
-  pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::BenchExperiment sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.voltages_v = {11.4, 12.6};
-  const pe::BenchLog log = pe::simulateBench(params, {}, sweep, 1);
+  const pe::BenchLog log = pe::sim::simulateBench(params, {}, sweep, 1);
   std::ostringstream out;
   pe::writeNativeBenchCsv(log, out);
   const std::string text = out.str();
@@ -245,30 +251,30 @@ TEST(BenchSimulator, WritesANativeBenchCsvThatReadsBack) {
 }
 
 TEST(BenchSimulator, RefusesImpossibleExperiments) {
-  const pe::SimParams params = thesisParams();
-  pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::BenchExperiment sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.voltages_v.clear();
   EXPECT_EQ(refusal(sweep), "voltages_v: no supply voltage to sweep at");
-  sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.pwm_step_us = 0.0;
   EXPECT_EQ(refusal(sweep), "pwm_step_us: must be a positive number, got 0");
-  sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.pwm_start_us = 1900.0;
   sweep.pwm_end_us = 1200.0;
   EXPECT_EQ(refusal(sweep), "pwm_start_us: [1900, 1200] is not a range within 800..2200 us");
   // Counts of steps in double: a step of 1e-7 us is 7e9 pulse widths, not an overflowed int.
-  sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.pwm_step_us = 1e-7;
   EXPECT_EQ(refusal(sweep), "pwm_step_us: 1e-07 gives 7000000001 pulse widths from 1200 to 1900 us (at most 1e+06)");
-  sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+  sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.step_duration_s = 0.01;
   EXPECT_EQ(refusal(sweep), "step_duration_s: 0.01 is outside 0.02..3600 s");
   sweep.step_duration_s = 1e5;
   EXPECT_EQ(refusal(sweep), "step_duration_s: 100000 is outside 0.02..3600 s");
-  pe::BenchExperiment discharge = pe::thesisBenchExperiment(pe::BenchExperimentKind::kDischarge, params);
+  pe::sim::BenchExperiment discharge = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kDischarge, params);
   discharge.sample_interval_s = 1e9;
   EXPECT_EQ(refusal(discharge), "sample_interval_s: 1e+09 is outside 0.02..3600 s");
-  discharge = pe::thesisBenchExperiment(pe::BenchExperimentKind::kDischarge, params);
+  discharge = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kDischarge, params);
   discharge.pwms_us = {1800.0};
   discharge.cutoff_voltage_v = 9.0;  // below the empty pack's 9.81 V
   EXPECT_EQ(refusal(discharge),
@@ -279,8 +285,8 @@ TEST(BenchSimulator, RefusesAConstantThrustOutsideWhatThePwmRangeGives) {
   // From the full 3S pack (12.6 V behind 15 mOhm) the rotor gives 683 g at 1900 us (695 g at a
   // regulated 12.6 V) and 19 g at 1200 us; 3 load-cell sigmas (3 g) of slack either side. The
   // target is quoted as given, not as its round trip through newtons.
-  const pe::SimParams params = thesisParams();
-  pe::BenchExperiment held = pe::thesisBenchExperiment(pe::BenchExperimentKind::kConstantThrust, params);
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::BenchExperiment held = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kConstantThrust, params);
   held.thrusts_n = {300.0 * pe::kNewtonPerGramForce, 2000.0 * pe::kNewtonPerGramForce};
   EXPECT_EQ(refusal(held), "constant thrust of 2000 g: only 683 g at 1900 us");
   held.thrusts_n = {10.0 * pe::kNewtonPerGramForce};

@@ -50,7 +50,7 @@ class FlightBagReader : public testing::Test {
   fs::path dir_;
 };
 
-pe::RcOutSample rcOut(double time_s, std::vector<std::uint16_t> channels) { return {time_s, std::move(channels)}; }
+pe::sim::RcOutSample rcOut(double time_s, std::vector<std::uint16_t> channels) { return {time_s, std::move(channels)}; }
 
 pe::RcOutMessage rcOutMessage(std::vector<std::uint16_t> channels) {
   pe::RcOutMessage message;
@@ -75,14 +75,14 @@ void writeMinimalBag(const std::string& path, const std::function<void(rosbag::B
 }  // namespace
 
 TEST_F(FlightBagReader, ReadsWhatTheSimulatorWritesOnTheManifestsClock) {
-  pe::ImuSample imu;
+  pe::sim::ImuSample imu;
   imu.time_s = 0.1;
   imu.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()));
   imu.linear_acceleration_m_s2 = Eigen::Vector3d(0.1, -0.2, 9.9);
   {
     pe::BagFlightSink sink(file("flight.bag"), rosbag::compression::Uncompressed);
     // The truth comes first: the clock starts at the bag's first message whatever its topic.
-    pe::TruthSample truth;
+    pe::sim::TruthSample truth;
     truth.total_mass_kg = 1.315;
     sink.truth(truth);
     sink.rcOut(rcOut(0.02, {1600, 1610, 1620, 1630, 900, 900, 0, 0}));

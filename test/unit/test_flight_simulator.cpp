@@ -19,21 +19,25 @@ namespace pe = propulsion_estimator;
 
 namespace {
 
-pe::SimParams thesisParams() { return pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")); }
+pe::sim::SimParams thesisParams() {
+  return pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
+}
 
-pe::FlightProfile defaultProfile() { return pe::loadFlightProfileFile(repoPath("config/sim/default_flight.yaml")); }
+pe::sim::FlightProfile defaultProfile() {
+  return pe::sim::loadFlightProfileFile(repoPath("config/sim/default_flight.yaml"));
+}
 
 struct Flight {
   RecordingFlightSink sink;
-  pe::FlightResult result;
-  std::vector<pe::ScheduledSegment> schedule;
+  pe::sim::FlightResult result;
+  std::vector<pe::sim::ScheduledSegment> schedule;
 };
 
-Flight fly(const pe::FlightProfile& profile, std::uint64_t seed = 1) {
+Flight fly(const pe::sim::FlightProfile& profile, std::uint64_t seed = 1) {
   Flight flight;
   const pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
-  flight.result = pe::simulateFlight(thesisParams(), {}, profile, vehicle, seed, &flight.sink);
-  flight.schedule = pe::scheduleFlight(profile);
+  flight.result = pe::sim::simulateFlight(thesisParams(), {}, profile, vehicle, seed, &flight.sink);
+  flight.schedule = pe::sim::scheduleFlight(profile);
   return flight;
 }
 
@@ -49,7 +53,7 @@ void forSegment(const std::vector<Sample>& samples, const pe::ManifestSegment& s
   }
 }
 
-std::string refusal(const pe::FlightProfile& profile) {
+std::string refusal(const pe::sim::FlightProfile& profile) {
   try {
     fly(profile);
   } catch (const pe::InputError& e) {
@@ -64,8 +68,8 @@ TEST(FlightSimulator, ManifestSegmentsAreTheHoversWithTheirTrueMasses) {
   const Flight& flight = defaultFlight();
   const double settle = defaultProfile().manifest_settle_s;
   std::vector<pe::ManifestSegment> expected;
-  for (const pe::ScheduledSegment& s : flight.schedule) {
-    if (s.segment.kind == pe::SegmentKind::kHover)
+  for (const pe::sim::ScheduledSegment& s : flight.schedule) {
+    if (s.segment.kind == pe::sim::SegmentKind::kHover)
       expected.push_back({s.start_s + settle, s.end_s, 1.315 + s.payload_mass_kg});
   }
   ASSERT_EQ(flight.result.segments.size(), 4u);
@@ -79,8 +83,8 @@ TEST(FlightSimulator, ManifestSegmentsAreTheHoversWithTheirTrueMasses) {
 }
 
 TEST(FlightSimulator, AirborneManifestSpansRunFromLiftOffToBeforeTouchdown) {
-  pe::FlightProfile profile = defaultProfile();
-  profile.manifest_spans = pe::ManifestSpans::kAirborne;
+  pe::sim::FlightProfile profile = defaultProfile();
+  profile.manifest_spans = pe::sim::ManifestSpans::kAirborne;
   const Flight flight = fly(profile);
   // By hand from the schedule. Segment 1 takes off empty: the feet leave the ground as the climb
   // starts after the 2 s spin-up, and the span starts the 8 s settle time later; segment 7 lands
@@ -91,12 +95,12 @@ TEST(FlightSimulator, AirborneManifestSpansRunFromLiftOffToBeforeTouchdown) {
   // The 0.8 m/s descent of segment 5 to 0.2 m overshoots by 8 cm, onto the feet: the ground
   // carries part of the weight for a moment, which splits the first stretch there, the second
   // part starting the settle time after the touch.
-  const std::vector<pe::ScheduledSegment>& s = flight.schedule;
-  ASSERT_EQ(s[1].segment.kind, pe::SegmentKind::kTakeoff);
-  ASSERT_EQ(s[5].segment.kind, pe::SegmentKind::kDescend);
-  ASSERT_EQ(s[7].segment.kind, pe::SegmentKind::kLand);
-  ASSERT_EQ(s[9].segment.kind, pe::SegmentKind::kTakeoff);
-  ASSERT_EQ(s[11].segment.kind, pe::SegmentKind::kLand);
+  const std::vector<pe::sim::ScheduledSegment>& s = flight.schedule;
+  ASSERT_EQ(s[1].segment.kind, pe::sim::SegmentKind::kTakeoff);
+  ASSERT_EQ(s[5].segment.kind, pe::sim::SegmentKind::kDescend);
+  ASSERT_EQ(s[7].segment.kind, pe::sim::SegmentKind::kLand);
+  ASSERT_EQ(s[9].segment.kind, pe::sim::SegmentKind::kTakeoff);
+  ASSERT_EQ(s[11].segment.kind, pe::sim::SegmentKind::kLand);
   const std::vector<pe::ManifestSegment>& spans = flight.result.segments;
   ASSERT_EQ(spans.size(), 3u);
   EXPECT_NEAR(spans[0].start_s, s[1].start_s + 2.0 + 8.0, 1e-6);
@@ -120,7 +124,7 @@ TEST(FlightSimulator, AirborneManifestSpansRunFromLiftOffToBeforeTouchdown) {
     const bool loaded = span.mass_kg > 1.315;
     double thrust = 0.0;
     int n = 0;
-    forSegment(flight.sink.truths, span, [&](const pe::TruthSample& t) {
+    forSegment(flight.sink.truths, span, [&](const pe::sim::TruthSample& t) {
       // (At a span's end the ground may be touched: the span stops there.)
       if (t.time_s < span.end_s) {
         EXPECT_GT(t.height_m, loaded ? 1.1 : 0.12) << t.time_s;
@@ -129,7 +133,7 @@ TEST(FlightSimulator, AirborneManifestSpansRunFromLiftOffToBeforeTouchdown) {
         EXPECT_GT(t.cable_tension_n, 0.0) << t.time_s;
       }
       EXPECT_DOUBLE_EQ(t.total_mass_kg, span.mass_kg);
-      for (const pe::MotorTruth& motor : t.motors) thrust += motor.thrust_n;
+      for (const pe::sim::MotorTruth& motor : t.motors) thrust += motor.thrust_n;
       ++n;
     });
     EXPECT_NEAR(thrust / n, span.mass_kg * pe::kStandardGravity, 0.005 * span.mass_kg * pe::kStandardGravity);
@@ -142,7 +146,7 @@ TEST(FlightSimulator, HoldsTheCommandedHeights) {
   for (std::size_t i = 0; i < 4; ++i) {
     double sum = 0.0, worst = 0.0;
     int n = 0;
-    forSegment(flight.sink.truths, flight.result.segments[i], [&](const pe::TruthSample& t) {
+    forSegment(flight.sink.truths, flight.result.segments[i], [&](const pe::sim::TruthSample& t) {
       sum += t.height_m;
       worst = std::max(worst, std::fabs(t.height_m - targets[i]));
       ++n;
@@ -157,7 +161,7 @@ TEST(FlightSimulator, TheThesisQuadHoversBetween1600And1750Us) {
   for (std::size_t i = 0; i < 3; ++i) {  // the empty hovers
     double sum = 0.0;
     int n = 0;
-    forSegment(flight.sink.rc_out, flight.result.segments[i], [&](const pe::RcOutSample& s) {
+    forSegment(flight.sink.rc_out, flight.result.segments[i], [&](const pe::sim::RcOutSample& s) {
       for (int k = 0; k < 4; ++k) sum += s.channels[k];
       n += 4;
     });
@@ -171,8 +175,8 @@ TEST(FlightSimulator, TrueThrustSumsToTheWeightInHover) {
   for (const pe::ManifestSegment& segment : flight.result.segments) {
     double sum = 0.0;
     int n = 0;
-    forSegment(flight.sink.truths, segment, [&](const pe::TruthSample& t) {
-      for (const pe::MotorTruth& motor : t.motors) sum += motor.thrust_n;
+    forSegment(flight.sink.truths, segment, [&](const pe::sim::TruthSample& t) {
+      for (const pe::sim::MotorTruth& motor : t.motors) sum += motor.thrust_n;
       ++n;
     });
     // Tilt in hover is below a degree: the thrust along the rotor axes is the weight to 0.3 %.
@@ -185,17 +189,17 @@ TEST(FlightSimulator, ThePendulumPayloadsWeightAppearsInTheTotal) {
   const pe::ManifestSegment& loaded = flight.result.segments[3];
   double tension = 0.0, thrust = 0.0;
   int n = 0;
-  forSegment(flight.sink.truths, loaded, [&](const pe::TruthSample& t) {
+  forSegment(flight.sink.truths, loaded, [&](const pe::sim::TruthSample& t) {
     EXPECT_EQ(t.payload_mass_kg, 0.396);
     EXPECT_DOUBLE_EQ(t.total_mass_kg, 1.315 + 0.396);
     tension += t.cable_tension_n;
-    for (const pe::MotorTruth& motor : t.motors) thrust += motor.thrust_n;
+    for (const pe::sim::MotorTruth& motor : t.motors) thrust += motor.thrust_n;
     ++n;
   });
   EXPECT_NEAR(tension / n, 0.396 * pe::kStandardGravity, 0.01 * 0.396 * pe::kStandardGravity);
   EXPECT_NEAR(thrust / n - tension / n, 1.315 * pe::kStandardGravity, 0.005 * 1.315 * pe::kStandardGravity);
   // Landed, the payload rests on the ground and the cable is slack.
-  for (const pe::TruthSample& t : flight.sink.truths) {
+  for (const pe::sim::TruthSample& t : flight.sink.truths) {
     if (t.payload_mass_kg > 0.0 && t.time_s < loaded.start_s - 20.0) {
       ASSERT_LT(t.height_m, 0.2);
       ASSERT_EQ(t.cable_tension_n, 0.0);
@@ -212,7 +216,7 @@ TEST(FlightSimulator, TheCentreOfThrustLiesUnderTheCentreOfGravity) {
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
   double total = 0.0;
   std::vector<double> mean(4, 0.0);
-  forSegment(flight.sink.truths, flight.result.segments[1], [&](const pe::TruthSample& t) {
+  forSegment(flight.sink.truths, flight.result.segments[1], [&](const pe::sim::TruthSample& t) {
     for (int k = 0; k < 4; ++k) {
       moment += t.motors[k].thrust_n * vehicle.rotors[k].position_m.head<2>();
       total += t.motors[k].thrust_n;
@@ -231,7 +235,7 @@ TEST(FlightSimulator, StreamsKeepTheirRatesFromTheFirstMessage) {
   const auto expected = [&](double rate_hz) {
     return static_cast<std::size_t>(std::floor(duration * rate_hz + 1e-6)) + 1;
   };
-  const pe::FlightSensorParams sensors;
+  const pe::sim::FlightSensorParams sensors;
   EXPECT_EQ(flight.sink.rc_out.size(), expected(50.0));
   EXPECT_EQ(flight.sink.truths.size(), expected(50.0));
   EXPECT_EQ(flight.sink.batteries.size(), expected(sensors.battery_rate_hz));
@@ -257,13 +261,13 @@ TEST(FlightSimulator, SensorsReadThePhysicalState) {
     return sum / values.size();
   };
   std::vector<double> range_high, range_low, pressure_high, pressure_low, accel_z, pose_z;
-  forSegment(flight.sink.ranges, high, [&](const pe::RangeSample& s) { range_high.push_back(s.range_m); });
-  forSegment(flight.sink.ranges, low, [&](const pe::RangeSample& s) { range_low.push_back(s.range_m); });
-  forSegment(flight.sink.pressures, high, [&](const pe::ScalarSample& s) { pressure_high.push_back(s.value); });
-  forSegment(flight.sink.pressures, low, [&](const pe::ScalarSample& s) { pressure_low.push_back(s.value); });
+  forSegment(flight.sink.ranges, high, [&](const pe::sim::RangeSample& s) { range_high.push_back(s.range_m); });
+  forSegment(flight.sink.ranges, low, [&](const pe::sim::RangeSample& s) { range_low.push_back(s.range_m); });
+  forSegment(flight.sink.pressures, high, [&](const pe::sim::ScalarSample& s) { pressure_high.push_back(s.value); });
+  forSegment(flight.sink.pressures, low, [&](const pe::sim::ScalarSample& s) { pressure_low.push_back(s.value); });
   forSegment(flight.sink.imus, high,
-             [&](const pe::ImuSample& s) { accel_z.push_back(s.linear_acceleration_m_s2.z()); });
-  forSegment(flight.sink.poses, high, [&](const pe::PoseSample& s) { pose_z.push_back(s.position_m.z()); });
+             [&](const pe::sim::ImuSample& s) { accel_z.push_back(s.linear_acceleration_m_s2.z()); });
+  forSegment(flight.sink.poses, high, [&](const pe::sim::PoseSample& s) { pose_z.push_back(s.position_m.z()); });
   EXPECT_NEAR(mean(range_high), 5.0, 0.02);
   EXPECT_NEAR(mean(range_low), 2.0, 0.02);
   // Air of 1.196 kg/m^3: 11.73 Pa per metre.
@@ -280,20 +284,20 @@ TEST(FlightSimulator, Px4AndArduPilotConventions) {
   const Flight& px4 = defaultFlight();
   EXPECT_EQ(px4.sink.rc_out.front().channels, (std::vector<std::uint16_t>{900, 900, 900, 900, 0, 0, 0, 0}));
   const pe::ManifestSegment& hover = px4.result.segments[0];
-  forSegment(px4.sink.batteries, hover, [](const pe::BatterySample& s) { EXPECT_LT(s.current_a, -10.0); });
+  forSegment(px4.sink.batteries, hover, [](const pe::sim::BatterySample& s) { EXPECT_LT(s.current_a, -10.0); });
 
-  pe::FlightProfile profile = defaultProfile();
-  profile.autopilot.flavour = pe::AutopilotFlavour::kArduPilot;
+  pe::sim::FlightProfile profile = defaultProfile();
+  profile.autopilot.flavour = pe::sim::AutopilotFlavour::kArduPilot;
   profile.autopilot.disarmed_pwm_us = 0.0;
   const Flight ardupilot = fly(profile);
   EXPECT_EQ(ardupilot.sink.rc_out.front().channels, (std::vector<std::uint16_t>{0, 0, 0, 0, 0, 0, 0, 0}));
-  forSegment(ardupilot.sink.batteries, hover, [](const pe::BatterySample& s) { EXPECT_GT(s.current_a, 10.0); });
+  forSegment(ardupilot.sink.batteries, hover, [](const pe::sim::BatterySample& s) { EXPECT_GT(s.current_a, 10.0); });
 }
 
 TEST(FlightSimulator, TheSeedFixesTheFlight) {
-  pe::FlightProfile profile = defaultProfile();
+  pe::sim::FlightProfile profile = defaultProfile();
   profile.segments.resize(4);  // wait, take off, hover, climb
-  profile.segments.push_back({pe::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0});
+  profile.segments.push_back({pe::sim::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0});
   const Flight a = fly(profile, 4);
   const Flight b = fly(profile, 4);
   const Flight c = fly(profile, 5);
@@ -308,7 +312,7 @@ TEST(FlightSimulator, TheSeedFixesTheFlight) {
 
 TEST(FlightSimulator, RefusesAPayloadTooHeavyToHover) {
   // 2.515 kg / 4 rotors x g = 6.17 N, beyond 80 % of the ~697 g a rotor gives at full pulse width.
-  pe::FlightProfile profile = defaultProfile();
+  pe::sim::FlightProfile profile = defaultProfile();
   profile.segments[8].payload_mass_kg = 1.2;
   EXPECT_EQ(refusal(profile),
             repoPath("config/sim/default_flight.yaml") +
@@ -317,7 +321,7 @@ TEST(FlightSimulator, RefusesAPayloadTooHeavyToHover) {
 }
 
 TEST(FlightSimulator, RefusesAFlightLongerThanTheBattery) {
-  pe::FlightProfile profile = defaultProfile();
+  pe::sim::FlightProfile profile = defaultProfile();
   // 13 % of 4 Ah above the 2 % floor at the ~13 A of the empty hovers: about 144 s.
   profile.vehicle.battery_initial_soc = 0.15;
   EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
@@ -327,10 +331,10 @@ TEST(FlightSimulator, RefusesAFlightLongerThanTheBattery) {
 TEST(FlightSimulator, RefusesAHoverTheVehicleCannotReach) {
   // 5 m/s to 50 m is beyond the autopilot's 2 m/s climb limit: after 12 s of climbing the vehicle is at
   // 17 m, and its hover would not be where the manifest says.
-  pe::FlightProfile profile = defaultProfile();
-  profile.segments = {{pe::SegmentKind::kTakeoff, 0.0, 50.0, 5.0, 0.0},
-                      {pe::SegmentKind::kHover, 0.5, 0.0, 0.0, 0.0},
-                      {pe::SegmentKind::kLand, 0.0, 0.0, 5.0, 0.0}};
+  pe::sim::FlightProfile profile = defaultProfile();
+  profile.segments = {{pe::sim::SegmentKind::kTakeoff, 0.0, 50.0, 5.0, 0.0},
+                      {pe::sim::SegmentKind::kHover, 0.5, 0.0, 0.0, 0.0},
+                      {pe::sim::SegmentKind::kLand, 0.0, 0.0, 5.0, 0.0}};
   EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
                                   ": segments[1].type: the vehicle ended its hover at 17 m instead of 50 m");
 }
@@ -340,19 +344,19 @@ TEST(FlightSimulator, ALightPayloadOnAStiffDampedCableHangsSteadily) {
   // may have (1e5 N/m, 1000 N s/m): stretch modes of 316 and 3162 rad/s and damping rates c/m of
   // 1000 and 1e5 /s, against a 2 ms step. The cable must carry the payload's weight, steadily.
   for (const auto& [stiffness, damping] : {std::pair{1000.0, 10.0}, std::pair{1e5, 1e3}}) {
-    pe::FlightProfile profile = defaultProfile();
+    pe::sim::FlightProfile profile = defaultProfile();
     profile.cable.stiffness_n_per_m = stiffness;
     profile.cable.damping_n_s_per_m = damping;
-    profile.segments = {{pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
-                        {pe::SegmentKind::kPayload, 2.0, 0.0, 0.0, 0.01},
-                        {pe::SegmentKind::kTakeoff, 0.0, 2.5, 1.0, 0.0},
-                        {pe::SegmentKind::kHover, 20.0, 0.0, 0.0, 0.0},
-                        {pe::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0}};
+    profile.segments = {{pe::sim::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
+                        {pe::sim::SegmentKind::kPayload, 2.0, 0.0, 0.0, 0.01},
+                        {pe::sim::SegmentKind::kTakeoff, 0.0, 2.5, 1.0, 0.0},
+                        {pe::sim::SegmentKind::kHover, 20.0, 0.0, 0.0, 0.0},
+                        {pe::sim::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0}};
     const Flight flight = fly(profile);
     ASSERT_EQ(flight.result.segments.size(), 1u);
     double tension = 0.0, worst_height = 0.0;
     int n = 0;
-    forSegment(flight.sink.truths, flight.result.segments[0], [&](const pe::TruthSample& t) {
+    forSegment(flight.sink.truths, flight.result.segments[0], [&](const pe::sim::TruthSample& t) {
       tension += t.cable_tension_n;
       worst_height = std::max(worst_height, std::fabs(t.height_m - 2.5));
       ++n;
@@ -365,12 +369,12 @@ TEST(FlightSimulator, ALightPayloadOnAStiffDampedCableHangsSteadily) {
 TEST(FlightSimulator, RefusesAFlightThatDiverges) {
   // A vehicle whose inertia is a millionth of the quad's: the 2 ms step cannot follow its
   // rotation (angular damping alone has the rate 0.002 N m s / 1e-8 kg m^2 = 2e5 /s).
-  pe::FlightProfile profile = defaultProfile();
+  pe::sim::FlightProfile profile = defaultProfile();
   pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
   vehicle.empty_mass->inertia_kg_m2 *= 1e-6;
   RecordingFlightSink sink;
   try {
-    pe::simulateFlight(thesisParams(), {}, profile, vehicle, 1, &sink);
+    pe::sim::simulateFlight(thesisParams(), {}, profile, vehicle, 1, &sink);
     ADD_FAILURE() << "accepted";
   } catch (const pe::SimulationError& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -382,14 +386,14 @@ TEST(FlightSimulator, RefusesALandingThatDoesNotLandAlsoAtTheEnd) {
   // Landing from 20 m at 5 m/s: the autopilot descends at 2 m/s at most, so 4 s after the scripted
   // descent the vehicle is still about 4 m up. Checked where the landing ends the profile and where
   // it does not.
-  pe::FlightProfile profile = defaultProfile();
-  profile.segments = {{pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
-                      {pe::SegmentKind::kTakeoff, 0.0, 20.0, 2.0, 0.0},
-                      {pe::SegmentKind::kLand, 0.0, 0.0, 5.0, 0.0}};
+  pe::sim::FlightProfile profile = defaultProfile();
+  profile.segments = {{pe::sim::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
+                      {pe::sim::SegmentKind::kTakeoff, 0.0, 20.0, 2.0, 0.0},
+                      {pe::sim::SegmentKind::kLand, 0.0, 0.0, 5.0, 0.0}};
   const std::string expected = repoPath("config/sim/default_flight.yaml") +
                                ": segments[2].type: the vehicle had not landed and disarmed 4 s after its descent";
   EXPECT_EQ(refusal(profile), expected);
-  profile.segments.push_back({pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0});
+  profile.segments.push_back({pe::sim::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0});
   EXPECT_EQ(refusal(profile), expected);
 }
 
@@ -398,12 +402,12 @@ TEST(FlightSimulator, RefusesAFlightThatFlipsOverRatherThanCountItLanded) {
   // integrators can hold: the quad leans after take-off and rolls over on its left side as the
   // landing begins. Upside down on the ground it comes to rest low and still, which the land
   // detector took for landed: without the attitude check this flight was accepted.
-  pe::FlightProfile profile = defaultProfile();
+  pe::sim::FlightProfile profile = defaultProfile();
   profile.vehicle.centre_of_mass_offset_m = Eigen::Vector3d(0.07, 0.07, 0.0);
-  profile.segments = {{pe::SegmentKind::kWait, 2.0, 0.0, 0.0, 0.0},
-                      {pe::SegmentKind::kTakeoff, 0.0, 1.0, 1.0, 0.0},
-                      {pe::SegmentKind::kLand, 0.0, 0.0, 0.5, 0.0},
-                      {pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0}};
+  profile.segments = {{pe::sim::SegmentKind::kWait, 2.0, 0.0, 0.0, 0.0},
+                      {pe::sim::SegmentKind::kTakeoff, 0.0, 1.0, 1.0, 0.0},
+                      {pe::sim::SegmentKind::kLand, 0.0, 0.0, 0.5, 0.0},
+                      {pe::sim::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0}};
   EXPECT_EQ(refusal(profile), repoPath("config/sim/default_flight.yaml") +
                                   ": segments[2].type: the vehicle flipped over: roll -170 deg, pitch 6 deg at "
                                   "t = 5.622 s, beyond 60 deg since 5.322 s");
@@ -414,8 +418,8 @@ TEST(FlightSimulator, AWeakPropellerIsMadeUpByItsMotorAndTheVehicleHoldsItsHeigh
   // attitude integrators, knowing nothing of it, raise its pulse width until the moments balance
   // again: its rotor spins sqrt(1/0.85) = 8.5 % faster for the same share of the weight, and the
   // vehicle, with the default flight's offset centre of gravity too, holds its heights.
-  pe::FlightProfile profile = defaultProfile();
-  profile.faults.weak_propeller = pe::PropellerFault{3, 0.85};
+  pe::sim::FlightProfile profile = defaultProfile();
+  profile.faults.weak_propeller = pe::sim::PropellerFault{3, 0.85};
   const Flight weak = fly(profile);
   const Flight& intact = defaultFlight();
   ASSERT_EQ(weak.result.segments.size(), 4u);
@@ -425,7 +429,7 @@ TEST(FlightSimulator, AWeakPropellerIsMadeUpByItsMotorAndTheVehicleHoldsItsHeigh
     std::vector<double> pwm(4, 0.0), intact_pwm(4, 0.0), rpm(4, 0.0), intact_rpm(4, 0.0);
     double height = 0.0, worst = 0.0, thrust = 0.0;
     int n = 0;
-    forSegment(weak.sink.truths, segment, [&](const pe::TruthSample& t) {
+    forSegment(weak.sink.truths, segment, [&](const pe::sim::TruthSample& t) {
       for (int k = 0; k < 4; ++k) {
         pwm[k] += t.motors[k].pwm_us;
         rpm[k] += t.motors[k].rpm;
@@ -436,7 +440,7 @@ TEST(FlightSimulator, AWeakPropellerIsMadeUpByItsMotorAndTheVehicleHoldsItsHeigh
       ++n;
     });
     int intact_n = 0;
-    forSegment(intact.sink.truths, intact.result.segments[i], [&](const pe::TruthSample& t) {
+    forSegment(intact.sink.truths, intact.result.segments[i], [&](const pe::sim::TruthSample& t) {
       for (int k = 0; k < 4; ++k) {
         intact_pwm[k] += t.motors[k].pwm_us;
         intact_rpm[k] += t.motors[k].rpm;
@@ -458,7 +462,7 @@ TEST(FlightSimulator, AWeakPropellerIsMadeUpByItsMotorAndTheVehicleHoldsItsHeigh
         << "hover " << i;
   }
   EXPECT_EQ(refusal([&] {
-              pe::FlightProfile five = profile;
+              pe::sim::FlightProfile five = profile;
               five.faults.weak_propeller->motor = 5;
               return five;
             }()),
@@ -468,11 +472,11 @@ TEST(FlightSimulator, AWeakPropellerIsMadeUpByItsMotorAndTheVehicleHoldsItsHeigh
 }
 
 TEST(FlightSimulator, RefusesAVehicleItCannotFlyNamingItsUrdf) {
-  const pe::FlightProfile profile = defaultProfile();
+  const pe::sim::FlightProfile profile = defaultProfile();
   const pe::Vehicle quad = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
   const auto refused = [&](const pe::Vehicle& vehicle) {
     try {
-      pe::checkFlight(thesisParams(), {}, profile, vehicle);
+      pe::sim::checkFlight(thesisParams(), {}, profile, vehicle);
     } catch (const pe::ConfigError& e) {
       return std::string(e.what());
     }
@@ -509,20 +513,20 @@ TEST(FlightSimulator, FliesAHexacopter) {
   mass.mass_kg = 1.9;
   mass.inertia_kg_m2 = Eigen::Vector3d(0.02, 0.02, 0.035).asDiagonal();
   hexa.empty_mass = mass;
-  pe::FlightProfile profile = defaultProfile();
-  profile.segments = {{pe::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
-                      {pe::SegmentKind::kTakeoff, 0.0, 2.0, 1.0, 0.0},
-                      {pe::SegmentKind::kHover, 25.0, 0.0, 0.0, 0.0},
-                      {pe::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0}};
+  pe::sim::FlightProfile profile = defaultProfile();
+  profile.segments = {{pe::sim::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0},
+                      {pe::sim::SegmentKind::kTakeoff, 0.0, 2.0, 1.0, 0.0},
+                      {pe::sim::SegmentKind::kHover, 25.0, 0.0, 0.0, 0.0},
+                      {pe::sim::SegmentKind::kLand, 0.0, 0.0, 1.0, 0.0}};
   Flight flight;
-  flight.result = pe::simulateFlight(thesisParams(), {}, profile, hexa, 1, &flight.sink);
+  flight.result = pe::sim::simulateFlight(thesisParams(), {}, profile, hexa, 1, &flight.sink);
   ASSERT_EQ(flight.result.segments.size(), 1u);
   const pe::ManifestSegment& hover = flight.result.segments[0];
   EXPECT_EQ(hover.mass_kg, 1.9);
   double height = 0.0, worst = 0.0, total = 0.0;
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
   int n = 0;
-  forSegment(flight.sink.truths, hover, [&](const pe::TruthSample& t) {
+  forSegment(flight.sink.truths, hover, [&](const pe::sim::TruthSample& t) {
     ASSERT_EQ(t.motors.size(), 6u);
     height += t.height_m;
     worst = std::max(worst, std::fabs(t.height_m - 2.0));
@@ -537,7 +541,7 @@ TEST(FlightSimulator, FliesAHexacopter) {
   EXPECT_NEAR(total / n, 1.9 * pe::kStandardGravity, 0.003 * 1.9 * pe::kStandardGravity);
   EXPECT_NEAR(moment.x() / total, 0.008, 0.001);
   EXPECT_NEAR(moment.y() / total, -0.005, 0.001);
-  forSegment(flight.sink.rc_out, hover, [](const pe::RcOutSample& s) {
+  forSegment(flight.sink.rc_out, hover, [](const pe::sim::RcOutSample& s) {
     ASSERT_EQ(s.channels.size(), 8u);
     for (int k = 0; k < 6; ++k) {
       EXPECT_GT(s.channels[k], 1500);

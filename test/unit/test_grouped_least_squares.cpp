@@ -41,8 +41,8 @@ Rows sweepRows(double voltage_sigma) {
   return rows;
 }
 
-pe::GroupedLeastSquares accumulate(const Rows& rows, int groups, double offset) {
-  pe::GroupedLeastSquares squares(groups, offset);
+pe::fitting::GroupedLeastSquares accumulate(const Rows& rows, int groups, double offset) {
+  pe::fitting::GroupedLeastSquares squares(groups, offset);
   for (int g = 0; g < groups; ++g) {
     std::vector<double> x, v, y;
     for (std::size_t r = 0; r < rows.y.size(); ++r) {
@@ -61,7 +61,7 @@ pe::GroupedLeastSquares accumulate(const Rows& rows, int groups, double offset) 
 
 // The design matrix of the candidate's terms on the rows of `include`.
 Eigen::MatrixXd design(const Rows& rows, const std::vector<int>& terms, const std::vector<bool>& include) {
-  const std::vector<std::pair<int, int>>& basis = pe::GroupedLeastSquares::fullBasis();
+  const std::vector<std::pair<int, int>>& basis = pe::fitting::GroupedLeastSquares::fullBasis();
   std::vector<std::size_t> selected;
   for (std::size_t r = 0; r < rows.y.size(); ++r) {
     if (include[r]) selected.push_back(r);
@@ -108,7 +108,7 @@ TEST(GroupedLeastSquares, SolveAndHeldOutRmseEqualRefitsOfTheRawRows) {
   const Rows rows = sweepRows(0.02);
   double mean = 0.0;
   for (double y : rows.y) mean += y / static_cast<double>(rows.y.size());
-  const pe::GroupedLeastSquares squares = accumulate(rows, 4, mean);
+  const pe::fitting::GroupedLeastSquares squares = accumulate(rows, 4, mean);
   ASSERT_EQ(squares.groups(), 4);
   EXPECT_EQ(squares.rows(0), 60);
   EXPECT_EQ(squares.rows(3), 81);
@@ -116,7 +116,7 @@ TEST(GroupedLeastSquares, SolveAndHeldOutRmseEqualRefitsOfTheRawRows) {
   // Four voltage levels: a fold keeps three, which determine voltage degree 2 at most.
   for (int dx = 1; dx <= 5; ++dx) {
     for (int dv = 0; dv <= 2; ++dv) {
-      const std::vector<int> terms = pe::GroupedLeastSquares::subBasis(dx, dv);
+      const std::vector<int> terms = pe::fitting::GroupedLeastSquares::subBasis(dx, dv);
       for (int left_out = -1; left_out < 4; ++left_out) {
         const std::optional<Eigen::VectorXd> beta = squares.solve(terms, left_out);
         ASSERT_TRUE(beta.has_value()) << dx << "," << dv << " without " << left_out;
@@ -138,7 +138,7 @@ TEST(GroupedLeastSquares, SolveAndHeldOutRmseEqualRefitsOfTheRawRows) {
 
 TEST(GroupedLeastSquares, TheOffsetOnlyMovesTheIntercept) {
   const Rows rows = sweepRows(0.02);
-  const std::vector<int> terms = pe::GroupedLeastSquares::subBasis(3, 1);
+  const std::vector<int> terms = pe::fitting::GroupedLeastSquares::subBasis(3, 1);
   const std::optional<Eigen::VectorXd> zero = accumulate(rows, 4, 0.0).solve(terms, 2);
   const std::optional<Eigen::VectorXd> shifted = accumulate(rows, 4, 437.5).solve(terms, 2);
   ASSERT_TRUE(zero && shifted);
@@ -149,12 +149,12 @@ TEST(GroupedLeastSquares, AFoldThatCannotDetermineTheTermsIsSingular) {
   // Exact voltages, two levels per group.
   Rows rows = sweepRows(0.0);
   for (int& group : rows.group) group = group < 2 ? 0 : 1;
-  const pe::GroupedLeastSquares squares = accumulate(rows, 2, 0.0);
+  const pe::fitting::GroupedLeastSquares squares = accumulate(rows, 2, 0.0);
   // All rows span four voltages: voltage degree 3 is determined on everything.
-  ASSERT_TRUE(squares.solve(pe::GroupedLeastSquares::subBasis(2, 3)).has_value());
+  ASSERT_TRUE(squares.solve(pe::fitting::GroupedLeastSquares::subBasis(2, 3)).has_value());
   // Group 0 alone holds two voltages (-1.0 and -0.3): degree 1 in v is determined without group
   // 1, degree 2 is not, and neither is its held-out error.
-  EXPECT_TRUE(squares.solve(pe::GroupedLeastSquares::subBasis(2, 1), 1).has_value());
-  EXPECT_FALSE(squares.solve(pe::GroupedLeastSquares::subBasis(2, 2), 1).has_value());
-  EXPECT_FALSE(squares.heldOutRmse(pe::GroupedLeastSquares::subBasis(2, 2)).has_value());
+  EXPECT_TRUE(squares.solve(pe::fitting::GroupedLeastSquares::subBasis(2, 1), 1).has_value());
+  EXPECT_FALSE(squares.solve(pe::fitting::GroupedLeastSquares::subBasis(2, 2), 1).has_value());
+  EXPECT_FALSE(squares.heldOutRmse(pe::fitting::GroupedLeastSquares::subBasis(2, 2)).has_value());
 }

@@ -77,8 +77,8 @@ outputs:
                             "idling.yaml");
 }
 
-pe::HoverOptions quad(double mass_kg, int cells, double capacity_mah) {
-  pe::HoverOptions hover;
+pe::fitting::HoverOptions quad(double mass_kg, int cells, double capacity_mah) {
+  pe::fitting::HoverOptions hover;
   hover.vehicle_mass_kg = mass_kg;
   hover.motors = 4;
   hover.cells = cells;
@@ -90,9 +90,9 @@ pe::HoverOptions quad(double mass_kg, int cells, double capacity_mah) {
 
 TEST(ModelComparison, TableMaximaAreTheMaximaOfTheModelsCurves) {
   const pe::PropulsionModel model = thesisModel();
-  pe::ComparisonOptions options;
+  pe::fitting::ComparisonOptions options;
   options.voltage_v = 12.6;
-  const pe::ModelComparison c = pe::compareModel("e300", model, {}, options);
+  const pe::fitting::ModelComparison c = pe::fitting::compareModel("e300", model, {}, options);
   const Scan s = scan(model, 12.6);
   EXPECT_NEAR(c.max_thrust_g, s.thrust_g, 1e-3 * s.thrust_g);
   EXPECT_NEAR(c.max_current_a, s.current_a, 1e-3 * s.current_a);
@@ -108,17 +108,17 @@ TEST(ModelComparison, TableMaximaAreTheMaximaOfTheModelsCurves) {
   EXPECT_GT(c.peak_efficiency_g_per_w, c.efficiency_at_max_power_g_per_w);
   pe::OperatingPoint at_peak;
   model.evaluate(c.peak_efficiency_pwm_us, 12.6, &at_peak);
-  EXPECT_GE(at_peak.power_w, pe::kEfficiencyMinPowerShare * c.max_power_w);
+  EXPECT_GE(at_peak.power_w, pe::fitting::kEfficiencyMinPowerShare * c.max_power_w);
   EXPECT_NEAR(at_peak.efficiency_n_per_w / pe::kNewtonPerGramForce, c.peak_efficiency_g_per_w, 1e-9);
   // Default voltage: the top of the domain.
-  EXPECT_DOUBLE_EQ(pe::compareModel("e300", model, {}, {}).voltage_v, 12.6);
+  EXPECT_DOUBLE_EQ(pe::fitting::compareModel("e300", model, {}, {}).voltage_v, 12.6);
 }
 
 TEST(ModelComparison, HoverPointOfTheThesisQuad) {
   const pe::PropulsionModel model = thesisModel();
-  pe::ComparisonOptions options;
+  pe::fitting::ComparisonOptions options;
   options.hover = quad(1.315, 3, 4000);  // thesis F450 on a Turnigy 3S 4000 mAh
-  const pe::ModelComparison c = pe::compareModel("e300", model, {}, options);
+  const pe::fitting::ModelComparison c = pe::fitting::compareModel("e300", model, {}, options);
   ASSERT_TRUE(c.hover.has_value());
   EXPECT_DOUBLE_EQ(c.hover->voltage_v, 3 * 3.85);
   pe::OperatingPoint e;
@@ -131,7 +131,7 @@ TEST(ModelComparison, HoverPointOfTheThesisQuad) {
   ASSERT_TRUE(c.endurance_min.has_value());
   // Bounds: all the usable charge at the highest and at the lowest hover current of the discharge.
   double lowest = 1e9, highest = 0;
-  for (const pe::DischargeStep& step : c.discharge) {
+  for (const pe::fitting::DischargeStep& step : c.discharge) {
     lowest = std::min(lowest, step.total_current_a);
     highest = std::max(highest, step.total_current_a);
   }
@@ -144,9 +144,9 @@ TEST(ModelComparison, HoverPointOfTheThesisQuad) {
 }
 
 TEST(ModelComparison, EnduranceIsCapacityOverCurrentWhenTheCurrentIsConstant) {
-  pe::ComparisonOptions options;
+  pe::fitting::ComparisonOptions options;
   options.hover = quad(2.0, 4, 5000);
-  const pe::ModelComparison c = pe::compareModel("flat", voltageFreeModel(), {}, options);
+  const pe::fitting::ModelComparison c = pe::fitting::compareModel("flat", voltageFreeModel(), {}, options);
   // 500 g per motor: thrust = x - 1000 g, so x = 1500 us, current = 0.01 x - 10 = 5 A per motor.
   const double per_motor_g = 2.0 * pe::kStandardGravity / 4 / pe::kNewtonPerGramForce;
   ASSERT_TRUE(c.hover.has_value());
@@ -163,43 +163,44 @@ TEST(ModelComparison, EnduranceIsCapacityOverCurrentWhenTheCurrentIsConstant) {
 }
 
 TEST(ModelComparison, SaysWhenTheVehicleIsTooHeavyToHover) {
-  pe::ComparisonOptions options;
+  pe::fitting::ComparisonOptions options;
   options.hover = quad(4.0, 3, 4000);  // 1 kg per motor, the thesis motor gives 680 g
-  const pe::ModelComparison c = pe::compareModel("e300", thesisModel(), {}, options);
+  const pe::fitting::ModelComparison c = pe::fitting::compareModel("e300", thesisModel(), {}, options);
   EXPECT_FALSE(c.hover.has_value());
   EXPECT_FALSE(c.endurance_min.has_value());
   EXPECT_EQ(c.hover_notes, (std::vector<std::string>{
                                "cannot hover: the motors give less than the hover thrust at 11.55 V",
                                "hover ends at 12.59 V: the motors cannot give the hover thrust at that voltage"}));
-  const std::string table = pe::comparisonTables({c}, options);
+  const std::string table = pe::fitting::comparisonTables({c}, options);
   EXPECT_NE(table.find("| e300 | n/a | n/a | n/a | n/a | n/a | n/a | cannot hover"), std::string::npos) << table;
 }
 
 TEST(ModelComparison, AVoltageOutsideTheDomainIsClampedWithANoteExtrapolatedOrRefused) {
-  pe::ComparisonOptions options;
+  pe::fitting::ComparisonOptions options;
   options.voltage_v = 14.0;
-  const pe::ModelComparison clamped = pe::compareModel("flat", voltageFreeModel(), {}, options);
+  const pe::fitting::ModelComparison clamped = pe::fitting::compareModel("flat", voltageFreeModel(), {}, options);
   // The row is at the voltage its values are at, and says why.
   EXPECT_DOUBLE_EQ(clamped.voltage_v, 13.0);
   EXPECT_DOUBLE_EQ(clamped.curve.front().voltage_v, 13.0);
   EXPECT_EQ(clamped.notes, std::vector<std::string>{"--voltage 14.00 V is outside the model's 10.00-13.00 V domain: "
                                                     "its row is the model at 13.00 V, where the model clamps the "
                                                     "voltage"});
-  const std::string table = pe::comparisonTables({clamped}, options);
+  const std::string table = pe::fitting::comparisonTables({clamped}, options);
   EXPECT_NE(table.find("| flat | E | M | P | 13.00 |"), std::string::npos) << table;
   EXPECT_NE(table.find("|\n\n- flat: --voltage 14.00 V is outside the model's 10.00-13.00 V domain: its row is the "
                        "model at 13.00 V, where the model clamps the voltage\n"),
             std::string::npos)
       << table;
-  EXPECT_TRUE(pe::compareModel("flat", voltageFreeModel(), {}, {}).notes.empty());
+  EXPECT_TRUE(pe::fitting::compareModel("flat", voltageFreeModel(), {}, {}).notes.empty());
 
-  const pe::ModelComparison extrapolated = pe::compareModel("x", idlingModel(1.0, "extrapolate"), {}, options);
+  const pe::fitting::ModelComparison extrapolated =
+      pe::fitting::compareModel("x", idlingModel(1.0, "extrapolate"), {}, options);
   EXPECT_DOUBLE_EQ(extrapolated.voltage_v, 14.0);
   EXPECT_EQ(extrapolated.notes, std::vector<std::string>{"--voltage 14.00 V is outside the model's 10.00-13.00 V "
                                                          "domain: its row extrapolates the surfaces (policy "
                                                          "extrapolate)"});
   try {
-    pe::compareModel("r", idlingModel(1.0, "reject"), {}, options);
+    pe::fitting::compareModel("r", idlingModel(1.0, "reject"), {}, options);
     FAIL();
   } catch (const pe::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -210,9 +211,9 @@ TEST(ModelComparison, AVoltageOutsideTheDomainIsClampedWithANoteExtrapolatedOrRe
 
 TEST(ModelComparison, AHoverThrustBelowTheLowestPwmIsOutsideTheDomain) {
   // 4 x 50 g: the motors give 100 g at the lowest PWM already.
-  pe::ComparisonOptions options;
+  pe::fitting::ComparisonOptions options;
   options.hover = quad(4 * 50.0 * pe::kNewtonPerGramForce / pe::kStandardGravity, 3, 2000);
-  const pe::ModelComparison c = pe::compareModel("idle", idlingModel(1.0), {}, options);
+  const pe::fitting::ModelComparison c = pe::fitting::compareModel("idle", idlingModel(1.0), {}, options);
   ASSERT_TRUE(c.hover.has_value());
   EXPECT_DOUBLE_EQ(c.hover->pwm_us, 1000.0);
   EXPECT_TRUE(c.hover->below_pwm_domain);
@@ -232,9 +233,9 @@ TEST(ModelComparison, AHoverThrustBelowTheLowestPwmIsOutsideTheDomain) {
 
 TEST(ModelComparison, AZeroHoverCurrentGivesNoEnduranceInsteadOfInfinity) {
   // The current surface is 0 A at the lowest PWM, where this vehicle hovers.
-  pe::ComparisonOptions options;
+  pe::fitting::ComparisonOptions options;
   options.hover = quad(4 * 50.0 * pe::kNewtonPerGramForce / pe::kStandardGravity, 3, 2000);
-  const pe::ModelComparison c = pe::compareModel("idle", idlingModel(0.0), {}, options);
+  const pe::fitting::ModelComparison c = pe::fitting::compareModel("idle", idlingModel(0.0), {}, options);
   ASSERT_TRUE(c.hover.has_value());
   EXPECT_DOUBLE_EQ(c.hover->current_a, 0.0);
   EXPECT_FALSE(c.endurance_min.has_value());
@@ -245,11 +246,11 @@ TEST(ModelComparison, AZeroHoverCurrentGivesNoEnduranceInsteadOfInfinity) {
 }
 
 TEST(ModelComparison, RefusesBadHoverOptions) {
-  pe::ComparisonOptions options;
+  pe::fitting::ComparisonOptions options;
   options.hover = quad(1.0, 3, 4000);
   options.hover->cell_cutoff_v = 4.3;
   try {
-    pe::compareModel("e300", thesisModel(), {}, options);
+    pe::fitting::compareModel("e300", thesisModel(), {}, options);
     FAIL();
   } catch (const pe::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()), "--cell-cutoff-v must be positive and below --cell-full-v");
@@ -264,35 +265,35 @@ TEST(ModelComparison, MaximumMotorTemperatureFromTheLogs) {
   log.column(pe::BenchColumn::kThrust) = {0.5, 2.5, 6.5};
   log.column(pe::BenchColumn::kMotorTemp) = {25.0, 33.6, 31.0};
   log.line_numbers = {2, 3, 4};
-  const pe::ModelComparison c = pe::compareModel("e300", thesisModel(), {log}, {});
+  const pe::fitting::ModelComparison c = pe::fitting::compareModel("e300", thesisModel(), {log}, {});
   ASSERT_TRUE(c.max_motor_temp_c.has_value());
   EXPECT_DOUBLE_EQ(*c.max_motor_temp_c, 33.6);
   EXPECT_EQ(c.logged_near.size(), 3u);  // all within 0.3 V of 12.6 V
-  EXPECT_NE(pe::comparisonTables({c}, {}).find("| 33.6 |"), std::string::npos);
+  EXPECT_NE(pe::fitting::comparisonTables({c}, {}).find("| 33.6 |"), std::string::npos);
 }
 
 // The real-data counterpart of thesis chapter 7: one motor (Lumenier RX2206-13 2000kv) with its
 // eight propellers, each fitted from its 2S and 3S sweeps.
 TEST(ModelComparisonStrawson, OneMotorWithAllItsPropellersOrdersAsPhysicsSays) {
-  std::map<int, pe::ModelComparison> by_propeller;
-  pe::ComparisonOptions options;
+  std::map<int, pe::fitting::ModelComparison> by_propeller;
+  pe::fitting::ComparisonOptions options;
   options.voltage_v = 11.0;  // inside every 3S domain (their tops are 11.11-11.15 V)
   options.hover = quad(0.6, 2, 1300);
-  std::vector<pe::ModelComparison> all;
+  std::vector<pe::fitting::ModelComparison> all;
   for (int propeller = 1; propeller <= 8; ++propeller) {
     const std::string name = "g" + std::to_string(propeller);
     const std::string base = repoPath("test/data/strawson_motor_propeller/" + name);
     const std::vector<pe::BenchLog> logs = {pe::readBenchLog(base + "_7.csv"), pe::readBenchLog(base + "_11.csv")};
-    pe::FitOptions fit_options;
+    pe::fitting::FitOptions fit_options;
     fit_options.esc = "unknown";
     fit_options.motor = "Lumenier RX2206-13 2000kv";
     fit_options.propeller = "propeller " + std::to_string(propeller);
     fit_options.air_temperature_c = 20;
     fit_options.air_pressure_pa = 101325;
     fit_options.supply = pe::SupplyKind::kRegulated;
-    const pe::BenchFit fit = pe::fitBenchModel(logs, fit_options);
+    const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(logs, fit_options);
     ASSERT_TRUE(fit.validation_error.empty()) << name << ": " << fit.validation_error;
-    const pe::ModelComparison c = pe::compareModel(name, fit.model, logs, options);
+    const pe::fitting::ModelComparison c = pe::fitting::compareModel(name, fit.model, logs, options);
     const Scan s = scan(fit.model, 11.0);
     EXPECT_NEAR(c.max_thrust_g, s.thrust_g, 1e-3 * s.thrust_g) << name;
     EXPECT_NEAR(c.max_current_a, s.current_a, 1e-3 * s.current_a) << name;
@@ -301,7 +302,7 @@ TEST(ModelComparisonStrawson, OneMotorWithAllItsPropellersOrdersAsPhysicsSays) {
     // The 3S rows near 11 V are drawn with the curves; the model's maximum is near the logged one.
     EXPECT_GE(c.logged_near.size(), 8u) << name;
     double logged_max = 0.0;
-    for (const pe::ComparisonSample& row : c.logged_near) logged_max = std::max(logged_max, row.thrust_g);
+    for (const pe::fitting::ComparisonSample& row : c.logged_near) logged_max = std::max(logged_max, row.thrust_g);
     EXPECT_NEAR(c.max_thrust_g, logged_max, 0.05 * logged_max) << name;
     by_propeller.emplace(propeller, c);
     all.push_back(c);
@@ -329,7 +330,7 @@ TEST(ModelComparisonStrawson, OneMotorWithAllItsPropellersOrdersAsPhysicsSays) {
     EXPECT_TRUE(c.hover->in_domain) << propeller;
     EXPECT_TRUE(c.endurance_min.has_value()) << propeller;
   }
-  const std::string table = pe::comparisonTables(all, options);
+  const std::string table = pe::fitting::comparisonTables(all, options);
   EXPECT_NE(table.find("| g5 | unknown | Lumenier RX2206-13 2000kv | propeller 5 | 11.00 |"), std::string::npos)
       << table;
 }

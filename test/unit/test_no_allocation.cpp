@@ -90,7 +90,7 @@ TEST(RcOutDecoder, DecodesWithoutHeapAllocationOnceWarm) {
 
 TEST(MotorMixer, MixesWithoutHeapAllocation) {
   // The flight simulator mixes every 2 ms step.
-  pe::MotorMixer mixer(pe::Vehicle::quadX(0.225));
+  pe::sim::MotorMixer mixer(pe::Vehicle::quadX(0.225));
   const long before = g_allocations.load();
   double sum = 0.0;
   for (int k = 0; k < 1000; ++k) sum += mixer.mix(0.5, 0.01 * (k % 7), -0.02, 0.005).front();

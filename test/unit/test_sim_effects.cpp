@@ -21,26 +21,28 @@ namespace pe = propulsion_estimator;
 
 namespace {
 
-pe::SimParams thesisParams() { return pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")); }
+pe::sim::SimParams thesisParams() {
+  return pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
+}
 
 // Noise-free sweep at 12 V from 1500 to 1800 us in 50 us steps.
-pe::BenchLog sweepTruth(const pe::SimEffects& effects, double step_duration_s = 1.0) {
-  const pe::SimParams params = thesisParams();
-  pe::BenchExperiment sweep = pe::thesisBenchExperiment(pe::BenchExperimentKind::kPwmSweep, params);
+pe::BenchLog sweepTruth(const pe::sim::SimEffects& effects, double step_duration_s = 1.0) {
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::BenchExperiment sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
   sweep.voltages_v = {12.0};
   sweep.pwm_start_us = 1500.0;
   sweep.pwm_end_us = 1800.0;
   sweep.pwm_step_us = 50.0;
   sweep.step_duration_s = step_duration_s;
   pe::BenchLog truth;
-  pe::simulateBench(params, effects, sweep, 7, &truth);
+  pe::sim::simulateBench(params, effects, sweep, 7, &truth);
   return truth;
 }
 
 double column(const pe::BenchLog& log, pe::BenchColumn c, std::size_t row) { return log.column(c)[row]; }
 
 // Isolated-rotor thrust at a rotor speed, from the propeller law (not the simulator's code).
-double isolatedThrust(const pe::SimParams& params, double density, double rpm) {
+double isolatedThrust(const pe::sim::SimParams& params, double density, double rpm) {
   const double n = rpm / 60.0;
   return params.chain.propeller.thrust_coefficient * density * n * n * std::pow(params.chain.propeller.diameter_m, 4);
 }
@@ -58,10 +60,10 @@ struct SteadyPoint {
   double input_current_a = 0.0;
 };
 
-SteadyPoint brushedDcSteadyState(const pe::SimParams& params, double pwm_us, double esc_voltage_v, double density,
+SteadyPoint brushedDcSteadyState(const pe::sim::SimParams& params, double pwm_us, double esc_voltage_v, double density,
                                  double winding_c) {
-  const pe::BldcMotorParams& motor = params.chain.motor;
-  const pe::PropellerParams& propeller = params.chain.propeller;
+  const pe::sim::BldcMotorParams& motor = params.chain.motor;
+  const pe::sim::PropellerParams& propeller = params.chain.propeller;
   const double pi = 3.14159265358979323846;
   const double duty = std::clamp(
       (pwm_us - params.chain.esc.pwm_zero_us) / (params.chain.esc.pwm_full_us - params.chain.esc.pwm_zero_us), 0.0,
@@ -83,15 +85,15 @@ SteadyPoint brushedDcSteadyState(const pe::SimParams& params, double pwm_us, dou
 
 struct Flight {
   RecordingFlightSink sink;
-  pe::FlightResult result;
-  pe::FlightProfile profile;
+  pe::sim::FlightResult result;
+  pe::sim::FlightProfile profile;
 };
 
-Flight fly(const pe::SimEffects& effects) {
+Flight fly(const pe::sim::SimEffects& effects) {
   Flight flight;
-  flight.profile = pe::loadFlightProfileFile(repoPath("config/sim/default_flight.yaml"));
+  flight.profile = pe::sim::loadFlightProfileFile(repoPath("config/sim/default_flight.yaml"));
   const pe::Vehicle vehicle = pe::loadVehicleUrdf(flight.profile.vehicle.urdf_path);
-  flight.result = pe::simulateFlight(thesisParams(), effects, flight.profile, vehicle, 3, &flight.sink);
+  flight.result = pe::sim::simulateFlight(thesisParams(), effects, flight.profile, vehicle, 3, &flight.sink);
   return flight;
 }
 
@@ -99,7 +101,7 @@ Flight fly(const pe::SimEffects& effects) {
 double meanCurrent(const Flight& flight, double from_s, double to_s) {
   double sum = 0.0;
   int count = 0;
-  for (const pe::TruthSample& truth : flight.sink.truths) {
+  for (const pe::sim::TruthSample& truth : flight.sink.truths) {
     if (truth.time_s < from_s || truth.time_s > to_s) continue;
     sum += truth.battery_current_a;
     ++count;
@@ -112,9 +114,9 @@ double meanHoverPwm(const Flight& flight, std::size_t index) {
   const pe::ManifestSegment& segment = flight.result.segments.at(index);
   double sum = 0.0;
   int count = 0;
-  for (const pe::TruthSample& truth : flight.sink.truths) {
+  for (const pe::sim::TruthSample& truth : flight.sink.truths) {
     if (truth.time_s < segment.start_s || truth.time_s > segment.end_s) continue;
-    for (const pe::MotorTruth& motor : truth.motors) {
+    for (const pe::sim::MotorTruth& motor : truth.motors) {
       sum += motor.pwm_us;
       ++count;
     }
@@ -125,9 +127,9 @@ double meanHoverPwm(const Flight& flight, std::size_t index) {
 // In every truth sample, each rotor's thrust on the airframe equals the isolated rotor's thrust at
 // its true speed times the effect terms reported with it.
 void expectThrustIsIsolatedTimesTerms(const Flight& flight, double density) {
-  const pe::SimParams params = thesisParams();
-  for (const pe::TruthSample& truth : flight.sink.truths) {
-    for (const pe::MotorTruth& motor : truth.motors) {
+  const pe::sim::SimParams params = thesisParams();
+  for (const pe::sim::TruthSample& truth : flight.sink.truths) {
+    for (const pe::sim::MotorTruth& motor : truth.motors) {
       const double expected = isolatedThrust(params, density, motor.rpm) * motor.ground_effect_factor *
                               motor.climb_factor * truth.thrust_loss_factor;
       ASSERT_NEAR(motor.thrust_n, expected, 1e-9 + 1e-9 * expected) << "t = " << truth.time_s;
@@ -140,12 +142,12 @@ void expectThrustIsIsolatedTimesTerms(const Flight& flight, double density) {
 TEST(SupplyResistance, EscsSeeTheSensedVoltageLessRTimesCurrent) {
   // Bench at a regulated 12 V with 0.1 ohm between the voltage sensor and the ESC: the thrust is
   // the effect-free thrust at 12 V - 0.1 ohm x I.
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.supply_resistance_ohm = 0.1;
   const pe::BenchLog with = sweepTruth(effects);
   const pe::BenchLog without = sweepTruth({});
-  const pe::SimParams params = thesisParams();
-  const pe::PropulsionChain chain(params.chain);
+  const pe::sim::SimParams params = thesisParams();
+  const pe::sim::PropulsionChain chain(params.chain);
   for (std::size_t row = 0; row < with.rows(); ++row) {
     const double pwm = column(with, pe::BenchColumn::kPwm, row);
     EXPECT_DOUBLE_EQ(column(with, pe::BenchColumn::kVoltage, row), 12.0);
@@ -164,17 +166,17 @@ TEST(SupplyResistance, OnABatteryTheVoltageSensorReadsUpstreamOfThePath) {
   // A discharge at 1700 us with 0.1 ohm between the bench's voltage sensor (at the pack's
   // terminals) and the ESC: every row's thrust is the written-out motor's at the sensed voltage
   // less 0.1 ohm x the sensed current, and visibly not at the sensed voltage itself.
-  const pe::SimParams params = thesisParams();
+  const pe::sim::SimParams params = thesisParams();
   const double density = params.bench.air.densityKgM3();
-  pe::BenchExperiment discharge = pe::thesisBenchExperiment(pe::BenchExperimentKind::kDischarge, params);
+  pe::sim::BenchExperiment discharge = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kDischarge, params);
   discharge.pwms_us = {1700.0};
   discharge.sample_interval_s = 20.0;
   discharge.initial_soc = 0.5;
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.supply_resistance_ohm = 0.1;
   pe::BenchLog with, without;
-  pe::simulateBench(params, effects, discharge, 4, &with);
-  pe::simulateBench(params, {}, discharge, 4, &without);
+  pe::sim::simulateBench(params, effects, discharge, 4, &with);
+  pe::sim::simulateBench(params, {}, discharge, 4, &without);
   ASSERT_GT(with.rows(), 20u);
   for (std::size_t row = 0; row < with.rows(); ++row) {
     const double sensed = column(with, pe::BenchColumn::kVoltage, row);
@@ -192,11 +194,11 @@ TEST(SupplyResistance, OnABatteryTheVoltageSensorReadsUpstreamOfThePath) {
 }
 
 TEST(SupplyResistance, RaisesTheHoverPulseWidthInFlight) {
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.supply_resistance_ohm = 0.05;
   const Flight with = fly(effects);
   const Flight without = fly({});
-  for (const pe::TruthSample& truth : with.sink.truths) {
+  for (const pe::sim::TruthSample& truth : with.sink.truths) {
     ASSERT_NEAR(truth.esc_voltage_v, truth.battery_voltage_v - 0.05 * truth.battery_current_a, 1e-9);
   }
   EXPECT_GT(meanHoverPwm(with, 0), meanHoverPwm(without, 0) + 10.0);
@@ -205,9 +207,9 @@ TEST(SupplyResistance, RaisesTheHoverPulseWidthInFlight) {
 TEST(AirDensity, ThrustScalesWithDensityAtFixedRotorSpeed) {
   // 35 C and 90 kPa: density ratio 0.848. At fixed rotor speed thrust / (rho n^2) is the same
   // constant CT D^4 in both airs.
-  pe::SimEffects effects;
-  effects.air = pe::AirConditions{35.0, 90000.0};
-  const pe::SimParams params = thesisParams();
+  pe::sim::SimEffects effects;
+  effects.air = pe::sim::AirConditions{35.0, 90000.0};
+  const pe::sim::SimParams params = thesisParams();
   const double thin = effects.air->densityKgM3();
   const double bench = params.bench.air.densityKgM3();
   const pe::BenchLog with = sweepTruth(effects);
@@ -228,8 +230,8 @@ TEST(AirDensity, ThrustScalesWithDensityAtFixedRotorSpeed) {
 }
 
 TEST(AirDensity, FlightAirShowsInTheBarometerAndTheTruth) {
-  pe::SimEffects effects;
-  effects.air = pe::AirConditions{35.0, 90000.0};
+  pe::sim::SimEffects effects;
+  effects.air = pe::sim::AirConditions{35.0, 90000.0};
   const Flight flight = fly(effects);
   EXPECT_NEAR(flight.sink.truths.front().density_ratio,
               effects.air->densityKgM3() / thesisParams().bench.air.densityKgM3(), 1e-12);
@@ -242,12 +244,12 @@ TEST(AirDensity, FlightAirShowsInTheBarometerAndTheTruth) {
   const auto meanOver = [&](double from_s, double to_s) {
     double pressure = 0.0, height = 0.0;
     int pressures = 0, heights = 0;
-    for (const pe::ScalarSample& s : flight.sink.pressures) {
+    for (const pe::sim::ScalarSample& s : flight.sink.pressures) {
       if (s.time_s < from_s || s.time_s > to_s) continue;
       pressure += s.value;
       ++pressures;
     }
-    for (const pe::TruthSample& t : flight.sink.truths) {
+    for (const pe::sim::TruthSample& t : flight.sink.truths) {
       if (t.time_s < from_s || t.time_s > to_s) continue;
       height += t.height_m;
       ++heights;
@@ -270,15 +272,15 @@ TEST(GroundEffect, FactorIsCheesemanBennettScaledByStrength) {
   const double radius = 0.1194;
   for (double z : {0.15, 0.24, 0.5, 2.0}) {
     const double cheeseman_bennett = 1.0 / (1.0 - std::pow(radius / (4.0 * z), 2));
-    EXPECT_NEAR(pe::groundEffectFactor(radius, z, 1.0), cheeseman_bennett, 1e-12);
-    EXPECT_NEAR(pe::groundEffectFactor(radius, z, 0.5), 1.0 + 0.5 * (cheeseman_bennett - 1.0), 1e-12);
+    EXPECT_NEAR(pe::sim::groundEffectFactor(radius, z, 1.0), cheeseman_bennett, 1e-12);
+    EXPECT_NEAR(pe::sim::groundEffectFactor(radius, z, 0.5), 1.0 + 0.5 * (cheeseman_bennett - 1.0), 1e-12);
   }
   // Below half a radius the formula is out of its range and is held at its value there.
-  EXPECT_DOUBLE_EQ(pe::groundEffectFactor(radius, 0.01, 1.0), 1.0 / (1.0 - 0.25));
+  EXPECT_DOUBLE_EQ(pe::sim::groundEffectFactor(radius, 0.01, 1.0), 1.0 / (1.0 - 0.25));
 }
 
 TEST(GroundEffect, NearTheGroundTheRotorsLiftMoreAtTheSameSpeed) {
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.ground_effect_strength = 1.0;
   const Flight with = fly(effects);
   const Flight without = fly({});
@@ -287,17 +289,17 @@ TEST(GroundEffect, NearTheGroundTheRotorsLiftMoreAtTheSameSpeed) {
   // (R/4z)^2 = 1.6 % off the induced inflow. At fixed speed the rotor gains 0.68 eps = 1.1 % of
   // thrust (blade-element momentum theory), where Cheeseman-Bennett's equal-power ratio would say 1.6 %.
   const pe::ManifestSegment& low = with.result.segments.at(2);
-  const pe::PropellerParams& propeller = thesisParams().chain.propeller;
+  const pe::sim::PropellerParams& propeller = thesisParams().chain.propeller;
   const double radius = propeller.radiusM();
   // Blade-element momentum theory at first order (rotor_inflow.h): dT/T = lambda_0 / (Theta -
   // lambda_0 / 2) eps, with the blade calibrated on the propeller's static coefficients.
   const HandRotor hand(propeller);
   const double share = hand.lambda0 / (hand.theta - hand.lambda0 / 2.0);
   EXPECT_NEAR(share, 0.679, 0.001);
-  for (const pe::TruthSample& truth : with.sink.truths) {
+  for (const pe::sim::TruthSample& truth : with.sink.truths) {
     if (truth.time_s < low.start_s || truth.time_s > low.end_s) continue;
     const double rotor_height = truth.height_m + 0.035;  // rotor planes 35 mm above base_link
-    for (const pe::MotorTruth& motor : truth.motors) {
+    for (const pe::sim::MotorTruth& motor : truth.motors) {
       EXPECT_NEAR(motor.ground_effect_factor, 1.0 + share * std::pow(radius / (4.0 * rotor_height), 2), 2e-3);
       EXPECT_GT(motor.ground_effect_factor, 1.009);
     }
@@ -314,21 +316,21 @@ TEST(GroundEffect, NearTheGroundTheRotorsLiftMoreAtTheSameSpeed) {
 }
 
 TEST(ThrustLoss, TheAirframeKeepsExactlyOneMinusTheFraction) {
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.thrust_loss_fraction = 0.05;
   const Flight with = fly(effects);
   const Flight without = fly({});
   expectThrustIsIsolatedTimesTerms(with, thesisParams().bench.air.densityKgM3());
-  for (const pe::TruthSample& truth : with.sink.truths) ASSERT_DOUBLE_EQ(truth.thrust_loss_factor, 0.95);
+  for (const pe::sim::TruthSample& truth : with.sink.truths) ASSERT_DOUBLE_EQ(truth.thrust_loss_factor, 0.95);
   // The rotors must make 1/0.95 of the weight: more pulse width for the same vehicle.
   EXPECT_GT(meanHoverPwm(with, 0), meanHoverPwm(without, 0) + 10.0);
-  const pe::SimParams params = thesisParams();
+  const pe::sim::SimParams params = thesisParams();
   const pe::ManifestSegment& hover = with.result.segments.at(0);
   double isolated = 0.0;
   int samples = 0;
-  for (const pe::TruthSample& truth : with.sink.truths) {
+  for (const pe::sim::TruthSample& truth : with.sink.truths) {
     if (truth.time_s < hover.start_s || truth.time_s > hover.end_s) continue;
-    for (const pe::MotorTruth& motor : truth.motors)
+    for (const pe::sim::MotorTruth& motor : truth.motors)
       isolated += isolatedThrust(params, truth.air_density_kg_m3, motor.rpm);
     ++samples;
   }
@@ -344,7 +346,7 @@ TEST(MotorTemperature, HotWindingsAtFixedPwmSpinFasterAndDrawMoreCurrent) {
   // field wins: the rotor spins faster and the thrust RISES, from 3.839 to 3.970 N. It would fall
   // only where the drop exceeds about 19 % of d V (heavy load, beyond 1900 us at 12 V). The motor
   // pays with current: a weaker Kt needs more amperes for the propeller's larger torque.
-  const pe::SimParams params = thesisParams();
+  const pe::sim::SimParams params = thesisParams();
   const double density = params.bench.air.densityKgM3();
   const SteadyPoint cold = brushedDcSteadyState(params, 1700.0, 12.0, density, 25.0);
   const SteadyPoint hot = brushedDcSteadyState(params, 1700.0, 12.0, density, 100.0);
@@ -353,10 +355,10 @@ TEST(MotorTemperature, HotWindingsAtFixedPwmSpinFasterAndDrawMoreCurrent) {
   EXPECT_GT(hot.thrust_n, cold.thrust_n);
   EXPECT_GT(hot.input_current_a, 1.1 * cold.input_current_a);
   // The simulator's chain at the same points.
-  const pe::PropulsionChain chain(params.chain);
+  const pe::sim::PropulsionChain chain(params.chain);
   const double duty = params.chain.esc.duty(1700.0);
   for (const auto& [celsius, expected] : {std::pair{25.0, cold}, std::pair{100.0, hot}}) {
-    const pe::ChainState state = chain.steady({duty, 12.0, density, celsius});
+    const pe::sim::ChainState state = chain.steady({duty, 12.0, density, celsius});
     EXPECT_NEAR(state.thrust_n, expected.thrust_n, 1e-9 * expected.thrust_n) << celsius;
     EXPECT_NEAR(state.input_current_a, expected.input_current_a, 1e-9 * expected.input_current_a) << celsius;
   }
@@ -366,11 +368,11 @@ TEST(MotorTemperature, TheBenchOperatingPointFollowsTheWindingTemperature) {
   // Poorly cooled motors (5 C/W) heat during a sweep of 30 s steps; every row is the steady state
   // of the written-out motor at the row's winding temperature, and above 60 deg C the hot rotor
   // gives more thrust and draws more current than the cold one (see the test above).
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.motor_thermal_resistance_c_per_w = 5.0;
   const pe::BenchLog hot = sweepTruth(effects, 30.0);
   const pe::BenchLog cold = sweepTruth({}, 30.0);
-  const pe::SimParams params = thesisParams();
+  const pe::sim::SimParams params = thesisParams();
   const double density = params.bench.air.densityKgM3();
   for (std::size_t row = 0; row < hot.rows(); ++row) {
     const double pwm = column(hot, pe::BenchColumn::kPwm, row);
@@ -394,19 +396,19 @@ TEST(MotorTemperature, HotMotorsHoverOnMorePower) {
   // a hot motor then needs I = I0 + Q / Kt(T) and the input power d V I = I (Kt w + R I): more
   // copper loss for the weaker field. Each truth sample's input power is that of the written-out
   // motor at its rotor speed and winding temperature (to the speed changes the control makes).
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.motor_thermal_resistance_c_per_w = 5.0;
   const Flight hot = fly(effects);
   const Flight cold = fly({});
-  const pe::SimParams params = thesisParams();
-  const pe::BldcMotorParams& motor = params.chain.motor;
+  const pe::sim::SimParams params = thesisParams();
+  const pe::sim::BldcMotorParams& motor = params.chain.motor;
   const double pi = 3.14159265358979323846;
   const pe::ManifestSegment& last = hot.result.segments.back();
   double simulated = 0.0, expected = 0.0, cold_power = 0.0, temperature = 0.0;
   int readings = 0;
-  for (const pe::TruthSample& truth : hot.sink.truths) {
+  for (const pe::sim::TruthSample& truth : hot.sink.truths) {
     if (truth.time_s < last.start_s || truth.time_s > last.end_s) continue;
-    for (const pe::MotorTruth& m : truth.motors) {
+    for (const pe::sim::MotorTruth& m : truth.motors) {
       const double omega = m.rpm * 2.0 * pi / 60.0;
       const double t = m.winding_temperature_c;
       const double kt = 60.0 / (2.0 * pi * motor.kv_rpm_per_v) *
@@ -423,9 +425,9 @@ TEST(MotorTemperature, HotMotorsHoverOnMorePower) {
       ++readings;
     }
   }
-  for (const pe::TruthSample& truth : cold.sink.truths) {
+  for (const pe::sim::TruthSample& truth : cold.sink.truths) {
     if (truth.time_s < last.start_s || truth.time_s > last.end_s) continue;
-    for (const pe::MotorTruth& m : truth.motors) cold_power += m.power_w;
+    for (const pe::sim::MotorTruth& m : truth.motors) cold_power += m.power_w;
   }
   EXPECT_NEAR(simulated / expected, 1.0, 0.001);
   // The same segment of both flights (the same number of readings): the hot motors use more power.
@@ -434,11 +436,11 @@ TEST(MotorTemperature, HotMotorsHoverOnMorePower) {
 }
 
 TEST(ClimbInflow, RotorsLoseThrustInAClimbAtFixedSpeedAndTheMotorsMakeUpForIt) {
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.climb_inflow_strength = 0.5;
-  EXPECT_DOUBLE_EQ(pe::rotorInflow(effects, 0.12, 5.0, 2.0).axial_speed_m_s, 1.0);
-  EXPECT_DOUBLE_EQ(pe::rotorInflow(effects, 0.12, 5.0, -1.0).axial_speed_m_s, -0.5);
-  EXPECT_DOUBLE_EQ(pe::rotorInflow(effects, 0.12, 5.0, 2.0).ground_inflow_ratio, 1.0);
+  EXPECT_DOUBLE_EQ(pe::sim::rotorInflow(effects, 0.12, 5.0, 2.0).axial_speed_m_s, 1.0);
+  EXPECT_DOUBLE_EQ(pe::sim::rotorInflow(effects, 0.12, 5.0, -1.0).axial_speed_m_s, -0.5);
+  EXPECT_DOUBLE_EQ(pe::sim::rotorInflow(effects, 0.12, 5.0, 2.0).ground_inflow_ratio, 1.0);
   effects.climb_inflow_strength = 1.0;
   const Flight flight = fly(effects);
   const Flight without = fly({});
@@ -448,22 +450,22 @@ TEST(ClimbInflow, RotorsLoseThrustInAClimbAtFixedSpeedAndTheMotorsMakeUpForIt) {
   // (elsewhere the rotors' axial speeds differ from the vehicle's vertical speed by its rotation);
   // in the descent the induced inflow rises about as fast as the rotor descends, and the thrust
   // hardly moves.
-  const std::vector<pe::ScheduledSegment> schedule = pe::scheduleFlight(flight.profile);
-  const pe::ScheduledSegment& climb = schedule.at(3);
-  const pe::ScheduledSegment& descent = schedule.at(5);
-  ASSERT_EQ(climb.segment.kind, pe::SegmentKind::kClimb);
-  ASSERT_EQ(descent.segment.kind, pe::SegmentKind::kDescend);
-  const pe::PropellerParams& propeller = thesisParams().chain.propeller;
+  const std::vector<pe::sim::ScheduledSegment> schedule = pe::sim::scheduleFlight(flight.profile);
+  const pe::sim::ScheduledSegment& climb = schedule.at(3);
+  const pe::sim::ScheduledSegment& descent = schedule.at(5);
+  ASSERT_EQ(climb.segment.kind, pe::sim::SegmentKind::kClimb);
+  ASSERT_EQ(descent.segment.kind, pe::sim::SegmentKind::kDescend);
+  const pe::sim::PropellerParams& propeller = thesisParams().chain.propeller;
   const HandRotor hand(propeller);
   double lowest = 1.0;
   int climbing = 0, descending = 0;
-  for (const pe::TruthSample& truth : flight.sink.truths) {
+  for (const pe::sim::TruthSample& truth : flight.sink.truths) {
     const bool in_climb = truth.time_s > climb.start_s + 1.0 && truth.time_s < climb.end_s;
     const bool in_descent = truth.time_s > descent.start_s + 1.0 && truth.time_s < descent.end_s;
     climbing += in_climb;
     descending += in_descent;
     double smallest = truth.motors.front().climb_factor, largest = smallest;
-    for (const pe::MotorTruth& motor : truth.motors) {
+    for (const pe::sim::MotorTruth& motor : truth.motors) {
       smallest = std::min(smallest, motor.climb_factor);
       largest = std::max(largest, motor.climb_factor);
       if (in_climb || in_descent) {
@@ -491,12 +493,12 @@ TEST(ClimbInflow, RotorsLoseThrustInAClimbAtFixedSpeedAndTheMotorsMakeUpForIt) {
 }
 
 TEST(EscOffset, ThrustAtXWithOffsetEqualsThrustAtXMinusOffsetWithout) {
-  const pe::SimParams params = thesisParams();
-  pe::SimEffects effects;
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::SimEffects effects;
   effects.esc_offset_us = 20.0;
-  pe::PowerTrain shifted(pe::PropulsionChain(params.chain), 1, effects, 22.0);
-  pe::PowerTrain reference(pe::PropulsionChain(params.chain), 1, {}, 22.0);
-  const pe::Supply supply{11.5, 0.015};
+  pe::sim::PowerTrain shifted(pe::sim::PropulsionChain(params.chain), 1, effects, 22.0);
+  pe::sim::PowerTrain reference(pe::sim::PropulsionChain(params.chain), 1, {}, 22.0);
+  const pe::sim::Supply supply{11.5, 0.015};
   for (double pwm = 1500.0; pwm <= 1800.0; pwm += 0.5) {
     const double a = shifted.step({pwm}, supply, params.bench.air, 0.01).motors[0].thrust_n;
     const double b = reference.step({pwm - 20.0}, supply, params.bench.air, 0.01).motors[0].thrust_n;
@@ -505,7 +507,7 @@ TEST(EscOffset, ThrustAtXWithOffsetEqualsThrustAtXMinusOffsetWithout) {
 }
 
 TEST(EscOffset, TheAutopilotHoversTheOffsetHigher) {
-  pe::SimEffects effects;
+  pe::sim::SimEffects effects;
   effects.esc_offset_us = 20.0;
   const Flight with = fly(effects);
   const Flight without = fly({});
@@ -515,10 +517,10 @@ TEST(EscOffset, TheAutopilotHoversTheOffsetHigher) {
 }
 
 TEST(SimEffects, AllOffByDefaultAndSummarised) {
-  EXPECT_EQ(pe::SimEffects{}.summary(), "none");
-  pe::SimEffects effects;
+  EXPECT_EQ(pe::sim::SimEffects{}.summary(), "none");
+  pe::sim::SimEffects effects;
   effects.ground_effect_strength = 1.0;
   effects.thrust_loss_fraction = 0.05;
   EXPECT_EQ(effects.summary(), "ground_effect(strength=1) thrust_loss(fraction=0.05)");
-  EXPECT_TRUE(pe::rotorInflow({}, 0.12, 0.2, 3.0).still());
+  EXPECT_TRUE(pe::sim::rotorInflow({}, 0.12, 0.2, 3.0).still());
 }

@@ -20,10 +20,10 @@ namespace {
 // Near the thesis quad's hover speed (6080 rpm).
 constexpr double kOmega = 640.0;
 
-pe::SimParams thesisParams() { return pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")); }
+pe::sim::SimParams thesisParams() { return pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")); }
 
-pe::PropellerParams withSolidity(double solidity) {
-  pe::PropellerParams propeller = thesisParams().chain.propeller;
+pe::sim::PropellerParams withSolidity(double solidity) {
+  pe::sim::PropellerParams propeller = thesisParams().chain.propeller;
   propeller.solidity = solidity;
   return propeller;
 }
@@ -31,28 +31,28 @@ pe::PropellerParams withSolidity(double solidity) {
 }  // namespace
 
 TEST(RotorAerodynamics, StillAirOutOfGroundEffectGivesTheStaticCoefficientsExactly) {
-  const pe::RotorAerodynamics rotor(thesisParams().chain.propeller);
+  const pe::sim::RotorAerodynamics rotor(thesisParams().chain.propeller);
   for (double omega : {0.0, 100.0, kOmega, 1000.0}) {
-    const pe::RotorLoad load = rotor.load(omega, {});
+    const pe::sim::RotorLoad load = rotor.load(omega, {});
     EXPECT_EQ(load.thrust, 1.0);
     EXPECT_EQ(load.torque, 1.0);
   }
   // And continuously so: the calibration puts hover at the root of the blade equation.
-  const pe::RotorLoad nearly = rotor.load(kOmega, {1e-9, 1.0 - 1e-12});
+  const pe::sim::RotorLoad nearly = rotor.load(kOmega, {1e-9, 1.0 - 1e-12});
   EXPECT_NEAR(nearly.thrust, 1.0, 1e-9);
   EXPECT_NEAR(nearly.torque, 1.0, 1e-9);
 }
 
 TEST(RotorAerodynamics, MatchesBladeElementMomentumTheoryWorkedByHand) {
-  const pe::PropellerParams propeller = thesisParams().chain.propeller;
-  const pe::RotorAerodynamics rotor(propeller);
+  const pe::sim::PropellerParams propeller = thesisParams().chain.propeller;
+  const pe::sim::RotorAerodynamics rotor(propeller);
   const HandRotor hand(propeller);
   const double radius = propeller.radiusM();
   for (double z : {radius / 2.0, radius, 0.235, 4.0 * radius}) {
     const double ground = 1.0 - std::pow(radius / (4.0 * z), 2);
     for (double axial : {2.0, 1.0, 0.1, 0.0, -0.1, -0.8, -3.0, -8.0}) {
-      const pe::RotorLoad load = rotor.load(kOmega, {axial, ground});
-      const pe::RotorLoad expected = hand.load(kOmega, axial, ground);
+      const pe::sim::RotorLoad load = rotor.load(kOmega, {axial, ground});
+      const pe::sim::RotorLoad expected = hand.load(kOmega, axial, ground);
       EXPECT_NEAR(load.thrust, expected.thrust, 1e-9) << z << " m, " << axial << " m/s";
       EXPECT_NEAR(load.torque, expected.torque, 1e-9) << z << " m, " << axial << " m/s";
     }
@@ -63,27 +63,27 @@ TEST(RotorAerodynamics, MatchesBladeElementMomentumTheoryWorkedByHand) {
   EXPECT_NEAR(rotor.load(kOmega, {1.0, 1.0}).thrust, 0.95185, 1e-5);
   EXPECT_NEAR(rotor.load(kOmega, {1.0, 1.0}).torque, 0.99733, 1e-5);
   EXPECT_NEAR(rotor.load(kOmega, {-0.8, 1.0}).thrust, 1.00340, 1e-5);
-  EXPECT_NEAR(rotor.load(kOmega, {0.0, 1.0 / pe::groundEffectFactor(radius, 0.235, 1.0)}).thrust, 1.01102, 1e-5);
+  EXPECT_NEAR(rotor.load(kOmega, {0.0, 1.0 / pe::sim::groundEffectFactor(radius, 0.235, 1.0)}).thrust, 1.01102, 1e-5);
 }
 
 TEST(RotorAerodynamics, GroundEffectRaisesThrustByTheFirstOrderShareOfCheesemanBennett) {
   // G = 1 - eps lowers the inflow; to first order dT/T = lambda_0 / (Theta - lambda_0 / 2) eps, a
   // share of Cheeseman-Bennett's equal-power gain eps. The torque moves by k (Theta - 2 lambda_0)
   // d lambda, which for the DJI 9443 (Theta ~ 2 lambda_0) is nearly nothing.
-  const pe::PropellerParams propeller = thesisParams().chain.propeller;
-  const pe::RotorAerodynamics rotor(propeller);
+  const pe::sim::PropellerParams propeller = thesisParams().chain.propeller;
+  const pe::sim::RotorAerodynamics rotor(propeller);
   const HandRotor hand(propeller);
   const double share = hand.lambda0 / (hand.theta - hand.lambda0 / 2.0);
   EXPECT_NEAR(share, 0.679, 0.001);
   const double eps = 1e-3;
-  const pe::RotorLoad small = rotor.load(kOmega, {0.0, 1.0 - eps});
+  const pe::sim::RotorLoad small = rotor.load(kOmega, {0.0, 1.0 - eps});
   EXPECT_NEAR((small.thrust - 1.0) / eps, share, 0.002 * share);
   EXPECT_LT(std::fabs(small.torque - 1.0), 0.02 * eps);
   // Down to half a radius the thrust keeps rising and the torque stays within 2.5 %.
   double previous = 1.0;
   for (double z : {4.0, 2.0, 1.0, 0.5}) {
     const double eps_z = std::pow(1.0 / (4.0 * z), 2);
-    const pe::RotorLoad load = rotor.load(kOmega, {0.0, 1.0 - eps_z});
+    const pe::sim::RotorLoad load = rotor.load(kOmega, {0.0, 1.0 - eps_z});
     EXPECT_GT(load.thrust, previous) << z;
     EXPECT_LT(load.thrust, 1.0 + eps_z) << z;  // below Cheeseman-Bennett's equal-power ratio
     EXPECT_NEAR(load.torque, 1.0, 0.025) << z;
@@ -96,8 +96,8 @@ TEST(RotorAerodynamics, ClimbLowersThrustWhileASlowDescentHardlyRaisesIt) {
   // lambda_c (the induced inflow gives back kappa/2 of it); a descent -(1 + k1) / (Theta -
   // lambda_0/2) lambda_c with k1 = -1.125 the slope of the measured curve: the induced inflow rises
   // about as fast as the rotor descends.
-  const pe::PropellerParams propeller = thesisParams().chain.propeller;
-  const pe::RotorAerodynamics rotor(propeller);
+  const pe::sim::PropellerParams propeller = thesisParams().chain.propeller;
+  const pe::sim::RotorAerodynamics rotor(propeller);
   const HandRotor hand(propeller);
   const double tip_speed = kOmega * propeller.radiusM();
   const double denominator = hand.theta - hand.lambda0 / 2.0;
@@ -129,8 +129,8 @@ TEST(RotorAerodynamics, TheTorqueFollowsTheSignOfTheBladeLoading) {
   const HandRotor heavy_hand(withSolidity(0.15));
   ASSERT_GT(light_hand.theta, 2.0 * light_hand.lambda0);
   ASSERT_LT(heavy_hand.theta, 2.0 * heavy_hand.lambda0);
-  const pe::RotorAerodynamics light(withSolidity(0.05));
-  const pe::RotorAerodynamics heavy(withSolidity(0.15));
+  const pe::sim::RotorAerodynamics light(withSolidity(0.05));
+  const pe::sim::RotorAerodynamics heavy(withSolidity(0.15));
   EXPECT_LT(light.load(kOmega, {0.0, ground}).torque, 0.99);
   EXPECT_GT(light.load(kOmega, {1.0, 1.0}).torque, 1.005);
   EXPECT_GT(heavy.load(kOmega, {0.0, ground}).torque, 1.005);
@@ -142,23 +142,23 @@ TEST(RotorAerodynamics, TheMotorsOperatingPointAnswersTheRotorsTorque) {
   // propeller's static torque times the load factor at the settled speed. A lightly loaded blade
   // in ground effect needs less torque: the rotor speeds up and draws less current; a heavily
   // loaded one slows down and draws more.
-  const pe::SimParams params = thesisParams();
+  const pe::sim::SimParams params = thesisParams();
   const double radius = params.chain.propeller.radiusM();
-  const pe::RotorInflow ground{0.0, 1.0 - std::pow(radius / (4.0 * radius), 2)};
-  const pe::Supply supply{12.0, 0.0};
-  const auto settle = [&](double solidity, const pe::RotorInflow& inflow) {
-    pe::ChainParams chain = params.chain;
+  const pe::sim::RotorInflow ground{0.0, 1.0 - std::pow(radius / (4.0 * radius), 2)};
+  const pe::sim::Supply supply{12.0, 0.0};
+  const auto settle = [&](double solidity, const pe::sim::RotorInflow& inflow) {
+    pe::sim::ChainParams chain = params.chain;
     chain.propeller.solidity = solidity;
-    pe::PowerTrain train(pe::PropulsionChain(chain), 1, {}, 22.0);
+    pe::sim::PowerTrain train(pe::sim::PropulsionChain(chain), 1, {}, 22.0);
     train.setInflow(0, inflow);
     for (int i = 0; i < 3000; ++i) train.step({1650.0}, supply, params.bench.air, 1e-3);
     return train.step({1650.0}, supply, params.bench.air, 0.0).motors[0];
   };
-  const pe::MotorConstants motor = pe::motorConstantsAt(params.chain.motor, params.chain.motor.reference_temperature_c);
+  const pe::sim::MotorConstants motor = pe::sim::motorConstantsAt(params.chain.motor, params.chain.motor.reference_temperature_c);
   for (double solidity : {0.05, 0.15}) {
-    const pe::ChainState still = settle(solidity, {});
-    const pe::ChainState near_ground = settle(solidity, ground);
-    const pe::RotorLoad load = pe::RotorAerodynamics(withSolidity(solidity)).load(near_ground.omega_rad_s, ground);
+    const pe::sim::ChainState still = settle(solidity, {});
+    const pe::sim::ChainState near_ground = settle(solidity, ground);
+    const pe::sim::RotorLoad load = pe::sim::RotorAerodynamics(withSolidity(solidity)).load(near_ground.omega_rad_s, ground);
     const double torque = params.chain.propeller.torqueNm(params.bench.air.densityKgM3(),
                                                           near_ground.omega_rad_s / pe::kTwoPi) * load.torque;
     EXPECT_NEAR(motor.torque_constant_nm_per_a * (near_ground.motor_current_a - motor.no_load_current_a), torque,

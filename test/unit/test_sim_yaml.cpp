@@ -41,11 +41,11 @@ const std::string& paramsText() {
 
 std::string paramsRefusal(const std::string& from, const std::string& to) {
   const std::string text = replaced(paramsText(), from, to);
-  return refusal([&] { pe::parseSimParamsYaml(text, "p.yaml"); });
+  return refusal([&] { pe::sim::parseSimParamsYaml(text, "p.yaml"); });
 }
 
 std::string effectsRefusal(const std::string& text) {
-  return refusal([&] { pe::parseSimEffectsYaml(text, "e.yaml"); });
+  return refusal([&] { pe::sim::parseSimEffectsYaml(text, "e.yaml"); });
 }
 
 // A small valid profile; each test breaks one thing in it.
@@ -76,7 +76,7 @@ segments:
 
 std::string profileRefusal(const std::string& from, const std::string& to) {
   const std::string text = replaced(kProfile, from, to);
-  return refusal([&] { pe::parseFlightProfileYaml(text, "config/sim/f.yaml"); });
+  return refusal([&] { pe::sim::parseFlightProfileYaml(text, "config/sim/f.yaml"); });
 }
 
 const std::string kManifest = R"(flights:
@@ -94,14 +94,14 @@ std::string manifestRefusal(const std::string& from, const std::string& to) {
 }  // namespace
 
 TEST(SimParamsYaml, ReadsTheBundledParameterFiles) {
-  const pe::SimParams params = pe::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
+  const pe::sim::SimParams params = pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml"));
   EXPECT_EQ(params.chain.motor.name, "DJI 2212 920KV");
   EXPECT_EQ(params.chain.motor.kv_rpm_per_v, 920.0);
   EXPECT_EQ(params.chain.esc.pwm_zero_us, 1071.0);
   EXPECT_EQ(params.battery.ocv_soc.size(), 13u);
   EXPECT_NEAR(params.bench.sensors.thrust_n.sigma, 0.0098, 1e-12);
   EXPECT_EQ(params.bench.sweep_pwm_max_us, 1900.0);
-  const pe::SimParams second = pe::loadSimParamsFile(repoPath("config/sim/430lite_dji2312e_dji9450.yaml"));
+  const pe::sim::SimParams second = pe::sim::loadSimParamsFile(repoPath("config/sim/430lite_dji2312e_dji9450.yaml"));
   EXPECT_EQ(second.chain.propeller.name, "DJI 9450");
   EXPECT_EQ(second.bench.sweep_pwm_max_us, 1800.0);
 }
@@ -135,7 +135,7 @@ TEST(SimParamsYaml, RefusesUnknownMissingAndOutOfRangeValues) {
 }
 
 TEST(SimEffectsYaml, ReadsEveryEffectWithItsParameter) {
-  const pe::SimEffects effects = pe::parseSimEffectsYaml(
+  const pe::sim::SimEffects effects = pe::sim::parseSimEffectsYaml(
       "supply_resistance: {ohm: 0.05}\nair_density: {temperature_c: 35, pressure_pa: 90000}\n"
       "ground_effect: {strength: 1.0}\nthrust_loss: {fraction: 0.05}\n"
       "motor_temperature: {thermal_resistance_c_per_w: 2.0}\nclimb_inflow: {strength: 0.5}\nesc_offset: {us: -15}\n",
@@ -144,7 +144,7 @@ TEST(SimEffectsYaml, ReadsEveryEffectWithItsParameter) {
             "supply_resistance(ohm=0.05) air_density(temperature_c=35,pressure_pa=90000) ground_effect(strength=1) "
             "thrust_loss(fraction=0.05) motor_temperature(thermal_resistance_c_per_w=2) climb_inflow(strength=0.5) "
             "esc_offset(us=-15)");
-  EXPECT_EQ(pe::parseSimEffectsYaml("{}", "e.yaml").summary(), "none");
+  EXPECT_EQ(pe::sim::parseSimEffectsYaml("{}", "e.yaml").summary(), "none");
 }
 
 TEST(SimEffectsYaml, RefusesUnknownEffectsAndBadParameters) {
@@ -166,35 +166,35 @@ TEST(SimEffectsYaml, RefusesUnknownEffectsAndBadParameters) {
 }
 
 TEST(FlightProfileYaml, ReadsTheBundledProfiles) {
-  const pe::FlightProfile profile = pe::loadFlightProfileFile(repoPath("config/sim/default_flight.yaml"));
-  EXPECT_EQ(profile.autopilot.flavour, pe::AutopilotFlavour::kPx4);
+  const pe::sim::FlightProfile profile = pe::sim::loadFlightProfileFile(repoPath("config/sim/default_flight.yaml"));
+  EXPECT_EQ(profile.autopilot.flavour, pe::sim::AutopilotFlavour::kPx4);
   EXPECT_EQ(profile.autopilot.rc_out_rate_hz, 50.0);
   EXPECT_EQ(profile.vehicle.urdf_path, repoPath("config/sim/../f450_quad.urdf"));
-  const std::vector<pe::ScheduledSegment> schedule = pe::scheduleFlight(profile);
+  const std::vector<pe::sim::ScheduledSegment> schedule = pe::sim::scheduleFlight(profile);
   EXPECT_GT(schedule.back().end_s, 170.0);  // about three minutes
   EXPECT_LT(schedule.back().end_s, 190.0);
-  const pe::FlightProfile demo = pe::loadFlightProfileFile(repoPath("config/demo/demo_flight_profile.yaml"));
+  const pe::sim::FlightProfile demo = pe::sim::loadFlightProfileFile(repoPath("config/demo/demo_flight_profile.yaml"));
   EXPECT_EQ(demo.autopilot.rc_out_rate_hz, 20.0);
 }
 
 TEST(FlightProfileYaml, SchedulesClimbsByRateAndLandingsWithTouchdownTime) {
-  const pe::FlightProfile profile = pe::parseFlightProfileYaml(kProfile, "config/sim/f.yaml");
-  const std::vector<pe::ScheduledSegment> schedule = pe::scheduleFlight(profile);
+  const pe::sim::FlightProfile profile = pe::sim::parseFlightProfileYaml(kProfile, "config/sim/f.yaml");
+  const std::vector<pe::sim::ScheduledSegment> schedule = pe::sim::scheduleFlight(profile);
   ASSERT_EQ(schedule.size(), 8u);
   EXPECT_DOUBLE_EQ(schedule[1].start_s, 2.0);
-  EXPECT_DOUBLE_EQ(schedule[1].end_s, 2.0 + pe::kTakeoffSpinUpS + (2.0 - 0.12) / 1.0);
+  EXPECT_DOUBLE_EQ(schedule[1].end_s, 2.0 + pe::sim::kTakeoffSpinUpS + (2.0 - 0.12) / 1.0);
   EXPECT_DOUBLE_EQ(schedule[2].end_s - schedule[2].start_s, 10.0);
-  EXPECT_DOUBLE_EQ(schedule[3].end_s - schedule[3].start_s, (2.0 - 0.12) / 0.5 + pe::kTouchdownS);
+  EXPECT_DOUBLE_EQ(schedule[3].end_s - schedule[3].start_s, (2.0 - 0.12) / 0.5 + pe::sim::kTouchdownS);
   EXPECT_DOUBLE_EQ(schedule[6].payload_mass_kg, 0.3);
   EXPECT_DOUBLE_EQ(schedule[2].payload_mass_kg, 0.0);
 }
 
 TEST(FlightProfileYaml, ManifestSpansAreHoversUnlessAirborneIsAsked) {
-  EXPECT_EQ(pe::parseFlightProfileYaml(kProfile, "f.yaml").manifest_spans, pe::ManifestSpans::kHovers);
+  EXPECT_EQ(pe::sim::parseFlightProfileYaml(kProfile, "f.yaml").manifest_spans, pe::sim::ManifestSpans::kHovers);
   const std::string hovers = replaced(kProfile, "{settle_s: 5}", "{settle_s: 5, spans: hovers}");
-  EXPECT_EQ(pe::parseFlightProfileYaml(hovers, "f.yaml").manifest_spans, pe::ManifestSpans::kHovers);
+  EXPECT_EQ(pe::sim::parseFlightProfileYaml(hovers, "f.yaml").manifest_spans, pe::sim::ManifestSpans::kHovers);
   const std::string airborne = replaced(kProfile, "{settle_s: 5}", "{settle_s: 5, spans: airborne}");
-  EXPECT_EQ(pe::parseFlightProfileYaml(airborne, "f.yaml").manifest_spans, pe::ManifestSpans::kAirborne);
+  EXPECT_EQ(pe::sim::parseFlightProfileYaml(airborne, "f.yaml").manifest_spans, pe::sim::ManifestSpans::kAirborne);
   EXPECT_EQ(profileRefusal("{settle_s: 5}", "{settle_s: 5, spans: legs}"),
             "config/sim/f.yaml:14: manifest.spans: 'legs' is not one of hovers, airborne");
   EXPECT_EQ(profileRefusal("{settle_s: 5}", "{settle_s: 5, span: airborne}"),
@@ -205,23 +205,23 @@ TEST(FlightProfileYaml, ManifestSpansAreHoversUnlessAirborneIsAsked) {
                                    "  - {type: hover, duration_s: 10}\n";
   const std::string low =
       replaced(airborne, second_hover, second_hover + "  - {type: descend, height_m: 1.0, rate_m_s: 1.0}\n");
-  EXPECT_EQ(refusal([&] { pe::parseFlightProfileYaml(low, "config/sim/f.yaml"); }),
+  EXPECT_EQ(refusal([&] { pe::sim::parseFlightProfileYaml(low, "config/sim/f.yaml"); }),
             "config/sim/f.yaml:23: segments[7].height_m: descend to 1 m with the 0.3 kg payload on a 1 m cable: the "
             "payload would rest on the ground within an airborne manifest span (stay at 1.24 m or higher)");
-  EXPECT_EQ(refusal([&] { pe::parseFlightProfileYaml(replaced(low, "spans: airborne", "spans: hovers"), "f.yaml"); }),
+  EXPECT_EQ(refusal([&] { pe::sim::parseFlightProfileYaml(replaced(low, "spans: airborne", "spans: hovers"), "f.yaml"); }),
             "accepted");
 }
 
 TEST(FlightProfileYaml, ReadsAWeakPropellerFault) {
-  EXPECT_FALSE(pe::parseFlightProfileYaml(kProfile, "f.yaml").faults.weak_propeller);
+  EXPECT_FALSE(pe::sim::parseFlightProfileYaml(kProfile, "f.yaml").faults.weak_propeller);
   const std::string faulty = replaced(kProfile, "manifest:", "faults: {weak_propeller: {motor: 3, thrust_factor: 0.85}}\nmanifest:");
-  const pe::FlightProfile profile = pe::parseFlightProfileYaml(faulty, "f.yaml");
+  const pe::sim::FlightProfile profile = pe::sim::parseFlightProfileYaml(faulty, "f.yaml");
   ASSERT_TRUE(profile.faults.weak_propeller);
   EXPECT_EQ(profile.faults.weak_propeller->motor, 3);
   EXPECT_EQ(profile.faults.weak_propeller->thrust_factor, 0.85);
   const auto faultRefusal = [&](const std::string& from, const std::string& to) {
     const std::string text = replaced(faulty, from, to);
-    return refusal([&] { pe::parseFlightProfileYaml(text, "config/sim/f.yaml"); });
+    return refusal([&] { pe::sim::parseFlightProfileYaml(text, "config/sim/f.yaml"); });
   };
   EXPECT_EQ(faultRefusal("thrust_factor: 0.85", "thrust_factor: 1.2"),
             "config/sim/f.yaml:14: faults.weak_propeller.thrust_factor: 1.2 is outside 0.1..1");
@@ -253,7 +253,7 @@ TEST(FlightProfileYaml, RefusesImpossibleSegments) {
             "config/sim/f.yaml:22: segments[6].type: hover at 1 m with the 0.3 kg payload on a 1 m cable: the "
             "payload would rest on the ground (hover at 1.24 m or higher)");
   const std::string ends_flying = kProfile.substr(0, kProfile.rfind("  - {type: land"));
-  EXPECT_EQ(refusal([&] { pe::parseFlightProfileYaml(ends_flying, "config/sim/f.yaml"); }),
+  EXPECT_EQ(refusal([&] { pe::sim::parseFlightProfileYaml(ends_flying, "config/sim/f.yaml"); }),
             "config/sim/f.yaml:16: segments: the profile ends in flight (add a land segment)");
 }
 

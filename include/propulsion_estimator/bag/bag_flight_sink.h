@@ -31,22 +31,22 @@ constexpr const char* kSimTruthTopic = "/sim/truth";
 // sensor_msgs/Temperature, and the truth as propulsion_estimator/SimTruth. Message times are the
 // headers' stamps, kSimulatedBagStartSec + the sample's time. Frames: "map" (ENU world),
 // "base_link" (FLU body), "rangefinder", the motor's link.
-class BagFlightSink : public FlightSink {
+class BagFlightSink : public sim::FlightSink {
  public:
   // Opens `path` for writing (rosbag::BagException for an unwritable path).
   BagFlightSink(const std::string& path, rosbag::compression::CompressionType compression);
   ~BagFlightSink() override;
 
-  void rcOut(const RcOutSample& sample) override;
-  void battery(const BatterySample& sample) override;
-  void imu(const ImuSample& sample) override;
-  void pose(const PoseSample& sample) override;
-  void velocity(const VelocitySample& sample) override;
-  void staticPressure(const ScalarSample& sample) override;
-  void airTemperature(const ScalarSample& sample) override;
-  void rangefinder(const RangeSample& sample) override;
-  void motorTemperature(const ScalarSample& sample) override;
-  void truth(const TruthSample& sample) override;
+  void rcOut(const sim::RcOutSample& sample) override;
+  void battery(const sim::BatterySample& sample) override;
+  void imu(const sim::ImuSample& sample) override;
+  void pose(const sim::PoseSample& sample) override;
+  void velocity(const sim::VelocitySample& sample) override;
+  void staticPressure(const sim::ScalarSample& sample) override;
+  void airTemperature(const sim::ScalarSample& sample) override;
+  void rangefinder(const sim::RangeSample& sample) override;
+  void motorTemperature(const sim::ScalarSample& sample) override;
+  void truth(const sim::TruthSample& sample) override;
 
   // Finishes the bag (rosbag::BagException when it cannot be written). The destructor closes it
   // too, reporting a failure on stderr since it cannot throw.
@@ -54,7 +54,7 @@ class BagFlightSink : public FlightSink {
 
  private:
   static ros::Time stamp(double time_s);
-  void writeTemperature(const char* topic, const ScalarSample& sample);
+  void writeTemperature(const char* topic, const sim::ScalarSample& sample);
 
   std::string path_;
   rosbag::Bag bag_;

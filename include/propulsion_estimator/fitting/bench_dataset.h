@@ -8,6 +8,7 @@
 #include "propulsion_estimator/model/propulsion_model.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 
 // How rows are sorted into voltage and PWM levels. A log whose voltage stays near one value is
 // a sweep at one supply voltage (thesis 4.1) and forms one level, even where the supply sagged
@@ -66,4 +67,5 @@ constexpr double kSagNoteV = 0.5;
 // column whose length is not its number of rows; ConfigError for an empty list of logs.
 BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOptions& options);
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

@@ -6,6 +6,7 @@
 #include "propulsion_estimator/fitting/model_comparison.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 
 // The tables of compare_models in Markdown: thesis chapter 7's maxima per combination and,
 // when hover options were given, the hover operating point and endurance.
@@ -25,4 +26,5 @@ std::vector<std::string> comparisonReportFigures(const ComparisonOptions& option
 // The whole report: the tables, how hover and endurance were computed, and the figures.
 std::string comparisonReportMarkdown(const std::vector<ModelComparison>& models, const ComparisonOptions& options);
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

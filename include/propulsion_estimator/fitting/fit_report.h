@@ -6,6 +6,7 @@
 #include "propulsion_estimator/fitting/surface_fit.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 
 // The numbers behind fit_surfaces' report, as CSV files in one directory, which
 // scripts/plot_bench_report.py turns into figures:
@@ -24,4 +25,5 @@ const std::vector<std::string>& fitReportFigures();
 // the model was written (empty when it was not, because validation failed).
 std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path);
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

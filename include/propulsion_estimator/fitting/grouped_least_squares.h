@@ -6,6 +6,7 @@
 #include <vector>
 
 namespace propulsion_estimator {
+namespace fitting {
 
 // Least squares of one output on the full polyXY basis of degree (5, 3) in scaled inputs, kept
 // as per-group sufficient statistics (X'X, X'y, y'y, n). Any sub-basis (a candidate degree
@@ -53,4 +54,5 @@ class GroupedLeastSquares {
   Eigen::VectorXd total_xty_;
 };
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

@@ -8,6 +8,7 @@
 #include "propulsion_estimator/model/propulsion_model.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 
 // A vehicle and its LiPo battery, for the hover operating point and endurance of a combination.
 // The battery's terminal voltage is taken to fall linearly with the charge drawn, from
@@ -105,4 +106,5 @@ std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust
 ModelComparison compareModel(const std::string& label, const PropulsionModel& model, const std::vector<BenchLog>& logs,
                              const ComparisonOptions& options);
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

@@ -11,6 +11,7 @@
 #include "propulsion_estimator/model/propulsion_model.h"
 
 namespace propulsion_estimator {
+namespace fitting {
 
 // How rows are grouped for cross-validation: whole groups are held out, never random rows
 // (neighbouring rows of one sweep are not independent, and a random split would reward
@@ -87,4 +88,5 @@ struct BenchFit {
 // when neither the logs nor the options give the bench air or the supply, naming every one missing.
 BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& options);
 
+}  // namespace fitting
 }  // namespace propulsion_estimator

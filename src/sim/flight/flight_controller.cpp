@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 // Gains for a 1-2 kg quad on 9-10 in propellers, in throttle units (PX4's MPC_* and MC_* play
@@ -106,4 +107,5 @@ const std::vector<double>& FlightController::update(const HeightSetpoint& setpoi
   return pwm_us_;
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -7,6 +7,7 @@
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 // The lowest height a climb, descent or take-off may aim at, above the landed height.
@@ -206,4 +207,5 @@ std::vector<ManifestSpan> manifestSpans(const FlightProfile& profile, const std:
   return spans;
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

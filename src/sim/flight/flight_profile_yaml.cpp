@@ -7,6 +7,7 @@
 #include "propulsion_estimator/common/yaml_map.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 Eigen::Vector3d readVector(const YamlMap& map, const std::string& key) {
@@ -113,4 +114,5 @@ FlightProfile loadFlightProfileFile(const std::string& path) {
   return parseFlightProfileYaml(readTextFile(path), path);
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 void requireRate(const char* field, double rate_hz) { requirePositive(field, rate_hz, 500.0, " Hz"); }
@@ -40,4 +41,5 @@ void FlightSensorParams::validate() const {
   }
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

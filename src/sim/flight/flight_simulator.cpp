@@ -17,6 +17,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 // A hover may use at most this share of the rotors' thrust, leaving the rest to attitude control.
@@ -431,4 +432,5 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
   return result;
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -7,6 +7,7 @@
 #include "propulsion_estimator/common/config_error.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 MotorMixer::MotorMixer(const Vehicle& vehicle) {
   if (!vehicle.hasGeometry()) throw ConfigError("the mixer needs the rotors' positions");
@@ -43,4 +44,5 @@ const std::vector<double>& MotorMixer::mix(double collective, double roll, doubl
   return outputs_;
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

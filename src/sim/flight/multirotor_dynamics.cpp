@@ -7,6 +7,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 const Eigen::Vector3d kGravity(0.0, 0.0, -kStandardGravity);
@@ -178,4 +179,5 @@ void MultirotorDynamics::step(const std::vector<double>& thrust_n, const std::ve
   }
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

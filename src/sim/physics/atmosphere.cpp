@@ -7,6 +7,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 double AirConditions::densityKgM3() const {
   return pressure_pa / (kSpecificGasConstantDryAir * (temperature_c + kZeroCelsiusInKelvin));
@@ -23,4 +24,5 @@ void AirConditions::validate(const char* field) const {
   requireWithin(prefix + ".pressure_pa", pressure_pa, 50000.0, 110000.0, " Pa");
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -7,6 +7,7 @@
 #include "propulsion_estimator/sim/physics/gaussian_noise.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 // Field names as the parameter file spells them: bench.sensors.<name>.sigma_<unit>.
@@ -34,4 +35,5 @@ void BenchSensors::validate() const {
   validateSensor(temperature_c, "temperature", "c", 10.0);
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

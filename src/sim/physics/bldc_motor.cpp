@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 void BldcMotorParams::validate() const {
   requireWithin("motor.kv_rpm_per_v", kv_rpm_per_v, 10.0, 10000.0, " rpm/V");
@@ -41,4 +42,5 @@ double nextWindingTemperature(const BldcMotorParams& motor, double temperature_c
   return settled + (temperature_c - settled) * std::exp(-dt_s / time_constant);
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

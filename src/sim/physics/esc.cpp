@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 void EscParams::validate() const {
   requireWithin("esc.pwm_zero_us", pwm_zero_us, 800.0, 2200.0, " us");
@@ -22,4 +23,5 @@ double EscParams::duty(double pwm_us, double end_point_offset_us) const {
   return std::clamp(fraction, 0.0, 1.0);
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -7,6 +7,7 @@
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 void LipoBatteryParams::validate() const {
   requireWithin("battery.cells", cells, 1, 14);
@@ -57,4 +58,5 @@ void LipoBattery::draw(double current_a, double dt_s) {
       settled + (polarisation_v_ - settled) * std::exp(-dt_s / (params_.rc_resistance_ohm * params_.rc_capacitance_f));
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -4,6 +4,7 @@
 #include <cmath>
 
 namespace propulsion_estimator {
+namespace sim {
 
 PowerTrain::PowerTrain(PropulsionChain chain, int motors, const SimEffects& effects, double initial_temperature_c)
     : PowerTrain(std::vector<PropulsionChain>(motors, chain), effects, initial_temperature_c) {}
@@ -75,4 +76,5 @@ const PowerTrainState& PowerTrain::step(const std::vector<double>& pwm_us, const
   return state_;
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

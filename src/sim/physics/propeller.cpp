@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -51,4 +52,5 @@ PropellerParams scaledPropeller(const PropellerParams& propeller, double thrust_
   return scaled;
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -5,6 +5,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 void ChainParams::validate() const {
   esc.validate();
@@ -99,4 +100,5 @@ ChainState PropulsionChain::steadyFromSource(const ChainInput& input, double sou
   return steady(at);
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -4,6 +4,7 @@
 #include <cmath>
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 // Leishman's fit of the measured induced velocity in the vortex ring state, v_i / v_h against
@@ -69,4 +70,5 @@ RotorLoad RotorAerodynamics::load(double omega_rad_s, const RotorInflow& inflow)
   return load;
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 // An effect's parameter is checked only when the effect is on.
@@ -71,4 +72,5 @@ RotorInflow rotorInflow(const SimEffects& effects, double rotor_radius_m, double
   return inflow;
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/yaml_map.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 // The single parameter of an effect.
@@ -40,4 +41,5 @@ SimEffects parseSimEffectsYaml(const std::string& text, const std::string& sourc
 
 SimEffects loadSimEffectsFile(const std::string& path) { return parseSimEffectsYaml(readTextFile(path), path); }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -4,6 +4,7 @@
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 void BenchParams::validate() const {
   air.validate("bench.air");
@@ -20,4 +21,5 @@ void SimParams::validate() const {
   bench.validate();
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/yaml_map.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 constexpr int kFormatVersion = 1;
@@ -100,4 +101,5 @@ SimParams parseSimParamsYaml(const std::string& text, const std::string& source)
 
 SimParams loadSimParamsFile(const std::string& path) { return parseSimParamsYaml(readTextFile(path), path); }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -14,6 +14,7 @@
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
+namespace sim {
 namespace {
 
 constexpr double kStepS = 0.02;             // integration step; the rotor lag is ~0.07 s
@@ -305,4 +306,5 @@ BenchLog simulateBench(const SimParams& params, const SimEffects& all_effects, c
   return log;
 }
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -7,6 +7,7 @@
 // The simulated vehicle as the flight physics and the autopilot see it: what a flight profile
 // sets besides its script of segments.
 namespace propulsion_estimator {
+namespace sim {
 
 // Autopilots differ in what MAVROS shows of them: PX4 outputs PWM_MAIN_DISARM (900 us) on a
 // disarmed ESC and its battery current arrives negated on /mavros/battery; ArduPilot outputs
@@ -52,4 +53,5 @@ struct VehicleFaults {
   std::optional<PropellerFault> weak_propeller;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

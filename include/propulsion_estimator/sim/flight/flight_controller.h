@@ -9,6 +9,7 @@
 #include "propulsion_estimator/vehicle/vehicle.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // The vehicle's state as the autopilot's estimator gives it (the simulator passes the true state).
 struct NavigationState {
@@ -53,4 +54,5 @@ class FlightController {
   std::vector<double> pwm_us_;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

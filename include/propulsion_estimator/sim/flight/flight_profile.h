@@ -6,6 +6,7 @@
 #include "propulsion_estimator/sim/flight/airframe.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 enum class SegmentKind { kWait, kTakeoff, kHover, kClimb, kDescend, kLand, kPayload };
 const char* segmentKindName(SegmentKind kind);  // "wait", "takeoff", ...
@@ -80,4 +81,5 @@ struct ManifestSpan {
 // a foot or the payload actually touched the ground within a span, and the settle time after it.
 std::vector<ManifestSpan> manifestSpans(const FlightProfile& profile, const std::vector<ScheduledSegment>& schedule);
 
+}  // namespace sim
 }  // namespace propulsion_estimator

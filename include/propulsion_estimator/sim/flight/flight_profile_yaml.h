@@ -5,6 +5,7 @@
 #include "propulsion_estimator/sim/flight/flight_profile.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Reader of flight profiles (config/sim/*_flight.yaml; schema in the README and in
 // config/sim/default_flight.yaml). The URDF path is resolved against the profile's folder.
@@ -12,4 +13,5 @@ namespace propulsion_estimator {
 FlightProfile parseFlightProfileYaml(const std::string& text, const std::string& source);
 FlightProfile loadFlightProfileFile(const std::string& path);
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -1,6 +1,7 @@
 #pragma once
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Rates and noise of what a PX4/ArduPilot vehicle streams through MAVROS (the rc/out rate is the
 // profile's). Noise is Gaussian: independent per reading, except the EKF's local position and
@@ -46,4 +47,5 @@ struct FlightSensorParams {
   void validate() const;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -12,6 +12,7 @@
 #include "propulsion_estimator/vehicle/vehicle.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Physics step of the flight simulation; the controller runs at the same rate (PX4's rate loop
 // runs at 250 Hz-1 kHz).
@@ -54,4 +55,5 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
                             const Vehicle& vehicle, std::uint64_t seed, FlightSink* sink,
                             const FlightSensorParams& sensors = {});
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -7,6 +7,7 @@
 #include <vector>
 
 namespace propulsion_estimator {
+namespace sim {
 
 // What a simulated flight emits, message by message, in SI units and the frames MAVROS uses:
 // ENU world ("map", origin at base_link's start position), FLU body ("base_link"). Times are
@@ -112,4 +113,5 @@ class FlightSink {
   virtual void truth(const TruthSample& sample) = 0;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -6,6 +6,7 @@
 #include "propulsion_estimator/vehicle/vehicle.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // A flight controller's mixer, built from the rotor geometry alone (like PX4's geometry files):
 // the pseudo-inverse of the normalised allocation matrix [y/max|y|; -x/max|x|; -spin; 1/N], its
@@ -25,4 +26,5 @@ class MotorMixer {
   std::vector<double> outputs_;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -9,6 +9,7 @@
 #include "propulsion_estimator/vehicle/vehicle.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Rigid-body multicopter over flat ground, with a payload hanging on a cable that only pulls
 // (a spring-damper along the cable: a pendulum while taut, slack when the payload rests on the
@@ -85,4 +86,5 @@ class MultirotorDynamics {
   bool touched_ground_ = true;  // it starts landed
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

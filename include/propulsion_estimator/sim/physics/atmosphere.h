@@ -1,6 +1,7 @@
 #pragma once
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Still air at one place and time. Density from the ideal gas law for dry air, rho = p / (R T).
 struct AirConditions {
@@ -16,4 +17,5 @@ struct AirConditions {
   void validate(const char* field) const;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -3,6 +3,7 @@
 #include <random>
 
 namespace propulsion_estimator {
+namespace sim {
 
 // One sensor of a thrust stand: additive Gaussian noise, then quantisation to its resolution
 // (0: none). The reading's scatter about the truth is effectiveSigma().
@@ -27,4 +28,5 @@ struct BenchSensors {
   void validate() const;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

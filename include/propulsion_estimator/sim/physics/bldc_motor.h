@@ -3,6 +3,7 @@
 #include <string>
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Resistance temperature coefficient of annealed copper at 20 deg C (IEC 60028: 0.00393 /K).
 constexpr double kCopperTemperatureCoefficientPerC = 0.00393;
@@ -44,4 +45,5 @@ MotorConstants motorConstantsAt(const BldcMotorParams& motor, double winding_tem
 double nextWindingTemperature(const BldcMotorParams& motor, double temperature_c, double heat_w, double air_c,
                               double thermal_resistance_c_per_w, double dt_s);
 
+}  // namespace sim
 }  // namespace propulsion_estimator

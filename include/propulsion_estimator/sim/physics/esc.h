@@ -3,6 +3,7 @@
 #include <string>
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Electronic speed controller as an ideal averaging buck stage: the motor sees duty * input
 // voltage and the ESC draws duty * motor current. The duty follows the pulse width linearly
@@ -22,4 +23,5 @@ struct EscParams {
   double duty(double pwm_us, double end_point_offset_us = 0.0) const;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

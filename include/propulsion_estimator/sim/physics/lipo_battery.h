@@ -4,6 +4,7 @@
 #include <vector>
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Lithium-polymer pack as a first-order Thevenin equivalent circuit (G. Plett, Battery Management
 // Systems vol. 1, 2015, ch. 2): open-circuit voltage as a function of state of charge, a series
@@ -49,4 +50,5 @@ class LipoBattery {
   double polarisation_v_ = 0.0;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

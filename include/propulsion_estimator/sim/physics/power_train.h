@@ -7,6 +7,7 @@
 #include "propulsion_estimator/sim/physics/sim_effects.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // What the ESCs hang on: an EMF behind a resistance (a battery's open-circuit voltage less its
 // polarisation, behind its series resistance), or a regulated source (no resistance). The
@@ -68,4 +69,5 @@ class PowerTrain {
   PowerTrainState state_;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -3,6 +3,7 @@
 #include <string>
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Induced power factor kappa of a hovering rotor: its induced power over momentum theory's ideal
 // (non-uniform inflow, tip loss; J. G. Leishman, Principles of Helicopter Aerodynamics, 2006, ch. 2:
@@ -40,4 +41,5 @@ struct PropellerParams {
 // is checked by the caller.
 PropellerParams scaledPropeller(const PropellerParams& propeller, double thrust_factor);
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -6,6 +6,7 @@
 #include "propulsion_estimator/sim/physics/rotor_inflow.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // One ESC-motor-propeller combination.
 struct ChainParams {
@@ -81,4 +82,5 @@ class PropulsionChain {
   RotorAerodynamics rotor_;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -3,6 +3,7 @@
 #include "propulsion_estimator/sim/physics/propeller.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // The propeller as a rotor of blade-element momentum theory (BEMT) with uniform inflow, so that
 // its thrust AND torque at a given rotor speed follow the air flowing through the disc. The
@@ -91,4 +92,5 @@ class RotorAerodynamics {
   double profile_torque_coefficient_;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

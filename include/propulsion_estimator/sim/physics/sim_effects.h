@@ -7,6 +7,7 @@
 #include "propulsion_estimator/sim/physics/rotor_inflow.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Physical effects that a bench-fitted response surface does not contain. Each is off unless
 // set; any combination may be on. Where each applies:
@@ -52,4 +53,5 @@ double groundEffectFactor(double rotor_radius_m, double rotor_height_m, double s
 RotorInflow rotorInflow(const SimEffects& effects, double rotor_radius_m, double rotor_height_m,
                         double axial_speed_m_s);
 
+}  // namespace sim
 }  // namespace propulsion_estimator

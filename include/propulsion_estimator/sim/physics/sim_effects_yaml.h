@@ -5,6 +5,7 @@
 #include "propulsion_estimator/sim/physics/sim_effects.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Reader of an effects file: a mapping whose keys switch effects on, each with its parameter:
 //   supply_resistance: {ohm: 0.05}
@@ -19,4 +20,5 @@ namespace propulsion_estimator {
 SimEffects parseSimEffectsYaml(const std::string& text, const std::string& source);
 SimEffects loadSimEffectsFile(const std::string& path);
 
+}  // namespace sim
 }  // namespace propulsion_estimator

@@ -8,6 +8,7 @@
 #include "propulsion_estimator/sim/physics/propulsion_chain.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // The thrust stand the chain was characterised on.
 struct BenchParams {
@@ -30,4 +31,5 @@ struct SimParams {
   void validate() const;
 };
 
+}  // namespace sim
 }  // namespace propulsion_estimator

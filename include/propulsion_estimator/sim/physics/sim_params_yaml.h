@@ -5,6 +5,7 @@
 #include "propulsion_estimator/sim/physics/sim_params.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // Reader of the simulator's parameter files (config/sim/*.yaml; schema in the README and in
 // config/sim/e300_dji2212_dji9443.yaml). Every value is required; unknown keys, wrong types and
@@ -12,4 +13,5 @@ namespace propulsion_estimator {
 SimParams parseSimParamsYaml(const std::string& text, const std::string& source);
 SimParams loadSimParamsFile(const std::string& path);
 
+}  // namespace sim
 }  // namespace propulsion_estimator

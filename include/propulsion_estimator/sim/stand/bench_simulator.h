@@ -9,6 +9,7 @@
 #include "propulsion_estimator/sim/physics/sim_params.h"
 
 namespace propulsion_estimator {
+namespace sim {
 
 // The thesis' three bench experiments (chapter 4).
 enum class BenchExperimentKind {
@@ -63,4 +64,5 @@ BenchExperiment thesisBenchExperiment(BenchExperimentKind kind, const SimParams&
 BenchLog simulateBench(const SimParams& params, const SimEffects& effects, const BenchExperiment& experiment,
                        std::uint64_t seed, BenchLog* truth = nullptr);
 
+}  // namespace sim
 }  // namespace propulsion_estimator
