@@ -150,11 +150,11 @@ void checkAttitude(const FlightProfile& profile, const ScheduledSegment& schedul
   }
   if (!*beyond_since_s) *beyond_since_s = time_s;
   if (time_s - **beyond_since_s < kFlipTriggerS - 1e-9) return;
-  throw ConfigError(profile.source + ": segments[" + std::to_string(scheduled.index) +
-                    "].type: the vehicle flipped over: roll " + formatPrintf("%.0f", roll_pitch.x()) + " deg, pitch " +
-                    formatPrintf("%.0f", roll_pitch.y()) + " deg at t = " + formatPrintf("%.3f", time_s) +
-                    " s, beyond " + formatNumber(kFlipAngleDeg) + " deg since " +
-                    formatPrintf("%.3f", **beyond_since_s) + " s");
+  throw SimulationError(profile.source + ": segments[" + std::to_string(scheduled.index) +
+                        "].type: the vehicle flipped over: roll " + formatPrintf("%.0f", roll_pitch.x()) +
+                        " deg, pitch " + formatPrintf("%.0f", roll_pitch.y()) + " deg at t = " +
+                        formatPrintf("%.3f", time_s) + " s, beyond " + formatNumber(kFlipAngleDeg) + " deg since " +
+                        formatPrintf("%.3f", **beyond_since_s) + " s");
 }
 
 // Everything a flight starts from, once every input has been checked.
