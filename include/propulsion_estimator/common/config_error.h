@@ -6,8 +6,8 @@
 
 namespace propulsion_estimator {
 
-// A refused configuration: a key or value of a YAML file (model, simulator parameters, profile,
-// effects, manifest, tare file), a URDF, a node parameter or a command-line option.
+/// A refused configuration: a key or value of a YAML file (model, simulator parameters, profile,
+/// effects, manifest, tare file), a URDF, a node parameter or a command-line option.
 class ConfigError : public InputError {
  public:
   explicit ConfigError(const std::string& message) : InputError(message) {}

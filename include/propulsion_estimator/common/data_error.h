@@ -6,8 +6,8 @@
 
 namespace propulsion_estimator {
 
-// Refused measurements: a row, cell, header or metadata line of a bench log, or logs that as a
-// whole cannot determine what is asked of them (one voltage level, a constant column).
+/// Refused measurements: a row, cell, header or metadata line of a bench log, or logs that as a
+/// whole cannot determine what is asked of them (one voltage level, a constant column).
 class DataError : public InputError {
  public:
   explicit DataError(const std::string& message) : InputError(message) {}

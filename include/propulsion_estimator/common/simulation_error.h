@@ -6,9 +6,9 @@
 
 namespace propulsion_estimator {
 
-// A simulation that failed on its way: its state diverged, the battery emptied, the vehicle did not
-// reach what its profile asked or a bench experiment did not reach its end; the message names the
-// input that asked for it.
+/// A simulation that failed on its way: its state diverged, the battery emptied, the vehicle did not
+/// reach what its profile asked or a bench experiment did not reach its end; the message names the
+/// input that asked for it.
 class SimulationError : public InputError {
  public:
   explicit SimulationError(const std::string& message) : InputError(message) {}

@@ -12,8 +12,8 @@
 
 namespace propulsion_estimator {
 
-// Strict, typed access to one YAML mapping of a configuration file. Every refusal throws
-// ConfigError as "<source>:<line>: <key.path>: <problem>", so that the user sees where to look.
+/// Strict, typed access to one YAML mapping of a configuration file. Every refusal throws
+/// ConfigError as "<source>:<line>: <key.path>: <problem>", so that the user sees where to look.
 class YamlMap {
  public:
   // `path` is the dotted key path of this map ("" for the document root).
@@ -56,15 +56,18 @@ class YamlMap {
   std::string path_;
 };
 
-// Parses a whole document and returns its root mapping; `source` names it in messages.
+/// Parses a whole document and returns its root mapping; `source` names it in messages. Throws
+/// ConfigError for text that is not YAML or is empty.
 YamlMap parseYamlDocument(const std::string& text, const std::string& source);
-// Reads a file (refusing a missing or unreadable one) and parses it.
+/// Reads a file and parses it: InputError when it cannot be read, else as parseYamlDocument.
 YamlMap loadYamlFile(const std::string& path);
-// Rethrows `error` as "<source>:<line>: <field>: <problem>", with the line of the field in the
-// document whose root is `root` (the line of its nearest present ancestor when it is absent).
+/// Rethrows `error` as "<source>:<line>: <field>: <problem>", with the line of the field in the
+/// document whose root is `root` (the line of its nearest present ancestor when it is absent):
+/// always throws ConfigError.
 [[noreturn]] void throwAtField(const YamlMap& root, const FieldError& error);
 
-// Runs `config.validate()` and locates a refusal in the document it was read from.
+/// Runs `config.validate()` and locates a refusal in the document it was read from (ConfigError
+/// "<source>:<line>: <field>: <problem>").
 template <typename Config>
 void validateAt(const YamlMap& root, const Config& config) {
   try {
