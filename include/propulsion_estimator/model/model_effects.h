@@ -20,7 +20,8 @@ enum class Kind {
   kClimbInflow,           ///< thrust lost to the axial inflow of a climb
   kEscOffset,             ///< the flying ESCs' end points differ from the bench ESC's
 };
-constexpr int kKindCount = 7;
+constexpr int kKindCount = 7;  ///< number of Kind values
+/// Every Kind, in declaration order (bit k of a KindMask is kAllKinds[k]).
 constexpr std::array<Kind, kKindCount> kAllKinds = {Kind::kSupplyResistance, Kind::kAirDensity, Kind::kGroundEffect,
                                                     Kind::kThrustLoss,       Kind::kMotorTemperature,
                                                     Kind::kClimbInflow,      Kind::kEscOffset};
@@ -41,9 +42,11 @@ struct ParameterSpec {
 const char* kindName(Kind kind);
 /// The kind named `name`; nullopt for any other string.
 std::optional<Kind> kindFromName(const std::string& name);
+/// The signal `kind`'s correction reads (Signal::kNone for thrust_loss and esc_offset).
 Signal requiredSignal(Kind kind);
 /// "battery current", "air density (static pressure and air temperature)", ...: for messages.
 const char* signalName(Signal signal);
+/// The fitted parameter of `kind`: key, plausible range and neutral value.
 const ParameterSpec& parameterSpec(Kind kind);
 
 /// The signals the corrections read, in SI units; NaN where a signal is missing or stale.
@@ -109,6 +112,7 @@ constexpr double kMinGroundDistanceM = 0.05;
 
 /// Bit k set: effect kAllKinds[k] (those on whose signal was missing were skipped).
 using KindMask = unsigned;
+/// The KindMask bit of `kind`.
 constexpr KindMask bit(Kind kind) { return 1u << static_cast<unsigned>(kind); }
 
 /// esc_offset and supply_resistance applied to (pwm_us, voltage_v). A correction whose signal is

@@ -5,15 +5,15 @@
 
 namespace propulsion_estimator {
 
-// One term p_ij * x^i * v^j of a response surface.
+/// One term p_ij * x^i * v^j of a response surface.
 struct PolynomialTerm {
   int pwm_power = 0;
   int voltage_power = 0;
   double coefficient = 0.0;
 };
 
-// A polynomial in two variables, x (PWM) and v (voltage), both already centred and scaled by
-// the caller. Evaluation allocates nothing.
+/// A polynomial in two variables, x (PWM) and v (voltage), both already centred and scaled by
+/// the caller. Evaluation allocates nothing.
 class Polynomial2D {
  public:
   static constexpr int kMaxPower = 9;
@@ -34,9 +34,9 @@ class Polynomial2D {
   int max_voltage_power_ = 0;
 };
 
-// The (i, j) powers of MATLAB's polyXY model, which the thesis used: i <= x_degree,
-// j <= v_degree and i + j <= max(x_degree, v_degree), ordered by total degree then by i
-// descending (p00, p10, p01, p20, p11, p02, ...).
+/// The (i, j) powers of MATLAB's polyXY model, which the thesis used: i <= x_degree,
+/// j <= v_degree and i + j <= max(x_degree, v_degree), ordered by total degree then by i
+/// descending (p00, p10, p01, p20, p11, p02, ...).
 std::vector<std::pair<int, int>> polynomialBasis(int x_degree, int v_degree);
 
 }  // namespace propulsion_estimator

@@ -9,19 +9,22 @@
 
 namespace propulsion_estimator {
 
+/// The outputs of a propulsion model, in SI units when evaluated: thrust N, current A, power W,
+/// efficiency N/W, rotor speed rpm.
 enum class Output { kThrust = 0, kCurrent, kPower, kEfficiency, kRpm };
-constexpr int kOutputCount = 5;
+constexpr int kOutputCount = 5;  ///< number of Output values
+/// Every Output, in declaration order.
 constexpr std::array<Output, kOutputCount> kAllOutputs = {Output::kThrust, Output::kCurrent, Output::kPower,
                                                           Output::kEfficiency, Output::kRpm};
-// "thrust", "current", ... as used for keys in model files and reports.
+/// "thrust", "current", ... as used for keys in model files and reports.
 const char* outputName(Output output);
 
-// How an output is obtained: its own surface, derived from the others (efficiency = thrust /
-// power, power = voltage * current, current = power / voltage), or not modelled at all (a bench
-// without tachometer has no rpm), in which case it is reported as NaN.
+/// How an output is obtained: its own surface, derived from the others (efficiency = thrust /
+/// power, power = voltage * current, current = power / voltage), or not modelled at all (a bench
+/// without tachometer has no rpm), in which case it is reported as NaN.
 enum class OutputSource { kSurface, kDerived, kNone };
 
-// How well a fitted surface matched its bench data (written by fit_surfaces, in the output's unit).
+/// How well a fitted surface matched its bench data (written by fit_surfaces, in the output's unit).
 struct FitQuality {
   int pwm_degree = 0;
   int voltage_degree = 0;
@@ -33,6 +36,8 @@ struct FitQuality {
   std::string grouping;
 };
 
+/// One output of a model file: its unit, how it is obtained (surface, derived, none) and the fit
+/// that produced its surface.
 struct OutputDefinition {
   std::string unit;  // unit of the surface values, as written in the file (g, N, A, W, g/W, rpm...)
   OutputSource source = OutputSource::kNone;
@@ -41,13 +46,18 @@ struct OutputDefinition {
   std::optional<FitQuality> fit;
 };
 
-// Multiplier from a unit string to SI (N, A, W, N/W, rpm); nullopt when the unit does not fit
-// the output.
+/// Multiplier from a unit string to SI (N, A, W, N/W, rpm); nullopt when the unit does not fit
+/// the output.
 std::optional<double> unitToSi(Output output, const std::string& unit);
 
+/// What evaluating a model does outside its domain: clamp the inputs to it, extrapolate the
+/// surfaces, or compute nothing.
 enum class OutsideDomain { kClamp, kExtrapolate, kReject };
+/// "clamp", "extrapolate", "reject": as the model file spells the policy.
 const char* outsideDomainName(OutsideDomain policy);
 
+/// The inputs a model was measured over: ESC pulse width in us, supply voltage in V, and the
+/// policy outside them.
 struct ModelDomain {
   double pwm_min_us = 0.0;
   double pwm_max_us = 0.0;
@@ -58,9 +68,13 @@ struct ModelDomain {
   bool contains(double pwm_us, double voltage_v) const;
 };
 
+/// What fed the ESC on the bench: a regulated supply or a battery.
 enum class SupplyKind { kRegulated, kBattery };
+/// "regulated", "battery": as the model file spells the supply.
 const char* supplyKindName(SupplyKind supply);
 
+/// Where a model comes from: the ESC, motor and propeller names, the bench air (deg C, Pa) and
+/// supply, and the source of the data.
 struct ModelMetadata {
   std::string esc;
   std::string motor;
@@ -82,7 +96,7 @@ struct ModelMetadata {
   void validate() const;
 };
 
-// Steady-state operating point of one motor from the surfaces, in SI units.
+/// Steady-state operating point of one motor from the surfaces, in SI units.
 struct OperatingPoint {
   double thrust_n = 0.0;
   double current_a = 0.0;
@@ -92,8 +106,8 @@ struct OperatingPoint {
   bool in_domain = false;
 };
 
-// The response surfaces of one ESC-motor-propeller combination, and the effects measured in
-// flight that they leave out (the model file's optional `effects:` section).
+/// The response surfaces of one ESC-motor-propeller combination, and the effects measured in
+/// flight that they leave out (the model file's optional `effects:` section).
 class PropulsionModel {
  public:
   // Throws ConfigError (without file context) for a unit that does not fit its output, a

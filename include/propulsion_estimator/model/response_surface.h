@@ -6,8 +6,8 @@
 
 namespace propulsion_estimator {
 
-// Centring and scaling of the inputs, x' = (x - center) / scale, which keeps high-degree
-// polynomials in microseconds numerically sane.
+/// Centring and scaling of the inputs, x' = (x - center) / scale, which keeps high-degree
+/// polynomials in microseconds numerically sane.
 struct InputScaling {
   double pwm_center_us = 0.0;
   double pwm_scale_us = 1.0;
@@ -17,8 +17,8 @@ struct InputScaling {
   bool isIdentity() const;
 };
 
-// One output of a propulsion model as a function of PWM (us) and voltage (V): a polynomial or a
-// ratio of two polynomials in the scaled inputs. Values are in the unit the model file states.
+/// One output of a propulsion model as a function of PWM (us) and voltage (V): a polynomial or a
+/// ratio of two polynomials in the scaled inputs. Values are in the unit the model file states.
 class ResponseSurface {
  public:
   ResponseSurface(Polynomial2D numerator, InputScaling scaling);
