@@ -10,7 +10,7 @@
 
 namespace propulsion_estimator {
 
-// One rotor in the body frame (REP-103: x forward, y left, z up), origin at the base link.
+/// One rotor in the body frame (REP-103: x forward, y left, z up), origin at the base link.
 struct Rotor {
   std::string name;
   Eigen::Vector3d position_m = Eigen::Vector3d::Constant(kNaN);
@@ -18,14 +18,16 @@ struct Rotor {
   int spin_direction = 1;                                  // +1 counter-clockwise seen from above
 };
 
+/// Mass properties of a rigid body: mass in kg, centre of mass in m in the body frame, inertia
+/// in kg m^2 about the centre of mass.
 struct MassProperties {
   double mass_kg = 0.0;
   Eigen::Vector3d centre_of_mass_m = Eigen::Vector3d::Zero();
   Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();  // about the centre of mass
 };
 
-// The multicopter: its rotors (in motor-channel order) and, when known, its empty mass
-// properties. Rotor positions are NaN when the geometry is unknown (no URDF given).
+/// The multicopter: its rotors (in motor-channel order) and, when known, its empty mass
+/// properties. Rotor positions are NaN when the geometry is unknown (no URDF given).
 struct Vehicle {
   std::vector<Rotor> rotors;
   std::optional<MassProperties> empty_mass;
