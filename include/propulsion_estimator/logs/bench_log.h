@@ -7,7 +7,7 @@
 
 namespace propulsion_estimator {
 
-// The quantities a thrust stand logs, in SI (thrust in N) except PWM (us), rpm and deg C.
+/// The quantities a thrust stand logs, in SI (thrust in N) except PWM (us), rpm and deg C.
 enum class BenchColumn {
   kTime = 0,     // time_s
   kPwm,          // pwm_us
@@ -20,12 +20,12 @@ enum class BenchColumn {
   kMotorTemp,    // motor_temp_c
   kPressure,     // pressure_pa
 };
-constexpr int kBenchColumnCount = 10;
-// The native CSV name of a column ("pwm_us", ...; thrust is "thrust_n").
+constexpr int kBenchColumnCount = 10;  ///< number of BenchColumn values
+/// The native CSV name of a column ("pwm_us", ...; thrust is "thrust_n").
 const char* benchColumnName(BenchColumn column);
 
-// One thrust-stand log, column-wise. A column that was not logged is empty; a logged one has
-// one value per row.
+/// One thrust-stand log, column-wise. A column that was not logged is empty; a logged one has
+/// one value per row.
 struct BenchLog {
   std::string source;                           // file it came from, for messages and reports
   std::map<std::string, std::string> metadata;  // "# key: value" lines of a native file

@@ -6,9 +6,9 @@
 
 namespace propulsion_estimator {
 
-// A delimited text table as a thrust-stand program writes it, split into its parts but not yet
-// interpreted: '#' comment lines, one header line of column names, and rows of text fields,
-// each with its line in the file. Quoting follows RFC 4180 (libcsv does the tokenizing).
+/// A delimited text table as a thrust-stand program writes it, split into its parts but not yet
+/// interpreted: '#' comment lines, one header line of column names, and rows of text fields,
+/// each with its line in the file. Quoting follows RFC 4180 (libcsv does the tokenizing).
 struct CsvText {
   struct Line {
     int line = 0;
@@ -28,27 +28,29 @@ struct CsvText {
   std::vector<Row> rows;            // as many fields as the header (a trailing empty field dropped)
 };
 
-// Splits `text`: strips a UTF-8 byte-order mark, takes lines starting with '#' as comments and
-// skips blank lines; the first other line is the header. The delimiter is ';' when the header
-// line holds a ';', ',' otherwise. Throws DataError ("<source>: empty file (no header line)",
-// "<source>:<line>: 5 fields, the header has 4 columns", malformed quoting) naming the line.
+/// Splits `text`: strips a UTF-8 byte-order mark, takes lines starting with '#' as comments and
+/// skips blank lines; the first other line is the header. The delimiter is ';' when the header
+/// line holds a ';', ',' otherwise. Throws DataError ("<source>: empty file (no header line)",
+/// "<source>:<line>: 5 fields, the header has 4 columns", malformed quoting) naming the line.
 CsvText splitCsvText(const std::string& text, const std::string& source);
 
-// "<source>:<line>: column <n> '<name>'" for messages about one cell.
+/// "<source>:<line>: column <n> '<name>'" for messages about one cell.
 std::string cellWhere(const CsvText& table, int line, std::size_t column);
 
-// Whether the numbers of a table use a decimal comma. Only a ';'-separated table can: it does when
-// one of its cells in `columns` holds a ',' (stand software writes no thousands separators).
+/// Whether the numbers of a table use a decimal comma. Only a ';'-separated table can: it does when
+/// one of its cells in `columns` holds a ',' (stand software writes no thousands separators).
 enum class DecimalSeparator { kAuto, kPoint, kComma };
+/// Whether `table`'s numbers use a decimal comma: as `separator` says, or for kAuto as detected
+/// from the cells of `columns` (see DecimalSeparator).
 bool usesDecimalComma(const CsvText& table, const std::vector<std::size_t>& columns, DecimalSeparator separator);
 
-// The values of one column as finite numbers; nullopt when every cell is empty (not logged).
-// Throws DataError naming the cell for an empty cell among values, text, NaN or infinity.
+/// The values of one column as finite numbers; nullopt when every cell is empty (not logged).
+/// Throws DataError naming the cell for an empty cell among values, text, NaN or infinity.
 std::optional<std::vector<double>> numericColumn(const CsvText& table, std::size_t column, bool decimal_comma);
 
-// A decimal number in a cell: optional sign, digits, one decimal separator ('.' or, when
-// `decimal_comma`, ','), optional exponent. nullopt for anything else (text, hex, empty). NaN
-// and infinity parse (as "nan", "inf") so that the caller can name them.
+/// A decimal number in a cell: optional sign, digits, one decimal separator ('.' or, when
+/// `decimal_comma`, ','), optional exponent. nullopt for anything else (text, hex, empty). NaN
+/// and infinity parse (as "nan", "inf") so that the caller can name them.
 std::optional<double> parseDecimal(const std::string& field, bool decimal_comma);
 
 }  // namespace propulsion_estimator

@@ -5,14 +5,15 @@
 
 namespace propulsion_estimator {
 
-// A stretch of a flight whose lifted mass is known (weighed): the ground truth of the estimator's
-// tests and the input of the gap diagnosis.
+/// A stretch of a flight whose lifted mass is known (weighed): the ground truth of the estimator's
+/// tests and the input of the gap diagnosis.
 struct ManifestSegment {
   double start_s = 0.0;  // seconds from the bag's first message
   double end_s = 0.0;
   double mass_kg = 0.0;  // vehicle plus hanging payload
 };
 
+/// One flight of a manifest: its bag and the segments whose mass is known.
 struct ManifestFlight {
   std::string bag;  // as written in the manifest: relative to the manifest's folder, or absolute
   std::vector<ManifestSegment> segments;
@@ -23,11 +24,11 @@ struct ManifestFlight {
   void validate(const std::string& at) const;
 };
 
-// A set of flights:
-//   flights:
-//     - bag: flight_01.bag
-//       segments:
-//         - {start: 5.0, end: 178.0, mass_kg: 1.315}
+/// A set of flights:
+///   flights:
+///     - bag: flight_01.bag
+///       segments:
+///         - {start: 5.0, end: 178.0, mass_kg: 1.315}
 struct FlightManifest {
   std::vector<ManifestFlight> flights;
 
@@ -35,25 +36,30 @@ struct FlightManifest {
   void validate() const;
 };
 
-// The manifest's reader and writer: parseFlightManifest(flightManifestToYaml(m)) == m.
-// Refusals are ConfigError "<file>:<line>: <key>: <problem>".
+/// The manifest's reader and writer: parseFlightManifest(flightManifestToYaml(m)) == m.
+/// Refusals are ConfigError "<file>:<line>: <key>: <problem>".
 FlightManifest parseFlightManifest(const std::string& text, const std::string& source);
+/// Reads and parses the manifest file `path`; InputError when it cannot be read.
 FlightManifest loadFlightManifest(const std::string& path);
+/// The manifest as YAML, `comment` on top; parseFlightManifest reads it back to the same manifest.
 std::string flightManifestToYaml(const FlightManifest& manifest, const std::string& comment = "");
+/// Writes flightManifestToYaml's text to `path`; InputError when it cannot be written.
 void saveFlightManifest(const FlightManifest& manifest, const std::string& path, const std::string& comment = "");
 
-// A manifest for a tool that goes on with the flights it can use: read as loadFlightManifest
-// reads it (a refusal of the file as a whole, no flights included, throws ConfigError), except
-// that a flight ManifestFlight::validate refuses is kept with its refusal, located as
-// loadFlightManifest would locate it ("<file>:<line>: flights[1].segments[0].mass_kg: 0 is
-// outside 0..100 kg").
+/// A manifest for a tool that goes on with the flights it can use: read as loadFlightManifest
+/// reads it (a refusal of the file as a whole, no flights included, throws ConfigError), except
+/// that a flight ManifestFlight::validate refuses is kept with its refusal, located as
+/// loadFlightManifest would locate it ("<file>:<line>: flights[1].segments[0].mass_kg: 0 is
+/// outside 0..100 kg").
 struct ManifestEntry {
   ManifestFlight flight;
   std::string refusal;  // empty for a usable flight
 };
+/// Reads the manifest file `path` flight by flight (see ManifestEntry); InputError when it cannot
+/// be read, ConfigError for a refusal of the file as a whole.
 std::vector<ManifestEntry> loadFlightManifestEntries(const std::string& path);
 
-// A flight's bag path as a file path: relative paths are taken from the manifest's folder.
+/// A flight's bag path as a file path: relative paths are taken from the manifest's folder.
 std::string resolveBagPath(const std::string& manifest_path, const std::string& bag);
 
 }  // namespace propulsion_estimator
