@@ -19,8 +19,8 @@
 
 namespace propulsion_estimator {
 
-// Why an input was not used. Every refused message is counted and leaves the estimates as they
-// were: nothing is computed from it.
+/// Why an input was not used. Every refused message is counted and leaves the estimates as they
+/// were: nothing is computed from it.
 enum class Rejection {
   kNone = 0,
   kBadVoltage,      // battery voltage NaN, infinite, zero or negative
@@ -40,10 +40,11 @@ enum class Rejection {
   kBadRange,            // NaN, or finite outside the sensor's own min_range..max_range
   kBadMotorTemperature,  // outside -40..200 deg C
 };
-constexpr int kRejectionCount = 16;
+constexpr int kRejectionCount = 16;  ///< number of Rejection values
+/// "bad_voltage", "stale_battery", ...: the name of a rejection in diagnostics and counters.
 const char* rejectionName(Rejection rejection);
 
-// The last refusal with what it was about, turned into text only when someone asks.
+/// The last refusal with what it was about, turned into text only when someone asks.
 struct RejectionDetail {
   Rejection reason = Rejection::kNone;
   int channel = 0;     // 1-based, for kDisarmed
@@ -51,14 +52,19 @@ struct RejectionDetail {
   double limit = 0.0;  // what it was checked against
   double limit_high = 0.0;  // upper end where the check is a range (kBadRange)
 };
+/// One line for diagnostics: the rejection with its channel, value and limit ("none" for kNone).
 std::string describe(const RejectionDetail& detail);
 
+/// One motor's estimate for the last accepted RCOut message: its channel (1-based), pulse width in
+/// us and the model's operating point (SI units) with the effects applied.
 struct MotorOutput {
   int channel = 0;
   double pwm_us = 0.0;
   OperatingPoint estimate;
 };
 
+/// The vehicle's totals over all motors, SI units: summed thrust and its vertical part, current
+/// and power, and the mass they lift (vertical thrust over g plus the vertical acceleration).
 struct Totals {
   double voltage_v = 0.0;
   double thrust_n = 0.0;
@@ -72,6 +78,8 @@ struct Totals {
   int motors_out_of_domain = 0;
 };
 
+/// Everything the estimator computed for the last accepted RCOut message; `stamp_s` is its header
+/// time in s.
 struct EstimatorOutput {
   double stamp_s = 0.0;
   std::vector<MotorOutput> motors;  // sized once, one per rotor
@@ -82,6 +90,8 @@ struct EstimatorOutput {
   MassEstimate payload;
 };
 
+/// Counts of the inputs accepted and rejected (by Rejection) since start, and of the motor samples
+/// and effects applied, for diagnostics.
 struct EstimatorCounters {
   std::array<std::uint64_t, kRejectionCount> rejected{};
   std::uint64_t accepted = 0;
@@ -94,21 +104,21 @@ struct EstimatorCounters {
   std::array<std::uint64_t, effects::kKindCount> effect_skipped{};
 };
 
-// Answer of tare(): the new empty mass, or why there is none.
+/// Answer of tare(): the new empty mass, or why there is none.
 struct TareResult {
   bool ok = false;
   double empty_mass_kg = 0.0;
   std::string message;
 };
 
-// The whole onboard estimation, free of ROS: inputs in, estimates out. `receipt_s` is the time
-// an input arrived on the estimator's clock (ROS time, simulated when replaying a bag); it drives
-// staleness. Stamps are the inputs' own header times. Evaluating motor outputs allocates nothing.
-//
-// The model's effects (effects::ModelEffects) are applied to every motor: the surfaces are
-// evaluated at effects::correctInputs() and thrust and efficiency multiplied by
-// effects::thrustFactor() (floored at zero, as the surfaces' thrust is). A correction whose signal
-// is missing or older than its timeout is skipped for that message and counted.
+/// The whole onboard estimation, free of ROS: inputs in, estimates out. `receipt_s` is the time
+/// an input arrived on the estimator's clock (ROS time, simulated when replaying a bag); it drives
+/// staleness. Stamps are the inputs' own header times. Evaluating motor outputs allocates nothing.
+///
+/// The model's effects (effects::ModelEffects) are applied to every motor: the surfaces are
+/// evaluated at effects::correctInputs() and thrust and efficiency multiplied by
+/// effects::thrustFactor() (floored at zero, as the surfaces' thrust is). A correction whose signal
+/// is missing or older than its timeout is skipped for that message and counted.
 class Estimator {
  public:
   // Throws ConfigError if the configuration does not fit the vehicle.

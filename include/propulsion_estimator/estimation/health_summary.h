@@ -23,7 +23,7 @@ struct HealthStatus {
 
 /// The node's inputs, counted on arrival, before the estimator sees them.
 enum class NodeInput { kRcOut = 0, kBattery, kImu, kVelocity };
-constexpr int kNodeInputCount = 4;
+constexpr int kNodeInputCount = 4;  ///< number of NodeInput values
 
 /// What the node itself observes of its inputs since it started (the estimator counts only what
 /// reaches it).

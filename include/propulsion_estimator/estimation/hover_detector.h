@@ -7,9 +7,9 @@
 
 namespace propulsion_estimator {
 
-// When is the vehicle hovering? Total thrust steady over a sliding window and, where an IMU or a
-// velocity source is available, small tilt, vertical speed and vertical acceleration; in the
-// spirit of ArduPilot's hover-throttle learning (vertical speed under 0.6 m/s, tilt under 5 deg).
+/// When is the vehicle hovering? Total thrust steady over a sliding window and, where an IMU or a
+/// velocity source is available, small tilt, vertical speed and vertical acceleration; in the
+/// spirit of ArduPilot's hover-throttle learning (vertical speed under 0.6 m/s, tilt under 5 deg).
 struct HoverConfig {
   double window_s = 2.0;
   double min_window_fill = 0.8;          // fraction of window_s the samples must span
@@ -22,7 +22,7 @@ struct HoverConfig {
   void validate() const;  // ConfigError naming the field
 };
 
-// One sample; NaN marks what is not measured (no IMU, no velocity source).
+/// One sample; NaN marks what is not measured (no IMU, no velocity source).
 struct HoverSample {
   double vertical_thrust_n = 0.0;
   double mass_kg = 0.0;  // mass that thrust holds
@@ -31,6 +31,7 @@ struct HoverSample {
   double vertical_accel_m_s2 = 0.0;
 };
 
+/// Why the window is not a hover (the first condition that failed); kNone when it is.
 enum class HoverBlocker {
   kNone,
   kWindowFilling,
@@ -41,6 +42,7 @@ enum class HoverBlocker {
   kAccelerating,
 };
 
+/// The detector's verdict on its window, with the window statistics it was based on (SI units).
 struct HoverVerdict {
   bool hovering = false;
   HoverBlocker blocker = HoverBlocker::kWindowFilling;
@@ -54,9 +56,10 @@ struct HoverVerdict {
   double mean_vertical_accel_m_s2 = 0.0;    // NaN without IMU
 };
 
-// One line for humans: "hovering: ..." or "not hovering: <why>, <window statistics>".
+/// One line for humans: "hovering: ..." or "not hovering: <why>, <window statistics>".
 std::string describe(const HoverVerdict& verdict, const HoverConfig& config);
 
+/// Keeps a sliding window of HoverSample and judges it against a HoverConfig.
 class HoverDetector {
  public:
   // `capacity`: samples the window can hold (window_s times the highest expected rate).

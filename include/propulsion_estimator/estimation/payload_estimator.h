@@ -7,11 +7,11 @@
 
 namespace propulsion_estimator {
 
-// Thesis eq. 2.1-2.3: in hover the motors' thrust equals the weight; the payload is the total
-// minus the empty weight recorded before. Single readings were up to 29 % off in the thesis, so
-// the estimate is the mean over the hover samples of the current hover episode (at most
-// averaging_window_s of them); a pause in hovering longer than episode_gap_s starts a new
-// episode, since the payload may change between hovers (picked up on a cable, or after landing).
+/// Thesis eq. 2.1-2.3: in hover the motors' thrust equals the weight; the payload is the total
+/// minus the empty weight recorded before. Single readings were up to 29 % off in the thesis, so
+/// the estimate is the mean over the hover samples of the current hover episode (at most
+/// averaging_window_s of them); a pause in hovering longer than episode_gap_s starts a new
+/// episode, since the payload may change between hovers (picked up on a cable, or after landing).
 struct PayloadConfig {
   double averaging_window_s = 10.0;
   std::size_t min_samples = 25;  // before a mean is reported
@@ -20,12 +20,20 @@ struct PayloadConfig {
   void validate() const;  // ConfigError naming the field
 };
 
+/// Where the empty mass came from: nowhere yet, the URDF, a node parameter, a tare file or a tare
+/// taken in this run.
 enum class EmptyMassSource { kNone, kUrdf, kParameter, kTareFile, kTare };
+/// "none", "urdf", "parameter", "tare_file", "tare".
 const char* emptyMassSourceName(EmptyMassSource source);
 
+/// The estimate's state: no total mass yet, a total but no empty mass, hovering (the payload is
+/// being averaged), or holding the last hover's payload.
 enum class PayloadState { kWaitingForHover, kNoTareYet, kHovering, kHolding };
+/// "waiting_for_hover", "no_tare_yet", "hovering", "holding".
 const char* payloadStateName(PayloadState state);
 
+/// The payload estimate after a sample: total, empty and payload mass in kg (NaN where unknown),
+/// the spread of the total and the averaging window behind it.
 struct MassEstimate {
   PayloadState state = PayloadState::kWaitingForHover;
   bool hovering = false;
@@ -38,6 +46,8 @@ struct MassEstimate {
   std::uint32_t window_samples = 0;
 };
 
+/// Averages the hover samples' total mass over the current hover episode and subtracts the empty
+/// mass (thesis eq. 2.1-2.3, see PayloadConfig).
 class PayloadEstimator {
  public:
   // `capacity`: samples the averaging window can hold.

@@ -5,24 +5,25 @@
 
 namespace propulsion_estimator {
 
-// The tare survives a restart of the node in a small YAML file:
-//   empty_mass_kg: 1.3154
-//   model: <model file the tare was taken with>
-//   model_fingerprint: <modelFingerprint() of that model>
-// A tare is only meaningful with the model it was measured through: the fingerprint tells
-// whether the model now loaded is that one, wherever its file lies; the path is for people.
+/// The tare survives a restart of the node in a small YAML file:
+///   empty_mass_kg: 1.3154
+///   model: <model file the tare was taken with>
+///   model_fingerprint: <modelFingerprint() of that model>
+/// A tare is only meaningful with the model it was measured through: the fingerprint tells
+/// whether the model now loaded is that one, wherever its file lies; the path is for people.
 struct TareRecord {
   double empty_mass_kg = 0.0;
   std::string model;
   std::string model_fingerprint;
 };
 
-// nullopt when the file does not exist; ConfigError naming the file for anything unreadable.
+/// The tare in `path`; nullopt when the file does not exist. ConfigError naming the file for
+/// content that is not a tare (InputError when it cannot be read).
 std::optional<TareRecord> loadTareFile(const std::string& path);
-// Writes atomically (temporary file + rename) so that a crash never leaves half a file; InputError
-// naming the file when it cannot be written.
+/// Writes atomically (temporary file + rename) so that a crash never leaves half a file; InputError
+/// naming the file when it cannot be written.
 void saveTareFile(const std::string& path, const TareRecord& record);
-// Removes the file if it exists.
+/// Removes the file if it exists.
 void removeTareFile(const std::string& path);
 
 }  // namespace propulsion_estimator

@@ -5,9 +5,9 @@
 
 namespace propulsion_estimator {
 
-// Samples of the last `span_s` seconds in a ring buffer allocated once: pushing evicts samples
-// older than the span and, when the buffer is full, the oldest one (the window then covers less
-// time, which its span() shows).
+/// Samples of the last `span_s` seconds in a ring buffer allocated once: pushing evicts samples
+/// older than the span and, when the buffer is full, the oldest one (the window then covers less
+/// time, which its span() shows).
 template <typename T>
 class TimeWindow {
  public:

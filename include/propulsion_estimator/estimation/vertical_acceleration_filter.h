@@ -2,10 +2,10 @@
 
 namespace propulsion_estimator {
 
-// Vertical acceleration from an accelerometer, freed of its bias. A 0.1 m/s^2 bias alone would
-// read as a 1 % mass error; but a vehicle that stays airborne has zero mean vertical acceleration
-// over tens of seconds, so a slow average of the measurement is its bias. The output is a fast
-// low-pass (against vibration) minus that slow average.
+/// Vertical acceleration from an accelerometer, freed of its bias. A 0.1 m/s^2 bias alone would
+/// read as a 1 % mass error; but a vehicle that stays airborne has zero mean vertical acceleration
+/// over tens of seconds, so a slow average of the measurement is its bias. The output is a fast
+/// low-pass (against vibration) minus that slow average.
 class VerticalAccelerationFilter {
  public:
   VerticalAccelerationFilter(double fast_time_constant_s, double bias_time_constant_s);
