@@ -10,10 +10,10 @@
 namespace propulsion_estimator {
 namespace fitting {
 
-// How rows are sorted into voltage and PWM levels. A log whose voltage stays near one value is
-// a sweep at one supply voltage (thesis 4.1) and forms one level, even where the supply sagged
-// at the top of the sweep; a log whose voltage wanders (a battery discharge, thesis 4.2 and 4.3)
-// has no levels of its own, and its rows are binned by voltage.
+/// How rows are sorted into voltage and PWM levels. A log whose voltage stays near one value is
+/// a sweep at one supply voltage (thesis 4.1) and forms one level, even where the supply sagged
+/// at the top of the sweep; a log whose voltage wanders (a battery discharge, thesis 4.2 and 4.3)
+/// has no levels of its own, and its rows are binned by voltage.
 struct LevelOptions {
   // A log is one level when the median absolute deviation of its voltage is at most this.
   double steady_voltage_mad_v = 0.15;
@@ -28,14 +28,14 @@ struct LevelOptions {
   void validate() const;  // ConfigError for a non-positive value, naming its fit_surfaces option
 };
 
-// A level: its centre and how many rows it holds.
+/// A level: its centre and how many rows it holds.
 struct Level {
   double centre = 0.0;
   int rows = 0;
 };
 
-// All rows of the logs of one fit, with outputs in the model's file units (thrust g, current A,
-// power W, efficiency g/W, rpm); NaN where a log did not measure an output.
+/// All rows of the logs of one fit, with outputs in the model's file units (thrust g, current A,
+/// power W, efficiency g/W, rpm); NaN where a log did not measure an output.
 struct BenchDataset {
   std::vector<std::string> sources;  // one per log
   std::vector<int> log;              // per row: index into sources
@@ -54,17 +54,17 @@ struct BenchDataset {
   const std::vector<double>& output(Output o) const { return values[static_cast<int>(o)]; }
 };
 
-// Only rows drawing at least this share of the log's peak power carry an efficiency sample:
-// near idle, thrust / power is a ratio of two noisy near-zero numbers.
+/// Only rows drawing at least this share of the log's peak power carry an efficiency sample:
+/// near idle, thrust / power is a ratio of two noisy near-zero numbers.
 constexpr double kEfficiencyMinPowerShare = 0.05;
-// A row this far below or above its steady log's median voltage is reported as supply sag.
+/// A row this far below or above its steady log's median voltage is reported as supply sag.
 constexpr double kSagNoteV = 0.5;
 
-// Joins the logs: converts units, takes power as voltage x current where a log has current but
-// no power (and says so), derives efficiency samples as thrust / power, and assigns levels.
-// Throws DataError "<file>:<line>: <column>: <value> is not a finite number" for a NaN or infinite
-// value, "<file>: ..." for a log without rows, without pwm_us, voltage_v or thrust_n, or with a
-// column whose length is not its number of rows; ConfigError for an empty list of logs.
+/// Joins the logs: converts units, takes power as voltage x current where a log has current but
+/// no power (and says so), derives efficiency samples as thrust / power, and assigns levels.
+/// Throws DataError "<file>:<line>: <column>: <value> is not a finite number" for a NaN or infinite
+/// value, "<file>: ..." for a log without rows, without pwm_us, voltage_v or thrust_n, or with a
+/// column whose length is not its number of rows; ConfigError for an empty list of logs.
 BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOptions& options);
 
 }  // namespace fitting

@@ -8,11 +8,11 @@
 namespace propulsion_estimator {
 namespace fitting {
 
-// Least squares of one output on the full polyXY basis of degree (5, 3) in scaled inputs, kept
-// as per-group sufficient statistics (X'X, X'y, y'y, n). Any sub-basis (a candidate degree
-// pair) is then solved, and cross-validated with one group held out at a time, from small
-// sub-blocks of these matrices: the raw rows are read once, whatever the number of candidates
-// and folds.
+/// Least squares of one output on the full polyXY basis of degree (5, 3) in scaled inputs, kept
+/// as per-group sufficient statistics (X'X, X'y, y'y, n). Any sub-basis (a candidate degree
+/// pair) is then solved, and cross-validated with one group held out at a time, from small
+/// sub-blocks of these matrices: the raw rows are read once, whatever the number of candidates
+/// and folds.
 class GroupedLeastSquares {
  public:
   static constexpr int kMaxPwmDegree = 5;

@@ -10,10 +10,10 @@
 namespace propulsion_estimator {
 namespace fitting {
 
-// A vehicle and its LiPo battery, for the hover operating point and endurance of a combination.
-// The battery's terminal voltage is taken to fall linearly with the charge drawn, from
-// cells x cell_full_v to cells x cell_cutoff_v over usable_fraction x capacity: a plain, stated
-// approximation of a LiPo discharge under a steady load.
+/// A vehicle and its LiPo battery, for the hover operating point and endurance of a combination.
+/// The battery's terminal voltage is taken to fall linearly with the charge drawn, from
+/// cells x cell_full_v to cells x cell_cutoff_v over usable_fraction x capacity: a plain, stated
+/// approximation of a LiPo discharge under a steady load.
 struct HoverOptions {
   double vehicle_mass_kg = 0.0;  // take-off mass, payload included
   int motors = 4;
@@ -31,16 +31,18 @@ struct HoverOptions {
   void validate() const;  // ConfigError naming the option
 };
 
+/// Options of compare_models: the comparison voltage in V, the curves' sampling, and the vehicle
+/// for hover and endurance.
 struct ComparisonOptions {
   std::optional<double> voltage_v;  // where the chapter 7 maxima are taken; default: each model's top
   int curve_points = 701;           // PWM samples over each model's domain
   std::optional<HoverOptions> hover;
 
-  void validate() const;
+  void validate() const;  // ConfigError naming the option
 };
 
-// One model's output at one PWM, in the units of thesis chapter 7 (g, A, W, g/W, rpm); NaN for
-// an output the model does not have.
+/// One model's output at one PWM, in the units of thesis chapter 7 (g, A, W, g/W, rpm); NaN for
+/// an output the model does not have.
 struct ComparisonSample {
   double pwm_us = 0.0;
   double voltage_v = 0.0;
@@ -51,6 +53,8 @@ struct ComparisonSample {
   double rpm = 0.0;
 };
 
+/// One motor's hover operating point at a supply voltage: pulse width in us, current in A and power
+/// in W per motor, efficiency in g/W.
 struct HoverPoint {
   double voltage_v = 0.0;
   double pwm_us = 0.0;
@@ -63,6 +67,8 @@ struct HoverPoint {
   bool in_domain = false;  // false: the voltage was clamped or extrapolated, or below_pwm_domain
 };
 
+/// One step of the hover discharge: hover time in min, battery voltage in V, total current in A and
+/// the pulse width in us that holds the hover.
 struct DischargeStep {
   double time_min = 0.0;  // hover time at the end of the step
   double voltage_v = 0.0;
@@ -70,7 +76,7 @@ struct DischargeStep {
   double pwm_us = 0.0;
 };
 
-// The chapter 7 row of one combination, its hover point and endurance.
+/// The chapter 7 row of one combination, its hover point and endurance.
 struct ModelComparison {
   std::string label;
   ModelMetadata metadata;
@@ -92,17 +98,18 @@ struct ModelComparison {
   std::vector<std::string> hover_notes;
 };
 
-// Log rows this close to the comparison voltage are drawn with its curves.
+/// Log rows this close to the comparison voltage are drawn with its curves.
 constexpr double kNearVoltageV = 0.3;
 
-// The operating point where one motor gives `thrust_n` at `voltage_v` (evaluate(): the model's
-// outside-domain policy applies); nullopt when the model cannot give that much thrust there.
+/// The operating point where one motor gives `thrust_n` at `voltage_v` (evaluate(): the model's
+/// outside-domain policy applies); nullopt when the model cannot give that much thrust there.
 std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust_n, double voltage_v);
 
-// Evaluates one combination: curve and maxima at the comparison voltage (default: the top of
-// the model's voltage domain), the motor temperature of its logs, and hover and endurance when
-// options.hover is set. A --voltage outside the domain is refused under the reject policy,
-// clamped to the domain (voltage_v says where) or extrapolated otherwise, with a note.
+/// Evaluates one combination: curve and maxima at the comparison voltage (default: the top of
+/// the model's voltage domain), the motor temperature of its logs, and hover and endurance when
+/// options.hover is set. A --voltage outside the domain is refused under the reject policy
+/// (ConfigError naming `label`), clamped to the domain (voltage_v says where) or extrapolated
+/// otherwise, with a note.
 ModelComparison compareModel(const std::string& label, const PropulsionModel& model, const std::vector<BenchLog>& logs,
                              const ComparisonOptions& options);
 

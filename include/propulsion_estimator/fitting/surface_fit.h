@@ -13,9 +13,9 @@
 namespace propulsion_estimator {
 namespace fitting {
 
-// How rows are grouped for cross-validation: whole groups are held out, never random rows
-// (neighbouring rows of one sweep are not independent, and a random split would reward
-// over-fitting them).
+/// How rows are grouped for cross-validation: whole groups are held out, never random rows
+/// (neighbouring rows of one sweep are not independent, and a random split would reward
+/// over-fitting them).
 enum class FitGrouping {
   kAuto,          // voltage levels when there are 3 or more, else PWM levels
   kVoltageLevel,  // hold out one voltage level: tests interpolation across voltage
@@ -23,6 +23,8 @@ enum class FitGrouping {
   kLog,           // hold out one log file
 };
 
+/// Options of fit_surfaces: cross-validation grouping, maximum degrees, outputs left out, the
+/// outside-domain policy and the metadata that override the logs'.
 struct FitOptions {
   FitGrouping grouping = FitGrouping::kAuto;
   int max_pwm_degree = 5;      // 1..5
@@ -45,8 +47,8 @@ struct FitOptions {
   void validate() const;  // ConfigError naming the bad option
 };
 
-// One candidate degree pair and its cross-validated error (NaN: not determined by the data when
-// a group is held out).
+/// One candidate degree pair and its cross-validated error (NaN: not determined by the data when
+/// a group is held out).
 struct CandidateScore {
   int pwm_degree = 0;
   int voltage_degree = 0;
@@ -54,8 +56,8 @@ struct CandidateScore {
   double held_out_rmse = 0.0;
 };
 
-// How well each output matches the bench data, in its file unit. For a surface also the chosen
-// degrees and every candidate's held-out error.
+/// How well each output matches the bench data, in its file unit. For a surface also the chosen
+/// degrees and every candidate's held-out error.
 struct OutputFitReport {
   Output output = Output::kThrust;
   OutputSource source = OutputSource::kNone;
@@ -67,6 +69,8 @@ struct OutputFitReport {
   std::vector<CandidateScore> candidates;  // surfaces only
 };
 
+/// The result of fitBenchModel: the model, whether it may be written, the data it was fitted on and
+/// how well each output matches it.
 struct BenchFit {
   PropulsionModel model;
   // Empty when the model passes the loader's grid check (model_validation.h); otherwise why
@@ -81,11 +85,11 @@ struct BenchFit {
   double parsimony = 0.0;          // FitOptions::parsimony the degrees were chosen with
 };
 
-// Fits the model: per output the polyXY degrees (up to the option's maxima) with the least
-// held-out error, on inputs centred and scaled to [-1, 1] over the data's domain. Throws
-// DataError when the data cannot determine a surface (one voltage level, fewer than 3 PWM
-// levels, too few points, a constant output), when the logs contradict each other's metadata, and
-// when neither the logs nor the options give the bench air or the supply, naming every one missing.
+/// Fits the model: per output the polyXY degrees (up to the option's maxima) with the least
+/// held-out error, on inputs centred and scaled to [-1, 1] over the data's domain. Throws
+/// DataError when the data cannot determine a surface (one voltage level, fewer than 3 PWM
+/// levels, too few points, a constant output), when the logs contradict each other's metadata, and
+/// when neither the logs nor the options give the bench air or the supply, naming every one missing.
 BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& options);
 
 }  // namespace fitting
