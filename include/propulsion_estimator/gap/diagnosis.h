@@ -72,6 +72,8 @@ struct MotorGap {
   double ci_pct = 0.0;          ///< half-width of its 95 % interval
 };
 
+/// Each motor's thrust gap from the steady-hover moment balance, the motor suspected alone, and the
+/// centre of thrust it implies (m, body frame).
 struct MotorBalance {
   std::vector<MotorGap> motors;
   std::optional<int> suspect_channel;  ///< a motor whose model is off alone
