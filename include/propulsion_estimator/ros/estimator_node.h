@@ -24,8 +24,8 @@
 
 namespace propulsion_estimator {
 
-// estimator_node: adapts topics, services and diagnostics to the core Estimator. Nothing is
-// computed or judged here: the diagnostics copy the health summary (estimation/health_summary.h).
+/// estimator_node: adapts topics, services and diagnostics to the core Estimator. Nothing is
+/// computed or judged here: the diagnostics copy the health summary (estimation/health_summary.h).
 class EstimatorNode {
  public:
   // Throws ConfigError for bad parameters, model, URDF or tare file.

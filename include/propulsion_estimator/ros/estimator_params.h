@@ -9,7 +9,7 @@
 
 namespace propulsion_estimator {
 
-// Everything estimator_node reads from its private namespace (documented in the README).
+/// Everything estimator_node reads from its private namespace (documented in the README).
 struct EstimatorNodeParams {
   std::string model;       // required: path of the model YAML
   std::string urdf_file;   // optional: vehicle description; else robot_description, else no geometry
@@ -27,8 +27,8 @@ struct EstimatorNodeParams {
   EstimatorConfig estimator;
 };
 
-// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is
-// known); throws ConfigError naming the parameter. Logs each loaded value once.
+/// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is
+/// known); throws ConfigError naming the parameter. Logs each loaded value once.
 EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& private_nh);
 
 }  // namespace propulsion_estimator

@@ -9,21 +9,23 @@
 
 namespace propulsion_estimator {
 
-// mavros_msgs/RCOut without mavros_msgs (Debian does not package it): the type is received as a
-// topic_tools::ShapeShifter, checked against this name and md5sum, and decoded by hand; the
-// simulator writes it the same way.
+/// mavros_msgs/RCOut without mavros_msgs (Debian does not package it): the type is received as a
+/// topic_tools::ShapeShifter, checked against this name and md5sum, and decoded by hand; the
+/// simulator writes it the same way.
 constexpr const char* kRcOutDataType = "mavros_msgs/RCOut";
-constexpr const char* kRcOutMd5Sum = "52cacf104bab5ae3b103cfe176590713";
-// Full definition as rosbag and rostopic expect it (RCOut.msg followed by std_msgs/Header).
+constexpr const char* kRcOutMd5Sum = "52cacf104bab5ae3b103cfe176590713";  ///< of kRcOutDataType
+/// Full definition as rosbag and rostopic expect it (RCOut.msg followed by std_msgs/Header).
 const std::string& rcOutDefinition();
 
+/// A decoded mavros_msgs/RCOut: its header and the pulse widths in us, one per output channel.
 struct RcOutMessage {
   std_msgs::Header header;
   std::vector<std::uint16_t> channels;
 };
 
-// Decodes into `out`, reusing its and `buffer`'s storage (no allocation once they are large
-// enough). Returns false with a one-line reason for another type or a malformed payload.
+/// Decoder of mavros_msgs/RCOut. decode() decodes into `out`, reusing its and `buffer`'s storage
+/// (no allocation once they are large enough). Returns false with a one-line reason for another
+/// type or a malformed payload.
 class RcOutDecoder {
  public:
   bool decode(const topic_tools::ShapeShifter& message, RcOutMessage* out, std::string* error);
@@ -35,7 +37,7 @@ class RcOutDecoder {
   std::vector<std::uint8_t> buffer_;
 };
 
-// A ShapeShifter carrying `message` as mavros_msgs/RCOut, for publishing and bag writing.
+/// A ShapeShifter carrying `message` as mavros_msgs/RCOut, for publishing and bag writing.
 topic_tools::ShapeShifter encodeRcOut(const RcOutMessage& message);
 
 }  // namespace propulsion_estimator
