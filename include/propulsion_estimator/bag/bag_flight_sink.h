@@ -10,11 +10,12 @@
 
 namespace propulsion_estimator {
 
-// Simulated bags start at this time (2020-09-13T12:26:40Z), so that the same inputs and seed give
-// the same bag.
+/// Simulated bags start at this time (2020-09-13T12:26:40Z), so that the same inputs and seed give
+/// the same bag.
 constexpr std::uint32_t kSimulatedBagStartSec = 1600000000;
 
-// Topics of a simulated flight, as MAVROS names them.
+/// Topics of a simulated flight, as MAVROS names them.
+///@{
 constexpr const char* kRcOutTopic = "/mavros/rc/out";
 constexpr const char* kBatteryTopic = "/mavros/battery";
 constexpr const char* kImuTopic = "/mavros/imu/data";
@@ -25,12 +26,13 @@ constexpr const char* kAirTemperatureTopic = "/mavros/imu/temperature_baro";
 constexpr const char* kRangefinderTopic = "/mavros/rangefinder/rangefinder";
 constexpr const char* kMotorTemperatureTopic = "/motor_temperature";
 constexpr const char* kSimTruthTopic = "/sim/truth";
+///@}
 
-// Writes a simulated flight into a bag: MAVROS topics with their message types
-// (/mavros/rc/out as mavros_msgs/RCOut through rcout_codec), the hottest motor's temperature as
-// sensor_msgs/Temperature, and the truth as propulsion_estimator/SimTruth. Message times are the
-// headers' stamps, kSimulatedBagStartSec + the sample's time. Frames: "map" (ENU world),
-// "base_link" (FLU body), "rangefinder", the motor's link.
+/// Writes a simulated flight into a bag: MAVROS topics with their message types
+/// (/mavros/rc/out as mavros_msgs/RCOut through rcout_codec), the hottest motor's temperature as
+/// sensor_msgs/Temperature, and the truth as propulsion_estimator/SimTruth. Message times are the
+/// headers' stamps, kSimulatedBagStartSec + the sample's time. Frames: "map" (ENU world),
+/// "base_link" (FLU body), "rangefinder", the motor's link.
 class BagFlightSink : public sim::FlightSink {
  public:
   // Opens `path` for writing (rosbag::BagException for an unwritable path).

@@ -11,8 +11,8 @@
 
 namespace propulsion_estimator {
 
-// The topic of each signal of a flight bag; MAVROS' names (those the simulator writes) by default.
-// rc_out and battery are required, the others optional.
+/// The topic of each signal of a flight bag; MAVROS' names (those the simulator writes) by default.
+/// rc_out and battery are required, the others optional.
 struct FlightBagTopics {
   std::string rc_out = kRcOutTopic;                     // mavros_msgs/RCOut
   std::string battery = kBatteryTopic;                  // sensor_msgs/BatteryState
@@ -30,12 +30,12 @@ struct FlightBagTopics {
   std::string* find(const std::string& name);
 };
 
-// A flight bag opened for reading, on the manifest's clock: seconds from the bag's first message
-// on any topic (taken from the bag's index, as `rosbag info` and rosbag.Bag.get_start_time()
-// count). Message times are the bag's record times. Only the requested topics' messages are ever
-// read: the simulator's /sim/truth is not one of them, and its type matches none of the signals.
-// Readers may work on different threads: their bags are made, opened and destroyed under one
-// lock, since rosbag loads and unloads a plugin then; no other rosbag::Bag may come or go meanwhile.
+/// A flight bag opened for reading, on the manifest's clock: seconds from the bag's first message
+/// on any topic (taken from the bag's index, as `rosbag info` and rosbag.Bag.get_start_time()
+/// count). Message times are the bag's record times. Only the requested topics' messages are ever
+/// read: the simulator's /sim/truth is not one of them, and its type matches none of the signals.
+/// Readers may work on different threads: their bags are made, opened and destroyed under one
+/// lock, since rosbag loads and unloads a plugin then; no other rosbag::Bag may come or go meanwhile.
 class FlightBagReader {
  public:
   // Opens `path`. InputError "<path>: no such file"; DataError "<path>: not a readable bag: <why>",
