@@ -9,11 +9,12 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Autopilots differ in what MAVROS shows of them: PX4 outputs PWM_MAIN_DISARM (900 us) on a
-// disarmed ESC and its battery current arrives negated on /mavros/battery; ArduPilot outputs
-// MOT_PWM_MIN (1000 us), or nothing (0) with MOT_SAFE_DISARM, and a positive current.
+/// Autopilots differ in what MAVROS shows of them: PX4 outputs PWM_MAIN_DISARM (900 us) on a
+/// disarmed ESC and its battery current arrives negated on /mavros/battery; ArduPilot outputs
+/// MOT_PWM_MIN (1000 us), or nothing (0) with MOT_SAFE_DISARM, and a positive current.
 enum class AutopilotFlavour { kPx4, kArduPilot };
 
+/// The autopilot's flavour, PWM end points in us and the rate of its /mavros/rc/out in Hz.
 struct AutopilotParams {
   AutopilotFlavour flavour = AutopilotFlavour::kPx4;
   double pwm_min_us = 0.0;       // mixer output 0 while armed (PX4 PWM_MAIN_MIN, ArduPilot MOT_PWM_MIN/SPIN_ARM)
@@ -22,6 +23,8 @@ struct AutopilotParams {
   double rc_out_rate_hz = 0.0;   // /mavros/rc/out (and /sim/truth) publication rate
 };
 
+/// What a profile sets of the vehicle besides its URDF's content: centre-of-mass offset, landing
+/// gear, drag area and the battery's initial state of charge (SI units).
 struct VehicleSetup {
   std::string urdf_path;                                              // resolved against the profile's folder
   Eigen::Vector3d centre_of_mass_offset_m = Eigen::Vector3d::Zero();  // added to the URDF's centre of mass
@@ -31,7 +34,7 @@ struct VehicleSetup {
   double battery_initial_soc = 1.0;
 };
 
-// A payload hangs on a cable from a point of the airframe; it is attached and changed while landed.
+/// A payload hangs on a cable from a point of the airframe; it is attached and changed while landed.
 struct PayloadCable {
   double length_m = 0.0;
   Eigen::Vector3d attach_point_m = Eigen::Vector3d::Zero();  // in base_link
@@ -39,16 +42,16 @@ struct PayloadCable {
   double damping_n_s_per_m = 0.0;
 };
 
-// A propeller that makes less thrust than the others at the same speed (chipped, bent, the wrong
-// size): flown as a geometrically similar smaller propeller (scaledPropeller), so it absorbs less
-// torque too.
+/// A propeller that makes less thrust than the others at the same speed (chipped, bent, the wrong
+/// size): flown as a geometrically similar smaller propeller (scaledPropeller), so it absorbs less
+/// torque too.
 struct PropellerFault {
   int motor = 0;               // 1-based, in the vehicle's rotor order (its RC channel)
   double thrust_factor = 1.0;  // of the intact propeller's thrust at the same rotor speed
 };
 
-// Faults of the vehicle that the library of effects does not hold, for validating the gap
-// diagnosis (a centre of gravity off the centre is VehicleSetup::centre_of_mass_offset_m).
+/// Faults of the vehicle that the library of effects does not hold, for validating the gap
+/// diagnosis (a centre of gravity off the centre is VehicleSetup::centre_of_mass_offset_m).
 struct VehicleFaults {
   std::optional<PropellerFault> weak_propeller;
 };

@@ -11,7 +11,7 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// The vehicle's state as the autopilot's estimator gives it (the simulator passes the true state).
+/// The vehicle's state as the autopilot's estimator gives it (the simulator passes the true state).
 struct NavigationState {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // base_link, world ENU
   Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
@@ -19,19 +19,22 @@ struct NavigationState {
   Eigen::Vector3d angular_velocity_body_rad_s = Eigen::Vector3d::Zero();
 };
 
+/// What the script asks of the controller at one instant: height of base_link in m, feed-forward
+/// vertical speed in m/s, and whether it is landing.
 struct HeightSetpoint {
   double height_m = 0.0;
   double vertical_speed_m_s = 0.0;  // feed-forward
   bool landing = false;             // the land detector runs only while landing
 };
 
-// A cascaded PX4-style controller that, like a real one, knows the geometry but nothing of the
-// propulsion physics: height -> vertical speed -> collective throttle, whose hover value an
-// integrator learns (starting from PX4's MPC_THR_HOVER default of 0.5); horizontal position ->
-// tilt; attitude -> body rates -> roll, pitch, yaw commands with integrators that take up a
-// centre-of-gravity offset; a geometric mixer; throttle to PWM between the autopilot's end
-// points. Armed on the ground the motors idle until a climb is commanded, then the collective
-// ramps up (PX4's take-off ramp). A land detector (low, still, for a second) disarms.
+/// A cascaded PX4-style controller that, like a real one, knows the geometry but nothing of the
+/// propulsion physics: height -> vertical speed -> collective throttle, whose hover value an
+/// integrator learns (starting from PX4's MPC_THR_HOVER default of 0.5); horizontal position ->
+/// tilt; attitude -> body rates -> roll, pitch, yaw commands with integrators that take up a
+/// centre-of-gravity offset; a geometric mixer; throttle to PWM between the autopilot's end
+/// points. Armed on the ground the motors idle until a climb is commanded, then the collective
+/// ramps up (PX4's take-off ramp). A land detector (low, still, for a second) disarms. The
+/// constructor throws ConfigError as MotorMixer's does.
 class FlightController {
  public:
   FlightController(const Vehicle& vehicle, const AutopilotParams& autopilot, double landed_height_m);

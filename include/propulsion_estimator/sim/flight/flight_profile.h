@@ -8,10 +8,12 @@
 namespace propulsion_estimator {
 namespace sim {
 
+/// What a segment of the flight script does (the profile's `type`).
 enum class SegmentKind { kWait, kTakeoff, kHover, kClimb, kDescend, kLand, kPayload };
-const char* segmentKindName(SegmentKind kind);  // "wait", "takeoff", ...
+/// "wait", "takeoff", ...: as the profile spells the segment's type.
+const char* segmentKindName(SegmentKind kind);
 
-// One step of the flight script. Heights are of base_link above the ground.
+/// One step of the flight script. Heights are of base_link above the ground.
 struct FlightSegment {
   SegmentKind kind = SegmentKind::kWait;
   double duration_s = 0.0;       // wait, hover, payload
@@ -20,10 +22,12 @@ struct FlightSegment {
   double payload_mass_kg = 0.0;  // payload: the new payload, 0.01..5 kg (0 = none)
 };
 
-// What the manifest of a flight holds (see manifestSpans): its hovers, or every stretch in the
-// air between a take-off and a landing.
+/// What the manifest of a flight holds (see manifestSpans): its hovers, or every stretch in the
+/// air between a take-off and a landing.
 enum class ManifestSpans { kHovers, kAirborne };
 
+/// A simulated flight: the autopilot, the vehicle, the payload cable, faults, the manifest's spans
+/// and the script of segments (config/sim/*_flight.yaml).
 struct FlightProfile {
   std::string source;  // file it came from, for messages
   AutopilotParams autopilot;
@@ -44,7 +48,7 @@ struct FlightProfile {
   void validate() const;
 };
 
-// A segment placed in time, with the height setpoint at its ends.
+/// A segment placed in time, with the height setpoint at its ends.
 struct ScheduledSegment {
   FlightSegment segment;
   int index = 0;  // in FlightProfile::segments
@@ -55,30 +59,31 @@ struct ScheduledSegment {
   double payload_mass_kg = 0.0;  // attached during the segment
 };
 
-// Spin-up on the ground before a take-off climbs, and time a landing gets after touching down to
-// detect it and disarm.
+/// Spin-up on the ground before a take-off climbs, and time a landing gets after touching down to
+/// detect it and disarm.
 constexpr double kTakeoffSpinUpS = 2.0;
-constexpr double kTouchdownS = 4.0;
+constexpr double kTouchdownS = 4.0;  ///< s a landing gets after its descent to touch down and disarm
 
-// The profile's segments in time, starting at 0 on the ground: climbs last height / rate (plus
-// the spin-up for a take-off), landings their descent plus kTouchdownS. Validates first.
+/// The profile's segments in time, starting at 0 on the ground: climbs last height / rate (plus
+/// the spin-up for a take-off), landings their descent plus kTouchdownS. Validates first
+/// (FieldError, see FlightProfile::validate).
 std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile);
 
-// A stretch of a flight in which the vehicle carries a known payload, for the manifest.
+/// A stretch of a flight in which the vehicle carries a known payload, for the manifest.
 struct ManifestSpan {
   double start_s = 0.0;
   double end_s = 0.0;
   double payload_mass_kg = 0.0;
 };
 
-// The spans of the profile's manifest, in time order, from its schedule:
-//   kHovers    every hover from manifest_settle_s after it starts to its end;
-//   kAirborne  every stretch from a take-off to the next landing (its payload cannot change in
-//              between): from manifest_settle_s after the lowest point left the ground (the
-//              feet, or the payload hanging on its cable once it is taut) to the moment the
-//              landing brings that point within 0.2 m of the ground, as scripted.
-// A span the settle time leaves empty is left out. The flight simulator also leaves out any time
-// a foot or the payload actually touched the ground within a span, and the settle time after it.
+/// The spans of the profile's manifest, in time order, from its schedule:
+///   kHovers    every hover from manifest_settle_s after it starts to its end;
+///   kAirborne  every stretch from a take-off to the next landing (its payload cannot change in
+///              between): from manifest_settle_s after the lowest point left the ground (the
+///              feet, or the payload hanging on its cable once it is taut) to the moment the
+///              landing brings that point within 0.2 m of the ground, as scripted.
+/// A span the settle time leaves empty is left out. The flight simulator also leaves out any time
+/// a foot or the payload actually touched the ground within a span, and the settle time after it.
 std::vector<ManifestSpan> manifestSpans(const FlightProfile& profile, const std::vector<ScheduledSegment>& schedule);
 
 }  // namespace sim

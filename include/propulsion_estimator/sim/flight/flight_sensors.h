@@ -3,9 +3,9 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Rates and noise of what a PX4/ArduPilot vehicle streams through MAVROS (the rc/out rate is the
-// profile's). Noise is Gaussian: independent per reading, except the EKF's local position and
-// velocity errors, which are first-order Gauss-Markov processes (correlated from one output to the next).
+/// Rates and noise of what a PX4/ArduPilot vehicle streams through MAVROS (the rc/out rate is the
+/// profile's). Noise is Gaussian: independent per reading, except the EKF's local position and
+/// velocity errors, which are first-order Gauss-Markov processes (correlated from one output to the next).
 struct FlightSensorParams {
   // MAVLink stream rates of a companion-computer link (PX4 "onboard" mode, ArduPilot SRx_*):
   double battery_rate_hz = 1.0;    // SYS_STATUS / BATTERY_STATUS

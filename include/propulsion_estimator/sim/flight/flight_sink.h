@@ -14,11 +14,13 @@ namespace sim {
 // seconds of simulated time from the first message. Each reading carries the standard deviation
 // of its noise for the message's covariance or variance fields.
 
+/// /mavros/rc/out: the pulse width in us of each output channel.
 struct RcOutSample {
   double time_s = 0.0;
   std::vector<std::uint16_t> channels;  // motor k on channel k (1-based), unused channels 0
 };
 
+/// /mavros/battery: terminal voltage in V, current in A and remaining charge.
 struct BatterySample {
   double time_s = 0.0;
   double voltage_v = 0.0;   // at the battery's terminals
@@ -26,6 +28,7 @@ struct BatterySample {
   double percentage = 0.0;  // 0..1
 };
 
+/// /mavros/imu/data: orientation, body rates in rad/s and specific force in m/s^2, with their noise.
 struct ImuSample {
   double time_s = 0.0;
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
@@ -36,19 +39,21 @@ struct ImuSample {
   double linear_acceleration_sigma_m_s2 = 0.0;
 };
 
+/// /mavros/local_position/pose: base_link's position in m and orientation in the world frame.
 struct PoseSample {
   double time_s = 0.0;
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
 };
 
+/// /mavros/local_position/velocity_local: linear (m/s) and angular (rad/s) velocity, world frame.
 struct VelocitySample {
   double time_s = 0.0;
   Eigen::Vector3d linear_m_s = Eigen::Vector3d::Zero();     // world
   Eigen::Vector3d angular_rad_s = Eigen::Vector3d::Zero();  // world
 };
 
-// A scalar reading: static pressure (Pa), air or motor temperature (deg C).
+/// A scalar reading: static pressure (Pa), air or motor temperature (deg C).
 struct ScalarSample {
   double time_s = 0.0;
   double value = 0.0;
@@ -56,6 +61,7 @@ struct ScalarSample {
   std::string frame_id;  // the hottest motor's link for the motor temperature, base_link otherwise
 };
 
+/// /mavros/rangefinder/rangefinder: distance to the ground in m, with the sensor's limits.
 struct RangeSample {
   double time_s = 0.0;
   double range_m = 0.0;  // -inf below min_range_m, +inf beyond max_range_m (REP-117)
@@ -64,7 +70,7 @@ struct RangeSample {
   double field_of_view_rad = 0.0;
 };
 
-// Per-motor truth.
+/// Per-motor truth.
 struct MotorTruth {
   double pwm_us = 0.0;
   double thrust_n = 0.0;   // force on the airframe along the rotor axis, all effects included
@@ -79,7 +85,7 @@ struct MotorTruth {
   bool in_bench_range = false;  // pulse width within the parameter file's bench sweep range
 };
 
-// What a real flight cannot measure, for tests and the gap diagnosis.
+/// What a real flight cannot measure, for tests and the gap diagnosis.
 struct TruthSample {
   double time_s = 0.0;
   double total_mass_kg = 0.0;  // vehicle plus payload
@@ -97,7 +103,7 @@ struct TruthSample {
   std::vector<MotorTruth> motors;
 };
 
-// Receiver of a simulated flight: the ROS layer writes a bag, tests record.
+/// Receiver of a simulated flight: the ROS layer writes a bag, tests record.
 class FlightSink {
  public:
   virtual ~FlightSink() = default;

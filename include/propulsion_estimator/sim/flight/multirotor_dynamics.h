@@ -11,14 +11,15 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Rigid-body multicopter over flat ground, with a payload hanging on a cable that only pulls
-// (a spring-damper along the cable: a pendulum while taut, slack when the payload rests on the
-// ground). The vehicle stands on four feet of its landing gear; feet and payload meet the ground
-// through stiff spring-dampers with Coulomb friction. World frame ENU with the ground at z = 0,
-// body frame FLU at base_link. Semi-implicit Euler, for steps of about 2 ms; the cable's tension
-// by backward Euler along the cable, because the stretch mode of a light payload on a stiff,
-// damped cable (10 g on 1000 N/m and 10 N s/m: 316 rad/s, damping rate c/m = 1000 /s) is far
-// faster than the step, and an explicit step would diverge.
+/// Rigid-body multicopter over flat ground, with a payload hanging on a cable that only pulls
+/// (a spring-damper along the cable: a pendulum while taut, slack when the payload rests on the
+/// ground). The vehicle stands on four feet of its landing gear; feet and payload meet the ground
+/// through stiff spring-dampers with Coulomb friction. World frame ENU with the ground at z = 0,
+/// body frame FLU at base_link. Semi-implicit Euler, for steps of about 2 ms; the cable's tension
+/// by backward Euler along the cable, because the stretch mode of a light payload on a stiff,
+/// damped cable (10 g on 1000 N/m and 10 N s/m: 316 rad/s, damping rate c/m = 1000 /s) is far
+/// faster than the step, and an explicit step would diverge. The constructor throws ConfigError for
+/// a vehicle without rotor positions or empty mass properties.
 class MultirotorDynamics {
  public:
   // `vehicle` needs its rotors' geometry and empty mass properties. The vehicle starts landed at

@@ -3,7 +3,7 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Still air at one place and time. Density from the ideal gas law for dry air, rho = p / (R T).
+/// Still air at one place and time. Density from the ideal gas law for dry air, rho = p / (R T).
 struct AirConditions {
   double temperature_c = 0.0;
   double pressure_pa = 0.0;

@@ -6,8 +6,8 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Air written as {temperature_c, pressure_pa}, both required, nothing else: the bench air of a
-// simulator parameter file and the air_density effect. Ranges are checked by AirConditions::validate.
+/// Air written as {temperature_c, pressure_pa}, both required, nothing else: the bench air of a
+/// simulator parameter file and the air_density effect. Ranges are checked by AirConditions::validate.
 AirConditions readAirConditions(const YamlMap& map);
 
 }  // namespace sim

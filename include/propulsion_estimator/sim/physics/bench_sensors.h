@@ -5,8 +5,8 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// One sensor of a thrust stand: additive Gaussian noise, then quantisation to its resolution
-// (0: none). The reading's scatter about the truth is effectiveSigma().
+/// One sensor of a thrust stand: additive Gaussian noise, then quantisation to its resolution
+/// (0: none). The reading's scatter about the truth is effectiveSigma().
 struct SensorNoise {
   double sigma = 0.0;
   double resolution = 0.0;
@@ -16,7 +16,7 @@ struct SensorNoise {
   double effectiveSigma() const;
 };
 
-// The thesis bench's sensors (chapter 3), in SI units.
+/// The thesis bench's sensors (chapter 3), in SI units.
 struct BenchSensors {
   SensorNoise thrust_n;       // load cell + HX711
   SensorNoise current_a;      // ACS712-30A on the Arduino's 10-bit ADC

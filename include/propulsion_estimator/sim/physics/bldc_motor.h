@@ -5,14 +5,14 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Resistance temperature coefficient of annealed copper at 20 deg C (IEC 60028: 0.00393 /K).
+/// Resistance temperature coefficient of annealed copper at 20 deg C (IEC 60028: 0.00393 /K).
 constexpr double kCopperTemperatureCoefficientPerC = 0.00393;
-constexpr double kCopperReferenceTemperatureC = 20.0;
+constexpr double kCopperReferenceTemperatureC = 20.0;  ///< deg C at which that coefficient holds
 
-// Brushless DC motor as its brushed-DC equivalent (M. Drela, "First-Order DC Electric Motor
-// Model", MIT 2007): back-EMF and torque constant 1/kv, a winding resistance, and a no-load
-// current standing for iron and bearing losses. Magnet flux (hence 1/kv) and winding resistance
-// depend on the winding temperature, which a lumped thermal model tracks.
+/// Brushless DC motor as its brushed-DC equivalent (M. Drela, "First-Order DC Electric Motor
+/// Model", MIT 2007): back-EMF and torque constant 1/kv, a winding resistance, and a no-load
+/// current standing for iron and bearing losses. Magnet flux (hence 1/kv) and winding resistance
+/// depend on the winding temperature, which a lumped thermal model tracks.
 struct BldcMotorParams {
   std::string name;
   double kv_rpm_per_v = 0.0;
@@ -28,20 +28,20 @@ struct BldcMotorParams {
   void validate() const;
 };
 
-// Electrical constants at one winding temperature.
+/// Electrical constants at one winding temperature.
 struct MotorConstants {
   double torque_constant_nm_per_a = 0.0;  // = back-EMF constant in V s/rad
   double resistance_ohm = 0.0;            // winding only
   double no_load_current_a = 0.0;
 };
 
-// Winding resistance follows copper, R(T) = R(20 C) (1 + 0.00393 (T - 20)), scaled so that it is
-// the given resistance at the reference temperature; the torque constant follows the magnet
-// flux, k(T) = k_ref (1 + flux_coefficient (T - T_ref)).
+/// Winding resistance follows copper, R(T) = R(20 C) (1 + 0.00393 (T - 20)), scaled so that it is
+/// the given resistance at the reference temperature; the torque constant follows the magnet
+/// flux, k(T) = k_ref (1 + flux_coefficient (T - T_ref)).
 MotorConstants motorConstantsAt(const BldcMotorParams& motor, double winding_temperature_c);
 
-// Winding temperature after `dt_s` with `heat_w` dissipated and the motor cooled towards
-// `air_c` through `thermal_resistance_c_per_w` (exact for heat and air constant over the step).
+/// Winding temperature after `dt_s` with `heat_w` dissipated and the motor cooled towards
+/// `air_c` through `thermal_resistance_c_per_w` (exact for heat and air constant over the step).
 double nextWindingTemperature(const BldcMotorParams& motor, double temperature_c, double heat_w, double air_c,
                               double thermal_resistance_c_per_w, double dt_s);
 

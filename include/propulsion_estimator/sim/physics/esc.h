@@ -5,9 +5,9 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Electronic speed controller as an ideal averaging buck stage: the motor sees duty * input
-// voltage and the ESC draws duty * motor current. The duty follows the pulse width linearly
-// between the ESC's calibrated end points and is clamped to 0..1; at duty 0 the bridge is off.
+/// Electronic speed controller as an ideal averaging buck stage: the motor sees duty * input
+/// voltage and the ESC draws duty * motor current. The duty follows the pulse width linearly
+/// between the ESC's calibrated end points and is clamped to 0..1; at duty 0 the bridge is off.
 struct EscParams {
   std::string name;
   double pwm_zero_us = 0.0;     // pulse width of duty 0 (calibrated low end point)

@@ -6,9 +6,9 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Lithium-polymer pack as a first-order Thevenin equivalent circuit (G. Plett, Battery Management
-// Systems vol. 1, 2015, ch. 2): open-circuit voltage as a function of state of charge, a series
-// resistance, and one RC pair for the polarisation that builds up under load and relaxes after.
+/// Lithium-polymer pack as a first-order Thevenin equivalent circuit (G. Plett, Battery Management
+/// Systems vol. 1, 2015, ch. 2): open-circuit voltage as a function of state of charge, a series
+/// resistance, and one RC pair for the polarisation that builds up under load and relaxes after.
 struct LipoBatteryParams {
   std::string name;
   int cells = 0;  // in series
@@ -27,6 +27,7 @@ struct LipoBatteryParams {
   double openCircuitVoltage(double state_of_charge) const;  // whole pack
 };
 
+/// A LipoBatteryParams pack in use: its state of charge and polarisation as current is drawn.
 class LipoBattery {
  public:
   // Throws FieldError("initial_soc") outside 0..1; validates the parameters.

@@ -9,14 +9,16 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// What the ESCs hang on: an EMF behind a resistance (a battery's open-circuit voltage less its
-// polarisation, behind its series resistance), or a regulated source (no resistance). The
-// voltage sensor of a bench or a power module sits at its terminals.
+/// What the ESCs hang on: an EMF behind a resistance (a battery's open-circuit voltage less its
+/// polarisation, behind its series resistance), or a regulated source (no resistance). The
+/// voltage sensor of a bench or a power module sits at its terminals.
 struct Supply {
   double source_voltage_v = 0.0;
   double internal_resistance_ohm = 0.0;
 };
 
+/// The power train at one instant: each ESC's duty cycle (0..1) and motor state, the winding
+/// temperatures in deg C, and the voltages (V) and total current (A) on the supply side.
 struct PowerTrainState {
   std::vector<double> duty;
   std::vector<ChainState> motors;  // rotors in their inflow: thrust before airframe effects
@@ -26,12 +28,12 @@ struct PowerTrainState {
   double current_a = 0.0;           // drawn from the supply by all ESCs
 };
 
-// Chains on one supply, one per motor, with the rotor speeds' first-order lag and the motors'
-// thermal state. The supply_resistance effect adds a resistance between the supply's terminals
-// and the ESCs, esc_offset moves the ESCs' end points, and motor_temperature makes the electrical
-// constants follow the winding temperature (cooled through the effect's thermal resistance).
-// Each rotor's thrust and torque follow its inflow (setInflow): the motor's operating point,
-// speed and current, answers a climb or the ground as the rotor's torque does.
+/// Chains on one supply, one per motor, with the rotor speeds' first-order lag and the motors'
+/// thermal state. The supply_resistance effect adds a resistance between the supply's terminals
+/// and the ESCs, esc_offset moves the ESCs' end points, and motor_temperature makes the electrical
+/// constants follow the winding temperature (cooled through the effect's thermal resistance).
+/// Each rotor's thrust and torque follow its inflow (setInflow): the motor's operating point,
+/// speed and current, answers a climb or the ground as the rotor's torque does.
 class PowerTrain {
  public:
   // `motors` identical chains.

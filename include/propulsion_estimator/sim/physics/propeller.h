@@ -5,14 +5,14 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Induced power factor kappa of a hovering rotor: its induced power over momentum theory's ideal
-// (non-uniform inflow, tip loss; J. G. Leishman, Principles of Helicopter Aerodynamics, 2006, ch. 2:
-// 1.15 typical). A propeller's figure of merit cannot exceed 1 / kappa.
+/// Induced power factor kappa of a hovering rotor: its induced power over momentum theory's ideal
+/// (non-uniform inflow, tip loss; J. G. Leishman, Principles of Helicopter Aerodynamics, 2006, ch. 2:
+/// 1.15 typical). A propeller's figure of merit cannot exceed 1 / kappa.
 constexpr double kInducedPowerFactor = 1.15;
 
-// Fixed-pitch propeller with constant coefficients measured in static conditions (still air, out
-// of ground effect), n in rev/s: T = CT rho n^2 D^4, Q = CQ rho n^2 D^5. How they change with the
-// inflow (climb, descent, ground) is RotorAerodynamics' (rotor_inflow.h), which needs the solidity.
+/// Fixed-pitch propeller with constant coefficients measured in static conditions (still air, out
+/// of ground effect), n in rev/s: T = CT rho n^2 D^4, Q = CQ rho n^2 D^5. How they change with the
+/// inflow (climb, descent, ground) is RotorAerodynamics' (rotor_inflow.h), which needs the solidity.
 struct PropellerParams {
   std::string name;
   double diameter_m = 0.0;
@@ -35,10 +35,10 @@ struct PropellerParams {
   double rotorTorqueCoefficient() const;
 };
 
-// A geometrically similar propeller that makes `thrust_factor` of this one's thrust at the same
-// rotor speed, as a cut-down or damaged one: diameter x f^(1/4) (T ~ D^4), so its torque is
-// x f^(5/4) (Q ~ D^5) and its inertia x f^(5/4) (mass ~ D^3, radius of gyration ~ D). The factor
-// is checked by the caller.
+/// A geometrically similar propeller that makes `thrust_factor` of this one's thrust at the same
+/// rotor speed, as a cut-down or damaged one: diameter x f^(1/4) (T ~ D^4), so its torque is
+/// x f^(5/4) (Q ~ D^5) and its inertia x f^(5/4) (mass ~ D^3, radius of gyration ~ D). The factor
+/// is checked by the caller.
 PropellerParams scaledPropeller(const PropellerParams& propeller, double thrust_factor);
 
 }  // namespace sim

@@ -8,7 +8,7 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// One ESC-motor-propeller combination.
+/// One ESC-motor-propeller combination.
 struct ChainParams {
   EscParams esc;
   BldcMotorParams motor;
@@ -17,8 +17,8 @@ struct ChainParams {
   void validate() const;  // FieldError esc.* / motor.* / propeller.*
 };
 
-// What the chain runs at: ESC duty, ESC input voltage, air, and the winding temperature the
-// motor's electrical constants are taken at.
+/// What the chain runs at: ESC duty, ESC input voltage, air, and the winding temperature the
+/// motor's electrical constants are taken at.
 struct ChainInput {
   double duty = 0.0;
   double esc_voltage_v = 0.0;
@@ -26,8 +26,8 @@ struct ChainInput {
   double winding_temperature_c = 0.0;
 };
 
-// State of one chain. Thrust is the rotor's in its inflow (the `load` it was evaluated with),
-// without airframe effects.
+/// State of one chain. Thrust is the rotor's in its inflow (the `load` it was evaluated with),
+/// without airframe effects.
 struct ChainState {
   double omega_rad_s = 0.0;
   double thrust_n = 0.0;
@@ -40,8 +40,11 @@ struct ChainState {
   double rpm() const;
 };
 
-// `load` in the functions below: the factors the rotor's inflow puts on the propeller's static
-// thrust and torque (RotorAerodynamics::load); the default is still air out of ground effect.
+/// One ESC, motor and propeller (ChainParams): the operating point at a rotor speed, the steady
+/// one, and the speed's dynamics. The constructor validates the parameters (FieldError).
+///
+/// `load` in the functions below: the factors the rotor's inflow puts on the propeller's static
+/// thrust and torque (RotorAerodynamics::load); the default is still air out of ground effect.
 class PropulsionChain {
  public:
   explicit PropulsionChain(ChainParams params);  // validates

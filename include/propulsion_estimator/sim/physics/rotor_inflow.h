@@ -54,11 +54,11 @@ namespace sim {
 // Left out: edgewise flow (forward flight, translational lift), the blades' drag rising with
 // their angle of attack, windmilling (the torque is held at 0 or above, the thrust too).
 
-// Lift slope a of the blade sections, per radian (2 pi x 0.91, the value Leishman uses for
-// rotor blades; thin cambered sections at propeller Reynolds numbers are near it).
+/// Lift slope a of the blade sections, per radian (2 pi x 0.91, the value Leishman uses for
+/// rotor blades; thin cambered sections at propeller Reynolds numbers are near it).
 constexpr double kBladeLiftSlopePerRad = 5.73;
 
-// What a rotor's disc sees besides its own wake.
+/// What a rotor's disc sees besides its own wake.
 struct RotorInflow {
   double axial_speed_m_s = 0.0;      // the disc's speed along its thrust axis, climb positive
   double ground_inflow_ratio = 1.0;  // G: induced inflow in ground effect over that out of it, same thrust
@@ -66,13 +66,15 @@ struct RotorInflow {
   bool still() const { return axial_speed_m_s == 0.0 && ground_inflow_ratio == 1.0; }
 };
 
-// Factors on the propeller's static thrust and torque (PropellerParams::thrustN, torqueNm) at the
-// same rotor speed.
+/// Factors on the propeller's static thrust and torque (PropellerParams::thrustN, torqueNm) at the
+/// same rotor speed.
 struct RotorLoad {
   double thrust = 1.0;
   double torque = 1.0;
 };
 
+/// A propeller as a rotor of blade-element momentum theory (see above): its thrust and torque at a
+/// rotor speed in rad/s relative to its static coefficients, for a given inflow.
 class RotorAerodynamics {
  public:
   // Calibrates the blade model on the propeller's static CT and CQ; validates it (FieldError

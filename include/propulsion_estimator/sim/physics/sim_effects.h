@@ -9,16 +9,16 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// Physical effects that a bench-fitted response surface does not contain. Each is off unless
-// set; any combination may be on. Where each applies:
-//   supply_resistance  bench, flight  the ESCs see the sensed voltage minus R times the current
-//   air_density        bench, flight  the run's air replaces the bench air of the parameter file
-//   ground_effect      flight         the ground lowers the rotors' induced inflow (Cheeseman-Bennett)
-//   thrust_loss        flight         airframe blockage and rotor-rotor interaction
-//   motor_temperature  bench, flight  winding resistance and magnet flux follow the motor's
-//                                     temperature (otherwise they stay at the reference temperature)
-//   climb_inflow       flight         the axial inflow of a climb or descent through the rotors
-//   esc_offset         flight         the flying ESCs' end points differ from the bench ESC's
+/// Physical effects that a bench-fitted response surface does not contain. Each is off unless
+/// set; any combination may be on. Where each applies:
+///   supply_resistance  bench, flight  the ESCs see the sensed voltage minus R times the current
+///   air_density        bench, flight  the run's air replaces the bench air of the parameter file
+///   ground_effect      flight         the ground lowers the rotors' induced inflow (Cheeseman-Bennett)
+///   thrust_loss        flight         airframe blockage and rotor-rotor interaction
+///   motor_temperature  bench, flight  winding resistance and magnet flux follow the motor's
+///                                     temperature (otherwise they stay at the reference temperature)
+///   climb_inflow       flight         the axial inflow of a climb or descent through the rotors
+///   esc_offset         flight         the flying ESCs' end points differ from the bench ESC's
 struct SimEffects {
   std::optional<double> supply_resistance_ohm;
   std::optional<AirConditions> air;
@@ -38,18 +38,18 @@ struct SimEffects {
   std::string summary() const;
 };
 
-// Ground effect after Cheeseman and Bennett (ARC R&M 3021, 1955): the thrust ratio at equal
-// power T_IGE / T_OGE = 1 / (1 - (R / 4z)^2), with its excess over 1 scaled by `strength`; z is
-// taken no lower than R/2, the formula's range of validity. Its inverse is the ratio of the
-// induced inflows at equal thrust (the image rotor's upwash), which is what the rotor model takes.
+/// Ground effect after Cheeseman and Bennett (ARC R&M 3021, 1955): the thrust ratio at equal
+/// power T_IGE / T_OGE = 1 / (1 - (R / 4z)^2), with its excess over 1 scaled by `strength`; z is
+/// taken no lower than R/2, the formula's range of validity. Its inverse is the ratio of the
+/// induced inflows at equal thrust (the image rotor's upwash), which is what the rotor model takes.
 double groundEffectFactor(double rotor_radius_m, double rotor_height_m, double strength);
 
-// What the ground_effect and climb_inflow effects make a rotor's disc see, for a rotor of
-// `rotor_radius_m` whose hub is `rotor_height_m` above the ground and moves at `axial_speed_m_s`
-// along its thrust axis (climb positive): ground_inflow_ratio = 1 / groundEffectFactor and
-// axial_speed = strength x axial speed (still air where an effect is off). RotorAerodynamics
-// turns it into thrust and torque at the rotor's speed. thrust_loss acts on the airframe, not on
-// the rotor: the flight applies it to the thrust alone.
+/// What the ground_effect and climb_inflow effects make a rotor's disc see, for a rotor of
+/// `rotor_radius_m` whose hub is `rotor_height_m` above the ground and moves at `axial_speed_m_s`
+/// along its thrust axis (climb positive): ground_inflow_ratio = 1 / groundEffectFactor and
+/// axial_speed = strength x axial speed (still air where an effect is off). RotorAerodynamics
+/// turns it into thrust and torque at the rotor's speed. thrust_loss acts on the airframe, not on
+/// the rotor: the flight applies it to the thrust alone.
 RotorInflow rotorInflow(const SimEffects& effects, double rotor_radius_m, double rotor_height_m,
                         double axial_speed_m_s);
 

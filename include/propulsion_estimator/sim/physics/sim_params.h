@@ -10,7 +10,7 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// The thrust stand the chain was characterised on.
+/// The thrust stand the chain was characterised on.
 struct BenchParams {
   AirConditions air;              // also the air of flights unless the air_density effect is on
   double sweep_pwm_min_us = 0.0;  // the PWM range of this ESC's sweeps (thesis 4.1 and ch. 7)
@@ -20,8 +20,8 @@ struct BenchParams {
   void validate() const;  // FieldError bench.*
 };
 
-// Everything the simulator needs about one propulsion combination: the contents of a
-// config/sim/*.yaml parameter file.
+/// Everything the simulator needs about one propulsion combination: the contents of a
+/// config/sim/*.yaml parameter file.
 struct SimParams {
   ChainParams chain;
   LipoBatteryParams battery;
