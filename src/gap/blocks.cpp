@@ -41,6 +41,8 @@ struct Accumulator {
   std::array<int, 5> signal_frames{};
   double altitude = 0.0;
   int altitude_frames = 0;
+  double collective_min = std::numeric_limits<double>::infinity();
+  double collective_max = -std::numeric_limits<double>::infinity();
 
   void addSignal(int k, double value) {
     if (std::isfinite(value)) {
@@ -69,6 +71,10 @@ std::string segmentName(const Flight& flight, int index) {
 }
 
 }  // namespace
+
+bool isQuasiSteady(const Block& block, double max_pwm_change_us, double max_accel_m_s2) {
+  return block.pwm_change_us <= max_pwm_change_us && std::abs(block.accel_up_m_s2) <= max_accel_m_s2;
+}
 
 double airDensity(double pressure_pa, double temperature_c) {
   return pressure_pa / (kSpecificGasConstantDryAir * (temperature_c + kZeroCelsiusInKelvin));
@@ -138,6 +144,8 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       block.altitude_m = acc.altitude_frames == acc.frames ? acc.altitude / acc.frames : kNaN;
       const double vertical_speed = block.signals.vertical_speed_m_s;
       block.hover = !std::isfinite(vertical_speed) || std::abs(vertical_speed) < config.hover_max_vertical_speed_m_s;
+      block.pwm_change_us = acc.collective_max - acc.collective_min;
+      block.accel_up_m_s2 = block.specific_force_up_m_s2 - kStandardGravity;
       if (acc.imu_frames == acc.frames || !result.has_imu) {
         result.blocks.push_back(block);
         ++usable;
@@ -164,6 +172,10 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
         ++acc.current_frames;
       }
       const ImuReading* i = imu.at(frame.time_s, timeout);
+      double collective = 0.0;
+      for (int k = 0; k < motors; ++k) collective += frame.pwm_us[k] / motors;
+      acc.collective_min = std::min(acc.collective_min, collective);
+      acc.collective_max = std::max(acc.collective_max, collective);
       for (int k = 0; k < motors; ++k) {
         acc.pwm[k] += frame.pwm_us[k];
         acc.axis[k] += i ? (i->orientation * vehicle.rotors[k].thrust_axis).z() : vehicle.rotors[k].thrust_axis.z();

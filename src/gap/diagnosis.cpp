@@ -19,6 +19,9 @@ namespace propulsion_estimator {
 namespace gap {
 namespace {
 
+// An effect must also lower the held-out mean square by a tenth: a significant but negligible
+// improvement names nothing.
+constexpr double kMinMeanSquareRatio = 0.9;
 using effects::Kind;
 
 // Held-out predictions of one set of effects: each block's relative residual in both views,
@@ -203,6 +206,7 @@ class Diagnoser {
   // Sum over blocks of the joint squared error (PWM view plus current view where it exists).
   std::vector<double> groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const;
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
+  double suspectThrustFactor(int motor, double yaw_gap);
   double currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const;
 
   const PropulsionModel& model_;
@@ -229,10 +233,22 @@ void Diagnoser::cut() {
   for (int f = 0; f < static_cast<int>(flights_.size()); ++f) {
     FlightBlocks cut = cutIntoBlocks(flights_[f], f, vehicle_, block_config, group);
     for (const std::string& problem : cut.problems) diagnosis_.problems.push_back(problem);
-    for (const Block& block : cut.blocks) group = std::max(group, block.group + 1);
-    blocks_.insert(blocks_.end(), cut.blocks.begin(), cut.blocks.end());
+    for (const Block& block : cut.blocks) {
+      group = std::max(group, block.group + 1);
+      if (isQuasiSteady(block, config_.max_pwm_change_us, config_.max_accel_m_s2)) {
+        blocks_.push_back(block);
+      } else {
+        ++diagnosis_.transient_blocks;
+      }
+    }
   }
-  if (blocks_.empty()) throw DataError("diagnose_gap: no usable sample in any weighed segment of any flight");
+  diagnosis_.blocks = static_cast<int>(blocks_.size());
+  if (blocks_.empty()) {
+    throw DataError("diagnose_gap: no usable sample in any weighed segment of any flight" +
+                      (diagnosis_.transient_blocks > 0
+                           ? " (all " + std::to_string(diagnosis_.transient_blocks) + " blocks transient)"
+                           : std::string()));
+  }
   for (const Block& block : blocks_) all_.push_back(&block);
 }
 
@@ -323,6 +339,26 @@ HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) cons
     }
   }
   return prediction;
+}
+
+// The yaw balance gives the suspect's gap assuming its propeller turns thrust into drag torque
+// as the bench propeller did; a damaged or smaller one does not quite. Its thrust factor is fitted
+// to the weighed thrust instead (least squares on the PWM view), within [1 - 2 gap, 1]: weaker
+// than modelled, by at most twice what the balance says.
+double Diagnoser::suspectThrustFactor(int motor, double yaw_gap) {
+  const effects::ModelEffects plain = references();
+  double sum_xy = 0.0, sum_xx = 0.0;
+  for (const Block& block : blocks_) {
+    views_.setMotorScale(motor, 0.0);
+    const double others = views_.pwmView(block, plain);
+    views_.setMotorScale(motor, 1.0);
+    const double mine = views_.pwmView(block, plain) - others;
+    const double weight = 1.0 / (block.truth_n * block.truth_n);
+    sum_xy += weight * (block.truth_n - others) * mine;
+    sum_xx += weight * mine * mine;
+  }
+  const double fitted = sum_xx > 0.0 ? sum_xy / sum_xx : 1.0 - yaw_gap;
+  return std::clamp(fitted, 1.0 - 2.0 * std::abs(yaw_gap), 1.0);
 }
 
 double Diagnoser::jointMeanSquare(const HeldOutPrediction& prediction) const {
@@ -483,7 +519,8 @@ Diagnosis Diagnoser::run() {
     for (std::size_t k = 0; k < diagnosis_.motors.motors.size(); ++k) {
       const MotorGap& motor = diagnosis_.motors.motors[k];
       if (motor.channel == *diagnosis_.motors.suspect_channel) {
-        views_.setMotorScale(static_cast<int>(k), 1.0 - motor.thrust_gap_pct / 100.0);
+        diagnosis_.motors.suspect_thrust_factor = suspectThrustFactor(static_cast<int>(k), motor.thrust_gap_pct / 100.0);
+        views_.setMotorScale(static_cast<int>(k), diagnosis_.motors.suspect_thrust_factor);
       }
     }
   }
@@ -537,7 +574,8 @@ Diagnosis Diagnoser::run() {
       const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
       const double drop_pct = 100.0 * (std::sqrt(base_pwm) - std::sqrt(pwm_ms));
       const bool significant = result.p_value < config_.significance && drop_pct > config_.min_improvement_pct &&
-                               pwm_ms < 0.8 * base_pwm && ms < base_ms;
+                               pwm_ms < kMinMeanSquareRatio * base_pwm && ms < base_ms;
+      SelectionStep step{round + 1, kind, result.heldout_rmse_pct, 100.0 * std::sqrt(ms), result.p_value, ""};
       if (!significant) {
         result.reason = "held-out error " + formatPrintf("%.2f", result.heldout_rmse_pct) + " % against " +
                         formatPrintf("%.2f", 100.0 * std::sqrt(base_pwm)) + " % (p = " +
@@ -556,6 +594,8 @@ Diagnosis Diagnoser::run() {
           found = true;
         }
       }
+      step.verdict = result.reason;
+      diagnosis_.trace.push_back(step);
     }
     if (!found) break;
     selected.push_back(best_kind);
@@ -602,10 +642,13 @@ Diagnosis Diagnoser::run() {
   held_stats(current_best, &diagnosis_.heldout.after_rmse_pct, &diagnosis_.heldout.after_bias_pct);
   diagnosis_.heldout.before_payload_err_pct = payloadErrorPct(blocks_, before.view_n);
   diagnosis_.heldout.after_payload_err_pct = payloadErrorPct(blocks_, current_best.view_n);
-  diagnosis_.method = "Forward selection over " + std::to_string(units_) + " held-out " + unit_name_ +
+  diagnosis_.method = "Quasi-steady " + formatNumber(config_.block_s) + " s blocks only (collective PWM changing by at most " +
+                      formatNumber(config_.max_pwm_change_us) + " us within the block, vertical acceleration at most " +
+                      formatNumber(config_.max_accel_m_s2) + " m/s^2): " + std::to_string(diagnosis_.blocks) + " used, " +
+                      std::to_string(diagnosis_.transient_blocks) + " transient left out. Forward selection over " + std::to_string(units_) + " held-out " + unit_name_ +
                       "s (each fitted on the others). An effect is added when the held-out RMSE of the PWM view falls "
                       "by more than " + formatPrintf("%.2f", config_.min_improvement_pct) +
-                      " % of the truth and by a fifth, the joint error of both views falls, a sign-flip permutation "
+                      " % of the truth and its mean square by a tenth, the joint error of both views falls, a sign-flip permutation "
                       "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +
                       std::to_string(config_.permutations) + " permutations) gives p < " +
                       formatNumber(config_.significance) +

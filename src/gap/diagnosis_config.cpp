@@ -7,7 +7,8 @@ namespace gap {
 void DiagnosisConfig::validate() const {
   requirePositive("rotor_diameter_m", rotor_diameter_m, 3.0, " m");
   requirePositive("signal_timeout_s", signal_timeout_s, 60.0, " s");
-  requireWithin("accel_filter_s", accel_filter_s, 0.0, 10.0, " s");
+  requirePositive("max_pwm_change_us", max_pwm_change_us, 1000.0, " us");
+  requirePositive("max_accel_m_s2", max_accel_m_s2, 50.0, " m/s^2");
   requireWithin("permutations", permutations, 20, 100000);
   requirePositive("significance", significance, 0.2);
   requireWithin("min_improvement_pct", min_improvement_pct, 0.0, 50.0, " %");

@@ -78,6 +78,7 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
   out << YAML::Key << "payload_err_pct";
   emitNumber(out, diagnosis.payload_err_pct);
   out << YAML::Key << "samples" << YAML::Value << diagnosis.overall.samples;
+  out << YAML::Key << "transient_samples" << YAML::Value << diagnosis.transient_blocks;
   out << YAML::Key << "flights" << YAML::Value << YAML::BeginSeq;
   for (const FlightGap& flight : diagnosis.flights) {
     out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << flight.name;
@@ -133,6 +134,8 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
   } else {
     out << YAML::Null;
   }
+  out << YAML::Key << "suspect_thrust_factor";
+  emitNumber(out, diagnosis.motors.suspect_thrust_factor);
   out << YAML::Key << "centre_of_thrust_m" << YAML::Value << YAML::Flow << YAML::BeginSeq
       << formatPrintf("%.4f", diagnosis.motors.cg_offset_x_m) << formatPrintf("%.4f", diagnosis.motors.cg_offset_y_m)
       << YAML::EndSeq;
@@ -217,7 +220,10 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
   md << "Model: " << meta.esc << " / " << meta.motor << " / " << meta.propeller << " (" << meta.source << ").  \n";
   md << "Command: `" << command << "`\n\n";
   md << "The residual is the model's vertical thrust minus the thrust that flew (weighed mass x vertical specific "
-        "force from the IMU), in percent of the latter: positive when the model reads high.\n\n";
+        "force from the IMU), in percent of the latter: positive when the model reads high. Samples are "
+        "quasi-steady blocks: "
+     << diagnosis.transient_blocks << " transient blocks (the rotors spinning up or down, where thrust lags the PWM) "
+        "are left out of everything below.\n\n";
 
   md << "## 1. The gap\n\n";
   md << "| | samples | bias % | RMSE % | bias N |\n|---|---|---|---|---|\n";
@@ -269,8 +275,10 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
        << formatPrintf("%.1f", 1000.0 * diagnosis.motors.cg_offset_y_m, "n/a") << " mm from base_link. ";
     if (diagnosis.motors.suspect_channel) {
       md << "**Suspect motor: channel " << *diagnosis.motors.suspect_channel
-         << "** (the yaw balance breaks; of the motors that could explain it, this one leaves the centre of gravity "
-            "nearest the URDF's). Its share is taken out before effects are sought.\n\n";
+         << "** (the yaw balance breaks; of the motors weaker than modelled that could explain it, this one keeps "
+            "the empty vehicle's centre of gravity the same with every payload, or, with one payload, nearest the "
+            "URDF's). It gives " << fixed(100.0 * diagnosis.motors.suspect_thrust_factor, "%.1f")
+         << " % of its modelled thrust (fitted to the weighed thrust); that is applied before effects are sought.\n\n";
     } else {
       md << "No motor stands out: the rotors' drag torques balance, so any offset of the centre of thrust is the "
             "centre of gravity's, not a motor's.\n\n";
@@ -304,10 +312,19 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
     for (effects::Kind kind : diagnosis.selected) md << "- `" << effects::kindName(kind) << "`: " << effectMeaning(kind) << ".\n";
     md << "\n";
   }
+  if (!diagnosis.trace.empty()) {
+    md << "Selection, round by round (held-out RMSE of the PWM view, and of both views together):\n\n"
+          "| round | candidate | held-out RMSE % | joint RMSE % | p | verdict |\n|---|---|---|---|---|---|\n";
+    for (const SelectionStep& step : diagnosis.trace) {
+      md << "| " << step.round << " | " << effects::kindName(step.kind) << " | " << fixed(step.heldout_rmse_pct) << " | "
+         << fixed(step.joint_rmse_pct) << " | " << fixed(step.p_value, "%.3f") << " | " << step.verdict << " |\n";
+    }
+    md << "\n";
+  }
   md << "The two views of thrust tell causes apart: the PWM view (what the node estimates) and the view through the "
         "measured battery current. The current-view ratio is how much of an effect's correction the current view's "
-        "residual shows: about 1 for a thrust loss or a hidden mass, near 0 for an ESC offset, an electrical or an "
-        "air-density cause, negative for motor heating.\n\n";
+        "residual shows: about 1 for a thrust loss or a hidden mass, near 0 for an ESC offset, about a third for an "
+        "electrical or an air-density cause, negative for motor heating.\n\n";
 
   md << "## 4. How far it shrinks (held-out flights)\n\n";
   md << "| | before | after |\n|---|---|---|\n";

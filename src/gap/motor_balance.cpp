@@ -1,10 +1,19 @@
 #include "propulsion_estimator/gap/motor_balance.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace propulsion_estimator {
 namespace gap {
+namespace {
+
+// Payloads this much apart move the centre of gravity enough to tell the hypotheses apart.
+constexpr double kMinPayloadSpreadKg = 0.05;
+// Segments with fewer steady-hover blocks than this give too noisy a moment.
+constexpr int kMinSegmentBlocks = 6;
+
+}  // namespace
 
 MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, const std::vector<Block>& blocks,
                            const std::vector<int>& channels, double min_gap) {
@@ -61,7 +70,52 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   const Eigen::Vector2d prior =
       vehicle.empty_mass ? Eigen::Vector2d(vehicle.empty_mass->centre_of_mass_m.head<2>()) : Eigen::Vector2d::Zero();
 
-  double best_distance = INFINITY;
+  // Per weighed segment of steady hover: its mass and each motor's mean model thrust. A payload
+  // hangs below base_link's origin, so the empty vehicle's mass moment about that origin,
+  // mass x centre of gravity, is the same in every segment: the hypothesis that keeps it
+  // constant across payloads is the one that holds, whatever the empty centre of gravity.
+  std::map<std::pair<int, int>, std::pair<std::vector<double>, int>> segment_sums;
+  std::map<std::pair<int, int>, double> segment_mass;
+  for (const Block& block : blocks) {
+    if (!block.hover) continue;
+    auto& [sums, count] = segment_sums[{block.flight, block.segment}];
+    sums.resize(motors, 0.0);
+    for (int k = 0; k < motors; ++k) sums[k] += views.motorThrust(block.pwm_us[k], block.voltage_v);
+    ++count;
+    segment_mass[{block.flight, block.segment}] = block.mass_kg;
+  }
+  double lightest = std::numeric_limits<double>::infinity(), heaviest = 0.0;
+  for (const auto& entry : segment_mass) {
+    lightest = std::min(lightest, entry.second);
+    heaviest = std::max(heaviest, entry.second);
+  }
+  const bool payloads_differ = heaviest - lightest > kMinPayloadSpreadKg;
+  // The spread over segments of the empty vehicle's mass moment, if motor j gives (1 - gap) of
+  // its modelled thrust.
+  const auto moment_spread = [&](int j, double gap) {
+    std::vector<Eigen::Vector2d> moments;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const auto& [key, entry] : segment_sums) {
+      const auto& [sums, count] = entry;
+      if (count < kMinSegmentBlocks) continue;
+      double sum = 0.0;
+      Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+      for (int k = 0; k < motors; ++k) {
+        const double thrust = sums[k] / count * (k == j ? 1.0 - gap : 1.0);
+        sum += thrust;
+        moment += thrust * vehicle.rotors[k].position_m.head<2>();
+      }
+      moments.push_back(segment_mass.at(key) * moment / sum);
+      mean += moments.back();
+    }
+    if (moments.size() < 2) return std::numeric_limits<double>::infinity();
+    mean /= moments.size();
+    double spread = 0.0;
+    for (const Eigen::Vector2d& m : moments) spread += (m - mean).squaredNorm() / moments.size();
+    return std::sqrt(spread);
+  };
+
+  double best_distance = std::numeric_limits<double>::infinity();
   int best = -1;
   for (int j = 0; j < motors; ++j) {
     const double gap = yaw_mean * total / (vehicle.rotors[j].spin_direction * mean_thrust[j]);
@@ -71,12 +125,16 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
     const double corrected_total = total - gap * mean_thrust[j];
     const Eigen::Vector2d implied =
         (centre * total - gap * mean_thrust[j] * vehicle.rotors[j].position_m.head<2>()) / corrected_total;
-    const double distance = (implied - prior).norm();
-    if (distance < best_distance) {
+    const double distance = payloads_differ ? moment_spread(j, gap) : (implied - prior).norm();
+    // A yaw imbalance is explained as well by one motor weaker than modelled as by its
+    // neighbour of the other spin direction stronger: the failures that happen (a chipped,
+    // bent or wrong propeller, a worn motor or bearing) give less thrust, never more.
+    if (gap > 0.0 && distance < best_distance) {
       best_distance = distance;
       best = j;
     }
   }
+  if (best < 0) return balance;
   const MotorGap& candidate = balance.motors[best];
   // ci_pct is a 95 % half-width, about two standard errors: three standard errors are 1.5 of it.
   if (std::abs(candidate.thrust_gap_pct) > 100.0 * min_gap && std::abs(candidate.thrust_gap_pct) > 1.5 * candidate.ci_pct) {

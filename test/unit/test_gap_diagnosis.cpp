@@ -27,6 +27,7 @@ struct World {
   double esc_offset_us = 0.0;      // the flying ESCs need this much more pulse width
   int weak_motor = -1;             // index of a motor whose propeller gives weak_factor of its thrust
   double weak_factor = 1.0;
+  bool kicks = false;              // every 10 s the autopilot kicks the PWM up for 0.3 s; the rotors lag
 };
 
 class SyntheticFlights : public ::testing::Test {
@@ -80,7 +81,8 @@ class SyntheticFlights : public ::testing::Test {
         }
         gap::RcOutFrame frame;
         frame.time_s = t;
-        for (int k = 0; k < 4; ++k) frame.pwm_us[k] = pwm[k] + pwm_noise(rng);
+        const double kick = world.kicks && std::fmod(t, 10.0) >= 5.0 && std::fmod(t, 10.0) < 5.3 ? 60.0 : 0.0;
+        for (int k = 0; k < 4; ++k) frame.pwm_us[k] = pwm[k] + kick + pwm_noise(rng);
         flight.streams.rc_out.push_back(frame);
         if (i % 5 == 0) flight.streams.battery.push_back({t, sensed, -current});  // PX4 through MAVROS: negated
         gap::ImuReading imu;
@@ -117,12 +119,28 @@ TEST_F(SyntheticFlights, NamesNothingWhenTheModelIsTheTruth) {
   EXPECT_TRUE(diagnosis.selected.empty());
   EXPECT_LT(std::abs(diagnosis.overall.bias_pct), 0.5);
   EXPECT_FALSE(diagnosis.motors.suspect_channel);
+  EXPECT_EQ(diagnosis.transient_blocks, 0);
   for (const gap::EffectResult& effect : diagnosis.effects) {
     // Synthetic flights have neither height, vertical speed, air nor motor temperature.
     const bool needs_signal = pe::effects::requiredSignal(effect.kind) != pe::effects::Signal::kNone &&
                               effect.kind != Kind::kSupplyResistance;
     EXPECT_EQ(effect.testable, !needs_signal) << pe::effects::kindName(effect.kind);
   }
+}
+
+TEST_F(SyntheticFlights, LeavesOutTransientBlocksWhereTheRotorsLagThePwm) {
+  World world;
+  world.kicks = true;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  // 5 flights x 3 hovers x 4 kicks, each touching one or two 0.5 s blocks.
+  EXPECT_GE(diagnosis.transient_blocks, 60);
+  EXPECT_LE(diagnosis.transient_blocks, 120);
+  EXPECT_EQ(diagnosis.blocks, diagnosis.overall.samples);
+  EXPECT_LT(std::abs(diagnosis.overall.bias_pct), 0.5);
+  EXPECT_TRUE(diagnosis.selected.empty());
+  EXPECT_NE(gap::gapReportMarkdown(diagnosis, model_, "cmd").find(
+                std::to_string(diagnosis.transient_blocks) + " transient blocks"),
+            std::string::npos);
 }
 
 TEST_F(SyntheticFlights, NamesAThrustLossAndShrinksTheGap) {

@@ -30,6 +30,8 @@ struct Block {
   effects::Signals signals;      ///< height, vertical speed, air density, motor temperature; NaN if missing
   double altitude_m = 0.0;       ///< local position z; NaN if missing
   bool hover = false;            ///< steady: slow vertical speed, steady commands
+  double pwm_change_us = 0.0;    ///< range of the collective (mean over motors) PWM within the block
+  double accel_up_m_s2 = 0.0;    ///< vertical acceleration, specific_force_up minus g
 };
 
 /// How flights are cut into blocks.
@@ -40,6 +42,12 @@ struct BlockConfig {
   double signal_timeout_s = 1.0;
   double hover_max_vertical_speed_m_s = 0.2;
 };
+
+/// Whether a block is quasi-steady: its collective PWM changed by at most `max_pwm_change_us`
+/// and it accelerated vertically by at most `max_accel_m_s2`. The surfaces are steady-state maps:
+/// while the rotors spin up or down, the thrust lags the PWM by the rotor's time constant, a gap
+/// no effect in the library describes.
+bool isQuasiSteady(const Block& block, double max_pwm_change_us, double max_accel_m_s2);
 
 /// The result of cutting one flight: its blocks and one line for each thing that could not be used.
 struct FlightBlocks {

@@ -19,12 +19,13 @@ namespace gap {
 struct DiagnosisConfig {
   double rotor_diameter_m = 0.24;    ///< "near the ground" is within two diameters
   double signal_timeout_s = 1.0;     ///< an older reading of a signal counts as missing
-  double accel_filter_s = 0.5;       ///< low-pass of the measured vertical force (cable swing, vibration)
+  double max_pwm_change_us = 40.0;   ///< a block whose collective PWM changes more is transient ...
+  double max_accel_m_s2 = 0.8;       ///< ... and so is one accelerating vertically faster: left out
   int permutations = 200;            ///< of the permutation test on held-out improvement
   double significance = 0.01;        ///< an effect is selected when p < this ...
-  double min_improvement_pct = 0.5;  ///< ... and the held-out RMSE falls by more than this many % of the truth
+  double min_improvement_pct = 0.05; ///< ... and the held-out RMSE falls by more than this many % of the truth
   unsigned seed = 1;                 ///< of the permutations
-  double block_s = 0.5;              ///< samples are averaged over blocks this long
+  double block_s = 1.0;              ///< samples are averaged over blocks this long
   double group_s = 10.0;             ///< blocks within this long err together: the test's unit
   int max_effects = 3;               ///< selected at the most
   double motor_min_gap = 0.05;       ///< a motor is suspect when its model is off by more than this fraction
@@ -77,6 +78,7 @@ struct MotorGap {
 struct MotorBalance {
   std::vector<MotorGap> motors;
   std::optional<int> suspect_channel;  ///< a motor whose model is off alone
+  double suspect_thrust_factor = 1.0;  ///< its thrust over the model's, fitted; the effects are sought with it applied
   double cg_offset_x_m = 0.0;          ///< centre of thrust against base_link, body frame
   double cg_offset_y_m = 0.0;
   std::string unavailable;  ///< empty, or why (no geometry, no hover, fewer than 4 motors)
@@ -94,6 +96,16 @@ struct EffectResult {
   double heldout_rmse_pct = 0.0;     ///< with this effect added to those selected before it
   double p_value = 1.0;              ///< of the held-out improvement, permutation test
   double current_view_ratio = 0.0;   ///< its predicted PWM-view change over current-view change
+};
+
+/// One candidate tried in one round of the forward selection, for the report's trace.
+struct SelectionStep {
+  int round = 0;                  ///< 1-based
+  effects::Kind kind = effects::Kind::kThrustLoss;
+  double heldout_rmse_pct = 0.0;  ///< PWM view, with the effects selected before and this one
+  double joint_rmse_pct = 0.0;    ///< both views together
+  double p_value = 1.0;
+  std::string verdict;            ///< why it was or was not taken
 };
 
 /// Held-out scores before and after the selected effects.
@@ -143,6 +155,8 @@ struct GapSample {
 /// Everything diagnose_gap reports.
 struct Diagnosis {
   ResidualStats overall;
+  int blocks = 0;            ///< quasi-steady blocks diagnosed
+  int transient_blocks = 0;  ///< blocks left out as transient (DiagnosisConfig::max_pwm_change_us, max_accel_m_s2)
   double payload_err_pct = 0.0;  ///< of the node's payload estimate, tare on the lightest flight
   std::vector<FlightGap> flights;
   std::vector<BenchGap> bench;
@@ -152,6 +166,7 @@ struct Diagnosis {
   std::vector<effects::Kind> selected;
   effects::ModelEffects fitted;  ///< the selected effects, fitted on all flights
   HeldOut heldout;
+  std::vector<SelectionStep> trace;  ///< every candidate of every round, in order
   std::string method;  ///< how selection was decided, for the report
   std::vector<GapSample> samples;
   std::vector<std::string> problems;  ///< what could not be done, one line each

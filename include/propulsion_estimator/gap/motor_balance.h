@@ -17,9 +17,12 @@ namespace gap {
 /// and pitch balance, so the model's thrusts still cancel in yaw, sum(s_k T_k) = 0 (s_k the spin
 /// direction, torque proportional to thrust for identical propellers). A motor whose model reads
 /// high by a fraction e_j breaks the yaw balance by s_j T_j e_j. On a quad the yaw residual fixes
-/// e_j up to which motor of that spin direction (or which of the other, reading low) it is; the
-/// hypothesis whose implied centre of gravity lies nearest the URDF's is taken, and a motor is a
-/// suspect only when its gap exceeds `min_gap` and three times its uncertainty.
+/// e_j up to which motor of that spin direction (or which of the other, reading low) it is. Only
+/// motors reading high (weaker than modelled: a damaged propeller, a worn motor) are candidates.
+/// With payloads of different masses (hanging below base_link's origin) the hypothesis that keeps
+/// the empty vehicle's mass moment the same in every segment is taken; with one mass, the one
+/// whose implied centre of gravity lies nearest the URDF's. A motor is a suspect only when its
+/// gap exceeds `min_gap` and three times its uncertainty.
 MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, const std::vector<Block>& blocks,
                            const std::vector<int>& channels, double min_gap);
 

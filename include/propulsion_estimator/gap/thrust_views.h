@@ -46,10 +46,11 @@ class ThrustViews {
   std::array<double, kMaxMotors> motor_scale_;
 };
 
-/// How much of an effect's thrust factor the current view sees (1: as much as the PWM view;
-/// 0: none; negative: the other way). Only for effects acting on thrust (not the input
-/// corrections, which the current view takes through the surfaces).
-double currentViewExponent(effects::Kind kind);
+/// How much of an effect's thrust factor the current view sees, as an exponent on it (1: as much
+/// as the PWM view; 0: none; negative: the other way), given the effect's fitted `parameter`.
+/// Only for effects acting on thrust (not the input corrections, which the current view takes
+/// through the surfaces).
+double currentViewExponent(effects::Kind kind, double parameter);
 
 }  // namespace gap
 }  // namespace propulsion_estimator
