@@ -283,7 +283,7 @@ def main():
     if args.junit:
         with open(args.junit, "w") as handle:
             failure = "" if passed else '<failure message="acceptance thresholds missed"/>'
-            handle.write('<?xml version="1.0"?>\n<testsuite name="validate_gap" tests="1" failures="%d">'
+            handle.write('<?xml version="1.0"?>\n<testsuite name="validate_gap" tests="1" errors="0" failures="%d">'
                          '<testcase classname="validate_gap" name="cases">%s</testcase></testsuite>\n'
                          % (0 if passed else 1, failure))
     return 0 if passed else 1

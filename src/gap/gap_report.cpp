@@ -277,7 +277,7 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
       md << "**Suspect motor: channel " << *diagnosis.motors.suspect_channel
          << "** (the yaw balance breaks; of the motors weaker than modelled that could explain it, this one keeps "
             "the empty vehicle's centre of gravity the same with every payload, or, with one payload, nearest the "
-            "URDF's). It gives " << fixed(100.0 * diagnosis.motors.suspect_thrust_factor, "%.1f")
+            "URDF's). It gives " << formatPrintf("%.1f", 100.0 * diagnosis.motors.suspect_thrust_factor, "n/a")
          << " % of its modelled thrust (fitted to the weighed thrust); that is applied before effects are sought.\n\n";
     } else {
       md << "No motor stands out: the rotors' drag torques balance, so any offset of the centre of thrust is the "
@@ -316,8 +316,8 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
     md << "Selection, round by round (held-out RMSE of the PWM view, and of both views together):\n\n"
           "| round | candidate | held-out RMSE % | joint RMSE % | p | verdict |\n|---|---|---|---|---|---|\n";
     for (const SelectionStep& step : diagnosis.trace) {
-      md << "| " << step.round << " | " << effects::kindName(step.kind) << " | " << fixed(step.heldout_rmse_pct) << " | "
-         << fixed(step.joint_rmse_pct) << " | " << fixed(step.p_value, "%.3f") << " | " << step.verdict << " |\n";
+      md << "| " << step.round << " | " << effects::kindName(step.kind) << " | " << formatPrintf("%.2f", step.heldout_rmse_pct, "n/a") << " | "
+         << formatPrintf("%.2f", step.joint_rmse_pct, "n/a") << " | " << formatPrintf("%.3f", step.p_value, "n/a") << " | " << step.verdict << " |\n";
     }
     md << "\n";
   }
