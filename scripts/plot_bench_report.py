@@ -17,6 +17,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 LABELS = {"thrust": "Thrust", "current": "Current", "power": "Electrical power", "efficiency": "Efficiency",
@@ -255,6 +256,8 @@ def plot_gap(directory):
         axis.axhline(0.0, color="black", linewidth=0.6)
         axis.set_xlabel(label)
         axis.set_ylabel("Residual (% of truth)")
+        # Five ticks at most: air density spans a few thousandths and its labels would collide.
+        axis.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(5))
         axis.grid(alpha=0.3)
     axes[0].legend(fontsize=8, loc="best")
     save(figure, directory, "gap_signals.png")
@@ -266,8 +269,8 @@ def plot_gap(directory):
         span = np.nanmax(np.abs(model[finite])) * 1.1 + 0.5
         line = np.array([-span, span])
         for slope, name in ((1.0, "thrust loss, hidden mass, ground effect, climb"),
-                            (0.3, "supply resistance, air density (several to one)"),
-                            (0.0, "ESC offset"), (-2.0, "motor temperature")):
+                            (1.0 / 3.0, "supply resistance, air density (about three to one)"),
+                            (0.0, "ESC offset"), (-1.0, "motor temperature (opposite)")):
             axis.plot(line, slope * line, linewidth=1.0, label=name)
         axis.set_ylim(-span * 1.5, span * 1.5)
         axis.legend(fontsize=8, loc="best")

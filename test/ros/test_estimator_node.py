@@ -72,8 +72,11 @@ class EstimatorNodeTest(unittest.TestCase):
             received = []
             subscriber = rospy.Subscriber("/restarted/payload", PayloadEstimate, received.append)
             rospy.wait_for_service("/restarted/tare", timeout=30.0)
-            self.h.wait_for(lambda: self.h.rc_out_pub.get_num_connections() > 1, 10.0, "the restarted node")
-            self.h.fly(HOVER, 0.3, voltage_v=11.4)
+            # Both inputs connected before flying: a battery message sent before the restarted node's
+            # subscription is up is lost, and without a voltage it estimates nothing.
+            self.h.wait_for(lambda: self.h.rc_out_pub.get_num_connections() > 1
+                            and self.h.battery_pub.get_num_connections() > 1, 10.0, "the restarted node")
+            self.h.fly(HOVER, 1.0, voltage_v=11.4)
             self.h.wait_for(lambda: received, 5.0, "an estimate of the restarted node")
             self.assertEqual(received[-1].empty_mass_source, "tare_file")
             self.assertAlmostEqual(received[-1].empty_mass_kg, empty_mass_kg, places=9)
