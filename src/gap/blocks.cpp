@@ -33,6 +33,7 @@ class Cursor {
 // Sums of one block; a signal is averaged only when every frame of the block had it.
 struct Accumulator {
   int frames = 0;
+  double first_time = 0.0, last_time = 0.0;
   std::array<double, kMaxMotors> pwm{};
   std::array<double, kMaxMotors> axis{};
   double voltage = 0.0, current = 0.0, force_up = 0.0, time = 0.0;
@@ -120,7 +121,11 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     Accumulator acc;
     int current_block = 0;
     auto flush = [&]() {
-      if (acc.frames == 0) return;
+      // A segment's last block may hold a frame or two: too few to average its noise, it is dropped.
+      if (acc.frames == 0 || acc.last_time - acc.first_time < 0.5 * config.block_s) {
+        acc = Accumulator();
+        return;
+      }
       Block block;
       block.flight = flight_index;
       block.segment = s;
@@ -165,6 +170,8 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       const BatteryReading* b = battery.at(frame.time_s, timeout);
       if (!b || !(b->voltage_v > 0.0)) continue;
       ++acc.frames;
+      if (acc.frames == 1) acc.first_time = frame.time_s;
+      acc.last_time = frame.time_s;
       acc.time += frame.time_s;
       acc.voltage += b->voltage_v;
       if (std::isfinite(sign) && std::isfinite(b->current_a)) {
