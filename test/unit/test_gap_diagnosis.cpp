@@ -8,6 +8,7 @@
 
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/gap/blocks.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/gap_report.h"
 #include "propulsion_estimator/gap/motor_balance.h"
@@ -236,6 +237,17 @@ TEST_F(SyntheticFlights, TheMotorBalanceNamesNoMotorForAnOffCentreCogAlone) {
   const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, 0.05);
   EXPECT_FALSE(balance.suspect_channel);
   EXPECT_NEAR(balance.cg_offset_x_m, 0.008 * 1.3 / (1.3 + 0.4 / 3.0), 0.001);
+}
+
+TEST_F(SyntheticFlights, DropsASegmentsLastBlockWhenItSpansLessThanHalfABlock) {
+  gap::Flight flight = fly("f1.bag", World{}, {1.3}, 12.0, 1);
+  gap::BlockConfig config;
+  config.block_s = 1.0;
+  const double start = flight.segments[0].start_s;
+  flight.segments[0].end_s = start + 10.1;  // ten whole blocks and 0.1 s of an eleventh
+  EXPECT_EQ(gap::cutIntoBlocks(flight, 0, vehicle_, config, 0).blocks.size(), 10u);
+  flight.segments[0].end_s = start + 10.6;  // the eleventh spans more than half a block: kept
+  EXPECT_EQ(gap::cutIntoBlocks(flight, 0, vehicle_, config, 0).blocks.size(), 11u);
 }
 
 TEST_F(SyntheticFlights, ReportsWhatItCannotUseAndDiagnosesTheRest) {
