@@ -11,26 +11,12 @@
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "test_paths.h"
+#include "tool_process.h"
 
 namespace pe = propulsion_estimator;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct ToolRun {
-  int status = 0;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
 
 class BenchTools : public testing::Test {
  protected:
@@ -42,12 +28,7 @@ class BenchTools : public testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  ToolRun run(const std::string& tool, const std::string& arguments) const {
-    const std::string command = quoted(tool) + " " + arguments + " > " + quoted((dir_ / "out.txt").string()) + " 2> " +
-                                quoted((dir_ / "err.txt").string());
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "out.txt"), slurp(dir_ / "err.txt")};
-  }
+  ToolRun run(const std::string& tool, const std::string& arguments) const { return runTool(tool, arguments, dir_); }
 
   static std::string strawson(const std::string& file) { return repoPath("test/data/strawson_motor_propeller/" + file); }
 

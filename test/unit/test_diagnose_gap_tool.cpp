@@ -15,26 +15,12 @@
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 #include "test_paths.h"
+#include "tool_process.h"
 
 namespace pe = propulsion_estimator;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct ToolRun {
-  int status = 0;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
 
 // rc/out at 10 Hz and the battery at 1 Hz for `duration_s`, on `battery_topic`.
 void writeFlightBag(const std::string& path, double duration_s, const std::string& battery_topic = pe::kBatteryTopic) {
@@ -63,12 +49,7 @@ class DiagnoseGapTool : public testing::Test {
 
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
 
-  ToolRun run(const std::string& arguments) const {
-    const std::string command = quoted(PE_DIAGNOSE_GAP) + " " + arguments + " > " + quoted(file("out.txt")) + " 2> " +
-                                quoted(file("err.txt"));
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(file("out.txt")), slurp(file("err.txt"))};
-  }
+  ToolRun run(const std::string& arguments) const { return runTool(PE_DIAGNOSE_GAP, arguments, dir_); }
 
   // The required options for `manifest`, and `more`.
   ToolRun diagnose(const std::string& manifest, const std::string& more = "") const {
