@@ -1,6 +1,7 @@
 #include "propulsion_estimator/gap/motor_balance.h"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 
@@ -12,6 +13,22 @@ namespace {
 constexpr double kMinPayloadSpreadKg = 0.05;
 // Segments with fewer steady-hover blocks than this give too noisy a moment.
 constexpr int kMinSegmentBlocks = 6;
+
+// Each motor's summed model thrust and the block count over the steady-hover blocks sharing a key.
+using ThrustSums = std::map<std::pair<int, int>, std::pair<std::vector<double>, int>>;
+
+ThrustSums sumHoverThrusts(const ThrustViews& views, const std::vector<Block>& blocks,
+                           const std::function<std::pair<int, int>(const Block&)>& key) {
+  ThrustSums sums_by_key;
+  for (const Block& block : blocks) {
+    if (!block.hover) continue;
+    auto& [sums, count] = sums_by_key[key(block)];
+    sums.resize(views.motors(), 0.0);
+    for (int k = 0; k < views.motors(); ++k) sums[k] += views.motorThrust(block.pwm_us[k], block.voltage_v);
+    ++count;
+  }
+  return sums_by_key;
+}
 
 }  // namespace
 
@@ -28,14 +45,8 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
     return balance;
   }
   // Mean model thrust of each motor, and the yaw residual, per independent group of hover blocks.
-  std::map<std::pair<int, int>, std::pair<std::vector<double>, int>> groups;
-  for (const Block& block : blocks) {
-    if (!block.hover) continue;
-    auto& [sums, count] = groups[{block.flight, block.group}];
-    sums.resize(motors, 0.0);
-    for (int k = 0; k < motors; ++k) sums[k] += views.motorThrust(block.pwm_us[k], block.voltage_v);
-    ++count;
-  }
+  const ThrustSums groups =
+      sumHoverThrusts(views, blocks, [](const Block& block) { return std::make_pair(block.flight, block.group); });
   if (groups.size() < 3) {
     balance.unavailable = "fewer than three stretches of steady hover";
     return balance;
@@ -74,15 +85,11 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   // hangs below base_link's origin, so the empty vehicle's mass moment about that origin,
   // mass x centre of gravity, is the same in every segment: the hypothesis that keeps it
   // constant across payloads is the one that holds, whatever the empty centre of gravity.
-  std::map<std::pair<int, int>, std::pair<std::vector<double>, int>> segment_sums;
+  const ThrustSums segment_sums =
+      sumHoverThrusts(views, blocks, [](const Block& block) { return std::make_pair(block.flight, block.segment); });
   std::map<std::pair<int, int>, double> segment_mass;
   for (const Block& block : blocks) {
-    if (!block.hover) continue;
-    auto& [sums, count] = segment_sums[{block.flight, block.segment}];
-    sums.resize(motors, 0.0);
-    for (int k = 0; k < motors; ++k) sums[k] += views.motorThrust(block.pwm_us[k], block.voltage_v);
-    ++count;
-    segment_mass[{block.flight, block.segment}] = block.mass_kg;
+    if (block.hover) segment_mass[{block.flight, block.segment}] = block.mass_kg;
   }
   double lightest = std::numeric_limits<double>::infinity(), heaviest = 0.0;
   for (const auto& entry : segment_mass) {
