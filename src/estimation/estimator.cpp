@@ -98,7 +98,10 @@ Estimator::Estimator(PropulsionModel model, Vehicle vehicle, EstimatorConfig con
       config_((config.validate(vehicle_.rotors.size()), std::move(config))),
       hover_(config_.hover, windowCapacity(config_.hover.window_s, config_.max_rate_hz)),
       payload_(config_.payload, windowCapacity(config_.payload.averaging_window_s, config_.max_rate_hz)),
-      accel_filter_(config_.accel_filter_s, config_.accel_bias_filter_s) {
+      accel_filter_(config_.accel_filter_s, config_.accel_bias_filter_s),
+      has_current_(model_.output(Output::kCurrent).source != OutputSource::kNone),
+      has_power_(model_.output(Output::kPower).source != OutputSource::kNone),
+      has_efficiency_(model_.output(Output::kEfficiency).source != OutputSource::kNone) {
   if (config_.empty_mass_kg) {
     configured_empty_mass_kg_ = config_.empty_mass_kg;
     configured_source_ = EmptyMassSource::kParameter;
@@ -296,8 +299,9 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
     // Efficiency is thrust over power: it follows the thrust, the power stays the surfaces'.
     p.thrust_n *= thrust_factor;
     p.efficiency_n_per_w *= thrust_factor;
-    if (!std::isfinite(p.thrust_n) || !std::isfinite(p.current_a) || !std::isfinite(p.power_w) ||
-        !std::isfinite(p.efficiency_n_per_w)) {
+    // An output the model lacks (`none`: a thrust-only stand) is NaN by design, not a fault.
+    if (!std::isfinite(p.thrust_n) || (has_current_ && !std::isfinite(p.current_a)) ||
+        (has_power_ && !std::isfinite(p.power_w)) || (has_efficiency_ && !std::isfinite(p.efficiency_n_per_w))) {
       return reject(Rejection::kNonFiniteEstimate, channel, in.pwm_us, in.voltage_v);
     }
   }
@@ -325,7 +329,10 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   }
   const double vertical_accel = imu_fresh ? accel_filter_.value() : kNaN;
   const double accel_used = imu_fresh && config_.compensate_acceleration ? vertical_accel : 0.0;
-  totals.efficiency_n_per_w = totals.power_w > 0.0 ? totals.thrust_n / totals.power_w : 0.0;
+  // NaN sums stand for what the model lacks; so does the efficiency without power or efficiency.
+  totals.efficiency_n_per_w = !(has_power_ && has_efficiency_) ? kNaN
+                              : totals.power_w > 0.0         ? totals.thrust_n / totals.power_w
+                                                             : 0.0;
   totals.mass_kg = totals.vertical_thrust_n / (kStandardGravity + accel_used);
   totals.thrust_centre_x_m = totals.thrust_n > 0.0 ? moment_x / totals.thrust_n : kNaN;
   totals.thrust_centre_y_m = totals.thrust_n > 0.0 ? moment_y / totals.thrust_n : kNaN;

@@ -57,7 +57,8 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   ROS_INFO_STREAM("model " << params_.model << ": " << meta.esc << " + " << meta.motor << " + " << meta.propeller
                            << ", domain " << domain.pwm_min_us << "-" << domain.pwm_max_us << " us, "
                            << domain.voltage_min_v << "-" << domain.voltage_max_v
-                           << " V, outside: " << outsideDomainName(domain.outside));
+                           << " V, outside: " << outsideDomainName(domain.outside)
+                           << "; outputs not modelled (published as NaN): " << unmodelledOutputs(estimator_->model()));
 
   if (!params_.tare_file.empty()) {
     if (const std::optional<TareRecord> tare = loadTareFile(params_.tare_file)) {

@@ -300,6 +300,33 @@ TEST(Estimator, RefusesNonFiniteModelOutputs) {
   EXPECT_EQ(estimator.counters().accepted, 0u);
 }
 
+TEST(Estimator, ModelWithoutCurrentPowerAndEfficiencyEstimatesTheRestAndPublishesNaN) {
+  const pe::PropulsionModel model = thrustOnlyThesisModel();
+  pe::Estimator estimator(model, pe::Vehicle::quadX(0.225), {});
+  const EstimatorFixture thesis;  // the same thrust surface with every output
+  estimator.addBattery(0.0, 11.4);
+  const std::vector<std::uint16_t> hover(4, 1690);
+  for (int k = 1; k <= 150; ++k) {
+    ASSERT_EQ(estimator.addMotorOutputs(0.02 * k, 0.02 * k, hover.data(), 4), pe::Rejection::kNone) << k;
+  }
+  const pe::EstimatorOutput& out = estimator.output();
+  for (const pe::MotorOutput& motor : out.motors) {
+    EXPECT_NEAR(motor.estimate.thrust_n, thesis.modelMassKg(1690.0) * pe::kStandardGravity / 4.0, 1e-9);
+    EXPECT_TRUE(std::isnan(motor.estimate.current_a));
+    EXPECT_TRUE(std::isnan(motor.estimate.power_w));
+    EXPECT_TRUE(std::isnan(motor.estimate.efficiency_n_per_w));
+    EXPECT_GT(motor.estimate.rpm, 0.0);
+  }
+  EXPECT_TRUE(std::isnan(out.totals.current_a));
+  EXPECT_TRUE(std::isnan(out.totals.power_w));
+  EXPECT_TRUE(std::isnan(out.totals.efficiency_n_per_w));
+  EXPECT_NEAR(out.totals.mass_kg, thesis.modelMassKg(1690.0), 1e-9);
+  EXPECT_TRUE(out.hover.hovering);
+  EXPECT_NEAR(out.payload.total_mass_kg, thesis.modelMassKg(1690.0), 1e-9);
+  EXPECT_EQ(estimator.counters().accepted, 150u);
+  EXPECT_EQ(estimator.counters().rejected[static_cast<int>(pe::Rejection::kNonFiniteEstimate)], 0u);
+}
+
 TEST(EstimatorConfig, RefusesChannelsThatDoNotFitTheVehicle) {
   auto refusal = [](pe::EstimatorConfig config) -> std::string {
     try {

@@ -182,6 +182,30 @@ TEST(HealthSummary, DomainWarnsAboveTheConfiguredShareOutside) {
   EXPECT_EQ(pe::judgeDomain(f.estimator, inside, snapshot(f.estimator, f.t), tolerant).level, pe::HealthLevel::kOk);
 }
 
+TEST(HealthSummary, AModelWithoutCurrentIsNoWarningAndItsMissingOutputsAreNamed) {
+  pe::Estimator estimator(thrustOnlyThesisModel(), pe::Vehicle::quadX(0.225), pe::EstimatorConfig{});
+  estimator.addBattery(0.0, 11.4);
+  const pe::HealthSnapshot before = snapshot(estimator, 0.0);
+  const std::vector<std::uint16_t> hover(4, 1690);
+  pe::InputActivity inputs = rcOutReceived(50);
+  for (int k = 1; k <= 50; ++k) {
+    inputs.last_rc_out_verdict = estimator.addMotorOutputs(0.02 * k, 0.02 * k, hover.data(), 4);
+  }
+  const pe::HealthSnapshot now = snapshot(estimator, 1.0, inputs);
+  const pe::HealthStatus outputs = pe::judgeMotorOutputs(estimator, before, now, nodeConfig());
+  EXPECT_EQ(outputs.level, pe::HealthLevel::kOk);
+  EXPECT_EQ(outputs.message, "ok");
+  EXPECT_EQ(valueOf(outputs, "accepted"), "50");
+  EXPECT_EQ(valueOf(outputs, "rejected non_finite_estimate"), "0");
+  const pe::HealthStatus domain = pe::judgeDomain(estimator, before, now, nodeConfig());
+  EXPECT_EQ(domain.level, pe::HealthLevel::kOk);
+  EXPECT_EQ(valueOf(domain, "outputs not modelled (published as NaN)"), "current, power, efficiency");
+  EstimatorFixture thesis;
+  EXPECT_EQ(valueOf(pe::judgeDomain(thesis.estimator, before, before, nodeConfig()),
+                    "outputs not modelled (published as NaN)"),
+            "none");
+}
+
 TEST(HealthSummary, PayloadIsOkWithItsState) {
   EstimatorFixture f;
   f.fly(1690.0, 4.0);

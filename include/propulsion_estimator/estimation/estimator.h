@@ -33,6 +33,7 @@ enum class Rejection {
   kTimeBackwards,   // RCOut stamp older than the previous accepted one
   kOutsideDomain,   // outside the model's domain and the model says reject
   kNonFiniteEstimate,  // the model gives NaN or infinity (a rational surface extrapolated to its pole)
+                       // for an output it has; one it lacks (`none`) is NaN and not refused
   // Signals of the model's effects, refused outside what the quantity can be (a unit error):
   kBadBatteryCurrent,   // infinite, or more than 1000 A either way
   kBadStaticPressure,   // outside 30000..110000 Pa (the bench air's range)
@@ -65,6 +66,7 @@ struct MotorOutput {
 
 /// The vehicle's totals over all motors, SI units: summed thrust and its vertical part, current
 /// and power, and the mass they lift (vertical thrust over g plus the vertical acceleration).
+/// Current, power and efficiency are NaN when the model lacks them (see unmodelledOutputs()).
 struct Totals {
   double voltage_v = 0.0;
   double thrust_n = 0.0;
@@ -202,6 +204,10 @@ class Estimator {
   HoverDetector hover_;
   PayloadEstimator payload_;
   VerticalAccelerationFilter accel_filter_;
+  // Which outputs the model has: one it lacks is published as NaN, never refused as non-finite.
+  bool has_current_;
+  bool has_power_;
+  bool has_efficiency_;
 
   double voltage_v_ = 0.0;
   double voltage_receipt_s_ = 0.0;
