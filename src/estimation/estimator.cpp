@@ -131,7 +131,7 @@ void Estimator::checkClock(double receipt_s) {
     // The clock restarted (a bag played again): everything received belongs to another timeline.
     clearWindows();
     accel_filter_.clear();
-    have_voltage_ = have_imu_ = have_velocity_ = have_stamp_ = false;
+    have_voltage_ = have_imu_ = have_velocity_ = have_stamp_ = have_accepted_ = false;
     for (Reading* reading : {&battery_current_a_, &static_pressure_pa_, &air_temperature_c_, &range_m_,
                              &motor_temperature_c_}) {
       reading->have = false;
@@ -139,6 +139,16 @@ void Estimator::checkClock(double receipt_s) {
     ++counters_.clock_resets;
   }
   last_receipt_s_ = receipt_s;
+  expireHover(receipt_s);
+}
+
+void Estimator::expireHover(double now_s) {
+  if (!have_accepted_ || now_s - last_accepted_receipt_s_ <= config_.hover.window_s) return;
+  if (hover_.verdict().samples == 0) return;  // nothing to expire (expired, landed or reset already)
+  hover_.expire();
+  payload_.endHover();
+  output_.hover = hover_.verdict();
+  output_.payload = payload_.estimate();
 }
 
 Rejection Estimator::addBattery(double receipt_s, double voltage_v) {
@@ -359,14 +369,24 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   ++counters_.accepted;
   last_stamp_s_ = stamp_s;
   have_stamp_ = true;
+  last_accepted_receipt_s_ = receipt_s;
+  have_accepted_ = true;
   return Rejection::kNone;
 }
 
-TareResult Estimator::tare() {
+TareResult Estimator::tare(double now_s) {
   TareResult result;
+  expireHover(now_s);
   const MassEstimate& estimate = payload_.estimate();
   const TareVerdict verdict = judgeTare(hover_.verdict(), estimate, config_);
-  if (!verdict.accepted) {
+  if (hover_.verdict().blocker == HoverBlocker::kExpired) {
+    // The average is of a hover that may have ended on the ground (inputs stopped, then disarmed).
+    std::ostringstream message;
+    message.precision(3);
+    message << "refused: no motor outputs accepted for " << now_s - last_accepted_receipt_s_
+            << " s, longer than hover/window_s " << config_.hover.window_s << " s: the last hover verdict expired";
+    result.message = message.str();
+  } else if (!verdict.accepted) {
     result.message = verdict.refusal;
   } else {
     result.ok = true;

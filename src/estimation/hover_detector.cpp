@@ -31,6 +31,11 @@ void HoverDetector::clear() {
   verdict_ = HoverVerdict{};
 }
 
+void HoverDetector::expire() {
+  clear();
+  verdict_.blocker = HoverBlocker::kExpired;
+}
+
 const HoverVerdict& HoverDetector::add(double stamp_s, const HoverSample& sample) {
   window_.push(stamp_s, sample);
   evaluate();
@@ -111,6 +116,9 @@ std::string describe(const HoverVerdict& v, const HoverConfig& c) {
     case HoverBlocker::kAccelerating:
       out << "not hovering: vertical acceleration " << v.mean_vertical_accel_m_s2 << " m/s^2 (limit "
           << c.max_vertical_accel_m_s2 << " m/s^2)";
+      break;
+    case HoverBlocker::kExpired:
+      out << "not hovering: no sample within the last hover/window_s " << c.window_s << " s (the last verdict expired)";
       break;
   }
   out << "; window " << v.samples << " samples over " << v.span_s << " s, mean thrust " << v.mean_thrust_n

@@ -37,7 +37,7 @@ TEST(Estimator, HoverMassIsTheSumOfModelThrusts) {
 TEST(Estimator, PayloadIsTotalMinusTaredEmptyMass) {
   EstimatorFixture f;
   f.fly(1680.0, 4.0);
-  const pe::TareResult tare = f.estimator.tare();  // thesis eq. 2.1: W_Q
+  const pe::TareResult tare = f.estimator.tare(f.t);  // thesis eq. 2.1: W_Q
   ASSERT_TRUE(tare.ok) << tare.message;
   EXPECT_NEAR(tare.empty_mass_kg, f.modelMassKg(1680.0), 1e-9);
   // Land (disarmed), attach the payload, hover higher: eq. 2.2 and 2.3.
@@ -55,9 +55,54 @@ TEST(Estimator, PayloadIsTotalMinusTaredEmptyMass) {
 TEST(Estimator, TareIsRefusedWhenNotHovering) {
   EstimatorFixture f;
   f.fly(1690.0, 1.0);  // the window is not full yet
-  const pe::TareResult tare = f.estimator.tare();
+  const pe::TareResult tare = f.estimator.tare(f.t);
   EXPECT_FALSE(tare.ok);
   EXPECT_EQ(tare.message.rfind("refused: not hovering: window spans 0.98 s of the 1.6 s needed", 0), 0u) << tare.message;
+}
+
+TEST(Estimator, AHoverVerdictExpiresWhenNoMotorOutputIsAcceptedWithinItsWindow) {
+  EstimatorFixture within;
+  within.fly(1690.0, 4.0);
+  EXPECT_TRUE(within.estimator.tare(within.t + 1.9).ok) << "the last sample is 1.92 s old: within hover/window_s";
+
+  // The battery topic stops, then the vehicle lands and disarms: every message is refused as
+  // stale_battery before its disarm could end the hover.
+  EstimatorFixture f;
+  f.fly(1690.0, 4.0);
+  ASSERT_TRUE(f.estimator.output().hover.hovering);
+  const double averaged = f.estimator.output().payload.total_mass_kg;
+  const std::vector<std::uint16_t> disarmed(8, 900);
+  EXPECT_EQ(f.estimator.addMotorOutputs(f.t + 6.0, f.t + 6.0, disarmed.data(), 8), pe::Rejection::kStaleBattery);
+  const pe::EstimatorOutput& out = f.estimator.output();
+  EXPECT_FALSE(out.hover.hovering);
+  EXPECT_EQ(out.hover.blocker, pe::HoverBlocker::kExpired);
+  EXPECT_FALSE(out.payload.hovering);
+  EXPECT_EQ(out.payload.total_mass_kg, averaged) << "the last hover's average is held";
+  EXPECT_EQ(f.estimator.describeHover().rfind(
+                "not hovering: no sample within the last hover/window_s 2 s (the last verdict expired); window 0 "
+                "samples",
+                0),
+            0u)
+      << f.estimator.describeHover();
+  const pe::TareResult tare = f.estimator.tare(f.t + 6.5);
+  EXPECT_FALSE(tare.ok);
+  EXPECT_EQ(tare.message,
+            "refused: no motor outputs accepted for 6.52 s, longer than hover/window_s 2 s: the last hover verdict "
+            "expired");
+  EXPECT_EQ(out.payload.empty_mass_source, pe::EmptyMassSource::kNone) << "nothing was tared";
+
+  // No input at all after the hover: tare alone sees the verdict expire.
+  EstimatorFixture silent;
+  silent.fly(1690.0, 4.0);
+  const pe::TareResult late = silent.estimator.tare(silent.t + 2.5);
+  EXPECT_FALSE(late.ok);
+  EXPECT_EQ(late.message,
+            "refused: no motor outputs accepted for 2.52 s, longer than hover/window_s 2 s: the last hover verdict "
+            "expired");
+  // Motor outputs again: the window fills anew.
+  silent.t += 2.5;
+  silent.fly(1690.0, 3.0);
+  EXPECT_TRUE(silent.estimator.output().hover.hovering);
 }
 
 TEST(Estimator, UrdfMassIsTheEmptyMassUntilTaredAndAfterReset) {
@@ -67,7 +112,7 @@ TEST(Estimator, UrdfMassIsTheEmptyMassUntilTaredAndAfterReset) {
   f.fly(1690.0, 4.0);
   EXPECT_EQ(f.estimator.output().payload.empty_mass_source, pe::EmptyMassSource::kUrdf);
   EXPECT_NEAR(f.estimator.output().payload.payload_mass_kg, f.modelMassKg(1690.0) - 1.315, 1e-9);
-  ASSERT_TRUE(f.estimator.tare().ok);
+  ASSERT_TRUE(f.estimator.tare(f.t).ok);
   EXPECT_NEAR(f.estimator.output().payload.payload_mass_kg, 0.0, 1e-9);
   f.estimator.reset();
   EXPECT_EQ(f.estimator.output().payload.empty_mass_source, pe::EmptyMassSource::kUrdf);

@@ -238,13 +238,13 @@ TEST(HealthSummary, TareNeedsAHoverAndEnoughSamples) {
   EXPECT_EQ(few.refusal, "refused: hovering, but only " + std::to_string(out.payload.window_samples) +
                              " of the 200 hover samples needed are averaged yet");
   EXPECT_LT(out.payload.window_samples, 200u);
-  EXPECT_EQ(f.estimator.tare().message, few.refusal);
+  EXPECT_EQ(f.estimator.tare(f.t).message, few.refusal);
 
   f.fly(1690.0, 4.0);
   const pe::TareVerdict ready = pe::judgeTare(out.hover, out.payload, f.estimator.config());
   EXPECT_TRUE(ready.accepted);
   EXPECT_EQ(ready.refusal, "");
-  EXPECT_TRUE(f.estimator.tare().ok);
+  EXPECT_TRUE(f.estimator.tare(f.t).ok);
 }
 
 TEST(HealthSummary, ConfigRefusesAShareOutsideZeroToOne) {

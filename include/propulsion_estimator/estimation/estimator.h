@@ -160,8 +160,14 @@ class Estimator {
   // Seconds since the newest valid voltage at `now_s`; infinity before any.
   double batteryAge(double now_s) const;
 
-  // Records the current hover average as the empty mass, or refuses when not hovering.
-  TareResult tare();
+  // Records the current hover average as the empty mass, or refuses when not hovering at `now_s`
+  // (the estimator's clock), which includes a hover verdict expired by expireHover().
+  TareResult tare(double now_s);
+  // A hover verdict older than its window is no verdict: when no motor output was accepted within
+  // hover/window_s before `now_s`, the hover window is forgotten (verdict kExpired) and the payload
+  // holds its average, not hovering. Every input calls it; call it before reading the verdict when
+  // inputs may have stopped (services, diagnostics).
+  void expireHover(double now_s);
   // Sets the empty mass from elsewhere (a tare file, a parameter, the URDF).
   void setEmptyMass(double mass_kg, EmptyMassSource source);
   // Clears the windows and the tare; the configured empty mass (parameter or URDF) applies again.
@@ -222,6 +228,8 @@ class Estimator {
   double last_stamp_s_ = 0.0;
   bool have_stamp_ = false;
   double last_receipt_s_ = 0.0;
+  double last_accepted_receipt_s_ = 0.0;  // when the newest accepted motor output arrived
+  bool have_accepted_ = false;
 
   std::vector<OperatingPoint> scratch_;  // this message's motors, committed to output_ once all are valid
   EstimatorOutput output_;

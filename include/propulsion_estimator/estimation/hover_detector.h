@@ -40,6 +40,7 @@ enum class HoverBlocker {
   kTilted,
   kClimbingOrSinking,
   kAccelerating,
+  kExpired,  // no sample within window_s before now: the last verdict is no longer one
 };
 
 /// The detector's verdict on its window, with the window statistics it was based on (SI units).
@@ -70,6 +71,8 @@ class HoverDetector {
   const HoverVerdict& verdict() const { return verdict_; }
   const HoverConfig& config() const { return config_; }
   void clear();
+  // Forgets the window because no sample came within window_s: the verdict says kExpired.
+  void expire();
 
  private:
   void evaluate();
