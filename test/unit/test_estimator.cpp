@@ -171,6 +171,21 @@ TEST(Estimator, AccelerationCompensationDividesByTheMeasuredSpecificForce) {
               f.modelMassKg(1690.0) * pe::kStandardGravity / (pe::kStandardGravity + fast - slow), 2e-4);
 }
 
+TEST(VerticalAccelerationFilter, OneSampleAfterAGapMovesTheBiasByOneCappedStepOnly) {
+  pe::VerticalAccelerationFilter filter(0.3, 30.0);
+  for (int k = 0; k <= 100; ++k) filter.add(0.02 * k, 0.0);  // at rest, no bias
+  // A 10 s gap in the IMU, then a 5 m/s^2 jolt: the fast low-pass follows it (its old value is
+  // stale), the bias average takes it as one sample of kMaxBiasStepS, not as 10 s of bias (25 %).
+  const double dt = pe::VerticalAccelerationFilter::kMaxBiasStepS;
+  EXPECT_EQ(dt, 0.1);
+  const double fast = 5.0 * 10.0 / (0.3 + 10.0);
+  const double bias = 5.0 * dt / (30.0 + dt);
+  EXPECT_NEAR(filter.add(12.0, 5.0), fast - bias, 1e-12);
+  // A regular step is not capped: 0.02 s at 50 Hz.
+  EXPECT_NEAR(filter.add(12.02, 5.0), fast + (5.0 - fast) * 0.02 / 0.32 - (bias + (5.0 - bias) * 0.02 / 30.02),
+              1e-12);
+}
+
 TEST(Estimator, StaleImuIsNotUsed) {
   EstimatorFixture f;
   const Eigen::Quaterniond tilted(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX()));
