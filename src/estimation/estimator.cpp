@@ -33,7 +33,8 @@ std::size_t windowCapacity(double span_s, double rate_hz) {
 const char* rejectionName(Rejection rejection) {
   static const char* const kNames[kRejectionCount] = {
       "none",           "bad_voltage",  "bad_imu",         "bad_velocity", "no_battery",    "stale_battery",
-      "disarmed",       "too_few_channels", "time_backwards", "outside_domain", "non_finite_estimate",
+      "disarmed",       "too_few_channels", "time_backwards", "stamp_ahead", "duplicate", "outside_domain",
+      "non_finite_estimate",
       "bad_battery_current", "bad_static_pressure", "bad_air_temperature", "bad_range", "bad_motor_temperature"};
   return kNames[static_cast<int>(rejection)];
 }
@@ -58,6 +59,13 @@ std::string describe(const RejectionDetail& d) {
       break;
     case Rejection::kTimeBackwards:
       out << "motor outputs ignored: stamp went back by " << d.value << " s";
+      break;
+    case Rejection::kStampAhead:
+      out << "motor outputs ignored: stamped " << d.value << " s ahead of the receiving clock (limit max_stamp_ahead_s "
+          << d.limit << " s)";
+      break;
+    case Rejection::kDuplicate:
+      out << "motor outputs ignored: stamp " << d.value << " s is the previous accepted message's (a duplicate)";
       break;
     case Rejection::kOutsideDomain:
       out << "motor outputs ignored: channel " << d.channel << " at " << d.value
@@ -281,7 +289,17 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
       return reject(Rejection::kDisarmed, channel, pwm, config_.disarmed_pwm_max_us);
     }
   }
-  if (stamp_s == 0.0) stamp_s = receipt_s;  // an unstamped message is taken as stamped on arrival
+  if (stamp_s == 0.0) {
+    stamp_s = receipt_s;  // an unstamped message is taken as stamped on arrival
+  } else {
+    // Accepted, a stamp far ahead would make every message of the next second go back in time.
+    if (stamp_s - receipt_s > config_.max_stamp_ahead_s) {
+      return reject(Rejection::kStampAhead, 0, stamp_s - receipt_s, config_.max_stamp_ahead_s);
+    }
+    // The same message twice (a relay, a bag recorded from two sources) would count twice in the
+    // windows. Unstamped ones are exempt: two can arrive within one tick of a simulated clock.
+    if (have_stamp_ && stamp_s == last_stamp_s_) return reject(Rejection::kDuplicate, 0, stamp_s);
+  }
   if (have_stamp_ && stamp_s < last_stamp_s_) {
     // A message out of order is refused; stamps that restart (an autopilot reboot, a time-sync
     // reset, a bag looped without --clock) would otherwise refuse everything that follows.

@@ -47,6 +47,7 @@ void EstimatorConfig::validate(std::size_t rotors) const {
                                         " (RCOut comes at 10-50 Hz)");
   }
   requirePositive("clock_jump_reset_s", clock_jump_reset_s);
+  requirePositive("max_stamp_ahead_s", max_stamp_ahead_s);
   if (empty_mass_kg) requirePositive("empty_mass_kg", *empty_mass_kg);
   hover.validate();
   payload.validate();

@@ -289,6 +289,46 @@ TEST(Estimator, RefusesTimestampsGoingBackwards) {
   EXPECT_EQ(f.estimator.output().stamp_s, stamp);
 }
 
+TEST(Estimator, RefusesAStampFarAheadWithoutRefusingTheFollowingOnes) {
+  EstimatorFixture f;
+  f.fly(1690.0, 1.0);
+  const std::vector<std::uint16_t> hover(4, 1690);
+  const double stamp = f.estimator.output().stamp_s;
+  EXPECT_EQ(f.estimator.addMotorOutputs(f.t + 1.0, f.t, hover.data(), 4), pe::Rejection::kStampAhead);
+  EXPECT_EQ(pe::describe(f.estimator.lastRejection()),
+            "motor outputs ignored: stamped 1 s ahead of the receiving clock (limit max_stamp_ahead_s 0.5 s)");
+  EXPECT_EQ(f.estimator.output().stamp_s, stamp);
+  f.t += 0.02;
+  f.fly(1690.0, 1.0);  // each accepted: the refused stamp is not the last one
+  EXPECT_EQ(f.estimator.counters().rejected[static_cast<int>(pe::Rejection::kTimeBackwards)], 0u);
+  EXPECT_EQ(f.estimator.counters().rejected[static_cast<int>(pe::Rejection::kStampAhead)], 1u);
+  // Within max_stamp_ahead_s (a replayed bag's clock lagging its stamps) a stamp is accepted.
+  EXPECT_EQ(f.estimator.addMotorOutputs(f.t + 0.4, f.t, hover.data(), 4), pe::Rejection::kNone);
+}
+
+TEST(Estimator, RefusesADuplicateStampOnceAndCountsItNowhereElse) {
+  EstimatorFixture f;
+  f.fly(1690.0, 3.0);
+  const pe::EstimatorOutput& out = f.estimator.output();
+  ASSERT_TRUE(out.hover.hovering);
+  const std::uint32_t averaged = out.payload.window_samples;
+  const std::size_t judged = out.hover.samples;
+  const std::uint64_t accepted = f.estimator.counters().accepted;
+  const std::vector<std::uint16_t> hover(4, 1690);
+  EXPECT_EQ(f.estimator.addMotorOutputs(out.stamp_s, f.t, hover.data(), 4), pe::Rejection::kDuplicate);
+  EXPECT_EQ(pe::describe(f.estimator.lastRejection()),
+            "motor outputs ignored: stamp 102.98 s is the previous accepted message's (a duplicate)");
+  EXPECT_EQ(f.estimator.counters().rejected[static_cast<int>(pe::Rejection::kDuplicate)], 1u);
+  EXPECT_EQ(f.estimator.counters().rejected[static_cast<int>(pe::Rejection::kTimeBackwards)], 0u);
+  EXPECT_EQ(f.estimator.counters().accepted, accepted);
+  EXPECT_EQ(out.payload.window_samples, averaged);
+  EXPECT_EQ(out.hover.samples, judged);
+  // Unstamped messages are stamped on arrival: two within one tick of a simulated clock are two.
+  EXPECT_EQ(f.estimator.addMotorOutputs(0.0, f.t, hover.data(), 4), pe::Rejection::kNone);
+  EXPECT_EQ(f.estimator.addMotorOutputs(0.0, f.t, hover.data(), 4), pe::Rejection::kNone);
+  EXPECT_EQ(out.payload.window_samples, averaged + 2);
+}
+
 TEST(Estimator, ClockJumpingBackResetsInsteadOfRefusing) {
   EstimatorFixture f;
   f.fly(1690.0, 3.0);
@@ -406,6 +446,9 @@ TEST(EstimatorConfig, RefusesChannelsThatDoNotFitTheVehicle) {
   config = pe::EstimatorConfig{};
   config.battery_timeout_s = -1.0;
   EXPECT_EQ(refusal(config), "battery_timeout_s: must be a positive number, got -1");
+  config = pe::EstimatorConfig{};
+  config.max_stamp_ahead_s = 0.0;
+  EXPECT_EQ(refusal(config), "max_stamp_ahead_s: must be a positive number, got 0");
   config = pe::EstimatorConfig{};
   config.max_rate_hz = 5000.0;
   EXPECT_EQ(refusal(config), "max_rate_hz: 5000 is above 1000 (RCOut comes at 10-50 Hz)");

@@ -31,6 +31,8 @@ enum class Rejection {
   kDisarmed,        // a motor at or below disarmed_pwm_max_us (0, 900 us, ...)
   kTooFewChannels,  // RCOut shorter than the highest motor channel
   kTimeBackwards,   // RCOut stamp older than the previous accepted one
+  kStampAhead,      // RCOut stamped more than max_stamp_ahead_s ahead of its receipt
+  kDuplicate,       // RCOut with the stamp of the previous accepted one: the same message again
   kOutsideDomain,   // outside the model's domain and the model says reject
   kNonFiniteEstimate,  // the model gives NaN or infinity (a rational surface extrapolated to its pole)
                        // for an output it has; one it lacks (`none`) is NaN and not refused
@@ -41,7 +43,7 @@ enum class Rejection {
   kBadRange,            // NaN, or finite outside the sensor's own min_range..max_range
   kBadMotorTemperature,  // outside -40..200 deg C
 };
-constexpr int kRejectionCount = 16;  ///< number of Rejection values
+constexpr int kRejectionCount = 18;  ///< number of Rejection values
 /// "bad_voltage", "stale_battery", ...: the name of a rejection in diagnostics and counters.
 const char* rejectionName(Rejection rejection);
 

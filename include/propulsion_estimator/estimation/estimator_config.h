@@ -34,6 +34,9 @@ struct EstimatorConfig {
   double accel_bias_filter_s = 30.0;    // average taken as accelerometer bias
   double max_rate_hz = 100.0;           // sizes the sample windows, allocated once
   double clock_jump_reset_s = 1.0;      // the clock going back this far (a bag restarted) resets all
+  // RCOut stamped further ahead of its receipt is refused (clocks out of sync, a corrupt stamp); a
+  // replayed bag's simulated clock may lag the stamps by a few of its ticks.
+  double max_stamp_ahead_s = 0.5;
   std::optional<double> empty_mass_kg;  // configured empty mass; a tare overrides it
   HoverConfig hover;
   PayloadConfig payload;
