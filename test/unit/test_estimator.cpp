@@ -457,3 +457,43 @@ TEST(EstimatorConfig, RefusesChannelsThatDoNotFitTheVehicle) {
   EXPECT_EQ(refusal(config),
             "payload/min_samples: 5000 samples never fit in payload/averaging_window_s 10 s at max_rate_hz 100");
 }
+
+TEST(EstimatorConfig, RefusesWindowsThatValidateButCanNeverBeMet) {
+  auto refusal = [](pe::EstimatorConfig config) -> std::string {
+    try {
+      config.validate(4);
+    } catch (const pe::ConfigError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  pe::EstimatorConfig config;
+  config.hover.window_s = 2000.0;
+  EXPECT_EQ(refusal(config),
+            "hover/window_s: 2000 s at max_rate_hz 100 needs 200000 samples, more than the 100000 a window may hold");
+  config = pe::EstimatorConfig{};
+  config.payload.averaging_window_s = 1e300;  // would overflow the window's size
+  EXPECT_EQ(refusal(config),
+            "payload/averaging_window_s: 1e+300 s at max_rate_hz 100 needs 1e+302 samples, more than the 100000 a "
+            "window may hold");
+  config = pe::EstimatorConfig{};
+  config.hover.min_window_fill = 0.999;  // 1.998 s of a 2 s window; 100 Hz samples span at most 1.99 s
+  EXPECT_EQ(refusal(config),
+            "hover/min_window_fill: 0.999 is never met: at max_rate_hz 100 samples come 0.01 s apart and span at "
+            "most 1.99 s of hover/window_s 2 s");
+  config.hover.min_window_fill = 0.995;  // 1.99 s: met when a sample falls on each end
+  EXPECT_EQ(refusal(config), "accepted");
+  config = pe::EstimatorConfig{};
+  config.max_rate_hz = 0.4;  // two samples 2.5 s apart never share the 2 s hover window
+  config.payload.min_samples = 2;
+  config.payload.episode_gap_s = 5.0;
+  EXPECT_EQ(refusal(config),
+            "hover/min_window_fill: 0.8 is never met: at max_rate_hz 0.4 samples come 2.5 s apart and span at "
+            "most 0 s of hover/window_s 2 s");
+  config = pe::EstimatorConfig{};
+  config.payload.episode_gap_s = 0.005;
+  EXPECT_EQ(refusal(config),
+            "payload/episode_gap_s: 0.005 s is shorter than the sample period at max_rate_hz 100 (0.01 s): every "
+            "hover sample would start a new episode");
+  EXPECT_EQ(refusal(pe::EstimatorConfig{}), "accepted");
+}

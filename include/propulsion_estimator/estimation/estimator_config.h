@@ -41,7 +41,11 @@ struct EstimatorConfig {
   HoverConfig hover;
   PayloadConfig payload;
 
-  // ConfigError naming the parameter. `rotors`: how many rotors the vehicle has.
+  // ConfigError naming the parameter and its value. `rotors`: how many rotors the vehicle has.
+  // Besides each value's range, refuses what validates alone but can never be met at max_rate_hz:
+  // a window of more samples than the memory bound, a hover/min_window_fill the samples cannot
+  // span, payload/min_samples that do not fit in the averaging window, an episode gap shorter than
+  // the sample period.
   void validate(std::size_t rotors) const;
 };
 
