@@ -33,7 +33,8 @@ std::size_t windowCapacity(double span_s, double rate_hz) {
 const char* rejectionName(Rejection rejection) {
   static const char* const kNames[kRejectionCount] = {
       "none",           "bad_voltage",  "bad_imu",         "bad_velocity", "no_battery",    "stale_battery",
-      "disarmed",       "too_few_channels", "time_backwards", "outside_domain", "non_finite_estimate",
+      "disarmed",       "too_few_channels", "time_backwards", "stamp_ahead", "duplicate", "outside_domain",
+      "non_finite_estimate",
       "bad_battery_current", "bad_static_pressure", "bad_air_temperature", "bad_range", "bad_motor_temperature"};
   return kNames[static_cast<int>(rejection)];
 }
@@ -58,6 +59,13 @@ std::string describe(const RejectionDetail& d) {
       break;
     case Rejection::kTimeBackwards:
       out << "motor outputs ignored: stamp went back by " << d.value << " s";
+      break;
+    case Rejection::kStampAhead:
+      out << "motor outputs ignored: stamped " << d.value << " s ahead of the receiving clock (limit max_stamp_ahead_s "
+          << d.limit << " s)";
+      break;
+    case Rejection::kDuplicate:
+      out << "motor outputs ignored: stamp " << d.value << " s is the previous accepted message's (a duplicate)";
       break;
     case Rejection::kOutsideDomain:
       out << "motor outputs ignored: channel " << d.channel << " at " << d.value
@@ -98,7 +106,10 @@ Estimator::Estimator(PropulsionModel model, Vehicle vehicle, EstimatorConfig con
       config_((config.validate(vehicle_.rotors.size()), std::move(config))),
       hover_(config_.hover, windowCapacity(config_.hover.window_s, config_.max_rate_hz)),
       payload_(config_.payload, windowCapacity(config_.payload.averaging_window_s, config_.max_rate_hz)),
-      accel_filter_(config_.accel_filter_s, config_.accel_bias_filter_s) {
+      accel_filter_(config_.accel_filter_s, config_.accel_bias_filter_s),
+      has_current_(model_.output(Output::kCurrent).source != OutputSource::kNone),
+      has_power_(model_.output(Output::kPower).source != OutputSource::kNone),
+      has_efficiency_(model_.output(Output::kEfficiency).source != OutputSource::kNone) {
   if (config_.empty_mass_kg) {
     configured_empty_mass_kg_ = config_.empty_mass_kg;
     configured_source_ = EmptyMassSource::kParameter;
@@ -128,7 +139,7 @@ void Estimator::checkClock(double receipt_s) {
     // The clock restarted (a bag played again): everything received belongs to another timeline.
     clearWindows();
     accel_filter_.clear();
-    have_voltage_ = have_imu_ = have_velocity_ = have_stamp_ = false;
+    have_voltage_ = have_imu_ = have_velocity_ = have_stamp_ = have_accepted_ = false;
     for (Reading* reading : {&battery_current_a_, &static_pressure_pa_, &air_temperature_c_, &range_m_,
                              &motor_temperature_c_}) {
       reading->have = false;
@@ -136,6 +147,16 @@ void Estimator::checkClock(double receipt_s) {
     ++counters_.clock_resets;
   }
   last_receipt_s_ = receipt_s;
+  expireHover(receipt_s);
+}
+
+void Estimator::expireHover(double now_s) {
+  if (!have_accepted_ || now_s - last_accepted_receipt_s_ <= config_.hover.window_s) return;
+  if (hover_.verdict().samples == 0) return;  // nothing to expire (expired, landed or reset already)
+  hover_.expire();
+  payload_.endHover();
+  output_.hover = hover_.verdict();
+  output_.payload = payload_.estimate();
 }
 
 Rejection Estimator::addBattery(double receipt_s, double voltage_v) {
@@ -268,7 +289,17 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
       return reject(Rejection::kDisarmed, channel, pwm, config_.disarmed_pwm_max_us);
     }
   }
-  if (stamp_s == 0.0) stamp_s = receipt_s;  // an unstamped message is taken as stamped on arrival
+  if (stamp_s == 0.0) {
+    stamp_s = receipt_s;  // an unstamped message is taken as stamped on arrival
+  } else {
+    // Accepted, a stamp far ahead would make every message of the next second go back in time.
+    if (stamp_s - receipt_s > config_.max_stamp_ahead_s) {
+      return reject(Rejection::kStampAhead, 0, stamp_s - receipt_s, config_.max_stamp_ahead_s);
+    }
+    // The same message twice (a relay, a bag recorded from two sources) would count twice in the
+    // windows. Unstamped ones are exempt: two can arrive within one tick of a simulated clock.
+    if (have_stamp_ && stamp_s == last_stamp_s_) return reject(Rejection::kDuplicate, 0, stamp_s);
+  }
   if (have_stamp_ && stamp_s < last_stamp_s_) {
     // A message out of order is refused; stamps that restart (an autopilot reboot, a time-sync
     // reset, a bag looped without --clock) would otherwise refuse everything that follows.
@@ -296,8 +327,9 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
     // Efficiency is thrust over power: it follows the thrust, the power stays the surfaces'.
     p.thrust_n *= thrust_factor;
     p.efficiency_n_per_w *= thrust_factor;
-    if (!std::isfinite(p.thrust_n) || !std::isfinite(p.current_a) || !std::isfinite(p.power_w) ||
-        !std::isfinite(p.efficiency_n_per_w)) {
+    // An output the model lacks (`none`: a thrust-only stand) is NaN by design, not a fault.
+    if (!std::isfinite(p.thrust_n) || (has_current_ && !std::isfinite(p.current_a)) ||
+        (has_power_ && !std::isfinite(p.power_w)) || (has_efficiency_ && !std::isfinite(p.efficiency_n_per_w))) {
       return reject(Rejection::kNonFiniteEstimate, channel, in.pwm_us, in.voltage_v);
     }
   }
@@ -325,7 +357,10 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   }
   const double vertical_accel = imu_fresh ? accel_filter_.value() : kNaN;
   const double accel_used = imu_fresh && config_.compensate_acceleration ? vertical_accel : 0.0;
-  totals.efficiency_n_per_w = totals.power_w > 0.0 ? totals.thrust_n / totals.power_w : 0.0;
+  // NaN sums stand for what the model lacks; so does the efficiency without power or efficiency.
+  totals.efficiency_n_per_w = !(has_power_ && has_efficiency_) ? kNaN
+                              : totals.power_w > 0.0         ? totals.thrust_n / totals.power_w
+                                                             : 0.0;
   totals.mass_kg = totals.vertical_thrust_n / (kStandardGravity + accel_used);
   totals.thrust_centre_x_m = totals.thrust_n > 0.0 ? moment_x / totals.thrust_n : kNaN;
   totals.thrust_centre_y_m = totals.thrust_n > 0.0 ? moment_y / totals.thrust_n : kNaN;
@@ -352,14 +387,24 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   ++counters_.accepted;
   last_stamp_s_ = stamp_s;
   have_stamp_ = true;
+  last_accepted_receipt_s_ = receipt_s;
+  have_accepted_ = true;
   return Rejection::kNone;
 }
 
-TareResult Estimator::tare() {
+TareResult Estimator::tare(double now_s) {
   TareResult result;
+  expireHover(now_s);
   const MassEstimate& estimate = payload_.estimate();
   const TareVerdict verdict = judgeTare(hover_.verdict(), estimate, config_);
-  if (!verdict.accepted) {
+  if (hover_.verdict().blocker == HoverBlocker::kExpired) {
+    // The average is of a hover that may have ended on the ground (inputs stopped, then disarmed).
+    std::ostringstream message;
+    message.precision(3);
+    message << "refused: no motor outputs accepted for " << now_s - last_accepted_receipt_s_
+            << " s, longer than hover/window_s " << config_.hover.window_s << " s: the last hover verdict expired";
+    result.message = message.str();
+  } else if (!verdict.accepted) {
     result.message = verdict.refusal;
   } else {
     result.ok = true;

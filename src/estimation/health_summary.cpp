@@ -116,6 +116,15 @@ HealthStatus judgeMotorOutputs(const Estimator& estimator, const HealthSnapshot&
   return status;
 }
 
+std::string unmodelledOutputs(const PropulsionModel& model) {
+  std::string list;
+  for (Output output : kAllOutputs) {
+    if (model.output(output).source != OutputSource::kNone) continue;
+    list += (list.empty() ? "" : ", ") + std::string(outputName(output));
+  }
+  return list.empty() ? "none" : list;
+}
+
 HealthStatus judgeDomain(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
                          const HealthConfig& config) {
   HealthStatus status;
@@ -128,6 +137,7 @@ HealthStatus judgeDomain(const Estimator& estimator, const HealthSnapshot& befor
   add(&status, "samples outside domain (total)", now.counters.motor_samples_outside_domain);
   add(&status, "domain", formatNumber(d.pwm_min_us) + "-" + formatNumber(d.pwm_max_us) + " us, " +
                              formatNumber(d.voltage_min_v) + "-" + formatNumber(d.voltage_max_v) + " V");
+  add(&status, "outputs not modelled (published as NaN)", unmodelledOutputs(estimator.model()));
   if (fraction > config.domain_warn_fraction) {
     std::ostringstream message;
     message.precision(3);

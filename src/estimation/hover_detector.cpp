@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -16,6 +17,12 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 void HoverConfig::validate() const {
   requirePositive("hover/window_s", window_s);
   requirePositive("hover/min_window_fill", min_window_fill, 1.0);
+  if (min_window_fill == 1.0) {
+    // The window keeps samples at most window_s old: they span the whole of it only when one
+    // happens to be stamped exactly window_s before the newest.
+    throw FieldError("hover/min_window_fill",
+                     formatNumber(min_window_fill) + " is never met: the samples span less than the whole window");
+  }
   requirePositive("hover/max_thrust_rel_std", max_thrust_rel_std);
   requirePositive("hover/max_tilt_deg", max_tilt_deg);
   requirePositive("hover/max_vertical_speed_m_s", max_vertical_speed_m_s);
@@ -29,6 +36,11 @@ HoverDetector::HoverDetector(const HoverConfig& config, std::size_t capacity)
 void HoverDetector::clear() {
   window_.clear();
   verdict_ = HoverVerdict{};
+}
+
+void HoverDetector::expire() {
+  clear();
+  verdict_.blocker = HoverBlocker::kExpired;
 }
 
 const HoverVerdict& HoverDetector::add(double stamp_s, const HoverSample& sample) {
@@ -111,6 +123,9 @@ std::string describe(const HoverVerdict& v, const HoverConfig& c) {
     case HoverBlocker::kAccelerating:
       out << "not hovering: vertical acceleration " << v.mean_vertical_accel_m_s2 << " m/s^2 (limit "
           << c.max_vertical_accel_m_s2 << " m/s^2)";
+      break;
+    case HoverBlocker::kExpired:
+      out << "not hovering: no sample within the last hover/window_s " << c.window_s << " s (the last verdict expired)";
       break;
   }
   out << "; window " << v.samples << " samples over " << v.span_s << " s, mean thrust " << v.mean_thrust_n

@@ -70,6 +70,8 @@ void PayloadEstimator::clearWindow() {
   updateState(false);
 }
 
+void PayloadEstimator::endHover() { updateState(false); }
+
 void PayloadEstimator::updateStatistics() {
   MassEstimate& e = estimate_;
   e.window_samples = static_cast<std::uint32_t>(window_.size());

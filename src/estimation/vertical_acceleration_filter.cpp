@@ -15,7 +15,8 @@ double VerticalAccelerationFilter::add(double stamp_s, double accel_m_s2) {
   } else {
     const double dt = std::max(stamp_s - last_stamp_s_, 0.0);
     fast_ += dt / (fast_tau_s_ + dt) * (accel_m_s2 - fast_);
-    slow_ += dt / (slow_tau_s_ + dt) * (accel_m_s2 - slow_);
+    const double bias_dt = std::min(dt, kMaxBiasStepS);
+    slow_ += bias_dt / (slow_tau_s_ + bias_dt) * (accel_m_s2 - slow_);
   }
   last_stamp_s_ = stamp_s;
   return value();

@@ -57,7 +57,8 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   ROS_INFO_STREAM("model " << params_.model << ": " << meta.esc << " + " << meta.motor << " + " << meta.propeller
                            << ", domain " << domain.pwm_min_us << "-" << domain.pwm_max_us << " us, "
                            << domain.voltage_min_v << "-" << domain.voltage_max_v
-                           << " V, outside: " << outsideDomainName(domain.outside));
+                           << " V, outside: " << outsideDomainName(domain.outside)
+                           << "; outputs not modelled (published as NaN): " << unmodelledOutputs(estimator_->model()));
 
   if (!params_.tare_file.empty()) {
     if (const std::optional<TareRecord> tare = loadTareFile(params_.tare_file)) {
@@ -116,6 +117,7 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     domain_before_ = now;
   });
   diagnostics_.add("Payload", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
     copy(judgePayload(*estimator_), &status);
   });
   diagnostics_.add("Effects", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
@@ -293,7 +295,7 @@ void EstimatorNode::publish() {
 }
 
 bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
-  const TareResult tare = estimator_->tare();
+  const TareResult tare = estimator_->tare(ros::Time::now().toSec());
   response.success = tare.ok;
   response.message = tare.message;
   if (tare.ok && !params_.tare_file.empty()) {
@@ -309,6 +311,7 @@ bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
 }
 
 bool EstimatorNode::onDetectHover(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
   const EstimatorOutput& out = estimator_->output();
   response.success = out.hover.hovering;
   std::ostringstream message;

@@ -99,6 +99,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("motor_temperature/timeout_s", &c.motor_temperature_timeout_s);
   read.optional("max_rate_hz", &c.max_rate_hz);
   read.optional("clock_jump_reset_s", &c.clock_jump_reset_s);
+  read.optional("max_stamp_ahead_s", &c.max_stamp_ahead_s);
   read.optionalMass("empty_mass_kg", &c.empty_mass_kg);
   read.optional("hover/window_s", &c.hover.window_s);
   read.optional("hover/min_window_fill", &c.hover.min_window_fill);
@@ -153,6 +154,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
                   << c.hover.min_mass_kg << "\n  payload: averaging_window_s " << c.payload.averaging_window_s
                   << ", min_samples " << c.payload.min_samples << ", episode_gap_s " << c.payload.episode_gap_s
                   << "\n  max_rate_hz: " << c.max_rate_hz << ", clock_jump_reset_s: " << c.clock_jump_reset_s
+                  << ", max_stamp_ahead_s: " << c.max_stamp_ahead_s
                   << ", domain_warn_fraction: " << p.health.domain_warn_fraction);
   return p;
 }

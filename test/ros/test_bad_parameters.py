@@ -52,6 +52,10 @@ class BadParametersTest(unittest.TestCase):
         self.assertEqual(start("e", {"model": MODEL, "hover/window_s": -1.0}),
                          (1, "hover/window_s: must be a positive number, got -1"))
 
+    def test_window_fill_never_met(self):
+        self.assertEqual(start("i", {"model": MODEL, "hover/min_window_fill": 1.0}),
+                         (1, "hover/min_window_fill: 1 is never met: the samples span less than the whole window"))
+
     def test_channels_that_do_not_fit_the_urdf(self):
         urdf = os.path.join(os.path.dirname(MODEL), "f450_quad.urdf")
         self.assertEqual(start("f", {"model": MODEL, "urdf_file": urdf, "motor_channels": [1, 2, 3, 4, 5, 6]}),

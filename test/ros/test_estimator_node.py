@@ -262,6 +262,20 @@ class EstimatorNodeTest(unittest.TestCase):
             process.stop()
             launch.stop()
 
+    def test_9_a_hover_verdict_expires_when_inputs_stop(self):
+        """rc/out and the battery stop after a hover: once hover/window_s has passed without an
+        accepted message, the verdict is no hover and ~tare refuses the stale average."""
+        self.h.fly(HOVER, 3.0, voltage_v=11.4)
+        rospy.sleep(rospy.get_param("/propulsion_estimator/hover/window_s") + 0.5)
+        answer = self.h.call("detect_hover")
+        self.assertFalse(answer.success, answer.message)
+        self.assertIn("(the last verdict expired)", answer.message)
+        answer = self.h.call("tare")
+        self.assertFalse(answer.success, answer.message)
+        self.assertTrue(answer.message.startswith("refused: no motor outputs accepted for "), answer.message)
+        self.assertTrue(answer.message.endswith("the last hover verdict expired"), answer.message)
+        self.assertFalse(os.path.exists(self.tare_file))
+
 
 if __name__ == "__main__":
     rostest.rosrun("propulsion_estimator", "estimator_node", EstimatorNodeTest)

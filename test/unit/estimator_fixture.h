@@ -1,14 +1,29 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/units.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;
+
+// The thesis model as a thrust-only stand gives it (`fit_surfaces --without current` and no power
+// log): current, power and efficiency `none`, thrust and rpm as in the thesis.
+inline pe::PropulsionModel thrustOnlyThesisModel() {
+  std::string text = pe::readTextFile(repoPath("config/e300_dji2212_dji9443.yaml"));
+  const std::size_t from = text.find("  current:");
+  const std::size_t to = text.find("  rpm:");
+  text.replace(from, to - from,
+               "  current:\n    unit: A\n    none: no current sensor on the stand\n"
+               "  power:\n    unit: W\n    none: no current sensor on the stand\n"
+               "  efficiency:\n    unit: g/W\n    none: no power without current\n");
+  return pe::parseModelYaml(text, "thrust_only.yaml");
+}
 
 // The thesis model on the thesis quad, fed at 50 Hz like MAVROS' rc/out; with `effects`, the
 // model corrected by them.

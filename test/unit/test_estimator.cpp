@@ -37,7 +37,7 @@ TEST(Estimator, HoverMassIsTheSumOfModelThrusts) {
 TEST(Estimator, PayloadIsTotalMinusTaredEmptyMass) {
   EstimatorFixture f;
   f.fly(1680.0, 4.0);
-  const pe::TareResult tare = f.estimator.tare();  // thesis eq. 2.1: W_Q
+  const pe::TareResult tare = f.estimator.tare(f.t);  // thesis eq. 2.1: W_Q
   ASSERT_TRUE(tare.ok) << tare.message;
   EXPECT_NEAR(tare.empty_mass_kg, f.modelMassKg(1680.0), 1e-9);
   // Land (disarmed), attach the payload, hover higher: eq. 2.2 and 2.3.
@@ -55,9 +55,54 @@ TEST(Estimator, PayloadIsTotalMinusTaredEmptyMass) {
 TEST(Estimator, TareIsRefusedWhenNotHovering) {
   EstimatorFixture f;
   f.fly(1690.0, 1.0);  // the window is not full yet
-  const pe::TareResult tare = f.estimator.tare();
+  const pe::TareResult tare = f.estimator.tare(f.t);
   EXPECT_FALSE(tare.ok);
   EXPECT_EQ(tare.message.rfind("refused: not hovering: window spans 0.98 s of the 1.6 s needed", 0), 0u) << tare.message;
+}
+
+TEST(Estimator, AHoverVerdictExpiresWhenNoMotorOutputIsAcceptedWithinItsWindow) {
+  EstimatorFixture within;
+  within.fly(1690.0, 4.0);
+  EXPECT_TRUE(within.estimator.tare(within.t + 1.9).ok) << "the last sample is 1.92 s old: within hover/window_s";
+
+  // The battery topic stops, then the vehicle lands and disarms: every message is refused as
+  // stale_battery before its disarm could end the hover.
+  EstimatorFixture f;
+  f.fly(1690.0, 4.0);
+  ASSERT_TRUE(f.estimator.output().hover.hovering);
+  const double averaged = f.estimator.output().payload.total_mass_kg;
+  const std::vector<std::uint16_t> disarmed(8, 900);
+  EXPECT_EQ(f.estimator.addMotorOutputs(f.t + 6.0, f.t + 6.0, disarmed.data(), 8), pe::Rejection::kStaleBattery);
+  const pe::EstimatorOutput& out = f.estimator.output();
+  EXPECT_FALSE(out.hover.hovering);
+  EXPECT_EQ(out.hover.blocker, pe::HoverBlocker::kExpired);
+  EXPECT_FALSE(out.payload.hovering);
+  EXPECT_EQ(out.payload.total_mass_kg, averaged) << "the last hover's average is held";
+  EXPECT_EQ(f.estimator.describeHover().rfind(
+                "not hovering: no sample within the last hover/window_s 2 s (the last verdict expired); window 0 "
+                "samples",
+                0),
+            0u)
+      << f.estimator.describeHover();
+  const pe::TareResult tare = f.estimator.tare(f.t + 6.5);
+  EXPECT_FALSE(tare.ok);
+  EXPECT_EQ(tare.message,
+            "refused: no motor outputs accepted for 6.52 s, longer than hover/window_s 2 s: the last hover verdict "
+            "expired");
+  EXPECT_EQ(out.payload.empty_mass_source, pe::EmptyMassSource::kNone) << "nothing was tared";
+
+  // No input at all after the hover: tare alone sees the verdict expire.
+  EstimatorFixture silent;
+  silent.fly(1690.0, 4.0);
+  const pe::TareResult late = silent.estimator.tare(silent.t + 2.5);
+  EXPECT_FALSE(late.ok);
+  EXPECT_EQ(late.message,
+            "refused: no motor outputs accepted for 2.52 s, longer than hover/window_s 2 s: the last hover verdict "
+            "expired");
+  // Motor outputs again: the window fills anew.
+  silent.t += 2.5;
+  silent.fly(1690.0, 3.0);
+  EXPECT_TRUE(silent.estimator.output().hover.hovering);
 }
 
 TEST(Estimator, UrdfMassIsTheEmptyMassUntilTaredAndAfterReset) {
@@ -67,7 +112,7 @@ TEST(Estimator, UrdfMassIsTheEmptyMassUntilTaredAndAfterReset) {
   f.fly(1690.0, 4.0);
   EXPECT_EQ(f.estimator.output().payload.empty_mass_source, pe::EmptyMassSource::kUrdf);
   EXPECT_NEAR(f.estimator.output().payload.payload_mass_kg, f.modelMassKg(1690.0) - 1.315, 1e-9);
-  ASSERT_TRUE(f.estimator.tare().ok);
+  ASSERT_TRUE(f.estimator.tare(f.t).ok);
   EXPECT_NEAR(f.estimator.output().payload.payload_mass_kg, 0.0, 1e-9);
   f.estimator.reset();
   EXPECT_EQ(f.estimator.output().payload.empty_mass_source, pe::EmptyMassSource::kUrdf);
@@ -124,6 +169,21 @@ TEST(Estimator, AccelerationCompensationDividesByTheMeasuredSpecificForce) {
   const double slow = bias + (1.2 - bias) * (1.0 - std::pow(1.0 - 0.02 / 30.02, 50));
   EXPECT_NEAR(f.estimator.output().totals.mass_kg,
               f.modelMassKg(1690.0) * pe::kStandardGravity / (pe::kStandardGravity + fast - slow), 2e-4);
+}
+
+TEST(VerticalAccelerationFilter, OneSampleAfterAGapMovesTheBiasByOneCappedStepOnly) {
+  pe::VerticalAccelerationFilter filter(0.3, 30.0);
+  for (int k = 0; k <= 100; ++k) filter.add(0.02 * k, 0.0);  // at rest, no bias
+  // A 10 s gap in the IMU, then a 5 m/s^2 jolt: the fast low-pass follows it (its old value is
+  // stale), the bias average takes it as one sample of kMaxBiasStepS, not as 10 s of bias (25 %).
+  const double dt = pe::VerticalAccelerationFilter::kMaxBiasStepS;
+  EXPECT_EQ(dt, 0.1);
+  const double fast = 5.0 * 10.0 / (0.3 + 10.0);
+  const double bias = 5.0 * dt / (30.0 + dt);
+  EXPECT_NEAR(filter.add(12.0, 5.0), fast - bias, 1e-12);
+  // A regular step is not capped: 0.02 s at 50 Hz.
+  EXPECT_NEAR(filter.add(12.02, 5.0), fast + (5.0 - fast) * 0.02 / 0.32 - (bias + (5.0 - bias) * 0.02 / 30.02),
+              1e-12);
 }
 
 TEST(Estimator, StaleImuIsNotUsed) {
@@ -229,6 +289,46 @@ TEST(Estimator, RefusesTimestampsGoingBackwards) {
   EXPECT_EQ(f.estimator.output().stamp_s, stamp);
 }
 
+TEST(Estimator, RefusesAStampFarAheadWithoutRefusingTheFollowingOnes) {
+  EstimatorFixture f;
+  f.fly(1690.0, 1.0);
+  const std::vector<std::uint16_t> hover(4, 1690);
+  const double stamp = f.estimator.output().stamp_s;
+  EXPECT_EQ(f.estimator.addMotorOutputs(f.t + 1.0, f.t, hover.data(), 4), pe::Rejection::kStampAhead);
+  EXPECT_EQ(pe::describe(f.estimator.lastRejection()),
+            "motor outputs ignored: stamped 1 s ahead of the receiving clock (limit max_stamp_ahead_s 0.5 s)");
+  EXPECT_EQ(f.estimator.output().stamp_s, stamp);
+  f.t += 0.02;
+  f.fly(1690.0, 1.0);  // each accepted: the refused stamp is not the last one
+  EXPECT_EQ(f.estimator.counters().rejected[static_cast<int>(pe::Rejection::kTimeBackwards)], 0u);
+  EXPECT_EQ(f.estimator.counters().rejected[static_cast<int>(pe::Rejection::kStampAhead)], 1u);
+  // Within max_stamp_ahead_s (a replayed bag's clock lagging its stamps) a stamp is accepted.
+  EXPECT_EQ(f.estimator.addMotorOutputs(f.t + 0.4, f.t, hover.data(), 4), pe::Rejection::kNone);
+}
+
+TEST(Estimator, RefusesADuplicateStampOnceAndCountsItNowhereElse) {
+  EstimatorFixture f;
+  f.fly(1690.0, 3.0);
+  const pe::EstimatorOutput& out = f.estimator.output();
+  ASSERT_TRUE(out.hover.hovering);
+  const std::uint32_t averaged = out.payload.window_samples;
+  const std::size_t judged = out.hover.samples;
+  const std::uint64_t accepted = f.estimator.counters().accepted;
+  const std::vector<std::uint16_t> hover(4, 1690);
+  EXPECT_EQ(f.estimator.addMotorOutputs(out.stamp_s, f.t, hover.data(), 4), pe::Rejection::kDuplicate);
+  EXPECT_EQ(pe::describe(f.estimator.lastRejection()),
+            "motor outputs ignored: stamp 102.98 s is the previous accepted message's (a duplicate)");
+  EXPECT_EQ(f.estimator.counters().rejected[static_cast<int>(pe::Rejection::kDuplicate)], 1u);
+  EXPECT_EQ(f.estimator.counters().rejected[static_cast<int>(pe::Rejection::kTimeBackwards)], 0u);
+  EXPECT_EQ(f.estimator.counters().accepted, accepted);
+  EXPECT_EQ(out.payload.window_samples, averaged);
+  EXPECT_EQ(out.hover.samples, judged);
+  // Unstamped messages are stamped on arrival: two within one tick of a simulated clock are two.
+  EXPECT_EQ(f.estimator.addMotorOutputs(0.0, f.t, hover.data(), 4), pe::Rejection::kNone);
+  EXPECT_EQ(f.estimator.addMotorOutputs(0.0, f.t, hover.data(), 4), pe::Rejection::kNone);
+  EXPECT_EQ(out.payload.window_samples, averaged + 2);
+}
+
 TEST(Estimator, ClockJumpingBackResetsInsteadOfRefusing) {
   EstimatorFixture f;
   f.fly(1690.0, 3.0);
@@ -300,6 +400,33 @@ TEST(Estimator, RefusesNonFiniteModelOutputs) {
   EXPECT_EQ(estimator.counters().accepted, 0u);
 }
 
+TEST(Estimator, ModelWithoutCurrentPowerAndEfficiencyEstimatesTheRestAndPublishesNaN) {
+  const pe::PropulsionModel model = thrustOnlyThesisModel();
+  pe::Estimator estimator(model, pe::Vehicle::quadX(0.225), {});
+  const EstimatorFixture thesis;  // the same thrust surface with every output
+  estimator.addBattery(0.0, 11.4);
+  const std::vector<std::uint16_t> hover(4, 1690);
+  for (int k = 1; k <= 150; ++k) {
+    ASSERT_EQ(estimator.addMotorOutputs(0.02 * k, 0.02 * k, hover.data(), 4), pe::Rejection::kNone) << k;
+  }
+  const pe::EstimatorOutput& out = estimator.output();
+  for (const pe::MotorOutput& motor : out.motors) {
+    EXPECT_NEAR(motor.estimate.thrust_n, thesis.modelMassKg(1690.0) * pe::kStandardGravity / 4.0, 1e-9);
+    EXPECT_TRUE(std::isnan(motor.estimate.current_a));
+    EXPECT_TRUE(std::isnan(motor.estimate.power_w));
+    EXPECT_TRUE(std::isnan(motor.estimate.efficiency_n_per_w));
+    EXPECT_GT(motor.estimate.rpm, 0.0);
+  }
+  EXPECT_TRUE(std::isnan(out.totals.current_a));
+  EXPECT_TRUE(std::isnan(out.totals.power_w));
+  EXPECT_TRUE(std::isnan(out.totals.efficiency_n_per_w));
+  EXPECT_NEAR(out.totals.mass_kg, thesis.modelMassKg(1690.0), 1e-9);
+  EXPECT_TRUE(out.hover.hovering);
+  EXPECT_NEAR(out.payload.total_mass_kg, thesis.modelMassKg(1690.0), 1e-9);
+  EXPECT_EQ(estimator.counters().accepted, 150u);
+  EXPECT_EQ(estimator.counters().rejected[static_cast<int>(pe::Rejection::kNonFiniteEstimate)], 0u);
+}
+
 TEST(EstimatorConfig, RefusesChannelsThatDoNotFitTheVehicle) {
   auto refusal = [](pe::EstimatorConfig config) -> std::string {
     try {
@@ -320,10 +447,53 @@ TEST(EstimatorConfig, RefusesChannelsThatDoNotFitTheVehicle) {
   config.battery_timeout_s = -1.0;
   EXPECT_EQ(refusal(config), "battery_timeout_s: must be a positive number, got -1");
   config = pe::EstimatorConfig{};
+  config.max_stamp_ahead_s = 0.0;
+  EXPECT_EQ(refusal(config), "max_stamp_ahead_s: must be a positive number, got 0");
+  config = pe::EstimatorConfig{};
   config.max_rate_hz = 5000.0;
   EXPECT_EQ(refusal(config), "max_rate_hz: 5000 is above 1000 (RCOut comes at 10-50 Hz)");
   config = pe::EstimatorConfig{};
   config.payload.min_samples = 5000;
   EXPECT_EQ(refusal(config),
             "payload/min_samples: 5000 samples never fit in payload/averaging_window_s 10 s at max_rate_hz 100");
+}
+
+TEST(EstimatorConfig, RefusesWindowsThatValidateButCanNeverBeMet) {
+  auto refusal = [](pe::EstimatorConfig config) -> std::string {
+    try {
+      config.validate(4);
+    } catch (const pe::ConfigError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  pe::EstimatorConfig config;
+  config.hover.window_s = 2000.0;
+  EXPECT_EQ(refusal(config),
+            "hover/window_s: 2000 s at max_rate_hz 100 needs 200000 samples, more than the 100000 a window may hold");
+  config = pe::EstimatorConfig{};
+  config.payload.averaging_window_s = 1e300;  // would overflow the window's size
+  EXPECT_EQ(refusal(config),
+            "payload/averaging_window_s: 1e+300 s at max_rate_hz 100 needs 1e+302 samples, more than the 100000 a "
+            "window may hold");
+  config = pe::EstimatorConfig{};
+  config.hover.min_window_fill = 0.999;  // 1.998 s of a 2 s window; 100 Hz samples span at most 1.99 s
+  EXPECT_EQ(refusal(config),
+            "hover/min_window_fill: 0.999 is never met: at max_rate_hz 100 samples come 0.01 s apart and span at "
+            "most 1.99 s of hover/window_s 2 s");
+  config.hover.min_window_fill = 0.995;  // 1.99 s: met when a sample falls on each end
+  EXPECT_EQ(refusal(config), "accepted");
+  config = pe::EstimatorConfig{};
+  config.max_rate_hz = 0.4;  // two samples 2.5 s apart never share the 2 s hover window
+  config.payload.min_samples = 2;
+  config.payload.episode_gap_s = 5.0;
+  EXPECT_EQ(refusal(config),
+            "hover/min_window_fill: 0.8 is never met: at max_rate_hz 0.4 samples come 2.5 s apart and span at "
+            "most 0 s of hover/window_s 2 s");
+  config = pe::EstimatorConfig{};
+  config.payload.episode_gap_s = 0.005;
+  EXPECT_EQ(refusal(config),
+            "payload/episode_gap_s: 0.005 s is shorter than the sample period at max_rate_hz 100 (0.01 s): every "
+            "hover sample would start a new episode");
+  EXPECT_EQ(refusal(pe::EstimatorConfig{}), "accepted");
 }

@@ -182,6 +182,30 @@ TEST(HealthSummary, DomainWarnsAboveTheConfiguredShareOutside) {
   EXPECT_EQ(pe::judgeDomain(f.estimator, inside, snapshot(f.estimator, f.t), tolerant).level, pe::HealthLevel::kOk);
 }
 
+TEST(HealthSummary, AModelWithoutCurrentIsNoWarningAndItsMissingOutputsAreNamed) {
+  pe::Estimator estimator(thrustOnlyThesisModel(), pe::Vehicle::quadX(0.225), pe::EstimatorConfig{});
+  estimator.addBattery(0.0, 11.4);
+  const pe::HealthSnapshot before = snapshot(estimator, 0.0);
+  const std::vector<std::uint16_t> hover(4, 1690);
+  pe::InputActivity inputs = rcOutReceived(50);
+  for (int k = 1; k <= 50; ++k) {
+    inputs.last_rc_out_verdict = estimator.addMotorOutputs(0.02 * k, 0.02 * k, hover.data(), 4);
+  }
+  const pe::HealthSnapshot now = snapshot(estimator, 1.0, inputs);
+  const pe::HealthStatus outputs = pe::judgeMotorOutputs(estimator, before, now, nodeConfig());
+  EXPECT_EQ(outputs.level, pe::HealthLevel::kOk);
+  EXPECT_EQ(outputs.message, "ok");
+  EXPECT_EQ(valueOf(outputs, "accepted"), "50");
+  EXPECT_EQ(valueOf(outputs, "rejected non_finite_estimate"), "0");
+  const pe::HealthStatus domain = pe::judgeDomain(estimator, before, now, nodeConfig());
+  EXPECT_EQ(domain.level, pe::HealthLevel::kOk);
+  EXPECT_EQ(valueOf(domain, "outputs not modelled (published as NaN)"), "current, power, efficiency");
+  EstimatorFixture thesis;
+  EXPECT_EQ(valueOf(pe::judgeDomain(thesis.estimator, before, before, nodeConfig()),
+                    "outputs not modelled (published as NaN)"),
+            "none");
+}
+
 TEST(HealthSummary, PayloadIsOkWithItsState) {
   EstimatorFixture f;
   f.fly(1690.0, 4.0);
@@ -214,13 +238,13 @@ TEST(HealthSummary, TareNeedsAHoverAndEnoughSamples) {
   EXPECT_EQ(few.refusal, "refused: hovering, but only " + std::to_string(out.payload.window_samples) +
                              " of the 200 hover samples needed are averaged yet");
   EXPECT_LT(out.payload.window_samples, 200u);
-  EXPECT_EQ(f.estimator.tare().message, few.refusal);
+  EXPECT_EQ(f.estimator.tare(f.t).message, few.refusal);
 
   f.fly(1690.0, 4.0);
   const pe::TareVerdict ready = pe::judgeTare(out.hover, out.payload, f.estimator.config());
   EXPECT_TRUE(ready.accepted);
   EXPECT_EQ(ready.refusal, "");
-  EXPECT_TRUE(f.estimator.tare().ok);
+  EXPECT_TRUE(f.estimator.tare(f.t).ok);
 }
 
 TEST(HealthSummary, ConfigRefusesAShareOutsideZeroToOne) {

@@ -101,4 +101,11 @@ TEST(HoverConfig, RefusesNonsense) {
   } catch (const pe::ConfigError& e) {
     EXPECT_STREQ(e.what(), "hover/min_window_fill: 1.5 is outside 0..1 (must be positive)");
   }
+  config.min_window_fill = 1.0;  // within 0..1, but the samples never span the whole window
+  try {
+    config.validate();
+    FAIL();
+  } catch (const pe::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "hover/min_window_fill: 1 is never met: the samples span less than the whole window");
+  }
 }

@@ -60,6 +60,7 @@ TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
   EXPECT_EQ(number("payload/episode_gap_s"), c.payload.episode_gap_s);
   EXPECT_EQ(number("max_rate_hz"), c.max_rate_hz);
   EXPECT_EQ(number("clock_jump_reset_s"), c.clock_jump_reset_s);
+  EXPECT_EQ(number("max_stamp_ahead_s"), c.max_stamp_ahead_s);
   EXPECT_EQ(number("domain_warn_fraction"), node.health.domain_warn_fraction);
   EXPECT_EQ(number("diagnostic_period"), 1.0);  // diagnostic_updater's own default
   EXPECT_FALSE(c.empty_mass_kg.has_value());     // commented in the template: not set

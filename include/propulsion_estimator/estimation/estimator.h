@@ -31,8 +31,11 @@ enum class Rejection {
   kDisarmed,        // a motor at or below disarmed_pwm_max_us (0, 900 us, ...)
   kTooFewChannels,  // RCOut shorter than the highest motor channel
   kTimeBackwards,   // RCOut stamp older than the previous accepted one
+  kStampAhead,      // RCOut stamped more than max_stamp_ahead_s ahead of its receipt
+  kDuplicate,       // RCOut with the stamp of the previous accepted one: the same message again
   kOutsideDomain,   // outside the model's domain and the model says reject
   kNonFiniteEstimate,  // the model gives NaN or infinity (a rational surface extrapolated to its pole)
+                       // for an output it has; one it lacks (`none`) is NaN and not refused
   // Signals of the model's effects, refused outside what the quantity can be (a unit error):
   kBadBatteryCurrent,   // infinite, or more than 1000 A either way
   kBadStaticPressure,   // outside 30000..110000 Pa (the bench air's range)
@@ -40,7 +43,7 @@ enum class Rejection {
   kBadRange,            // NaN, or finite outside the sensor's own min_range..max_range
   kBadMotorTemperature,  // outside -40..200 deg C
 };
-constexpr int kRejectionCount = 16;  ///< number of Rejection values
+constexpr int kRejectionCount = 18;  ///< number of Rejection values
 /// "bad_voltage", "stale_battery", ...: the name of a rejection in diagnostics and counters.
 const char* rejectionName(Rejection rejection);
 
@@ -65,6 +68,7 @@ struct MotorOutput {
 
 /// The vehicle's totals over all motors, SI units: summed thrust and its vertical part, current
 /// and power, and the mass they lift (vertical thrust over g plus the vertical acceleration).
+/// Current, power and efficiency are NaN when the model lacks them (see unmodelledOutputs()).
 struct Totals {
   double voltage_v = 0.0;
   double thrust_n = 0.0;
@@ -158,8 +162,14 @@ class Estimator {
   // Seconds since the newest valid voltage at `now_s`; infinity before any.
   double batteryAge(double now_s) const;
 
-  // Records the current hover average as the empty mass, or refuses when not hovering.
-  TareResult tare();
+  // Records the current hover average as the empty mass, or refuses when not hovering at `now_s`
+  // (the estimator's clock), which includes a hover verdict expired by expireHover().
+  TareResult tare(double now_s);
+  // A hover verdict older than its window is no verdict: when no motor output was accepted within
+  // hover/window_s before `now_s`, the hover window is forgotten (verdict kExpired) and the payload
+  // holds its average, not hovering. Every input calls it; call it before reading the verdict when
+  // inputs may have stopped (services, diagnostics).
+  void expireHover(double now_s);
   // Sets the empty mass from elsewhere (a tare file, a parameter, the URDF).
   void setEmptyMass(double mass_kg, EmptyMassSource source);
   // Clears the windows and the tare; the configured empty mass (parameter or URDF) applies again.
@@ -202,6 +212,10 @@ class Estimator {
   HoverDetector hover_;
   PayloadEstimator payload_;
   VerticalAccelerationFilter accel_filter_;
+  // Which outputs the model has: one it lacks is published as NaN, never refused as non-finite.
+  bool has_current_;
+  bool has_power_;
+  bool has_efficiency_;
 
   double voltage_v_ = 0.0;
   double voltage_receipt_s_ = 0.0;
@@ -216,6 +230,8 @@ class Estimator {
   double last_stamp_s_ = 0.0;
   bool have_stamp_ = false;
   double last_receipt_s_ = 0.0;
+  double last_accepted_receipt_s_ = 0.0;  // when the newest accepted motor output arrived
+  bool have_accepted_ = false;
 
   std::vector<OperatingPoint> scratch_;  // this message's motors, committed to output_ once all are valid
   EstimatorOutput output_;

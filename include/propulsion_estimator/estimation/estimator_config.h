@@ -34,11 +34,18 @@ struct EstimatorConfig {
   double accel_bias_filter_s = 30.0;    // average taken as accelerometer bias
   double max_rate_hz = 100.0;           // sizes the sample windows, allocated once
   double clock_jump_reset_s = 1.0;      // the clock going back this far (a bag restarted) resets all
+  // RCOut stamped further ahead of its receipt is refused (clocks out of sync, a corrupt stamp); a
+  // replayed bag's simulated clock may lag the stamps by a few of its ticks.
+  double max_stamp_ahead_s = 0.5;
   std::optional<double> empty_mass_kg;  // configured empty mass; a tare overrides it
   HoverConfig hover;
   PayloadConfig payload;
 
-  // ConfigError naming the parameter. `rotors`: how many rotors the vehicle has.
+  // ConfigError naming the parameter and its value. `rotors`: how many rotors the vehicle has.
+  // Besides each value's range, refuses what validates alone but can never be met at max_rate_hz:
+  // a window of more samples than the memory bound, a hover/min_window_fill the samples cannot
+  // span, payload/min_samples that do not fit in the averaging window, an episode gap shorter than
+  // the sample period.
   void validate(std::size_t rotors) const;
 };
 

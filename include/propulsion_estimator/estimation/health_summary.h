@@ -70,8 +70,13 @@ HealthStatus judgeInputs(const Estimator& estimator, const HealthSnapshot& befor
 HealthStatus judgeMotorOutputs(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
                                const HealthConfig& config);
 
+/// "current, power, efficiency": the outputs the model does not have (`none`), published as NaN;
+/// "none" when it has them all.
+std::string unmodelledOutputs(const PropulsionModel& model);
+
 /// "Model domain": WARN when the share of motor samples outside the model's domain in the period
-/// exceeds domain_warn_fraction.
+/// exceeds domain_warn_fraction. Its values name the outputs the model lacks (not a warning: the
+/// model says so).
 HealthStatus judgeDomain(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
                          const HealthConfig& config);
 

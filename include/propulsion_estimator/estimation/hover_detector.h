@@ -12,7 +12,7 @@ namespace propulsion_estimator {
 /// spirit of ArduPilot's hover-throttle learning (vertical speed under 0.6 m/s, tilt under 5 deg).
 struct HoverConfig {
   double window_s = 2.0;
-  double min_window_fill = 0.8;          // fraction of window_s the samples must span
+  double min_window_fill = 0.8;          // fraction of window_s the samples must span, below 1
   double max_thrust_rel_std = 0.05;      // std / mean of vertical thrust over the window
   double max_tilt_deg = 5.0;
   double max_vertical_speed_m_s = 0.6;
@@ -40,6 +40,7 @@ enum class HoverBlocker {
   kTilted,
   kClimbingOrSinking,
   kAccelerating,
+  kExpired,  // no sample within window_s before now: the last verdict is no longer one
 };
 
 /// The detector's verdict on its window, with the window statistics it was based on (SI units).
@@ -70,6 +71,8 @@ class HoverDetector {
   const HoverVerdict& verdict() const { return verdict_; }
   const HoverConfig& config() const { return config_; }
   void clear();
+  // Forgets the window because no sample came within window_s: the verdict says kExpired.
+  void expire();
 
  private:
   void evaluate();

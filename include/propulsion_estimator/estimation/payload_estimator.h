@@ -61,6 +61,8 @@ class PayloadEstimator {
   void clearEmptyMass();
   // Forgets the hover samples (landing, clock reset, reset service).
   void clearWindow();
+  // The hover ended without a sample saying so (its verdict expired): the average is held.
+  void endHover();
 
  private:
   // The window's statistics change only when a sample is added or the window cleared; the state

@@ -8,6 +8,12 @@ namespace propulsion_estimator {
 /// low-pass (against vibration) minus that slow average.
 class VerticalAccelerationFilter {
  public:
+  /// Longest time step, in s, one sample may stand for in the bias average: after a gap in the
+  /// IMU (10 s would give one raw sample, a bump or a landing jolt, a quarter of the bias) a sample
+  /// weighs as one of an IMU at 10 Hz, the slowest MAVROS publishes. The fast low-pass takes the
+  /// whole gap: its old value is stale.
+  static constexpr double kMaxBiasStepS = 0.1;
+
   VerticalAccelerationFilter(double fast_time_constant_s, double bias_time_constant_s);
 
   // `accel_m_s2`: world-vertical specific force minus g. Returns the filtered acceleration.
