@@ -1,9 +1,12 @@
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/estimation/payload_estimator.h"
 #include "propulsion_estimator/estimation/tare_file.h"
 
@@ -75,4 +78,32 @@ TEST(TareFile, RoundTripsAndRefusesGarbage) {
     EXPECT_EQ(std::string(e.what()), path + ":1: empty_mass_kg: expected a number, got 'heavy'");
   }
   pe::removeTareFile(path);
+}
+
+namespace {
+
+// The message of the InputError `action` throws, or "no error".
+template <typename Action>
+std::string inputError(Action action) {
+  try {
+    action();
+  } catch (const pe::InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST(TareFile, RefusesAnEmptyFileAndDuplicateKeys) {
+  const std::string folder = testing::TempDir() + "/pe_tare_refused";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string path = folder + "/tare.yaml";
+  std::ofstream(path).close();
+  EXPECT_EQ(inputError([&] { pe::loadTareFile(path); }), path + ": the file is empty");
+  std::ofstream(path) << "empty_mass_kg: 1.2\nmodel: m.yaml\nempty_mass_kg: 1.5\nmodel_fingerprint: 0123\n";
+  EXPECT_EQ(inputError([&] { pe::loadTareFile(path); }),
+            path + ":3: empty_mass_kg: key given twice (first on line 1)");
+  std::filesystem::remove_all(folder);
 }
