@@ -11,7 +11,7 @@ int main(int argc, char** argv) {
   try {
     propulsion_estimator::EstimatorNode node(nh, private_nh);
     ros::spin();
-  } catch (const std::exception& e) {  // InputError: a refused parameter, model, URDF or tare file
+  } catch (const std::exception& e) {  // InputError: a refused parameter, model or URDF
     ROS_FATAL_STREAM(e.what());
     return 1;
   }

@@ -1,6 +1,7 @@
 #include "tool_command.h"
 
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 
 #include "propulsion_estimator/common/input_error.h"
@@ -32,6 +33,8 @@ int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv
     std::fprintf(stderr, "%s: %s\n", commandName(name, app).c_str(), e.what());
   } catch (const std::filesystem::filesystem_error& e) {
     std::fprintf(stderr, "%s: %s\n", commandName(name, app).c_str(), e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: internal error: %s\n", commandName(name, app).c_str(), e.what());
   }
   return 1;
 }

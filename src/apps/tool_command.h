@@ -9,7 +9,8 @@ namespace propulsion_estimator {
 
 // Parses the command line of tool `name` and runs it. Every failure is one line on stderr,
 // "<name> <subcommand>: <reason>" (the subcommand when one was given): exit status 2 for a usage
-// error, 1 for a refused input (InputError) or a file system error; --help prints the help and
+// error, 1 for a refused input (InputError) or a file system error, and 1 for any other exception
+// ("<name> <subcommand>: internal error: <what>", e.g. std::bad_alloc); --help prints the help and
 // exits 0; otherwise the status is what `run` returns.
 int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv, const std::function<int()>& run);
 

@@ -2,7 +2,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <vector>
+
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/text_file.h"
@@ -21,6 +26,84 @@ std::string lineOf(const YAML::Node& node) {
   const YAML::Mark mark = node.Mark();
   return mark.line >= 0 ? std::to_string(mark.line + 1) : "?";
 }
+
+/// Refuses a mapping that gives a key twice (yaml-cpp keeps both and looks up the first), as
+/// "<source>:<line>: <key.path>: key given twice (first on line <n>)". Reads the parser's events,
+/// so that aliases are not expanded.
+class DuplicateKeyCheck : public YAML::EventHandler {
+ public:
+  explicit DuplicateKeyCheck(std::string source) : source_(std::move(source)) {}
+
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override { node(); }
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override { node(); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string& value) override {
+    if (!frames_.empty() && frames_.back().is_map && frames_.back().expecting_key) {
+      Frame& map = frames_.back();
+      const auto [first, inserted] = map.key_lines.emplace(value, mark.line + 1);
+      if (!inserted) {
+        throw ConfigError(source_ + ":" + std::to_string(mark.line + 1) + ": " + childPath(map, value) +
+                          ": key given twice (first on line " + std::to_string(first->second) + ")");
+      }
+      map.key = value;
+    }
+    node();
+  }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    start(false);
+  }
+  void OnSequenceEnd() override { end(); }
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    start(true);
+  }
+  void OnMapEnd() override { end(); }
+
+ private:
+  struct Frame {
+    bool is_map = false;
+    bool expecting_key = true;  // a map's next node is a key, else that key's value
+    std::size_t index = 0;      // a sequence's next element
+    std::string key;            // a map's current key
+    std::string path;
+    std::map<std::string, int> key_lines;
+  };
+
+  static std::string childPath(const Frame& map, const std::string& key) {
+    return map.path.empty() ? key : map.path + "." + key;
+  }
+  // The path of the node starting now, in the innermost collection.
+  std::string nextPath() const {
+    if (frames_.empty()) return "";
+    const Frame& parent = frames_.back();
+    if (!parent.is_map) return parent.path + "[" + std::to_string(parent.index) + "]";
+    return parent.expecting_key ? parent.path + ".?" : childPath(parent, parent.key);
+  }
+  // A whole node (scalar, alias or collection) has been read in the innermost collection.
+  void node() {
+    if (frames_.empty()) return;
+    Frame& parent = frames_.back();
+    if (parent.is_map) {
+      if (!parent.expecting_key) parent.key.clear();
+      parent.expecting_key = !parent.expecting_key;
+    } else {
+      ++parent.index;
+    }
+  }
+  void start(bool is_map) {
+    Frame frame;
+    frame.is_map = is_map;
+    frame.path = nextPath();
+    frames_.push_back(std::move(frame));
+  }
+  void end() {
+    frames_.pop_back();
+    node();
+  }
+
+  std::string source_;
+  std::vector<Frame> frames_;
+};
 
 }  // namespace
 
@@ -183,6 +266,10 @@ YamlMap parseYamlDocument(const std::string& text, const std::string& source) {
     throw ConfigError(source + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
   }
   if (!root.IsDefined() || root.IsNull()) throw ConfigError(source + ": the file is empty");
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  DuplicateKeyCheck check(source);
+  parser.HandleNextDocument(check);
   return YamlMap(root, source, "");
 }
 

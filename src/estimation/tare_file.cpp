@@ -1,16 +1,62 @@
 #include "propulsion_estimator/estimation/tare_file.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <random>
 #include <system_error>
 
 #include <yaml-cpp/yaml.h>
 
 #include "propulsion_estimator/common/input_error.h"
-#include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/yaml_map.h"
 
 namespace propulsion_estimator {
+namespace {
+
+/// "<path>: tare file not written: <step>: <strerror(errno)>", for a failed system call.
+InputError systemError(const std::string& path, const std::string& step) {
+  return InputError(path + ": tare file not written: " + step + ": " + std::strerror(errno));
+}
+
+/// A temporary file name next to `path` that no other process or call uses: process id, a
+/// per-process counter and a random number (two containers may share the folder and the pid).
+std::string temporaryName(const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  static const unsigned random = std::random_device{}();
+  return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
+         std::to_string(random);
+}
+
+/// Writes the whole of `text` to the new file `temporary` and flushes it to the disk.
+void writeDurably(const std::string& path, const std::string& temporary, const std::string& text) {
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) throw systemError(path, "cannot create a temporary file next to it");
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const InputError error = systemError(path, "cannot write the temporary file");
+      ::close(fd);
+      throw error;
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const InputError error = systemError(path, "cannot flush the temporary file to the disk");
+    ::close(fd);
+    throw error;
+  }
+  if (::close(fd) != 0) throw systemError(path, "cannot close the temporary file");
+}
+
+}  // namespace
 
 std::optional<TareRecord> loadTareFile(const std::string& path) {
   std::error_code error;
@@ -24,25 +70,43 @@ std::optional<TareRecord> loadTareFile(const std::string& path) {
 
 void saveTareFile(const std::string& path, const TareRecord& record) {
   const std::filesystem::path target(path);
+  const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : ".";
   std::error_code error;
-  if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path(), error);
-  const std::string temporary = path + ".tmp";
-  {
-    char mass[32];
-    std::snprintf(mass, sizeof(mass), "%.17g", record.empty_mass_kg);
-    YAML::Emitter yaml;
-    yaml << YAML::Comment("Written by propulsion_estimator's ~tare service.") << YAML::Newline << YAML::BeginMap
-         << YAML::Key << "empty_mass_kg" << YAML::Value << mass << YAML::Key << "model" << YAML::Value
-         << record.model << YAML::Key << "model_fingerprint" << YAML::Value << record.model_fingerprint << YAML::EndMap;
-    writeTextFile(temporary, std::string(yaml.c_str()) + "\n");
+  std::filesystem::create_directories(folder, error);
+  char mass[32];
+  std::snprintf(mass, sizeof(mass), "%.17g", record.empty_mass_kg);
+  YAML::Emitter yaml;
+  yaml << YAML::Comment("Written by propulsion_estimator's ~tare service.") << YAML::Newline << YAML::BeginMap
+       << YAML::Key << "empty_mass_kg" << YAML::Value << mass << YAML::Key << "model" << YAML::Value << record.model
+       << YAML::Key << "model_fingerprint" << YAML::Value << record.model_fingerprint << YAML::EndMap;
+  const std::string temporary = temporaryName(path);
+  try {
+    writeDurably(path, temporary, std::string(yaml.c_str()) + "\n");
+    if (::rename(temporary.c_str(), path.c_str()) != 0) throw systemError(path, "cannot replace it with the temporary file");
+  } catch (const InputError&) {
+    ::unlink(temporary.c_str());
+    throw;
   }
-  std::filesystem::rename(temporary, target, error);
-  if (error) throw InputError(path + ": cannot write the tare file: " + error.message());
+  // The rename itself made durable; a folder that cannot be opened or synced leaves it to the kernel.
+  const int directory = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (directory >= 0) {
+    ::fsync(directory);
+    ::close(directory);
+  }
 }
 
 void removeTareFile(const std::string& path) {
   std::error_code error;
   std::filesystem::remove(path, error);
+  if (error) throw InputError(path + ": cannot remove the tare file: " + error.message());
+}
+
+std::string setAsideTareFile(const std::string& path, long long unix_time) {
+  const std::string aside = path + ".bad-" + std::to_string(unix_time);
+  std::error_code error;
+  std::filesystem::rename(path, aside, error);
+  if (error) throw InputError(path + ": cannot move the tare file to " + aside + ": " + error.message());
+  return aside;
 }
 
 }  // namespace propulsion_estimator

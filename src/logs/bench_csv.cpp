@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <regex>
+#include <optional>
+#include <utility>
 #include <sstream>
 
 #include "propulsion_estimator/common/data_error.h"
@@ -22,6 +23,30 @@ std::string csvField(const std::string& text) {
 }
 
 constexpr const char* kThrustGrams = "thrust_g";
+
+constexpr const char* kSpace = " \t\n\v\f\r";
+
+bool isKeyCharacter(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+/// A comment line's metadata "key: value" (surrounding white space dropped; the key letters,
+/// digits and '_'), or nothing for a plain comment. String operations only: a comment line may be
+/// arbitrarily long.
+std::optional<std::pair<std::string, std::string>> metadataEntry(const std::string& comment) {
+  const std::size_t key_begin = comment.find_first_not_of(kSpace);
+  if (key_begin == std::string::npos) return std::nullopt;
+  std::size_t key_end = key_begin;
+  while (key_end < comment.size() && isKeyCharacter(comment[key_end])) ++key_end;
+  if (key_end == key_begin) return std::nullopt;
+  const std::size_t colon = comment.find_first_not_of(kSpace, key_end);
+  if (colon == std::string::npos || comment[colon] != ':') return std::nullopt;
+  std::string key = comment.substr(key_begin, key_end - key_begin);
+  const std::size_t value_begin = comment.find_first_not_of(kSpace, colon + 1);
+  if (value_begin == std::string::npos) return std::make_pair(std::move(key), std::string());
+  const std::size_t value_end = comment.find_last_not_of(kSpace) + 1;
+  return std::make_pair(std::move(key), comment.substr(value_begin, value_end - value_begin));
+}
 
 }  // namespace
 
@@ -70,18 +95,17 @@ bool isNativeBenchHeader(const std::vector<std::string>& header) {
 BenchLog nativeBenchLogFromTable(const CsvText& table, DecimalSeparator decimal) {
   BenchLog log;
   log.source = table.source;
-  static const std::regex kMetadata(R"(\s*([A-Za-z0-9_]+)\s*:\s*(.*?)\s*)");
   std::map<std::string, int> metadata_line;
   for (const CsvText::Line& comment : table.comments) {
-    std::smatch match;
-    if (!std::regex_match(comment.text, match, kMetadata)) continue;
-    const std::string key = match[1];
+    std::optional<std::pair<std::string, std::string>> entry = metadataEntry(comment.text);
+    if (!entry) continue;
+    const std::string& key = entry->first;
     const auto [known, inserted] = metadata_line.emplace(key, comment.line);
     if (!inserted) {
       throw DataError(table.source + ":" + std::to_string(comment.line) + ": metadata key '" + key +
                       "' given twice (first on line " + std::to_string(known->second) + ")");
     }
-    log.metadata[key] = match[2];
+    log.metadata[key] = std::move(entry->second);
   }
 
   // Header: which cell column holds which quantity.

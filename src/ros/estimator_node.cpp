@@ -1,6 +1,7 @@
 #include "propulsion_estimator/ros/estimator_node.h"
 
 #include <cmath>
+#include <ctime>
 #include <sstream>
 
 #include "propulsion_estimator/common/config_error.h"
@@ -60,18 +61,7 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
                            << " V, outside: " << outsideDomainName(domain.outside)
                            << "; outputs not modelled (published as NaN): " << unmodelledOutputs(estimator_->model()));
 
-  if (!params_.tare_file.empty()) {
-    if (const std::optional<TareRecord> tare = loadTareFile(params_.tare_file)) {
-      if (tare->model_fingerprint == model_fingerprint_) {
-        estimator_->setEmptyMass(tare->empty_mass_kg, EmptyMassSource::kTareFile);
-        ROS_INFO_STREAM("empty mass " << tare->empty_mass_kg << " kg from tare file " << params_.tare_file);
-      } else {
-        ROS_WARN_STREAM("tare file " << params_.tare_file << " ignored: it was taken with another model (" << tare->model
-                                     << ", fingerprint " << tare->model_fingerprint << ") than " << params_.model
-                                     << " (fingerprint " << model_fingerprint_ << ")");
-      }
-    }
-  }
+  loadTare();
   const MassEstimate& payload = estimator_->output().payload;
   ROS_INFO_STREAM("empty mass: " << (std::isnan(payload.empty_mass_kg) ? std::string("unknown until ~tare")
                                                                        : std::to_string(payload.empty_mass_kg) + " kg")
@@ -120,6 +110,10 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
     copy(judgePayload(*estimator_), &status);
   });
+  diagnostics_.add("Tare file", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    status.add("tare_file", params_.tare_file);
+    status.summary(tare_file_level_, tare_file_message_);
+  });
   diagnostics_.add("Effects", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     const HealthSnapshot now = takeSnapshot();
     copy(judgeEffects(*estimator_, effects_before_, now, params_.health), &status);
@@ -127,6 +121,49 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   });
   inputs_before_ = outputs_before_ = domain_before_ = effects_before_ = takeSnapshot();
   diagnostics_timer_ = nh.createTimer(ros::Duration(0.1), [this](const ros::TimerEvent&) { diagnostics_.update(); });
+}
+
+void EstimatorNode::loadTare() {
+  if (params_.tare_file.empty()) {
+    setTareFileStatus(DiagnosticStatus::OK, "none: tare_file is empty, ~tare is not persisted");
+    return;
+  }
+  std::optional<TareRecord> tare;
+  try {
+    tare = loadTareFile(params_.tare_file);
+  } catch (const InputError& e) {
+    // A tare file that cannot be read must not keep the node (required in the launch) from starting.
+    std::string message = std::string("refused: ") + e.what() + "; started without the tare";
+    try {
+      message += ", the file moved to " + setAsideTareFile(params_.tare_file, static_cast<long long>(std::time(nullptr)));
+    } catch (const InputError& moved) {
+      message += std::string("; ") + moved.what();
+    }
+    setTareFileStatus(DiagnosticStatus::WARN, message);
+    return;
+  }
+  if (!tare) {
+    setTareFileStatus(DiagnosticStatus::OK, params_.tare_file + ": none yet");
+  } else if (tare->model_fingerprint == model_fingerprint_) {
+    estimator_->setEmptyMass(tare->empty_mass_kg, EmptyMassSource::kTareFile);
+    std::ostringstream message;
+    message << params_.tare_file << ": empty mass " << tare->empty_mass_kg << " kg";
+    setTareFileStatus(DiagnosticStatus::OK, message.str());
+  } else {
+    setTareFileStatus(DiagnosticStatus::WARN, params_.tare_file + ": ignored: it was taken with another model (" +
+                                                  tare->model + ", fingerprint " + tare->model_fingerprint + ") than " +
+                                                  params_.model + " (fingerprint " + model_fingerprint_ + ")");
+  }
+}
+
+void EstimatorNode::setTareFileStatus(std::uint8_t level, const std::string& message) {
+  tare_file_level_ = level;
+  tare_file_message_ = message;
+  if (level == DiagnosticStatus::OK) {
+    ROS_INFO_STREAM("tare file: " << message);
+  } else {
+    ROS_WARN_STREAM("tare file: " << message);
+  }
 }
 
 void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
@@ -302,8 +339,11 @@ bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
     try {
       saveTareFile(params_.tare_file, TareRecord{tare.empty_mass_kg, params_.model, model_fingerprint_});
       response.message += ", saved to " + params_.tare_file;
+      setTareFileStatus(DiagnosticStatus::OK, params_.tare_file + ": " + tare.message + " (~tare)");
     } catch (const InputError& e) {
-      response.message += std::string(", NOT persisted: ") + e.what();
+      response.success = false;
+      response.message += std::string(", applies to this run only: ") + e.what();
+      setTareFileStatus(DiagnosticStatus::WARN, std::string("~tare not persisted: ") + e.what());
     }
   }
   ROS_INFO_STREAM("~tare: " << response.message);
@@ -327,13 +367,22 @@ bool EstimatorNode::onDetectHover(std_srvs::Trigger::Request&, std_srvs::Trigger
 
 bool EstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   estimator_->reset();
-  if (!params_.tare_file.empty()) removeTareFile(params_.tare_file);
   const MassEstimate& p = estimator_->output().payload;
   std::ostringstream message;
   message << "windows and tare cleared; empty mass now "
           << (std::isnan(p.empty_mass_kg) ? std::string("unknown") : std::to_string(p.empty_mass_kg) + " kg")
           << " (source: " << emptyMassSourceName(p.empty_mass_source) << ")";
   response.success = true;
+  if (!params_.tare_file.empty()) {
+    try {
+      removeTareFile(params_.tare_file);
+      setTareFileStatus(DiagnosticStatus::OK, params_.tare_file + ": removed by ~reset");
+    } catch (const InputError& e) {
+      response.success = false;
+      message << "; but " << e.what() << ", and the next start reads it again";
+      setTareFileStatus(DiagnosticStatus::WARN, std::string("~reset: ") + e.what());
+    }
+  }
   response.message = message.str();
   ROS_INFO_STREAM("~reset: " << response.message);
   return true;

@@ -17,11 +17,16 @@ bool RcOutDecoder::decode(const topic_tools::ShapeShifter& message, RcOutMessage
              message.getDataType() + " (md5sum " + message.getMD5Sum() + ")";
     return false;
   }
+  // What an earlier, oversized message left in `out` (the caller has used it since).
+  if (out->channels.capacity() * sizeof(std::uint16_t) > kMaxKeptBytes) std::vector<std::uint16_t>().swap(out->channels);
+  if (out->header.frame_id.capacity() > kMaxKeptBytes) std::string().swap(out->header.frame_id);
   const std::uint32_t size = message.size();
   if (buffer_.size() < size) buffer_.resize(size);
   ros::serialization::OStream writer(buffer_.data(), size);
   message.write(writer);
-  return decodePayload(buffer_.data(), size, out, error);
+  const bool decoded = decodePayload(buffer_.data(), size, out, error);
+  if (buffer_.capacity() > kMaxKeptBytes) std::vector<std::uint8_t>().swap(buffer_);
+  return decoded;
 }
 
 bool RcOutDecoder::decodePayload(const std::uint8_t* data, std::uint32_t size, RcOutMessage* out, std::string* error) {

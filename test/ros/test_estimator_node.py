@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """rostest of estimator_node as a black box: inputs on MAVROS topics, estimates on ~motors,
 ~totals and ~payload, services, /diagnostics. Expected values come as test parameters."""
+import glob
 import os
+import shutil
 import tempfile
 import unittest
 
@@ -132,6 +134,8 @@ class EstimatorNodeTest(unittest.TestCase):
         self.assertTrue(answer.success)
         self.assertEqual(answer.message, "windows and tare cleared; empty mass now unknown (source: none)")
         self.assertFalse(os.path.exists(self.tare_file))
+        status = self.h.wait_for_diagnostic("Tare file", self.tare_file + ": removed by ~reset")
+        self.assertEqual(status.level, DiagnosticStatus.OK)
         self.h.fly(HOVER, 0.2, voltage_v=11.4)
         self.assertEqual(self.h.latest(self.h.payload).state, "waiting_for_hover")
         answer = self.h.call("tare")
@@ -275,6 +279,69 @@ class EstimatorNodeTest(unittest.TestCase):
         self.assertTrue(answer.message.startswith("refused: no motor outputs accepted for "), answer.message)
         self.assertTrue(answer.message.endswith("the last hover verdict expired"), answer.message)
         self.assertFalse(os.path.exists(self.tare_file))
+
+
+    def test_9_tare_file_that_cannot_be_written_or_removed(self):
+        """~tare and ~reset answer failure, with the reason, when the tare file cannot be written or
+        removed, and the Tare file diagnostic warns."""
+        # A non-empty folder where the tare file goes: it can be neither replaced nor removed.
+        os.makedirs(os.path.join(self.tare_file, "in_the_way"))
+        try:
+            self.h.fly(HOVER, 3.0, voltage_v=11.4)
+            answer = self.h.call("tare")
+            self.assertFalse(answer.success, answer.message)
+            reason = self.tare_file + ": tare file not written: cannot replace it with the temporary file: Is a directory"
+            self.assertTrue(answer.message.startswith("empty mass "), answer.message)
+            self.assertTrue(answer.message.endswith(", applies to this run only: " + reason), answer.message)
+            status = self.h.wait_for_diagnostic("Tare file", "~tare not persisted: " + reason)
+            self.assertEqual(status.level, DiagnosticStatus.WARN)
+            self.assertEqual(glob.glob(self.tare_file + ".tmp*"), [])
+            answer = self.h.call("reset")
+            self.assertFalse(answer.success, answer.message)
+            self.assertEqual(answer.message, "windows and tare cleared; empty mass now unknown (source: none); but " +
+                             self.tare_file + ": cannot remove the tare file: Directory not empty, and the next start "
+                             "reads it again")
+            status = self.h.wait_for_diagnostic("Tare file", "~reset: " + self.tare_file)
+            self.assertEqual(status.level, DiagnosticStatus.WARN)
+        finally:
+            shutil.rmtree(self.tare_file)
+
+    def test_9_tare_file_that_cannot_be_read_is_moved_aside(self):
+        """A node whose tare file is empty starts without it (the launch marks it required: it must
+        not stop), moves the file aside and names it and the reason on its Tare file diagnostic."""
+        bad = os.path.join(tempfile.mkdtemp(prefix="pe_bad_tare_"), "tare.yaml")
+        open(bad, "w").close()
+        rospy.set_param("/bad_tare/model", rospy.get_param("/propulsion_estimator/model"))
+        rospy.set_param("/bad_tare/tare_file", bad)
+        statuses = {}
+
+        def on_diagnostics(message):
+            for status in message.status:
+                node, _, task = status.name.partition(": ")
+                if node.endswith("bad_tare"):
+                    statuses[task] = status
+
+        diagnostics = rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
+        launch = roslaunch.scriptapi.ROSLaunch()
+        launch.start()
+        process = launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name="bad_tare",
+                                                    namespace="/", output="log"))
+        try:
+            rospy.wait_for_service("/bad_tare/tare", timeout=30.0)
+            self.h.wait_for(lambda: "Tare file" in statuses, 10.0, "the Tare file diagnostic of the node")
+            aside = glob.glob(bad + ".bad-*")
+            self.assertEqual(len(aside), 1, aside)
+            self.assertFalse(os.path.exists(bad))
+            status = statuses["Tare file"]
+            self.assertEqual(status.level, DiagnosticStatus.WARN)
+            self.assertEqual(status.message, "refused: " + bad + ": the file is empty; started without the tare, the "
+                             "file moved to " + aside[0])
+            self.assertTrue(process.is_alive())
+        finally:
+            diagnostics.unregister()
+            process.stop()
+            launch.stop()
+            shutil.rmtree(os.path.dirname(bad))
 
 
 if __name__ == "__main__":

@@ -100,6 +100,18 @@ TEST(NativeBenchCsv, RefusesTextInANumberField) {
             "log.csv:3: column 3 'thrust_g': 'abc' is not a number");
 }
 
+TEST(NativeBenchCsv, ReadsCommentLinesOfAnyLength) {
+  // 50,000 characters: a regular expression overflowed the stack on such a line.
+  const std::string long_text(50000, 'x');
+  const pe::BenchLog log = pe::parseNativeBenchCsv("#" + long_text + "\n#  note :  " + long_text + " \t\n# a: b: c\n" +
+                                                       "#:x\n# bad key: y\n#empty:\npwm_us,voltage_v,thrust_g\n1500,11,100\n",
+                                                   "n.csv");
+  EXPECT_EQ(log.metadata.size(), 3u);
+  EXPECT_EQ(log.metadata.at("note"), long_text);
+  EXPECT_EQ(log.metadata.at("a"), "b: c");
+  EXPECT_EQ(log.metadata.at("empty"), "");
+}
+
 TEST(NativeBenchCsv, RefusesNaN) {
   EXPECT_EQ(refusal("pwm_us,voltage_v,thrust_g\n1500,nan,100\n"),
             "log.csv:2: column 2 'voltage_v': 'nan' is not a finite number");

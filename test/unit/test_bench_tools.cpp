@@ -8,9 +8,15 @@
 #include <sstream>
 #include <string>
 
+#include <new>
+#include <regex>
+#include <stdexcept>
+
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "test_paths.h"
+#include "tool_command.h"
 #include "tool_process.h"
 
 namespace pe = propulsion_estimator;
@@ -245,6 +251,45 @@ TEST_F(BenchTools, FitSurfacesUsageAndReaderErrors) {
   EXPECT_EQ(map.err,
             "fit_surfaces: 'speed' is not a bench quantity (one of time_s, pwm_us, voltage_v, thrust_n, current_a, "
             "power_w, rpm, ambient_temp_c, motor_temp_c, pressure_pa)\n");
+}
+
+TEST_F(BenchTools, FitSurfacesReadsAFiftyThousandCharacterCommentLine) {
+  std::ofstream(dir_ / "long.csv") << "# " << std::string(50000, 'x') << "\n# note: " << std::string(50000, 'y')
+                                   << "\npwm_us,voltage_v,thrust_g\n1500,11.1,100\n1600,11.1,abc\n";
+  const ToolRun r = run(PE_FIT_SURFACES, "--out x.yaml " + (dir_ / "long.csv").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "fit_surfaces: " + (dir_ / "long.csv").string() + ":5: column 3 'thrust_g': 'abc' is not a number\n");
+}
+
+namespace {
+
+// Runs runToolCommand("tool", ...) with `run` as the tool's work; its status and stderr.
+ToolRun runInProcess(const std::function<int()>& work) {
+  CLI::App app("a tool");
+  std::string argument0 = "tool";
+  char* argv[] = {argument0.data()};
+  testing::internal::CaptureStderr();
+  const int status = pe::runToolCommand("tool", app, 1, argv, work);
+  return {status, "", testing::internal::GetCapturedStderr()};
+}
+
+}  // namespace
+
+TEST(ToolCommand, AnyOtherExceptionIsOneInternalErrorLineAndStatusOne) {
+  const ToolRun bad_alloc = runInProcess([]() -> int { throw std::bad_alloc(); });
+  EXPECT_EQ(bad_alloc.status, 1);
+  EXPECT_EQ(bad_alloc.err, "tool: internal error: std::bad_alloc\n");
+  const ToolRun regex = runInProcess([]() -> int { throw std::regex_error(std::regex_constants::error_stack); });
+  EXPECT_EQ(regex.status, 1);
+  EXPECT_EQ(regex.err, "tool: internal error: " + std::string(std::regex_error(std::regex_constants::error_stack).what()) + "\n");
+  const ToolRun runtime = runInProcess([]() -> int { throw std::runtime_error("unexpected"); });
+  EXPECT_EQ(runtime.err, "tool: internal error: unexpected\n");
+  // Refused inputs keep their own line; the tool's status passes through.
+  const ToolRun refused = runInProcess([]() -> int { throw pe::DataError("f.csv: bad"); });
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_EQ(refused.err, "tool: f.csv: bad\n");
+  EXPECT_EQ(runInProcess([] { return 0; }).status, 0);
 }
 
 TEST_F(BenchTools, SimulateAnswersLikeTheOtherTools) {

@@ -109,6 +109,31 @@ TEST(ModelYaml, RefusesAKeyThatIsNotAName) {
             "m.yaml:9: metadata: a key must be a name, got a list");
 }
 
+TEST(ModelYaml, RefusesAKeyGivenTwice) {
+  EXPECT_EQ(refusal("format_version: 1\n" + kValid), "m.yaml:2: format_version: key given twice (first on line 1)");
+  EXPECT_EQ(refusal(replaced("  supply: battery", "  supply: battery\n  'supply': regulated")),
+            "m.yaml:9: metadata.supply: key given twice (first on line 8)");
+  EXPECT_EQ(refusal(replaced("p01: 0.3}", "p01: 0.3, p10: 4}")),
+            "m.yaml:18: outputs.thrust.polynomial.p10: key given twice (first on line 18)");
+}
+
+TEST(YamlMap, RefusesAKeyGivenTwiceAnywhereButNotThroughAliases) {
+  auto refused = [](const std::string& text) {
+    try {
+      pe::parseYamlDocument(text, "t.yaml");
+    } catch (const pe::ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refused("items:\n  - {a: 1}\n  - {a: 1, b: 2,\n     a: 3}\n"),
+            "t.yaml:4: items[1].a: key given twice (first on line 3)");
+  EXPECT_EQ(refused("a:\n  - [1, {b: {c: 1}}]\n  - [2, {b: {c: 1, c: 2}}]\n"),
+            "t.yaml:3: a[1][1].b.c: key given twice (first on line 3)");
+  EXPECT_EQ(refused("base: &base {a: 1, b: 2}\nfirst: *base\nsecond: *base\nthird: {a: 1}\n"), "accepted");
+  EXPECT_EQ(refused("a: 1\nb: {a: 1}\nc: [{a: 1}, {a: 2}]\n"), "accepted");
+}
+
 TEST(ModelYaml, FingerprintIdentifiesTheModelNotItsFile) {
   const pe::PropulsionModel a = pe::parseModelYaml(kValid, "a.yaml");
   const pe::PropulsionModel b = pe::parseModelYaml("# another file, same model\n" + kValid, "/elsewhere/b.yaml");

@@ -1,9 +1,14 @@
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/estimation/payload_estimator.h"
 #include "propulsion_estimator/estimation/tare_file.h"
 
@@ -75,4 +80,89 @@ TEST(TareFile, RoundTripsAndRefusesGarbage) {
     EXPECT_EQ(std::string(e.what()), path + ":1: empty_mass_kg: expected a number, got 'heavy'");
   }
   pe::removeTareFile(path);
+}
+
+namespace {
+
+// The message of the InputError `action` throws, or "no error".
+template <typename Action>
+std::string inputError(Action action) {
+  try {
+    action();
+  } catch (const pe::InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST(TareFile, RefusesAnEmptyFileAndDuplicateKeys) {
+  const std::string folder = testing::TempDir() + "/pe_tare_refused";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string path = folder + "/tare.yaml";
+  std::ofstream(path).close();
+  EXPECT_EQ(inputError([&] { pe::loadTareFile(path); }), path + ": the file is empty");
+  std::ofstream(path) << "empty_mass_kg: 1.2\nmodel: m.yaml\nempty_mass_kg: 1.5\nmodel_fingerprint: 0123\n";
+  EXPECT_EQ(inputError([&] { pe::loadTareFile(path); }),
+            path + ":3: empty_mass_kg: key given twice (first on line 1)");
+  std::filesystem::remove_all(folder);
+}
+
+TEST(TareFile, WritesThroughAUniqueTemporaryFileAndLeavesNoneBehind) {
+  const std::string folder = testing::TempDir() + "/pe_tare_unique";
+  std::filesystem::remove_all(folder);
+  const std::string path = folder + "/tare.yaml";
+  // A temporary file of the old fixed name (another node's, mid-write) is neither used nor touched.
+  std::filesystem::create_directories(folder);
+  std::ofstream(path + ".tmp") << "another node's half-written tare";
+  pe::saveTareFile(path, {1.25, "m.yaml", "0123"});
+  pe::saveTareFile(path, {1.5, "m.yaml", "0123"});
+  EXPECT_EQ(pe::loadTareFile(path)->empty_mass_kg, 1.5);
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"tare.yaml", "tare.yaml.tmp"}));
+  std::filesystem::remove_all(folder);
+}
+
+TEST(TareFile, SaysWhenItCannotBeWrittenRemovedOrMovedAside) {
+  const std::string folder = testing::TempDir() + "/pe_tare_failures";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  // A regular file where the tare file's folder should be.
+  std::ofstream(folder + "/file").close();
+  const std::string under_file = folder + "/file/tare.yaml";
+  EXPECT_EQ(inputError([&] { pe::saveTareFile(under_file, {1.25, "m.yaml", "0123"}); }),
+            under_file + ": tare file not written: cannot create a temporary file next to it: Not a directory");
+  // A non-empty folder where the tare file should be: neither replaced nor removed; no temporary file left.
+  const std::string folder_in_the_way = folder + "/tare.yaml";
+  std::filesystem::create_directories(folder_in_the_way + "/inside");
+  EXPECT_EQ(inputError([&] { pe::saveTareFile(folder_in_the_way, {1.25, "m.yaml", "0123"}); }),
+            folder_in_the_way + ": tare file not written: cannot replace it with the temporary file: Is a directory");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()), 2);
+  EXPECT_EQ(inputError([&] { pe::removeTareFile(folder_in_the_way); }),
+            folder_in_the_way + ": cannot remove the tare file: Directory not empty");
+  EXPECT_EQ(inputError([&] { pe::removeTareFile(folder + "/absent.yaml"); }), "no error");
+  EXPECT_EQ(inputError([&] { pe::setAsideTareFile(folder + "/absent.yaml", 1700000000); }),
+            folder + "/absent.yaml: cannot move the tare file to " + folder +
+                "/absent.yaml.bad-1700000000: No such file or directory");
+  std::filesystem::remove_all(folder);
+}
+
+TEST(TareFile, MovesABadFileAside) {
+  const std::string folder = testing::TempDir() + "/pe_tare_aside";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string path = folder + "/tare.yaml";
+  std::ofstream(path) << "garbage";
+  EXPECT_EQ(pe::setAsideTareFile(path, 1700000000), path + ".bad-1700000000");
+  EXPECT_FALSE(std::filesystem::exists(path));
+  std::ifstream aside(path + ".bad-1700000000");
+  std::string text;
+  std::getline(aside, text);
+  EXPECT_EQ(text, "garbage");
+  EXPECT_FALSE(pe::loadTareFile(path).has_value());
+  std::filesystem::remove_all(folder);
 }

@@ -24,6 +24,34 @@ TEST(RcOutCodec, RoundTripsHeaderAndChannels) {
   EXPECT_EQ(received.channels, sent.channels);
 }
 
+TEST(RcOutCodec, ReleasesWhatAnOversizedMessageGrew) {
+  pe::RcOutMessage big;
+  big.header.frame_id = std::string(1 << 20, 'f');
+  big.channels.assign(200000, 1500);
+  pe::RcOutMessage small;
+  small.header.frame_id = "base_link";
+  small.channels = {1500, 1510, 1490, 1505};
+  pe::RcOutDecoder decoder;
+  pe::RcOutMessage received;
+  std::string error;
+
+  ASSERT_TRUE(decoder.decode(pe::encodeRcOut(small), &received, &error)) << error;
+  const std::size_t small_bytes = decoder.keptBytes();
+  EXPECT_GT(small_bytes, 0u);  // a normal message's buffer is kept for the next one
+
+  ASSERT_TRUE(decoder.decode(pe::encodeRcOut(big), &received, &error)) << error;
+  EXPECT_EQ(received.header.frame_id, big.header.frame_id);
+  EXPECT_EQ(received.channels, big.channels);
+  EXPECT_EQ(decoder.keptBytes(), 0u);  // released after the message
+
+  ASSERT_TRUE(decoder.decode(pe::encodeRcOut(small), &received, &error)) << error;
+  EXPECT_EQ(received.header.frame_id, "base_link");
+  EXPECT_EQ(received.channels, small.channels);
+  EXPECT_EQ(decoder.keptBytes(), small_bytes);
+  EXPECT_LE(received.header.frame_id.capacity(), pe::RcOutDecoder::kMaxKeptBytes);
+  EXPECT_LE(received.channels.capacity() * sizeof(std::uint16_t), pe::RcOutDecoder::kMaxKeptBytes);
+}
+
 TEST(RcOutCodec, DefinitionEndsWithTheStdMsgsHeader) {
   const std::string& definition = pe::rcOutDefinition();
   EXPECT_EQ(definition.rfind("# RAW Servo out state\n\nstd_msgs/Header header\nuint16[] channels\n\n====", 0), 0u);

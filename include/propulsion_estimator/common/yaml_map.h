@@ -57,7 +57,8 @@ class YamlMap {
 };
 
 /// Parses a whole document and returns its root mapping; `source` names it in messages. Throws
-/// ConfigError for text that is not YAML or is empty.
+/// ConfigError for text that is not YAML or is empty, and for a mapping anywhere in the document
+/// that gives a key twice: "<source>:<line>: <key.path>: key given twice (first on line <n>)".
 YamlMap parseYamlDocument(const std::string& text, const std::string& source);
 /// Reads a file and parses it: InputError when it cannot be read, else as parseYamlDocument.
 YamlMap loadYamlFile(const std::string& path);

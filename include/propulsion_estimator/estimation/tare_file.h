@@ -20,10 +20,15 @@ struct TareRecord {
 /// The tare in `path`; nullopt when the file does not exist. ConfigError naming the file for
 /// content that is not a tare (InputError when it cannot be read).
 std::optional<TareRecord> loadTareFile(const std::string& path);
-/// Writes atomically (temporary file + rename) so that a crash never leaves half a file; InputError
-/// naming the file when it cannot be written.
+/// Writes atomically, so that a crash never leaves half a file and two nodes never write into
+/// each other's: a temporary file of a name unique to this call (pid, counter, random) next to
+/// `path` is written, fsynced and renamed over `path`, then the folder is fsynced. InputError
+/// naming the file and the failed step when it cannot be written (the temporary file removed).
 void saveTareFile(const std::string& path, const TareRecord& record);
-/// Removes the file if it exists.
+/// Removes the file if it exists; InputError naming it when it exists and cannot be removed.
 void removeTareFile(const std::string& path);
+/// Moves a tare file that cannot be used out of the way, to "<path>.bad-<unix_time>", and returns
+/// that name; InputError naming both when it cannot be moved.
+std::string setAsideTareFile(const std::string& path, long long unix_time);
 
 }  // namespace propulsion_estimator

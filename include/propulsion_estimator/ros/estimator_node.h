@@ -28,7 +28,8 @@ namespace propulsion_estimator {
 /// computed or judged here: the diagnostics copy the health summary (estimation/health_summary.h).
 class EstimatorNode {
  public:
-  // Throws ConfigError for bad parameters, model, URDF or tare file.
+  // Throws ConfigError for bad parameters, model or URDF. A tare file that cannot be read is moved
+  // aside and named on the Tare file diagnostic; the node starts without it.
   EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
 
  private:
@@ -44,6 +45,10 @@ class EstimatorNode {
   // which effects apply with which parameters.
   void subscribeEffectSignals(ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
                               const ros::TransportHints& hints);
+  // Applies the tare file of an earlier run, if any and taken with this model.
+  void loadTare();
+  // What the Tare file diagnostic says (and the log, once).
+  void setTareFileStatus(std::uint8_t level, const std::string& message);
   void logRejection(Rejection rejection);
   void publish();
 
@@ -63,6 +68,8 @@ class EstimatorNode {
   ros::Publisher motors_pub_, totals_pub_, payload_pub_;
   ros::ServiceServer tare_srv_, detect_hover_srv_, reset_srv_;
   diagnostic_updater::Updater diagnostics_;
+  std::uint8_t tare_file_level_ = diagnostic_msgs::DiagnosticStatus::OK;
+  std::string tare_file_message_;
 
   RcOutDecoder decoder_;
   RcOutMessage rc_out_;

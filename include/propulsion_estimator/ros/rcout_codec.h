@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,10 +26,16 @@ struct RcOutMessage {
 
 /// Decoder of mavros_msgs/RCOut. decode() decodes into `out`, reusing its and `buffer`'s storage
 /// (no allocation once they are large enough). Returns false with a one-line reason for another
-/// type or a malformed payload.
+/// type or a malformed payload. Storage that one message grew beyond kMaxKeptBytes is released:
+/// the buffer after that message, `out`'s channels and frame_id at the next decode().
 class RcOutDecoder {
  public:
+  /// Far above any real RCOut (a few dozen bytes); a larger buffer is not kept between messages.
+  static constexpr std::size_t kMaxKeptBytes = 64 * 1024;
+
   bool decode(const topic_tools::ShapeShifter& message, RcOutMessage* out, std::string* error);
+  /// Bytes of serialization buffer kept for the next message.
+  std::size_t keptBytes() const { return buffer_.capacity(); }
   // The serialized message alone, for a reader that has checked the type itself (a bag's
   // connection): false with a one-line reason for a malformed payload.
   static bool decodePayload(const std::uint8_t* data, std::uint32_t size, RcOutMessage* out, std::string* error);
