@@ -13,7 +13,7 @@ SETUP := source $(WS)/install/setup.sh
 COLCON_BUILD := colcon build --event-handlers console_direct+ \
 	--cmake-args -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps build demo demo-bag test bench validate-gap clean
+.PHONY: deps build demo demo-bag test test-sanitizers bench validate-gap clean
 
 deps:
 	@scripts/install_deps.sh
@@ -37,6 +37,18 @@ demo-bag: build
 test: build
 	cd $(WS) && colcon test --event-handlers console_direct+ \
 		&& colcon test-result --verbose
+
+# The unit tests (every gtest target, the tools' process tests included) built in their own build
+# and install spaces with AddressSanitizer and UndefinedBehaviorSanitizer; any finding fails.
+SAN := --build-base $(WS)/sanitizers/build --install-base $(WS)/sanitizers/install
+test-sanitizers: deps
+	@mkdir -p $(WS)/src
+	@ln -sfn $(CURDIR) $(WS)/src/propulsion_estimator
+	cd $(WS) && colcon build $(SAN) --event-handlers console_direct+ \
+		--cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPE_SANITIZE=ON
+	cd $(WS) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+		colcon test $(SAN) --event-handlers console_direct+ --ctest-args -R _gtest_ \
+		&& colcon test-result --test-result-base $(WS)/sanitizers/build --verbose
 
 # The gap diagnosis validated on simulated flights whose effect is withheld from it (44 random
 # cases, about half an hour); rewrites VALIDATION.md. CASES=N for another count.
