@@ -427,15 +427,21 @@ TEST(Estimator, ModelWithoutCurrentPowerAndEfficiencyEstimatesTheRestAndPublishe
   EXPECT_EQ(estimator.counters().rejected[static_cast<int>(pe::Rejection::kNonFiniteEstimate)], 0u);
 }
 
+namespace {
+
+// What validate() says of `config` for a quad: its refusal, or "accepted".
+std::string refusal(const pe::EstimatorConfig& config) {
+  try {
+    config.validate(4);
+  } catch (const pe::ConfigError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+}  // namespace
+
 TEST(EstimatorConfig, RefusesChannelsThatDoNotFitTheVehicle) {
-  auto refusal = [](pe::EstimatorConfig config) -> std::string {
-    try {
-      config.validate(4);
-    } catch (const pe::ConfigError& e) {
-      return e.what();
-    }
-    return "accepted";
-  };
   pe::EstimatorConfig config;
   config.motor_channels = {1, 2, 3, 4, 5, 6};
   EXPECT_EQ(refusal(config), "motor_channels: 6 channels for a vehicle with 4 rotors");
@@ -459,14 +465,6 @@ TEST(EstimatorConfig, RefusesChannelsThatDoNotFitTheVehicle) {
 }
 
 TEST(EstimatorConfig, RefusesWindowsThatValidateButCanNeverBeMet) {
-  auto refusal = [](pe::EstimatorConfig config) -> std::string {
-    try {
-      config.validate(4);
-    } catch (const pe::ConfigError& e) {
-      return e.what();
-    }
-    return "accepted";
-  };
   pe::EstimatorConfig config;
   config.hover.window_s = 2000.0;
   EXPECT_EQ(refusal(config),
