@@ -21,17 +21,19 @@ void emitNumber(YAML::Emitter& out, double value, const char* pattern = "%.4g") 
   }
 }
 
+// A key and its number: null when not finite.
+void emitField(YAML::Emitter& out, const char* key, double value, const char* pattern = "%.4g") {
+  out << YAML::Key << key;
+  emitNumber(out, value, pattern);
+}
+
 void emitStats(YAML::Emitter& out, const ResidualStats& stats) {
   out << YAML::Flow << YAML::BeginMap;
   out << YAML::Key << "samples" << YAML::Value << stats.samples;
-  out << YAML::Key << "bias_pct";
-  emitNumber(out, stats.bias_pct);
-  out << YAML::Key << "rmse_pct";
-  emitNumber(out, stats.rmse_pct);
-  out << YAML::Key << "bias_n";
-  emitNumber(out, stats.bias_n);
-  out << YAML::Key << "rmse_n";
-  emitNumber(out, stats.rmse_n);
+  emitField(out, "bias_pct", stats.bias_pct);
+  emitField(out, "rmse_pct", stats.rmse_pct);
+  emitField(out, "bias_n", stats.bias_n);
+  emitField(out, "rmse_n", stats.rmse_n);
   out << YAML::EndMap;
 }
 
@@ -71,19 +73,15 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
   YAML::Emitter out;
   out << YAML::BeginMap;
   out << YAML::Key << "gap" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "bias_pct";
-  emitNumber(out, diagnosis.overall.bias_pct);
-  out << YAML::Key << "rmse_pct";
-  emitNumber(out, diagnosis.overall.rmse_pct);
-  out << YAML::Key << "payload_err_pct";
-  emitNumber(out, diagnosis.payload_err_pct);
+  emitField(out, "bias_pct", diagnosis.overall.bias_pct);
+  emitField(out, "rmse_pct", diagnosis.overall.rmse_pct);
+  emitField(out, "payload_err_pct", diagnosis.payload_err_pct);
   out << YAML::Key << "samples" << YAML::Value << diagnosis.overall.samples;
   out << YAML::Key << "transient_samples" << YAML::Value << diagnosis.transient_blocks;
   out << YAML::Key << "flights" << YAML::Value << YAML::BeginSeq;
   for (const FlightGap& flight : diagnosis.flights) {
     out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << flight.name;
-    out << YAML::Key << "mean_mass_kg";
-    emitNumber(out, flight.mean_mass_kg);
+    emitField(out, "mean_mass_kg", flight.mean_mass_kg);
     out << YAML::Key << "stats" << YAML::Value;
     emitStats(out, flight.stats);
     out << YAML::Key << "problems" << YAML::Value << YAML::Flow << flight.problems << YAML::EndMap;
@@ -110,10 +108,8 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
     for (const Bin& bin : breakdown.bins) {
       out << YAML::Flow << YAML::BeginMap << YAML::Key << "bin" << YAML::Value << bin.label;
       out << YAML::Key << "samples" << YAML::Value << bin.stats.samples;
-      out << YAML::Key << "bias_pct";
-      emitNumber(out, bin.stats.bias_pct);
-      out << YAML::Key << "rmse_pct";
-      emitNumber(out, bin.stats.rmse_pct);
+      emitField(out, "bias_pct", bin.stats.bias_pct);
+      emitField(out, "rmse_pct", bin.stats.rmse_pct);
       out << YAML::EndMap;
     }
     out << YAML::EndSeq;
@@ -121,10 +117,8 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
   out << YAML::Key << "motors" << YAML::Value << YAML::BeginSeq;
   for (const MotorGap& motor : diagnosis.motors.motors) {
     out << YAML::Flow << YAML::BeginMap << YAML::Key << "channel" << YAML::Value << motor.channel;
-    out << YAML::Key << "thrust_gap_pct";
-    emitNumber(out, motor.thrust_gap_pct);
-    out << YAML::Key << "ci_pct";
-    emitNumber(out, motor.ci_pct);
+    emitField(out, "thrust_gap_pct", motor.thrust_gap_pct);
+    emitField(out, "ci_pct", motor.ci_pct);
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
@@ -134,8 +128,7 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
   } else {
     out << YAML::Null;
   }
-  out << YAML::Key << "suspect_thrust_factor";
-  emitNumber(out, diagnosis.motors.suspect_thrust_factor);
+  emitField(out, "suspect_thrust_factor", diagnosis.motors.suspect_thrust_factor);
   out << YAML::Key << "centre_of_thrust_m" << YAML::Value << YAML::Flow << YAML::BeginSeq
       << formatPrintf("%.4f", diagnosis.motors.cg_offset_x_m) << formatPrintf("%.4f", diagnosis.motors.cg_offset_y_m)
       << YAML::EndSeq;
@@ -157,12 +150,9 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
           << YAML::Value << YAML::Flow << YAML::BeginSeq << formatPrintf("%.4g", effect.ci_low)
           << formatPrintf("%.4g", effect.ci_high) << YAML::EndSeq << YAML::EndMap;
       out << YAML::Key << "plausible" << YAML::Value << effect.plausible;
-      out << YAML::Key << "heldout_rmse_pct";
-      emitNumber(out, effect.heldout_rmse_pct);
-      out << YAML::Key << "p_value";
-      emitNumber(out, effect.p_value);
-      out << YAML::Key << "current_view_ratio";
-      emitNumber(out, effect.current_view_ratio, "%.3f");
+      emitField(out, "heldout_rmse_pct", effect.heldout_rmse_pct);
+      emitField(out, "p_value", effect.p_value);
+      emitField(out, "current_view_ratio", effect.current_view_ratio, "%.3f");
     }
     out << YAML::Key << "reason" << YAML::Value << effect.reason;
     out << YAML::EndMap;
@@ -172,18 +162,12 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
   for (effects::Kind kind : diagnosis.selected) out << effects::kindName(kind);
   out << YAML::EndSeq;
   out << YAML::Key << "heldout" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "before_rmse_pct";
-  emitNumber(out, diagnosis.heldout.before_rmse_pct);
-  out << YAML::Key << "after_rmse_pct";
-  emitNumber(out, diagnosis.heldout.after_rmse_pct);
-  out << YAML::Key << "before_bias_pct";
-  emitNumber(out, diagnosis.heldout.before_bias_pct);
-  out << YAML::Key << "after_bias_pct";
-  emitNumber(out, diagnosis.heldout.after_bias_pct);
-  out << YAML::Key << "before_payload_err_pct";
-  emitNumber(out, diagnosis.heldout.before_payload_err_pct);
-  out << YAML::Key << "after_payload_err_pct";
-  emitNumber(out, diagnosis.heldout.after_payload_err_pct);
+  emitField(out, "before_rmse_pct", diagnosis.heldout.before_rmse_pct);
+  emitField(out, "after_rmse_pct", diagnosis.heldout.after_rmse_pct);
+  emitField(out, "before_bias_pct", diagnosis.heldout.before_bias_pct);
+  emitField(out, "after_bias_pct", diagnosis.heldout.after_bias_pct);
+  emitField(out, "before_payload_err_pct", diagnosis.heldout.before_payload_err_pct);
+  emitField(out, "after_payload_err_pct", diagnosis.heldout.after_payload_err_pct);
   out << YAML::EndMap;
   out << YAML::Key << "method" << YAML::Value << diagnosis.method;
   out << YAML::Key << "problems" << YAML::Value << diagnosis.problems;
