@@ -206,7 +206,7 @@ class Diagnoser {
   // Sum over blocks of the joint squared error (PWM view plus current view where it exists).
   std::vector<double> groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const;
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
-  double suspectThrustFactor(int motor, double yaw_gap);
+  double suspectThrustFactor(int motor, double yaw_gap) const;
   double currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const;
 
   const PropulsionModel& model_;
@@ -345,14 +345,13 @@ HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) cons
 // as the bench propeller did; a damaged or smaller one does not quite. Its thrust factor is fitted
 // to the weighed thrust instead (least squares on the PWM view), within [1 - 2 gap, 1]: weaker
 // than modelled, by at most twice what the balance says.
-double Diagnoser::suspectThrustFactor(int motor, double yaw_gap) {
+double Diagnoser::suspectThrustFactor(int motor, double yaw_gap) const {
   const effects::ModelEffects plain = references();
   double sum_xy = 0.0, sum_xx = 0.0;
   for (const Block& block : blocks_) {
-    views_.setMotorScale(motor, 0.0);
-    const double others = views_.pwmView(block, plain);
-    views_.setMotorScale(motor, 1.0);
-    const double mine = views_.pwmView(block, plain) - others;
+    // No effect is selected yet: the PWM view is the surfaces' thrust along each rotor's axis.
+    const double mine = views_.motorThrust(block.pwm_us[motor], block.voltage_v) * block.axis_up[motor];
+    const double others = views_.pwmView(block, plain) - mine;
     const double weight = 1.0 / (block.truth_n * block.truth_n);
     sum_xy += weight * (block.truth_n - others) * mine;
     sum_xx += weight * mine * mine;

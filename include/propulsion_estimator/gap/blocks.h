@@ -37,7 +37,7 @@ struct Block {
 /// How flights are cut into blocks.
 struct BlockConfig {
   int motors = 4;
-  double block_s = 0.5;
+  double block_s = 1.0;
   double group_s = 10.0;
   double signal_timeout_s = 1.0;
   double hover_max_vertical_speed_m_s = 0.2;
