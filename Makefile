@@ -51,7 +51,7 @@ test-sanitizers: deps
 		&& colcon test-result --test-result-base $(WS)/sanitizers/build --verbose
 
 # The gap diagnosis validated on simulated flights whose effect is withheld from it (44 random
-# cases, about half an hour); rewrites VALIDATION.md. CASES=N for another count.
+# cases, about five minutes on 2 cores); rewrites VALIDATION.md. CASES=N for another count.
 CASES ?= 44
 validate-gap: build
 	$(SETUP) && python3 scripts/validate_gap.py --cases $(CASES) --jobs 2 \

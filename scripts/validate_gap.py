@@ -10,10 +10,11 @@ the selected effects are exactly the injected ones (none for a null case and for
 weak propeller's motor is the suspect.
 
 Usage: validate_gap.py --bin DIR --repo DIR --work DIR [--cases N] [--quick] [--seed S]
-                       [--markdown FILE] [--junit FILE] [--jobs N]
+                       [--markdown FILE] [--junit FILE] [--jobs N] [--reuse]
   --bin      folder holding simulate, fit_surfaces and diagnose_gap
   --quick    one case of each kind the CI needs (null, thrust loss, supply resistance, weak propeller)
   --markdown write the table (VALIDATION.md)
+  --reuse    diagnose the cases already simulated in --work again (after a change to the diagnosis)
 
 Prints a confusion matrix and the mean held-out shrink; exits 1 when the acceptance thresholds of
 issue 8 are missed (>= 90 % right, no null case named, weak propellers located, >= 70 % shrink).
