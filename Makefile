@@ -13,7 +13,7 @@ SETUP := source $(WS)/install/setup.sh
 COLCON_BUILD := colcon build --event-handlers console_direct+ \
 	--cmake-args -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps build demo demo-bag test test-sanitizers bench validate-gap clean
+.PHONY: deps build demo demo-bag test check test-sanitizers bench validate-gap clean
 
 deps:
 	@scripts/install_deps.sh
@@ -34,7 +34,12 @@ demo-bag: build
 		--profile config/demo/demo_flight_profile.yaml --seed 1 --compression bz2 \
 		--bag config/demo/demo_flight.bag --manifest config/demo/demo_flight.manifest.yaml
 
-test: build
+# All tests: the colcon tests (unit, rostests with the soak and the kill-during-tare tests, bag
+# replays), then the unit tests again under the sanitizers.
+test: check test-sanitizers
+
+# The colcon tests alone, in the Release build.
+check: build
 	cd $(WS) && colcon test --event-handlers console_direct+ \
 		&& colcon test-result --verbose
 

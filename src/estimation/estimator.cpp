@@ -24,10 +24,6 @@ constexpr double kMaxAirTemperatureC = 85.0;
 constexpr double kMinMotorTemperatureC = -40.0;
 constexpr double kMaxMotorTemperatureC = 200.0;
 
-std::size_t windowCapacity(double span_s, double rate_hz) {
-  return static_cast<std::size_t>(std::ceil(span_s * rate_hz)) + 2;
-}
-
 }  // namespace
 
 const char* rejectionName(Rejection rejection) {
@@ -37,6 +33,15 @@ const char* rejectionName(Rejection rejection) {
       "non_finite_estimate",
       "bad_battery_current", "bad_static_pressure", "bad_air_temperature", "bad_range", "bad_motor_temperature"};
   return kNames[static_cast<int>(rejection)];
+}
+
+const char* verticalSpeedSourceName(VerticalSpeedSource source) {
+  switch (source) {
+    case VerticalSpeedSource::kNone: return "none";
+    case VerticalSpeedSource::kVelocity: return "velocity";
+    case VerticalSpeedSource::kBarometer: return "barometer";
+  }
+  return "?";
 }
 
 std::string describe(const RejectionDetail& d) {
@@ -104,8 +109,8 @@ Estimator::Estimator(PropulsionModel model, Vehicle vehicle, EstimatorConfig con
       vehicle_(std::move(vehicle)),
       // Validated before the windows below are sized from it.
       config_((config.validate(vehicle_.rotors.size()), std::move(config))),
-      hover_(config_.hover, windowCapacity(config_.hover.window_s, config_.max_rate_hz)),
-      payload_(config_.payload, windowCapacity(config_.payload.averaging_window_s, config_.max_rate_hz)),
+      hover_(config_.hover),
+      payload_(config_.payload),
       accel_filter_(config_.accel_filter_s, config_.accel_bias_filter_s),
       has_current_(model_.output(Output::kCurrent).source != OutputSource::kNone),
       has_power_(model_.output(Output::kPower).source != OutputSource::kNone),
@@ -139,6 +144,7 @@ void Estimator::checkClock(double receipt_s) {
     // The clock restarted (a bag played again): everything received belongs to another timeline.
     clearWindows();
     accel_filter_.clear();
+    barometric_speed_.clear();
     have_voltage_ = have_imu_ = have_velocity_ = have_stamp_ = have_accepted_ = false;
     for (Reading* reading : {&battery_current_a_, &static_pressure_pa_, &air_temperature_c_, &range_m_,
                              &motor_temperature_c_}) {
@@ -205,6 +211,7 @@ Rejection Estimator::addStaticPressure(double receipt_s, double pressure_pa) {
     return reject(Rejection::kBadStaticPressure, 0, pressure_pa);
   }
   static_pressure_pa_.set(receipt_s, pressure_pa);
+  barometric_speed_.add(receipt_s, pressure_pa);
   return Rejection::kNone;
 }
 
@@ -369,10 +376,20 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   sample.vertical_thrust_n = totals.vertical_thrust_n;
   sample.mass_kg = totals.mass_kg;
   sample.tilt_rad = imu_fresh ? std::acos(std::clamp(body_to_world_(2, 2), -1.0, 1.0)) : kNaN;
-  sample.vertical_speed_m_s = velocity_fresh ? vertical_speed_m_s_ : kNaN;
+  VerticalSpeedSource speed_source = VerticalSpeedSource::kNone;
+  sample.vertical_speed_m_s = kNaN;
+  if (velocity_fresh) {
+    sample.vertical_speed_m_s = vertical_speed_m_s_;
+    speed_source = VerticalSpeedSource::kVelocity;
+  } else if (!std::isnan(static_pressure_pa_.at(receipt_s, config_.static_pressure_timeout_s)) &&
+             !std::isnan(barometric_speed_.value())) {
+    sample.vertical_speed_m_s = barometric_speed_.value();
+    speed_source = VerticalSpeedSource::kBarometer;
+  }
   sample.vertical_accel_m_s2 = vertical_accel;
   output_.hover = hover_.add(stamp_s, sample);
   output_.payload = payload_.add(stamp_s, totals.mass_kg, output_.hover.hovering);
+  output_.vertical_speed_source = speed_source;
   output_.totals = totals;
   output_.stamp_s = stamp_s;
   output_.effects_skipped = skipped;

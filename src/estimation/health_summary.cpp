@@ -52,13 +52,11 @@ HealthStatus judgeInputs(const Estimator& estimator, const HealthSnapshot& befor
     add(&status, names[i], rate(now.inputs.received[i], before.inputs.received[i], seconds));
   }
   const int rc_out = static_cast<int>(NodeInput::kRcOut);
-  const double rc_out_rate = rate(now.inputs.received[rc_out], before.inputs.received[rc_out], seconds);
   const double age = estimator.batteryAge(now.time_s);
   add(&status, "battery age (s)", age);
   add(&status, "imu messages without orientation", now.inputs.imu_without_orientation);
 
   const double timeout = estimator.config().battery_timeout_s;
-  const double max_rate = estimator.config().max_rate_hz;
   std::ostringstream message;
   message.precision(3);
   if (std::isinf(age)) {
@@ -71,10 +69,6 @@ HealthStatus judgeInputs(const Estimator& estimator, const HealthSnapshot& befor
   } else if (now.inputs.received[rc_out] == before.inputs.received[rc_out]) {
     status.level = HealthLevel::kWarn;
     message << "no motor outputs on " << config.rc_out_input;
-  } else if (rc_out_rate > max_rate) {
-    status.level = HealthLevel::kWarn;
-    message << config.rc_out_input << " at " << rc_out_rate << " Hz, above max_rate_hz " << max_rate
-            << ": the hover and averaging windows cover less time than configured";
   } else {
     message << "receiving";
   }
@@ -161,7 +155,21 @@ HealthStatus judgePayload(const Estimator& estimator) {
   add(&status, "empty mass source", std::string(emptyMassSourceName(p.empty_mass_source)));
   add(&status, "payload mass (kg)", p.payload_mass_kg);
   add(&status, "hover", estimator.describeHover());
+  const HoverVerdict& hover = estimator.output().hover;
+  add(&status, "hover checks inactive", hoverCheckNames(hover.inactive_checks));
+  add(&status, "vertical speed source", std::string(verticalSpeedSourceName(estimator.output().vertical_speed_source)));
   status.message = payloadStateName(p.state);
+  // Without its signal a check passes nothing: a steady climb with no vertical speed, a tilted
+  // hover with no IMU would count as hover. Said only while the window holds samples.
+  if (hover.samples > 0 && hover.inactive_checks) {
+    status.level = HealthLevel::kWarn;
+    std::string missing;
+    if (hover.inactive_checks & (kTiltCheck | kVerticalAccelCheck)) missing = "no fresh IMU";
+    if (hover.inactive_checks & kVerticalSpeedCheck) {
+      missing += std::string(missing.empty() ? "" : ", ") + "no fresh velocity or barometer";
+    }
+    status.message += "; hover checks inactive: " + hoverCheckNames(hover.inactive_checks) + " (" + missing + ")";
+  }
   return status;
 }
 

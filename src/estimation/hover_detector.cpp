@@ -17,11 +17,14 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 void HoverConfig::validate() const {
   requirePositive("hover/window_s", window_s);
   requirePositive("hover/min_window_fill", min_window_fill, 1.0);
-  if (min_window_fill == 1.0) {
-    // The window keeps samples at most window_s old: they span the whole of it only when one
-    // happens to be stamped exactly window_s before the newest.
+  // The window keeps whole bins of window_s / kBins: its samples always span less than window_s,
+  // and at least (kBins - 1) / kBins of it once the window is full.
+  constexpr double kBins = static_cast<double>(BinnedWindow<HoverStatistics>::kBins);
+  if (min_window_fill > (kBins - 1.0) / kBins) {
     throw FieldError("hover/min_window_fill",
-                     formatNumber(min_window_fill) + " is never met: the samples span less than the whole window");
+                     formatNumber(min_window_fill) + " is never reliably met: the window keeps its samples in " +
+                         formatNumber(kBins) + " bins and spans at least " + formatPrintf("%.4g", (kBins - 1.0) / kBins) +
+                         " of hover/window_s");
   }
   requirePositive("hover/max_thrust_rel_std", max_thrust_rel_std);
   requirePositive("hover/max_tilt_deg", max_tilt_deg);
@@ -30,8 +33,47 @@ void HoverConfig::validate() const {
   requirePositive("hover/min_mass_kg", min_mass_kg);
 }
 
-HoverDetector::HoverDetector(const HoverConfig& config, std::size_t capacity)
-    : config_(config), window_(config.window_s, capacity) {}
+void HoverStatistics::add(const HoverSample& s) {
+  thrust_n.add(s.vertical_thrust_n);
+  mass_sum_kg += s.mass_kg;
+  if (!std::isnan(s.tilt_rad)) {
+    max_tilt_rad = std::fmax(max_tilt_rad, std::fabs(s.tilt_rad));  // fmax ignores the initial NaN
+    ++tilt_samples;
+  }
+  if (!std::isnan(s.vertical_speed_m_s)) {
+    max_abs_vertical_speed_m_s = std::fmax(max_abs_vertical_speed_m_s, std::fabs(s.vertical_speed_m_s));
+    ++vertical_speed_samples;
+  }
+  if (!std::isnan(s.vertical_accel_m_s2)) {
+    vertical_accel_sum_m_s2 += s.vertical_accel_m_s2;
+    ++vertical_accel_samples;
+  }
+}
+
+void HoverStatistics::merge(const HoverStatistics& o) {
+  thrust_n.merge(o.thrust_n);
+  mass_sum_kg += o.mass_sum_kg;
+  max_tilt_rad = std::fmax(max_tilt_rad, o.max_tilt_rad);
+  tilt_samples += o.tilt_samples;
+  max_abs_vertical_speed_m_s = std::fmax(max_abs_vertical_speed_m_s, o.max_abs_vertical_speed_m_s);
+  vertical_speed_samples += o.vertical_speed_samples;
+  vertical_accel_sum_m_s2 += o.vertical_accel_sum_m_s2;
+  vertical_accel_samples += o.vertical_accel_samples;
+}
+
+std::string hoverCheckNames(std::uint8_t mask) {
+  std::string names;
+  for (const auto& [bit, name] : {std::pair<std::uint8_t, const char*>{kTiltCheck, "tilt"},
+                                  {kVerticalSpeedCheck, "vertical speed"},
+                                  {kVerticalAccelCheck, "vertical acceleration"}}) {
+    if (!(mask & bit)) continue;
+    if (!names.empty()) names += ", ";
+    names += name;
+  }
+  return names.empty() ? "none" : names;
+}
+
+HoverDetector::HoverDetector(const HoverConfig& config) : config_(config), window_(config.window_s) {}
 
 void HoverDetector::clear() {
   window_.clear();
@@ -44,39 +86,36 @@ void HoverDetector::expire() {
 }
 
 const HoverVerdict& HoverDetector::add(double stamp_s, const HoverSample& sample) {
-  window_.push(stamp_s, sample);
+  window_.add(stamp_s, sample);
   evaluate();
   return verdict_;
 }
 
 void HoverDetector::evaluate() {
+  const HoverStatistics stats = window_.total();
   HoverVerdict v;
-  v.samples = window_.size();
+  v.samples = static_cast<std::size_t>(stats.thrust_n.count);
   v.span_s = window_.span();
-  double sum = 0.0, sum_sq = 0.0, mass = 0.0, accel = 0.0;
-  double max_tilt = std::nan(""), max_speed = std::nan("");
-  std::size_t accel_samples = 0;
-  for (std::size_t i = 0; i < window_.size(); ++i) {
-    const HoverSample& s = window_[i];
-    sum += s.vertical_thrust_n;
-    sum_sq += s.vertical_thrust_n * s.vertical_thrust_n;
-    mass += s.mass_kg;
-    // fmax ignores a NaN argument: the maxima stay NaN only if nothing was measured.
-    max_tilt = std::fmax(max_tilt, std::fabs(s.tilt_rad));
-    max_speed = std::fmax(max_speed, std::fabs(s.vertical_speed_m_s));
-    if (!std::isnan(s.vertical_accel_m_s2)) {
-      accel += s.vertical_accel_m_s2;
-      ++accel_samples;
-    }
-  }
   const double n = static_cast<double>(std::max<std::size_t>(v.samples, 1));
-  v.mean_thrust_n = sum / n;
-  const double variance = std::max(sum_sq / n - v.mean_thrust_n * v.mean_thrust_n, 0.0);
-  v.thrust_rel_std = v.mean_thrust_n > 0.0 ? std::sqrt(variance) / v.mean_thrust_n : 0.0;
-  v.mean_mass_kg = mass / n;
-  v.max_tilt_rad = max_tilt;
-  v.max_abs_vertical_speed_m_s = max_speed;
-  v.mean_vertical_accel_m_s2 = accel_samples ? accel / static_cast<double>(accel_samples) : std::nan("");
+  v.mean_thrust_n = stats.thrust_n.mean;
+  v.thrust_rel_std = v.mean_thrust_n > 0.0 ? std::sqrt(stats.thrust_n.variance()) / v.mean_thrust_n : 0.0;
+  v.mean_mass_kg = stats.mass_sum_kg / n;
+  v.max_tilt_rad = stats.max_tilt_rad;
+  v.max_abs_vertical_speed_m_s = stats.max_abs_vertical_speed_m_s;
+  v.mean_vertical_accel_m_s2 = stats.vertical_accel_samples
+                                   ? stats.vertical_accel_sum_m_s2 / static_cast<double>(stats.vertical_accel_samples)
+                                   : kNaN;
+  v.tilt_samples = static_cast<std::size_t>(stats.tilt_samples);
+  v.vertical_speed_samples = static_cast<std::size_t>(stats.vertical_speed_samples);
+  v.vertical_accel_samples = static_cast<std::size_t>(stats.vertical_accel_samples);
+  v.inactive_checks = static_cast<std::uint8_t>((v.tilt_samples == 0 ? kTiltCheck : 0) |
+                                                (v.vertical_speed_samples == 0 ? kVerticalSpeedCheck : 0) |
+                                                (v.vertical_accel_samples == 0 ? kVerticalAccelCheck : 0));
+  // A signal that went stale within the window leaves samples no check saw (a climb while the
+  // velocity was missing): the window is not judged until the signal is back throughout.
+  const bool gap = (v.tilt_samples && v.tilt_samples < v.samples) ||
+                   (v.vertical_speed_samples && v.vertical_speed_samples < v.samples) ||
+                   (v.vertical_accel_samples && v.vertical_accel_samples < v.samples);
 
   if (v.samples < 2 || v.span_s < config_.min_window_fill * config_.window_s) {
     v.blocker = HoverBlocker::kWindowFilling;
@@ -84,9 +123,11 @@ void HoverDetector::evaluate() {
     v.blocker = HoverBlocker::kLowThrust;
   } else if (v.thrust_rel_std > config_.max_thrust_rel_std) {
     v.blocker = HoverBlocker::kThrustUnsteady;
-  } else if (max_tilt * kRadToDeg > config_.max_tilt_deg) {
+  } else if (gap) {
+    v.blocker = HoverBlocker::kSignalGap;
+  } else if (v.max_tilt_rad * kRadToDeg > config_.max_tilt_deg) {
     v.blocker = HoverBlocker::kTilted;
-  } else if (max_speed > config_.max_vertical_speed_m_s) {
+  } else if (v.max_abs_vertical_speed_m_s > config_.max_vertical_speed_m_s) {
     v.blocker = HoverBlocker::kClimbingOrSinking;
   } else if (std::fabs(v.mean_vertical_accel_m_s2) > config_.max_vertical_accel_m_s2) {
     v.blocker = HoverBlocker::kAccelerating;
@@ -124,6 +165,11 @@ std::string describe(const HoverVerdict& v, const HoverConfig& c) {
       out << "not hovering: vertical acceleration " << v.mean_vertical_accel_m_s2 << " m/s^2 (limit "
           << c.max_vertical_accel_m_s2 << " m/s^2)";
       break;
+    case HoverBlocker::kSignalGap:
+      out << "not hovering: a check's signal is missing on part of the window (tilt on " << v.tilt_samples
+          << ", vertical speed on " << v.vertical_speed_samples << ", vertical acceleration on "
+          << v.vertical_accel_samples << " of " << v.samples << " samples)";
+      break;
     case HoverBlocker::kExpired:
       out << "not hovering: no sample within the last hover/window_s " << c.window_s << " s (the last verdict expired)";
       break;
@@ -132,6 +178,9 @@ std::string describe(const HoverVerdict& v, const HoverConfig& c) {
       << " N (" << v.mean_mass_kg << " kg), thrust std " << 100.0 * v.thrust_rel_std << " %";
   if (!std::isnan(v.max_tilt_rad)) out << ", max tilt " << v.max_tilt_rad * kRadToDeg << " deg";
   if (!std::isnan(v.max_abs_vertical_speed_m_s)) out << ", max |vz| " << v.max_abs_vertical_speed_m_s << " m/s";
+  if (v.inactive_checks && v.blocker != HoverBlocker::kExpired) {
+    out << "; checks inactive: " << hoverCheckNames(v.inactive_checks);
+  }
   return out.str();
 }
 

@@ -37,8 +37,8 @@ const char* payloadStateName(PayloadState state) {
   return "?";
 }
 
-PayloadEstimator::PayloadEstimator(const PayloadConfig& config, std::size_t capacity)
-    : config_(config), window_(config.averaging_window_s, capacity) {
+PayloadEstimator::PayloadEstimator(const PayloadConfig& config)
+    : config_(config), window_(config.averaging_window_s) {
   updateStatistics();
   clearEmptyMass();
 }
@@ -46,7 +46,7 @@ PayloadEstimator::PayloadEstimator(const PayloadConfig& config, std::size_t capa
 const MassEstimate& PayloadEstimator::add(double stamp_s, double mass_kg, bool hovering) {
   if (hovering) {
     if (hovered_before_ && stamp_s - last_hover_stamp_s_ > config_.episode_gap_s) window_.clear();
-    window_.push(stamp_s, mass_kg);
+    window_.add(stamp_s, mass_kg);
     last_hover_stamp_s_ = stamp_s;
     hovered_before_ = true;
     updateStatistics();
@@ -74,20 +74,15 @@ void PayloadEstimator::endHover() { updateState(false); }
 
 void PayloadEstimator::updateStatistics() {
   MassEstimate& e = estimate_;
-  e.window_samples = static_cast<std::uint32_t>(window_.size());
+  const RunningMoments mass = window_.total();
+  e.window_samples = static_cast<std::uint32_t>(mass.count);
   e.window_s = window_.span();
-  if (window_.size() < config_.min_samples) {
+  if (mass.count < config_.min_samples) {
     e.total_mass_kg = e.mass_std_kg = kNaN;
     return;
   }
-  double sum = 0.0;
-  for (std::size_t i = 0; i < window_.size(); ++i) sum += window_[i];
-  const double n = static_cast<double>(window_.size());
-  const double mean = sum / n;
-  double squares = 0.0;
-  for (std::size_t i = 0; i < window_.size(); ++i) squares += (window_[i] - mean) * (window_[i] - mean);
-  e.total_mass_kg = mean;
-  e.mass_std_kg = std::sqrt(squares / (n - 1.0));
+  e.total_mass_kg = mass.mean;
+  e.mass_std_kg = std::sqrt(mass.sampleVariance());
 }
 
 void PayloadEstimator::updateState(bool hovering) {

@@ -47,7 +47,9 @@ void copy(const HealthStatus& health, diagnostic_updater::DiagnosticStatusWrappe
 }  // namespace
 
 EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
-    : params_(readEstimatorNodeParams(private_nh)), diagnostics_(nh, private_nh) {
+    : params_(readEstimatorNodeParams(private_nh)),
+      diagnostics_(nh, private_nh),
+      publish_limiter_(params_.publish_rate_hz) {
   PropulsionModel model = loadModelFile(params_.model);
   model_fingerprint_ = modelFingerprint(model);
   Vehicle vehicle = loadVehicle(nh, params_);
@@ -83,6 +85,10 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (!params_.imu_topic.empty()) imu_sub_ = nh.subscribe(params_.imu_topic, 20, &EstimatorNode::onImu, this, hints);
   if (!params_.velocity_topic.empty()) {
     velocity_sub_ = nh.subscribe(params_.velocity_topic, 20, &EstimatorNode::onVelocity, this, hints);
+  }
+  if (!params_.static_pressure_topic.empty()) {
+    static_pressure_sub_ =
+        nh.subscribe(params_.static_pressure_topic, 20, &EstimatorNode::onStaticPressure, this, hints);
   }
   subscribeEffectSignals(nh, private_nh, hints);
   tare_srv_ = private_nh.advertiseService("tare", &EstimatorNode::onTare, this);
@@ -188,8 +194,6 @@ void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& nh, const ros::NodeH
       case effects::Signal::kAirDensity:
         require(kind, "static_pressure_topic", params_.static_pressure_topic);
         require(kind, "air_temperature_topic", params_.air_temperature_topic);
-        static_pressure_sub_ =
-            nh.subscribe(params_.static_pressure_topic, 20, &EstimatorNode::onStaticPressure, this, hints);
         air_temperature_sub_ =
             nh.subscribe(params_.air_temperature_topic, 5, &EstimatorNode::onAirTemperature, this, hints);
         break;
@@ -229,7 +233,9 @@ void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) 
     logRejection(inputs_.last_rc_out_verdict);
     return;
   }
-  publish();
+  // Estimated and averaged always; published at most at publish_rate_hz (on the stamps, so that a
+  // replayed bag publishes as the flight did).
+  if (publish_limiter_.admit(estimator_->output().stamp_s)) publish();
 }
 
 void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message) {

@@ -1,5 +1,6 @@
 #include "propulsion_estimator/ros/estimator_params.h"
 
+#include <cmath>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -7,6 +8,7 @@
 #include <ros/console.h>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -97,7 +99,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("air_temperature/timeout_s", &c.air_temperature_timeout_s);
   read.optional("rangefinder/timeout_s", &c.rangefinder_timeout_s);
   read.optional("motor_temperature/timeout_s", &c.motor_temperature_timeout_s);
-  read.optional("max_rate_hz", &c.max_rate_hz);
+  read.optional("publish_rate_hz", &p.publish_rate_hz);
   read.optional("clock_jump_reset_s", &c.clock_jump_reset_s);
   read.optional("max_stamp_ahead_s", &c.max_stamp_ahead_s);
   read.optionalMass("empty_mass_kg", &c.empty_mass_kg);
@@ -124,6 +126,10 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   p.health.rangefinder_input = p.rangefinder_topic;
   p.health.motor_temperature_input = p.motor_temperature_topic;
   p.health.validate();
+  if (!(p.publish_rate_hz >= 0.0) || !std::isfinite(p.publish_rate_hz)) {
+    throw ConfigError(nh.resolveName("publish_rate_hz") + ": must be 0 (every message) or a positive rate in Hz, got " +
+                      formatNumber(p.publish_rate_hz));
+  }
 
   std::ostringstream channels;
   for (std::size_t i = 0; i < c.motor_channels.size(); ++i) channels << (i ? ", " : "") << c.motor_channels[i];
@@ -141,9 +147,10 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
                   << ", compensate_acceleration " << c.compensate_acceleration << ", accel_filter_s "
                   << c.accel_filter_s << ", accel_bias_filter_s " << c.accel_bias_filter_s
                   << "\n  velocity: timeout_s " << c.velocity_timeout_s
-                  << "\n  effect signals (subscribed when the model's effects read them): static_pressure_topic "
-                  << p.static_pressure_topic << " (timeout_s " << c.static_pressure_timeout_s
-                  << "), air_temperature_topic " << p.air_temperature_topic << " (timeout_s "
+                  << "\n  static_pressure_topic (hover vertical speed without velocity, air_density): "
+                  << (p.static_pressure_topic.empty() ? "(disabled)" : p.static_pressure_topic) << " (timeout_s "
+                  << c.static_pressure_timeout_s
+                  << ")\n  effect signals (subscribed when the model's effects read them): air_temperature_topic " << p.air_temperature_topic << " (timeout_s "
                   << c.air_temperature_timeout_s << "), rangefinder_topic " << p.rangefinder_topic << " (timeout_s "
                   << c.rangefinder_timeout_s << "), motor_temperature_topic " << p.motor_temperature_topic
                   << " (timeout_s " << c.motor_temperature_timeout_s << ")"
@@ -153,7 +160,9 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
                   << ", max_vertical_accel_m_s2 " << c.hover.max_vertical_accel_m_s2 << ", min_mass_kg "
                   << c.hover.min_mass_kg << "\n  payload: averaging_window_s " << c.payload.averaging_window_s
                   << ", min_samples " << c.payload.min_samples << ", episode_gap_s " << c.payload.episode_gap_s
-                  << "\n  max_rate_hz: " << c.max_rate_hz << ", clock_jump_reset_s: " << c.clock_jump_reset_s
+                  << "\n  publish_rate_hz: "
+                  << (p.publish_rate_hz > 0.0 ? std::to_string(p.publish_rate_hz) : std::string("0 (every message)"))
+                  << ", clock_jump_reset_s: " << c.clock_jump_reset_s
                   << ", max_stamp_ahead_s: " << c.max_stamp_ahead_s
                   << ", domain_warn_fraction: " << p.health.domain_warn_fraction);
   return p;

@@ -54,7 +54,12 @@ class BadParametersTest(unittest.TestCase):
 
     def test_window_fill_never_met(self):
         self.assertEqual(start("i", {"model": MODEL, "hover/min_window_fill": 1.0}),
-                         (1, "hover/min_window_fill: 1 is never met: the samples span less than the whole window"))
+                         (1, "hover/min_window_fill: 1 is never reliably met: the window keeps its samples in 64 bins "
+                             "and spans at least 0.9844 of hover/window_s"))
+
+    def test_negative_publish_rate(self):
+        self.assertEqual(start("j", {"model": MODEL, "publish_rate_hz": -5.0}),
+                         (1, "/j/publish_rate_hz: must be 0 (every message) or a positive rate in Hz, got -5"))
 
     def test_channels_that_do_not_fit_the_urdf(self):
         urdf = os.path.join(os.path.dirname(MODEL), "f450_quad.urdf")

@@ -34,10 +34,11 @@ class EstimatorFixture {
       : model(pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml")).withEffects(effects)),
         estimator(model, std::move(vehicle), std::move(config)) {}
 
-  // Motor outputs at `pwm` on all four motors for `seconds`, with a fresh voltage every second.
+  // Motor outputs at `pwm` on all four motors for `seconds` every `period_s`, with a fresh voltage
+  // every second.
   void fly(double pwm, double seconds, double voltage_v = 11.4) {
     const std::vector<std::uint16_t> channels(8, static_cast<std::uint16_t>(pwm));
-    for (double end = t + seconds; t < end - 1e-9; t += 0.02) {
+    for (double end = t + seconds; t < end - 1e-9; t += period_s) {
       if (t - last_battery >= 1.0) {
         estimator.addBattery(t, voltage_v);
         last_battery = t;
@@ -56,5 +57,6 @@ class EstimatorFixture {
   pe::PropulsionModel model;
   pe::Estimator estimator;
   double t = 100.0;
+  double period_s = 0.02;  // 50 Hz, like MAVROS' rc/out
   double last_battery = -10.0;
 };

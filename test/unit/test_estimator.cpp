@@ -455,43 +455,78 @@ TEST(EstimatorConfig, RefusesChannelsThatDoNotFitTheVehicle) {
   config = pe::EstimatorConfig{};
   config.max_stamp_ahead_s = 0.0;
   EXPECT_EQ(refusal(config), "max_stamp_ahead_s: must be a positive number, got 0");
-  config = pe::EstimatorConfig{};
-  config.max_rate_hz = 5000.0;
-  EXPECT_EQ(refusal(config), "max_rate_hz: 5000 is above 1000 (RCOut comes at 10-50 Hz)");
-  config = pe::EstimatorConfig{};
-  config.payload.min_samples = 5000;
-  EXPECT_EQ(refusal(config),
-            "payload/min_samples: 5000 samples never fit in payload/averaging_window_s 10 s at max_rate_hz 100");
 }
 
-TEST(EstimatorConfig, RefusesWindowsThatValidateButCanNeverBeMet) {
+TEST(EstimatorConfig, RefusesAWindowFillTheBinsCannotMeet) {
   pe::EstimatorConfig config;
-  config.hover.window_s = 2000.0;
+  config.hover.min_window_fill = 0.99;  // the 64 bins guarantee only 63/64 = 0.984 of the window
   EXPECT_EQ(refusal(config),
-            "hover/window_s: 2000 s at max_rate_hz 100 needs 200000 samples, more than the 100000 a window may hold");
-  config = pe::EstimatorConfig{};
-  config.payload.averaging_window_s = 1e300;  // would overflow the window's size
-  EXPECT_EQ(refusal(config),
-            "payload/averaging_window_s: 1e+300 s at max_rate_hz 100 needs 1e+302 samples, more than the 100000 a "
-            "window may hold");
-  config = pe::EstimatorConfig{};
-  config.hover.min_window_fill = 0.999;  // 1.998 s of a 2 s window; 100 Hz samples span at most 1.99 s
-  EXPECT_EQ(refusal(config),
-            "hover/min_window_fill: 0.999 is never met: at max_rate_hz 100 samples come 0.01 s apart and span at "
-            "most 1.99 s of hover/window_s 2 s");
-  config.hover.min_window_fill = 0.995;  // 1.99 s: met when a sample falls on each end
+            "hover/min_window_fill: 0.99 is never reliably met: the window keeps its samples in 64 bins and spans "
+            "at least 0.9844 of hover/window_s");
+  config.hover.min_window_fill = 63.0 / 64.0;
   EXPECT_EQ(refusal(config), "accepted");
   config = pe::EstimatorConfig{};
-  config.max_rate_hz = 0.4;  // two samples 2.5 s apart never share the 2 s hover window
-  config.payload.min_samples = 2;
-  config.payload.episode_gap_s = 5.0;
-  EXPECT_EQ(refusal(config),
-            "hover/min_window_fill: 0.8 is never met: at max_rate_hz 0.4 samples come 2.5 s apart and span at "
-            "most 0 s of hover/window_s 2 s");
-  config = pe::EstimatorConfig{};
-  config.payload.episode_gap_s = 0.005;
-  EXPECT_EQ(refusal(config),
-            "payload/episode_gap_s: 0.005 s is shorter than the sample period at max_rate_hz 100 (0.01 s): every "
-            "hover sample would start a new episode");
+  config.payload.averaging_window_s = 1e300;  // the whole episode: fixed memory at any length
+  EXPECT_EQ(refusal(config), "accepted");
   EXPECT_EQ(refusal(pe::EstimatorConfig{}), "accepted");
+}
+
+TEST(Estimator, DetectsHoverAndTaresAtAnyRate) {
+  // The windows were once sized in samples for 100 Hz: above about 126 Hz a full one spanned less
+  // than the hover detector needs, and hover was never detected.
+  for (const double rate_hz : {10.0, 50.0, 400.0, 1000.0, 2000.0}) {
+    EstimatorFixture f;
+    f.period_s = 1.0 / rate_hz;
+    f.fly(1690.0, 6.0);
+    const pe::EstimatorOutput& out = f.estimator.output();
+    EXPECT_TRUE(out.hover.hovering) << rate_hz << " Hz: " << f.estimator.describeHover();
+    EXPECT_NEAR(out.payload.total_mass_kg, f.modelMassKg(1690.0), 1e-9) << rate_hz << " Hz";
+    EXPECT_TRUE(f.estimator.tare(f.t).ok) << rate_hz << " Hz";
+  }
+}
+
+TEST(Estimator, BarometerGivesTheHoverVerticalSpeedWithoutVelocity) {
+  // A steady climb at 1 m/s (the pressure falling by rho g = 11.8 Pa/s) is no hover, though the
+  // thrust is steady: the barometer stands in for the missing velocity topic.
+  const auto climb = [](double rate_m_s) {
+    EstimatorFixture f;
+    for (int k = 0; k < 250; ++k) {  // 5 s of motor outputs at 50 Hz, the barometer at 25 Hz
+      if (k % 2 == 0) f.estimator.addStaticPressure(f.t, 101325.0 - 1.2250 * 9.80665 * rate_m_s * (f.t - 100.0));
+      f.fly(1690.0, 0.02);
+    }
+    return f.estimator.output();
+  };
+  const pe::EstimatorOutput climbing = climb(1.0);
+  EXPECT_EQ(climbing.hover.blocker, pe::HoverBlocker::kClimbingOrSinking);
+  EXPECT_EQ(climbing.vertical_speed_source, pe::VerticalSpeedSource::kBarometer);
+  EXPECT_NEAR(climbing.hover.max_abs_vertical_speed_m_s, 1.0, 0.05);
+  const pe::EstimatorOutput level = climb(0.0);
+  EXPECT_TRUE(level.hover.hovering);
+  EXPECT_EQ(level.hover.inactive_checks, pe::kTiltCheck | pe::kVerticalAccelCheck);
+
+  // Velocity, when fresh, is preferred.
+  EstimatorFixture f;
+  f.estimator.addVerticalSpeed(f.t, 0.1);
+  f.estimator.addStaticPressure(f.t, 101325.0);
+  f.fly(1690.0, 0.1);
+  EXPECT_EQ(f.estimator.output().vertical_speed_source, pe::VerticalSpeedSource::kVelocity);
+}
+
+TEST(Estimator, ASignalLostInTheWindowLeavesItUnjudged) {
+  EstimatorFixture f;
+  for (int k = 0; k < 100; ++k) {  // 2 s with a velocity, then it stops
+    f.estimator.addVerticalSpeed(f.t, 0.0);
+    f.fly(1690.0, 0.02);
+  }
+  EXPECT_TRUE(f.estimator.output().hover.hovering);
+  f.fly(1690.0, 1.0);  // velocity stale after 0.5 s: part of the window has none
+  EXPECT_EQ(f.estimator.output().hover.blocker, pe::HoverBlocker::kSignalGap);
+  // 0.5 s (velocity/timeout_s) of the last second still had it: 24 of the window's 50 Hz samples.
+  const std::string gap =
+      "not hovering: a check's signal is missing on part of the window (tilt on 0, vertical speed on 74, "
+      "vertical acceleration on 0 of 99 samples)";
+  EXPECT_EQ(f.estimator.describeHover().substr(0, gap.size()), gap);
+  f.fly(1690.0, 2.0);  // the whole window without: hover again, the check inactive
+  EXPECT_TRUE(f.estimator.output().hover.hovering);
+  EXPECT_EQ(f.estimator.output().hover.inactive_checks, pe::kTiltCheck | pe::kVerticalSpeedCheck | pe::kVerticalAccelCheck);
 }

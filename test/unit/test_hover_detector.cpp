@@ -1,10 +1,11 @@
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/estimation/hover_detector.h"
-#include "propulsion_estimator/estimation/time_window.h"
 
 namespace pe = propulsion_estimator;
 
@@ -24,22 +25,67 @@ pe::HoverVerdict feed(pe::HoverDetector& detector, F make) {
 
 }  // namespace
 
-TEST(TimeWindow, EvictsByAgeAndByCapacity) {
-  pe::TimeWindow<int> window(1.0, 4);
-  for (int k = 0; k < 3; ++k) window.push(k * 0.4, k);  // 0, 0.4, 0.8
-  EXPECT_EQ(window.size(), 3u);
-  window.push(1.2, 3);  // 0.0 is now older than 1.2 - 1.0
-  EXPECT_EQ(window.size(), 3u);
-  EXPECT_EQ(window[0], 1);
-  EXPECT_DOUBLE_EQ(window.span(), 0.8);
-  window.push(1.3, 4);
-  window.push(1.35, 5);  // full: the oldest goes
-  EXPECT_EQ(window.size(), 4u);
-  EXPECT_EQ(window[0], 2);
+// Keeps the samples of each bin, to compare the window's aggregate with the samples it should hold.
+struct Samples {
+  std::vector<double> values;
+  void add(double x) { values.push_back(x); }
+  void merge(const Samples& other) { values.insert(values.end(), other.values.begin(), other.values.end()); }
+};
+
+TEST(BinnedWindow, KeepsTheLastSpanInWholeBins) {
+  pe::BinnedWindow<Samples> window(6.4);  // 64 bins of 0.1 s
+  EXPECT_DOUBLE_EQ(window.binLength(), 0.1);
+  EXPECT_TRUE(window.empty());
+  for (int k = 0; k < 100; ++k) window.add(k * 0.1 + 0.05, static_cast<double>(k));  // one sample per bin
+  // The newest bin is 99; bins 36..99 are kept: the samples 36..99, spanning 6.3 s.
+  const std::vector<double> kept = window.total().values;
+  ASSERT_EQ(kept.size(), 64u);
+  EXPECT_EQ(*std::min_element(kept.begin(), kept.end()), 36.0);
+  EXPECT_NEAR(window.span(), 6.3, 1e-9);
+  window.add(20.0, 1000.0);  // 10 s later: everything before has left
+  EXPECT_EQ(window.total().values, std::vector<double>{1000.0});
+  EXPECT_DOUBLE_EQ(window.span(), 0.0);
+}
+
+TEST(BinnedWindow, AnyRateInFixedMemory) {
+  // 2 s at 5 kHz: 10,000 samples in the same 64 bins; the span stays within a bin of the window.
+  pe::BinnedWindow<pe::RunningMoments> window(2.0);
+  for (int k = 0; k < 50000; ++k) window.add(k * 2e-4, 1.0 + (k % 2 ? 0.01 : -0.01));
+  const pe::RunningMoments moments = window.total();
+  EXPECT_GE(window.span(), 2.0 * 63.0 / 64.0);
+  EXPECT_LT(window.span(), 2.0);
+  EXPECT_NEAR(static_cast<double>(moments.count), window.span() / 2e-4 + 1.0, 1.0);
+  EXPECT_NEAR(moments.mean, 1.0, 1e-6);
+  EXPECT_NEAR(std::sqrt(moments.variance()), 0.01, 1e-6);
+}
+
+TEST(BinnedWindow, ClearForgetsBinsAClockComingBackWouldMeet) {
+  pe::BinnedWindow<Samples> window(6.4);
+  for (int k = 0; k < 20; ++k) window.add(k * 0.1 + 0.05, 1.0);
+  window.clear();
+  // After a reset the clock restarts at 0.55 s and jumps to 1.55 s: bins 6..14 of before must not
+  // come back.
+  window.add(0.55, 2.0);
+  window.add(1.55, 3.0);
+  EXPECT_EQ(window.total().values, (std::vector<double>{2.0, 3.0}));
+}
+
+TEST(RunningMoments, MergedEqualsAddedOneByOne) {
+  pe::RunningMoments all, left, right;
+  for (int k = 0; k < 10; ++k) {
+    const double x = 1e6 + k * k;  // a large mean: sums of squares would cancel
+    all.add(x);
+    (k < 4 ? left : right).add(x);
+  }
+  left.merge(right);
+  EXPECT_EQ(left.count, all.count);
+  EXPECT_DOUBLE_EQ(left.mean, all.mean);
+  EXPECT_NEAR(left.m2, all.m2, 1e-6);
+  EXPECT_NEAR(all.sampleVariance(), 7210.5 / 9.0, 1e-6);  // of k^2 for k = 0..9
 }
 
 TEST(HoverDetector, SteadyThrustIsHoverOnceTheWindowIsFull) {
-  pe::HoverDetector detector(pe::HoverConfig{}, 200);
+  pe::HoverDetector detector(pe::HoverConfig{});
   EXPECT_EQ(detector.add(0.0, sample(12.9)).blocker, pe::HoverBlocker::kWindowFilling);
   const pe::HoverVerdict verdict = feed(detector, [](int k) { return sample(12.9 + 0.1 * std::sin(k)); });
   EXPECT_TRUE(verdict.hovering);
@@ -51,37 +97,37 @@ TEST(HoverDetector, SteadyThrustIsHoverOnceTheWindowIsFull) {
 TEST(HoverDetector, EachConditionBlocksHover) {
   const pe::HoverConfig config;
   {
-    pe::HoverDetector d(config, 200);
+    pe::HoverDetector d(config);
     EXPECT_EQ(feed(d, [](int k) { return sample(k % 2 ? 11.0 : 14.0); }).blocker, pe::HoverBlocker::kThrustUnsteady);
   }
   {
-    pe::HoverDetector d(config, 200);
+    pe::HoverDetector d(config);
     EXPECT_EQ(feed(d, [](int) { return sample(12.9, 6.0 * M_PI / 180.0); }).blocker, pe::HoverBlocker::kTilted);
   }
   {
-    pe::HoverDetector d(config, 200);
+    pe::HoverDetector d(config);
     EXPECT_EQ(feed(d, [](int) { return sample(12.9, 0.0, 0.7); }).blocker, pe::HoverBlocker::kClimbingOrSinking);
   }
   {
-    pe::HoverDetector d(config, 200);
+    pe::HoverDetector d(config);
     EXPECT_EQ(feed(d, [](int) { return sample(12.9, 0.0, 0.0, 1.5); }).blocker, pe::HoverBlocker::kAccelerating);
   }
   {
-    pe::HoverDetector d(config, 200);  // armed and idling on the ground: steady, but it holds 0.1 kg
+    pe::HoverDetector d(config);  // armed and idling on the ground: steady, but it holds 0.1 kg
     EXPECT_EQ(feed(d, [](int) { return sample(1.0); }).blocker, pe::HoverBlocker::kLowThrust);
   }
   {
-    pe::HoverDetector d(config, 200);  // within the limits
+    pe::HoverDetector d(config);  // within the limits
     EXPECT_TRUE(feed(d, [](int) { return sample(12.9, 4.0 * M_PI / 180.0, 0.5, 0.5); }).hovering);
   }
 }
 
 TEST(HoverDetector, DescribesWhyNotHovering) {
-  pe::HoverDetector d(pe::HoverConfig{}, 200);
+  pe::HoverDetector d(pe::HoverConfig{});
   feed(d, [](int) { return sample(12.9, 0.0, 0.9); });
   EXPECT_EQ(pe::describe(d.verdict(), d.config()),
-            "not hovering: vertical speed 0.9 m/s (limit 0.6 m/s); window 101 samples over 2 s, mean thrust 12.9 N "
-            "(1.32 kg), thrust std 0 %, max tilt 0 deg, max |vz| 0.9 m/s");
+            "not hovering: vertical speed 0.9 m/s (limit 0.6 m/s); window 100 samples over 1.98 s, mean thrust 12.9 N "
+            "(1.32 kg), thrust std 0 %, max tilt 0 deg, max |vz| 0.9 m/s; checks inactive: vertical acceleration");
 }
 
 TEST(HoverConfig, RefusesNonsense) {
@@ -106,6 +152,8 @@ TEST(HoverConfig, RefusesNonsense) {
     config.validate();
     FAIL();
   } catch (const pe::ConfigError& e) {
-    EXPECT_STREQ(e.what(), "hover/min_window_fill: 1 is never met: the samples span less than the whole window");
+    EXPECT_STREQ(e.what(),
+                 "hover/min_window_fill: 1 is never reliably met: the window keeps its samples in 64 bins and spans at "
+                 "least 0.9844 of hover/window_s");
   }
 }

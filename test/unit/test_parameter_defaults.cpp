@@ -58,7 +58,7 @@ TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
   EXPECT_EQ(number("payload/averaging_window_s"), c.payload.averaging_window_s);
   EXPECT_EQ(number("payload/min_samples"), static_cast<double>(c.payload.min_samples));
   EXPECT_EQ(number("payload/episode_gap_s"), c.payload.episode_gap_s);
-  EXPECT_EQ(number("max_rate_hz"), c.max_rate_hz);
+  EXPECT_EQ(number("publish_rate_hz"), node.publish_rate_hz);
   EXPECT_EQ(number("clock_jump_reset_s"), c.clock_jump_reset_s);
   EXPECT_EQ(number("max_stamp_ahead_s"), c.max_stamp_ahead_s);
   EXPECT_EQ(number("domain_warn_fraction"), node.health.domain_warn_fraction);

@@ -10,6 +10,7 @@
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/estimation/payload_estimator.h"
+#include "propulsion_estimator/estimation/rate_limiter.h"
 #include "propulsion_estimator/estimation/tare_file.h"
 
 namespace pe = propulsion_estimator;
@@ -17,7 +18,7 @@ namespace pe = propulsion_estimator;
 TEST(PayloadEstimator, AveragesHoverSamplesOnly) {
   pe::PayloadConfig config;
   config.min_samples = 4;
-  pe::PayloadEstimator estimator(config, 1000);
+  pe::PayloadEstimator estimator(config);
   estimator.setEmptyMass(1.3, pe::EmptyMassSource::kParameter);
   estimator.add(0.0, 9.0, false);  // a climb: not averaged
   for (int k = 1; k <= 3; ++k) estimator.add(k * 0.02, 1.6, true);
@@ -38,7 +39,7 @@ TEST(PayloadEstimator, AveragesHoverSamplesOnly) {
 TEST(PayloadEstimator, APauseInHoverStartsANewEpisode) {
   pe::PayloadConfig config;
   config.min_samples = 2;
-  pe::PayloadEstimator estimator(config, 1000);
+  pe::PayloadEstimator estimator(config);
   estimator.add(0.0, 1.3, true);
   estimator.add(0.1, 1.3, true);
   estimator.add(2.0, 1.7, false);  // winched a payload up between hovers
@@ -165,4 +166,19 @@ TEST(TareFile, MovesABadFileAside) {
   EXPECT_EQ(text, "garbage");
   EXPECT_FALSE(pe::loadTareFile(path).has_value());
   std::filesystem::remove_all(folder);
+}
+
+TEST(RateLimiter, AdmitsItsRateOnTheStamps) {
+  pe::RateLimiter fifty_hz(50.0);
+  int admitted = 0;
+  for (int k = 0; k < 400; ++k) admitted += fifty_hz.admit(100.0 + k * 0.0025);  // 1 s at 400 Hz
+  EXPECT_EQ(admitted, 50);
+  admitted = 0;
+  for (int k = 0; k < 50; ++k) admitted += fifty_hz.admit(200.0 + k * 0.02);  // 50 Hz passes whole
+  EXPECT_EQ(admitted, 50);
+  EXPECT_TRUE(fifty_hz.admit(50.0));  // the stamps went back (a replay restarted)
+  EXPECT_FALSE(fifty_hz.admit(50.01));
+  EXPECT_TRUE(fifty_hz.admit(50.02));
+  pe::RateLimiter every(0.0);
+  for (int k = 0; k < 5; ++k) EXPECT_TRUE(every.admit(1.0));
 }

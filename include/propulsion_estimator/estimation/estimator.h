@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "propulsion_estimator/estimation/barometric_vertical_speed.h"
 #include "propulsion_estimator/estimation/estimator_config.h"
 #include "propulsion_estimator/estimation/hover_detector.h"
 #include "propulsion_estimator/estimation/payload_estimator.h"
@@ -82,6 +83,12 @@ struct Totals {
   int motors_out_of_domain = 0;
 };
 
+/// Where the hover detector's vertical speed came from: the velocity topic, the barometer's height
+/// rate when no velocity is fresh, or nowhere (the vertical speed check is inactive).
+enum class VerticalSpeedSource { kNone, kVelocity, kBarometer };
+/// "none", "velocity", "barometer".
+const char* verticalSpeedSourceName(VerticalSpeedSource source);
+
 /// Everything the estimator computed for the last accepted RCOut message; `stamp_s` is its header
 /// time in s.
 struct EstimatorOutput {
@@ -91,6 +98,7 @@ struct EstimatorOutput {
   // The model's effects not applied to this message because their signal was missing or stale.
   effects::KindMask effects_skipped = 0;
   HoverVerdict hover;
+  VerticalSpeedSource vertical_speed_source = VerticalSpeedSource::kNone;
   MassEstimate payload;
 };
 
@@ -140,7 +148,8 @@ class Estimator {
   // discharging) and a flying multicopter only discharges. NaN is BatteryState's "not measured":
   // ignored, not refused. Ages like the voltage (battery_timeout_s).
   Rejection addBatteryCurrent(double receipt_s, double current_a);
-  // Static pressure (Pa) and air temperature (deg C) give the air density p / (R T).
+  // Static pressure (Pa) and air temperature (deg C) give the air density p / (R T). The static
+  // pressure's height rate is also the hover check's vertical speed while no velocity is fresh.
   Rejection addStaticPressure(double receipt_s, double pressure_pa);
   Rejection addAirTemperature(double receipt_s, double temperature_c);
   // A downward rangefinder's reading (m), REP-117: +inf (nothing within max_range) is out of
@@ -212,6 +221,7 @@ class Estimator {
   HoverDetector hover_;
   PayloadEstimator payload_;
   VerticalAccelerationFilter accel_filter_;
+  BarometricVerticalSpeed barometric_speed_;
   // Which outputs the model has: one it lacks is published as NaN, never refused as non-finite.
   bool has_current_;
   bool has_power_;

@@ -32,7 +32,6 @@ struct EstimatorConfig {
   bool compensate_acceleration = true;  // mass = vertical thrust / (g + vertical acceleration)
   double accel_filter_s = 0.3;          // low-pass of the vertical acceleration
   double accel_bias_filter_s = 30.0;    // average taken as accelerometer bias
-  double max_rate_hz = 100.0;           // sizes the sample windows, allocated once
   double clock_jump_reset_s = 1.0;      // the clock going back this far (a bag restarted) resets all
   // RCOut stamped further ahead of its receipt is refused (clocks out of sync, a corrupt stamp); a
   // replayed bag's simulated clock may lag the stamps by a few of its ticks.
@@ -42,10 +41,7 @@ struct EstimatorConfig {
   PayloadConfig payload;
 
   // ConfigError naming the parameter and its value. `rotors`: how many rotors the vehicle has.
-  // Besides each value's range, refuses what validates alone but can never be met at max_rate_hz:
-  // a window of more samples than the memory bound, a hover/min_window_fill the samples cannot
-  // span, payload/min_samples that do not fit in the averaging window, an episode gap shorter than
-  // the sample period.
+  // The windows are sized by time, in fixed memory (BinnedWindow), so no rate bounds them.
   void validate(std::size_t rotors) const;
 };
 

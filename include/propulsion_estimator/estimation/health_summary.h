@@ -60,7 +60,7 @@ struct HealthConfig {
 };
 
 /// "Inputs": rates, battery age. ERROR while estimates stop for want of a fresh voltage; WARN
-/// when no motor outputs arrived in the period or they came faster than max_rate_hz.
+/// when no motor outputs arrived in the period.
 HealthStatus judgeInputs(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
                          const HealthConfig& config);
 
@@ -80,7 +80,9 @@ std::string unmodelledOutputs(const PropulsionModel& model);
 HealthStatus judgeDomain(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
                          const HealthConfig& config);
 
-/// "Payload": always OK, with the payload state, the masses and the hover detector's verdict.
+/// "Payload": the payload state, the masses, the hover detector's verdict and where its vertical
+/// speed came from. WARN, naming them, while the hover window holds samples on which a check was
+/// inactive for want of its signal (no fresh IMU, no fresh velocity or barometer); OK otherwise.
 HealthStatus judgePayload(const Estimator& estimator);
 
 /// "battery current on /mavros/battery", ...: a signal of the model's effects and where it comes from.

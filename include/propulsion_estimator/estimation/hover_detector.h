@@ -1,9 +1,12 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
-#include "propulsion_estimator/estimation/time_window.h"
+#include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/estimation/binned_window.h"
+#include "propulsion_estimator/estimation/running_moments.h"
 
 namespace propulsion_estimator {
 
@@ -12,7 +15,9 @@ namespace propulsion_estimator {
 /// spirit of ArduPilot's hover-throttle learning (vertical speed under 0.6 m/s, tilt under 5 deg).
 struct HoverConfig {
   double window_s = 2.0;
-  double min_window_fill = 0.8;          // fraction of window_s the samples must span, below 1
+  // Fraction of window_s the samples must span; at most 1 - 1/64 (the window's bins, see
+  // BinnedWindow).
+  double min_window_fill = 0.8;
   double max_thrust_rel_std = 0.05;      // std / mean of vertical thrust over the window
   double max_tilt_deg = 5.0;
   double max_vertical_speed_m_s = 0.6;
@@ -22,7 +27,7 @@ struct HoverConfig {
   void validate() const;  // ConfigError naming the field
 };
 
-/// One sample; NaN marks what is not measured (no IMU, no velocity source).
+/// One sample; NaN marks what is not measured (no fresh IMU, no fresh vertical speed source).
 struct HoverSample {
   double vertical_thrust_n = 0.0;
   double mass_kg = 0.0;  // mass that thrust holds
@@ -40,7 +45,32 @@ enum class HoverBlocker {
   kTilted,
   kClimbingOrSinking,
   kAccelerating,
+  kSignalGap,  // a check's signal measured on some samples of the window only (it went stale)
   kExpired,  // no sample within window_s before now: the last verdict is no longer one
+};
+
+/// The hover checks that need a signal besides the thrust, as bits of a mask.
+enum HoverCheck : std::uint8_t {
+  kTiltCheck = 1,           ///< needs the IMU's attitude
+  kVerticalSpeedCheck = 2,  ///< needs a velocity or barometric vertical speed
+  kVerticalAccelCheck = 4,  ///< needs the IMU's acceleration
+};
+/// "tilt, vertical speed": the checks of `mask`, or "none".
+std::string hoverCheckNames(std::uint8_t mask);
+
+/// What the hover window holds about its samples (the Aggregate of its BinnedWindow).
+struct HoverStatistics {
+  RunningMoments thrust_n;
+  double mass_sum_kg = 0.0;
+  double max_tilt_rad = kNaN;  // NaN until a sample has one
+  std::uint64_t tilt_samples = 0;
+  double max_abs_vertical_speed_m_s = kNaN;
+  std::uint64_t vertical_speed_samples = 0;
+  double vertical_accel_sum_m_s2 = 0.0;
+  std::uint64_t vertical_accel_samples = 0;
+
+  void add(const HoverSample& sample);
+  void merge(const HoverStatistics& other);
 };
 
 /// The detector's verdict on its window, with the window statistics it was based on (SI units).
@@ -55,18 +85,24 @@ struct HoverVerdict {
   double max_tilt_rad = 0.0;            // NaN without IMU
   double max_abs_vertical_speed_m_s = 0.0;  // NaN without velocity
   double mean_vertical_accel_m_s2 = 0.0;    // NaN without IMU
+  // Checks whose signal no sample of the window had: they did not take part in the verdict.
+  std::uint8_t inactive_checks = kTiltCheck | kVerticalSpeedCheck | kVerticalAccelCheck;
+  // Samples of the window that had each signal (for kSignalGap).
+  std::size_t tilt_samples = 0;
+  std::size_t vertical_speed_samples = 0;
+  std::size_t vertical_accel_samples = 0;
 };
 
 /// One line for humans: "hovering: ..." or "not hovering: <why>, <window statistics>".
 std::string describe(const HoverVerdict& verdict, const HoverConfig& config);
 
-/// Keeps a sliding window of HoverSample and judges it against a HoverConfig.
+/// Keeps a sliding window of HoverSample statistics and judges it against a HoverConfig. The
+/// window is sized by time (BinnedWindow): any sample rate works, in fixed memory.
 class HoverDetector {
  public:
-  // `capacity`: samples the window can hold (window_s times the highest expected rate).
-  HoverDetector(const HoverConfig& config, std::size_t capacity);
+  explicit HoverDetector(const HoverConfig& config);
 
-  // Adds a sample and returns the verdict over the window. Allocates nothing.
+  // Adds a sample and returns the verdict over the window, in O(1). Allocates nothing.
   const HoverVerdict& add(double stamp_s, const HoverSample& sample);
   const HoverVerdict& verdict() const { return verdict_; }
   const HoverConfig& config() const { return config_; }
@@ -78,7 +114,7 @@ class HoverDetector {
   void evaluate();
 
   HoverConfig config_;
-  TimeWindow<HoverSample> window_;
+  BinnedWindow<HoverStatistics> window_;
   HoverVerdict verdict_;
 };
 

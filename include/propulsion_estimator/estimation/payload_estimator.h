@@ -3,14 +3,15 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "propulsion_estimator/estimation/time_window.h"
+#include "propulsion_estimator/estimation/binned_window.h"
+#include "propulsion_estimator/estimation/running_moments.h"
 
 namespace propulsion_estimator {
 
 /// Thesis eq. 2.1-2.3: in hover the motors' thrust equals the weight; the payload is the total
 /// minus the empty weight recorded before. Single readings were up to 29 % off in the thesis, so
 /// the estimate is the mean over the hover samples of the current hover episode (at most
-/// averaging_window_s of them); a pause in hovering longer than episode_gap_s starts a new
+/// averaging_window_s of them, kept as a BinnedWindow: any rate, fixed memory); a pause in hovering longer than episode_gap_s starts a new
 /// episode, since the payload may change between hovers (picked up on a cable, or after landing).
 struct PayloadConfig {
   double averaging_window_s = 10.0;
@@ -50,10 +51,9 @@ struct MassEstimate {
 /// mass (thesis eq. 2.1-2.3, see PayloadConfig).
 class PayloadEstimator {
  public:
-  // `capacity`: samples the averaging window can hold.
-  PayloadEstimator(const PayloadConfig& config, std::size_t capacity);
+  explicit PayloadEstimator(const PayloadConfig& config);
 
-  // The mass the thrust holds at `stamp_s`, and whether the vehicle hovers. Allocates nothing.
+  // The mass the thrust holds at `stamp_s`, and whether the vehicle hovers. O(1), allocates nothing.
   const MassEstimate& add(double stamp_s, double mass_kg, bool hovering);
   const MassEstimate& estimate() const { return estimate_; }
 
@@ -71,7 +71,7 @@ class PayloadEstimator {
   void updateState(bool hovering);
 
   PayloadConfig config_;
-  TimeWindow<double> window_;
+  BinnedWindow<RunningMoments> window_;
   double last_hover_stamp_s_ = 0.0;
   bool hovered_before_ = false;
   MassEstimate estimate_;

@@ -19,6 +19,7 @@
 #include "propulsion_estimator/PropulsionTotals.h"
 #include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/estimation/health_summary.h"
+#include "propulsion_estimator/estimation/rate_limiter.h"
 #include "propulsion_estimator/ros/estimator_params.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
@@ -71,6 +72,7 @@ class EstimatorNode {
   std::uint8_t tare_file_level_ = diagnostic_msgs::DiagnosticStatus::OK;
   std::string tare_file_message_;
 
+  RateLimiter publish_limiter_;
   RcOutDecoder decoder_;
   RcOutMessage rc_out_;
   MotorEstimates motors_msg_;

@@ -18,11 +18,16 @@ struct EstimatorNodeParams {
   std::string rc_out_topic = "/mavros/rc/out";
   std::string imu_topic = "/mavros/imu/data";          // "" disables
   std::string velocity_topic = "/mavros/local_position/velocity_local";  // "" disables
-  // Signals of the model's effects, subscribed only when an effect of the model reads them.
+  // The barometer: the hover check's vertical speed while no velocity is fresh, and the
+  // air_density effect's signal. "" disables.
   std::string static_pressure_topic = "/mavros/imu/static_pressure";     // sensor_msgs/FluidPressure
+  // Signals of the model's effects, subscribed only when an effect of the model reads them.
   std::string air_temperature_topic = "/mavros/imu/temperature_baro";    // sensor_msgs/Temperature
   std::string rangefinder_topic = "/mavros/rangefinder/rangefinder";     // sensor_msgs/Range
   std::string motor_temperature_topic = "/motor_temperature";            // sensor_msgs/Temperature
+  // Highest rate of ~motors, ~totals and ~payload, Hz, on the RCOut stamps; 0 publishes every
+  // accepted RCOut. Every message is still estimated and averaged.
+  double publish_rate_hz = 0.0;
   HealthConfig health;  // domain_warn_fraction; its input names are the topics
   EstimatorConfig estimator;
 };
