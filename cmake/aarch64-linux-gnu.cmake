@@ -9,7 +9,6 @@ set(CMAKE_CXX_COMPILER aarch64-linux-gnu-g++)
 # Multiarch: the arm64 libraries and their CMake files live in /usr/lib/aarch64-linux-gnu, not in a
 # sysroot; headers are shared with the host in /usr/include.
 set(CMAKE_LIBRARY_ARCHITECTURE aarch64-linux-gnu)
-set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64 -L /usr/aarch64-linux-gnu)
 # yaml-cpp's arm64 -dev package is not co-installable with the host's; see the file here.
 set(yaml-cpp_DIR "${CMAKE_CURRENT_LIST_DIR}/aarch64-linux-gnu" CACHE PATH "yaml-cpp for arm64")
