@@ -13,7 +13,7 @@ SETUP := source $(WS)/install/setup.sh
 COLCON_BUILD := colcon build --event-handlers console_direct+ \
 	--cmake-args -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps build demo demo-bag test check test-sanitizers bench validate-gap clean
+.PHONY: deps build demo demo-bag test check test-sanitizers bench validate-gap arm64 arm64-build bench-arm64 clean
 
 deps:
 	@scripts/install_deps.sh
@@ -65,6 +65,24 @@ validate-gap: build
 
 bench: build
 	$(SETUP) && scripts/run_benchmarks.sh
+
+# Raspberry Pi: the ROS-free modules, their unit tests and the core benchmark cross-compiled for
+# arm64 in .ws/arm64/ (no catkin, no ROS for arm64), the tests run under qemu-user; fails when any
+# test fails. Installs its own packages (scripts/install_arm64_deps.sh).
+ARM64 := $(WS)/arm64
+QEMU_ARM64 := qemu-aarch64 -L /usr/aarch64-linux-gnu
+arm64-build:
+	@scripts/install_arm64_deps.sh
+	cmake -S . -B $(ARM64) -DPE_ROS_FREE=ON -DCMAKE_BUILD_TYPE=Release \
+		-DCMAKE_TOOLCHAIN_FILE=$(CURDIR)/cmake/aarch64-linux-gnu.cmake
+	cmake --build $(ARM64) -j 2
+
+arm64: arm64-build
+	cd $(ARM64) && ctest -j 2 --output-on-failure
+
+# The core per-message benchmark, arm64 emulated (BENCHMARKS.md, "arm64 (emulated under qemu-user)").
+bench-arm64: arm64-build
+	$(QEMU_ARM64) $(ARM64)/bench_estimator
 
 clean:
 	rm -rf $(WS)
