@@ -4,6 +4,7 @@
 
 #include <ros/node_handle.h>
 
+#include "propulsion_estimator/estimation/capability.h"
 #include "propulsion_estimator/estimation/estimator_config.h"
 #include "propulsion_estimator/estimation/health_summary.h"
 
@@ -25,6 +26,7 @@ struct EstimatorNodeParams {
   std::string motor_temperature_topic = "/motor_temperature";            // sensor_msgs/Temperature
   HealthConfig health;  // domain_warn_fraction; its input names are the topics
   EstimatorConfig estimator;
+  CapabilityConfig capability;
 };
 
 /// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is
