@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "propulsion_estimator/common/simulation_error.h"
 #include "propulsion_estimator/common/units.h"
@@ -47,7 +49,7 @@ double usableFraction(const pe::sim::LipoBatteryParams& battery, double current_
 }
 
 // Take-off to 2 m and a hover of `hover_s` with `payload_kg` on a 0.3 m cable, from
-// `initial_soc`; `extra` adds to the vehicle or the profile (a fault).
+// `initial_soc`, the centre of gravity `cg_offset` off the URDF's; `faults` a profile section.
 std::string profile(double payload_kg, double hover_s, double initial_soc, const std::string& cg_offset = "[0.0, 0.0, 0.0]",
                     const std::string& faults = "") {
   std::string text = "autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, "
