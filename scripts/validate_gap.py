@@ -190,13 +190,14 @@ def score(case, report):
     elif suspect is not None:
         right = False
     row["right"] = right
-    # The onboard check (~capability) on each flight: a flag without a weak propeller, or on
-    # another channel than the weak one, is a false alarm.
+    # The onboard check (~capability) on each flight: a flag on a flight without a motor fault is
+    # a false alarm; on a weak propeller's flight, the flag is on its channel or on another.
     weak = case.get("fault", {}).get("weak_propeller")
     flags = [flight["flagged"] for flight in report["motor_health"]]
     row["health_flights"] = len(flags)
-    row["health_false"] = sum(1 for f in flags if f and (not weak or f != [weak["motor"]]))
+    row["health_false"] = 0 if weak else sum(1 for f in flags if f)
     row["health_found"] = sum(1 for f in flags if weak and weak["motor"] in f)
+    row["health_elsewhere"] = sum(1 for f in flags if weak and any(c != weak["motor"] for c in f))
     return row
 
 
@@ -273,13 +274,12 @@ def main():
                  % (right, len(done), 100.0 * right / max(len(done), 1), len(nulls_named), weak_right, len(weak),
                     mean_shrink, len(shrink)))
     unfaulted = [r for r in done if r["label"] != "weak_propeller"]
-    false_alarms = sum(r["health_false"] for r in done)
-    lines.append("Onboard motor-health check (~capability): capability false alarms: %d (flights flagged without a "
-                 "motor fault: %d of %d; on another channel than the weak propeller's: %d); weak propeller flagged "
-                 "on its channel on %d of %d flights."
-                 % (false_alarms, sum(r["health_false"] for r in unfaulted),
-                    sum(r["health_flights"] for r in unfaulted), sum(r["health_false"] for r in weak),
-                    sum(r["health_found"] for r in weak), sum(r["health_flights"] for r in weak)))
+    false_alarms = sum(r["health_false"] for r in unfaulted)
+    lines.append("Onboard motor-health check (~capability): capability false alarms: %d (flights flagged of %d "
+                 "without a motor fault, centre-of-gravity offsets included); weak propeller flagged on its channel "
+                 "on %d of %d flights, another channel flagged on %d."
+                 % (false_alarms, sum(r["health_flights"] for r in unfaulted), sum(r["health_found"] for r in weak),
+                    sum(r["health_flights"] for r in weak), sum(r["health_elsewhere"] for r in weak)))
     for r in errors:
         lines.append("Error in %s: %s" % (r["name"], r["error"]))
     lines.append("")

@@ -215,8 +215,12 @@ HealthStatus judgeCapability(const CapabilityReport& c, const MotorHealthVerdict
     for (std::size_t k = 0; k < warnings.size(); ++k) status.message += (k ? "; " : "") + warnings[k];
     return status;
   }
-  status.message = "max additional payload " + formatPrintf("%.3f kg", c.max_additional_payload_kg) +
-                   ", hover endurance " + formatPrintf("%.0f s", c.hover_endurance_s);
+  status.message = "max additional payload " +
+                   (std::isnan(c.max_additional_payload_kg) ? "unknown (" + c.payload_note + ")"
+                                                            : formatPrintf("%.3f kg", c.max_additional_payload_kg)) +
+                   ", hover endurance " +
+                   (std::isnan(c.hover_endurance_s) ? "unknown (" + c.endurance_basis + ")"
+                                                    : formatPrintf("%.0f s", c.hover_endurance_s));
   if (health.judged) {
     status.message += ", motors balanced, centre of gravity " +
                       formatPrintf("%.1f", 100.0 * std::hypot(health.cg_offset_x_m, health.cg_offset_y_m)) +

@@ -186,6 +186,13 @@ TEST(Capability, NaNWithTheReasonWhenAFigureCannotBeComputed) {
   EXPECT_EQ(no_battery.endurance_basis, "no battery capacity configured (capability/battery/capacity_ah, cells)");
   EXPECT_EQ(no_battery.payload_note,
             "no cut-off figures: no battery configured (capability/battery/capacity_ah, cells)");
+  const pe::HealthStatus status = pe::judgeCapability(no_battery, {}, {});
+  EXPECT_EQ(status.level, pe::HealthLevel::kOk);
+  EXPECT_EQ(status.message,
+            "max additional payload 1.000 kg, hover endurance unknown (no battery capacity configured "
+            "(capability/battery/capacity_ah, cells))");
+  EXPECT_EQ(pe::judgeCapability(waiting, {}, {}).message,
+            "max additional payload unknown (no hover yet), hover endurance unknown (no hover yet)");
 }
 
 TEST(Capability, TheDiagnosticWarnsOfAnOverloadALowEnduranceAndAFlaggedMotor) {
