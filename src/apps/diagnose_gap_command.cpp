@@ -18,6 +18,7 @@
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/gap_report.h"
+#include "propulsion_estimator/gap/motor_health_replay.h"
 #include "propulsion_estimator/logs/bench_log_reader.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
 #include "propulsion_estimator/model/model_yaml.h"
@@ -204,6 +205,19 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
               formatPrintf("%.2f", diagnosis.heldout.before_rmse_pct).c_str(),
               formatPrintf("%.2f", diagnosis.heldout.after_rmse_pct).c_str());
   std::printf("report: %s/report.md, corrected model: %s/corrected_model.yaml\n", args.out.c_str(), args.out.c_str());
+
+  // What the node's onboard check would have said of the same flights, with the same model.
+  std::vector<std::string> names;
+  std::vector<gap::MotorHealthReplay> replays;
+  int flagged = 0;
+  for (const gap::Flight& flight : flights) {
+    names.push_back(flight.name);
+    replays.push_back(gap::replayMotorHealth(model, vehicle, flight.streams));
+    flagged += !replays.back().flagged_channels.empty();
+  }
+  writeTextFile(args.out + "/motor_health.yaml", gap::motorHealthReplayYaml(names, replays));
+  std::printf("onboard motor-health check: a motor flagged on %d of %zu flights; %s/motor_health.yaml\n", flagged,
+              flights.size(), args.out.c_str());
 }
 
 int diagnose(const Arguments& args) {

@@ -100,7 +100,7 @@ void writeComparisonReportData(const std::vector<ModelComparison>& models, const
     }
     hover << (m.endurance_min ? formatCsvNumber(*m.endurance_min) : "") << "\n";
     for (const DischargeStep& step : m.discharge) {
-      discharge << m.label << "," << formatCsvNumber(step.time_min) << "," << formatCsvNumber(step.voltage_v) << ","
+      discharge << m.label << "," << formatCsvNumber(step.time_s / 60.0) << "," << formatCsvNumber(step.voltage_v) << ","
                 << formatCsvNumber(step.total_current_a) << "," << formatCsvNumber(step.pwm_us) << "\n";
     }
   }

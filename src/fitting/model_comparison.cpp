@@ -15,8 +15,6 @@ namespace propulsion_estimator {
 namespace fitting {
 namespace {
 
-constexpr int kBisectionSteps = 60;
-
 double modelled(const PropulsionModel& model, Output output, double value) {
   return model.output(output).source == OutputSource::kNone ? kNaN : value;
 }
@@ -36,67 +34,22 @@ std::optional<ComparisonSample> sample(const PropulsionModel& model, double pwm_
   return s;
 }
 
-double thrustAt(const PropulsionModel& model, double pwm_us, double voltage_v) {
-  OperatingPoint e;
-  model.evaluate(pwm_us, voltage_v, &e);
-  return e.thrust_n;
-}
-
 void integrateHover(const PropulsionModel& model, const HoverOptions& hover, ModelComparison* result) {
-  const ModelDomain& domain = model.domain();
-  if (model.output(Output::kCurrent).source == OutputSource::kNone) {
-    result->hover_notes.push_back("no endurance: the model has no current");
-    return;
-  }
-  const double thrust_n = hover.thrustPerMotorN();
-  const double usable_ah = hover.usable_fraction * hover.capacity_mah / 1000.0;
-  const double step_ah = usable_ah / hover.steps;
-  double hours = 0.0;
-  int outside_voltage = 0, below_pwm = 0;
-  for (int k = 0; k < hover.steps; ++k) {
-    const double charge_ah = (k + 0.5) * step_ah;
-    const double voltage = hover.fullVoltage() - (hover.fullVoltage() - hover.cutoffVoltage()) * charge_ah / usable_ah;
-    const std::optional<HoverPoint> point = hoverPoint(model, thrust_n, voltage);
-    if (!point) {
-      result->hover_notes.push_back("hover ends at " + formatPrintf("%.2f V", voltage) +
-                                    ": the motors cannot give the hover thrust at that voltage" +
-                                    (domain.outside == OutsideDomain::kReject ? " (or the model rejects it)" : ""));
-      break;
-    }
-    const double total_a = hover.motors * point->current_a;
-    // The current surface is floored at zero; a zero hover current would be an endless flight.
-    if (!(total_a > 0.0)) {
-      result->hover_notes.push_back("no endurance: the model's hover current is 0 A at " +
-                                    formatPrintf("%.2f V", voltage) + " and " + formatPrintf("%.0f us", point->pwm_us) +
-                                    " (its current surface is at or below zero there)");
-      break;
-    }
-    outside_voltage += voltage < domain.voltage_min_v || voltage > domain.voltage_max_v;
-    below_pwm += point->below_pwm_domain;
-    hours += step_ah / total_a;
-    result->discharge.push_back({60.0 * hours, voltage, total_a, point->pwm_us});
-  }
-  if (outside_voltage > 0) {
-    result->hover_notes.push_back(
-        "the battery's " + formatPrintf("%.2f", hover.cutoffVoltage()) + "-" + formatPrintf("%.2f V", hover.fullVoltage()) +
-        " leaves the model's " + formatPrintf("%.2f", domain.voltage_min_v) + "-" + formatPrintf("%.2f V", domain.voltage_max_v) +
-        " for " + formatPrintf("%.0f%%", 100.0 * outside_voltage / hover.steps) +
-        " of the discharge; there the model " +
-        (domain.outside == OutsideDomain::kClamp ? "clamps the voltage to its domain" : "extrapolates"));
-  }
-  if (below_pwm > 0) {
-    result->hover_notes.push_back(
-        "for " + formatPrintf("%.0f%%", 100.0 * below_pwm / hover.steps) +
-        " of the discharge the hover thrust is below the thrust at the model's lowest PWM (" +
-        formatPrintf("%.0f us", domain.pwm_min_us) + "): the current there is taken at " +
-        formatPrintf("%.0f us", domain.pwm_min_us) + ", so the endurance is likely underestimated");
-  }
-  if (static_cast<int>(result->discharge.size()) == hover.steps) result->endurance_min = 60.0 * hours;
+  const BatteryPack pack = hover.pack();
+  HoverDischarge discharge = integrateHoverDischarge(model, pack.fullVoltage(), pack.cutoffVoltage(), pack.usableAh(),
+                                                     hover.thrustPerMotorN(), hover.motors, hover.steps);
+  result->discharge = std::move(discharge.steps);
+  result->hover_notes.insert(result->hover_notes.end(), discharge.notes.begin(), discharge.notes.end());
+  if (discharge.endurance_s) result->endurance_min = *discharge.endurance_s / 60.0;
 }
 
 }  // namespace
 
 double HoverOptions::thrustPerMotorN() const { return vehicle_mass_kg * kStandardGravity / motors; }
+
+BatteryPack HoverOptions::pack() const {
+  return BatteryPack{cells, capacity_mah / 1000.0, usable_fraction, cell_full_v, cell_cutoff_v};
+}
 
 void HoverOptions::validate() const {
   if (!(vehicle_mass_kg > 0.0)) throw ConfigError("--mass-kg must be positive");
@@ -114,38 +67,6 @@ void ComparisonOptions::validate() const {
   if (voltage_v && !(*voltage_v > 0.0)) throw ConfigError("--voltage must be positive");
   if (curve_points < 2) throw ConfigError("curve points must be at least 2");
   if (hover) hover->validate();
-}
-
-std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust_n, double voltage_v) {
-  const ModelDomain& domain = model.domain();
-  // Lowest PWM with enough thrust: a scan for the first crossing, then bisection.
-  constexpr int kScan = 200;
-  double below = domain.pwm_min_us;
-  double above = kNaN;
-  for (int k = 0; k <= kScan; ++k) {
-    const double x = domain.pwm_min_us + (domain.pwm_max_us - domain.pwm_min_us) * k / kScan;
-    if (thrustAt(model, x, voltage_v) >= thrust_n) {
-      above = x;
-      break;
-    }
-    below = x;
-  }
-  if (std::isnan(above)) return std::nullopt;
-  // Enough thrust already at the lowest PWM: the hover point lies below the measured range.
-  const bool below_pwm_domain = above == domain.pwm_min_us;
-  for (int k = 0; k < kBisectionSteps && above > below; ++k) {
-    const double middle = 0.5 * (below + above);
-    (thrustAt(model, middle, voltage_v) >= thrust_n ? above : below) = middle;
-  }
-  OperatingPoint e;
-  if (!model.evaluate(above, voltage_v, &e)) return std::nullopt;
-  return HoverPoint{voltage_v,
-                    above,
-                    modelled(model, Output::kCurrent, e.current_a),
-                    modelled(model, Output::kPower, e.power_w),
-                    modelled(model, Output::kEfficiency, e.efficiency_n_per_w / kNewtonPerGramForce),
-                    below_pwm_domain,
-                    e.in_domain && !below_pwm_domain};
 }
 
 ModelComparison compareModel(const std::string& label, const PropulsionModel& model, const std::vector<BenchLog>& logs,

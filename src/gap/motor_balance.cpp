@@ -5,6 +5,8 @@
 #include <limits>
 #include <map>
 
+#include "propulsion_estimator/vehicle/rotor_balance.h"
+
 namespace propulsion_estimator {
 namespace gap {
 namespace {
@@ -51,17 +53,14 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
     balance.unavailable = "fewer than three stretches of steady hover";
     return balance;
   }
-  std::vector<double> mean_thrust(motors, 0.0), yaw;
+  std::vector<double> mean_thrust(motors, 0.0), yaw, thrust(motors);
   for (const auto& entry : groups) {
     const auto& [sums, count] = entry.second;
-    double total = 0.0, spin = 0.0;
     for (int k = 0; k < motors; ++k) {
-      const double thrust = sums[k] / count;
-      mean_thrust[k] += thrust / groups.size();
-      total += thrust;
-      spin += vehicle.rotors[k].spin_direction * thrust;
+      thrust[k] = sums[k] / count;
+      mean_thrust[k] += thrust[k] / groups.size();
     }
-    yaw.push_back(spin / total);
+    yaw.push_back(yawImbalance(vehicle, thrust));
   }
   double yaw_mean = 0.0;
   for (double y : yaw) yaw_mean += y / yaw.size();
@@ -69,13 +68,7 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   for (double y : yaw) yaw_var += (y - yaw_mean) * (y - yaw_mean) / (yaw.size() - 1);
   const double yaw_ci = 1.96 * std::sqrt(yaw_var / yaw.size());
 
-  double total = 0.0;
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (int k = 0; k < motors; ++k) {
-    total += mean_thrust[k];
-    centre += mean_thrust[k] * vehicle.rotors[k].position_m.head<2>();
-  }
-  centre /= total;
+  const Eigen::Vector2d centre = thrustCentre(vehicle, mean_thrust);
   balance.cg_offset_x_m = centre.x();
   balance.cg_offset_y_m = centre.y();
   const Eigen::Vector2d prior =
@@ -105,14 +98,9 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
     for (const auto& [key, entry] : segment_sums) {
       const auto& [sums, count] = entry;
       if (count < kMinSegmentBlocks) continue;
-      double sum = 0.0;
-      Eigen::Vector2d moment = Eigen::Vector2d::Zero();
-      for (int k = 0; k < motors; ++k) {
-        const double thrust = sums[k] / count * (k == j ? 1.0 - gap : 1.0);
-        sum += thrust;
-        moment += thrust * vehicle.rotors[k].position_m.head<2>();
-      }
-      moments.push_back(segment_mass.at(key) * moment / sum);
+      std::vector<double> corrected(motors);
+      for (int k = 0; k < motors; ++k) corrected[k] = sums[k] / count * (k == j ? 1.0 - gap : 1.0);
+      moments.push_back(segment_mass.at(key) * thrustCentre(vehicle, corrected));
       mean += moments.back();
     }
     if (moments.size() < 2) return std::numeric_limits<double>::infinity();
@@ -125,14 +113,11 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   double best_distance = std::numeric_limits<double>::infinity();
   int best = -1;
   for (int j = 0; j < motors; ++j) {
-    const double gap = yaw_mean * total / (vehicle.rotors[j].spin_direction * mean_thrust[j]);
+    const double gap = weakMotorGap(vehicle, mean_thrust, yaw_mean, j);
     const double ci = std::abs(gap) * (std::abs(yaw_mean) > 0.0 ? yaw_ci / std::abs(yaw_mean) : 0.0);
     balance.motors.push_back({channels[j], 100.0 * gap, 100.0 * ci});
-    // The centre of thrust if motor j alone gave (1 - gap) of its modelled thrust.
-    const double corrected_total = total - gap * mean_thrust[j];
-    const Eigen::Vector2d implied =
-        (centre * total - gap * mean_thrust[j] * vehicle.rotors[j].position_m.head<2>()) / corrected_total;
-    const double distance = payloads_differ ? moment_spread(j, gap) : (implied - prior).norm();
+    const double distance =
+        payloads_differ ? moment_spread(j, gap) : (impliedCentre(vehicle, mean_thrust, j, gap) - prior).norm();
     // A yaw imbalance is explained as well by one motor weaker than modelled as by its
     // neighbour of the other spin direction stronger: the failures that happen (a chipped,
     // bent or wrong propeller, a worn motor or bearing) give less thrust, never more.

@@ -63,6 +63,11 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
                            << " V, outside: " << outsideDomainName(domain.outside)
                            << "; outputs not modelled (published as NaN): " << unmodelledOutputs(estimator_->model()));
 
+  capability_ = std::make_unique<CapabilityEstimator>(estimator_->model(),
+                                                      static_cast<int>(estimator_->vehicle().rotors.size()),
+                                                      params_.capability);
+  motor_health_ = std::make_unique<MotorHealth>(estimator_->vehicle(), params_.estimator.motor_channels,
+                                                params_.capability.motor_health);
   loadTare();
   const MassEstimate& payload = estimator_->output().payload;
   ROS_INFO_STREAM("empty mass: " << (std::isnan(payload.empty_mass_kg) ? std::string("unknown until ~tare")
@@ -79,6 +84,7 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   motors_pub_ = private_nh.advertise<MotorEstimates>("motors", 10);
   totals_pub_ = private_nh.advertise<PropulsionTotals>("totals", 10);
   payload_pub_ = private_nh.advertise<PayloadEstimate>("payload", 10);
+  capability_pub_ = private_nh.advertise<Capability>("capability", 2);
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
   rc_out_sub_ = nh.subscribe(params_.rc_out_topic, 20, &EstimatorNode::onRcOut, this, hints);
   battery_sub_ = nh.subscribe(params_.battery_topic, 5, &EstimatorNode::onBattery, this, hints);
@@ -125,8 +131,13 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     copy(judgeEffects(*estimator_, effects_before_, now, params_.health), &status);
     effects_before_ = now;
   });
+  diagnostics_.add("Capability", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    copy(judgeCapability(last_capability_, last_health_, params_.capability), &status);
+  });
   inputs_before_ = outputs_before_ = domain_before_ = effects_before_ = takeSnapshot();
   diagnostics_timer_ = nh.createTimer(ros::Duration(0.1), [this](const ros::TimerEvent&) { diagnostics_.update(); });
+  capability_timer_ = nh.createTimer(ros::Duration(1.0 / params_.capability.rate_hz),
+                                     [this](const ros::TimerEvent&) { publishCapability(); });
 }
 
 void EstimatorNode::loadTare() {
@@ -233,6 +244,7 @@ void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) 
     logRejection(inputs_.last_rc_out_verdict);
     return;
   }
+  motor_health_->add(estimator_->output());
   // Estimated and averaged always; published at most at publish_rate_hz (on the stamps, so that a
   // replayed bag publishes as the flight did).
   if (publish_limiter_.admit(estimator_->output().stamp_s)) publish();
@@ -243,6 +255,7 @@ void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message
   const double now = ros::Time::now().toSec();
   logRejection(estimator_->addBattery(now, message->voltage));
   if (pass_battery_current_) logRejection(estimator_->addBatteryCurrent(now, message->current));
+  battery_report_ = BatteryReport{message->percentage, message->charge, message->current};
 }
 
 void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
@@ -337,6 +350,52 @@ void EstimatorNode::publish() {
   payload_pub_.publish(payload_msg_);
 }
 
+void EstimatorNode::publishCapability() {
+  estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
+  last_capability_ = capability_->evaluate(estimator_->output(), battery_report_);
+  last_health_ = motor_health_->verdict();
+  const CapabilityReport& c = last_capability_;
+  const MotorHealthVerdict& h = last_health_;
+  Capability msg;
+  msg.header.stamp = ros::Time::now();
+  msg.hover_mass_kg = c.hover_mass_kg;
+  msg.hover_basis = c.hover_basis;
+  msg.voltage_v = c.voltage_v;
+  msg.pwm_max_us = c.pwm_max_us;
+  msg.min_thrust_to_weight = params_.capability.min_thrust_to_weight;
+  msg.max_thrust_n = c.max_thrust_n;
+  msg.thrust_to_weight = c.thrust_to_weight;
+  msg.max_additional_payload_kg = c.max_additional_payload_kg;
+  msg.cutoff_voltage_v = c.cutoff_voltage_v;
+  msg.max_thrust_at_cutoff_n = c.max_thrust_at_cutoff_n;
+  msg.thrust_to_weight_at_cutoff = c.thrust_to_weight_at_cutoff;
+  msg.max_additional_payload_at_cutoff_kg = c.max_additional_payload_at_cutoff_kg;
+  msg.payload_note = c.payload_note;
+  msg.hover_pwm_us = c.hover_pwm_us;
+  msg.hover_current_a = c.hover_current_a;
+  msg.state_of_charge = c.state_of_charge;
+  msg.charge_basis = c.charge_basis;
+  msg.remaining_ah = c.remaining_ah;
+  msg.hover_endurance_s = c.hover_endurance_s;
+  msg.endurance_basis = c.endurance_basis;
+  msg.reserve_s = params_.capability.reserve_s;
+  msg.motor_health_judged = h.judged;
+  msg.motor_health_note = h.unavailable;
+  msg.yaw_imbalance = h.yaw_imbalance;
+  msg.yaw_imbalance_std = h.yaw_imbalance_std;
+  for (const MotorBalanceGap& motor : h.motors) {
+    msg.motor_channels.push_back(static_cast<std::uint8_t>(motor.channel));
+    msg.motor_thrust_gap.push_back(motor.thrust_gap);
+    msg.motor_thrust_gap_std.push_back(motor.thrust_gap_std);
+  }
+  msg.flagged_channel = static_cast<std::uint8_t>(h.flagged_channel);
+  msg.cg_offset_x_m = h.cg_offset_x_m;
+  msg.cg_offset_y_m = h.cg_offset_y_m;
+  msg.payload_over_limit = c.payload_over_limit;
+  msg.endurance_below_reserve = c.endurance_below_reserve;
+  capability_pub_.publish(msg);
+}
+
 bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   const TareResult tare = estimator_->tare(ros::Time::now().toSec());
   response.success = tare.ok;
@@ -373,6 +432,7 @@ bool EstimatorNode::onDetectHover(std_srvs::Trigger::Request&, std_srvs::Trigger
 
 bool EstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   estimator_->reset();
+  motor_health_->clear();
   const MassEstimate& p = estimator_->output().payload;
   std::ostringstream message;
   message << "windows and tare cleared; empty mass now "

@@ -31,12 +31,14 @@ class ParamReader {
     optional(name, value);
   }
 
-  void optionalMass(const std::string& name, std::optional<double>* value) {
+  // A parameter without default: unset when absent.
+  template <typename T>
+  void optional(const std::string& name, std::optional<T>* value) {
     known_.insert(name);
     if (!nh_.hasParam(name)) return;
-    double mass = 0.0;
-    optional(name, &mass);
-    *value = mass;
+    T read{};
+    optional(name, &read);
+    *value = read;
   }
 
   // A parameter another component reads from the same namespace: known, not read here.
@@ -102,7 +104,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("publish_rate_hz", &p.publish_rate_hz);
   read.optional("clock_jump_reset_s", &c.clock_jump_reset_s);
   read.optional("max_stamp_ahead_s", &c.max_stamp_ahead_s);
-  read.optionalMass("empty_mass_kg", &c.empty_mass_kg);
+  read.optional("empty_mass_kg", &c.empty_mass_kg);
   read.optional("hover/window_s", &c.hover.window_s);
   read.optional("hover/min_window_fill", &c.hover.min_window_fill);
   read.optional("hover/max_thrust_rel_std", &c.hover.max_thrust_rel_std);
@@ -116,6 +118,19 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   if (min_samples < 0) throw ConfigError(nh.resolveName("payload/min_samples") + ": must not be negative");
   c.payload.min_samples = static_cast<std::size_t>(min_samples);
   read.optional("payload/episode_gap_s", &c.payload.episode_gap_s);
+  CapabilityConfig& k = p.capability;
+  read.optional("capability/rate_hz", &k.rate_hz);
+  read.optional("capability/pwm_max_us", &k.pwm_max_us);
+  read.optional("capability/min_thrust_to_weight", &k.min_thrust_to_weight);
+  read.optional("capability/reserve_s", &k.reserve_s);
+  read.optional("capability/battery/capacity_ah", &k.capacity_ah);
+  read.optional("capability/battery/cells", &k.cells);
+  read.optional("capability/battery/usable_fraction", &k.usable_fraction);
+  read.optional("capability/battery/cell_full_v", &k.cell_full_v);
+  read.optional("capability/battery/cell_cutoff_v", &k.cell_cutoff_v);
+  read.optional("capability/motor_health/block_s", &k.motor_health.block_s);
+  read.optional("capability/motor_health/window_s", &k.motor_health.window_s);
+  read.optional("capability/motor_health/max_gap", &k.motor_health.max_gap);
   read.readElsewhere("diagnostic_period");  // diagnostic_updater's, in seconds
   read.refuseUnknown();
   p.health.battery_input = p.battery_topic;
@@ -126,6 +141,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   p.health.rangefinder_input = p.rangefinder_topic;
   p.health.motor_temperature_input = p.motor_temperature_topic;
   p.health.validate();
+  k.validate();
   if (!(p.publish_rate_hz >= 0.0) || !std::isfinite(p.publish_rate_hz)) {
     throw ConfigError(nh.resolveName("publish_rate_hz") + ": must be 0 (every message) or a positive rate in Hz, got " +
                       formatNumber(p.publish_rate_hz));
@@ -164,7 +180,16 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
                   << (p.publish_rate_hz > 0.0 ? std::to_string(p.publish_rate_hz) : std::string("0 (every message)"))
                   << ", clock_jump_reset_s: " << c.clock_jump_reset_s
                   << ", max_stamp_ahead_s: " << c.max_stamp_ahead_s
-                  << ", domain_warn_fraction: " << p.health.domain_warn_fraction);
+                  << ", domain_warn_fraction: " << p.health.domain_warn_fraction
+                  << "\n  capability: rate_hz " << k.rate_hz << ", pwm_max_us "
+                  << (k.pwm_max_us ? std::to_string(*k.pwm_max_us) : "(the model's domain maximum)")
+                  << ", min_thrust_to_weight " << k.min_thrust_to_weight << ", reserve_s " << k.reserve_s
+                  << "\n  capability/battery: capacity_ah "
+                  << (k.capacity_ah ? std::to_string(*k.capacity_ah) : "(not set: no endurance)") << ", cells "
+                  << (k.cells ? std::to_string(*k.cells) : "(not set)") << ", usable_fraction " << k.usable_fraction
+                  << ", cell_full_v " << k.cell_full_v << ", cell_cutoff_v " << k.cell_cutoff_v
+                  << "\n  capability/motor_health: block_s " << k.motor_health.block_s << ", window_s "
+                  << k.motor_health.window_s << ", max_gap " << k.motor_health.max_gap);
   return p;
 }
 

@@ -5,7 +5,7 @@ import threading
 
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
-from propulsion_estimator.msg import MotorEstimates, PayloadEstimate, PropulsionTotals
+from propulsion_estimator.msg import Capability, MotorEstimates, PayloadEstimate, PropulsionTotals
 from sensor_msgs.msg import BatteryState
 from std_srvs.srv import Trigger
 
@@ -16,13 +16,14 @@ class EstimatorHarness:
     def __init__(self, node="/propulsion_estimator", battery_topic="/mavros/battery", rc_out_topic="/mavros/rc/out"):
         self.node = node
         self._lock = threading.Lock()
-        self.motors, self.totals, self.payload = [], [], []
+        self.motors, self.totals, self.payload, self.capability = [], [], [], []
         self.diagnostics = {}
         self.battery_pub = rospy.Publisher(battery_topic, BatteryState, queue_size=10)
         self.rc_out_pub = rospy.Publisher(rc_out_topic, RCOut, queue_size=100)
         rospy.Subscriber(node + "/motors", MotorEstimates, self._keep, self.motors)
         rospy.Subscriber(node + "/totals", PropulsionTotals, self._keep, self.totals)
         rospy.Subscriber(node + "/payload", PayloadEstimate, self._keep, self.payload)
+        rospy.Subscriber(node + "/capability", Capability, self._keep, self.capability)
         rospy.Subscriber("/diagnostics", DiagnosticArray, self._on_diagnostics)
         for name in ("tare", "detect_hover", "reset"):
             rospy.wait_for_service(node + "/" + name, timeout=30.0)

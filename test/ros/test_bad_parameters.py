@@ -52,6 +52,17 @@ class BadParametersTest(unittest.TestCase):
         self.assertEqual(start("e", {"model": MODEL, "hover/window_s": -1.0}),
                          (1, "hover/window_s: must be a positive number, got -1"))
 
+    def test_battery_capacity_not_positive(self):
+        self.assertEqual(start("k", {"model": MODEL, "capability/battery/capacity_ah": 0.0,
+                                     "capability/battery/cells": 3}),
+                         (1, "capability/battery/capacity_ah: must be a positive number, got 0"))
+
+    def test_cutoff_above_full(self):
+        self.assertEqual(start("l", {"model": MODEL, "capability/battery/capacity_ah": 4.0,
+                                     "capability/battery/cells": 3, "capability/battery/cell_cutoff_v": 4.3}),
+                         (1, "capability/battery/cell_cutoff_v: 4.3 V is not below capability/battery/cell_full_v "
+                             "4.2 V"))
+
     def test_window_fill_never_met(self):
         self.assertEqual(start("i", {"model": MODEL, "hover/min_window_fill": 1.0}),
                          (1, "hover/min_window_fill: 1 is never reliably met: the window keeps its samples in 64 bins "

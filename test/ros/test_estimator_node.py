@@ -114,6 +114,26 @@ class EstimatorNodeTest(unittest.TestCase):
         self.assertTrue(is_nan(payload.payload_mass_kg))
         self.assertGreater(payload.window_samples, 50)
 
+    def test_2_capability(self):
+        """~capability at 1 Hz from its own timer: the payload limit at the model's top PWM, and
+        NaN with the reason for the endurance without a configured battery."""
+        self.h.fly(HOVER, 4.0, voltage_v=11.4)
+        before = self.h.count(self.h.capability)
+        self.h.wait_for(lambda: self.h.count(self.h.capability) > before, 3.0, "a ~capability message")
+        c = self.h.latest(self.h.capability)
+        mass = self.h.latest(self.h.payload).total_mass_kg
+        self.assertAlmostEqual(c.hover_mass_kg, mass, places=6)
+        self.assertEqual(c.pwm_max_us, 1900.0)
+        self.assertGreater(c.max_thrust_n, 4 * self.thrust_n)
+        self.assertAlmostEqual(c.thrust_to_weight, c.max_thrust_n / (mass * G), places=9)
+        self.assertAlmostEqual(c.max_additional_payload_kg, c.max_thrust_n / (1.6 * G) - mass, places=9)
+        self.assertTrue(is_nan(c.hover_endurance_s))
+        self.assertEqual(c.endurance_basis, "no battery capacity configured (capability/battery/capacity_ah, cells)")
+        self.assertFalse(c.motor_health_judged)
+        self.assertEqual(c.motor_health_note, "no rotor geometry (a URDF is needed)")  # this node has no URDF
+        status = self.h.wait_for_diagnostic("Capability", "max additional payload %.3f kg" % c.max_additional_payload_kg)
+        self.assertEqual(status.level, DiagnosticStatus.OK)
+
     def test_3_services(self):
         self.h.fly(HOVER, 3.0, voltage_v=11.4)
         answer = self.h.call("detect_hover")

@@ -131,7 +131,7 @@ TEST(ModelComparison, HoverPointOfTheThesisQuad) {
   ASSERT_TRUE(c.endurance_min.has_value());
   // Bounds: all the usable charge at the highest and at the lowest hover current of the discharge.
   double lowest = 1e9, highest = 0;
-  for (const pe::fitting::DischargeStep& step : c.discharge) {
+  for (const pe::DischargeStep& step : c.discharge) {
     lowest = std::min(lowest, step.total_current_a);
     highest = std::max(highest, step.total_current_a);
   }
@@ -140,7 +140,7 @@ TEST(ModelComparison, HoverPointOfTheThesisQuad) {
   EXPECT_GT(*c.endurance_min, 60.0 * usable_ah / highest);
   EXPECT_LT(*c.endurance_min, 60.0 * usable_ah / lowest);
   EXPECT_EQ(c.discharge.size(), 200u);
-  EXPECT_DOUBLE_EQ(c.discharge.back().time_min, *c.endurance_min);
+  EXPECT_DOUBLE_EQ(c.discharge.back().time_s / 60.0, *c.endurance_min);
 }
 
 TEST(ModelComparison, EnduranceIsCapacityOverCurrentWhenTheCurrentIsConstant) {

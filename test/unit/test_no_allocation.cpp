@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "estimator_fixture.h"
+#include "propulsion_estimator/estimation/motor_health.h"
 #include "propulsion_estimator/sim/flight/motor_mixer.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
@@ -70,6 +71,21 @@ TEST(Estimator, AppliesEveryEffectWithoutHeapAllocation) {
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_EQ(f.estimator.output().effects_skipped, 0u);
   EXPECT_TRUE(f.estimator.output().hover.hovering);
+}
+
+TEST(MotorHealth, TakesEachEstimateWithoutHeapAllocation) {
+  EstimatorFixture f;
+  pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
+  f.fly(1690.0, 20.0);
+  const std::vector<std::uint16_t> channels{1690, 1700, 1680, 1695};
+  const long before = g_allocations.load();
+  for (int k = 0; k < 1000; ++k, f.t += 0.02) {
+    if (k % 50 == 0) f.estimator.addBattery(f.t, 11.4);
+    ASSERT_EQ(f.estimator.addMotorOutputs(f.t, f.t, channels.data(), channels.size()), pe::Rejection::kNone);
+    health.add(f.estimator.output());
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_TRUE(health.verdict().judged);
 }
 
 TEST(RcOutDecoder, DecodesWithoutHeapAllocationOnceWarm) {

@@ -64,6 +64,20 @@ TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
   EXPECT_EQ(number("domain_warn_fraction"), node.health.domain_warn_fraction);
   EXPECT_EQ(number("diagnostic_period"), 1.0);  // diagnostic_updater's own default
   EXPECT_FALSE(c.empty_mass_kg.has_value());     // commented in the template: not set
+  const pe::CapabilityConfig& k = node.capability;
+  EXPECT_EQ(number("capability/rate_hz"), k.rate_hz);
+  EXPECT_EQ(number("capability/min_thrust_to_weight"), k.min_thrust_to_weight);
+  EXPECT_EQ(number("capability/reserve_s"), k.reserve_s);
+  EXPECT_EQ(number("capability/battery/usable_fraction"), k.usable_fraction);
+  EXPECT_EQ(number("capability/battery/cell_full_v"), k.cell_full_v);
+  EXPECT_EQ(number("capability/battery/cell_cutoff_v"), k.cell_cutoff_v);
+  EXPECT_EQ(number("capability/motor_health/block_s"), k.motor_health.block_s);
+  EXPECT_EQ(number("capability/motor_health/window_s"), k.motor_health.window_s);
+  EXPECT_EQ(number("capability/motor_health/max_gap"), k.motor_health.max_gap);
+  // Commented in the template: not set.
+  EXPECT_FALSE(k.pwm_max_us.has_value());
+  EXPECT_FALSE(k.capacity_ah.has_value());
+  EXPECT_FALSE(k.cells.has_value());
 
   std::set<std::string> set_in_file;
   for (const auto& [name, node_value] : file.values) set_in_file.insert(name);

@@ -22,7 +22,7 @@ std::string readRepoFile(const std::string& relative) {
 // Every name the node's parameter reader knows (src/ros/estimator_params.cpp).
 std::set<std::string> readerParameters() {
   const std::string source = readRepoFile("src/ros/estimator_params.cpp");
-  const std::regex call(R"re(read\.(required|optional|optionalMass|readElsewhere)\("([^"]+)")re");
+  const std::regex call(R"re(read\.(required|optional|readElsewhere)\("([^"]+)")re");
   std::set<std::string> names;
   for (auto it = std::sregex_iterator(source.begin(), source.end(), call); it != std::sregex_iterator(); ++it) {
     names.insert((*it)[2].str());
@@ -73,11 +73,12 @@ TEST(ParameterNames, TemplateReaderAndReadmeAgree) {
   EXPECT_EQ(in_readme, in_reader) << "README: " << listed(in_readme) << "\nreader: " << listed(in_reader);
 }
 
-// The required model and the unset empty mass are shown, not set: a loaded template must neither
-// point the node at a model nor invent an empty mass.
+// The required model, the unset empty mass and battery and the PWM top are shown, not set: a
+// loaded template must neither point the node at a model nor invent an empty mass or a battery.
 TEST(ParameterNames, TemplateSetsNeitherTheModelNorAnEmptyMass) {
   const ParameterTemplate file = loadParameterTemplate();
-  EXPECT_EQ(file.commented, (std::set<std::string>{"empty_mass_kg", "model"}));
+  EXPECT_EQ(file.commented, (std::set<std::string>{"capability/battery/capacity_ah", "capability/battery/cells",
+                                                   "capability/pwm_max_us", "empty_mass_kg", "model"}));
   EXPECT_EQ(file.values.count("model"), 0u);
   EXPECT_EQ(file.values.count("empty_mass_kg"), 0u);
 }

@@ -5,15 +5,14 @@
 #include <vector>
 
 #include "propulsion_estimator/logs/bench_log.h"
+#include "propulsion_estimator/model/hover_endurance.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 
 namespace propulsion_estimator {
 namespace fitting {
 
-/// A vehicle and its LiPo battery, for the hover operating point and endurance of a combination.
-/// The battery's terminal voltage is taken to fall linearly with the charge drawn, from
-/// cells x cell_full_v to cells x cell_cutoff_v over usable_fraction x capacity: a plain, stated
-/// approximation of a LiPo discharge under a steady load.
+/// A vehicle and its LiPo battery, for the hover operating point and endurance of a combination
+/// (the battery as BatteryPack models it: model/hover_endurance.h).
 struct HoverOptions {
   double vehicle_mass_kg = 0.0;  // take-off mass, payload included
   int motors = 4;
@@ -28,6 +27,7 @@ struct HoverOptions {
   double cutoffVoltage() const { return cells * cell_cutoff_v; }
   double midVoltage() const { return 0.5 * (fullVoltage() + cutoffVoltage()); }
   double thrustPerMotorN() const;
+  BatteryPack pack() const;
   void validate() const;  // ConfigError naming the option
 };
 
@@ -53,29 +53,6 @@ struct ComparisonSample {
   double rpm = 0.0;
 };
 
-/// One motor's hover operating point at a supply voltage: pulse width in us, current in A and power
-/// in W per motor, efficiency in g/W.
-struct HoverPoint {
-  double voltage_v = 0.0;
-  double pwm_us = 0.0;
-  double current_a = 0.0;  // per motor
-  double power_w = 0.0;    // per motor
-  double efficiency_g_per_w = 0.0;
-  // The hover thrust is below the model's thrust at the lowest PWM of its domain: the hover PWM
-  // lies below the measured range, and pwm_us (with its current and power) is that lowest PWM.
-  bool below_pwm_domain = false;
-  bool in_domain = false;  // false: the voltage was clamped or extrapolated, or below_pwm_domain
-};
-
-/// One step of the hover discharge: hover time in min, battery voltage in V, total current in A and
-/// the pulse width in us that holds the hover.
-struct DischargeStep {
-  double time_min = 0.0;  // hover time at the end of the step
-  double voltage_v = 0.0;
-  double total_current_a = 0.0;
-  double pwm_us = 0.0;
-};
-
 /// The chapter 7 row of one combination, its hover point and endurance.
 struct ModelComparison {
   std::string label;
@@ -93,17 +70,13 @@ struct ModelComparison {
   std::optional<double> max_motor_temp_c;     // from the logs, where logged
   std::vector<ComparisonSample> logged_near;  // log rows within kNearVoltageV of voltage_v
   std::optional<HoverPoint> hover;            // at the battery's mid-discharge voltage
-  std::vector<DischargeStep> discharge;
+  std::vector<DischargeStep> discharge;  // integrateHoverDischarge's, from the full pack
   std::optional<double> endurance_min;
   std::vector<std::string> hover_notes;
 };
 
 /// Log rows this close to the comparison voltage are drawn with its curves.
 constexpr double kNearVoltageV = 0.3;
-
-/// The operating point where one motor gives `thrust_n` at `voltage_v` (evaluate(): the model's
-/// outside-domain policy applies); nullopt when the model cannot give that much thrust there.
-std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust_n, double voltage_v);
 
 /// Evaluates one combination: curve and maxima at the comparison voltage (default: the top of
 /// the model's voltage domain), the motor temperature of its logs, and hover and endurance when

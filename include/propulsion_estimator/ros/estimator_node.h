@@ -14,10 +14,13 @@
 #include <std_srvs/Trigger.h>
 #include <topic_tools/shape_shifter.h>
 
+#include "propulsion_estimator/Capability.h"
 #include "propulsion_estimator/MotorEstimates.h"
 #include "propulsion_estimator/PayloadEstimate.h"
 #include "propulsion_estimator/PropulsionTotals.h"
+#include "propulsion_estimator/estimation/capability.h"
 #include "propulsion_estimator/estimation/estimator.h"
+#include "propulsion_estimator/estimation/motor_health.h"
 #include "propulsion_estimator/estimation/health_summary.h"
 #include "propulsion_estimator/estimation/rate_limiter.h"
 #include "propulsion_estimator/ros/estimator_params.h"
@@ -52,6 +55,8 @@ class EstimatorNode {
   void setTareFileStatus(std::uint8_t level, const std::string& message);
   void logRejection(Rejection rejection);
   void publish();
+  // ~capability, from its own timer at capability/rate_hz.
+  void publishCapability();
 
   bool onTare(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onDetectHover(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
@@ -62,11 +67,16 @@ class EstimatorNode {
   EstimatorNodeParams params_;
   std::string model_fingerprint_;
   std::unique_ptr<Estimator> estimator_;
+  std::unique_ptr<CapabilityEstimator> capability_;
+  std::unique_ptr<MotorHealth> motor_health_;
+  BatteryReport battery_report_;
+  CapabilityReport last_capability_;
+  MotorHealthVerdict last_health_;
 
   ros::Subscriber rc_out_sub_, battery_sub_, imu_sub_, velocity_sub_;
   ros::Subscriber static_pressure_sub_, air_temperature_sub_, range_sub_, motor_temperature_sub_;
   bool pass_battery_current_ = false;  // only a supply_resistance effect reads it
-  ros::Publisher motors_pub_, totals_pub_, payload_pub_;
+  ros::Publisher motors_pub_, totals_pub_, payload_pub_, capability_pub_;
   ros::ServiceServer tare_srv_, detect_hover_srv_, reset_srv_;
   diagnostic_updater::Updater diagnostics_;
   std::uint8_t tare_file_level_ = diagnostic_msgs::DiagnosticStatus::OK;
@@ -79,7 +89,7 @@ class EstimatorNode {
   PropulsionTotals totals_msg_;
   PayloadEstimate payload_msg_;
 
-  ros::Timer diagnostics_timer_;
+  ros::Timer diagnostics_timer_, capability_timer_;
   InputActivity inputs_;
   // Counts at each diagnostics task's previous run, from which it derives rates and fractions.
   HealthSnapshot inputs_before_, outputs_before_, domain_before_, effects_before_;

@@ -4,6 +4,7 @@
 
 #include <ros/node_handle.h>
 
+#include "propulsion_estimator/estimation/capability.h"
 #include "propulsion_estimator/estimation/estimator_config.h"
 #include "propulsion_estimator/estimation/health_summary.h"
 
@@ -30,6 +31,7 @@ struct EstimatorNodeParams {
   double publish_rate_hz = 0.0;
   HealthConfig health;  // domain_warn_fraction; its input names are the topics
   EstimatorConfig estimator;
+  CapabilityConfig capability;
 };
 
 /// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is

@@ -1,0 +1,75 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "propulsion_estimator/model/propulsion_model.h"
+
+namespace propulsion_estimator {
+
+/// A LiPo pack for the hover discharge. Its terminal voltage is taken to fall linearly with the
+/// charge drawn, from cells x cell_full_v to cells x cell_cutoff_v over usable_fraction x
+/// capacity: a plain, stated approximation of a LiPo discharge under a steady load.
+struct BatteryPack {
+  int cells = 0;
+  double capacity_ah = 0.0;
+  double usable_fraction = 0.8;  // share of the capacity drawn when the cut-off is reached
+  double cell_full_v = 4.2;
+  double cell_cutoff_v = 3.5;
+
+  double fullVoltage() const { return cells * cell_full_v; }
+  double cutoffVoltage() const { return cells * cell_cutoff_v; }
+  double usableAh() const { return usable_fraction * capacity_ah; }
+  /// Charge in Ah drawn when the voltage reads `voltage_v`, clamped to 0..usableAh().
+  double drawnAt(double voltage_v) const;
+  /// Charge in Ah drawn when `state_of_charge` (0..1, of the capacity) remains, clamped to
+  /// 0..usableAh().
+  double drawnAtStateOfCharge(double state_of_charge) const;
+};
+
+/// One motor's hover operating point at a supply voltage: pulse width in us, current in A and power
+/// in W per motor, efficiency in g/W; NaN for an output the model does not have.
+struct HoverPoint {
+  double voltage_v = 0.0;
+  double pwm_us = 0.0;
+  double current_a = 0.0;  // per motor
+  double power_w = 0.0;    // per motor
+  double efficiency_g_per_w = 0.0;
+  // The hover thrust is below the model's thrust at the lowest PWM of its domain: the hover PWM
+  // lies below the measured range, and pwm_us (with its current and power) is that lowest PWM.
+  bool below_pwm_domain = false;
+  bool in_domain = false;  // false: the voltage was clamped or extrapolated, or below_pwm_domain
+};
+
+/// The operating point where one motor gives `thrust_n` at `voltage_v` (evaluate(): the model's
+/// outside-domain policy applies); nullopt when the model cannot give that much thrust there.
+std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust_n, double voltage_v);
+
+/// One step of the hover discharge: hover time in s, battery voltage in V, total current in A and
+/// the pulse width in us that holds the hover.
+struct DischargeStep {
+  double time_s = 0.0;  // hover time at the end of the step
+  double voltage_v = 0.0;
+  double total_current_a = 0.0;
+  double pwm_us = 0.0;
+};
+
+/// The hover discharge of a pack from a charge state to its cut-off: the steps, the hover time in
+/// s when the cut-off is reached (nullopt when the hover ends before it, or cannot be integrated),
+/// and notes on why not or on what the figure rests.
+struct HoverDischarge {
+  std::vector<DischargeStep> steps;
+  std::optional<double> endurance_s;
+  std::vector<std::string> notes;
+};
+
+/// Integrates the hover of `motors` motors, each giving `thrust_per_motor_n`, while `charge_ah`
+/// is drawn and the terminal voltage falls linearly from `start_voltage_v` to `cutoff_voltage_v`
+/// (BatteryPack's discharge; from a full pack, its full voltage and usable charge), in `steps`
+/// equal charge steps: each step's hover current from the model's current at the hover point of
+/// the step's mid voltage. Needs the model's current (a note says so otherwise).
+HoverDischarge integrateHoverDischarge(const PropulsionModel& model, double start_voltage_v, double cutoff_voltage_v,
+                                       double charge_ah, double thrust_per_motor_n, int motors, int steps);
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,314 @@
+// The capability answers against hand-computed cases: the hover discharge integration shared with
+// compare_models, the payload limit, the endurance's bases, the motor balance, and the refusals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/estimation/capability.h"
+#include "propulsion_estimator/estimation/motor_health.h"
+#include "propulsion_estimator/model/hover_endurance.h"
+#include "propulsion_estimator/model/model_yaml.h"
+
+namespace pe = propulsion_estimator;
+
+namespace {
+
+// Thrust x - 1000 g whatever the voltage (1000 g per motor at 2000 us); current per motor
+// `current`, a polynomial in PWM x and voltage y (power and efficiency derived from it), or
+// `electrical` none for a thrust-only stand.
+pe::PropulsionModel handModel(const std::string& electrical) {
+  return pe::parseModelYaml(R"(format_version: 1
+metadata: {esc: E, motor: M, propeller: P, bench_air_temperature_c: 20, bench_air_pressure_pa: 101325,
+           supply: battery, source: test}
+domain: {pwm_us: [1000, 2000], voltage_v: [10, 13], outside: clamp}
+outputs:
+  thrust: {unit: g, polynomial: {p00: -1000, p10: 1}}
+)" + electrical + R"(
+  rpm: {unit: rpm, none: no tachometer}
+)",
+                            "hand.yaml");
+}
+
+// Current 20 - V per motor: 7.4 A at a full 3S pack (12.6 V), 9.5 A at its 10.5 V cut-off.
+pe::PropulsionModel voltageCurrentModel() {
+  return handModel(
+      "  current: {unit: A, polynomial: {p00: 20, p01: -1}}\n"
+      "  power: {unit: W, derived: voltage*current}\n"
+      "  efficiency: {unit: g/W, derived: thrust/power}");
+}
+
+pe::BatteryPack threeCell() { return pe::BatteryPack{3, 4.0, 0.8, 4.2, 3.5}; }
+
+// Hover state as the estimator gives it: the hover average `mass_kg` at `voltage_v`.
+pe::EstimatorOutput hovering(double mass_kg, double voltage_v) {
+  pe::EstimatorOutput output;
+  output.totals.voltage_v = voltage_v;
+  output.payload.state = pe::PayloadState::kHovering;
+  output.payload.hovering = true;
+  output.payload.total_mass_kg = mass_kg;
+  output.payload.window_s = 10.0;
+  return output;
+}
+
+pe::CapabilityConfig configured() {
+  pe::CapabilityConfig config;
+  config.capacity_ah = 4.0;
+  config.cells = 3;
+  return config;
+}
+
+}  // namespace
+
+TEST(BatteryPack, ChargeDrawnFromTheVoltageOrTheStateOfCharge) {
+  const pe::BatteryPack pack = threeCell();
+  EXPECT_DOUBLE_EQ(pack.drawnAt(11.55), 1.6);
+  EXPECT_DOUBLE_EQ(pack.drawnAt(13.0), 0.0);
+  EXPECT_DOUBLE_EQ(pack.drawnAt(9.0), 3.2);
+  EXPECT_DOUBLE_EQ(pack.drawnAtStateOfCharge(0.75), 1.0);
+  EXPECT_DOUBLE_EQ(pack.drawnAtStateOfCharge(0.1), 3.2);
+}
+
+TEST(HoverDischarge, MatchesTheClosedFormOfACurrentLinearInVoltage) {
+  // I(V) = c0 + c1 V per motor, V(q) = V0 - (V0 - Vc) q / Q: the hover time over the charge Q is
+  // the integral of dq / (n I) = Q / (n c1 (V0 - Vc)) ln((c0 + c1 V0) / (c0 + c1 Vc)).
+  const double c0 = 20.0, c1 = -1.0, n = 4.0, charge = 2.4, v0 = 12.075, vc = 10.5;
+  const double hours = charge / (n * c1 * (v0 - vc)) * std::log((c0 + c1 * v0) / (c0 + c1 * vc));
+  // 500 g per motor: 1500 us, inside the domain at every step.
+  const pe::HoverDischarge discharge =
+      pe::integrateHoverDischarge(voltageCurrentModel(), v0, vc, charge, 500.0 * pe::kNewtonPerGramForce, 4, 200);
+  ASSERT_TRUE(discharge.endurance_s.has_value());
+  EXPECT_NEAR(*discharge.endurance_s, 3600.0 * hours, 1e-5 * 3600.0 * hours);
+  EXPECT_TRUE(discharge.notes.empty());
+  ASSERT_EQ(discharge.steps.size(), 200u);
+  EXPECT_NEAR(discharge.steps.front().pwm_us, 1500.0, 1e-6);
+  EXPECT_DOUBLE_EQ(discharge.steps.back().time_s, *discharge.endurance_s);
+  // 2.4 Ah at 4 x 8.7 A on average (7.9 A at 12.075 V, 9.5 A at 10.5 V): about 248 s.
+  EXPECT_NEAR(*discharge.endurance_s, 248.6, 0.1);
+}
+
+TEST(HoverDischarge, AtTheCutOffThereIsNoHoverLeft) {
+  const pe::HoverDischarge discharge = pe::integrateHoverDischarge(voltageCurrentModel(), 10.5, 10.5, 0.0, 5.0, 4, 50);
+  ASSERT_TRUE(discharge.endurance_s.has_value());
+  EXPECT_EQ(*discharge.endurance_s, 0.0);
+  EXPECT_EQ(discharge.notes, std::vector<std::string>{"the pack is at its cut-off"});
+}
+
+TEST(Capability, PayloadLimitKeepsTheThrustToWeightMargin) {
+  const pe::PropulsionModel model = voltageCurrentModel();
+  const pe::CapabilityEstimator estimator(model, 4, configured());
+  const pe::CapabilityReport c = estimator.evaluate(hovering(1.5, 12.0), {});
+  // 4 x 1000 g at 2000 us, the domain's top, at any voltage: 4 kg of thrust for 1.5 kg.
+  EXPECT_DOUBLE_EQ(c.pwm_max_us, 2000.0);
+  EXPECT_NEAR(c.max_thrust_n, 4.0 * pe::kStandardGravity, 1e-9);
+  EXPECT_NEAR(c.thrust_to_weight, 4.0 / 1.5, 1e-9);
+  EXPECT_NEAR(c.max_additional_payload_kg, 4.0 / 1.6 - 1.5, 1e-9);
+  EXPECT_NEAR(c.max_additional_payload_at_cutoff_kg, 4.0 / 1.6 - 1.5, 1e-9);
+  EXPECT_DOUBLE_EQ(c.cutoff_voltage_v, 10.5);
+  EXPECT_EQ(c.payload_note, "");
+  EXPECT_FALSE(c.payload_over_limit);
+  // 375 g per motor: 1375 us, 4 x (20 - 12) A.
+  EXPECT_NEAR(c.hover_pwm_us, 1375.0, 1e-6);
+  EXPECT_NEAR(c.hover_current_a, 32.0, 1e-9);
+
+  pe::CapabilityConfig lower = configured();
+  lower.pwm_max_us = 1800.0;
+  const pe::CapabilityReport heavy = pe::CapabilityEstimator(model, 4, lower).evaluate(hovering(2.2, 12.0), {});
+  EXPECT_NEAR(heavy.max_additional_payload_kg, 3.2 / 1.6 - 2.2, 1e-9);
+  EXPECT_TRUE(heavy.payload_over_limit);
+}
+
+TEST(Capability, EnduranceFromThePercentageTheChargeOrTheVoltage) {
+  const pe::PropulsionModel model = voltageCurrentModel();
+  const pe::CapabilityEstimator estimator(model, 4, configured());
+  const double thrust_per_motor_n = 1.5 * pe::kStandardGravity / 4;
+  pe::BatteryReport battery;
+  battery.percentage = 0.8;  // 0.8 Ah drawn, 2.4 Ah left above the cut-off
+  const pe::CapabilityReport from_percentage = estimator.evaluate(hovering(1.5, 12.075), battery);
+  const pe::HoverDischarge expected = pe::integrateHoverDischarge(model, 12.075, 10.5, 2.4, thrust_per_motor_n, 4, 50);
+  EXPECT_DOUBLE_EQ(from_percentage.hover_endurance_s, *expected.endurance_s);
+  EXPECT_EQ(from_percentage.charge_basis, "percentage");
+  EXPECT_EQ(from_percentage.endurance_basis, "model current at the hover point, charge from percentage");
+  EXPECT_NEAR(from_percentage.remaining_ah, 2.4, 1e-12);
+
+  battery = {};
+  battery.charge_ah = 3.2;
+  const pe::CapabilityReport from_charge = estimator.evaluate(hovering(1.5, 12.075), battery);
+  EXPECT_DOUBLE_EQ(from_charge.hover_endurance_s, *expected.endurance_s);
+  EXPECT_EQ(from_charge.charge_basis, "charge");
+
+  // MAVROS' -1 for an unknown percentage: the voltage, 12.075 V being 0.8 Ah down the linear discharge.
+  battery = {};
+  battery.percentage = -1.0;
+  const pe::CapabilityReport from_voltage = estimator.evaluate(hovering(1.5, 12.075), battery);
+  EXPECT_NEAR(from_voltage.hover_endurance_s, *expected.endurance_s, 1e-6);
+  EXPECT_EQ(from_voltage.charge_basis, "voltage");
+}
+
+TEST(Capability, WithoutACurrentSurfaceTheMeasuredCurrentCarriesTheEndurance) {
+  const pe::PropulsionModel model = handModel(
+      "  current: {unit: A, none: no current sensor on the stand}\n"
+      "  power: {unit: W, none: no current sensor on the stand}\n"
+      "  efficiency: {unit: g/W, none: no power without current}");
+  const pe::CapabilityEstimator estimator(model, 4, configured());
+  pe::BatteryReport battery;
+  battery.percentage = 0.8;
+  battery.current_a = -24.0;  // PX4 through MAVROS: negative when discharging
+  const pe::CapabilityReport c = estimator.evaluate(hovering(1.5, 12.0), battery);
+  EXPECT_NEAR(c.hover_endurance_s, 3600.0 * 2.4 / 24.0, 1e-9);
+  EXPECT_EQ(c.endurance_basis, "measured current 24.0 A, charge from percentage");
+  battery.current_a = pe::kNaN;
+  const pe::CapabilityReport none = estimator.evaluate(hovering(1.5, 12.0), battery);
+  EXPECT_TRUE(std::isnan(none.hover_endurance_s));
+  EXPECT_EQ(none.endurance_basis, "no current surface and no current measured");
+}
+
+TEST(Capability, NaNWithTheReasonWhenAFigureCannotBeComputed) {
+  const pe::PropulsionModel model = voltageCurrentModel();
+  pe::EstimatorOutput no_hover = hovering(pe::kNaN, 12.0);
+  no_hover.payload.state = pe::PayloadState::kWaitingForHover;
+  const pe::CapabilityReport waiting = pe::CapabilityEstimator(model, 4, configured()).evaluate(no_hover, {});
+  EXPECT_TRUE(std::isnan(waiting.max_additional_payload_kg));
+  EXPECT_TRUE(std::isnan(waiting.hover_endurance_s));
+  EXPECT_EQ(waiting.payload_note, "no hover yet");
+  EXPECT_EQ(waiting.endurance_basis, "no hover yet");
+  EXPECT_EQ(waiting.hover_basis, "no hover yet");
+  EXPECT_FALSE(waiting.endurance_below_reserve);
+
+  const pe::CapabilityReport no_battery = pe::CapabilityEstimator(model, 4, {}).evaluate(hovering(1.5, 12.0), {});
+  EXPECT_TRUE(std::isnan(no_battery.hover_endurance_s));
+  EXPECT_TRUE(std::isnan(no_battery.max_additional_payload_at_cutoff_kg));
+  EXPECT_FALSE(std::isnan(no_battery.max_additional_payload_kg));
+  EXPECT_EQ(no_battery.endurance_basis, "no battery capacity configured (capability/battery/capacity_ah, cells)");
+  EXPECT_EQ(no_battery.payload_note,
+            "no cut-off figures: no battery configured (capability/battery/capacity_ah, cells)");
+  const pe::HealthStatus status = pe::judgeCapability(no_battery, {}, {});
+  EXPECT_EQ(status.level, pe::HealthLevel::kOk);
+  EXPECT_EQ(status.message,
+            "max additional payload 1.000 kg, hover endurance unknown (no battery capacity configured "
+            "(capability/battery/capacity_ah, cells))");
+  EXPECT_EQ(pe::judgeCapability(waiting, {}, {}).message,
+            "max additional payload unknown (no hover yet), hover endurance unknown (no hover yet)");
+}
+
+TEST(Capability, TheDiagnosticWarnsOfAnOverloadALowEnduranceAndAFlaggedMotor) {
+  const pe::PropulsionModel model = voltageCurrentModel();
+  pe::CapabilityConfig config = configured();
+  config.reserve_s = 300.0;
+  pe::BatteryReport battery;
+  battery.percentage = 0.8;
+  const pe::CapabilityReport c = pe::CapabilityEstimator(model, 4, config).evaluate(hovering(2.6, 12.0), battery);
+  pe::MotorHealthVerdict health;
+  health.judged = true;
+  health.motors = {{1, 0.01, 0.01}, {2, -0.01, 0.01}, {3, 0.15, 0.01}, {4, 0.0, 0.01}};
+  health.flagged_channel = 3;
+  const pe::HealthStatus status = pe::judgeCapability(c, health, config);
+  EXPECT_EQ(status.level, pe::HealthLevel::kWarn);
+  EXPECT_EQ(status.message,
+            "payload 0.100 kg over the limit (thrust to weight 1.54 < 1.60); hover endurance " +
+                std::to_string(static_cast<int>(std::lround(c.hover_endurance_s))) +
+                " s below the reserve 300 s; motor on channel 3 gives 15.0 +- 1.0 % less thrust than modelled "
+                "(steady-hover moment balance)");
+}
+
+TEST(CapabilityConfig, RefusesBadParametersWithOneLine) {
+  const auto refusal = [](const pe::CapabilityConfig& config) {
+    try {
+      config.validate();
+    } catch (const pe::FieldError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  pe::CapabilityConfig config = configured();
+  EXPECT_EQ(refusal(config), "accepted");
+  config.capacity_ah = 0.0;
+  EXPECT_EQ(refusal(config), "capability/battery/capacity_ah: must be a positive number, got 0");
+  config.capacity_ah = -2.0;
+  EXPECT_EQ(refusal(config), "capability/battery/capacity_ah: must be a positive number, got -2");
+  config = configured();
+  config.cell_cutoff_v = 4.3;
+  EXPECT_EQ(refusal(config), "capability/battery/cell_cutoff_v: 4.3 V is not below capability/battery/cell_full_v 4.2 V");
+  config = configured();
+  config.cells.reset();
+  EXPECT_EQ(refusal(config), "capability/battery/cells: required with capability/battery/capacity_ah");
+  config = configured();
+  config.min_thrust_to_weight = 0.0;
+  EXPECT_EQ(refusal(config), "capability/min_thrust_to_weight: must be a positive number, got 0");
+  config = configured();
+  config.motor_health.window_s = 2.5;
+  EXPECT_EQ(refusal(config),
+            "capability/motor_health/window_s: 2.5 s is not a whole number of at least three blocks of block_s 1 s");
+  config = configured();
+  config.pwm_max_us = 900.0;
+  try {
+    pe::CapabilityEstimator(voltageCurrentModel(), 4, config);
+    FAIL();
+  } catch (const pe::FieldError& e) {
+    EXPECT_EQ(std::string(e.what()), "capability/pwm_max_us: 900 us is not above the model's lowest PWM 1000 us");
+  }
+}
+
+namespace {
+
+// 15 s of steady hover at 50 Hz with each motor's model thrust `thrust_n` times 2 % noise.
+pe::MotorHealthVerdict hover(pe::MotorHealth* health, const std::vector<double>& thrust_n, double start_s = 0.0) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(1.0, 0.02);
+  pe::EstimatorOutput output;
+  output.motors.resize(4);
+  output.hover.hovering = true;
+  for (double t = start_s; t < start_s + 15.0; t += 0.02) {
+    output.stamp_s = t;
+    for (int k = 0; k < 4; ++k) output.motors[k].estimate.thrust_n = thrust_n[k] * noise(rng);
+    health->add(output);
+  }
+  return health->verdict();
+}
+
+}  // namespace
+
+TEST(MotorHealth, FlagsTheMotorWhoseModelThrustBreaksTheYawBalance) {
+  // Motor 3 gives 15 % less than modelled: the autopilot drives it until its real thrust balances,
+  // so its model thrust reads T / 0.85.
+  pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
+  const pe::MotorHealthVerdict verdict = hover(&health, {3.3, 3.3, 3.3 / 0.85, 3.3});
+  ASSERT_TRUE(verdict.judged);
+  EXPECT_EQ(verdict.flagged_channel, 3);
+  EXPECT_NEAR(verdict.motors[2].thrust_gap, 0.15, 0.01);
+  EXPECT_LT(verdict.motors[2].thrust_gap_std, 0.01);
+  EXPECT_NEAR(std::hypot(verdict.cg_offset_x_m, verdict.cg_offset_y_m), 0.0, 0.002);
+}
+
+TEST(MotorHealth, ACentreOfGravityOffsetIsReportedNotFlagged) {
+  // Centre of gravity 1 cm forward: the front motors (1 and 3) carry more, yaw stays balanced.
+  const double a = 0.01 / (0.225 / std::sqrt(2.0));
+  pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
+  const pe::MotorHealthVerdict verdict = hover(&health, {3.3 * (1 + a), 3.3 * (1 - a), 3.3 * (1 + a), 3.3 * (1 - a)});
+  ASSERT_TRUE(verdict.judged);
+  EXPECT_EQ(verdict.flagged_channel, 0);
+  EXPECT_NEAR(verdict.cg_offset_x_m, 0.01, 0.001);
+  EXPECT_NEAR(verdict.cg_offset_y_m, 0.0, 0.001);
+}
+
+TEST(MotorHealth, JudgesOnlyAFullWindowOfSteadyHoverWithGeometry) {
+  pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
+  EXPECT_EQ(health.verdict().unavailable, "steady hover 0 of 10 s");
+  pe::EstimatorOutput output;
+  output.motors.resize(4);
+  for (double t = 0.0; t < 5.0; t += 0.02) {
+    output.stamp_s = t;
+    output.hover.hovering = t < 4.5;  // a hover of 4.5 s: four whole blocks
+    health.add(output);
+  }
+  EXPECT_EQ(health.verdict().unavailable, "steady hover 4 of 10 s");
+  EXPECT_FALSE(health.verdict().judged);
+  health.clear();
+  EXPECT_EQ(health.verdict().blocks, 0);
+  pe::MotorHealth blind(pe::Vehicle::upwardRotors(4), {1, 2, 3, 4}, {});
+  EXPECT_EQ(hover(&blind, {3.3, 3.3, 3.3, 3.3}).unavailable, "no rotor geometry (a URDF is needed)");
+}
