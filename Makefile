@@ -58,8 +58,14 @@ validate-gap: build
 		--bin $(WS)/install/propulsion_estimator/lib/propulsion_estimator --repo $(CURDIR) \
 		--work $(WS)/validate_gap --markdown VALIDATION.md
 
+# Every benchmark (google benchmark, the node end to end against a transport floor and a rospy
+# peer, callgrind's instructions per message, diagnose_gap on an hour of flight), then rewrites
+# BENCHMARKS.md with the figures, the machine, the date and the commands; about 7 minutes.
+# QUICK=1 tries it in about 2 minutes (10 s per system, no diagnose_gap) and writes .ws/bench/BENCHMARKS.md;
+# BENCH_DURATION_S=N sets the end-to-end load per system (default 60).
+QUICK ?= 0
 bench: build
-	$(SETUP) && scripts/run_benchmarks.sh
+	$(SETUP) && QUICK=$(QUICK) scripts/run_benchmarks.sh
 
 clean:
 	rm -rf $(WS)

@@ -1,0 +1,254 @@
+#!/usr/bin/python3
+"""The node's end-to-end benchmarks (make bench): the same load on three systems under test, and
+the instructions estimator_node spends per RCOut message.
+
+e2e: bench_probe publishes mavros_msgs/RCOut (8 channels, hover PWM with noise, stamped now) at
+--rate-hz and sensor_msgs/BatteryState at 1 Hz for --duration-s to, one after another,
+  node   estimator_node with the thesis model and the 8-rotor test/benchmark/bench_octo.urdf,
+  floor  bench_floor_node, which receives the same topics and does nothing (roscpp's own cost),
+  peer   test/benchmark/rospy_peer.py, the same per-motor outputs in rospy with numpy,
+and times every ~totals from the RCOut stamp it carries to its receipt, and reads the system's CPU
+time and resident memory from /proc. Each system gets its own roscore on a free port (never 11311),
+torn down after it.
+
+callgrind: estimator_node under valgrind --tool=callgrind, collecting only inside
+EstimatorNode::onRcOut, driven with --callgrind-messages RCOut at 100 Hz; callgrind_annotate's
+inclusive counts of decoding, estimation and publishing divided by the messages handled.
+
+Writes one JSON file per part. Usage:
+  scripts/bench_node.py --bin DIR --repo DIR --work DIR [--duration-s 60] [--e2e-json F] [--callgrind-json F]
+"""
+import argparse
+import json
+import os
+import re
+import signal
+import socket
+import subprocess
+import sys
+import time
+import xmlrpc.client
+
+import yaml
+
+RC_OUT_CHANNELS = 8
+ESTIMATE_TOPICS = {"node": "/propulsion_estimator/totals", "peer": "/rospy_peer/totals", "floor": ""}
+# callgrind_annotate's names of the three parts of onRcOut (demangled, arguments stripped).
+CALLGRIND_PARTS = [
+    ("decoding", "propulsion_estimator::RcOutDecoder::decode"),
+    ("estimation", "propulsion_estimator::Estimator::addMotorOutputs"),
+    ("publishing", "propulsion_estimator::EstimatorNode::publish"),
+]
+CALLGRIND_TOTAL = "propulsion_estimator::EstimatorNode::onRcOut"
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("localhost", 0))
+        return s.getsockname()[1]
+
+
+class Master:
+    """A roscore of its own on a free port, in its own process group; stopped on exit."""
+
+    def __init__(self, work, name):
+        self.port = free_port()
+        self.uri = "http://localhost:%d" % self.port
+        self.env = dict(os.environ, ROS_MASTER_URI=self.uri, ROS_HOSTNAME="localhost",
+                        ROS_LOG_DIR=os.path.join(work, "log", name))
+        self.log = open(os.path.join(work, "roscore_%s.log" % name), "w")
+        self.process = subprocess.Popen(["roscore", "-p", str(self.port)], env=self.env, stdout=self.log,
+                                        stderr=subprocess.STDOUT, start_new_session=True)
+        self.proxy = xmlrpc.client.ServerProxy(self.uri)
+        deadline = time.monotonic() + 60.0
+        while True:
+            try:
+                self.proxy.getPid("/bench")
+                return
+            except OSError:
+                if time.monotonic() > deadline or self.process.poll() is not None:
+                    self.stop()
+                    sys.exit("bench_node.py: roscore on port %d did not start (see %s)" % (self.port, self.log.name))
+                time.sleep(0.2)
+
+    def set_param(self, key, value):
+        code, message, _ = self.proxy.setParam("/bench", key, value)
+        if code != 1:
+            sys.exit("bench_node.py: setting %s: %s" % (key, message))
+
+    def stop(self):
+        stop_group(self.process, signal.SIGINT, 20.0)
+        self.log.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.stop()
+
+
+def stop_group(process, sig, timeout_s):
+    """Stops a process started with start_new_session=True, and its children, by its group."""
+    if process.poll() is None:
+        os.killpg(process.pid, sig)
+        try:
+            process.wait(timeout_s)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+
+
+def estimator_params(repo):
+    """The parameter template with the benchmark's model, octocopter and rate."""
+    with open(os.path.join(repo, "config", "estimator_params.yaml")) as f:
+        params = yaml.safe_load(f)
+    params.update(model=os.path.join(repo, "config", "e300_dji2212_dji9443.yaml"),
+                  motor_channels=list(range(1, RC_OUT_CHANNELS + 1)),
+                  urdf_file=os.path.join(repo, "test", "benchmark", "bench_octo.urdf"), tare_file="",
+                  # The windows hold max_rate_hz samples per second: sized for the load's rate.
+                  max_rate_hz=400.0)
+    return params
+
+
+def system_command(system, args, master):
+    if system == "node":
+        master.set_param("/propulsion_estimator", estimator_params(args.repo))
+        return [os.path.join(args.bin, "estimator_node"), "__name:=propulsion_estimator"]
+    if system == "peer":
+        master.set_param("/rospy_peer", {"model": os.path.join(args.repo, "config", "e300_dji2212_dji9443.yaml"),
+                                         "motor_channels": list(range(1, RC_OUT_CHANNELS + 1))})
+        return ["/usr/bin/python3", os.path.join(args.repo, "test", "benchmark", "rospy_peer.py")]
+    return [os.path.join(args.bin, "bench_floor_node")]
+
+
+def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, pid, drain_s):
+    """Runs bench_probe against `system` (a Popen), which must live as long as the probe."""
+    out = os.path.join(args.work, "probe_%s.json" % name)
+    command = [os.path.join(args.bin, "bench_probe"), "--duration-s", str(duration_s), "--rate-hz", str(rate_hz),
+               "--channels", str(RC_OUT_CHANNELS), "--drain-s", str(drain_s), "--json", out,
+               "--connect-timeout-s", "300"]
+    if estimate_topic:
+        command += ["--estimate-topic", estimate_topic]
+    if pid:
+        command += ["--pid", str(pid)]
+    probe = subprocess.Popen(command, env=master.env)
+    deadline = time.monotonic() + duration_s + 400.0
+    while probe.poll() is None:
+        if system.poll() is not None or time.monotonic() > deadline:
+            probe.kill()
+            probe.wait()
+            sys.exit("bench_node.py: %s %s during the load (its log: %s)" % (
+                name, "stopped" if system.poll() is not None else "timed out", args.work))
+        time.sleep(0.2)
+    if probe.returncode != 0:
+        sys.exit("bench_node.py: bench_probe failed on %s (%s)" % (name, " ".join(command)))
+    with open(out) as f:
+        return json.load(f)
+
+
+def run_e2e(args):
+    results = []
+    for system in ("node", "floor", "peer"):
+        print("== end to end: %s, %g s at %g Hz" % (system, args.duration_s, args.rate_hz), flush=True)
+        with Master(args.work, system) as master:
+            command = system_command(system, args, master)
+            log = open(os.path.join(args.work, "%s.log" % system), "w+")
+            process = subprocess.Popen(command, env=master.env, stdout=log, stderr=subprocess.STDOUT,
+                                       start_new_session=True)
+            try:
+                probe = run_probe(args, master, system, args.rate_hz, args.duration_s, ESTIMATE_TOPICS[system],
+                                  process, process.pid, drain_s=2.0)
+            finally:
+                stop_group(process, signal.SIGINT, 20.0)
+            log.seek(0)
+            output = log.read()
+            log.close()
+        row = dict(system=system, command=" ".join(command), **probe)
+        if system == "floor":
+            counts = re.search(r'\{"rc_out_received": (\d+), "battery_received": (\d+)\}', output)
+            if not counts:
+                sys.exit("bench_node.py: bench_floor_node printed no counts:\n" + output)
+            row["handled"] = int(counts.group(1))
+        else:
+            row["handled"] = probe["estimates_received"]
+        print("   sent %d, handled %d, latency p50 %s ms, CPU %.2f %%, RSS %d -> %d kB" % (
+            row["rc_out_sent"], row["handled"], row["latency_p50_ms"], row["cpu_percent"], row["rss_start_kb"],
+            row["rss_end_kb"]), flush=True)
+        results.append(row)
+    return {"duration_s": args.duration_s, "rate_hz": args.rate_hz, "battery_rate_hz": 1.0,
+            "channels": RC_OUT_CHANNELS, "systems": results}
+
+
+def inclusive_counts(annotate_output):
+    """{function name without arguments: inclusive instructions} from callgrind_annotate --inclusive=yes."""
+    counts = {}
+    for line in annotate_output.splitlines():
+        # "  1,234 (12.34%)  file:function(arguments) [object]"; the file is ??? without debug info.
+        match = re.match(r"\s*([\d,]+)\s+\([\s\d.]+%\)\s+[^:\s]*:(.+)$", line)
+        if not match:
+            continue
+        name = re.sub(r"\(.*$", "", match.group(2)).strip()
+        counts[name] = counts.get(name, 0) + int(match.group(1).replace(",", ""))
+    return counts
+
+
+def run_callgrind(args):
+    messages = args.callgrind_messages
+    rate_hz = 100.0
+    print("== callgrind: estimator_node, %d RCOut at %g Hz" % (messages, rate_hz), flush=True)
+    out_file = os.path.join(args.work, "callgrind.out")
+    with Master(args.work, "callgrind") as master:
+        command = ["valgrind", "--tool=callgrind", "--collect-atstart=no",
+                   "--toggle-collect=%s*" % CALLGRIND_TOTAL, "--callgrind-out-file=" + out_file
+                   ] + system_command("node", args, master)
+        log = open(os.path.join(args.work, "callgrind_node.log"), "w")
+        process = subprocess.Popen(command, env=master.env, stdout=log, stderr=subprocess.STDOUT,
+                                   start_new_session=True)
+        try:
+            probe = run_probe(args, master, "callgrind", rate_hz, messages / rate_hz, ESTIMATE_TOPICS["node"],
+                              process, 0, drain_s=30.0)
+        finally:
+            stop_group(process, signal.SIGINT, 120.0)
+            log.close()
+    annotate = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", out_file],
+                              capture_output=True, text=True, check=True).stdout
+    with open(os.path.join(args.work, "callgrind_annotate.txt"), "w") as f:
+        f.write(annotate)
+    counts = inclusive_counts(annotate)
+    handled = probe["estimates_received"]
+    if not handled:
+        sys.exit("bench_node.py: estimator_node under callgrind answered no RCOut message")
+    parts = {}
+    for part, name in CALLGRIND_PARTS + [("total", CALLGRIND_TOTAL)]:
+        if name not in counts:
+            sys.exit("bench_node.py: %s not in callgrind_annotate's output (%s)" % (name, f.name))
+        parts[part] = counts[name] / handled
+    print("   handled %d of %d: %s instructions per message" % (
+        handled, probe["rc_out_sent"], ", ".join("%s %.0f" % item for item in parts.items())), flush=True)
+    return {"rc_out_sent": probe["rc_out_sent"], "handled": handled, "rate_hz": rate_hz,
+            "instructions_per_message": parts, "command": " ".join(command)}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--bin", required=True, help="the devel space's executables (bench_probe, estimator_node)")
+    parser.add_argument("--repo", required=True)
+    parser.add_argument("--work", required=True, help="logs and intermediate files")
+    parser.add_argument("--duration-s", type=float, default=60.0, help="load per system (e2e)")
+    parser.add_argument("--rate-hz", type=float, default=400.0, help="RCOut rate (e2e)")
+    parser.add_argument("--callgrind-messages", type=int, default=2000)
+    parser.add_argument("--e2e-json", help="runs the end-to-end part into this file")
+    parser.add_argument("--callgrind-json", help="runs the callgrind part into this file")
+    args = parser.parse_args()
+    args.bin, args.repo = os.path.abspath(args.bin), os.path.abspath(args.repo)
+    os.makedirs(args.work, exist_ok=True)
+    if args.e2e_json:
+        with open(args.e2e_json, "w") as f:
+            json.dump(run_e2e(args), f, indent=1)
+    if args.callgrind_json:
+        with open(args.callgrind_json, "w") as f:
+            json.dump(run_callgrind(args), f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
