@@ -43,9 +43,13 @@ CALLGRIND_TOTAL = "propulsion_estimator::EstimatorNode::onRcOut"
 
 
 def free_port():
-    with socket.socket() as s:
-        s.bind(("localhost", 0))
-        return s.getsockname()[1]
+    """A port nothing listens on, never ROS's default 11311 (a master of someone else's may start there)."""
+    while True:
+        with socket.socket() as s:
+            s.bind(("localhost", 0))
+            port = s.getsockname()[1]
+        if port != 11311:
+            return port
 
 
 class Master:

@@ -59,7 +59,7 @@ run callgrind scripts/bench_node.py --bin "$bin" --repo "$repo" --work "$work/no
 
 if [ "$quick" != 1 ]; then
   echo "== diagnose_gap on an hour of flight"
-  run diagnose_gap scripts/bench_diagnose_gap.sh "${BENCH_GAP_CACHE:-/tmp/pe_bench_diagnose_gap}" "$work/diagnose_gap.json"
+  run diagnose_gap scripts/bench_diagnose_gap.sh "${BENCH_GAP_CACHE:-.ws/bench_diagnose_gap}" "$work/diagnose_gap.json"
 fi
 
 cut -d' ' -f1-3 /proc/loadavg >"$work/load_end.txt"

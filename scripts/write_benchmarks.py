@@ -216,11 +216,14 @@ def values(results, args):
     for key, field in (("callgrind_sent", "rc_out_sent"), ("callgrind_handled", "handled"),
                        ("callgrind_rate_hz", "rate_hz")):
         v[key] = number(callgrind[field], 6) if callgrind else "?"
+    v["callgrind_command"] = callgrind["command"].replace(repo + os.sep, "") if callgrind else "?"
     quad = results.benchmark("bench_estimator", "BM_EstimatorRcOutMessage/4")
     octa = results.benchmark("bench_estimator", "BM_EstimatorRcOutMessage/8")
     if quad and octa:
         v["octa_share_50hz"] = "%.3f %%" % (100.0 * 50.0 * benchmark_seconds(octa))
-        v["per_motor"] = format_seconds(max(0.0, benchmark_seconds(octa) - benchmark_seconds(quad)) / 4.0)
+        per_motor_s = (benchmark_seconds(octa) - benchmark_seconds(quad)) / 4.0
+        v["per_motor"] = (format_seconds(per_motor_s) if per_motor_s > 0.0
+                          else "nothing measurable in this run (the octa was not slower than the quad)")
     else:
         v["octa_share_50hz"] = v["per_motor"] = NOT_MEASURED
     if os.path.exists(args.arm64):
