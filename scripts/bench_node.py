@@ -12,8 +12,9 @@ time and resident memory from /proc. Each system gets its own roscore on a free 
 torn down after it.
 
 callgrind: estimator_node under valgrind --tool=callgrind, collecting only inside
-EstimatorNode::onRcOut, driven with --callgrind-messages RCOut at 100 Hz; callgrind_annotate's
-inclusive counts of decoding, estimation and publishing divided by the messages handled.
+EstimatorNode::onRcOut, driven with RCOut at 100 Hz until its windows are full, then, counters
+zeroed, with --callgrind-messages more; callgrind_annotate's inclusive counts of decoding,
+estimation and publishing divided by the messages handled.
 
 Writes one JSON file per part. Usage:
   scripts/bench_node.py --bin DIR --repo DIR --work DIR [--duration-s 60] [--e2e-json F] [--callgrind-json F]
@@ -40,6 +41,8 @@ CALLGRIND_PARTS = [
     ("publishing", "propulsion_estimator::EstimatorNode::publish"),
 ]
 CALLGRIND_TOTAL = "propulsion_estimator::EstimatorNode::onRcOut"
+# Longer than the parameter template's hover window (2 s) and payload averaging window (10 s).
+CALLGRIND_WARMUP_S = 15.0
 
 
 def free_port():
@@ -125,8 +128,9 @@ def system_command(system, args, master):
     return [os.path.join(args.bin, "bench_floor_node")]
 
 
-def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, pid, drain_s):
-    """Runs bench_probe against `system` (a Popen), which must live as long as the probe."""
+def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, pid, drain_s, on_load=None):
+    """Runs bench_probe against `system` (a Popen), which must live as long as the probe; calls
+    on_load() once the load has started."""
     out = os.path.join(args.work, "probe_%s.json" % name)
     command = [os.path.join(args.bin, "bench_probe"), "--duration-s", str(duration_s), "--rate-hz", str(rate_hz),
                "--channels", str(RC_OUT_CHANNELS), "--drain-s", str(drain_s), "--json", out,
@@ -135,7 +139,14 @@ def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, p
         command += ["--estimate-topic", estimate_topic]
     if pid:
         command += ["--pid", str(pid)]
-    probe = subprocess.Popen(command, env=master.env)
+    probe = subprocess.Popen(command, env=master.env, stdout=subprocess.PIPE, text=True)
+    # The probe gives up on its own if nothing connects within its --connect-timeout-s.
+    for line in probe.stdout:
+        sys.stdout.write(line)
+        if line.startswith("bench_probe: load started"):
+            break
+    if on_load:
+        on_load()
     deadline = time.monotonic() + duration_s + 400.0
     while probe.poll() is None:
         if system.poll() is not None or time.monotonic() > deadline:
@@ -183,17 +194,27 @@ def run_e2e(args):
             "channels": RC_OUT_CHANNELS, "systems": results}
 
 
-def inclusive_counts(annotate_output):
-    """{function name without arguments: inclusive instructions} from callgrind_annotate --inclusive=yes."""
-    counts = {}
+def annotated_counts(annotate_output):
+    """From callgrind_annotate --inclusive=yes --tree=caller: {function: inclusive instructions} and
+    {(caller, function): calls}, functions named without their arguments."""
+    counts, calls, callers = {}, {}, []
     for line in annotate_output.splitlines():
-        # "  1,234 (12.34%)  file:function(arguments) [object]"; the file is ??? without debug info.
-        match = re.match(r"\s*([\d,]+)\s+\([\s\d.]+%\)\s+[^:\s]*:(.+)$", line)
+        # "  1,234 (12.34%)  < file:caller(arguments) (300x) [object]" for each caller, then
+        # "  5,678 (56.78%)  *  file:function(arguments) [object]"; the file is ??? without debug info.
+        match = re.match(r"\s*([\d,]+)\s+\([\s\d.]+%\)\s+([<*])\s+[^:\s]*:(.+)$", line)
         if not match:
+            callers = []
             continue
-        name = re.sub(r"\(.*$", "", match.group(2)).strip()
+        name = re.sub(r"\(.*$", "", match.group(3)).strip()
+        if match.group(2) == "<":
+            count = re.search(r"\(([\d,]+)x\)", match.group(3))
+            callers.append((name, int(count.group(1).replace(",", "")) if count else 0))
+            continue
         counts[name] = counts.get(name, 0) + int(match.group(1).replace(",", ""))
-    return counts
+        for caller, count in callers:
+            calls[(caller, name)] = calls.get((caller, name), 0) + count
+        callers = []
+    return counts, calls
 
 
 def run_callgrind(args):
@@ -208,28 +229,37 @@ def run_callgrind(args):
         log = open(os.path.join(args.work, "callgrind_node.log"), "w")
         process = subprocess.Popen(command, env=master.env, stdout=log, stderr=subprocess.STDOUT,
                                    start_new_session=True)
+        def zero_after_warmup():
+            # Until the hover detector's and the payload's windows are full a message costs less: the
+            # counters restart once they are, and the messages counted are the calls of decode.
+            time.sleep(CALLGRIND_WARMUP_S)
+            subprocess.run(["callgrind_control", "--zero", str(process.pid)], check=True, stdout=subprocess.DEVNULL)
+
         try:
-            probe = run_probe(args, master, "callgrind", rate_hz, messages / rate_hz, ESTIMATE_TOPICS["node"],
-                              process, 0, drain_s=30.0)
+            probe = run_probe(args, master, "callgrind", rate_hz, CALLGRIND_WARMUP_S + messages / rate_hz,
+                              ESTIMATE_TOPICS["node"], process, 0, drain_s=30.0, on_load=zero_after_warmup)
         finally:
             stop_group(process, signal.SIGINT, 120.0)
             log.close()
-    annotate = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", out_file],
+    annotate = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--tree=caller", "--threshold=100", out_file],
                               capture_output=True, text=True, check=True).stdout
     with open(os.path.join(args.work, "callgrind_annotate.txt"), "w") as f:
         f.write(annotate)
-    counts = inclusive_counts(annotate)
-    handled = probe["estimates_received"]
+    counts, calls = annotated_counts(annotate)
+    decode = CALLGRIND_PARTS[0][1]
+    handled = calls.get((CALLGRIND_TOTAL, decode), 0)
     if not handled:
-        sys.exit("bench_node.py: estimator_node under callgrind answered no RCOut message")
+        sys.exit("bench_node.py: estimator_node under callgrind decoded no RCOut message after the warm-up (%s)"
+                 % f.name)
     parts = {}
     for part, name in CALLGRIND_PARTS + [("total", CALLGRIND_TOTAL)]:
         if name not in counts:
             sys.exit("bench_node.py: %s not in callgrind_annotate's output (%s)" % (name, f.name))
         parts[part] = counts[name] / handled
-    print("   handled %d of %d: %s instructions per message" % (
-        handled, probe["rc_out_sent"], ", ".join("%s %.0f" % item for item in parts.items())), flush=True)
-    return {"rc_out_sent": probe["rc_out_sent"], "handled": handled, "rate_hz": rate_hz,
+    print("   %d messages decoded after the warm-up: %s instructions per message" % (
+        handled, ", ".join("%s %.0f" % item for item in parts.items())), flush=True)
+    return {"rc_out_sent": probe["rc_out_sent"], "handled": handled, "rate_hz": rate_hz, "warmup_s": CALLGRIND_WARMUP_S,
+            "published": calls.get((CALLGRIND_TOTAL, CALLGRIND_PARTS[2][1]), 0), "measured_s": messages / rate_hz,
             "instructions_per_message": parts, "command": " ".join(command)}
 
 

@@ -214,7 +214,8 @@ def values(results, args):
     for key in ("channels", "rate_hz", "battery_rate_hz", "duration_s"):
         v[key] = number(e2e[key]) if e2e else "?"
     for key, field in (("callgrind_sent", "rc_out_sent"), ("callgrind_handled", "handled"),
-                       ("callgrind_rate_hz", "rate_hz")):
+                       ("callgrind_rate_hz", "rate_hz"), ("callgrind_warmup_s", "warmup_s"),
+                       ("callgrind_published", "published"), ("callgrind_measured_s", "measured_s")):
         v[key] = number(callgrind[field], 6) if callgrind else "?"
     v["callgrind_command"] = callgrind["command"].replace(repo + os.sep, "") if callgrind else "?"
     quad = results.benchmark("bench_estimator", "BM_EstimatorRcOutMessage/4")

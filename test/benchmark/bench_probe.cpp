@@ -111,6 +111,7 @@ class Probe {
     sendBattery();  // the estimator refuses RCOut until it has a voltage
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
 
+    std::cout << "bench_probe: load started" << std::endl;  // scripts/bench_node.py times its callgrind run from here
     const double cpu_start = options_.pid ? cpuSeconds(options_.pid) : NAN;
     const long rss_start_kb = options_.pid ? residentKb(options_.pid) : 0;
     const auto start = std::chrono::steady_clock::now();
