@@ -60,8 +60,10 @@ validate-gap: build
 
 # Every benchmark (google benchmark, the node end to end against a transport floor and a rospy
 # peer, callgrind's instructions per message, diagnose_gap on an hour of flight), then rewrites
-# BENCHMARKS.md with the figures, the machine, the date and the commands; about 7 minutes.
-# QUICK=1 tries it in about 2 minutes (10 s per system, no diagnose_gap) and writes .ws/bench/BENCHMARKS.md;
+# BENCHMARKS.md with the figures, the machine, the date and the commands: about 6 minutes after
+# the build (measured 2026-11-23 on the loaded 2-core VM: 2 min 42 s with BENCH_DURATION_S=10, and
+# the default 60 s adds 2.5 min). QUICK=1 tries it in about 2.5 minutes (10 s per system, 500
+# messages under callgrind, no diagnose_gap) and writes .ws/bench/BENCHMARKS.md instead;
 # BENCH_DURATION_S=N sets the end-to-end load per system (default 60).
 QUICK ?= 0
 bench: build

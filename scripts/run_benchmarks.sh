@@ -4,7 +4,8 @@
 #   1. google benchmark: bench_estimator, bench_fit, bench_simulate (JSON);
 #   2. end to end (scripts/bench_node.py): RCOut at 400 Hz and the battery at 1 Hz for
 #      BENCH_DURATION_S seconds (default 60) to estimator_node, the transport floor and the rospy peer;
-#   3. callgrind: estimator_node's instructions per RCOut message (BENCH_CALLGRIND_MESSAGES, 2000);
+#   3. callgrind: estimator_node's instructions per RCOut message, over BENCH_CALLGRIND_MESSAGES
+#      (default 2000) at 100 Hz after a 15 s warm-up;
 #   4. scripts/bench_diagnose_gap.sh: diagnose_gap on an hour of flight (simulated once, cached).
 # QUICK=1 (make bench QUICK=1) tries the pipeline: 10 s per system, 500 messages under callgrind, no
 # diagnose_gap, and the document goes to the work directory instead of BENCHMARKS.md.
@@ -52,9 +53,9 @@ for bench in bench_estimator bench_fit bench_simulate; do
   run "$bench" "$bin/$bench" --benchmark_out="$work/$bench.json" --benchmark_out_format=json
 done
 
-run e2e scripts/bench_node.py --bin "$bin" --repo "$repo" --work "$work/node" \
+run e2e scripts/bench_node.py --bin "$bin" --repo . --work "$work/node" \
   --duration-s "$duration_s" --e2e-json "$work/e2e.json"
-run callgrind scripts/bench_node.py --bin "$bin" --repo "$repo" --work "$work/node" \
+run callgrind scripts/bench_node.py --bin "$bin" --repo . --work "$work/node" \
   --callgrind-messages "$callgrind_messages" --callgrind-json "$work/callgrind.json"
 
 if [ "$quick" != 1 ]; then
