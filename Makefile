@@ -63,8 +63,16 @@ validate-gap: build
 		--bin $(WS)/install/propulsion_estimator/lib/propulsion_estimator --repo $(CURDIR) \
 		--work $(WS)/validate_gap --markdown VALIDATION.md
 
+# Every benchmark (google benchmark, the node end to end against a transport floor and a rospy
+# peer, callgrind's instructions per message, diagnose_gap on an hour of flight), then rewrites
+# BENCHMARKS.md with the figures, the machine, the date and the commands: about 6 minutes after
+# the build (measured 2026-11-23 on the loaded 2-core VM: 2 min 42 s with BENCH_DURATION_S=10, and
+# the default 60 s adds 2.5 min). QUICK=1 tries it in about 2.5 minutes (10 s per system, 500
+# messages under callgrind, no diagnose_gap) and writes .ws/bench/BENCHMARKS.md instead;
+# BENCH_DURATION_S=N sets the end-to-end load per system (default 60).
+QUICK ?= 0
 bench: build
-	$(SETUP) && scripts/run_benchmarks.sh
+	$(SETUP) && QUICK=$(QUICK) scripts/run_benchmarks.sh
 
 # Raspberry Pi: the ROS-free modules, their unit tests and the core benchmark cross-compiled for
 # arm64 in .ws/arm64/ (no catkin, no ROS for arm64), the tests run under qemu-user; fails when any

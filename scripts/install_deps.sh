@@ -1,6 +1,8 @@
 #!/bin/sh
 # Installs what building, running and testing the package needs, from Debian 12's own packages
-# (ROS 1 lives in /usr there). Does nothing when everything is already installed.
+# (ROS 1 lives in /usr there); python3-numpy, valgrind and time are make bench's (the rospy peer,
+# the instructions per message, diagnose_gap's peak memory). Does nothing when everything is
+# already installed.
 set -eu
 
 PACKAGES="
@@ -15,6 +17,7 @@ PACKAGES="
   liburdfdom-dev libeigen3-dev libyaml-cpp-dev libcli11-dev libcsv-dev libgtest-dev libbenchmark-dev
   python3-std-msgs python3-sensor-msgs python3-geometry-msgs python3-diagnostic-msgs python3-std-srvs
   python3-topic-tools python3-matplotlib python3-yaml
+  python3-numpy valgrind time
 "
 
 missing=""

@@ -1,6 +1,6 @@
 // Per-message cost of the onboard estimation: model evaluation and the whole core pipeline for one
-// RCOut message. ROS-free, so that make arm64 cross-builds it too; decoding the RCOut ShapeShifter
-// in the ROS layer is measured by bench_rcout_decode.cpp.
+// RCOut message, and loading the model file. ROS-free, so that make arm64 cross-builds it too;
+// decoding the RCOut ShapeShifter in the ROS layer is measured by bench_rcout_decode.cpp.
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +14,12 @@ namespace pe = propulsion_estimator;
 namespace {
 
 pe::PropulsionModel thesisModel() { return pe::loadModelFile(std::string(PE_REPO_DIR) + "/config/e300_dji2212_dji9443.yaml"); }
+
+// What the node does once at start-up: reading, checking and building the model from its YAML file.
+void BM_LoadModel(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(thesisModel());
+}
+BENCHMARK(BM_LoadModel)->Unit(benchmark::kMicrosecond);
 
 void BM_ModelEvaluate(benchmark::State& state) {
   const pe::PropulsionModel model = thesisModel();

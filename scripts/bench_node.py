@@ -1,0 +1,290 @@
+#!/usr/bin/python3
+"""The node's end-to-end benchmarks (make bench): the same load on three systems under test, and
+the instructions estimator_node spends per RCOut message.
+
+e2e: bench_probe publishes mavros_msgs/RCOut (8 channels, hover PWM with noise, stamped now) at
+--rate-hz and sensor_msgs/BatteryState at 1 Hz for --duration-s to, one after another,
+  node   estimator_node with the thesis model and the 8-rotor test/benchmark/bench_octo.urdf,
+  floor  bench_floor_node, which receives the same topics and does nothing (roscpp's own cost),
+  peer   test/benchmark/rospy_peer.py, the same per-motor outputs in rospy with numpy,
+and times every ~totals from the RCOut stamp it carries to its receipt, and reads the system's CPU
+time and resident memory from /proc. Each system gets its own roscore on a free port (never 11311),
+torn down after it.
+
+callgrind: estimator_node under valgrind --tool=callgrind, collecting only inside
+EstimatorNode::onRcOut, driven with RCOut at 100 Hz until its windows are full, then, counters
+zeroed, with --callgrind-messages more; callgrind_annotate's inclusive counts of decoding,
+estimation and publishing divided by the messages handled.
+
+Writes one JSON file per part. Usage:
+  scripts/bench_node.py --bin DIR --repo DIR --work DIR [--duration-s 60] [--e2e-json F] [--callgrind-json F]
+"""
+import argparse
+import json
+import os
+import re
+import signal
+import socket
+import subprocess
+import sys
+import time
+import xmlrpc.client
+
+import yaml
+
+RC_OUT_CHANNELS = 8
+ESTIMATE_TOPICS = {"node": "/propulsion_estimator/totals", "node_publish_50hz": "/propulsion_estimator/totals",
+                   "peer": "/rospy_peer/totals", "floor": ""}
+# callgrind_annotate's names of the three parts of onRcOut (demangled, arguments stripped).
+CALLGRIND_PARTS = [
+    ("decoding", "propulsion_estimator::RcOutDecoder::decode"),
+    ("estimation", "propulsion_estimator::Estimator::addMotorOutputs"),
+    ("publishing", "propulsion_estimator::EstimatorNode::publish"),
+]
+CALLGRIND_TOTAL = "propulsion_estimator::EstimatorNode::onRcOut"
+# Longer than the parameter template's hover window (2 s) and payload averaging window (10 s).
+CALLGRIND_WARMUP_S = 15.0
+
+
+def free_port():
+    """A port nothing listens on, never ROS's default 11311 (a master of someone else's may start there)."""
+    while True:
+        with socket.socket() as s:
+            s.bind(("localhost", 0))
+            port = s.getsockname()[1]
+        if port != 11311:
+            return port
+
+
+class Master:
+    """A roscore of its own on a free port, in its own process group; stopped on exit."""
+
+    def __init__(self, work, name):
+        self.port = free_port()
+        self.uri = "http://localhost:%d" % self.port
+        self.env = dict(os.environ, ROS_MASTER_URI=self.uri, ROS_HOSTNAME="localhost",
+                        ROS_LOG_DIR=os.path.join(work, "log", name))
+        self.log = open(os.path.join(work, "roscore_%s.log" % name), "w")
+        self.process = subprocess.Popen(["roscore", "-p", str(self.port)], env=self.env, stdout=self.log,
+                                        stderr=subprocess.STDOUT, start_new_session=True)
+        self.proxy = xmlrpc.client.ServerProxy(self.uri)
+        deadline = time.monotonic() + 60.0
+        while True:
+            try:
+                self.proxy.getPid("/bench")
+                return
+            except OSError:
+                if time.monotonic() > deadline or self.process.poll() is not None:
+                    self.stop()
+                    sys.exit("bench_node.py: roscore on port %d did not start (see %s)" % (self.port, self.log.name))
+                time.sleep(0.2)
+
+    def set_param(self, key, value):
+        code, message, _ = self.proxy.setParam("/bench", key, value)
+        if code != 1:
+            sys.exit("bench_node.py: setting %s: %s" % (key, message))
+
+    def stop(self):
+        stop_group(self.process, signal.SIGINT, 20.0)
+        self.log.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.stop()
+
+
+def stop_group(process, sig, timeout_s):
+    """Stops a process started with start_new_session=True, and its children, by its group."""
+    if process.poll() is None:
+        os.killpg(process.pid, sig)
+        try:
+            process.wait(timeout_s)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+
+
+def estimator_params(repo, publish_rate_hz=0.0):
+    """The parameter template with the benchmark's model and octocopter; publish_rate_hz 0 publishes
+    every message (the default)."""
+    with open(os.path.join(repo, "config", "estimator_params.yaml")) as f:
+        params = yaml.safe_load(f)
+    params.update(model=os.path.join(repo, "config", "e300_dji2212_dji9443.yaml"),
+                  motor_channels=list(range(1, RC_OUT_CHANNELS + 1)),
+                  urdf_file=os.path.join(repo, "test", "benchmark", "bench_octo.urdf"), tare_file="",
+                  publish_rate_hz=publish_rate_hz)
+    return params
+
+
+def system_command(system, args, master):
+    if system in ("node", "node_publish_50hz"):
+        master.set_param("/propulsion_estimator",
+                         estimator_params(args.repo, 50.0 if system == "node_publish_50hz" else 0.0))
+        return [os.path.join(args.bin, "estimator_node"), "__name:=propulsion_estimator"]
+    if system == "peer":
+        master.set_param("/rospy_peer", {"model": os.path.join(args.repo, "config", "e300_dji2212_dji9443.yaml"),
+                                         "motor_channels": list(range(1, RC_OUT_CHANNELS + 1))})
+        return ["/usr/bin/python3", os.path.join(args.repo, "test", "benchmark", "rospy_peer.py")]
+    return [os.path.join(args.bin, "bench_floor_node")]
+
+
+def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, pid, drain_s, on_load=None):
+    """Runs bench_probe against `system` (a Popen), which must live as long as the probe; calls
+    on_load() once the load has started."""
+    out = os.path.join(args.work, "probe_%s.json" % name)
+    command = [os.path.join(args.bin, "bench_probe"), "--duration-s", str(duration_s), "--rate-hz", str(rate_hz),
+               "--channels", str(RC_OUT_CHANNELS), "--drain-s", str(drain_s), "--json", out,
+               "--connect-timeout-s", "300"]
+    if estimate_topic:
+        command += ["--estimate-topic", estimate_topic]
+    if pid:
+        command += ["--pid", str(pid)]
+    probe = subprocess.Popen(command, env=master.env, stdout=subprocess.PIPE, text=True)
+    # The probe gives up on its own if nothing connects within its --connect-timeout-s.
+    for line in probe.stdout:
+        sys.stdout.write(line)
+        if line.startswith("bench_probe: load started"):
+            break
+    if on_load:
+        on_load()
+    deadline = time.monotonic() + duration_s + 400.0
+    while probe.poll() is None:
+        if system.poll() is not None or time.monotonic() > deadline:
+            probe.kill()
+            probe.wait()
+            sys.exit("bench_node.py: %s %s during the load (its log: %s)" % (
+                name, "stopped" if system.poll() is not None else "timed out", args.work))
+        time.sleep(0.2)
+    if probe.returncode != 0:
+        sys.exit("bench_node.py: bench_probe failed on %s (%s)" % (name, " ".join(command)))
+    with open(out) as f:
+        return json.load(f)
+
+
+def run_e2e(args):
+    results = []
+    for system in ("node", "node_publish_50hz", "floor", "peer"):
+        print("== end to end: %s, %g s at %g Hz" % (system, args.duration_s, args.rate_hz), flush=True)
+        with Master(args.work, system) as master:
+            command = system_command(system, args, master)
+            log = open(os.path.join(args.work, "%s.log" % system), "w+")
+            process = subprocess.Popen(command, env=master.env, stdout=log, stderr=subprocess.STDOUT,
+                                       start_new_session=True)
+            try:
+                probe = run_probe(args, master, system, args.rate_hz, args.duration_s, ESTIMATE_TOPICS[system],
+                                  process, process.pid, drain_s=2.0)
+            finally:
+                stop_group(process, signal.SIGINT, 20.0)
+            log.seek(0)
+            output = log.read()
+            log.close()
+        row = dict(system=system, command=" ".join(command), **probe)
+        if system == "floor":
+            counts = re.search(r'\{"rc_out_received": (\d+), "battery_received": (\d+)\}', output)
+            if not counts:
+                sys.exit("bench_node.py: bench_floor_node printed no counts:\n" + output)
+            row["handled"] = int(counts.group(1))
+        else:
+            row["handled"] = probe["estimates_received"]
+        print("   sent %d, handled %d, latency p50 %s ms, CPU %.2f %%, RSS %d -> %d kB" % (
+            row["rc_out_sent"], row["handled"], row["latency_p50_ms"], row["cpu_percent"], row["rss_start_kb"],
+            row["rss_end_kb"]), flush=True)
+        results.append(row)
+    return {"duration_s": args.duration_s, "rate_hz": args.rate_hz, "battery_rate_hz": 1.0,
+            "channels": RC_OUT_CHANNELS, "systems": results}
+
+
+def annotated_counts(annotate_output):
+    """From callgrind_annotate --inclusive=yes --tree=caller: {function: inclusive instructions} and
+    {(caller, function): calls}, functions named without their arguments."""
+    counts, calls, callers = {}, {}, []
+    for line in annotate_output.splitlines():
+        # "  1,234 (12.34%)  < file:caller(arguments) (300x) [object]" for each caller, then
+        # "  5,678 (56.78%)  *  file:function(arguments) [object]"; the file is ??? without debug info.
+        match = re.match(r"\s*([\d,]+)\s+\([\s\d.]+%\)\s+([<*])\s+[^:\s]*:(.+)$", line)
+        if not match:
+            callers = []
+            continue
+        name = re.sub(r"\(.*$", "", match.group(3)).strip()
+        if match.group(2) == "<":
+            count = re.search(r"\(([\d,]+)x\)", match.group(3))
+            callers.append((name, int(count.group(1).replace(",", "")) if count else 0))
+            continue
+        counts[name] = counts.get(name, 0) + int(match.group(1).replace(",", ""))
+        for caller, count in callers:
+            calls[(caller, name)] = calls.get((caller, name), 0) + count
+        callers = []
+    return counts, calls
+
+
+def run_callgrind(args):
+    messages = args.callgrind_messages
+    rate_hz = 100.0
+    print("== callgrind: estimator_node, %d RCOut at %g Hz" % (messages, rate_hz), flush=True)
+    out_file = os.path.join(args.work, "callgrind.out")
+    with Master(args.work, "callgrind") as master:
+        command = ["valgrind", "--tool=callgrind", "--collect-atstart=no",
+                   "--toggle-collect=%s*" % CALLGRIND_TOTAL, "--callgrind-out-file=" + out_file
+                   ] + system_command("node", args, master)
+        log = open(os.path.join(args.work, "callgrind_node.log"), "w")
+        process = subprocess.Popen(command, env=master.env, stdout=log, stderr=subprocess.STDOUT,
+                                   start_new_session=True)
+        def zero_after_warmup():
+            # Until the hover detector's and the payload's windows are full a message costs less: the
+            # counters restart once they are, and the messages counted are the calls of decode.
+            time.sleep(CALLGRIND_WARMUP_S)
+            subprocess.run(["callgrind_control", "--zero", str(process.pid)], check=True, stdout=subprocess.DEVNULL)
+
+        try:
+            probe = run_probe(args, master, "callgrind", rate_hz, CALLGRIND_WARMUP_S + messages / rate_hz,
+                              ESTIMATE_TOPICS["node"], process, 0, drain_s=30.0, on_load=zero_after_warmup)
+        finally:
+            stop_group(process, signal.SIGINT, 120.0)
+            log.close()
+    annotate = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--tree=caller", "--threshold=100", out_file],
+                              capture_output=True, text=True, check=True).stdout
+    with open(os.path.join(args.work, "callgrind_annotate.txt"), "w") as f:
+        f.write(annotate)
+    counts, calls = annotated_counts(annotate)
+    decode = CALLGRIND_PARTS[0][1]
+    handled = calls.get((CALLGRIND_TOTAL, decode), 0)
+    if not handled:
+        sys.exit("bench_node.py: estimator_node under callgrind decoded no RCOut message after the warm-up (%s)"
+                 % f.name)
+    parts = {}
+    for part, name in CALLGRIND_PARTS + [("total", CALLGRIND_TOTAL)]:
+        if name not in counts:
+            sys.exit("bench_node.py: %s not in callgrind_annotate's output (%s)" % (name, f.name))
+        parts[part] = counts[name] / handled
+    print("   %d messages decoded after the warm-up: %s instructions per message" % (
+        handled, ", ".join("%s %.0f" % item for item in parts.items())), flush=True)
+    return {"rc_out_sent": probe["rc_out_sent"], "handled": handled, "rate_hz": rate_hz, "warmup_s": CALLGRIND_WARMUP_S,
+            "published": calls.get((CALLGRIND_TOTAL, CALLGRIND_PARTS[2][1]), 0), "measured_s": messages / rate_hz,
+            "instructions_per_message": parts, "command": " ".join(command)}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--bin", required=True, help="the devel space's executables (bench_probe, estimator_node)")
+    parser.add_argument("--repo", required=True)
+    parser.add_argument("--work", required=True, help="logs and intermediate files")
+    parser.add_argument("--duration-s", type=float, default=60.0, help="load per system (e2e)")
+    parser.add_argument("--rate-hz", type=float, default=400.0, help="RCOut rate (e2e)")
+    parser.add_argument("--callgrind-messages", type=int, default=2000)
+    parser.add_argument("--e2e-json", help="runs the end-to-end part into this file")
+    parser.add_argument("--callgrind-json", help="runs the callgrind part into this file")
+    args = parser.parse_args()
+    args.bin, args.repo = os.path.abspath(args.bin), os.path.abspath(args.repo)
+    os.makedirs(args.work, exist_ok=True)
+    if args.e2e_json:
+        with open(args.e2e_json, "w") as f:
+            json.dump(run_e2e(args), f, indent=1)
+    if args.callgrind_json:
+        with open(args.callgrind_json, "w") as f:
+            json.dump(run_callgrind(args), f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
