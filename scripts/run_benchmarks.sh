@@ -1,9 +1,10 @@
 #!/bin/bash
 # make bench: runs every benchmark and rewrites BENCHMARKS.md from their figures
 # (scripts/write_benchmarks.py), with the machine, the date and the command of each section.
-#   1. google benchmark: bench_estimator, bench_fit, bench_simulate (JSON);
+#   1. google benchmark: bench_estimator, bench_rcout_decode, bench_fit, bench_simulate (JSON);
 #   2. end to end (scripts/bench_node.py): RCOut at 400 Hz and the battery at 1 Hz for
-#      BENCH_DURATION_S seconds (default 60) to estimator_node, the transport floor and the rospy peer;
+#      BENCH_DURATION_S seconds (default 60) to estimator_node (publishing every message, then at
+#      50 Hz), the transport floor and the rospy peer;
 #   3. callgrind: estimator_node's instructions per RCOut message, over BENCH_CALLGRIND_MESSAGES
 #      (default 2000) at 100 Hz after a 15 s warm-up;
 #   4. scripts/bench_diagnose_gap.sh: diagnose_gap on an hour of flight (simulated once, cached).
@@ -27,7 +28,7 @@ else
   callgrind_messages="${BENCH_CALLGRIND_MESSAGES:-2000}"
   document=BENCHMARKS.md
 fi
-for program in bench_estimator bench_fit bench_simulate bench_probe bench_floor_node estimator_node; do
+for program in bench_estimator bench_rcout_decode bench_fit bench_simulate bench_probe bench_floor_node estimator_node; do
   if [ ! -x "$bin/$program" ]; then
     echo "run_benchmarks.sh: no $bin/$program (install libbenchmark-dev, then make build)" >&2
     exit 1
@@ -48,7 +49,7 @@ run() {
 date -u +%Y-%m-%dT%H:%M:%SZ >"$work/started_utc.txt"
 cut -d' ' -f1-3 /proc/loadavg >"$work/load_start.txt"
 
-for bench in bench_estimator bench_fit bench_simulate; do
+for bench in bench_estimator bench_rcout_decode bench_fit bench_simulate; do
   echo "== $bench"
   run "$bench" "$bin/$bench" --benchmark_out="$work/$bench.json" --benchmark_out_format=json
 done

@@ -33,6 +33,20 @@ void BM_ModelEvaluate(benchmark::State& state) {
 }
 BENCHMARK(BM_ModelEvaluate);
 
+// All five outputs of every motor of a message, as the estimator evaluates them (one motor per
+// surface evaluation, the PWMs of a hover differing a little).
+void BM_ModelEvaluateMotors(benchmark::State& state) {
+  const pe::PropulsionModel model = thesisModel();
+  std::vector<pe::OperatingPoint> points(static_cast<std::size_t>(state.range(0)));
+  double pwm = 1600.0;
+  for (auto _ : state) {
+    pwm = pwm >= 1700.0 ? 1600.0 : pwm + 0.7;
+    for (std::size_t i = 0; i < points.size(); ++i) model.evaluate(pwm + static_cast<double>(i), 11.4, &points[i]);
+    benchmark::DoNotOptimize(points.data());
+  }
+}
+BENCHMARK(BM_ModelEvaluateMotors)->Arg(8);
+
 void BM_EstimatorRcOutMessage(benchmark::State& state) {
   const int motors = static_cast<int>(state.range(0));
   pe::EstimatorConfig config;
