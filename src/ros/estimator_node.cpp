@@ -74,11 +74,15 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   }
   rc_out_.channels.reserve(32);
 
-  motors_pub_ = private_nh.advertise<MotorEstimates>("motors", 10);
-  totals_pub_ = private_nh.advertise<PropulsionTotals>("totals", 10);
-  payload_pub_ = private_nh.advertise<PayloadEstimate>("payload", 10);
+  // Queues of RCOut and of the estimates for half a second at max_rate_hz: on a loaded companion
+  // computer the node's threads may not run for tens of milliseconds, and MAVROS may deliver a
+  // backlog in a burst; a shorter queue drops messages (the soak rostest counts every answer).
+  const auto queue = static_cast<std::uint32_t>(std::ceil(0.5 * params_.estimator.max_rate_hz));
+  motors_pub_ = private_nh.advertise<MotorEstimates>("motors", queue);
+  totals_pub_ = private_nh.advertise<PropulsionTotals>("totals", queue);
+  payload_pub_ = private_nh.advertise<PayloadEstimate>("payload", queue);
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
-  rc_out_sub_ = nh.subscribe(params_.rc_out_topic, 20, &EstimatorNode::onRcOut, this, hints);
+  rc_out_sub_ = nh.subscribe(params_.rc_out_topic, queue, &EstimatorNode::onRcOut, this, hints);
   battery_sub_ = nh.subscribe(params_.battery_topic, 5, &EstimatorNode::onBattery, this, hints);
   if (!params_.imu_topic.empty()) imu_sub_ = nh.subscribe(params_.imu_topic, 20, &EstimatorNode::onImu, this, hints);
   if (!params_.velocity_topic.empty()) {
