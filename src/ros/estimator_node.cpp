@@ -81,12 +81,17 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   }
   rc_out_.channels.reserve(32);
 
-  motors_pub_ = private_nh.advertise<MotorEstimates>("motors", 10);
-  totals_pub_ = private_nh.advertise<PropulsionTotals>("totals", 10);
-  payload_pub_ = private_nh.advertise<PayloadEstimate>("payload", 10);
+  // Queues of RCOut and of the estimates hold half a second at 1000 Hz (about 100 kB at most): on
+  // a loaded companion computer the node's threads may not run for tens of milliseconds, and MAVROS
+  // may deliver a backlog in a burst; a shorter queue drops messages (the soak rostest counts
+  // every answer).
+  constexpr std::uint32_t queue = 500;
+  motors_pub_ = private_nh.advertise<MotorEstimates>("motors", queue);
+  totals_pub_ = private_nh.advertise<PropulsionTotals>("totals", queue);
+  payload_pub_ = private_nh.advertise<PayloadEstimate>("payload", queue);
   capability_pub_ = private_nh.advertise<Capability>("capability", 2);
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
-  rc_out_sub_ = nh.subscribe(params_.rc_out_topic, 20, &EstimatorNode::onRcOut, this, hints);
+  rc_out_sub_ = nh.subscribe(params_.rc_out_topic, queue, &EstimatorNode::onRcOut, this, hints);
   battery_sub_ = nh.subscribe(params_.battery_topic, 5, &EstimatorNode::onBattery, this, hints);
   if (!params_.imu_topic.empty()) imu_sub_ = nh.subscribe(params_.imu_topic, 20, &EstimatorNode::onImu, this, hints);
   if (!params_.velocity_topic.empty()) {
