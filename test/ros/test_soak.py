@@ -8,7 +8,6 @@ node never stops (same pid, alive), its resident memory stays flat, every good R
 on ~totals exactly once and no bad one is, the estimate after the faults equals the one before,
 and the rates claimed were the rates sent."""
 import collections
-import math
 import random
 import struct
 import time
