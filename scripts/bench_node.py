@@ -33,7 +33,7 @@ import xmlrpc.client
 import yaml
 
 RC_OUT_CHANNELS = 8
-ESTIMATE_TOPICS = {"node": "/propulsion_estimator/totals", "node_publish_50hz": "/propulsion_estimator/totals",
+ESTIMATE_TOPICS = {"node": "/propulsion_estimator/totals", "node_every_message": "/propulsion_estimator/totals",
                    "peer": "/rospy_peer/totals", "floor": ""}
 # callgrind_annotate's names of the three parts of onRcOut (demangled, arguments stripped).
 CALLGRIND_PARTS = [
@@ -106,22 +106,22 @@ def stop_group(process, sig, timeout_s):
             process.wait()
 
 
-def estimator_params(repo, publish_rate_hz=0.0):
-    """The parameter template with the benchmark's model and octocopter; publish_rate_hz 0 publishes
-    every message (the default)."""
+def estimator_params(repo, every_message=False):
+    """The parameter template with the benchmark's model and octocopter; every_message sets
+    publish_rate_hz 0 (the default publishes at most at 50 Hz)."""
     with open(os.path.join(repo, "config", "estimator_params.yaml")) as f:
         params = yaml.safe_load(f)
     params.update(model=os.path.join(repo, "config", "e300_dji2212_dji9443.yaml"),
                   motor_channels=list(range(1, RC_OUT_CHANNELS + 1)),
-                  urdf_file=os.path.join(repo, "test", "benchmark", "bench_octo.urdf"), tare_file="",
-                  publish_rate_hz=publish_rate_hz)
+                  urdf_file=os.path.join(repo, "test", "benchmark", "bench_octo.urdf"), tare_file="")
+    if every_message:
+        params.update(publish_rate_hz=0.0)
     return params
 
 
 def system_command(system, args, master):
-    if system in ("node", "node_publish_50hz"):
-        master.set_param("/propulsion_estimator",
-                         estimator_params(args.repo, 50.0 if system == "node_publish_50hz" else 0.0))
+    if system in ("node", "node_every_message"):
+        master.set_param("/propulsion_estimator", estimator_params(args.repo, system == "node_every_message"))
         return [os.path.join(args.bin, "estimator_node"), "__name:=propulsion_estimator"]
     if system == "peer":
         master.set_param("/rospy_peer", {"model": os.path.join(args.repo, "config", "e300_dji2212_dji9443.yaml"),
@@ -165,7 +165,7 @@ def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, p
 
 def run_e2e(args):
     results = []
-    for system in ("node", "node_publish_50hz", "floor", "peer"):
+    for system in ("node", "node_every_message", "floor", "peer"):
         print("== end to end: %s, %g s at %g Hz" % (system, args.duration_s, args.rate_hz), flush=True)
         with Master(args.work, system) as master:
             command = system_command(system, args, master)

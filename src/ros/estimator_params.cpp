@@ -177,7 +177,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
                   << c.hover.min_mass_kg << "\n  payload: averaging_window_s " << c.payload.averaging_window_s
                   << ", min_samples " << c.payload.min_samples << ", episode_gap_s " << c.payload.episode_gap_s
                   << "\n  publish_rate_hz: "
-                  << (p.publish_rate_hz > 0.0 ? std::to_string(p.publish_rate_hz) : std::string("0 (every message)"))
+                  << (p.publish_rate_hz > 0.0 ? formatNumber(p.publish_rate_hz) : std::string("0 (every message)"))
                   << ", clock_jump_reset_s: " << c.clock_jump_reset_s
                   << ", max_stamp_ahead_s: " << c.max_stamp_ahead_s
                   << ", domain_warn_fraction: " << p.health.domain_warn_fraction

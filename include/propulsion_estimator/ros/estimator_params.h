@@ -27,8 +27,9 @@ struct EstimatorNodeParams {
   std::string rangefinder_topic = "/mavros/rangefinder/rangefinder";     // sensor_msgs/Range
   std::string motor_temperature_topic = "/motor_temperature";            // sensor_msgs/Temperature
   // Highest rate of ~motors, ~totals and ~payload, Hz, on the RCOut stamps; 0 publishes every
-  // accepted RCOut. Every message is still estimated and averaged.
-  double publish_rate_hz = 0.0;
+  // accepted RCOut. Every message is still estimated and averaged. 50 Hz passes MAVROS' usual
+  // rc/out whole, and keeps a 400 Hz stream's cost near roscpp's own (BENCHMARKS.md).
+  double publish_rate_hz = 50.0;
   HealthConfig health;  // domain_warn_fraction; its input names are the topics
   EstimatorConfig estimator;
   CapabilityConfig capability;
