@@ -15,7 +15,8 @@ class RateLimiter {
 
   bool admit(double stamp_s) {
     if (period_s_ == 0.0) return true;
-    const bool restart = !started_ || stamp_s < due_s_ - period_s_ || stamp_s > due_s_ + period_s_;
+    const bool restart = !started_ || stamp_s < last_s_ || stamp_s > due_s_ + period_s_;
+    last_s_ = stamp_s;
     if (!restart && stamp_s < due_s_ - 0.5 * period_s_) return false;
     due_s_ = (restart ? stamp_s : due_s_) + period_s_;
     started_ = true;
@@ -25,7 +26,8 @@ class RateLimiter {
  private:
   double period_s_;
   bool started_ = false;
-  double due_s_ = 0.0;  // when the next event may pass
+  double due_s_ = 0.0;   // when the next event may pass
+  double last_s_ = 0.0;  // the previous event's stamp, admitted or not
 };
 
 }  // namespace propulsion_estimator
