@@ -2,6 +2,7 @@
 /diagnostics, call services."""
 import math
 import threading
+import time
 
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
@@ -97,6 +98,16 @@ class EstimatorHarness:
             raise AssertionError("diagnostic '%s' never said '%s'; last: %s" %
                                  (name, text, status.message if status else "none"))
         return self.diagnostic(name)
+
+
+def wait_until(condition, timeout_s, what, poll_s=0.05):
+    """Polls `condition` on the wall clock until it holds; AssertionError naming `what` after
+    `timeout_s` (for tests that drive time themselves, where ROS time may stand still)."""
+    end = time.monotonic() + timeout_s
+    while not condition():
+        if time.monotonic() > end:
+            raise AssertionError("timed out waiting for " + what)
+        time.sleep(poll_s)
 
 
 def is_nan(value):

@@ -21,6 +21,7 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from propulsion_estimator.msg import PayloadEstimate, PropulsionTotals
 from sensor_msgs.msg import BatteryState
 
+from estimator_harness import wait_until
 from rcout import RCOut
 
 NODE = "/propulsion_estimator"
@@ -78,7 +79,7 @@ class SoakTest(unittest.TestCase):
         rospy.Subscriber(NODE + "/payload", rospy.AnyMsg, self.on_payload, queue_size=100000, buff_size=1 << 24)
         rospy.Subscriber("/diagnostics", DiagnosticArray, self.on_diagnostics, queue_size=100)
         rospy.wait_for_service(NODE + "/tare", timeout=60.0)
-        self.wait(lambda: self.rc_out_pub.get_num_connections() > 0 and self.battery_pub.get_num_connections() > 0,
+        wait_until(lambda: self.rc_out_pub.get_num_connections() > 0 and self.battery_pub.get_num_connections() > 0,
                   30.0, "the node subscribing to its inputs")
 
         self.good, self.bad, self.dont_care = set(), set(), set()  # RCOut stamps sent
@@ -131,14 +132,6 @@ class SoakTest(unittest.TestCase):
                 if line.startswith("VmRSS:"):
                     return int(line.split()[1])
         raise AssertionError("no VmRSS for pid %d" % pid)
-
-    @staticmethod
-    def wait(condition, timeout_s, what):
-        end = time.monotonic() + timeout_s
-        while not condition():
-            if time.monotonic() > end:
-                raise AssertionError("timed out waiting for " + what)
-            time.sleep(0.05)
 
     # ---- what the test sends
 

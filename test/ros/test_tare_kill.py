@@ -22,6 +22,7 @@ from propulsion_estimator.msg import PayloadEstimate
 from sensor_msgs.msg import BatteryState
 from std_srvs.srv import Trigger
 
+from estimator_harness import wait_until
 from rcout import RCOut
 
 NODE = "/killed_estimator"
@@ -68,14 +69,6 @@ class TareKillTest(unittest.TestCase):
             self.node.wait()
         shutil.rmtree(self.folder)
 
-    @staticmethod
-    def wait(condition, timeout_s, what):
-        end = time.monotonic() + timeout_s
-        while not condition():
-            if time.monotonic() > end:
-                raise AssertionError("timed out waiting for " + what)
-            time.sleep(0.02)
-
     def read_tare_file(self):
         """The tare file's empty mass, None when there is none; fails on a broken file."""
         if not os.path.exists(self.tare_file):
@@ -99,7 +92,7 @@ class TareKillTest(unittest.TestCase):
         self.node = subprocess.Popen([self.binary, "__name:=" + NODE.lstrip("/")], stdout=subprocess.DEVNULL,
                                      stderr=subprocess.DEVNULL)
         rospy.wait_for_service(NODE + "/tare", timeout=60.0)
-        self.wait(lambda: rc_out_pub.get_num_connections() > 0 and battery_pub.get_num_connections() > 0, 30.0,
+        wait_until(lambda: rc_out_pub.get_num_connections() > 0 and battery_pub.get_num_connections() > 0, 30.0,
                   "node %d subscribing to its inputs" % run)
         return rc_out_pub, battery_pub
 
@@ -127,14 +120,14 @@ class TareKillTest(unittest.TestCase):
             flight.start()
             try:
                 # The restarted node took the file's tare, or said it has none.
-                self.wait(lambda: payloads, 30.0, "an estimate of node %d" % run)
+                wait_until(lambda: payloads, 30.0, "an estimate of node %d" % run)
                 payload = payloads[-1]
                 if old_kg is None:
                     self.assertEqual(payload.empty_mass_source, "none")
                 else:
                     self.assertEqual(payload.empty_mass_source, "tare_file", "run %d" % run)
                     self.assertEqual(payload.empty_mass_kg, old_kg, "run %d" % run)
-                    self.wait(lambda: "Tare file" in statuses, 30.0, "the Tare file diagnostic of node %d" % run)
+                    wait_until(lambda: "Tare file" in statuses, 30.0, "the Tare file diagnostic of node %d" % run)
                     status = statuses["Tare file"]
                     self.assertEqual(status.level, DiagnosticStatus.OK, status.message)
                     self.assertTrue(status.message.startswith(self.tare_file + ": empty mass "), status.message)
@@ -143,7 +136,7 @@ class TareKillTest(unittest.TestCase):
                     break
 
                 # Hovering long enough for a tare, then ~tare again and again until the kill.
-                self.wait(lambda: payloads[-1].hovering and payloads[-1].window_samples >= 25, 30.0,  # min_samples
+                wait_until(lambda: payloads[-1].hovering and payloads[-1].window_samples >= 25, 30.0,  # min_samples
                           "a hover of node %d" % run)
                 new_kg = payloads[-1].total_mass_kg
                 answers = []
