@@ -1,6 +1,7 @@
 #!/bin/sh
 # Installs what building, running and testing the package needs, from Debian 12's own packages
 # (ROS 1 lives in /usr there). Does nothing when everything is already installed.
+# `install_deps.sh fuzz` adds clang and its libFuzzer runtime, which only `make fuzz` needs.
 set -eu
 
 PACKAGES="
@@ -16,6 +17,9 @@ PACKAGES="
   python3-std-msgs python3-sensor-msgs python3-geometry-msgs python3-diagnostic-msgs python3-std-srvs
   python3-topic-tools python3-matplotlib python3-yaml
 "
+if [ "${1:-}" = fuzz ]; then
+  PACKAGES="$PACKAGES clang libclang-rt-14-dev"
+fi
 
 missing=""
 for package in $PACKAGES; do
