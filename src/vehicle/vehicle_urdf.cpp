@@ -23,18 +23,25 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
   return transform;
 }
 
-// Pose of a link in the root link's frame.
-Eigen::Isometry3d linkPose(const urdf::ModelInterface& model, const std::string& link_name) {
+// Pose of a link in the root link's frame. urdfdom accepts a joint whose child is one of its own
+// ancestors (a loop apart from the root's tree), which the walk up to the root would never leave:
+// ConfigError naming the joint found more often on the way than there are joints.
+Eigen::Isometry3d linkPose(const urdf::ModelInterface& model, const std::string& link_name, const std::string& source) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   urdf::LinkConstSharedPtr link = model.getLink(link_name);
+  std::size_t steps = 0;
   while (link && link->parent_joint) {
+    if (++steps > model.joints_.size()) {
+      throw ConfigError(source + ": joint " + link->parent_joint->name +
+                        ": closes a loop of links (a link would be its own ancestor)");
+    }
     pose = toIsometry(link->parent_joint->parent_to_joint_origin_transform) * pose;
     link = model.getLink(link->parent_joint->parent_link_name);
   }
   return pose;
 }
 
-std::optional<MassProperties> massProperties(const urdf::ModelInterface& model) {
+std::optional<MassProperties> massProperties(const urdf::ModelInterface& model, const std::string& source) {
   struct Part {
     double mass;
     Eigen::Vector3d position;
@@ -44,7 +51,7 @@ std::optional<MassProperties> massProperties(const urdf::ModelInterface& model) 
   for (const auto& [name, link] : model.links_) {
     if (!link->inertial) continue;
     const urdf::Inertial& in = *link->inertial;
-    const Eigen::Isometry3d pose = linkPose(model, name) * toIsometry(in.origin);
+    const Eigen::Isometry3d pose = linkPose(model, name, source) * toIsometry(in.origin);
     Eigen::Matrix3d local;
     local << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
     parts.push_back({in.mass, pose.translation(), pose.linear() * local * pose.linear().transpose()});
@@ -64,6 +71,18 @@ std::optional<MassProperties> massProperties(const urdf::ModelInterface& model) 
   return total;
 }
 
+// urdfdom holds a link's children by shared_ptr: the links of a loop own one another and would
+// outlive the model. Dropping every link's children when the model is done with frees them all.
+struct LinkTreeRelease {
+  urdf::ModelInterface& model;
+  ~LinkTreeRelease() {
+    for (const auto& [name, link] : model.links_) {
+      link->child_links.clear();
+      link->child_joints.clear();
+    }
+  }
+};
+
 }  // namespace
 
 Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
@@ -71,6 +90,7 @@ Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
   if (!model) throw ConfigError(source + ": not a valid URDF robot description");
+  const LinkTreeRelease release{*model};
 
   // Motor numbers are small: at most 32 RC output channels.
   static const std::regex kRotorJoint("rotor_([0-9]{1,2})_joint");
@@ -82,7 +102,7 @@ Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
       throw ConfigError(source + ": joint " + name + ": a rotor joint must be continuous (or revolute)");
     }
     const int number = std::stoi(match[1]);
-    const Eigen::Isometry3d pose = linkPose(*model, joint->child_link_name);
+    const Eigen::Isometry3d pose = linkPose(*model, joint->child_link_name, source);
     Rotor rotor;
     rotor.name = joint->child_link_name;
     rotor.position_m = pose.translation();
@@ -101,7 +121,7 @@ Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
     vehicle.rotors.push_back(rotor);
     ++expected;
   }
-  vehicle.empty_mass = massProperties(*model);
+  vehicle.empty_mass = massProperties(*model, source);
   return vehicle;
 }
 

@@ -57,4 +57,9 @@ TEST(VehicleUrdf, RefusesBadDescriptions) {
   EXPECT_EQ(refusal(R"(<robot name="r"><link name="base_link"/><link name="p"/>
     <joint name="rotor_99999999999_joint" type="continuous"><parent link="base_link"/><child link="p"/></joint></robot>)"),
             "v.urdf: no rotor joints (expected joints named rotor_1_joint, rotor_2_joint, ...)");
+  // Found by fuzz_vehicle_urdf (test/fuzz/regressions/vehicle_urdf/): urdfdom accepts a link that is
+  // its own parent beside the root's tree, and the walk to the root never ended.
+  EXPECT_EQ(refusal(R"(<robot name="r"><link name="base_link"/><link name="p"/>
+    <joint name="rotor_1_joint" type="continuous"><parent link="p"/><child link="p"/></joint></robot>)"),
+            "v.urdf: joint rotor_1_joint: closes a loop of links (a link would be its own ancestor)");
 }
