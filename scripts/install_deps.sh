@@ -13,7 +13,7 @@ PACKAGES="
   libtopic-tools-dev librosbag-dev librostest-dev
   rosout rosbash python3-rosbag python3-roslaunch python3-rosmaster python3-rostopic python3-rosnode
   python3-rosservice python3-rosparam python3-rosmsg python3-rostest python3-rospy python3-rosunit
-  liburdfdom-dev libeigen3-dev libyaml-cpp-dev libcli11-dev libcsv-dev libgtest-dev libbenchmark-dev
+  liburdfdom-dev libtinyxml-dev libeigen3-dev libyaml-cpp-dev libcli11-dev libcsv-dev libgtest-dev libbenchmark-dev
   python3-std-msgs python3-sensor-msgs python3-geometry-msgs python3-diagnostic-msgs python3-std-srvs
   python3-topic-tools python3-matplotlib python3-yaml
 "

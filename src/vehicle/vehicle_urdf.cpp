@@ -2,9 +2,12 @@
 
 #include <map>
 #include <regex>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <console_bridge/console.h>
+#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include "propulsion_estimator/common/config_error.h"
@@ -23,25 +26,69 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
   return transform;
 }
 
-// Pose of a link in the root link's frame. urdfdom accepts a joint whose child is one of its own
-// ancestors (a loop apart from the root's tree), which the walk up to the root would never leave:
-// ConfigError naming the joint found more often on the way than there are joints.
-Eigen::Isometry3d linkPose(const urdf::ModelInterface& model, const std::string& link_name, const std::string& source) {
+// Pose of a link in the root link's frame (refuseLinkLoops has made sure the walk ends).
+Eigen::Isometry3d linkPose(const urdf::ModelInterface& model, const std::string& link_name) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   urdf::LinkConstSharedPtr link = model.getLink(link_name);
-  std::size_t steps = 0;
   while (link && link->parent_joint) {
-    if (++steps > model.joints_.size()) {
-      throw ConfigError(source + ": joint " + link->parent_joint->name +
-                        ": closes a loop of links (a link would be its own ancestor)");
-    }
     pose = toIsometry(link->parent_joint->parent_to_joint_origin_transform) * pose;
     link = model.getLink(link->parent_joint->parent_link_name);
   }
   return pose;
 }
 
-std::optional<MassProperties> massProperties(const urdf::ModelInterface& model, const std::string& source) {
+// urdfdom accepts a joint whose child is one of its ancestors (a loop beside the root's tree),
+// whose links the walk to the root would never leave, and links a loop's links to one another by
+// shared_ptr, never freed even when it refuses the description. So the joints' parent -> child
+// edges are read first from the same document (TinyXML, urdfdom's XML layer) and a loop refused:
+// ConfigError naming the joint that closes it.
+void refuseLinkLoops(const std::string& xml, const std::string& source) {
+  TiXmlDocument document;
+  document.Parse(xml.c_str());
+  const TiXmlElement* robot = document.Error() ? nullptr : document.FirstChildElement("robot");
+  if (!robot) return;  // urdfdom refuses it
+  struct Edge {
+    std::string child;
+    std::string joint;
+  };
+  std::map<std::string, std::vector<Edge>> children;  // parent link -> its joints' child links
+  for (const TiXmlElement* joint = robot->FirstChildElement("joint"); joint; joint = joint->NextSiblingElement("joint")) {
+    const TiXmlElement* parent = joint->FirstChildElement("parent");
+    const TiXmlElement* child = joint->FirstChildElement("child");
+    const char* name = joint->Attribute("name");
+    const char* parent_link = parent ? parent->Attribute("link") : nullptr;
+    const char* child_link = child ? child->Attribute("link") : nullptr;
+    if (name && parent_link && child_link) children[parent_link].push_back({child_link, name});
+  }
+  // Depth-first from every link, without recursion (a description may chain thousands of links):
+  // an edge back to a link on the current path closes a loop.
+  enum class State { kOnPath, kDone };
+  std::map<std::string, State> state;
+  for (const auto& [root, edges] : children) {
+    if (state.count(root)) continue;
+    std::vector<std::pair<std::string, std::size_t>> path = {{root, 0}};  // link, next edge
+    state[root] = State::kOnPath;
+    while (!path.empty()) {
+      auto& [link, next] = path.back();
+      const auto found = children.find(link);
+      if (found == children.end() || next == found->second.size()) {
+        state[link] = State::kDone;
+        path.pop_back();
+        continue;
+      }
+      const Edge& edge = found->second[next++];
+      const auto seen = state.find(edge.child);
+      if (seen == state.end()) {
+        state[edge.child] = State::kOnPath;
+        path.push_back({edge.child, 0});
+      } else if (seen->second == State::kOnPath) {
+        throw ConfigError(source + ": joint " + edge.joint + ": closes a loop of links (a link would be its own ancestor)");
+      }
+    }
+  }
+}
+
+std::optional<MassProperties> massProperties(const urdf::ModelInterface& model) {
   struct Part {
     double mass;
     Eigen::Vector3d position;
@@ -51,7 +98,7 @@ std::optional<MassProperties> massProperties(const urdf::ModelInterface& model, 
   for (const auto& [name, link] : model.links_) {
     if (!link->inertial) continue;
     const urdf::Inertial& in = *link->inertial;
-    const Eigen::Isometry3d pose = linkPose(model, name, source) * toIsometry(in.origin);
+    const Eigen::Isometry3d pose = linkPose(model, name) * toIsometry(in.origin);
     Eigen::Matrix3d local;
     local << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
     parts.push_back({in.mass, pose.translation(), pose.linear() * local * pose.linear().transpose()});
@@ -71,26 +118,14 @@ std::optional<MassProperties> massProperties(const urdf::ModelInterface& model, 
   return total;
 }
 
-// urdfdom holds a link's children by shared_ptr: the links of a loop own one another and would
-// outlive the model. Dropping every link's children when the model is done with frees them all.
-struct LinkTreeRelease {
-  urdf::ModelInterface& model;
-  ~LinkTreeRelease() {
-    for (const auto& [name, link] : model.links_) {
-      link->child_links.clear();
-      link->child_joints.clear();
-    }
-  }
-};
-
 }  // namespace
 
 Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
   // urdfdom reports parse errors through console_bridge on stderr; ours is the one line that counts.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  refuseLinkLoops(xml, source);
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
   if (!model) throw ConfigError(source + ": not a valid URDF robot description");
-  const LinkTreeRelease release{*model};
 
   // Motor numbers are small: at most 32 RC output channels.
   static const std::regex kRotorJoint("rotor_([0-9]{1,2})_joint");
@@ -102,7 +137,7 @@ Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
       throw ConfigError(source + ": joint " + name + ": a rotor joint must be continuous (or revolute)");
     }
     const int number = std::stoi(match[1]);
-    const Eigen::Isometry3d pose = linkPose(*model, joint->child_link_name, source);
+    const Eigen::Isometry3d pose = linkPose(*model, joint->child_link_name);
     Rotor rotor;
     rotor.name = joint->child_link_name;
     rotor.position_m = pose.translation();
@@ -121,7 +156,7 @@ Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
     vehicle.rotors.push_back(rotor);
     ++expected;
   }
-  vehicle.empty_mass = massProperties(*model, source);
+  vehicle.empty_mass = massProperties(*model);
   return vehicle;
 }
 
