@@ -123,8 +123,11 @@ std::optional<MassProperties> massProperties(const urdf::ModelInterface& model) 
 Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
   // urdfdom reports parse errors through console_bridge on stderr; ours is the one line that counts.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
-  refuseLinkLoops(xml, source);
-  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
+  // TinyXML (urdfdom's XML layer) steps over a multi-byte UTF-8 character whole, past the end of a
+  // text cut inside one (a fuzz finding): NUL padding longer than any character keeps it in the buffer.
+  const std::string padded = xml + std::string(8, '\0');
+  refuseLinkLoops(padded, source);
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(padded);
   if (!model) throw ConfigError(source + ": not a valid URDF robot description");
 
   // Motor numbers are small: at most 32 RC output channels.

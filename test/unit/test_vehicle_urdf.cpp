@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "test_paths.h"
 
@@ -67,4 +68,8 @@ TEST(VehicleUrdf, RefusesBadDescriptions) {
     <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
     <joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint></robot>)"),
             "v.urdf: joint j2: closes a loop of links (a link would be its own ancestor)");
+  // Found by fuzz_vehicle_urdf: TinyXML read past the end of a text cut inside a UTF-8 character
+  // (AddressSanitizer sees it in make test-sanitizers; here, the refusal).
+  EXPECT_EQ(refusal(pe::readTextFile(repoPath("test/fuzz/regressions/vehicle_urdf/cut_inside_utf8_character.urdf"))),
+            "v.urdf: not a valid URDF robot description");
 }
