@@ -13,7 +13,7 @@ SETUP := source $(WS)/install/setup.sh
 COLCON_BUILD := colcon build --event-handlers console_direct+ \
 	--cmake-args -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps build demo demo-bag test check test-sanitizers bench validate-gap arm64 arm64-build bench-arm64 clean
+.PHONY: deps build demo demo-bag test check test-sanitizers fuzz bench validate-gap arm64 arm64-build bench-arm64 clean
 
 deps:
 	@scripts/install_deps.sh
@@ -54,6 +54,21 @@ test-sanitizers: deps
 	cd $(WS) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 		colcon test $(SAN) --event-handlers console_direct+ --ctest-args -R _gtest_ \
 		&& colcon test-result --test-result-base $(WS)/sanitizers/build --verbose
+
+# Every input reader fuzzed with libFuzzer for SECONDS seconds each (clang, AddressSanitizer and
+# UndefinedBehaviorSanitizer), in its own build and install spaces, from a working copy of its
+# corpus in test/fuzz/corpus/; findings land in .ws/fuzz/findings/. MERGE=1 merges what the run
+# found new into the committed corpora. See test/fuzz/README.md.
+FUZZ := --build-base $(WS)/fuzz/build --install-base $(WS)/fuzz/install
+SECONDS ?= 60
+fuzz:
+	@scripts/install_deps.sh fuzz
+	@mkdir -p $(WS)/src
+	@ln -sfn $(CURDIR) $(WS)/src/propulsion_estimator
+	cd $(WS) && colcon build $(FUZZ) --event-handlers console_direct+ --cmake-target fuzzers \
+		--cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DPE_FUZZ=ON -DCATKIN_ENABLE_TESTING=OFF
+	scripts/run_fuzzers.sh --bin $(WS)/fuzz/build/propulsion_estimator/devel/lib/propulsion_estimator \
+		--work $(WS)/fuzz --seconds $(SECONDS) $(if $(MERGE),--merge)
 
 # The gap diagnosis validated on simulated flights whose effect is withheld from it (44 random
 # cases, about five minutes on 2 cores); rewrites VALIDATION.md. CASES=N for another count.

@@ -14,7 +14,12 @@ endfunction()
 pe_module(propulsion_estimator_common common yaml-cpp)
 target_include_directories(propulsion_estimator_common PUBLIC ${EIGEN3_INCLUDE_DIR})
 pe_module(propulsion_estimator_model model propulsion_estimator_common)
-pe_module(propulsion_estimator_vehicle vehicle propulsion_estimator_common ${urdfdom_LIBRARIES})
+# TinyXML, urdfdom's XML layer (its headers include it), also reads the joints' edges before it.
+find_library(TINYXML_LIBRARY tinyxml)
+if(NOT TINYXML_LIBRARY)
+  message(FATAL_ERROR "TinyXML not found: install libtinyxml-dev (scripts/install_deps.sh)")
+endif()
+pe_module(propulsion_estimator_vehicle vehicle propulsion_estimator_common ${urdfdom_LIBRARIES} ${TINYXML_LIBRARY})
 target_include_directories(propulsion_estimator_vehicle PUBLIC ${urdfdom_INCLUDE_DIRS})
 # What runs on the vehicle.
 pe_module(propulsion_estimator_estimation estimation

@@ -3,6 +3,7 @@
 # (ROS 1 lives in /usr there); python3-numpy, valgrind and time are make bench's (the rospy peer,
 # the instructions per message, diagnose_gap's peak memory). Does nothing when everything is
 # already installed.
+# `install_deps.sh fuzz` adds clang and its libFuzzer runtime, which only `make fuzz` needs.
 set -eu
 
 PACKAGES="
@@ -14,11 +15,14 @@ PACKAGES="
   libtopic-tools-dev librosbag-dev librostest-dev
   rosout rosbash python3-rosbag python3-roslaunch python3-rosmaster python3-rostopic python3-rosnode
   python3-rosservice python3-rosparam python3-rosmsg python3-rostest python3-rospy python3-rosunit
-  liburdfdom-dev libeigen3-dev libyaml-cpp-dev libcli11-dev libcsv-dev libgtest-dev libbenchmark-dev
+  liburdfdom-dev libtinyxml-dev libeigen3-dev libyaml-cpp-dev libcli11-dev libcsv-dev libgtest-dev libbenchmark-dev
   python3-std-msgs python3-sensor-msgs python3-geometry-msgs python3-diagnostic-msgs python3-std-srvs
   python3-topic-tools python3-matplotlib python3-yaml
   python3-numpy valgrind time
 "
+if [ "${1:-}" = fuzz ]; then
+  PACKAGES="$PACKAGES clang libclang-rt-14-dev"
+fi
 
 missing=""
 for package in $PACKAGES; do

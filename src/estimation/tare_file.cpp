@@ -14,6 +14,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/yaml_map.h"
 
 namespace propulsion_estimator {
@@ -58,14 +59,18 @@ void writeDurably(const std::string& path, const std::string& temporary, const s
 
 }  // namespace
 
-std::optional<TareRecord> loadTareFile(const std::string& path) {
-  std::error_code error;
-  if (!std::filesystem::exists(path, error)) return std::nullopt;
-  const YamlMap root = loadYamlFile(path);
+TareRecord parseTareFile(const std::string& text, const std::string& source) {
+  const YamlMap root = parseYamlDocument(text, source);
   root.allowOnly({"empty_mass_kg", "model", "model_fingerprint"});
   TareRecord record{root.number("empty_mass_kg"), root.text("model"), root.text("model_fingerprint")};
   if (record.empty_mass_kg <= 0.0) root.fail("empty_mass_kg", "must be positive");
   return record;
+}
+
+std::optional<TareRecord> loadTareFile(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return std::nullopt;
+  return parseTareFile(readTextFile(path), path);
 }
 
 void saveTareFile(const std::string& path, const TareRecord& record) {

@@ -21,6 +21,8 @@ bool RcOutDecoder::decode(const topic_tools::ShapeShifter& message, RcOutMessage
   if (out->channels.capacity() * sizeof(std::uint16_t) > kMaxKeptBytes) std::vector<std::uint16_t>().swap(out->channels);
   if (out->header.frame_id.capacity() > kMaxKeptBytes) std::string().swap(out->header.frame_id);
   const std::uint32_t size = message.size();
+  // An empty message has no buffer to write from or into (ShapeShifter::write would copy from a null pointer).
+  if (size == 0) return decodePayload(nullptr, 0, out, error);
   if (buffer_.size() < size) buffer_.resize(size);
   ros::serialization::OStream writer(buffer_.data(), size);
   message.write(writer);
@@ -30,6 +32,11 @@ bool RcOutDecoder::decode(const topic_tools::ShapeShifter& message, RcOutMessage
 }
 
 bool RcOutDecoder::decodePayload(const std::uint8_t* data, std::uint32_t size, RcOutMessage* out, std::string* error) {
+  // Reading would advance a null pointer (undefined behaviour) before finding the stream overrun.
+  if (size == 0) {
+    *error = "malformed mavros_msgs/RCOut: empty message";
+    return false;
+  }
   try {
     // IStream only reads, but takes a mutable pointer.
     ros::serialization::IStream reader(const_cast<std::uint8_t*>(data), size);

@@ -2,9 +2,12 @@
 
 #include <map>
 #include <regex>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <console_bridge/console.h>
+#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include "propulsion_estimator/common/config_error.h"
@@ -23,7 +26,7 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
   return transform;
 }
 
-// Pose of a link in the root link's frame.
+// Pose of a link in the root link's frame (refuseLinkLoops has made sure the walk ends).
 Eigen::Isometry3d linkPose(const urdf::ModelInterface& model, const std::string& link_name) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   urdf::LinkConstSharedPtr link = model.getLink(link_name);
@@ -32,6 +35,57 @@ Eigen::Isometry3d linkPose(const urdf::ModelInterface& model, const std::string&
     link = model.getLink(link->parent_joint->parent_link_name);
   }
   return pose;
+}
+
+// urdfdom accepts a joint whose child is one of its ancestors (a loop beside the root's tree),
+// whose links the walk to the root would never leave, and links a loop's links to one another by
+// shared_ptr, never freed even when it refuses the description. So the joints' parent -> child
+// edges are read first from the same document (TinyXML, urdfdom's XML layer) and a loop refused:
+// ConfigError naming the joint that closes it.
+void refuseLinkLoops(const std::string& xml, const std::string& source) {
+  TiXmlDocument document;
+  document.Parse(xml.c_str());
+  const TiXmlElement* robot = document.Error() ? nullptr : document.FirstChildElement("robot");
+  if (!robot) return;  // urdfdom refuses it
+  struct Edge {
+    std::string child;
+    std::string joint;
+  };
+  std::map<std::string, std::vector<Edge>> children;  // parent link -> its joints' child links
+  for (const TiXmlElement* joint = robot->FirstChildElement("joint"); joint; joint = joint->NextSiblingElement("joint")) {
+    const TiXmlElement* parent = joint->FirstChildElement("parent");
+    const TiXmlElement* child = joint->FirstChildElement("child");
+    const char* name = joint->Attribute("name");
+    const char* parent_link = parent ? parent->Attribute("link") : nullptr;
+    const char* child_link = child ? child->Attribute("link") : nullptr;
+    if (name && parent_link && child_link) children[parent_link].push_back({child_link, name});
+  }
+  // Depth-first from every link, without recursion (a description may chain thousands of links):
+  // an edge back to a link on the current path closes a loop.
+  enum class State { kOnPath, kDone };
+  std::map<std::string, State> state;
+  for (const auto& [root, edges] : children) {
+    if (state.count(root)) continue;
+    std::vector<std::pair<std::string, std::size_t>> path = {{root, 0}};  // link, next edge
+    state[root] = State::kOnPath;
+    while (!path.empty()) {
+      auto& [link, next] = path.back();
+      const auto found = children.find(link);
+      if (found == children.end() || next == found->second.size()) {
+        state[link] = State::kDone;
+        path.pop_back();
+        continue;
+      }
+      const Edge& edge = found->second[next++];
+      const auto seen = state.find(edge.child);
+      if (seen == state.end()) {
+        state[edge.child] = State::kOnPath;
+        path.push_back({edge.child, 0});
+      } else if (seen->second == State::kOnPath) {
+        throw ConfigError(source + ": joint " + edge.joint + ": closes a loop of links (a link would be its own ancestor)");
+      }
+    }
+  }
 }
 
 std::optional<MassProperties> massProperties(const urdf::ModelInterface& model) {
@@ -69,7 +123,11 @@ std::optional<MassProperties> massProperties(const urdf::ModelInterface& model) 
 Vehicle vehicleFromUrdf(const std::string& xml, const std::string& source) {
   // urdfdom reports parse errors through console_bridge on stderr; ours is the one line that counts.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
-  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
+  // TinyXML (urdfdom's XML layer) steps over a multi-byte UTF-8 character whole, past the end of a
+  // text cut inside one (a fuzz finding): NUL padding longer than any character keeps it in the buffer.
+  const std::string padded = xml + std::string(8, '\0');
+  refuseLinkLoops(padded, source);
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(padded);
   if (!model) throw ConfigError(source + ": not a valid URDF robot description");
 
   // Motor numbers are small: at most 32 RC output channels.

@@ -108,3 +108,17 @@ TEST(RcOutCodec, DecodesAPayloadWhoseTypeWasCheckedElsewhere) {
   EXPECT_FALSE(pe::RcOutDecoder::decodePayload(bytes.data(), bytes.size() - 3, &received, &error));
   EXPECT_EQ(error, "malformed mavros_msgs/RCOut: 4 channels announced, 5 bytes left");
 }
+
+// Found by fuzz_rcout: an empty message was read from a null pointer (undefined behaviour).
+TEST(RcOutCodec, RefusesAnEmptyMessage) {
+  topic_tools::ShapeShifter shifter;
+  shifter.morph(pe::kRcOutMd5Sum, pe::kRcOutDataType, pe::rcOutDefinition(), "0");
+  pe::RcOutDecoder decoder;
+  pe::RcOutMessage received;
+  std::string error;
+  EXPECT_FALSE(decoder.decode(shifter, &received, &error));
+  EXPECT_EQ(error, "malformed mavros_msgs/RCOut: empty message");
+  error.clear();
+  EXPECT_FALSE(pe::RcOutDecoder::decodePayload(nullptr, 0, &received, &error));
+  EXPECT_EQ(error, "malformed mavros_msgs/RCOut: empty message");
+}

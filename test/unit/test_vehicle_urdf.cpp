@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "test_paths.h"
 
@@ -57,4 +58,18 @@ TEST(VehicleUrdf, RefusesBadDescriptions) {
   EXPECT_EQ(refusal(R"(<robot name="r"><link name="base_link"/><link name="p"/>
     <joint name="rotor_99999999999_joint" type="continuous"><parent link="base_link"/><child link="p"/></joint></robot>)"),
             "v.urdf: no rotor joints (expected joints named rotor_1_joint, rotor_2_joint, ...)");
+  // Found by fuzz_vehicle_urdf (test/fuzz/regressions/vehicle_urdf/): urdfdom accepts a link that is
+  // its own parent beside the root's tree, and the walk to the root never ended...
+  EXPECT_EQ(refusal(R"(<robot name="r"><link name="base_link"/><link name="p"/>
+    <joint name="rotor_1_joint" type="continuous"><parent link="p"/><child link="p"/></joint></robot>)"),
+            "v.urdf: joint rotor_1_joint: closes a loop of links (a link would be its own ancestor)");
+  // ... and leaks a loop's links, even in a description it refuses (here for its two roots).
+  EXPECT_EQ(refusal(R"(<robot name="r"><link name="base_link"/><link name="a"/><link name="b"/><link name="c"/>
+    <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+    <joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint></robot>)"),
+            "v.urdf: joint j2: closes a loop of links (a link would be its own ancestor)");
+  // Found by fuzz_vehicle_urdf: TinyXML read past the end of a text cut inside a UTF-8 character
+  // (AddressSanitizer sees it in make test-sanitizers; here, the refusal).
+  EXPECT_EQ(refusal(pe::readTextFile(repoPath("test/fuzz/regressions/vehicle_urdf/cut_inside_utf8_character.urdf"))),
+            "v.urdf: not a valid URDF robot description");
 }

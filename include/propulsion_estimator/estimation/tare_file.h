@@ -17,6 +17,8 @@ struct TareRecord {
   std::string model_fingerprint;
 };
 
+/// The tare in a tare file's text; ConfigError naming `source` for content that is not a tare.
+TareRecord parseTareFile(const std::string& text, const std::string& source);
 /// The tare in `path`; nullopt when the file does not exist. ConfigError naming the file for
 /// content that is not a tare (InputError when it cannot be read).
 std::optional<TareRecord> loadTareFile(const std::string& path);

@@ -1,0 +1,77 @@
+// The fuzzers' corpora and the inputs that were findings, replayed through the same entry points
+// (test/fuzz/fuzz_inputs.h) in every `make test`: each input is accepted or refused with
+// InputError, nothing else. The fuzzing itself is `make fuzz`.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "fuzz_inputs.h"
+#include "test_paths.h"
+
+namespace fs = std::filesystem;
+namespace fuzz = propulsion_estimator::fuzz;
+
+namespace {
+
+std::vector<fs::path> filesIn(const fs::path& folder) {
+  std::vector<fs::path> files;
+  if (!fs::is_directory(folder)) return files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+    if (entry.is_regular_file()) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::string contentOf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+struct Outcome {
+  int accepted = 0;
+  int refused = 0;
+};
+
+Outcome replay(const fuzz::FuzzInput& input, const fs::path& folder) {
+  Outcome outcome;
+  for (const fs::path& file : filesIn(folder)) {
+    const std::string bytes = contentOf(file);
+    try {
+      (input.feed(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()) ? outcome.accepted
+                                                                                      : outcome.refused)++;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << file << ": neither accepted nor refused with InputError: " << e.what();
+    }
+  }
+  return outcome;
+}
+
+}  // namespace
+
+TEST(FuzzCorpus, EveryReaderHasASeedCorpusThatItAcceptsInPart) {
+  for (const fuzz::FuzzInput& input : fuzz::fuzzInputs()) {
+    const Outcome outcome = replay(input, repoPath("test/fuzz/corpus/") + input.name);
+    EXPECT_GT(outcome.accepted, 0) << input.name << ": no valid example in its corpus";
+    EXPECT_LE(outcome.accepted + outcome.refused, 64) << input.name << ": corpus grown beyond a few dozen files";
+  }
+}
+
+TEST(FuzzCorpus, EveryFindingIsNowAcceptedOrRefused) {
+  for (const fuzz::FuzzInput& input : fuzz::fuzzInputs()) replay(input, repoPath("test/fuzz/regressions/") + input.name);
+}
+
+TEST(FuzzCorpus, UnknownReaderIsNamedWithTheKnownOnes) {
+  try {
+    fuzz::fuzzInput("nope");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "no fuzzed reader 'nope' (known: model_yaml, bench_csv, tyto_csv, flight_manifest, flight_profile, "
+              "vehicle_urdf, rcout, tare_file)");
+  }
+}
