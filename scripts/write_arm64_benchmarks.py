@@ -9,14 +9,7 @@ import datetime
 import json
 import subprocess
 
-
-def duration(value, unit):
-    nanoseconds = value * {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}[unit]
-    if nanoseconds < 1e3:
-        return "%.0f ns" % nanoseconds
-    if nanoseconds < 1e6:
-        return "%.2f µs" % (nanoseconds / 1e3)
-    return "%.1f ms" % (nanoseconds / 1e6)
+from write_benchmarks import UNIT_SECONDS, format_seconds
 
 
 def first_line(command):
@@ -50,8 +43,9 @@ def main():
         "|---|---:|---:|",
     ]
     for row in results["benchmarks"]:
-        unit = row.get("time_unit", "ns")
-        lines.append("| `%s` | %s | %s |" % (row["name"], duration(row["cpu_time"], unit), duration(row["real_time"], unit)))
+        scale = UNIT_SECONDS[row["time_unit"]]
+        lines.append("| `%s` | %s | %s |" % (row["name"], format_seconds(row["cpu_time"] * scale),
+                                             format_seconds(row["real_time"] * scale)))
     lines += ["", "Command: `%s`." % args.command]
     with open(args.out, "w") as f:
         f.write("\n".join(lines) + "\n")
