@@ -48,6 +48,11 @@ run() {
 }
 date -u +%Y-%m-%dT%H:%M:%SZ >"$work/started_utc.txt"
 cut -d' ' -f1-3 /proc/loadavg >"$work/load_start.txt"
+# The commit measured (BENCHMARKS.md itself, rewritten at the end, does not count as a change).
+{
+  git rev-parse --short HEAD 2>/dev/null || printf unknown
+  if git status --porcelain -- . ':!BENCHMARKS.md' 2>/dev/null | grep -q .; then printf ' with uncommitted changes'; fi
+} | tr -d '\n' >"$work/commit.txt"
 
 for bench in bench_estimator bench_rcout_decode bench_fit bench_simulate; do
   echo "== $bench"

@@ -3,7 +3,8 @@
 in its results directory: the google benchmark JSON files (bench_<name>.json), the end-to-end and
 callgrind JSON of scripts/bench_node.py (e2e.json, callgrind.json), scripts/bench_diagnose_gap.sh's
 diagnose_gap.json, the commands run (commands.tsv: section, tab, command), the start date, the load
-averages and the run time (started_utc.txt, load_start.txt, load_end.txt, runtime_s.txt).
+averages, the commit measured and the run time (started_utc.txt, load_start.txt, load_end.txt,
+commit.txt, runtime_s.txt).
 
 The template's placeholders are {{key}}; an unknown key is an error, a part that was not run
 (make bench QUICK=1 skips diagnose_gap) is written as not measured. The arm64 section is the
@@ -190,17 +191,6 @@ def machine():
     return info
 
 
-def commit(repo):
-    try:
-        head = subprocess.run(["git", "-C", repo, "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                              check=True).stdout.strip()
-        changes = subprocess.run(["git", "-C", repo, "status", "--porcelain", "--", ".", ":!BENCHMARKS.md"],
-                                 capture_output=True, text=True, check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-    return head + (" with uncommitted changes" if changes else "")
-
-
 def values(results, args):
     e2e = results.json("e2e.json")
     callgrind = results.json("callgrind.json")
@@ -209,7 +199,7 @@ def values(results, args):
     runtime = results.text("runtime_s.txt")
     v = dict(machine())
     v.update(make_command="`%s`" % args.make_command, date=results.text("started_utc.txt") or "?",
-             commit=commit(repo), load_start=results.text("load_start.txt") or "?",
+             commit=results.text("commit.txt") or "unknown", load_start=results.text("load_start.txt") or "?",
              load_end=results.text("load_end.txt") or "?",
              runtime="%d min %02d s" % divmod(int(runtime), 60) if runtime else "?",
              e2e_table=e2e_table(e2e), e2e_ratios=e2e_ratios(e2e), e2e_commands=e2e_commands(e2e, commands, repo),
