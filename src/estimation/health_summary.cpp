@@ -156,19 +156,19 @@ HealthStatus judgePayload(const Estimator& estimator) {
   add(&status, "payload mass (kg)", p.payload_mass_kg);
   add(&status, "hover", estimator.describeHover());
   const HoverVerdict& hover = estimator.output().hover;
-  add(&status, "hover checks inactive", hoverCheckNames(hover.inactive_checks));
+  add(&status, "hover checks inactive", hoverCheckNames(hover.inactiveChecks()));
   add(&status, "vertical speed source", std::string(verticalSpeedSourceName(estimator.output().vertical_speed_source)));
   status.message = payloadStateName(p.state);
   // Without its signal a check passes nothing: a steady climb with no vertical speed, a tilted
   // hover with no IMU would count as hover. Said only while the window holds samples.
-  if (hover.samples > 0 && hover.inactive_checks) {
+  if (hover.samples > 0 && hover.inactiveChecks()) {
     status.level = HealthLevel::kWarn;
     std::string missing;
-    if (hover.inactive_checks & (kTiltCheck | kVerticalAccelCheck)) missing = "no fresh IMU";
-    if (hover.inactive_checks & kVerticalSpeedCheck) {
+    if (hover.inactiveChecks() & (kTiltCheck | kVerticalAccelCheck)) missing = "no fresh IMU";
+    if (hover.inactiveChecks() & kVerticalSpeedCheck) {
       missing += std::string(missing.empty() ? "" : ", ") + "no fresh velocity or barometer";
     }
-    status.message += "; hover checks inactive: " + hoverCheckNames(hover.inactive_checks) + " (" + missing + ")";
+    status.message += "; hover checks inactive: " + hoverCheckNames(hover.inactiveChecks()) + " (" + missing + ")";
   }
   return status;
 }

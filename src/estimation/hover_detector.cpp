@@ -108,9 +108,6 @@ void HoverDetector::evaluate() {
   v.tilt_samples = static_cast<std::size_t>(stats.tilt_samples);
   v.vertical_speed_samples = static_cast<std::size_t>(stats.vertical_speed_samples);
   v.vertical_accel_samples = static_cast<std::size_t>(stats.vertical_accel_samples);
-  v.inactive_checks = static_cast<std::uint8_t>((v.tilt_samples == 0 ? kTiltCheck : 0) |
-                                                (v.vertical_speed_samples == 0 ? kVerticalSpeedCheck : 0) |
-                                                (v.vertical_accel_samples == 0 ? kVerticalAccelCheck : 0));
   // A signal that went stale within the window leaves samples no check saw (a climb while the
   // velocity was missing): the window is not judged until the signal is back throughout.
   const bool gap = (v.tilt_samples && v.tilt_samples < v.samples) ||
@@ -178,8 +175,8 @@ std::string describe(const HoverVerdict& v, const HoverConfig& c) {
       << " N (" << v.mean_mass_kg << " kg), thrust std " << 100.0 * v.thrust_rel_std << " %";
   if (!std::isnan(v.max_tilt_rad)) out << ", max tilt " << v.max_tilt_rad * kRadToDeg << " deg";
   if (!std::isnan(v.max_abs_vertical_speed_m_s)) out << ", max |vz| " << v.max_abs_vertical_speed_m_s << " m/s";
-  if (v.inactive_checks && v.blocker != HoverBlocker::kExpired) {
-    out << "; checks inactive: " << hoverCheckNames(v.inactive_checks);
+  if (v.inactiveChecks() && v.blocker != HoverBlocker::kExpired) {
+    out << "; checks inactive: " << hoverCheckNames(v.inactiveChecks());
   }
   return out.str();
 }

@@ -502,7 +502,7 @@ TEST(Estimator, BarometerGivesTheHoverVerticalSpeedWithoutVelocity) {
   EXPECT_NEAR(climbing.hover.max_abs_vertical_speed_m_s, 1.0, 0.05);
   const pe::EstimatorOutput level = climb(0.0);
   EXPECT_TRUE(level.hover.hovering);
-  EXPECT_EQ(level.hover.inactive_checks, pe::kTiltCheck | pe::kVerticalAccelCheck);
+  EXPECT_EQ(level.hover.inactiveChecks(), pe::kTiltCheck | pe::kVerticalAccelCheck);
 
   // Velocity, when fresh, is preferred.
   EstimatorFixture f;
@@ -528,5 +528,5 @@ TEST(Estimator, ASignalLostInTheWindowLeavesItUnjudged) {
   EXPECT_EQ(f.estimator.describeHover().substr(0, gap.size()), gap);
   f.fly(1690.0, 2.0);  // the whole window without: hover again, the check inactive
   EXPECT_TRUE(f.estimator.output().hover.hovering);
-  EXPECT_EQ(f.estimator.output().hover.inactive_checks, pe::kTiltCheck | pe::kVerticalSpeedCheck | pe::kVerticalAccelCheck);
+  EXPECT_EQ(f.estimator.output().hover.inactiveChecks(), pe::kTiltCheck | pe::kVerticalSpeedCheck | pe::kVerticalAccelCheck);
 }

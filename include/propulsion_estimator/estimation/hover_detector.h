@@ -85,12 +85,18 @@ struct HoverVerdict {
   double max_tilt_rad = 0.0;            // NaN without IMU
   double max_abs_vertical_speed_m_s = 0.0;  // NaN without velocity
   double mean_vertical_accel_m_s2 = 0.0;    // NaN without IMU
-  // Checks whose signal no sample of the window had: they did not take part in the verdict.
-  std::uint8_t inactive_checks = kTiltCheck | kVerticalSpeedCheck | kVerticalAccelCheck;
   // Samples of the window that had each signal (for kSignalGap).
   std::size_t tilt_samples = 0;
   std::size_t vertical_speed_samples = 0;
   std::size_t vertical_accel_samples = 0;
+
+  /// The checks whose signal no sample of the window had (HoverCheck bits): they did not take
+  /// part in the verdict.
+  std::uint8_t inactiveChecks() const {
+    return static_cast<std::uint8_t>((tilt_samples == 0 ? kTiltCheck : 0) |
+                                     (vertical_speed_samples == 0 ? kVerticalSpeedCheck : 0) |
+                                     (vertical_accel_samples == 0 ? kVerticalAccelCheck : 0));
+  }
 };
 
 /// One line for humans: "hovering: ..." or "not hovering: <why>, <window statistics>".
