@@ -4,12 +4,18 @@ the instructions estimator_node spends per RCOut message.
 
 e2e: bench_probe publishes mavros_msgs/RCOut (8 channels, hover PWM with noise, stamped now) at
 --rate-hz and sensor_msgs/BatteryState at 1 Hz for --duration-s to, one after another,
-  node   estimator_node with the thesis model and the 8-rotor test/benchmark/bench_octo.urdf,
-  floor  bench_floor_node, which receives the same topics and does nothing (roscpp's own cost),
-  peer   test/benchmark/rospy_peer.py, the same per-motor outputs in rospy with numpy,
+  node                estimator_node with the thesis model and the 8-rotor
+                      test/benchmark/bench_octo.urdf (publish_rate_hz: its default),
+  node_every_message  the same with publish_rate_hz 0,
+  floor               bench_floor_node, which receives the same topics and does nothing, the way
+                      most roscpp nodes receive (roscpp's own cost),
+  floor_inline        the same, receiving in roscpp's network thread as estimator_node does,
+  peer                test/benchmark/rospy_peer.py, the same per-motor outputs in rospy with numpy,
 and times every ~totals from the RCOut stamp it carries to its receipt, and reads the system's CPU
 time and resident memory from /proc. Each system gets its own roscore on a free port (never 11311),
-torn down after it.
+torn down after it. This is done --rounds times, every other round in the reverse order, so that a
+drift of the machine's background load weighs on every system alike; a system's CPU share is its
+CPU time over all its rounds' wall time, its latencies those of all its rounds.
 
 callgrind: estimator_node under valgrind --tool=callgrind, collecting only inside
 EstimatorNode::onRcOut, driven with RCOut at 100 Hz until its windows are full, then, counters
@@ -17,10 +23,12 @@ zeroed, with --callgrind-messages more; callgrind_annotate's inclusive counts of
 estimation and publishing divided by the messages handled.
 
 Writes one JSON file per part. Usage:
-  scripts/bench_node.py --bin DIR --repo DIR --work DIR [--duration-s 60] [--e2e-json F] [--callgrind-json F]
+  scripts/bench_node.py --bin DIR --repo DIR --work DIR [--duration-s 60] [--rounds 2] [--systems node floor ...]
+                        [--e2e-json F] [--callgrind-json F]
 """
 import argparse
 import json
+import math
 import os
 import re
 import signal
@@ -34,7 +42,8 @@ import yaml
 
 RC_OUT_CHANNELS = 8
 ESTIMATE_TOPICS = {"node": "/propulsion_estimator/totals", "node_every_message": "/propulsion_estimator/totals",
-                   "peer": "/rospy_peer/totals", "floor": ""}
+                   "peer": "/rospy_peer/totals", "floor": "", "floor_inline": ""}
+SYSTEMS = ("node", "node_every_message", "floor", "floor_inline", "peer")
 # callgrind_annotate's names of the three parts of onRcOut (demangled, arguments stripped).
 CALLGRIND_PARTS = [
     ("decoding", "propulsion_estimator::RcOutDecoder::decode"),
@@ -127,18 +136,20 @@ def system_command(system, args, master):
         master.set_param("/rospy_peer", {"model": os.path.join(args.repo, "config", "e300_dji2212_dji9443.yaml"),
                                          "motor_channels": list(range(1, RC_OUT_CHANNELS + 1))})
         return ["/usr/bin/python3", os.path.join(args.repo, "test", "benchmark", "rospy_peer.py")]
-    return [os.path.join(args.bin, "bench_floor_node")]
+    return [os.path.join(args.bin, "bench_floor_node")] + (["--inline"] if system == "floor_inline" else [])
 
 
 def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, pid, drain_s, on_load=None):
     """Runs bench_probe against `system` (a Popen), which must live as long as the probe; calls
-    on_load() once the load has started."""
+    on_load() once the load has started. Returns its JSON, with the latencies measured (ms) under
+    "latencies_ms"."""
     out = os.path.join(args.work, "probe_%s.json" % name)
+    latencies_file = os.path.join(args.work, "latencies_%s.txt" % name)
     command = [os.path.join(args.bin, "bench_probe"), "--duration-s", str(duration_s), "--rate-hz", str(rate_hz),
                "--channels", str(RC_OUT_CHANNELS), "--drain-s", str(drain_s), "--json", out,
                "--connect-timeout-s", "300"]
     if estimate_topic:
-        command += ["--estimate-topic", estimate_topic]
+        command += ["--estimate-topic", estimate_topic, "--latencies-file", latencies_file]
     if pid:
         command += ["--pid", str(pid)]
     probe = subprocess.Popen(command, env=master.env, stdout=subprocess.PIPE, text=True)
@@ -160,39 +171,80 @@ def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, p
     if probe.returncode != 0:
         sys.exit("bench_node.py: bench_probe failed on %s (%s)" % (name, " ".join(command)))
     with open(out) as f:
-        return json.load(f)
+        result = json.load(f)
+    result["latencies_ms"] = []
+    if estimate_topic:
+        with open(latencies_file) as f:
+            result["latencies_ms"] = [float(line) for line in f]
+    return result
+
+
+def run_system(args, system, round_index):
+    """One round of the load on one system: its probe's JSON, plus what it handled and its command."""
+    name = "%s_%d" % (system, round_index)
+    print("== end to end: %s (round %d of %d), %g s at %g Hz" % (
+        system, round_index + 1, args.rounds, args.duration_s, args.rate_hz), flush=True)
+    with Master(args.work, name) as master:
+        command = system_command(system, args, master)
+        log = open(os.path.join(args.work, "%s.log" % name), "w+")
+        process = subprocess.Popen(command, env=master.env, stdout=log, stderr=subprocess.STDOUT,
+                                   start_new_session=True)
+        try:
+            probe = run_probe(args, master, name, args.rate_hz, args.duration_s, ESTIMATE_TOPICS[system],
+                              process, process.pid, drain_s=2.0)
+        finally:
+            stop_group(process, signal.SIGINT, 20.0)
+        log.seek(0)
+        output = log.read()
+        log.close()
+    if ESTIMATE_TOPICS[system]:
+        probe["handled"] = probe["estimates_received"]
+    else:
+        counts = re.search(r'\{"rc_out_received": (\d+), "battery_received": (\d+)\}', output)
+        if not counts:
+            sys.exit("bench_node.py: bench_floor_node printed no counts:\n" + output)
+        probe["handled"] = int(counts.group(1))
+    probe["command"] = " ".join(command)
+    print("   sent %d, handled %d, latency p50 %s ms, CPU %.2f %%, RSS %d -> %d kB" % (
+        probe["rc_out_sent"], probe["handled"], probe["latency_p50_ms"], probe["cpu_percent"], probe["rss_start_kb"],
+        probe["rss_end_kb"]), flush=True)
+    return probe
+
+
+def percentile(sorted_values, p):
+    """The nearest-rank percentile, as bench_probe computes it; None for no values."""
+    if not sorted_values:
+        return None
+    rank = math.ceil(p / 100.0 * len(sorted_values))
+    return sorted_values[min(len(sorted_values) - 1, max(rank, 1) - 1)]
+
+
+def combine_rounds(system, rounds):
+    """A system's row from its rounds: sums, CPU over all the wall time, latencies pooled; the memory
+    of the round that grew most."""
+    latencies = sorted(latency for r in rounds for latency in r["latencies_ms"])
+    grew_most = max(rounds, key=lambda r: r["rss_end_kb"] - r["rss_start_kb"])
+    return dict(system=system, command=rounds[0]["command"],
+                rc_out_sent=sum(r["rc_out_sent"] for r in rounds), handled=sum(r["handled"] for r in rounds),
+                cpu_percent=100.0 * sum(r["cpu_s"] for r in rounds) / sum(r["wall_s"] for r in rounds),
+                cpu_percent_rounds=[r["cpu_percent"] for r in rounds],
+                latency_p50_ms=percentile(latencies, 50.0), latency_p99_ms=percentile(latencies, 99.0),
+                latency_max_ms=latencies[-1] if latencies else None,
+                rss_start_kb=grew_most["rss_start_kb"], rss_end_kb=grew_most["rss_end_kb"])
 
 
 def run_e2e(args):
-    results = []
-    for system in ("node", "node_every_message", "floor", "peer"):
-        print("== end to end: %s, %g s at %g Hz" % (system, args.duration_s, args.rate_hz), flush=True)
-        with Master(args.work, system) as master:
-            command = system_command(system, args, master)
-            log = open(os.path.join(args.work, "%s.log" % system), "w+")
-            process = subprocess.Popen(command, env=master.env, stdout=log, stderr=subprocess.STDOUT,
-                                       start_new_session=True)
-            try:
-                probe = run_probe(args, master, system, args.rate_hz, args.duration_s, ESTIMATE_TOPICS[system],
-                                  process, process.pid, drain_s=2.0)
-            finally:
-                stop_group(process, signal.SIGINT, 20.0)
-            log.seek(0)
-            output = log.read()
-            log.close()
-        row = dict(system=system, command=" ".join(command), **probe)
-        if system == "floor":
-            counts = re.search(r'\{"rc_out_received": (\d+), "battery_received": (\d+)\}', output)
-            if not counts:
-                sys.exit("bench_node.py: bench_floor_node printed no counts:\n" + output)
-            row["handled"] = int(counts.group(1))
-        else:
-            row["handled"] = probe["estimates_received"]
-        print("   sent %d, handled %d, latency p50 %s ms, CPU %.2f %%, RSS %d -> %d kB" % (
-            row["rc_out_sent"], row["handled"], row["latency_p50_ms"], row["cpu_percent"], row["rss_start_kb"],
-            row["rss_end_kb"]), flush=True)
-        results.append(row)
-    return {"duration_s": args.duration_s, "rate_hz": args.rate_hz, "battery_rate_hz": 1.0,
+    rounds = {system: [] for system in args.systems}
+    for round_index in range(args.rounds):
+        order = args.systems if round_index % 2 == 0 else list(reversed(args.systems))
+        for system in order:
+            rounds[system].append(run_system(args, system, round_index))
+    results = [combine_rounds(system, rounds[system]) for system in args.systems]
+    for row in results:
+        print("%s: CPU %.2f %% (rounds: %s), latency p99 %s ms" % (
+            row["system"], row["cpu_percent"], ", ".join("%.2f" % c for c in row["cpu_percent_rounds"]),
+            row["latency_p99_ms"]), flush=True)
+    return {"duration_s": args.duration_s, "rounds": args.rounds, "rate_hz": args.rate_hz, "battery_rate_hz": 1.0,
             "channels": RC_OUT_CHANNELS, "systems": results}
 
 
@@ -270,12 +322,17 @@ def main():
     parser.add_argument("--bin", required=True, help="the devel space's executables (bench_probe, estimator_node)")
     parser.add_argument("--repo", required=True)
     parser.add_argument("--work", required=True, help="logs and intermediate files")
-    parser.add_argument("--duration-s", type=float, default=60.0, help="load per system (e2e)")
+    parser.add_argument("--duration-s", type=float, default=60.0, help="load per system and round (e2e)")
     parser.add_argument("--rate-hz", type=float, default=400.0, help="RCOut rate (e2e)")
+    parser.add_argument("--rounds", type=int, default=2, help="times each system is loaded (e2e)")
+    parser.add_argument("--systems", nargs="+", choices=SYSTEMS, default=list(SYSTEMS),
+                        help="the systems under test (e2e), in this order")
     parser.add_argument("--callgrind-messages", type=int, default=2000)
     parser.add_argument("--e2e-json", help="runs the end-to-end part into this file")
     parser.add_argument("--callgrind-json", help="runs the callgrind part into this file")
     args = parser.parse_args()
+    if args.rounds < 1:
+        parser.error("--rounds: at least 1, not %d" % args.rounds)
     args.bin, args.repo = os.path.abspath(args.bin), os.path.abspath(args.repo)
     os.makedirs(args.work, exist_ok=True)
     if args.e2e_json:

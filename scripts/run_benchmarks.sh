@@ -3,12 +3,13 @@
 # (scripts/write_benchmarks.py), with the machine, the date and the command of each section.
 #   1. google benchmark: bench_estimator, bench_rcout_decode, bench_fit, bench_simulate (JSON);
 #   2. end to end (scripts/bench_node.py): RCOut at 400 Hz and the battery at 1 Hz for
-#      BENCH_DURATION_S seconds (default 60) to estimator_node (publishing every message, then at
-#      50 Hz), the transport floor and the rospy peer;
+#      BENCH_DURATION_S seconds (default 60), BENCH_ROUNDS times (default 2), to estimator_node (at
+#      its default publishing rate, then publishing every message), the two transport floors and the
+#      rospy peer;
 #   3. callgrind: estimator_node's instructions per RCOut message, over BENCH_CALLGRIND_MESSAGES
 #      (default 2000) at 100 Hz after a 15 s warm-up;
 #   4. scripts/bench_diagnose_gap.sh: diagnose_gap on an hour of flight (simulated once, cached).
-# QUICK=1 (make bench QUICK=1) tries the pipeline: 10 s per system, 500 messages under callgrind, no
+# QUICK=1 (make bench QUICK=1) tries the pipeline: one round of 10 s per system, 500 messages under callgrind, no
 # diagnose_gap, and the document goes to the work directory instead of BENCHMARKS.md.
 # Usage, after `make build` and `source .ws/install/setup.sh`: scripts/run_benchmarks.sh [WORK_DIR]
 set -euo pipefail
@@ -21,10 +22,12 @@ work="${1:-.ws/bench}"
 quick="${QUICK:-0}"
 if [ "$quick" = 1 ]; then
   duration_s="${BENCH_DURATION_S:-10}"
+  rounds="${BENCH_ROUNDS:-1}"
   callgrind_messages="${BENCH_CALLGRIND_MESSAGES:-500}"
   document="$work/BENCHMARKS.md"
 else
   duration_s="${BENCH_DURATION_S:-60}"
+  rounds="${BENCH_ROUNDS:-2}"
   callgrind_messages="${BENCH_CALLGRIND_MESSAGES:-2000}"
   document=BENCHMARKS.md
 fi
@@ -60,7 +63,7 @@ for bench in bench_estimator bench_rcout_decode bench_fit bench_simulate; do
 done
 
 run e2e scripts/bench_node.py --bin "$bin" --repo . --work "$work/node" \
-  --duration-s "$duration_s" --e2e-json "$work/e2e.json"
+  --duration-s "$duration_s" --rounds "$rounds" --e2e-json "$work/e2e.json"
 run callgrind scripts/bench_node.py --bin "$bin" --repo . --work "$work/node" \
   --callgrind-messages "$callgrind_messages" --callgrind-json "$work/callgrind.json"
 
@@ -73,7 +76,7 @@ cut -d' ' -f1-3 /proc/loadavg >"$work/load_end.txt"
 echo $(($(date +%s) - started)) >"$work/runtime_s.txt"
 make_command="make bench"
 [ "$quick" = 1 ] && make_command="$make_command QUICK=1"
-for setting in BENCH_DURATION_S BENCH_CALLGRIND_MESSAGES; do
+for setting in BENCH_DURATION_S BENCH_ROUNDS BENCH_CALLGRIND_MESSAGES; do
   [ -n "${!setting:-}" ] && make_command="$make_command $setting=${!setting}"
 done
 python3 scripts/write_benchmarks.py --results "$work" --template scripts/benchmarks_template.md \

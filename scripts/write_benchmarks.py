@@ -22,7 +22,8 @@ import sys
 NOT_MEASURED = "not measured in this run"
 SYSTEM_NAMES = {"node": "estimator_node (defaults: publishes at 50 Hz)",
                 "node_every_message": "estimator_node, `publish_rate_hz: 0` (publishes every message)",
-                "floor": "transport floor (roscpp, does nothing)",
+                "floor": "transport floor (roscpp, does nothing; spinner thread)",
+                "floor_inline": "transport floor, received in roscpp's network thread",
                 "peer": "rospy peer (numpy)"}
 
 
@@ -83,14 +84,16 @@ def number(value, digits=3):
 def e2e_table(e2e):
     if e2e is None:
         return NOT_MEASURED + "."
-    lines = ["| system | RCOut sent / handled | latency p50 | p99 | max | CPU (% of one core) | RSS start → end |",
+    lines = ["| system | RCOut sent / handled | latency p50 | p99 | max | CPU (% of one core): all, each round | "
+             "RSS start → end |",
              "|---|---:|---:|---:|---:|---:|---:|"]
     for row in e2e["systems"]:
-        lines.append("| %s | %d / %d | %s | %s | %s | %.2f %% | %.1f → %.1f MB |" % (
+        lines.append("| %s | %d / %d | %s | %s | %s | %.2f %% (%s) | %.1f → %.1f MB |" % (
             SYSTEM_NAMES[row["system"]], row["rc_out_sent"], row["handled"],
             *("n/a" if row[key] is None else "%.2f ms" % row[key]
               for key in ("latency_p50_ms", "latency_p99_ms", "latency_max_ms")),
-            row["cpu_percent"], row["rss_start_kb"] / 1024.0, row["rss_end_kb"] / 1024.0))
+            row["cpu_percent"], " / ".join("%.2f" % c for c in row["cpu_percent_rounds"]),
+            row["rss_start_kb"] / 1024.0, row["rss_end_kb"] / 1024.0))
     return "\n".join(lines)
 
 
@@ -106,14 +109,17 @@ def e2e_ratios(e2e):
     systems = {row["system"]: row for row in e2e["systems"]}
     lines = ["| ratio | CPU | RSS at the end | latency p50 | latency p99 |", "|---|---:|---:|---:|---:|"]
     for label, top, bottom in (("node / floor", "node", "floor"),
+                               ("node / floor received in the network thread", "node", "floor_inline"),
                                ("node publishing every message / floor", "node_every_message", "floor"),
                                ("peer / node", "peer", "node")):
+        if top not in systems or bottom not in systems:
+            continue
         a, b = systems[top], systems[bottom]
         lines.append("| %s | %s | %s | %s | %s |" % (
             label, ratio(a["cpu_percent"], b["cpu_percent"]), ratio(a["rss_end_kb"], b["rss_end_kb"]),
             ratio(a["latency_p50_ms"], b["latency_p50_ms"]), ratio(a["latency_p99_ms"], b["latency_p99_ms"])))
     lines.append("")
-    lines.append("The floor answers nothing: its latency ratio is n/a.")
+    lines.append("The floors answer nothing: their latency ratios are n/a.")
     return "\n".join(lines)
 
 
@@ -205,7 +211,7 @@ def values(results, args):
              e2e_table=e2e_table(e2e), e2e_ratios=e2e_ratios(e2e), e2e_commands=e2e_commands(e2e, commands, repo),
              callgrind_table=callgrind_table(callgrind), diagnose_gap_table=diagnose_gap_table(
                  results.json("diagnose_gap.json")))
-    for key in ("channels", "rate_hz", "battery_rate_hz", "duration_s"):
+    for key in ("channels", "rate_hz", "battery_rate_hz", "duration_s", "rounds"):
         v[key] = number(e2e[key]) if e2e else "?"
     for key, field in (("callgrind_sent", "rc_out_sent"), ("callgrind_handled", "handled"),
                        ("callgrind_rate_hz", "rate_hz"), ("callgrind_warmup_s", "warmup_s"),

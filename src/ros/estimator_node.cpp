@@ -49,7 +49,8 @@ void copy(const HealthStatus& health, diagnostic_updater::DiagnosticStatusWrappe
 EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : params_(readEstimatorNodeParams(private_nh)),
       diagnostics_(nh, private_nh),
-      publish_limiter_(params_.publish_rate_hz) {
+      publish_limiter_(params_.publish_rate_hz),
+      input_queue_(ros::getGlobalCallbackQueue()) {
   PropulsionModel model = loadModelFile(params_.model);
   model_fingerprint_ = modelFingerprint(model);
   Vehicle vehicle = loadVehicle(nh, params_);
@@ -90,18 +91,6 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   totals_pub_ = private_nh.advertise<PropulsionTotals>("totals", queue);
   payload_pub_ = private_nh.advertise<PayloadEstimate>("payload", queue);
   capability_pub_ = private_nh.advertise<Capability>("capability", 2);
-  const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
-  rc_out_sub_ = nh.subscribe(params_.rc_out_topic, queue, &EstimatorNode::onRcOut, this, hints);
-  battery_sub_ = nh.subscribe(params_.battery_topic, 5, &EstimatorNode::onBattery, this, hints);
-  if (!params_.imu_topic.empty()) imu_sub_ = nh.subscribe(params_.imu_topic, 20, &EstimatorNode::onImu, this, hints);
-  if (!params_.velocity_topic.empty()) {
-    velocity_sub_ = nh.subscribe(params_.velocity_topic, 20, &EstimatorNode::onVelocity, this, hints);
-  }
-  if (!params_.static_pressure_topic.empty()) {
-    static_pressure_sub_ =
-        nh.subscribe(params_.static_pressure_topic, 20, &EstimatorNode::onStaticPressure, this, hints);
-  }
-  subscribeEffectSignals(nh, private_nh, hints);
   tare_srv_ = private_nh.advertiseService("tare", &EstimatorNode::onTare, this);
   detect_hover_srv_ = private_nh.advertiseService("detect_hover", &EstimatorNode::onDetectHover, this);
   reset_srv_ = private_nh.advertiseService("reset", &EstimatorNode::onReset, this);
@@ -140,9 +129,35 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     copy(judgeCapability(last_capability_, last_health_, params_.capability), &status);
   });
   inputs_before_ = outputs_before_ = domain_before_ = effects_before_ = takeSnapshot();
-  diagnostics_timer_ = nh.createTimer(ros::Duration(0.1), [this](const ros::TimerEvent&) { diagnostics_.update(); });
-  capability_timer_ = nh.createTimer(ros::Duration(1.0 / params_.capability.rate_hz),
-                                     [this](const ros::TimerEvent&) { publishCapability(); });
+  // One tick per diagnostic_period (~diagnostic_period, 1 s by default), not a polling timer: every
+  // tick wakes two of roscpp's threads.
+  diagnostics_timer_ = nh.createTimer(ros::Duration(diagnostics_.getPeriod()), [this](const ros::TimerEvent&) {
+    const std::lock_guard<std::mutex> lock(state_);
+    diagnostics_.force_update();
+  });
+  capability_timer_ = nh.createTimer(ros::Duration(1.0 / params_.capability.rate_hz), [this](const ros::TimerEvent&) {
+    const std::lock_guard<std::mutex> lock(state_);
+    publishCapability();
+  });
+
+  // Subscribed last: from here on, callbacks run in roscpp's network thread (input_queue_), before
+  // ros::spin() is reached.
+  ros::NodeHandle input_nh(nh);
+  input_nh.setCallbackQueue(&input_queue_);
+  const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
+  subscribeEffectSignals(input_nh, private_nh, hints);
+  rc_out_sub_ = input_nh.subscribe(params_.rc_out_topic, queue, &EstimatorNode::onRcOut, this, hints);
+  battery_sub_ = input_nh.subscribe(params_.battery_topic, 5, &EstimatorNode::onBattery, this, hints);
+  if (!params_.imu_topic.empty()) {
+    imu_sub_ = input_nh.subscribe(params_.imu_topic, 20, &EstimatorNode::onImu, this, hints);
+  }
+  if (!params_.velocity_topic.empty()) {
+    velocity_sub_ = input_nh.subscribe(params_.velocity_topic, 20, &EstimatorNode::onVelocity, this, hints);
+  }
+  if (!params_.static_pressure_topic.empty()) {
+    static_pressure_sub_ =
+        input_nh.subscribe(params_.static_pressure_topic, 20, &EstimatorNode::onStaticPressure, this, hints);
+  }
 }
 
 void EstimatorNode::loadTare() {
@@ -188,7 +203,7 @@ void EstimatorNode::setTareFileStatus(std::uint8_t level, const std::string& mes
   }
 }
 
-void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& input_nh, const ros::NodeHandle& private_nh,
                                            const ros::TransportHints& hints) {
   const effects::ModelEffects& fx = estimator_->model().effects();
   if (fx.empty()) {
@@ -211,16 +226,16 @@ void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& nh, const ros::NodeH
         require(kind, "static_pressure_topic", params_.static_pressure_topic);
         require(kind, "air_temperature_topic", params_.air_temperature_topic);
         air_temperature_sub_ =
-            nh.subscribe(params_.air_temperature_topic, 5, &EstimatorNode::onAirTemperature, this, hints);
+            input_nh.subscribe(params_.air_temperature_topic, 5, &EstimatorNode::onAirTemperature, this, hints);
         break;
       case effects::Signal::kHeight:
         require(kind, "rangefinder_topic", params_.rangefinder_topic);
-        range_sub_ = nh.subscribe(params_.rangefinder_topic, 20, &EstimatorNode::onRange, this, hints);
+        range_sub_ = input_nh.subscribe(params_.rangefinder_topic, 20, &EstimatorNode::onRange, this, hints);
         break;
       case effects::Signal::kMotorTemperature:
         require(kind, "motor_temperature_topic", params_.motor_temperature_topic);
         motor_temperature_sub_ =
-            nh.subscribe(params_.motor_temperature_topic, 5, &EstimatorNode::onMotorTemperature, this, hints);
+            input_nh.subscribe(params_.motor_temperature_topic, 5, &EstimatorNode::onMotorTemperature, this, hints);
         break;
       case effects::Signal::kVerticalSpeed: require(kind, "velocity_topic", params_.velocity_topic); break;
       case effects::Signal::kNone: break;
@@ -237,6 +252,7 @@ HealthSnapshot EstimatorNode::takeSnapshot() const {
 }
 
 void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) {
+  const std::lock_guard<std::mutex> lock(state_);
   ++inputs_.received[static_cast<int>(NodeInput::kRcOut)];
   if (!decoder_.decode(*message, &rc_out_, &inputs_.last_decoding_error)) {
     ++inputs_.rc_out_undecodable;
@@ -256,6 +272,7 @@ void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) 
 }
 
 void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message) {
+  const std::lock_guard<std::mutex> lock(state_);
   ++inputs_.received[static_cast<int>(NodeInput::kBattery)];
   const double now = ros::Time::now().toSec();
   logRejection(estimator_->addBattery(now, message->voltage));
@@ -264,6 +281,7 @@ void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message
 }
 
 void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
+  const std::lock_guard<std::mutex> lock(state_);
   ++inputs_.received[static_cast<int>(NodeInput::kImu)];
   // REP-145: a covariance of -1 says the orientation is not provided.
   if (message->orientation_covariance[0] == -1.0) {
@@ -278,24 +296,29 @@ void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
 }
 
 void EstimatorNode::onVelocity(const geometry_msgs::TwistStamped::ConstPtr& message) {
+  const std::lock_guard<std::mutex> lock(state_);
   ++inputs_.received[static_cast<int>(NodeInput::kVelocity)];
   logRejection(estimator_->addVerticalSpeed(ros::Time::now().toSec(), message->twist.linear.z));
 }
 
 void EstimatorNode::onStaticPressure(const sensor_msgs::FluidPressure::ConstPtr& message) {
+  const std::lock_guard<std::mutex> lock(state_);
   logRejection(estimator_->addStaticPressure(ros::Time::now().toSec(), message->fluid_pressure));
 }
 
 void EstimatorNode::onAirTemperature(const sensor_msgs::Temperature::ConstPtr& message) {
+  const std::lock_guard<std::mutex> lock(state_);
   logRejection(estimator_->addAirTemperature(ros::Time::now().toSec(), message->temperature));
 }
 
 void EstimatorNode::onRange(const sensor_msgs::Range::ConstPtr& message) {
+  const std::lock_guard<std::mutex> lock(state_);
   logRejection(estimator_->addRange(ros::Time::now().toSec(), message->range, message->min_range,
                                     message->max_range));
 }
 
 void EstimatorNode::onMotorTemperature(const sensor_msgs::Temperature::ConstPtr& message) {
+  const std::lock_guard<std::mutex> lock(state_);
   logRejection(estimator_->addMotorTemperature(ros::Time::now().toSec(), message->temperature));
 }
 
@@ -402,7 +425,12 @@ void EstimatorNode::publishCapability() {
 }
 
 bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
-  const TareResult tare = estimator_->tare(ros::Time::now().toSec());
+  TareResult tare;
+  {
+    const std::lock_guard<std::mutex> lock(state_);
+    tare = estimator_->tare(ros::Time::now().toSec());
+  }
+  // The file is written (fsync) without the lock: the network thread goes on estimating meanwhile.
   response.success = tare.ok;
   response.message = tare.message;
   if (tare.ok && !params_.tare_file.empty()) {
@@ -421,6 +449,7 @@ bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
 }
 
 bool EstimatorNode::onDetectHover(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  const std::lock_guard<std::mutex> lock(state_);
   estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
   const EstimatorOutput& out = estimator_->output();
   response.success = out.hover.hovering;
@@ -436,9 +465,11 @@ bool EstimatorNode::onDetectHover(std_srvs::Trigger::Request&, std_srvs::Trigger
 }
 
 bool EstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  std::unique_lock<std::mutex> lock(state_);
   estimator_->reset();
   motor_health_->clear();
-  const MassEstimate& p = estimator_->output().payload;
+  const MassEstimate p = estimator_->output().payload;
+  lock.unlock();
   std::ostringstream message;
   message << "windows and tare cleared; empty mass now "
           << (std::isnan(p.empty_mass_kg) ? std::string("unknown") : std::to_string(p.empty_mass_kg) + " kg")

@@ -4,6 +4,9 @@
 // --duration-s; times every propulsion_estimator/PropulsionTotals on --estimate-topic from the
 // RCOut stamp it carries to its receipt; reads the system under test's CPU time (utime + stime of
 // /proc/<pid>/stat) and resident memory (VmRSS) before and after the load. Writes one JSON object.
+// An estimate is timed when roscpp's network thread has read it (InlineCallbackQueue, as
+// estimator_node receives): the hand-over to a spinner thread is the probe's own cost, not the
+// system's under test.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -19,11 +22,13 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/BatteryState.h>
 #include <unistd.h>
 
 #include "propulsion_estimator/PropulsionTotals.h"
+#include "propulsion_estimator/ros/inline_callback_queue.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
 namespace pe = propulsion_estimator;
@@ -45,6 +50,7 @@ struct Options {
   double connect_timeout_s = 120.0;
   double drain_s = 2.0;
   std::string json;
+  std::string latencies_file;
 };
 
 // CPU seconds (user + system) the process has used so far, from /proc/<pid>/stat.
@@ -93,13 +99,16 @@ std::string number(double value) {
 
 class Probe {
  public:
-  explicit Probe(const Options& options) : options_(options) {
+  explicit Probe(const Options& options) : options_(options), estimate_queue_(ros::getGlobalCallbackQueue()) {
     ros::AdvertiseOptions rc_out(options.rc_out_topic, 100, pe::kRcOutMd5Sum, pe::kRcOutDataType,
                                  pe::rcOutDefinition());
     rc_out_pub_ = nh_.advertise(rc_out);
     battery_pub_ = nh_.advertise<sensor_msgs::BatteryState>(options.battery_topic, 5);
     if (!options.estimate_topic.empty()) {
-      estimate_sub_ = nh_.subscribe(options.estimate_topic, 1000, &Probe::onEstimate, this,
+      latencies_s_.reserve(static_cast<std::size_t>(options.duration_s * options.rate_hz) + 1);
+      ros::NodeHandle estimate_nh(nh_);
+      estimate_nh.setCallbackQueue(&estimate_queue_);
+      estimate_sub_ = estimate_nh.subscribe(options.estimate_topic, 1000, &Probe::onEstimate, this,
                                     ros::TransportHints().tcpNoDelay());
     }
   }
@@ -203,6 +212,14 @@ class Probe {
          << ", \"latency_max_ms\": " << number(timed && !sorted.empty() ? 1e3 * sorted.back() : NAN)
          << ", \"cpu_s\": " << number(cpu_s) << ", \"cpu_percent\": " << number(100.0 * cpu_s / wall_s)
          << ", \"rss_start_kb\": " << rss_start_kb << ", \"rss_end_kb\": " << rss_end_kb << "}\n";
+    if (!options_.latencies_file.empty()) {
+      std::ofstream latencies(options_.latencies_file);
+      for (double latency_s : sorted) latencies << number(1e3 * latency_s) << "\n";
+      if (!latencies) {
+        std::cerr << "bench_probe: cannot write " << options_.latencies_file << "\n";
+        return 1;
+      }
+    }
     if (options_.json.empty()) {
       std::cout << json.str();
       return 0;
@@ -218,11 +235,13 @@ class Probe {
 
   Options options_;
   ros::NodeHandle nh_;
-  ros::Publisher rc_out_pub_, battery_pub_;
-  ros::Subscriber estimate_sub_;
   long sent_ = 0, battery_sent_ = 0;
   std::mutex mutex_;
   std::vector<double> latencies_s_;
+  pe::InlineCallbackQueue estimate_queue_;
+  ros::Publisher rc_out_pub_, battery_pub_;
+  // Last, so destroyed first: its callback uses the members above.
+  ros::Subscriber estimate_sub_;
 };
 
 }  // namespace
@@ -245,6 +264,7 @@ int main(int argc, char** argv) {
   app.add_option("--connect-timeout-s", options.connect_timeout_s);
   app.add_option("--drain-s", options.drain_s, "longest wait for the last estimates after the load");
   app.add_option("--json", options.json, "output file; none: stdout");
+  app.add_option("--latencies-file", options.latencies_file, "every latency measured, in ms, one per line, sorted");
   CLI11_PARSE(app, argc, argv);
   try {
     Probe probe(options);

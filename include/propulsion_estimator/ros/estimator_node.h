@@ -1,10 +1,12 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/TwistStamped.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/FluidPressure.h>
@@ -24,12 +26,17 @@
 #include "propulsion_estimator/estimation/health_summary.h"
 #include "propulsion_estimator/estimation/rate_limiter.h"
 #include "propulsion_estimator/ros/estimator_params.h"
+#include "propulsion_estimator/ros/inline_callback_queue.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
 namespace propulsion_estimator {
 
 /// estimator_node: adapts topics, services and diagnostics to the core Estimator. Nothing is
 /// computed or judged here: the diagnostics copy the health summary (estimation/health_summary.h).
+///
+/// Threads: the subscriptions' callbacks run in roscpp's network thread as each message is read
+/// (InlineCallbackQueue); timers and services run in the thread that spins the global queue
+/// (ros::spin()). The two share the estimator under one mutex.
 class EstimatorNode {
  public:
   // Throws ConfigError for bad parameters, model or URDF. A tare file that cannot be read is moved
@@ -47,7 +54,7 @@ class EstimatorNode {
   void onMotorTemperature(const sensor_msgs::Temperature::ConstPtr& message);
   // Subscribes to what the model's effects read (and refuses a needed topic set to ""); logs
   // which effects apply with which parameters.
-  void subscribeEffectSignals(ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+  void subscribeEffectSignals(ros::NodeHandle& input_nh, const ros::NodeHandle& private_nh,
                               const ros::TransportHints& hints);
   // Applies the tare file of an earlier run, if any and taken with this model.
   void loadTare();
@@ -73,8 +80,6 @@ class EstimatorNode {
   CapabilityReport last_capability_;
   MotorHealthVerdict last_health_;
 
-  ros::Subscriber rc_out_sub_, battery_sub_, imu_sub_, velocity_sub_;
-  ros::Subscriber static_pressure_sub_, air_temperature_sub_, range_sub_, motor_temperature_sub_;
   bool pass_battery_current_ = false;  // only a supply_resistance effect reads it
   ros::Publisher motors_pub_, totals_pub_, payload_pub_, capability_pub_;
   ros::ServiceServer tare_srv_, detect_hover_srv_, reset_srv_;
@@ -93,6 +98,14 @@ class EstimatorNode {
   InputActivity inputs_;
   // Counts at each diagnostics task's previous run, from which it derives rates and fractions.
   HealthSnapshot inputs_before_, outputs_before_, domain_before_, effects_before_;
+
+  // What the subscriptions' callbacks (network thread) share with timers and services (spinner).
+  std::mutex state_;
+  InlineCallbackQueue input_queue_;
+  // Declared last, so destroyed first: a subscriber's destruction waits for its running callback,
+  // which uses everything above.
+  ros::Subscriber rc_out_sub_, battery_sub_, imu_sub_, velocity_sub_;
+  ros::Subscriber static_pressure_sub_, air_temperature_sub_, range_sub_, motor_temperature_sub_;
 };
 
 }  // namespace propulsion_estimator

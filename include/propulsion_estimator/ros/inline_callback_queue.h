@@ -1,0 +1,35 @@
+#pragma once
+
+#include <cstdint>
+#include <mutex>
+
+#include <ros/callback_queue_interface.h>
+
+namespace propulsion_estimator {
+
+/// A roscpp callback queue that runs each callback at once, in the thread that adds it: for a
+/// subscription, roscpp's network thread that has just read the message. This spares the hand-over
+/// to a spinner thread (a futex wake and a context switch per message), which costs more than the
+/// estimate itself (BENCHMARKS.md). Callbacks given to it must be short and must not block: while
+/// one runs, the network thread reads nothing.
+///
+/// A callback that cannot run now (roscpp answers TryAgain when the same subscription's callback is
+/// already running in another thread) is handed to `fallback`, a queue a spinner serves. An
+/// exception from a callback is logged and dropped: it must not unwind roscpp's thread.
+class InlineCallbackQueue : public ros::CallbackQueueInterface {
+ public:
+  /// `fallback` must outlive this queue.
+  explicit InlineCallbackQueue(ros::CallbackQueueInterface* fallback);
+
+  void addCallback(const ros::CallbackInterfacePtr& callback, std::uint64_t owner_id) override;
+  /// Returns once no callback of `owner_id` runs (roscpp calls it when a subscriber shuts down,
+  /// after which it adds none of that owner's).
+  void removeByID(std::uint64_t owner_id) override;
+
+ private:
+  ros::CallbackQueueInterface* fallback_;
+  // Held while a callback runs. Recursive: a callback may shut down a subscriber of this queue.
+  std::recursive_mutex calling_;
+};
+
+}  // namespace propulsion_estimator
