@@ -78,13 +78,13 @@ validate-gap: build
 		--bin $(WS)/install/propulsion_estimator/lib/propulsion_estimator --repo $(CURDIR) \
 		--work $(WS)/validate_gap --markdown VALIDATION.md
 
-# Every benchmark (google benchmark, the node end to end against a transport floor and a rospy
+# Every benchmark (google benchmark, the node end to end against two transport floors and a rospy
 # peer, callgrind's instructions per message, diagnose_gap on an hour of flight), then rewrites
-# BENCHMARKS.md with the figures, the machine, the date and the commands: about 6 minutes after
-# the build (measured 2026-11-23 on the loaded 2-core VM: 2 min 42 s with BENCH_DURATION_S=10, and
-# the default 60 s adds 2.5 min). QUICK=1 tries it in about 2.5 minutes (10 s per system, 500
-# messages under callgrind, no diagnose_gap) and writes .ws/bench/BENCHMARKS.md instead;
-# BENCH_DURATION_S=N sets the end-to-end load per system (default 60).
+# BENCHMARKS.md with the figures, the machine, the date and the commands: 12.5 minutes after the
+# build (measured 2026-11-23 on the quiet 2-core VM). QUICK=1 tries it in about 3 minutes (one round
+# of 10 s per system, 500 messages under callgrind, no diagnose_gap) and writes
+# .ws/bench/BENCHMARKS.md instead; BENCH_DURATION_S=N sets the end-to-end load per system and round
+# (default 60), BENCH_ROUNDS=N the rounds (default 2).
 QUICK ?= 0
 bench: build
 	$(SETUP) && QUICK=$(QUICK) scripts/run_benchmarks.sh

@@ -94,10 +94,10 @@ TEST(InlineCallbackQueue, RemoveByIdWaitsForTheRunningCallback) {
   EXPECT_TRUE(removed);
 }
 
-TEST(InlineCallbackQueue, ACallbackMayShutDownItsOwnSubscriber) {
+TEST(InlineCallbackQueue, ACallbackMayShutDownAnotherSubscriberOfTheQueue) {
   ros::CallbackQueue fallback;
   pe::InlineCallbackQueue queue(&fallback);
-  auto callback = boost::make_shared<FakeCallback>([&queue] { queue.removeByID(3); }, ros::CallbackInterface::Success);
+  auto callback = boost::make_shared<FakeCallback>([&queue] { queue.removeByID(4); }, ros::CallbackInterface::Success);
   queue.addCallback(callback, 3);  // would deadlock with a non-recursive lock
   EXPECT_EQ(callback->calls, 1);
 }

@@ -11,7 +11,8 @@ namespace propulsion_estimator {
 /// subscription, roscpp's network thread that has just read the message. This spares the hand-over
 /// to a spinner thread (a futex wake and a context switch per message), which costs more than the
 /// estimate itself (BENCHMARKS.md). Callbacks given to it must be short and must not block: while
-/// one runs, the network thread reads nothing.
+/// one runs, the network thread reads nothing. Nor may a subscription's callback shut down its own
+/// subscriber: roscpp holds that subscription's lock while it adds the callback.
 ///
 /// A callback that cannot run now (roscpp answers TryAgain when the same subscription's callback is
 /// already running in another thread) is handed to `fallback`, a queue a spinner serves. An
@@ -28,7 +29,7 @@ class InlineCallbackQueue : public ros::CallbackQueueInterface {
 
  private:
   ros::CallbackQueueInterface* fallback_;
-  // Held while a callback runs. Recursive: a callback may shut down a subscriber of this queue.
+  // Held while a callback runs. Recursive: a callback may shut down another subscriber of this queue.
   std::recursive_mutex calling_;
 };
 
