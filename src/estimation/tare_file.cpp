@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -98,6 +99,25 @@ void saveTareFile(const std::string& path, const TareRecord& record) {
     ::fsync(directory);
     ::close(directory);
   }
+}
+
+std::vector<std::string> removeStaleTareTemporaries(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : ".";
+  const std::string prefix = target.filename().string() + ".tmp-";
+  std::vector<std::string> removed;
+  std::error_code error;
+  const auto now = fs::file_time_type::clock::now();
+  for (fs::directory_iterator entry(folder, error), end; !error && entry != end; entry.increment(error)) {
+    const std::string name = entry->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    std::error_code entry_error;
+    const auto written = fs::last_write_time(entry->path(), entry_error);
+    if (entry_error || std::chrono::duration<double>(now - written).count() <= kStaleTareTemporaryAgeS) continue;
+    if (fs::remove(entry->path(), entry_error) && !entry_error) removed.push_back(entry->path().string());
+  }
+  return removed;
 }
 
 void removeTareFile(const std::string& path) {

@@ -165,6 +165,9 @@ void EstimatorNode::loadTare() {
     setTareFileStatus(DiagnosticStatus::OK, "none: tare_file is empty, ~tare is not persisted");
     return;
   }
+  for (const std::string& stale : removeStaleTareTemporaries(params_.tare_file)) {
+    ROS_WARN_STREAM("tare file: removed " << stale << ", left by a ~tare that was interrupted");
+  }
   std::optional<TareRecord> tare;
   try {
     tare = loadTareFile(params_.tare_file);

@@ -59,6 +59,13 @@ bool RcOutDecoder::decodePayload(const std::uint8_t* data, std::uint32_t size, R
     }
     out->channels.resize(count);
     for (std::uint16_t& channel : out->channels) ros::serialization::deserialize(reader, channel);
+    // Bytes after the channels: the message is not the RCOut its type says (a channel count too
+    // small, or two messages run together), and its channels cannot be trusted.
+    if (reader.getLength() != 0) {
+      *error = "malformed mavros_msgs/RCOut: " + std::to_string(reader.getLength()) + " bytes after the " +
+               std::to_string(count) + " channels";
+      return false;
+    }
   } catch (const ros::serialization::StreamOverrunException& e) {
     *error = std::string("malformed mavros_msgs/RCOut: ") + e.what();
     return false;

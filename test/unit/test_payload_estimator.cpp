@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -149,6 +150,35 @@ TEST(TareFile, SaysWhenItCannotBeWrittenRemovedOrMovedAside) {
             folder + "/absent.yaml: cannot move the tare file to " + folder +
                 "/absent.yaml.bad-1700000000: No such file or directory");
   std::filesystem::remove_all(folder);
+}
+
+// A node killed while ~tare wrote leaves its temporary file: the next start removes it once stale.
+TEST(TareFile, RemovesOnlyStaleTemporariesOfItsOwnFile) {
+  namespace fs = std::filesystem;
+  const std::string folder = testing::TempDir() + "/pe_tare_stale";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const std::string path = folder + "/tare.yaml";
+  const auto age = [](const std::string& file, double seconds) {
+    fs::last_write_time(file, fs::file_time_type::clock::now() -
+                                  std::chrono::duration_cast<fs::file_time_type::duration>(
+                                      std::chrono::duration<double>(seconds)));
+  };
+  std::ofstream(path) << "empty_mass_kg: 1.25\nmodel: m.yaml\nmodel_fingerprint: '0123'\n";
+  std::ofstream(path + ".tmp-4242-0-77") << "killed mid-write";
+  std::ofstream(path + ".tmp-4343-0-77") << "being written now";
+  std::ofstream(folder + "/other.yaml.tmp-4242-0-77") << "another file's";
+  age(path, 3600.0);
+  age(path + ".tmp-4242-0-77", pe::kStaleTareTemporaryAgeS + 5.0);
+  age(folder + "/other.yaml.tmp-4242-0-77", 3600.0);
+  EXPECT_EQ(pe::removeStaleTareTemporaries(path), (std::vector<std::string>{path + ".tmp-4242-0-77"}));
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"other.yaml.tmp-4242-0-77", "tare.yaml", "tare.yaml.tmp-4343-0-77"}));
+  // No folder (a tare file not yet written anywhere): nothing to remove, no error.
+  EXPECT_TRUE(pe::removeStaleTareTemporaries(folder + "/absent/tare.yaml").empty());
+  fs::remove_all(folder);
 }
 
 TEST(TareFile, MovesABadFileAside) {

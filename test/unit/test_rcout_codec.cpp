@@ -109,6 +109,20 @@ TEST(RcOutCodec, DecodesAPayloadWhoseTypeWasCheckedElsewhere) {
   EXPECT_EQ(error, "malformed mavros_msgs/RCOut: 4 channels announced, 5 bytes left");
 }
 
+TEST(RcOutCodec, RefusesBytesAfterTheChannels) {
+  pe::RcOutMessage sent;
+  sent.header.stamp = ros::Time(3, 0);
+  sent.channels = {1600, 1610, 1590, 1605};
+  std::vector<std::uint8_t> bytes(ros::serialization::serializationLength(sent.header) + 4 + 8 + 3);
+  ros::serialization::OStream writer(bytes.data(), bytes.size());
+  ros::serialization::serialize(writer, sent.header);
+  ros::serialization::serialize(writer, sent.channels);
+  pe::RcOutMessage received;
+  std::string error;
+  EXPECT_FALSE(pe::RcOutDecoder::decodePayload(bytes.data(), bytes.size(), &received, &error));
+  EXPECT_EQ(error, "malformed mavros_msgs/RCOut: 3 bytes after the 4 channels");
+}
+
 // Found by fuzz_rcout: an empty message was read from a null pointer (undefined behaviour).
 TEST(RcOutCodec, RefusesAnEmptyMessage) {
   topic_tools::ShapeShifter shifter;

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace propulsion_estimator {
 
@@ -27,6 +28,13 @@ std::optional<TareRecord> loadTareFile(const std::string& path);
 /// `path` is written, fsynced and renamed over `path`, then the folder is fsynced. InputError
 /// naming the file and the failed step when it cannot be written (the temporary file removed).
 void saveTareFile(const std::string& path, const TareRecord& record);
+/// A write takes milliseconds: a temporary file older than this was left by a process killed
+/// while it wrote.
+constexpr double kStaleTareTemporaryAgeS = 60.0;
+/// Removes the temporary files of saveTareFile() next to `path` ("<path>.tmp-...") that are older
+/// than kStaleTareTemporaryAgeS, and returns their names. A file that cannot be removed is left
+/// (and not returned); never throws.
+std::vector<std::string> removeStaleTareTemporaries(const std::string& path);
 /// Removes the file if it exists; InputError naming it when it exists and cannot be removed.
 void removeTareFile(const std::string& path);
 /// Moves a tare file that cannot be used out of the way, to "<path>.bad-<unix_time>", and returns

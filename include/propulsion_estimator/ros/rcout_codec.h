@@ -26,8 +26,9 @@ struct RcOutMessage {
 
 /// Decoder of mavros_msgs/RCOut. decode() decodes into `out`, reusing its and `buffer`'s storage
 /// (no allocation once they are large enough). Returns false with a one-line reason for another
-/// type or a malformed payload. Storage that one message grew beyond kMaxKeptBytes is released:
-/// the buffer after that message, `out`'s channels and frame_id at the next decode().
+/// type or a malformed payload (cut short, or with bytes after its channels). Storage that one
+/// message grew beyond kMaxKeptBytes is released: the buffer after that message, `out`'s channels
+/// and frame_id at the next decode().
 class RcOutDecoder {
  public:
   /// Far above any real RCOut (a few dozen bytes); a larger buffer is not kept between messages.
