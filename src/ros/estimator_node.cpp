@@ -129,9 +129,8 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     copy(judgeCapability(last_capability_, last_health_, params_.capability), &status);
   });
   inputs_before_ = outputs_before_ = domain_before_ = effects_before_ = takeSnapshot();
-  // One tick per diagnostic_period (~diagnostic_period, 1 s by default), not a polling timer: every
-  // tick wakes two of roscpp's threads.
-  diagnostics_timer_ = nh.createTimer(ros::Duration(diagnostics_.getPeriod()), [this](const ros::TimerEvent&) {
+  // One tick per diagnostic_period, not a polling timer: every tick wakes two of roscpp's threads.
+  diagnostics_timer_ = nh.createTimer(ros::Duration(params_.diagnostic_period_s), [this](const ros::TimerEvent&) {
     const std::lock_guard<std::mutex> lock(state_);
     diagnostics_.force_update();
   });

@@ -131,7 +131,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("capability/motor_health/block_s", &k.motor_health.block_s);
   read.optional("capability/motor_health/window_s", &k.motor_health.window_s);
   read.optional("capability/motor_health/max_gap", &k.motor_health.max_gap);
-  read.readElsewhere("diagnostic_period");  // diagnostic_updater's, in seconds
+  read.optional("diagnostic_period", &p.diagnostic_period_s);  // diagnostic_updater reads it too
   read.refuseUnknown();
   p.health.battery_input = p.battery_topic;
   p.health.rc_out_input = p.rc_out_topic;
@@ -142,6 +142,11 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   p.health.motor_temperature_input = p.motor_temperature_topic;
   p.health.validate();
   k.validate();
+  // 0 would tick the diagnostics timer without pause.
+  if (!(p.diagnostic_period_s > 0.0) || !std::isfinite(p.diagnostic_period_s)) {
+    throw ConfigError(nh.resolveName("diagnostic_period") + ": must be a positive number of seconds, got " +
+                      formatNumber(p.diagnostic_period_s));
+  }
   if (!(p.publish_rate_hz >= 0.0) || !std::isfinite(p.publish_rate_hz)) {
     throw ConfigError(nh.resolveName("publish_rate_hz") + ": must be 0 (every message) or a positive rate in Hz, got " +
                       formatNumber(p.publish_rate_hz));
@@ -181,6 +186,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
                   << ", clock_jump_reset_s: " << c.clock_jump_reset_s
                   << ", max_stamp_ahead_s: " << c.max_stamp_ahead_s
                   << ", domain_warn_fraction: " << p.health.domain_warn_fraction
+                  << ", diagnostic_period: " << p.diagnostic_period_s
                   << "\n  capability: rate_hz " << k.rate_hz << ", pwm_max_us "
                   << (k.pwm_max_us ? std::to_string(*k.pwm_max_us) : "(the model's domain maximum)")
                   << ", min_thrust_to_weight " << k.min_thrust_to_weight << ", reserve_s " << k.reserve_s

@@ -52,6 +52,10 @@ class BadParametersTest(unittest.TestCase):
         self.assertEqual(start("e", {"model": MODEL, "hover/window_s": -1.0}),
                          (1, "hover/window_s: must be a positive number, got -1"))
 
+    def test_diagnostic_period_not_positive(self):
+        self.assertEqual(start("p", {"model": MODEL, "diagnostic_period": 0.0}),
+                         (1, "/p/diagnostic_period: must be a positive number of seconds, got 0"))
+
     def test_battery_capacity_not_positive(self):
         self.assertEqual(start("k", {"model": MODEL, "capability/battery/capacity_ah": 0.0,
                                      "capability/battery/cells": 3}),

@@ -62,7 +62,8 @@ TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
   EXPECT_EQ(number("clock_jump_reset_s"), c.clock_jump_reset_s);
   EXPECT_EQ(number("max_stamp_ahead_s"), c.max_stamp_ahead_s);
   EXPECT_EQ(number("domain_warn_fraction"), node.health.domain_warn_fraction);
-  EXPECT_EQ(number("diagnostic_period"), 1.0);  // diagnostic_updater's own default
+  EXPECT_EQ(number("diagnostic_period"), node.diagnostic_period_s);
+  EXPECT_EQ(node.diagnostic_period_s, 1.0);  // diagnostic_updater's own default
   EXPECT_FALSE(c.empty_mass_kg.has_value());     // commented in the template: not set
   const pe::CapabilityConfig& k = node.capability;
   EXPECT_EQ(number("capability/rate_hz"), k.rate_hz);

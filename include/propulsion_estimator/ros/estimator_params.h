@@ -30,6 +30,9 @@ struct EstimatorNodeParams {
   // accepted RCOut. Every message is still estimated and averaged. 50 Hz passes MAVROS' usual
   // rc/out whole, and keeps a 400 Hz stream's cost near roscpp's own (BENCHMARKS.md).
   double publish_rate_hz = 50.0;
+  // Seconds between /diagnostics updates; diagnostic_updater reads the same parameter (and has the
+  // same default), the node ticks it once per period.
+  double diagnostic_period_s = 1.0;
   HealthConfig health;  // domain_warn_fraction; its input names are the topics
   EstimatorConfig estimator;
   CapabilityConfig capability;
