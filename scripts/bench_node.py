@@ -141,8 +141,8 @@ def system_command(system, args, master):
 
 def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, pid, drain_s, on_load=None):
     """Runs bench_probe against `system` (a Popen), which must live as long as the probe; calls
-    on_load() once the load has started. Returns its JSON, with the latencies measured (ms) under
-    "latencies_ms"."""
+    on_load() once the load has started. Returns its JSON, with the latencies measured (ms, sorted)
+    under "latencies_ms"."""
     out = os.path.join(args.work, "probe_%s.json" % name)
     latencies_file = os.path.join(args.work, "latencies_%s.txt" % name)
     command = [os.path.join(args.bin, "bench_probe"), "--duration-s", str(duration_s), "--rate-hz", str(rate_hz),
@@ -206,13 +206,13 @@ def run_system(args, system, round_index):
         probe["handled"] = int(counts.group(1))
     probe["command"] = " ".join(command)
     print("   sent %d, handled %d, latency p50 %s ms, CPU %.2f %%, RSS %d -> %d kB" % (
-        probe["rc_out_sent"], probe["handled"], probe["latency_p50_ms"], probe["cpu_percent"], probe["rss_start_kb"],
-        probe["rss_end_kb"]), flush=True)
+        probe["rc_out_sent"], probe["handled"], percentile(probe["latencies_ms"], 50.0), probe["cpu_percent"],
+        probe["rss_start_kb"], probe["rss_end_kb"]), flush=True)
     return probe
 
 
 def percentile(sorted_values, p):
-    """The nearest-rank percentile, as bench_probe computes it; None for no values."""
+    """The nearest-rank percentile of sorted values; None for no values."""
     if not sorted_values:
         return None
     rank = math.ceil(p / 100.0 * len(sorted_values))

@@ -49,8 +49,7 @@ void copy(const HealthStatus& health, diagnostic_updater::DiagnosticStatusWrappe
 EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : params_(readEstimatorNodeParams(private_nh)),
       diagnostics_(nh, private_nh),
-      publish_limiter_(params_.publish_rate_hz),
-      input_queue_(ros::getGlobalCallbackQueue()) {
+      publish_limiter_(params_.publish_rate_hz) {
   PropulsionModel model = loadModelFile(params_.model);
   model_fingerprint_ = modelFingerprint(model);
   Vehicle vehicle = loadVehicle(nh, params_);
@@ -82,10 +81,10 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   }
   rc_out_.channels.reserve(32);
 
-  // Queues of RCOut and of the estimates hold half a second at 1000 Hz (about 100 kB at most): on
-  // a loaded companion computer the node's threads may not run for tens of milliseconds, and MAVROS
-  // may deliver a backlog in a burst; a shorter queue drops messages (the soak rostest counts
-  // every answer).
+  // The estimates' queues hold half a second at 1000 Hz (about 100 kB at most): on a loaded
+  // companion computer a subscriber may not read for tens of milliseconds, and a shorter queue drops
+  // messages (the soak rostest counts every answer). RCOut is handled as it is read (input_queue_);
+  // its queue matters only for a message handed to ros::spin() (InlineCallbackQueue's fallback).
   constexpr std::uint32_t queue = 500;
   motors_pub_ = private_nh.advertise<MotorEstimates>("motors", queue);
   totals_pub_ = private_nh.advertise<PropulsionTotals>("totals", queue);

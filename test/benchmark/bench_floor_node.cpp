@@ -10,7 +10,6 @@
 #include <iostream>
 
 #include <CLI/CLI.hpp>
-#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/BatteryState.h>
 #include <topic_tools/shape_shifter.h>
@@ -25,7 +24,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   std::atomic<long> rc_out{0}, battery{0};
-  propulsion_estimator::InlineCallbackQueue inline_queue(ros::getGlobalCallbackQueue());
+  propulsion_estimator::InlineCallbackQueue inline_queue;
   ros::NodeHandle nh;
   if (in_network_thread) nh.setCallbackQueue(&inline_queue);
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();

@@ -3,7 +3,9 @@
 // hover-like PWM plus noise, stamped now, and sensor_msgs/BatteryState at --battery-rate-hz, for
 // --duration-s; times every propulsion_estimator/PropulsionTotals on --estimate-topic from the
 // RCOut stamp it carries to its receipt; reads the system under test's CPU time (utime + stime of
-// /proc/<pid>/stat) and resident memory (VmRSS) before and after the load. Writes one JSON object.
+// /proc/<pid>/stat) and resident memory (VmRSS) before and after the load. Writes one JSON object
+// and the latencies themselves (--latencies-file): scripts/bench_node.py pools them over its rounds
+// and takes the percentiles.
 // An estimate is timed when roscpp's network thread has read it (InlineCallbackQueue, as
 // estimator_node receives): the hand-over to a spinner thread is the probe's own cost, not the
 // system's under test.
@@ -22,7 +24,6 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/BatteryState.h>
 #include <unistd.h>
@@ -84,12 +85,6 @@ long residentKb(int pid) {
   throw std::runtime_error("/proc/" + std::to_string(pid) + "/status: no VmRSS");
 }
 
-double percentile(std::vector<double> sorted, double p) {
-  if (sorted.empty()) return NAN;
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(sorted.size())));
-  return sorted[std::min(sorted.size() - 1, rank == 0 ? 0 : rank - 1)];
-}
-
 std::string number(double value) {
   if (!std::isfinite(value)) return "null";
   char text[32];
@@ -99,7 +94,7 @@ std::string number(double value) {
 
 class Probe {
  public:
-  explicit Probe(const Options& options) : options_(options), estimate_queue_(ros::getGlobalCallbackQueue()) {
+  explicit Probe(const Options& options) : options_(options) {
     ros::AdvertiseOptions rc_out(options.rc_out_topic, 100, pe::kRcOutMd5Sum, pe::kRcOutDataType,
                                  pe::rcOutDefinition());
     rc_out_pub_ = nh_.advertise(rc_out);
@@ -207,9 +202,6 @@ class Probe {
          << ", \"rate_hz\": " << number(options_.rate_hz) << ", \"channels\": " << options_.channels
          << ", \"wall_s\": " << number(wall_s) << ", \"estimates_received\": "
          << (timed ? std::to_string(sorted.size()) : "null")
-         << ", \"latency_p50_ms\": " << number(timed ? 1e3 * percentile(sorted, 50.0) : NAN)
-         << ", \"latency_p99_ms\": " << number(timed ? 1e3 * percentile(sorted, 99.0) : NAN)
-         << ", \"latency_max_ms\": " << number(timed && !sorted.empty() ? 1e3 * sorted.back() : NAN)
          << ", \"cpu_s\": " << number(cpu_s) << ", \"cpu_percent\": " << number(100.0 * cpu_s / wall_s)
          << ", \"rss_start_kb\": " << rss_start_kb << ", \"rss_end_kb\": " << rss_end_kb << "}\n";
     if (!options_.latencies_file.empty()) {

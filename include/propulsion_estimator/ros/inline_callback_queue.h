@@ -3,7 +3,9 @@
 #include <cstdint>
 #include <mutex>
 
+#include <ros/callback_queue.h>
 #include <ros/callback_queue_interface.h>
+#include <ros/init.h>
 
 namespace propulsion_estimator {
 
@@ -19,8 +21,8 @@ namespace propulsion_estimator {
 /// exception from a callback is logged and dropped: it must not unwind roscpp's thread.
 class InlineCallbackQueue : public ros::CallbackQueueInterface {
  public:
-  /// `fallback` must outlive this queue.
-  explicit InlineCallbackQueue(ros::CallbackQueueInterface* fallback);
+  /// `fallback` must outlive this queue; by default the global queue that ros::spin() serves.
+  explicit InlineCallbackQueue(ros::CallbackQueueInterface* fallback = ros::getGlobalCallbackQueue());
 
   void addCallback(const ros::CallbackInterfacePtr& callback, std::uint64_t owner_id) override;
   /// Returns once no callback of `owner_id` runs (roscpp calls it when a subscriber shuts down,
