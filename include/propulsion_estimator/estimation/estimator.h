@@ -211,6 +211,20 @@ class Estimator {
   bool imuFresh(double now_s) const;
   bool velocityFresh(double now_s) const;
   void clearWindows();
+  /// addMotorOutputs' steps, in order; the checks return kNone or what refused the message.
+  /// This one refuses a message without a fresh voltage, with too few channels or a motor disarmed.
+  Rejection checkBatteryAndChannels(double receipt_s, const std::uint16_t* channels, std::size_t count);
+  /// Takes an unstamped message as stamped on arrival; refuses stamps ahead, repeated or back in time.
+  Rejection checkStamp(double receipt_s, double* stamp_s);
+  /// Every motor into scratch_, with the effects' corrections; nothing committed on a refusal.
+  Rejection evaluateMotors(double receipt_s, const std::uint16_t* channels, effects::KindMask* skipped);
+  /// Commits scratch_ to output_.motors and sums it into the totals.
+  Totals sumMotors(const std::uint16_t* channels, bool imu_fresh, double vertical_accel);
+  /// What the hover detector judges: the totals, the tilt and the freshest vertical speed.
+  HoverSample hoverSample(const Totals& totals, double receipt_s, bool imu_fresh, double vertical_accel,
+                          VerticalSpeedSource* speed_source) const;
+  /// Counts an accepted message and the effects it applied or skipped.
+  void countAccepted(double stamp_s, double receipt_s, const Totals& totals, effects::KindMask skipped);
 
   PropulsionModel model_;
   Vehicle vehicle_;
