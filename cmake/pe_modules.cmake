@@ -1,6 +1,7 @@
 # Included by CMakeLists.txt, in the catkin build and in the ROS-free one (PE_ROS_FREE, make arm64).
 # --- Modules: one folder, one library. src/<module>/ mirrors include/propulsion_estimator/<module>/,
-# and test/unit/test_layering.cpp checks which module may include which. ---------------------------
+# and test/unit/test_layering.cpp checks which module may include which, and that a module links only
+# modules it may include. -----------------------------------------------------------------------------
 function(pe_module name folder)
   file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/${folder}/*.cpp")
   list(FILTER sources EXCLUDE REGEX "_main\\.cpp$")
@@ -30,9 +31,9 @@ target_include_directories(propulsion_estimator_logs PRIVATE ${CSV_INCLUDE_DIR})
 target_link_libraries(propulsion_estimator_logs PRIVATE ${CSV_LIBRARY})
 pe_module(propulsion_estimator_fitting fitting propulsion_estimator_model propulsion_estimator_logs)
 # The gap diagnosis: where the model and weighed flights part, and which effect explains it.
-pe_module(propulsion_estimator_gap gap propulsion_estimator_estimation propulsion_estimator_fitting)
+pe_module(propulsion_estimator_gap gap propulsion_estimator_estimation propulsion_estimator_logs)
 # The simulator: propulsion physics, the simulated thrust stand, the simulated flight.
-pe_module(propulsion_estimator_sim_physics sim/physics propulsion_estimator_model propulsion_estimator_common)
+pe_module(propulsion_estimator_sim_physics sim/physics propulsion_estimator_common)
 pe_module(propulsion_estimator_sim_stand sim/stand propulsion_estimator_sim_physics propulsion_estimator_logs)
 pe_module(propulsion_estimator_sim_flight sim/flight
   propulsion_estimator_sim_physics propulsion_estimator_vehicle propulsion_estimator_logs)
