@@ -45,6 +45,7 @@ class FlightBagReader {
   FlightBagReader(const FlightBagReader&) = delete;
   FlightBagReader& operator=(const FlightBagReader&) = delete;
 
+  /// The bag's path, as given.
   const std::string& path() const { return path_; }
   /// From the first message to the last, in seconds.
   double durationS() const { return duration_s_; }

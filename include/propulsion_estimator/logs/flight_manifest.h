@@ -9,14 +9,14 @@ namespace propulsion_estimator {
 /// tests and the input of the gap diagnosis.
 struct ManifestSegment {
   double start_s = 0.0;  ///< seconds from the bag's first message
-  double end_s = 0.0;
+  double end_s = 0.0;  ///< seconds from the bag's first message
   double mass_kg = 0.0;  ///< vehicle plus hanging payload
 };
 
 /// One flight of a manifest: its bag and the segments whose mass is known.
 struct ManifestFlight {
   std::string bag;  ///< as written in the manifest: relative to the manifest's folder, or absolute
-  std::vector<ManifestSegment> segments;
+  std::vector<ManifestSegment> segments;  ///< in time order, not overlapping
 
   /// Throws FieldError named from `at` ("flights[1]" gives "flights[1].segments[2].end") for a
   /// flight without bag or segments, a segment with start < 0, end <= start, mass outside
@@ -30,7 +30,7 @@ struct ManifestFlight {
 ///       segments:
 ///         - {start: 5.0, end: 178.0, mass_kg: 1.315}
 struct FlightManifest {
-  std::vector<ManifestFlight> flights;
+  std::vector<ManifestFlight> flights;  ///< at least one
 
   /// Throws FieldError for no flights, or the first flight ManifestFlight::validate refuses.
   void validate() const;
@@ -52,7 +52,7 @@ void saveFlightManifest(const FlightManifest& manifest, const std::string& path,
 /// loadFlightManifest would locate it ("<file>:<line>: flights[1].segments[0].mass_kg: 0 is
 /// outside 0..100 kg").
 struct ManifestEntry {
-  ManifestFlight flight;
+  ManifestFlight flight;  ///< the flight as read
   std::string refusal;  ///< empty for a usable flight
 };
 /// Reads the manifest file `path` flight by flight (see ManifestEntry); InputError when it cannot

@@ -15,8 +15,8 @@ struct EstimatorNodeParams {
   std::string model;       ///< required: path of the model YAML
   std::string urdf_file;   ///< optional: vehicle description; else robot_description, else no geometry
   std::string tare_file;   ///< optional: where ~tare persists the empty mass ("" = not persisted)
-  std::string battery_topic = "/mavros/battery";
-  std::string rc_out_topic = "/mavros/rc/out";
+  std::string battery_topic = "/mavros/battery";  ///< sensor_msgs/BatteryState
+  std::string rc_out_topic = "/mavros/rc/out";  ///< mavros_msgs/RCOut
   std::string imu_topic = "/mavros/imu/data";          ///< "" disables
   std::string velocity_topic = "/mavros/local_position/velocity_local";  ///< "" disables
   /// The barometer: the hover check's vertical speed while no velocity is fresh, and the
@@ -34,8 +34,8 @@ struct EstimatorNodeParams {
   /// same default), the node ticks it once per period.
   double diagnostic_period_s = 1.0;
   HealthConfig health;  ///< domain_warn_fraction; its input names are the topics
-  EstimatorConfig estimator;
-  CapabilityConfig capability;
+  EstimatorConfig estimator;  ///< the estimator's parameters
+  CapabilityConfig capability;  ///< the capability/... parameters
 };
 
 /// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is
