@@ -18,13 +18,12 @@ MAX_FUNCTION_LINES = 120
 MAX_FILE_LINES = 600
 
 # Over the limits on 2026-11-24 and being reworked by others in parallel (issue 17): gap/diagnosis.cpp
-# and Diagnoser::run (h18's split), fitting/surface_fit.cpp (h22's split), and two functions of the
-# gap module whose files h18 rewrites for the effect descriptions and the named signal indices. The
-# lead empties this list at integration; everything else must pass.
+# and Diagnoser::run (h18's split), and two functions of the gap module whose files h18 rewrites for
+# the effect descriptions and the named signal indices. The lead empties this list at integration;
+# everything else must pass (an entry no longer over the limits is reported).
 ALLOWED = {
     "src/gap/diagnosis.cpp": "file, 689 lines",
     "src/gap/diagnosis.cpp:Diagnoser::run": "function, 280 lines",
-    "src/fitting/surface_fit.cpp": "file, 633 lines",
     "src/gap/blocks.cpp:cutIntoBlocks": "function, 131 lines",
     "src/gap/gap_report.cpp:gapReportMarkdown": "function, 131 lines",
 }

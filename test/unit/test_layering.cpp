@@ -17,24 +17,26 @@ namespace {
 // Which module may include which (besides itself): exactly the arrows the code has, checked both
 // ways (an include the table does not allow, an arrow the table allows that no include uses), and
 // the only links CMake may make between the modules' libraries. The picture of the package: common
-// is the leaf; model, vehicle and estimation are what runs on the vehicle; logs, fitting, gap and
-// sim are the offline tools' core; ros and bag adapt ROS; apps holds every main and command line.
+// is the leaf; model, vehicle and estimation are what runs on the vehicle and is replayed offline,
+// onboard what only the node uses; logs, fitting, gap and sim are the offline tools' core; ros and
+// bag adapt ROS; apps holds every main and command line.
 using Graph = std::map<std::string, std::set<std::string>>;
 const Graph kMayInclude = {
     {"common", {}},
     {"model", {"common"}},
     {"vehicle", {"common"}},
     {"estimation", {"common", "model", "vehicle"}},
+    {"onboard", {"common", "model", "estimation"}},
     {"logs", {"common"}},
     {"fitting", {"common", "model", "logs"}},
     {"gap", {"common", "model", "vehicle", "estimation", "logs"}},
     {"sim/physics", {"common"}},
     {"sim/stand", {"common", "logs", "sim/physics"}},
     {"sim/flight", {"common", "vehicle", "logs", "sim/physics"}},
-    {"ros", {"common", "model", "vehicle", "estimation"}},
+    {"ros", {"common", "model", "vehicle", "estimation", "onboard"}},
     {"bag", {"common", "gap", "sim/flight", "ros"}},
-    {"apps", {"common", "model", "vehicle", "logs", "fitting", "gap", "sim/physics", "sim/stand", "sim/flight", "ros",
-              "bag"}},
+    {"apps", {"common", "model", "vehicle", "logs", "fitting", "gap", "sim/physics", "sim/stand", "sim/flight",
+              "ros", "bag"}},
 };
 // Modules that may include ROS headers.
 const std::set<std::string> kRosModules = {"ros", "bag", "apps"};

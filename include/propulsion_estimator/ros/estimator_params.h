@@ -4,9 +4,9 @@
 
 #include <ros/node_handle.h>
 
-#include "propulsion_estimator/estimation/capability.h"
+#include "propulsion_estimator/onboard/capability.h"
 #include "propulsion_estimator/estimation/estimator_config.h"
-#include "propulsion_estimator/estimation/health_summary.h"
+#include "propulsion_estimator/onboard/health_summary.h"
 
 namespace propulsion_estimator {
 

@@ -5,7 +5,7 @@
 
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/estimation/estimator.h"
-#include "propulsion_estimator/estimation/health_summary.h"
+#include "propulsion_estimator/onboard/health_summary.h"
 #include "propulsion_estimator/estimation/motor_health.h"
 #include "propulsion_estimator/model/hover_endurance.h"
 
