@@ -103,15 +103,16 @@ IncludeScan scanIncludes() {
   return scan;
 }
 
-// "a -> b" for every arrow of `table` that `used` lacks.
-std::vector<std::string> unusedArrows(const Graph& table, const Graph& used) {
-  std::vector<std::string> unused;
-  for (const auto& [module, allowed] : table) {
-    for (const std::string& to : allowed) {
-      if (!used.count(module) || !used.at(module).count(to)) unused.push_back(module + " -> " + to);
+// "a -> b" for every arrow of `arrows` that `other` lacks: the table's arrows no include uses
+// (missingArrows(table, used)), or the links the table does not allow (missingArrows(links, table)).
+std::vector<std::string> missingArrows(const Graph& arrows, const Graph& other) {
+  std::vector<std::string> missing;
+  for (const auto& [module, targets] : arrows) {
+    for (const std::string& to : targets) {
+      if (!other.count(module) || !other.at(module).count(to)) missing.push_back(module + " -> " + to);
     }
   }
-  return unused;
+  return missing;
 }
 
 // The links between the modules' libraries in CMake code: pe_module(<library> <folder> <links>...)
@@ -147,17 +148,6 @@ Graph cmakeModuleLinks(const std::string& cmake) {
   return graph;
 }
 
-// "a -> b" for every arrow of `links` that `table` does not allow.
-std::vector<std::string> disallowedArrows(const Graph& table, const Graph& links) {
-  std::vector<std::string> disallowed;
-  for (const auto& [module, linked] : links) {
-    for (const std::string& to : linked) {
-      if (!table.count(module) || !table.at(module).count(to)) disallowed.push_back(module + " -> " + to);
-    }
-  }
-  return disallowed;
-}
-
 std::string readFile(const std::string& path) {
   std::ifstream in(path);
   std::ostringstream text;
@@ -176,7 +166,7 @@ TEST(Layering, EveryModuleIncludesOnlyWhatItMay) {
 // An arrow the table allows and no include uses is a dependency the picture claims and the code
 // does not have.
 TEST(Layering, EveryArrowOfTheTableIsUsed) {
-  for (const std::string& arrow : unusedArrows(kMayInclude, scanIncludes().used)) {
+  for (const std::string& arrow : missingArrows(kMayInclude, scanIncludes().used)) {
     ADD_FAILURE() << "the table allows " << arrow << " but no include uses it";
   }
 }
@@ -185,7 +175,7 @@ TEST(Layering, EveryArrowOfTheTableIsUsed) {
 TEST(Layering, CMakeLinksOnlyArrowsOfTheTable) {
   const Graph links = cmakeModuleLinks(readFile(repoPath("cmake/pe_modules.cmake")) + "\n" +
                                        readFile(repoPath("CMakeLists.txt")));
-  for (const std::string& arrow : disallowedArrows(kMayInclude, links)) {
+  for (const std::string& arrow : missingArrows(links, kMayInclude)) {
     ADD_FAILURE() << "CMake links " << arrow << ", which the table does not allow";
   }
   // The parser read the real files: every module but common links another.
@@ -223,13 +213,13 @@ TEST(Layering, ModuleOfNamesTheFolder) {
 // The two-way checks flag a bad case: an arrow no include uses, a link the table forbids.
 TEST(Layering, CheckersFlagUnusedArrowsAndForbiddenLinks) {
   const Graph table = {{"a", {}}, {"b", {"a"}}, {"c", {"a", "b"}}};
-  EXPECT_EQ(unusedArrows(table, {{"b", {"a"}}, {"c", {"a"}}}), std::vector<std::string>{"c -> b"});
-  EXPECT_TRUE(unusedArrows(table, {{"b", {"a"}}, {"c", {"a", "b"}}}).empty());
+  EXPECT_EQ(missingArrows(table, {{"b", {"a"}}, {"c", {"a"}}}), std::vector<std::string>{"c -> b"});
+  EXPECT_TRUE(missingArrows(table, {{"b", {"a"}}, {"c", {"a", "b"}}}).empty());
   const Graph links = cmakeModuleLinks(
       "function(pe_module name folder)\nendfunction()\n"
       "pe_module(lib_a a)\npe_module(lib_b b lib_a)  # b uses a\n"
       "pe_module(lib_c c\n  lib_b)\ntarget_link_libraries(lib_a PUBLIC lib_c other)\n"
       "# target_link_libraries(lib_b PUBLIC lib_c)\nadd_executable(tool main.cpp)\ntarget_link_libraries(tool lib_c)\n");
   EXPECT_EQ(links, (Graph{{"a", {"c"}}, {"b", {"a"}}, {"c", {"b"}}}));
-  EXPECT_EQ(disallowedArrows(table, links), std::vector<std::string>{"a -> c"});
+  EXPECT_EQ(missingArrows(links, table), std::vector<std::string>{"a -> c"});
 }
