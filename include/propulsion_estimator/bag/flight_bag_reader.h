@@ -15,15 +15,15 @@ namespace propulsion_estimator {
 /// The topic of each signal of a flight bag; MAVROS' names (those the simulator writes) by default.
 /// rc_out and battery are required, the others optional.
 struct FlightBagTopics {
-  std::string rc_out = kRcOutTopic;                     // mavros_msgs/RCOut
-  std::string battery = kBatteryTopic;                  // sensor_msgs/BatteryState
-  std::string imu = kImuTopic;                          // sensor_msgs/Imu
-  std::string pose = kPoseTopic;                        // geometry_msgs/PoseStamped
-  std::string velocity = kVelocityTopic;                // geometry_msgs/TwistStamped
-  std::string static_pressure = kStaticPressureTopic;   // sensor_msgs/FluidPressure
-  std::string air_temperature = kAirTemperatureTopic;   // sensor_msgs/Temperature
-  std::string rangefinder = kRangefinderTopic;          // sensor_msgs/Range
-  std::string motor_temperature = kMotorTemperatureTopic;  // sensor_msgs/Temperature
+  std::string rc_out = kRcOutTopic;                     ///< mavros_msgs/RCOut
+  std::string battery = kBatteryTopic;                  ///< sensor_msgs/BatteryState
+  std::string imu = kImuTopic;                          ///< sensor_msgs/Imu
+  std::string pose = kPoseTopic;                        ///< geometry_msgs/PoseStamped
+  std::string velocity = kVelocityTopic;                ///< geometry_msgs/TwistStamped
+  std::string static_pressure = kStaticPressureTopic;   ///< sensor_msgs/FluidPressure
+  std::string air_temperature = kAirTemperatureTopic;   ///< sensor_msgs/Temperature
+  std::string rangefinder = kRangefinderTopic;          ///< sensor_msgs/Range
+  std::string motor_temperature = kMotorTemperatureTopic;  ///< sensor_msgs/Temperature
 
   /// The signals' names, as above: flightSignalNames().
   static const std::vector<std::string>& names();

@@ -8,20 +8,20 @@ namespace propulsion_estimator {
 /// A stretch of a flight whose lifted mass is known (weighed): the ground truth of the estimator's
 /// tests and the input of the gap diagnosis.
 struct ManifestSegment {
-  double start_s = 0.0;  // seconds from the log's first message
+  double start_s = 0.0;  ///< seconds from the log's first message
   double end_s = 0.0;
-  double mass_kg = 0.0;  // vehicle plus hanging payload
+  double mass_kg = 0.0;  ///< vehicle plus hanging payload
 };
 
 /// One flight of a manifest: its log (a rosbag or any format flight_log_formats.h knows) and the
 /// segments whose mass is known.
 struct ManifestFlight {
-  std::string log;  // as written in the manifest (`log:`, or `bag:`): relative to its folder, or absolute
+  std::string log;  ///< as written in the manifest (`log:`, or `bag:`): relative to its folder, or absolute
   std::vector<ManifestSegment> segments;
 
-  // Throws FieldError named from `at` ("flights[1]" gives "flights[1].segments[2].end") for a
-  // flight without log or segments, a segment with start < 0, end <= start, mass outside
-  // 0..100 kg, or segments out of order or overlapping.
+  /// Throws FieldError named from `at` ("flights[1]" gives "flights[1].segments[2].end") for a
+  /// flight without log or segments, a segment with start < 0, end <= start, mass outside
+  /// 0..100 kg, or segments out of order or overlapping.
   void validate(const std::string& at) const;
 };
 
@@ -33,7 +33,7 @@ struct ManifestFlight {
 struct FlightManifest {
   std::vector<ManifestFlight> flights;
 
-  // Throws FieldError for no flights, or the first flight ManifestFlight::validate refuses.
+  /// Throws FieldError for no flights, or the first flight ManifestFlight::validate refuses.
   void validate() const;
 };
 
@@ -54,7 +54,7 @@ void saveFlightManifest(const FlightManifest& manifest, const std::string& path,
 /// outside 0..100 kg").
 struct ManifestEntry {
   ManifestFlight flight;
-  std::string refusal;  // empty for a usable flight
+  std::string refusal;  ///< empty for a usable flight
 };
 /// Reads the manifest file `path` flight by flight (see ManifestEntry); InputError when it cannot
 /// be read, ConfigError for a refusal of the file as a whole.
