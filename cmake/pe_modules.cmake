@@ -27,7 +27,8 @@ pe_module(propulsion_estimator_estimation estimation
   propulsion_estimator_model propulsion_estimator_vehicle propulsion_estimator_common)
 # ... and what only the node uses: rate limiter, tare file, health summary, capability.
 pe_module(propulsion_estimator_onboard onboard propulsion_estimator_estimation)
-# Bench log formats (libcsv tokenizes them) and the flight manifest.
+# Bench log formats (libcsv tokenizes them), the flight manifest, the flight streams and the
+# flight-log reader interface with its registry of formats.
 pe_module(propulsion_estimator_logs logs propulsion_estimator_common)
 target_include_directories(propulsion_estimator_logs PRIVATE ${CSV_INCLUDE_DIR})
 target_link_libraries(propulsion_estimator_logs PRIVATE ${CSV_LIBRARY})

@@ -34,9 +34,9 @@ const Graph kMayInclude = {
     {"sim/stand", {"common", "logs", "sim/physics"}},
     {"sim/flight", {"common", "vehicle", "logs", "sim/physics"}},
     {"ros", {"common", "model", "vehicle", "estimation", "onboard"}},
-    {"bag", {"common", "gap", "sim/flight", "ros"}},
-    {"apps", {"common", "model", "vehicle", "logs", "fitting", "gap", "sim/physics", "sim/stand", "sim/flight",
-              "ros", "bag"}},
+    {"bag", {"common", "logs", "ros", "sim/flight"}},
+    {"apps", {"common", "model", "vehicle", "logs", "fitting", "gap", "sim/physics", "sim/stand", "sim/flight", "ros",
+              "bag"}},
 };
 // Modules that may include ROS headers.
 const std::set<std::string> kRosModules = {"ros", "bag", "apps"};

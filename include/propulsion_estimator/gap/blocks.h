@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "propulsion_estimator/gap/flight_streams.h"
+#include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 

@@ -5,8 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "propulsion_estimator/gap/flight_streams.h"
+#include "propulsion_estimator/common/mavros_topics.h"
 #include "propulsion_estimator/logs/bench_log.h"
+#include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
@@ -32,11 +33,11 @@ struct DiagnosisConfig {
   std::vector<int> channels;         ///< RCOut channel of each motor, 1-based; empty: 1..motors
   /// Where each signal comes from, for "not testable: needs ..." lines.
   std::map<effects::Signal, std::string> signal_sources = {
-      {effects::Signal::kBatteryCurrent, "/mavros/battery (current)"},
-      {effects::Signal::kAirDensity, "/mavros/imu/static_pressure and /mavros/imu/temperature_baro"},
-      {effects::Signal::kHeight, "/mavros/rangefinder/rangefinder"},
-      {effects::Signal::kMotorTemperature, "/motor_temperature"},
-      {effects::Signal::kVerticalSpeed, "/mavros/local_position/velocity_local"},
+      {effects::Signal::kBatteryCurrent, std::string(kBatteryTopic) + " (current)"},
+      {effects::Signal::kAirDensity, std::string(kStaticPressureTopic) + " and " + kAirTemperatureTopic},
+      {effects::Signal::kHeight, kRangefinderTopic},
+      {effects::Signal::kMotorTemperature, kMotorTemperatureTopic},
+      {effects::Signal::kVerticalSpeed, kVelocityTopic},
   };
 
   /// Throws FieldError naming the setting.

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "propulsion_estimator/estimation/motor_health.h"
-#include "propulsion_estimator/gap/flight_streams.h"
+#include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 

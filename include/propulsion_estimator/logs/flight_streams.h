@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -10,7 +11,6 @@
 #include "propulsion_estimator/logs/flight_manifest.h"
 
 namespace propulsion_estimator {
-namespace gap {
 
 /// The most motors a flight may have (RCOut carries up to 16 channels; multicopters use 4-8).
 constexpr int kMaxMotors = 8;
@@ -43,8 +43,8 @@ struct ScalarReading {
   double value = 0.0;  ///< in the unit the stream's name says
 };
 
-/// Everything the diagnosis reads from one flight, as logged: times in seconds from the first
-/// message of the log (the manifest's clock), values in SI units. Only rc_out and battery are
+/// Everything the diagnosis reads from one flight, as logged, whatever the log's format: times in
+/// seconds from the first message of the log (the manifest's clock), values in SI units. Only rc_out and battery are
 /// required; an empty stream is a signal the flight does not have.
 struct FlightStreams {
   std::string source;  ///< the log it came from, for messages
@@ -60,12 +60,19 @@ struct FlightStreams {
   std::vector<ScalarReading> motor_temperature_c;  ///< deg C
 };
 
+/// The signals of a flight, in FlightStreams' order: "rc_out", "battery", "imu", "pose" (altitude_m),
+/// "velocity" (vertical_speed_m_s), "static_pressure", "air_temperature", "rangefinder"
+/// (height_above_ground_m), "motor_temperature". A log format names its sources by these.
+const std::vector<std::string>& flightSignalNames();
+
+/// The readings of each signal of `streams`, in flightSignalNames() order.
+std::vector<std::size_t> signalCounts(const FlightStreams& streams);
+
 /// A flight of the manifest: its streams and its weighed segments.
 struct Flight {
-  std::string name;  ///< the bag as the manifest names it
+  std::string name;  ///< the log as the manifest names it
   FlightStreams streams;  ///< the flight's signals
   std::vector<ManifestSegment> segments;  ///< the weighed segments, on the streams' clock
 };
 
-}  // namespace gap
 }  // namespace propulsion_estimator
