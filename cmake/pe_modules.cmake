@@ -22,18 +22,20 @@ if(NOT TINYXML_LIBRARY)
 endif()
 pe_module(propulsion_estimator_vehicle vehicle propulsion_estimator_common ${urdfdom_LIBRARIES} ${TINYXML_LIBRARY})
 target_include_directories(propulsion_estimator_vehicle PUBLIC ${urdfdom_INCLUDE_DIRS})
-# What runs on the vehicle.
+# What runs on the vehicle: the estimator (also replayed offline by gap/) ...
 pe_module(propulsion_estimator_estimation estimation
   propulsion_estimator_model propulsion_estimator_vehicle propulsion_estimator_common)
+# ... and what only the node uses: rate limiter, tare file, health summary, capability.
+pe_module(propulsion_estimator_onboard onboard propulsion_estimator_estimation)
 # Bench log formats (libcsv tokenizes them) and the flight manifest.
 pe_module(propulsion_estimator_logs logs propulsion_estimator_common)
 target_include_directories(propulsion_estimator_logs PRIVATE ${CSV_INCLUDE_DIR})
 target_link_libraries(propulsion_estimator_logs PRIVATE ${CSV_LIBRARY})
 pe_module(propulsion_estimator_fitting fitting propulsion_estimator_model propulsion_estimator_logs)
 # The gap diagnosis: where the model and weighed flights part, and which effect explains it.
-pe_module(propulsion_estimator_gap gap propulsion_estimator_estimation propulsion_estimator_fitting)
+pe_module(propulsion_estimator_gap gap propulsion_estimator_estimation propulsion_estimator_logs)
 # The simulator: propulsion physics, the simulated thrust stand, the simulated flight.
-pe_module(propulsion_estimator_sim_physics sim/physics propulsion_estimator_model propulsion_estimator_common)
+pe_module(propulsion_estimator_sim_physics sim/physics propulsion_estimator_common)
 pe_module(propulsion_estimator_sim_stand sim/stand propulsion_estimator_sim_physics propulsion_estimator_logs)
 pe_module(propulsion_estimator_sim_flight sim/flight
   propulsion_estimator_sim_physics propulsion_estimator_vehicle propulsion_estimator_logs)
@@ -42,6 +44,6 @@ pe_module(propulsion_estimator_sim_flight sim/flight
 add_library(propulsion_estimator_core INTERFACE)
 target_link_libraries(propulsion_estimator_core INTERFACE
   propulsion_estimator_common propulsion_estimator_model propulsion_estimator_vehicle
-  propulsion_estimator_estimation propulsion_estimator_logs propulsion_estimator_fitting
-  propulsion_estimator_gap propulsion_estimator_sim_physics propulsion_estimator_sim_stand
+  propulsion_estimator_estimation propulsion_estimator_onboard propulsion_estimator_logs
+  propulsion_estimator_fitting propulsion_estimator_gap propulsion_estimator_sim_physics propulsion_estimator_sim_stand
   propulsion_estimator_sim_flight)

@@ -7,7 +7,7 @@
 
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/units.h"
-#include "propulsion_estimator/estimation/health_summary.h"
+#include "propulsion_estimator/estimation/tare_verdict.h"
 
 namespace propulsion_estimator {
 namespace {

@@ -11,24 +11,26 @@
 
 namespace {
 
-// Which module may include which (besides itself). The picture of the package: common is the leaf;
-// model, vehicle and estimation are what runs on the vehicle; logs, fitting and sim are the
-// offline tools' core; ros and bag adapt ROS; apps holds every main and command line.
+// Which module may include which (besides itself): exactly the arrows the code has. The picture
+// of the package: common is the leaf; model, vehicle and estimation are what runs on the vehicle and
+// is replayed offline, onboard what only the node uses; logs, fitting and sim are the offline tools'
+// core; ros and bag adapt ROS; apps holds every main and command line.
 const std::map<std::string, std::set<std::string>> kMayInclude = {
     {"common", {}},
     {"model", {"common"}},
     {"vehicle", {"common"}},
     {"estimation", {"common", "model", "vehicle"}},
+    {"onboard", {"common", "model", "estimation"}},
     {"logs", {"common"}},
     {"fitting", {"common", "model", "logs"}},
-    {"gap", {"common", "model", "vehicle", "estimation", "logs", "fitting"}},
-    {"sim/physics", {"common", "model"}},
-    {"sim/stand", {"common", "model", "logs", "sim/physics"}},
-    {"sim/flight", {"common", "model", "vehicle", "logs", "sim/physics"}},
-    {"ros", {"common", "model", "vehicle", "estimation"}},
-    {"bag", {"common", "model", "vehicle", "logs", "gap", "sim/physics", "sim/flight", "ros"}},
-    {"apps", {"common", "model", "vehicle", "estimation", "logs", "fitting", "gap", "sim/physics", "sim/stand",
-              "sim/flight", "ros", "bag"}},
+    {"gap", {"common", "model", "vehicle", "estimation", "logs"}},
+    {"sim/physics", {"common"}},
+    {"sim/stand", {"common", "logs", "sim/physics"}},
+    {"sim/flight", {"common", "vehicle", "logs", "sim/physics"}},
+    {"ros", {"common", "model", "vehicle", "estimation", "onboard"}},
+    {"bag", {"common", "gap", "sim/flight", "ros"}},
+    {"apps", {"common", "model", "vehicle", "logs", "fitting", "gap", "sim/physics", "sim/stand", "sim/flight",
+              "ros", "bag"}},
 };
 // Modules that may include ROS headers.
 const std::set<std::string> kRosModules = {"ros", "bag", "apps"};

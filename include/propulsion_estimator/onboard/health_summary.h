@@ -94,13 +94,4 @@ std::string signalSource(effects::Signal signal, const HealthConfig& config);
 HealthStatus judgeEffects(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
                           const HealthConfig& config);
 
-/// Whether a tare would be accepted now, and if not why.
-struct TareVerdict {
-  bool accepted = false;
-  std::string refusal;  ///< "refused: <why>"; empty when accepted
-};
-
-/// A tare needs a hover and a hover average of at least payload/min_samples samples.
-TareVerdict judgeTare(const HoverVerdict& hover, const MassEstimate& estimate, const EstimatorConfig& config);
-
 }  // namespace propulsion_estimator
