@@ -1,6 +1,6 @@
 # Included by CMakeLists.txt, in the catkin build and in the ROS-free one (PE_ROS_FREE, make arm64).
 # --- Modules: one folder, one library. src/<module>/ mirrors include/propulsion_estimator/<module>/,
-# and test/unit/test_layering.cpp checks which module may include which, and that a module links only
+# and test/unit/package/test_layering.cpp checks which module may include which, and that a module links only
 # modules it may include. -----------------------------------------------------------------------------
 function(pe_module name folder)
   # A module's own sub-folders too (model/effects: one file per effect); sim/ holds only modules.
