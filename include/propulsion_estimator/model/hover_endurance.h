@@ -14,14 +14,17 @@ namespace propulsion_estimator {
 /// charge drawn, from cells x cell_full_v to cells x cell_cutoff_v over usable_fraction x
 /// capacity: a plain, stated approximation of a LiPo discharge under a steady load.
 struct BatteryPack {
-  int cells = 0;
-  double capacity_ah = 0.0;
-  double usable_fraction = 0.8;  // share of the capacity drawn when the cut-off is reached
-  double cell_full_v = 4.2;
-  double cell_cutoff_v = 3.5;
+  int cells = 0;  ///< in series
+  double capacity_ah = 0.0;  ///< rated capacity, Ah
+  double usable_fraction = 0.8;  ///< share of the capacity drawn when the cut-off is reached
+  double cell_full_v = 4.2;  ///< V per cell, full
+  double cell_cutoff_v = 3.5;  ///< V per cell at the cut-off
 
+  /// V, the full pack
   double fullVoltage() const { return cells * cell_full_v; }
+  /// V, the pack at its cut-off
   double cutoffVoltage() const { return cells * cell_cutoff_v; }
+  /// Ah drawn from full to the cut-off
   double usableAh() const { return usable_fraction * capacity_ah; }
   /// Charge in Ah drawn when the voltage reads `voltage_v`, clamped to 0..usableAh().
   double drawnAt(double voltage_v) const;
@@ -33,23 +36,23 @@ struct BatteryPack {
 /// One motor's hover operating point at a supply voltage: pulse width in us, current in A and power
 /// in W per motor, efficiency in g/W; NaN for an output the model does not have.
 struct HoverPoint {
-  double voltage_v = 0.0;
-  double pwm_us = 0.0;
-  double current_a = 0.0;  // per motor
-  double power_w = 0.0;    // per motor
-  double efficiency_g_per_w = 0.0;
-  // The hover thrust is below the model's thrust at the lowest PWM of its domain: the hover PWM
-  // lies below the measured range, and pwm_us (with its current and power) is that lowest PWM.
+  double voltage_v = 0.0;  ///< V, the supply voltage of the point
+  double pwm_us = 0.0;  ///< us
+  double current_a = 0.0;  ///< per motor
+  double power_w = 0.0;    ///< per motor
+  double efficiency_g_per_w = 0.0;  ///< g/W
+  /// The hover thrust is below the model's thrust at the lowest PWM of its domain: the hover PWM
+  /// lies below the measured range, and pwm_us (with its current and power) is that lowest PWM.
   bool below_pwm_domain = false;
-  bool in_domain = false;  // false: the voltage was clamped or extrapolated, or below_pwm_domain
+  bool in_domain = false;  ///< false: the voltage was clamped or extrapolated, or below_pwm_domain
 };
 
 /// The corrected model a figure is taken with: the model's `effects:` (none: the plain surfaces)
 /// and their signals at the moment; its battery current is the total the motors draw at the point
 /// (the supply resistance's), which the caller solves for.
 struct Correction {
-  const effects::ModelEffects* effects = nullptr;
-  effects::Signals signals;
+  const effects::ModelEffects* effects = nullptr;  ///< the model's effects; nullptr: the plain surfaces
+  effects::Signals signals;  ///< their signals (NaN: that correction skipped)
 };
 
 /// One motor at `pwm_us` and battery voltage `voltage_v` through `correction`: the surfaces at the
@@ -67,19 +70,19 @@ std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust
 /// One step of the hover discharge: hover time in s, battery voltage in V, total current in A and
 /// the pulse width in us that holds the hover.
 struct DischargeStep {
-  double time_s = 0.0;  // hover time at the end of the step
-  double voltage_v = 0.0;
-  double total_current_a = 0.0;
-  double pwm_us = 0.0;
+  double time_s = 0.0;  ///< hover time at the end of the step
+  double voltage_v = 0.0;  ///< V at the end of the step
+  double total_current_a = 0.0;  ///< A, all motors
+  double pwm_us = 0.0;  ///< us at the step's mid voltage
 };
 
 /// The hover discharge of a pack from a charge state to its cut-off: the steps, the hover time in
 /// s when the cut-off is reached (nullopt when the hover ends before it, or cannot be integrated),
 /// and notes on why not or on what the figure rests.
 struct HoverDischarge {
-  std::vector<DischargeStep> steps;
-  std::optional<double> endurance_s;
-  std::vector<std::string> notes;
+  std::vector<DischargeStep> steps;  ///< in time order
+  std::optional<double> endurance_s;  ///< s of hover until the cut-off
+  std::vector<std::string> notes;  ///< why there is no endurance, or what it rests on
 };
 
 /// The pack as the hover discharge sees it: its open-circuit voltage in V after `drawn_ah` has been
@@ -87,10 +90,10 @@ struct HoverDischarge {
 /// open-circuit voltage and the terminals (the loaded voltage is open-circuit less resistance x
 /// current) and the loaded terminal voltage in V at which the hover ends.
 struct DischargePack {
-  std::function<double(double drawn_ah)> open_circuit_v;
-  double charge_ah = 0.0;
-  double resistance_ohm = 0.0;
-  double cutoff_voltage_v = 0.0;
+  std::function<double(double drawn_ah)> open_circuit_v;  ///< V after drawn_ah
+  double charge_ah = 0.0;         ///< Ah; drawn at most
+  double resistance_ohm = 0.0;    ///< ohm; open-circuit to terminals
+  double cutoff_voltage_v = 0.0;  ///< V; loaded, where the hover ends
 };
 
 /// Integrates the hover of `motors` motors, each giving `thrust_per_motor_n`, in `steps` equal

@@ -12,9 +12,9 @@ namespace propulsion_estimator {
 /// What the pack's state is estimated from: the user's cells and rated capacity, the cells'
 /// open-circuit curve, and how far a real pack may lie off that curve.
 struct BatteryEstimatorConfig {
-  int cells = 0;
-  double capacity_ah = 0.0;
-  OcvCurve curve = OcvCurve::lipo();
+  int cells = 0;              ///< in series
+  double capacity_ah = 0.0;   ///< Ah; the rated capacity
+  OcvCurve curve = OcvCurve::lipo();  ///< the cells' open-circuit curve
   /// s; the internal resistance's recursive least squares forgets older samples with this time
   /// constant (the resistance grows as the pack empties and warms).
   double resistance_memory_s = 300.0;
@@ -29,7 +29,7 @@ struct BatteryEstimatorConfig {
   double max_resistance_rel_std = 0.35;  ///< the resistance's standard deviation over it, at most
   double max_soc_std = 0.08;             ///< state of charge standard deviation (0..1), at most
 
-  /// Throws FieldError naming capability/battery/<field>: cells outside 1..14, a capacity or
+  /// Throws FieldError naming the field (capability/battery/...): cells outside 1..14, a capacity or
   /// memory not positive, a sigma negative.
   void validate() const;
 };
@@ -41,7 +41,7 @@ struct BatteryEstimate {
   /// ohm; what the current sags the pack by (over the least squares' memory: the series
   /// resistance and the part of the polarisation that builds within it).
   double internal_resistance_ohm = kNaN;
-  double internal_resistance_std_ohm = kNaN;
+  double internal_resistance_std_ohm = kNaN;  ///< ohm; one standard deviation
   double open_circuit_voltage_v = kNaN;  ///< pack; the terminal voltage plus resistance x current
   double current_a = kNaN;               ///< the last current used (measured or given)
   double current_span_a = 0.0;           ///< A; largest minus smallest current seen
@@ -68,9 +68,11 @@ class BatteryEstimator {
   /// standard deviation: a measurement of the filter. NaN or outside 0..1 is ignored.
   void addStateOfCharge(double state_of_charge, double sigma);
 
+  /// The state after the last reading.
   const BatteryEstimate& estimate() const { return estimate_; }
   /// Empty when the estimate has converged; otherwise why the figures resting on it are withheld.
   std::string withheldReason() const;
+  /// The validated configuration.
   const BatteryEstimatorConfig& config() const { return config_; }
 
  private:

@@ -40,13 +40,15 @@ struct CapabilityConfig {
   std::string chemistry = "lipo";     ///< the built-in open-circuit curve: lipo | li_ion
   /// The user's open-circuit curve (capability/battery/ocv_table/soc, cell_v); replaces the
   /// chemistry's when given.
+  ///@{
   std::vector<double> ocv_table_soc, ocv_table_cell_v;
+  ///@}
   double cell_cutoff_v = 3.5;  ///< V per cell; the loaded terminal voltage the endurance runs to
-  PercentageMode percentage = PercentageMode::kIgnore;
+  PercentageMode percentage = PercentageMode::kIgnore;  ///< how BatteryState.percentage is read
   double reserve_s = 120.0;  ///< s; hover endurance below this warns
-  MotorHealthConfig motor_health;
+  MotorHealthConfig motor_health;  ///< the motor-health check's settings (capability/motor_health/...)
 
-  /// Throws FieldError naming capability/<field>: rate, PWM and thrust-to-weight not positive, a
+  /// Throws FieldError naming the parameter (capability/...): rate, PWM and thrust-to-weight not positive, a
   /// capacity at or below zero, cells outside 1..14, capacity without cells (or cells without
   /// capacity), an unknown chemistry or a bad ocv_table, a cut-off outside the curve's voltages,
   /// a negative reserve.
@@ -62,8 +64,8 @@ struct CapabilityConfig {
 /// magnitude); NaN when not measured. A percentage outside 0..1 (MAVROS' -1 "unknown") counts as
 /// not measured.
 struct BatteryReport {
-  double percentage = kNaN;
-  double current_a = kNaN;
+  double percentage = kNaN;  ///< 0..1, read per CapabilityConfig::percentage
+  double current_a = kNaN;   ///< A; current drawn (its magnitude)
 };
 
 /// The answers of thesis chapter 1 for the present flight, SI units; NaN where a figure cannot be
@@ -71,38 +73,42 @@ struct BatteryReport {
 struct CapabilityReport {
   /// The mass the thrust holds in hover (the payload estimator's average) and what it rests on.
   double hover_mass_kg = kNaN;
-  std::string hover_basis;
-  double voltage_v = kNaN;
-  double pwm_max_us = kNaN;
+  std::string hover_basis;  ///< "10.0 s of hover (hovering)" or "no hover yet"
+  double voltage_v = kNaN;  ///< V; the battery voltage now
+  double pwm_max_us = kNaN;  ///< us; the top of the usable PWM range
   /// All motors at pwm_max_us through the corrected model, at the voltage the pack sags to at
   /// that current (full_throttle_voltage_v, full_throttle_current_a).
   double max_thrust_n = kNaN;
-  double thrust_to_weight = kNaN;
+  double thrust_to_weight = kNaN;  ///< max_thrust_n over the hover weight
   double max_additional_payload_kg = kNaN;  ///< keeping min_thrust_to_weight; negative: over the limit
-  double full_throttle_voltage_v = kNaN;
-  double full_throttle_current_a = kNaN;
+  double full_throttle_voltage_v = kNaN;  ///< V; the terminals at full throttle
+  double full_throttle_current_a = kNaN;  ///< A; all motors at full throttle
   /// The same with the pack's terminals at the cut-off voltage.
+  ///@{
   double cutoff_voltage_v = kNaN;
   double max_thrust_at_cutoff_n = kNaN;
   double thrust_to_weight_at_cutoff = kNaN;
   double max_additional_payload_at_cutoff_kg = kNaN;
+  ///@}
   std::string payload_note;  ///< why a payload figure is NaN or on what it rests; "" when all are computed
   /// The hover operating point at the present voltage, all motors, through the corrected model.
+  ///@{
   double hover_pwm_us = kNaN;
   double hover_current_a = kNaN;
+  ///@}
   /// The pack's state (BatteryEstimator) and on what it rests.
   double state_of_charge = kNaN;  ///< 0..1 of the rated capacity
-  double state_of_charge_std = kNaN;
-  double internal_resistance_ohm = kNaN;
-  double internal_resistance_std_ohm = kNaN;
-  double open_circuit_voltage_v = kNaN;
-  std::string charge_basis;
+  double state_of_charge_std = kNaN;  ///< one standard deviation, the curve's uncertainty included
+  double internal_resistance_ohm = kNaN;  ///< ohm; the pack's
+  double internal_resistance_std_ohm = kNaN;  ///< ohm; one standard deviation
+  double open_circuit_voltage_v = kNaN;  ///< V; the pack at rest now
+  std::string charge_basis;  ///< what the state of charge rests on
   double remaining_ah = kNaN;  ///< charge drawn until the loaded cut-off (or PX4's empty)
-  double hover_endurance_s = kNaN;
+  double hover_endurance_s = kNaN;  ///< s; hover time left to the loaded cut-off
   double hover_endurance_std_s = kNaN;  ///< from the state of charge's and the resistance's spread
   std::string endurance_basis;          ///< how it was computed, or why it is NaN (withheld: ...)
-  bool payload_over_limit = false;
-  bool endurance_below_reserve = false;
+  bool payload_over_limit = false;       ///< max_additional_payload_kg < 0
+  bool endurance_below_reserve = false;  ///< hover_endurance_s < reserve_s
 };
 
 /// Computes the capability answers (ROS-free; evaluate() at CapabilityConfig::rate_hz,
@@ -123,6 +129,7 @@ class CapabilityEstimator {
   /// is taken as 0: hover and the thrust at rest at the top of the range).
   CapabilityReport evaluate(const EstimatorOutput& output, const effects::Signals& signals = {}) const;
 
+  /// As validated.
   const CapabilityConfig& config() const { return config_; }
   /// The pack's estimator; nullopt without a battery configured.
   const std::optional<BatteryEstimator>& battery() const { return battery_; }

@@ -26,8 +26,8 @@ class OcvCurve {
   double slope(double state_of_charge) const;
   /// The state of charge (0..1) whose voltage is `cell_v`, clamped to the table's ends.
   double stateOfCharge(double cell_v) const;
-  double emptyCellV() const { return cell_v_.front(); }
-  double fullCellV() const { return cell_v_.back(); }
+  double emptyCellV() const { return cell_v_.front(); }  ///< V at 0 % charge
+  double fullCellV() const { return cell_v_.back(); }    ///< V at 100 % charge
 
  private:
   std::size_t segment(double state_of_charge) const;

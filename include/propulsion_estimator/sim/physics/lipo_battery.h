@@ -11,42 +11,48 @@ namespace sim {
 /// resistance, and one or two RC pairs for the polarisation that builds up under load and relaxes
 /// after (a fast one, tens of seconds, and an optional slow one, minutes: diffusion).
 struct LipoBatteryParams {
-  std::string name;
-  int cells = 0;  // in series
-  double capacity_ah = 0.0;
-  // Resting voltage of one cell at increasing states of charge (0..1), linearly interpolated.
+  std::string name;  ///< for metadata and messages
+  int cells = 0;  ///< in series
+  double capacity_ah = 0.0;  ///< rated capacity, Ah
+  /// Resting voltage of one cell at increasing states of charge (0..1), linearly interpolated.
+  ///@{
   std::vector<double> ocv_soc;
   std::vector<double> ocv_cell_v;
-  double series_resistance_ohm = 0.0;  // whole pack
-  double rc_resistance_ohm = 0.0;
-  double rc_capacitance_f = 0.0;
-  double rc2_resistance_ohm = 0.0;  // the second pair; 0 with 0 F: none
-  double rc2_capacitance_f = 0.0;
+  ///@}
+  double series_resistance_ohm = 0.0;  ///< whole pack
+  double rc_resistance_ohm = 0.0;  ///< ohm, of the polarisation RC pair
+  double rc_capacitance_f = 0.0;  ///< F, of the polarisation RC pair
+  double rc2_resistance_ohm = 0.0;  ///< ohm, of the second (slow) RC pair; 0 with 0 F: none
+  double rc2_capacitance_f = 0.0;  ///< F, of the second RC pair
 
-  // Throws FieldError (battery.*): 1..14 cells, a table from soc 0 to 1 with rising voltages
-  // between 2.5 and 4.4 V per cell, positive resistances and capacity; a second RC pair with both
-  // values positive or both 0.
+  /// Throws FieldError (battery.*): 1..14 cells, a table from soc 0 to 1 with rising voltages
+  /// between 2.5 and 4.4 V per cell, positive resistances and capacity; a second RC pair with both
+  /// values positive or both 0.
   void validate() const;
 
-  double openCircuitVoltage(double state_of_charge) const;  // whole pack
+  double openCircuitVoltage(double state_of_charge) const;  ///< whole pack
 };
 
 /// A LipoBatteryParams pack in use: its state of charge and polarisation as current is drawn.
 class LipoBattery {
  public:
-  // Throws FieldError("initial_soc") outside 0..1; validates the parameters.
+  /// Throws FieldError("initial_soc") outside 0..1; validates the parameters.
   LipoBattery(LipoBatteryParams params, double initial_soc);
 
-  // The pack seen from its terminals: this EMF behind seriesResistanceOhm().
+  /// The pack seen from its terminals: this EMF behind seriesResistanceOhm().
   double sourceVoltage() const;
+  /// ohm, the pack's series resistance.
   double seriesResistanceOhm() const { return params_.series_resistance_ohm; }
+  /// V at the terminals while drawing `current_a` (A, positive when discharging)
   double terminalVoltage(double current_a) const { return sourceVoltage() - seriesResistanceOhm() * current_a; }
 
-  // Draws `current_a` (positive when discharging) for `dt_s`: coulomb counting and the exact
-  // response of the RC pair to a constant current.
+  /// Draws `current_a` (positive when discharging) for `dt_s`: coulomb counting and the exact
+  /// response of the RC pair to a constant current.
   void draw(double current_a, double dt_s);
 
+  /// 0..1
   double stateOfCharge() const { return soc_; }
+  /// V across the RC pairs
   double polarisationVoltage() const { return polarisation_v_ + polarisation2_v_; }
 
  private:
