@@ -9,8 +9,13 @@
 namespace propulsion_estimator {
 namespace {
 
-// Charge steps of the hover discharge: a 1 Hz evaluation of a few thousand model evaluations.
-constexpr int kDischargeSteps = 50;
+// Charge steps of the hover discharge: three discharges (the estimate and its two spreads) of a
+// few thousand model evaluations each, at 1 Hz.
+constexpr int kDischargeSteps = 30;
+// Fixed-point iterations of the full-throttle current and the voltage it sags to.
+constexpr int kSagIterations = 6;
+// A percentage a smart battery reports as a share of the capacity: trusted to this.
+constexpr double kReportedSocSigma = 0.02;
 
 // Largest mass the thrust carries at the thrust-to-weight limit, less the present hover mass.
 double additionalPayloadKg(double max_thrust_n, double min_thrust_to_weight, double hover_mass_kg) {
@@ -18,6 +23,23 @@ double additionalPayloadKg(double max_thrust_n, double min_thrust_to_weight, dou
 }
 
 }  // namespace
+
+const char* percentageModeName(PercentageMode mode) {
+  switch (mode) {
+    case PercentageMode::kPx4Remaining: return "px4_remaining";
+    case PercentageMode::kCapacityFraction: return "capacity_fraction";
+    case PercentageMode::kIgnore: break;
+  }
+  return "ignore";
+}
+
+PercentageMode percentageModeFromName(const std::string& name) {
+  for (PercentageMode mode : {PercentageMode::kIgnore, PercentageMode::kPx4Remaining, PercentageMode::kCapacityFraction}) {
+    if (name == percentageModeName(mode)) return mode;
+  }
+  throw FieldError("capability/battery/percentage",
+                   "\"" + name + "\" is not ignore, px4_remaining or capacity_fraction");
+}
 
 void CapabilityConfig::validate() const {
   requirePositive("capability/rate_hz", rate_hz);
@@ -31,15 +53,12 @@ void CapabilityConfig::validate() const {
     throw FieldError(capacity_ah ? "capability/battery/cells" : "capability/battery/capacity_ah",
                      std::string("required with capability/battery/") + (capacity_ah ? "capacity_ah" : "cells"));
   }
-  if (!(usable_fraction > 0.0 && usable_fraction <= 1.0)) {
-    throw FieldError("capability/battery/usable_fraction", formatNumber(usable_fraction) + " is outside (0, 1]");
-  }
-  requirePositive("capability/battery/cell_full_v", cell_full_v);
+  const OcvCurve ocv = curve();
   requirePositive("capability/battery/cell_cutoff_v", cell_cutoff_v);
-  if (cell_cutoff_v >= cell_full_v) {
+  if (cell_cutoff_v >= ocv.fullCellV()) {
     throw FieldError("capability/battery/cell_cutoff_v", formatNumber(cell_cutoff_v) +
-                                                             " V is not below capability/battery/cell_full_v " +
-                                                             formatNumber(cell_full_v) + " V");
+                                                             " V is not below the open-circuit curve's full " +
+                                                             formatNumber(ocv.fullCellV()) + " V");
   }
   if (!(reserve_s >= 0.0) || std::isinf(reserve_s)) {
     throw FieldError("capability/reserve_s", "must be a non-negative number, got " + formatNumber(reserve_s));
@@ -47,9 +66,18 @@ void CapabilityConfig::validate() const {
   motor_health.validate();
 }
 
-std::optional<BatteryPack> CapabilityConfig::pack() const {
+OcvCurve CapabilityConfig::curve() const {
+  if (ocv_table_soc.empty() && ocv_table_cell_v.empty()) return OcvCurve::named(chemistry, "capability/battery/chemistry");
+  return OcvCurve(ocv_table_soc, ocv_table_cell_v, "capability/battery/ocv_table");
+}
+
+std::optional<BatteryEstimatorConfig> CapabilityConfig::battery() const {
   if (!capacity_ah || !cells) return std::nullopt;
-  return BatteryPack{*cells, *capacity_ah, usable_fraction, cell_full_v, cell_cutoff_v};
+  BatteryEstimatorConfig battery;
+  battery.cells = *cells;
+  battery.capacity_ah = *capacity_ah;
+  battery.curve = curve();
+  return battery;
 }
 
 CapabilityEstimator::CapabilityEstimator(const PropulsionModel& model, int motors, CapabilityConfig config)
@@ -60,15 +88,74 @@ CapabilityEstimator::CapabilityEstimator(const PropulsionModel& model, int motor
     throw FieldError("capability/pwm_max_us", formatNumber(pwm_max_us_) + " us is not above the model's lowest PWM " +
                                                   formatNumber(model_.domain().pwm_min_us) + " us");
   }
+  if (const std::optional<BatteryEstimatorConfig> battery = config_.battery()) battery_.emplace(*battery);
 }
 
-double CapabilityEstimator::maxThrustN(double voltage_v) const {
+void CapabilityEstimator::addBattery(double time_s, double voltage_v, const BatteryReport& battery,
+                                     double modelled_current_a) {
+  measured_current_a_ = std::isfinite(battery.current_a) ? std::abs(battery.current_a) : kNaN;
+  const bool known = battery.percentage >= 0.0 && battery.percentage <= 1.0;
+  px4_remaining_ = config_.percentage == PercentageMode::kPx4Remaining && known ? battery.percentage : kNaN;
+  if (!battery_) return;
+  battery_->add(time_s, voltage_v, std::isfinite(measured_current_a_) ? measured_current_a_ : modelled_current_a);
+  if (config_.percentage == PercentageMode::kCapacityFraction && known) {
+    battery_->addStateOfCharge(battery.percentage, kReportedSocSigma);
+  }
+}
+
+OperatingPoint CapabilityEstimator::fullThrottle(double voltage_v, const Correction& correction) const {
+  Correction at = correction;
   OperatingPoint e;
-  if (!model_.evaluate(pwm_max_us_, voltage_v, &e)) return kNaN;
-  return motors_ * e.thrust_n;
+  double total_a = 0.0;
+  // The supply resistance's drop depends on the current it sets.
+  for (int k = 0; k < kSagIterations; ++k) {
+    at.signals.battery_current_a = total_a;
+    if (!evaluateCorrected(model_, at, pwm_max_us_, voltage_v, &e)) return OperatingPoint{kNaN, kNaN, kNaN, kNaN, kNaN, false};
+    total_a = motors_ * (std::isfinite(e.current_a) ? e.current_a : 0.0);
+  }
+  e.thrust_n *= motors_;
+  e.current_a *= motors_;
+  return e;
 }
 
-CapabilityReport CapabilityEstimator::evaluate(const EstimatorOutput& output, const BatteryReport& battery) const {
+void CapabilityEstimator::evaluatePayload(const Correction& correction, CapabilityReport* c) const {
+  if (std::isnan(c->voltage_v)) {
+    c->payload_note = "no motor output yet";
+    return;
+  }
+  // The voltage the pack sags to at full throttle: its open-circuit voltage less its internal
+  // resistance times the full-throttle current, solved together. Without a converged battery
+  // estimate, the voltage measured now (an optimistic limit: the note says so).
+  double voltage = c->voltage_v;
+  OperatingPoint top = fullThrottle(voltage, correction);
+  if (battery_) {
+    const std::string withheld = battery_->withheldReason();
+    if (withheld.empty() && std::isfinite(top.current_a)) {
+      const BatteryEstimate& b = battery_->estimate();
+      for (int k = 0; k < kSagIterations && std::isfinite(top.current_a); ++k) {
+        voltage = b.open_circuit_voltage_v - b.internal_resistance_ohm * top.current_a;
+        top = fullThrottle(voltage, correction);
+      }
+    } else {
+      c->payload_note = "at the voltage measured now, not sagged to full throttle: " +
+                        (withheld.empty() ? std::string("the model has no current") : withheld);
+    }
+  }
+  c->full_throttle_voltage_v = voltage;
+  c->full_throttle_current_a = top.current_a;
+  c->max_thrust_n = top.thrust_n;
+  if (std::isnan(c->max_thrust_n)) c->payload_note = "the model rejects " + formatPrintf("%.2f V", voltage);
+  if (battery_) {
+    c->max_thrust_at_cutoff_n = fullThrottle(c->cutoff_voltage_v, correction).thrust_n;
+    if (std::isnan(c->max_thrust_at_cutoff_n) && c->payload_note.empty()) {
+      c->payload_note = "the model rejects the cut-off " + formatPrintf("%.2f V", c->cutoff_voltage_v);
+    }
+  } else if (c->payload_note.empty()) {
+    c->payload_note = "no cut-off figures: no battery configured (capability/battery/capacity_ah, cells)";
+  }
+}
+
+CapabilityReport CapabilityEstimator::evaluate(const EstimatorOutput& output, const effects::Signals& signals) const {
   CapabilityReport c;
   c.pwm_max_us = pwm_max_us_;
   const MassEstimate& payload = output.payload;
@@ -77,23 +164,10 @@ CapabilityReport CapabilityEstimator::evaluate(const EstimatorOutput& output, co
   c.hover_basis = std::isnan(payload.total_mass_kg)
                       ? std::string("no hover yet")
                       : formatPrintf("%.1f", payload.window_s) + " s of hover (" + payloadStateName(payload.state) + ")";
-  const std::optional<BatteryPack> pack = config_.pack();
-  if (pack) c.cutoff_voltage_v = pack->cutoffVoltage();
-
-  if (std::isnan(c.voltage_v)) {
-    c.payload_note = "no motor output yet";
-  } else {
-    c.max_thrust_n = maxThrustN(c.voltage_v);
-    if (std::isnan(c.max_thrust_n)) c.payload_note = "the model rejects " + formatPrintf("%.2f V", c.voltage_v);
-  }
-  if (pack) {
-    c.max_thrust_at_cutoff_n = maxThrustN(pack->cutoffVoltage());
-    if (std::isnan(c.max_thrust_at_cutoff_n) && c.payload_note.empty()) {
-      c.payload_note = "the model rejects the cut-off " + formatPrintf("%.2f V", pack->cutoffVoltage());
-    }
-  } else if (c.payload_note.empty()) {
-    c.payload_note = "no cut-off figures: no battery configured (capability/battery/capacity_ah, cells)";
-  }
+  if (battery_) c.cutoff_voltage_v = battery_->config().cells * config_.cell_cutoff_v;
+  Correction correction{&model_.effects(), signals};
+  correction.signals.vertical_speed_m_s = 0.0;
+  evaluatePayload(correction, &c);
   if (std::isnan(c.hover_mass_kg)) {
     c.payload_note = "no hover yet";
   } else {
@@ -105,70 +179,122 @@ CapabilityReport CapabilityEstimator::evaluate(const EstimatorOutput& output, co
         additionalPayloadKg(c.max_thrust_at_cutoff_n, config_.min_thrust_to_weight, c.hover_mass_kg);
     c.payload_over_limit = c.max_additional_payload_kg < 0.0;
     if (!std::isnan(c.voltage_v)) {
-      const std::optional<HoverPoint> hover = hoverPoint(model_, weight_n / motors_, c.voltage_v);
+      Correction at = correction;
+      at.signals.battery_current_a = measured_current_a_;
+      if (!std::isfinite(at.signals.battery_current_a)) at.signals.battery_current_a = output.totals.current_a;
+      const std::optional<HoverPoint> hover = hoverPoint(model_, weight_n / motors_, c.voltage_v, at);
       if (hover) {
         c.hover_pwm_us = hover->pwm_us;
         c.hover_current_a = motors_ * hover->current_a;
       }
     }
   }
-  evaluateEndurance(battery, &c);
+  evaluateEndurance(correction, &c);
   c.endurance_below_reserve = c.hover_endurance_s < config_.reserve_s;
   return c;
 }
 
-void CapabilityEstimator::evaluateEndurance(const BatteryReport& battery, CapabilityReport* c) const {
-  const std::optional<BatteryPack> pack = config_.pack();
-  if (!pack) {
+HoverDischarge CapabilityEstimator::discharge(double state_of_charge, double resistance_ohm, double thrust_per_motor_n,
+                                              const Correction& correction) const {
+  const BatteryEstimatorConfig& b = battery_->config();
+  DischargePack pack;
+  const double capacity_ah = b.capacity_ah;
+  const OcvCurve& curve = b.curve;
+  const int cells = b.cells;
+  pack.open_circuit_v = [&curve, cells, capacity_ah, state_of_charge](double drawn_ah) {
+    return cells * curve.cellVoltage(state_of_charge - drawn_ah / capacity_ah);
+  };
+  pack.charge_ah = state_of_charge * capacity_ah;
+  pack.resistance_ohm = resistance_ohm;
+  pack.cutoff_voltage_v = cells * config_.cell_cutoff_v;
+  if (!std::isnan(px4_remaining_)) {
+    // PX4's remaining already runs to its own empty voltage: the charge is drawn to its end.
+    pack.charge_ah = px4_remaining_ * capacity_ah;
+    pack.cutoff_voltage_v = 0.0;
+  }
+  return integrateHoverDischarge(model_, pack, thrust_per_motor_n, motors_, kDischargeSteps, correction);
+}
+
+void CapabilityEstimator::evaluateEndurance(const Correction& correction, CapabilityReport* c) const {
+  if (!battery_) {
     c->charge_basis = c->endurance_basis = "no battery capacity configured (capability/battery/capacity_ah, cells)";
     return;
   }
-  double drawn_ah = kNaN;
-  if (battery.percentage >= 0.0 && battery.percentage <= 1.0) {
-    drawn_ah = pack->drawnAtStateOfCharge(battery.percentage);
-    c->state_of_charge = battery.percentage;
-    c->charge_basis = "percentage";
-  } else if (battery.charge_ah >= 0.0 && std::isfinite(battery.charge_ah)) {
-    c->state_of_charge = battery.charge_ah / pack->capacity_ah;
-    drawn_ah = pack->drawnAtStateOfCharge(c->state_of_charge);
-    c->charge_basis = "charge";
-  } else if (!std::isnan(c->voltage_v)) {
-    drawn_ah = pack->drawnAt(c->voltage_v);
-    c->state_of_charge = 1.0 - drawn_ah / pack->capacity_ah;
-    c->charge_basis = "voltage";
-  } else {
-    c->charge_basis = c->endurance_basis = "no battery state yet";
-    return;
-  }
-  c->remaining_ah = pack->usableAh() - drawn_ah;
+  const BatteryEstimate& b = battery_->estimate();
+  c->state_of_charge = b.state_of_charge;
+  c->state_of_charge_std = b.state_of_charge_std;
+  c->internal_resistance_ohm = b.internal_resistance_ohm;
+  c->internal_resistance_std_ohm = b.internal_resistance_std_ohm;
+  c->open_circuit_voltage_v = b.open_circuit_voltage_v;
+  const bool px4 = !std::isnan(px4_remaining_);
+  c->charge_basis = px4 ? std::string("px4_remaining")
+                        : std::string("open-circuit curve") +
+                              (config_.percentage == PercentageMode::kCapacityFraction ? ", capacity_fraction" : "") +
+                              (std::isnan(measured_current_a_) ? "" : " and coulomb counting");
   if (std::isnan(c->hover_mass_kg)) {
     c->endurance_basis = "no hover yet";
     return;
   }
-  const double thrust_per_motor_n = c->hover_mass_kg * kStandardGravity / motors_;
-  if (model_.output(Output::kCurrent).source != OutputSource::kNone) {
-    // From the voltage measured now, under the hover load: the linear discharge's voltages where
-    // the real pack's differ most (its plateau) would misplace the hover currents.
-    const HoverDischarge discharge = integrateHoverDischarge(model_, c->voltage_v, pack->cutoffVoltage(),
-                                                             c->remaining_ah, thrust_per_motor_n, motors_,
-                                                             kDischargeSteps);
-    if (discharge.endurance_s) {
-      c->hover_endurance_s = *discharge.endurance_s;
-      c->endurance_basis = "model current at the hover point, charge from " + c->charge_basis;
-    } else {
-      c->endurance_basis = discharge.notes.empty() ? std::string("the hover discharge did not reach the cut-off")
-                                                   : discharge.notes.back();
-    }
+  const std::string withheld = battery_->withheldReason();
+  if (!withheld.empty() && !px4) {
+    c->endurance_basis = "withheld: " + withheld;
     return;
   }
-  const double current_a = std::abs(battery.current_a);
+  if (model_.output(Output::kCurrent).source == OutputSource::kNone) {
+    evaluateEnduranceAtMeasuredCurrent(c);
+    return;
+  }
+  const double thrust_per_motor_n = c->hover_mass_kg * kStandardGravity / motors_;
+  const double resistance = px4 ? 0.0 : b.internal_resistance_ohm;
+  const HoverDischarge nominal = discharge(b.state_of_charge, resistance, thrust_per_motor_n, correction);
+  if (!nominal.endurance_s) {
+    c->endurance_basis = nominal.notes.empty() ? std::string("the hover discharge did not reach the cut-off")
+                                               : nominal.notes.back();
+    return;
+  }
+  c->hover_endurance_s = *nominal.endurance_s;
+  double previous_s = 0.0;
+  c->remaining_ah = 0.0;
+  for (const DischargeStep& step : nominal.steps) {
+    c->remaining_ah += (step.time_s - previous_s) * step.total_current_a / 3600.0;
+    previous_s = step.time_s;
+  }
+  c->endurance_basis = px4 ? "PX4's remaining drawn at the model's hover current"
+                           : "to the loaded cut-off at the model's hover current, internal resistance included";
+  if (px4) return;
+  // The spread: the endurance at one standard deviation less charge, at one more resistance, and
+  // the capacity's.
+  const HoverDischarge less_charge = discharge(std::max(0.0, b.state_of_charge - b.state_of_charge_std), resistance,
+                                               thrust_per_motor_n, correction);
+  const HoverDischarge more_resistance = discharge(b.state_of_charge, resistance + b.internal_resistance_std_ohm,
+                                                   thrust_per_motor_n, correction);
+  const double by_charge = c->hover_endurance_s - less_charge.endurance_s.value_or(0.0);
+  const double by_resistance = c->hover_endurance_s - more_resistance.endurance_s.value_or(0.0);
+  // The capacity's own spread scales the whole endurance.
+  const double by_capacity = c->hover_endurance_s * battery_->config().capacity_rel_std;
+  c->hover_endurance_std_s = std::sqrt(by_charge * by_charge + by_resistance * by_resistance + by_capacity * by_capacity);
+}
+
+void CapabilityEstimator::evaluateEnduranceAtMeasuredCurrent(CapabilityReport* c) const {
+  const double current_a = measured_current_a_;
   if (!(current_a > 0.0) || std::isinf(current_a)) {
     c->endurance_basis = "no current surface and no current measured";
     return;
   }
+  // The measured current held: the charge left until the loaded voltage at that current reaches
+  // the cut-off (or PX4's remaining).
+  const BatteryEstimate& b = battery_->estimate();
+  const BatteryEstimatorConfig& pack = battery_->config();
   c->hover_current_a = current_a;
+  if (!std::isnan(px4_remaining_)) {
+    c->remaining_ah = px4_remaining_ * pack.capacity_ah;
+  } else {
+    const double cut_soc =
+        pack.curve.stateOfCharge(config_.cell_cutoff_v + b.internal_resistance_ohm * current_a / pack.cells);
+    c->remaining_ah = std::max(0.0, b.state_of_charge - cut_soc) * pack.capacity_ah;
+  }
   c->hover_endurance_s = 3600.0 * c->remaining_ah / current_a;
-  c->endurance_basis = "measured current " + formatPrintf("%.1f A", current_a) + ", charge from " + c->charge_basis;
+  c->endurance_basis = "measured current " + formatPrintf("%.1f A", current_a) + " held, charge from " + c->charge_basis;
 }
 
 HealthStatus judgeCapability(const CapabilityReport& c, const MotorHealthVerdict& health, const CapabilityConfig& config) {
@@ -181,6 +307,9 @@ HealthStatus judgeCapability(const CapabilityReport& c, const MotorHealthVerdict
   value("max additional payload at cut-off (kg)", c.max_additional_payload_at_cutoff_kg);
   if (!c.payload_note.empty()) status.values.emplace_back("payload note", c.payload_note);
   value("hover endurance (s)", c.hover_endurance_s);
+  value("hover endurance std (s)", c.hover_endurance_std_s);
+  value("state of charge", c.state_of_charge);
+  value("internal resistance (ohm)", c.internal_resistance_ohm);
   status.values.emplace_back("endurance basis", c.endurance_basis);
   status.values.emplace_back("motor health", health.judged ? "judged" : health.unavailable);
   for (const MotorBalanceGap& motor : health.motors) {

@@ -278,7 +278,11 @@ void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message
   const double now = ros::Time::now().toSec();
   logRejection(estimator_->addBattery(now, message->voltage));
   if (pass_battery_current_) logRejection(estimator_->addBatteryCurrent(now, message->current));
-  battery_report_ = BatteryReport{message->percentage, message->charge, message->current};
+  // The modelled current stands in for a current the autopilot does not measure (NaN).
+  const double modelled_a = estimator_->model().output(Output::kCurrent).source == OutputSource::kNone
+                                ? kNaN
+                                : estimator_->output().totals.current_a;
+  capability_->addBattery(now, message->voltage, BatteryReport{message->percentage, message->current}, modelled_a);
 }
 
 void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
@@ -381,7 +385,7 @@ void EstimatorNode::publish() {
 
 void EstimatorNode::publishCapability() {
   estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
-  last_capability_ = capability_->evaluate(estimator_->output(), battery_report_);
+  last_capability_ = capability_->evaluate(estimator_->output(), estimator_->effectSignals(ros::Time::now().toSec()));
   last_health_ = motor_health_->verdict();
   const CapabilityReport& c = last_capability_;
   const MotorHealthVerdict& h = last_health_;
@@ -395,6 +399,8 @@ void EstimatorNode::publishCapability() {
   msg.max_thrust_n = c.max_thrust_n;
   msg.thrust_to_weight = c.thrust_to_weight;
   msg.max_additional_payload_kg = c.max_additional_payload_kg;
+  msg.full_throttle_voltage_v = c.full_throttle_voltage_v;
+  msg.full_throttle_current_a = c.full_throttle_current_a;
   msg.cutoff_voltage_v = c.cutoff_voltage_v;
   msg.max_thrust_at_cutoff_n = c.max_thrust_at_cutoff_n;
   msg.thrust_to_weight_at_cutoff = c.thrust_to_weight_at_cutoff;
@@ -403,9 +409,14 @@ void EstimatorNode::publishCapability() {
   msg.hover_pwm_us = c.hover_pwm_us;
   msg.hover_current_a = c.hover_current_a;
   msg.state_of_charge = c.state_of_charge;
+  msg.state_of_charge_std = c.state_of_charge_std;
+  msg.internal_resistance_ohm = c.internal_resistance_ohm;
+  msg.internal_resistance_std_ohm = c.internal_resistance_std_ohm;
+  msg.open_circuit_voltage_v = c.open_circuit_voltage_v;
   msg.charge_basis = c.charge_basis;
   msg.remaining_ah = c.remaining_ah;
   msg.hover_endurance_s = c.hover_endurance_s;
+  msg.hover_endurance_std_s = c.hover_endurance_std_s;
   msg.endurance_basis = c.endurance_basis;
   msg.reserve_s = params_.capability.reserve_s;
   msg.motor_health_judged = h.judged;

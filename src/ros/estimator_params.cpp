@@ -41,6 +41,11 @@ class ParamReader {
     *value = read;
   }
 
+  // A parameter no longer read: refused with why, not left silently without effect.
+  void removed(const std::string& name, const std::string& why) const {
+    if (nh_.hasParam(name)) throw ConfigError(nh_.resolveName(name) + ": " + why);
+  }
+
   std::string resolveName(const std::string& name) const { return nh_.resolveName(name); }
 
   // A parameter another component reads from the same namespace: known, not read here.
@@ -66,6 +71,7 @@ class ParamReader {
   static const char* typeName(bool) { return "true or false"; }
   static const char* typeName(int) { return "an integer"; }
   static const char* typeName(const std::vector<int>&) { return "a list of integers"; }
+  static const char* typeName(const std::vector<double>&) { return "a list of numbers"; }
 
   const ros::NodeHandle& nh_;
   std::set<std::string> known_;
@@ -132,9 +138,18 @@ void readCapabilityConfig(ParamReader& read, CapabilityConfig* config) {
   read.optional("capability/reserve_s", &k.reserve_s);
   read.optional("capability/battery/capacity_ah", &k.capacity_ah);
   read.optional("capability/battery/cells", &k.cells);
-  read.optional("capability/battery/usable_fraction", &k.usable_fraction);
-  read.optional("capability/battery/cell_full_v", &k.cell_full_v);
+  read.removed("capability/battery/usable_fraction",
+               "removed: the usable charge follows from the open-circuit curve, the internal resistance and the "
+               "hover current (README, Capability); give the loaded cut-off as capability/battery/cell_cutoff_v");
+  read.removed("capability/battery/cell_full_v",
+               "removed: the full voltage is the open-circuit curve's (capability/battery/chemistry or ocv_table)");
+  read.optional("capability/battery/chemistry", &k.chemistry);
+  read.optional("capability/battery/ocv_table/soc", &k.ocv_table_soc);
+  read.optional("capability/battery/ocv_table/cell_v", &k.ocv_table_cell_v);
   read.optional("capability/battery/cell_cutoff_v", &k.cell_cutoff_v);
+  std::string percentage = percentageModeName(k.percentage);
+  read.optional("capability/battery/percentage", &percentage);
+  k.percentage = percentageModeFromName(percentage);
   read.optional("capability/motor_health/block_s", &k.motor_health.block_s);
   read.optional("capability/motor_health/window_s", &k.motor_health.window_s);
   read.optional("capability/motor_health/max_gap", &k.motor_health.max_gap);
@@ -207,8 +222,9 @@ void logNodeParams(const EstimatorNodeParams& p) {
                   << ", min_thrust_to_weight " << k.min_thrust_to_weight << ", reserve_s " << k.reserve_s
                   << "\n  capability/battery: capacity_ah "
                   << (k.capacity_ah ? std::to_string(*k.capacity_ah) : "(not set: no endurance)") << ", cells "
-                  << (k.cells ? std::to_string(*k.cells) : "(not set)") << ", usable_fraction " << k.usable_fraction
-                  << ", cell_full_v " << k.cell_full_v << ", cell_cutoff_v " << k.cell_cutoff_v
+                  << (k.cells ? std::to_string(*k.cells) : "(not set)") << ", chemistry " << k.chemistry
+                  << (k.ocv_table_soc.empty() ? "" : " (replaced by ocv_table, " + std::to_string(k.ocv_table_soc.size()) + " points)")
+                  << ", cell_cutoff_v " << k.cell_cutoff_v << ", percentage " << percentageModeName(k.percentage)
                   << "\n  capability/motor_health: block_s " << k.motor_health.block_s << ", window_s "
                   << k.motor_health.window_s << ", max_gap " << k.motor_health.max_gap);
 

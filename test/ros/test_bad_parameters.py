@@ -64,8 +64,20 @@ class BadParametersTest(unittest.TestCase):
     def test_cutoff_above_full(self):
         self.assertEqual(start("l", {"model": MODEL, "capability/battery/capacity_ah": 4.0,
                                      "capability/battery/cells": 3, "capability/battery/cell_cutoff_v": 4.3}),
-                         (1, "capability/battery/cell_cutoff_v: 4.3 V is not below capability/battery/cell_full_v "
+                         (1, "capability/battery/cell_cutoff_v: 4.3 V is not below the open-circuit curve's full "
                              "4.2 V"))
+
+    def test_usable_fraction_removed(self):
+        code, line = start("l", {"model": MODEL, "capability/battery/capacity_ah": 4.0,
+                                 "capability/battery/cells": 3, "capability/battery/usable_fraction": 0.8})
+        self.assertEqual(code, 1)
+        self.assertTrue(line.startswith("/l/capability/battery/usable_fraction: removed: the usable charge follows "
+                                        "from the open-circuit curve"), line)
+
+    def test_unknown_percentage_mode(self):
+        self.assertEqual(start("l", {"model": MODEL, "capability/battery/percentage": "remaining"}),
+                         (1, "capability/battery/percentage: \"remaining\" is not ignore, px4_remaining or "
+                             "capacity_fraction"))
 
     def test_window_fill_never_met(self):
         self.assertEqual(start("i", {"model": MODEL, "hover/min_window_fill": 1.0}),

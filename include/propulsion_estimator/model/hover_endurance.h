@@ -1,9 +1,11 @@
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 
 namespace propulsion_estimator {
@@ -45,9 +47,25 @@ struct HoverPoint {
   bool in_domain = false;  ///< false: the voltage was clamped or extrapolated, or below_pwm_domain
 };
 
+/// The corrected model a figure is taken with: the model's `effects:` (none: the plain surfaces)
+/// and their signals at the moment; its battery current is the total the motors draw at the point
+/// (the supply resistance's), which the caller solves for.
+struct Correction {
+  const effects::ModelEffects* effects = nullptr;  ///< the model's effects; nullptr: the plain surfaces
+  effects::Signals signals;  ///< their signals (NaN: that correction skipped)
+};
+
+/// One motor at `pwm_us` and battery voltage `voltage_v` through `correction`: the surfaces at the
+/// corrected inputs, thrust and efficiency times the effects' thrust factor (floored at zero, as
+/// the estimator does). False when the model rejects the point. Throws nothing.
+bool evaluateCorrected(const PropulsionModel& model, const Correction& correction, double pwm_us, double voltage_v,
+                       OperatingPoint* point);
+
 /// The operating point where one motor gives `thrust_n` at `voltage_v` (evaluate(): the model's
-/// outside-domain policy applies); nullopt when the model cannot give that much thrust there.
-std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust_n, double voltage_v);
+/// outside-domain policy applies; through `correction` when given); nullopt when the model cannot
+/// give that much thrust there.
+std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust_n, double voltage_v,
+                                     const Correction& correction = {});
 
 /// One step of the hover discharge: hover time in s, battery voltage in V, total current in A and
 /// the pulse width in us that holds the hover.
@@ -67,11 +85,29 @@ struct HoverDischarge {
   std::vector<std::string> notes;  ///< why there is no endurance, or what it rests on
 };
 
-/// Integrates the hover of `motors` motors, each giving `thrust_per_motor_n`, while `charge_ah`
-/// is drawn and the terminal voltage falls linearly from `start_voltage_v` to `cutoff_voltage_v`
-/// (BatteryPack's discharge; from a full pack, its full voltage and usable charge), in `steps`
-/// equal charge steps: each step's hover current from the model's current at the hover point of
-/// the step's mid voltage. Needs the model's current (a note says so otherwise).
+/// The pack as the hover discharge sees it: its open-circuit voltage in V after `drawn_ah` has been
+/// drawn, the charge in Ah that may be drawn at most, the resistance in ohm between the
+/// open-circuit voltage and the terminals (the loaded voltage is open-circuit less resistance x
+/// current) and the loaded terminal voltage in V at which the hover ends.
+struct DischargePack {
+  std::function<double(double drawn_ah)> open_circuit_v;  ///< V after drawn_ah
+  double charge_ah = 0.0;         ///< Ah; drawn at most
+  double resistance_ohm = 0.0;    ///< ohm; open-circuit to terminals
+  double cutoff_voltage_v = 0.0;  ///< V; loaded, where the hover ends
+};
+
+/// Integrates the hover of `motors` motors, each giving `thrust_per_motor_n`, in `steps` equal
+/// charge steps until the loaded voltage reaches the pack's cut-off (within the step, linearly) or
+/// its charge is drawn: each step's current is the motors' at the hover point of the step's middle,
+/// where the loaded voltage and the current are solved together (the current sags the voltage,
+/// which raises the current). Needs the model's current (a note says so otherwise). Throws nothing.
+HoverDischarge integrateHoverDischarge(const PropulsionModel& model, const DischargePack& pack,
+                                       double thrust_per_motor_n, int motors, int steps,
+                                       const Correction& correction = {});
+
+/// The same for the linear discharge of compare_models (BatteryPack): `charge_ah` drawn while the
+/// voltage falls linearly from `start_voltage_v` to `cutoff_voltage_v`, no resistance, the plain
+/// surfaces.
 HoverDischarge integrateHoverDischarge(const PropulsionModel& model, double start_voltage_v, double cutoff_voltage_v,
                                        double charge_ah, double thrust_per_motor_n, int motors, int steps);
 

@@ -2,48 +2,70 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/onboard/health_summary.h"
 #include "propulsion_estimator/estimation/motor_health.h"
 #include "propulsion_estimator/model/hover_endurance.h"
+#include "propulsion_estimator/onboard/battery_estimator.h"
+#include "propulsion_estimator/onboard/ocv_curve.h"
 
 namespace propulsion_estimator {
 
+/// How BatteryState.percentage is read (capability/battery/percentage): `ignore` (the default:
+/// its meaning differs between autopilots), `px4_remaining` (PX4's remaining, already to the
+/// autopilot's own empty voltage: the endurance runs until it is drawn, no cut-off subtracted
+/// again) or `capacity_fraction` (a share of the rated capacity, e.g. a smart battery's: a
+/// measurement of the state of charge).
+enum class PercentageMode { kIgnore, kPx4Remaining, kCapacityFraction };
+/// "ignore", "px4_remaining", "capacity_fraction".
+const char* percentageModeName(PercentageMode mode);
+/// The mode named `name`; throws FieldError("capability/battery/percentage") for another name.
+PercentageMode percentageModeFromName(const std::string& name);
+
 /// What the capability answers are computed with (node parameters capability/...; README,
 /// "Capability"). The battery is optional as a whole: without capacity and cells the endurance
-/// and the cut-off figures are NaN with the reason.
+/// and the cut-off figures are NaN with the reason. The user gives what is printed on the pack
+/// (cells, capacity) and the loaded cut-off; the rest is estimated in flight.
 struct CapabilityConfig {
-  double rate_hz = 1.0;                ///< Hz; how often ~capability is published
-  std::optional<double> pwm_max_us;    ///< us; top of the usable PWM range; default the model's domain maximum
+  double rate_hz = 1.0;              ///< Hz; how often ~capability is published
+  std::optional<double> pwm_max_us;  ///< us; top of the usable PWM range; default the model's domain maximum
   /// Attitude control needs headroom above the hover thrust: PX4 and ArduPilot practice keeps the
   /// hover throttle near or below half.
   double min_thrust_to_weight = 1.6;
   std::optional<double> capacity_ah;  ///< Ah; the pack's rated capacity
   std::optional<int> cells;           ///< in series
-  double usable_fraction = 0.8;       ///< share of the capacity drawn at the cut-off (BatteryPack)
-  double cell_full_v = 4.2;           ///< V per cell
-  double cell_cutoff_v = 3.5;         ///< V per cell
-  double reserve_s = 120.0;           ///< s; hover endurance below this warns
+  std::string chemistry = "lipo";     ///< the built-in open-circuit curve: lipo | li_ion
+  /// The user's open-circuit curve (capability/battery/ocv_table/soc, cell_v); replaces the
+  /// chemistry's when given.
+  ///@{
+  std::vector<double> ocv_table_soc, ocv_table_cell_v;
+  ///@}
+  double cell_cutoff_v = 3.5;  ///< V per cell; the loaded terminal voltage the endurance runs to
+  PercentageMode percentage = PercentageMode::kIgnore;  ///< how BatteryState.percentage is read
+  double reserve_s = 120.0;  ///< s; hover endurance below this warns
   MotorHealthConfig motor_health;  ///< the motor-health check's settings (capability/motor_health/...)
 
-  /// FieldError naming `capability/<field>`: rate, PWM and thrust-to-weight not positive, a capacity
-  /// at or below zero, cells outside 1..14, capacity without cells (or cells without capacity),
-  /// usable fraction outside (0, 1], a cut-off at or above the full voltage, a negative reserve.
+  /// Throws FieldError naming the parameter (capability/...): rate, PWM and thrust-to-weight not positive, a
+  /// capacity at or below zero, cells outside 1..14, capacity without cells (or cells without
+  /// capacity), an unknown chemistry or a bad ocv_table, a cut-off outside the curve's voltages,
+  /// a negative reserve.
   void validate() const;
-  /// The pack when capacity and cells are configured.
-  std::optional<BatteryPack> pack() const;
+  /// The cells' open-circuit curve: the user's table, else the chemistry's.
+  OcvCurve curve() const;
+  /// The battery estimator's configuration when capacity and cells are configured.
+  std::optional<BatteryEstimatorConfig> battery() const;
 };
 
 /// What the autopilot reports of the battery besides its voltage (sensor_msgs/BatteryState):
-/// remaining share 0..1 and charge in Ah, current drawn in A (its magnitude); NaN when not
-/// measured. A percentage outside 0..1 (MAVROS' -1 % "unknown") or a negative charge counts as
+/// percentage 0..1 (read per CapabilityConfig::percentage) and the current drawn in A (its
+/// magnitude); NaN when not measured. A percentage outside 0..1 (MAVROS' -1 "unknown") counts as
 /// not measured.
 struct BatteryReport {
-  double percentage = kNaN;  ///< remaining share of the capacity, 0..1
-  double charge_ah = kNaN;  ///< remaining charge, Ah
-  double current_a = kNaN;  ///< current drawn, A
+  double percentage = kNaN;  ///< 0..1, read per CapabilityConfig::percentage
+  double current_a = kNaN;   ///< A; current drawn (its magnitude)
 };
 
 /// The answers of thesis chapter 1 for the present flight, SI units; NaN where a figure cannot be
@@ -51,63 +73,84 @@ struct BatteryReport {
 struct CapabilityReport {
   /// The mass the thrust holds in hover (the payload estimator's average) and what it rests on.
   double hover_mass_kg = kNaN;
-  std::string hover_basis;  ///< "hovering", "holding the last hover", or why there is no hover mass
-  double voltage_v = kNaN;  ///< battery voltage the figures are computed at, V
-  double pwm_max_us = kNaN;  ///< the top of the usable PWM range, us
-  /// At the present voltage, over all motors at pwm_max_us.
+  std::string hover_basis;  ///< "10.0 s of hover (hovering)" or "no hover yet"
+  double voltage_v = kNaN;  ///< V; the battery voltage now
+  double pwm_max_us = kNaN;  ///< us; the top of the usable PWM range
+  /// All motors at pwm_max_us through the corrected model, at the voltage the pack sags to at
+  /// that current (full_throttle_voltage_v, full_throttle_current_a).
   double max_thrust_n = kNaN;
   double thrust_to_weight = kNaN;  ///< max_thrust_n over the hover weight
   double max_additional_payload_kg = kNaN;  ///< keeping min_thrust_to_weight; negative: over the limit
-  /// The same at the pack's cut-off voltage.
+  double full_throttle_voltage_v = kNaN;  ///< V; the terminals at full throttle
+  double full_throttle_current_a = kNaN;  ///< A; all motors at full throttle
+  /// The same with the pack's terminals at the cut-off voltage.
   ///@{
   double cutoff_voltage_v = kNaN;
   double max_thrust_at_cutoff_n = kNaN;
   double thrust_to_weight_at_cutoff = kNaN;
   double max_additional_payload_at_cutoff_kg = kNaN;
   ///@}
-  std::string payload_note;  ///< why a payload figure is NaN; "" when all are computed
-  /// The hover operating point at the present voltage, all motors.
+  std::string payload_note;  ///< why a payload figure is NaN or on what it rests; "" when all are computed
+  /// The hover operating point at the present voltage, all motors, through the corrected model.
   ///@{
   double hover_pwm_us = kNaN;
   double hover_current_a = kNaN;
   ///@}
-  /// The pack's state: share of the capacity left and on what it rests (percentage | charge |
-  /// voltage), usable charge left above the cut-off in Ah.
-  ///@{
-  double state_of_charge = kNaN;
-  std::string charge_basis;  ///< what the state of charge rests on: "percentage", "charge" or "voltage"
-  double remaining_ah = kNaN;  ///< usable charge left above the cut-off, Ah
-  ///@}
-  double hover_endurance_s = kNaN;  ///< hover time left until the cut-off voltage, s
-  std::string endurance_basis;  ///< how it was computed, or why it is NaN
-  bool payload_over_limit = false;  ///< the hover mass exceeds what keeps min_thrust_to_weight
-  bool endurance_below_reserve = false;  ///< hover_endurance_s is below CapabilityConfig::reserve_s
+  /// The pack's state (BatteryEstimator) and on what it rests.
+  double state_of_charge = kNaN;  ///< 0..1 of the rated capacity
+  double state_of_charge_std = kNaN;  ///< one standard deviation, the curve's uncertainty included
+  double internal_resistance_ohm = kNaN;  ///< ohm; the pack's
+  double internal_resistance_std_ohm = kNaN;  ///< ohm; one standard deviation
+  double open_circuit_voltage_v = kNaN;  ///< V; the pack at rest now
+  std::string charge_basis;  ///< what the state of charge rests on
+  double remaining_ah = kNaN;  ///< charge drawn until the loaded cut-off (or PX4's empty)
+  double hover_endurance_s = kNaN;  ///< s; hover time left to the loaded cut-off
+  double hover_endurance_std_s = kNaN;  ///< from the state of charge's and the resistance's spread
+  std::string endurance_basis;          ///< how it was computed, or why it is NaN (withheld: ...)
+  bool payload_over_limit = false;       ///< max_additional_payload_kg < 0
+  bool endurance_below_reserve = false;  ///< hover_endurance_s < reserve_s
 };
 
-/// Computes the capability answers from the estimator's state (ROS-free; called at
-/// CapabilityConfig::rate_hz). The endurance integrates the hover discharge
-/// (integrateHoverDischarge, as compare_models does) from the pack's present state to its cut-off.
+/// Computes the capability answers (ROS-free; evaluate() at CapabilityConfig::rate_hz,
+/// addBattery() per battery message). The endurance integrates the hover discharge
+/// (integrateHoverDischarge, as compare_models does) from the estimated state of charge along the
+/// open-circuit curve until the loaded voltage reaches the cut-off.
 class CapabilityEstimator {
  public:
-  /// Throws FieldError for a bad config, or a pwm_max_us at or below the model's lowest PWM. `model`
-  /// must outlive the estimator (the Estimator's own).
+  /// Throws FieldError for a bad config, or a pwm_max_us at or below the model's lowest PWM.
+  /// `model` must outlive the estimator (the Estimator's own).
   CapabilityEstimator(const PropulsionModel& model, int motors, CapabilityConfig config);
 
-  /// The answers for the estimator's last output and the battery's report; never throws.
-  CapabilityReport evaluate(const EstimatorOutput& output, const BatteryReport& battery) const;
+  /// One battery message at `time_s`: its voltage in V, what else it reports, and the motors'
+  /// modelled total current in A (NaN if none), used when no current is measured. O(1).
+  void addBattery(double time_s, double voltage_v, const BatteryReport& battery, double modelled_current_a);
+
+  /// The answers for the estimator's last output and the effects' signals now (the vertical speed
+  /// is taken as 0: hover and the thrust at rest at the top of the range).
+  CapabilityReport evaluate(const EstimatorOutput& output, const effects::Signals& signals = {}) const;
 
   /// As validated.
   const CapabilityConfig& config() const { return config_; }
+  /// The pack's estimator; nullopt without a battery configured.
+  const std::optional<BatteryEstimator>& battery() const { return battery_; }
 
  private:
-  /// Thrust of all motors at the top PWM and `voltage_v`; NaN when the model rejects it.
-  double maxThrustN(double voltage_v) const;
-  void evaluateEndurance(const BatteryReport& battery, CapabilityReport* c) const;
+  /// Thrust and current of all motors at the top PWM with the terminals at `voltage_v`.
+  OperatingPoint fullThrottle(double voltage_v, const Correction& correction) const;
+  void evaluatePayload(const Correction& correction, CapabilityReport* c) const;
+  void evaluateEndurance(const Correction& correction, CapabilityReport* c) const;
+  /// A model without current: the measured current held until the cut-off.
+  void evaluateEnduranceAtMeasuredCurrent(CapabilityReport* c) const;
+  HoverDischarge discharge(double state_of_charge, double resistance_ohm, double thrust_per_motor_n,
+                           const Correction& correction) const;
 
   const PropulsionModel& model_;
   int motors_;
   CapabilityConfig config_;
   double pwm_max_us_;
+  std::optional<BatteryEstimator> battery_;
+  double px4_remaining_ = kNaN;
+  double measured_current_a_ = kNaN;
 };
 
 /// The Capability diagnostic: WARN when the payload exceeds its limit, the hover endurance is below

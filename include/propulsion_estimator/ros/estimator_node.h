@@ -75,7 +75,6 @@ class EstimatorNode {
   std::unique_ptr<Estimator> estimator_;
   std::unique_ptr<CapabilityEstimator> capability_;
   std::unique_ptr<MotorHealth> motor_health_;
-  BatteryReport battery_report_;
   CapabilityReport last_capability_;
   MotorHealthVerdict last_health_;
 

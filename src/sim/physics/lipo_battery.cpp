@@ -34,6 +34,10 @@ void LipoBatteryParams::validate() const {
   requirePositive("battery.series_resistance_ohm", series_resistance_ohm, 1.0, " ohm");
   requirePositive("battery.rc_resistance_ohm", rc_resistance_ohm, 1.0, " ohm");
   requirePositive("battery.rc_capacitance_f", rc_capacitance_f, 1e7, " F");
+  if (rc2_resistance_ohm != 0.0 || rc2_capacitance_f != 0.0) {
+    requirePositive("battery.rc2_resistance_ohm", rc2_resistance_ohm, 1.0, " ohm");
+    requirePositive("battery.rc2_capacitance_f", rc2_capacitance_f, 1e8, " F");
+  }
 }
 
 double LipoBatteryParams::openCircuitVoltage(double state_of_charge) const {
@@ -49,13 +53,18 @@ LipoBattery::LipoBattery(LipoBatteryParams params, double initial_soc) : params_
   requireWithin("initial_soc", initial_soc, 0.0, 1.0);
 }
 
-double LipoBattery::sourceVoltage() const { return params_.openCircuitVoltage(soc_) - polarisation_v_; }
+double LipoBattery::sourceVoltage() const { return params_.openCircuitVoltage(soc_) - polarisationVoltage(); }
 
 void LipoBattery::draw(double current_a, double dt_s) {
   soc_ -= current_a * dt_s / (params_.capacity_ah * 3600.0);
   const double settled = current_a * params_.rc_resistance_ohm;
   polarisation_v_ =
       settled + (polarisation_v_ - settled) * std::exp(-dt_s / (params_.rc_resistance_ohm * params_.rc_capacitance_f));
+  if (params_.rc2_resistance_ohm > 0.0) {
+    const double settled2 = current_a * params_.rc2_resistance_ohm;
+    polarisation2_v_ = settled2 + (polarisation2_v_ - settled2) *
+                                      std::exp(-dt_s / (params_.rc2_resistance_ohm * params_.rc2_capacitance_f));
+  }
 }
 
 }  // namespace sim

@@ -62,6 +62,22 @@ pe::CapabilityConfig configured() {
   return config;
 }
 
+// A 3S pack on the built-in LiPo curve with `resistance_ohm`, from `soc`: 10 s at rest (0.2 A),
+// then `current_a` for 30 s, one battery message a second; returns the terminal voltage at the end.
+double feedPack(pe::CapabilityEstimator* estimator, double soc, double current_a, double resistance_ohm,
+                pe::BatteryReport report = {}) {
+  const pe::OcvCurve curve = pe::OcvCurve::lipo();
+  double voltage = 0.0;
+  for (int t = 0; t <= 40; ++t) {
+    const double i = t < 10 ? 0.2 : current_a;
+    if (t > 0) soc -= i / (3600.0 * 4.0);
+    voltage = 3 * curve.cellVoltage(soc) - resistance_ohm * i;
+    report.current_a = i;
+    estimator->addBattery(t, voltage, report, pe::kNaN);
+  }
+  return voltage;
+}
+
 }  // namespace
 
 TEST(BatteryPack, ChargeDrawnFromTheVoltageOrTheStateOfCharge) {
@@ -109,7 +125,7 @@ TEST(Capability, PayloadLimitKeepsTheThrustToWeightMargin) {
   EXPECT_NEAR(c.max_additional_payload_kg, 4.0 / 1.6 - 1.5, 1e-9);
   EXPECT_NEAR(c.max_additional_payload_at_cutoff_kg, 4.0 / 1.6 - 1.5, 1e-9);
   EXPECT_DOUBLE_EQ(c.cutoff_voltage_v, 10.5);
-  EXPECT_EQ(c.payload_note, "");
+  EXPECT_EQ(c.payload_note, "at the voltage measured now, not sagged to full throttle: no battery voltage yet");
   EXPECT_FALSE(c.payload_over_limit);
   // 375 g per motor: 1375 us, 4 x (20 - 12) A.
   EXPECT_NEAR(c.hover_pwm_us, 1375.0, 1e-6);
@@ -122,31 +138,102 @@ TEST(Capability, PayloadLimitKeepsTheThrustToWeightMargin) {
   EXPECT_TRUE(heavy.payload_over_limit);
 }
 
-TEST(Capability, EnduranceFromThePercentageTheChargeOrTheVoltage) {
+// The endurance to the loaded cut-off: the hover discharge from the estimated state of charge along
+// the curve, the internal resistance sagging the voltage, integrated as compare_models does.
+TEST(Capability, EnduranceToTheLoadedCutoffFromTheEstimatedState) {
   const pe::PropulsionModel model = voltageCurrentModel();
-  const pe::CapabilityEstimator estimator(model, 4, configured());
+  pe::CapabilityEstimator estimator(model, 4, configured());
+  const double voltage = feedPack(&estimator, 0.8, 32.0, 0.03);
+  const pe::CapabilityReport c = estimator.evaluate(hovering(1.5, voltage));
+  ASSERT_FALSE(std::isnan(c.hover_endurance_s)) << c.endurance_basis;
+  EXPECT_EQ(c.endurance_basis, "to the loaded cut-off at the model's hover current, internal resistance included");
+  EXPECT_EQ(c.charge_basis, "open-circuit curve and coulomb counting");
+  EXPECT_NEAR(c.internal_resistance_ohm, 0.03, 0.005);
+  EXPECT_NEAR(c.state_of_charge, 0.8 - 30 * 32.0 / 3600.0 / 4.0, 0.03);
+  // The same integration by hand: the curve from the estimated charge, the estimated resistance.
+  const pe::OcvCurve curve = pe::OcvCurve::lipo();
+  pe::DischargePack pack;
+  pack.open_circuit_v = [&](double drawn_ah) { return 3 * curve.cellVoltage(c.state_of_charge - drawn_ah / 4.0); };
+  pack.charge_ah = c.state_of_charge * 4.0;
+  pack.resistance_ohm = c.internal_resistance_ohm;
+  pack.cutoff_voltage_v = 10.5;
+  const pe::HoverDischarge expected = pe::integrateHoverDischarge(model, pack, 1.5 * pe::kStandardGravity / 4, 4, 30);
+  ASSERT_TRUE(expected.endurance_s.has_value());
+  EXPECT_DOUBLE_EQ(c.hover_endurance_s, *expected.endurance_s);
+  EXPECT_GT(c.hover_endurance_std_s, 0.0);
+  EXPECT_LT(c.hover_endurance_std_s, 0.3 * c.hover_endurance_s);
+  // A larger resistance reaches the loaded cut-off sooner.
+  pack.resistance_ohm = 0.1;
+  EXPECT_LT(*pe::integrateHoverDischarge(model, pack, 1.5 * pe::kStandardGravity / 4, 4, 30).endurance_s,
+            c.hover_endurance_s);
+}
+
+TEST(Capability, TheEnduranceIsWithheldWithItsReasonBeforeConvergence) {
+  const pe::PropulsionModel model = voltageCurrentModel();
+  pe::CapabilityEstimator estimator(model, 4, configured());
+  EXPECT_EQ(estimator.evaluate(hovering(1.5, 12.0)).endurance_basis, "withheld: no battery voltage yet");
+  // A steady current from the first message: the resistance cannot be told from the voltage.
+  for (int t = 0; t < 20; ++t) estimator.addBattery(t, 11.4, pe::BatteryReport{pe::kNaN, 30.0}, pe::kNaN);
+  const pe::CapabilityReport c = estimator.evaluate(hovering(1.5, 11.4));
+  EXPECT_TRUE(std::isnan(c.hover_endurance_s));
+  EXPECT_EQ(c.endurance_basis,
+            "withheld: internal resistance not identified yet: the current has varied by 0.0 A, 2.0 A needed (a "
+            "take-off gives it)");
+  EXPECT_EQ(c.payload_note.rfind("at the voltage measured now, not sagged to full throttle: internal resistance", 0), 0u)
+      << c.payload_note;
+}
+
+// percentage read per capability/battery/percentage; NaN and MAVROS' -1 are unknown.
+TEST(Capability, PercentageReadPerItsMode) {
+  const pe::PropulsionModel model = voltageCurrentModel();
   const double thrust_per_motor_n = 1.5 * pe::kStandardGravity / 4;
-  pe::BatteryReport battery;
-  battery.percentage = 0.8;  // 0.8 Ah drawn, 2.4 Ah left above the cut-off
-  const pe::CapabilityReport from_percentage = estimator.evaluate(hovering(1.5, 12.075), battery);
-  const pe::HoverDischarge expected = pe::integrateHoverDischarge(model, 12.075, 10.5, 2.4, thrust_per_motor_n, 4, 50);
-  EXPECT_DOUBLE_EQ(from_percentage.hover_endurance_s, *expected.endurance_s);
-  EXPECT_EQ(from_percentage.charge_basis, "percentage");
-  EXPECT_EQ(from_percentage.endurance_basis, "model current at the hover point, charge from percentage");
-  EXPECT_NEAR(from_percentage.remaining_ah, 2.4, 1e-12);
+  // ignore (the default): a percentage far from the pack's state changes nothing.
+  pe::CapabilityEstimator plain(model, 4, configured());
+  pe::CapabilityEstimator ignoring(model, 4, configured());
+  const double voltage = feedPack(&plain, 0.6, 32.0, 0.03);
+  feedPack(&ignoring, 0.6, 32.0, 0.03, pe::BatteryReport{0.1, pe::kNaN});
+  EXPECT_DOUBLE_EQ(ignoring.evaluate(hovering(1.5, voltage)).hover_endurance_s,
+                   plain.evaluate(hovering(1.5, voltage)).hover_endurance_s);
 
-  battery = {};
-  battery.charge_ah = 3.2;
-  const pe::CapabilityReport from_charge = estimator.evaluate(hovering(1.5, 12.075), battery);
-  EXPECT_DOUBLE_EQ(from_charge.hover_endurance_s, *expected.endurance_s);
-  EXPECT_EQ(from_charge.charge_basis, "charge");
+  // capacity_fraction: a share of the capacity, a measurement of the state of charge.
+  pe::CapabilityConfig fraction = configured();
+  fraction.percentage = pe::PercentageMode::kCapacityFraction;
+  pe::CapabilityEstimator smart(model, 4, fraction);
+  feedPack(&smart, 0.6, 32.0, 0.03, pe::BatteryReport{0.45, pe::kNaN});
+  const pe::CapabilityReport from_fraction = smart.evaluate(hovering(1.5, voltage));
+  EXPECT_LT(from_fraction.state_of_charge, plain.evaluate(hovering(1.5, voltage)).state_of_charge - 0.05);
+  EXPECT_EQ(from_fraction.charge_basis, "open-circuit curve, capacity_fraction and coulomb counting");
 
-  // MAVROS' -1 for an unknown percentage: the voltage, 12.075 V being 0.8 Ah down the linear discharge.
-  battery = {};
-  battery.percentage = -1.0;
-  const pe::CapabilityReport from_voltage = estimator.evaluate(hovering(1.5, 12.075), battery);
-  EXPECT_NEAR(from_voltage.hover_endurance_s, *expected.endurance_s, 1e-6);
-  EXPECT_EQ(from_voltage.charge_basis, "voltage");
+  // px4_remaining: already to PX4's empty voltage, so 20 % is 0.8 Ah of hover, not 0 (the cut-off
+  // is not subtracted a second time).
+  pe::CapabilityConfig px4 = configured();
+  px4.percentage = pe::PercentageMode::kPx4Remaining;
+  pe::CapabilityEstimator autopilot(model, 4, px4);
+  feedPack(&autopilot, 0.3, 32.0, 0.03, pe::BatteryReport{0.2, pe::kNaN});
+  const pe::CapabilityReport from_px4 = autopilot.evaluate(hovering(1.5, voltage));
+  EXPECT_EQ(from_px4.charge_basis, "px4_remaining");
+  EXPECT_NEAR(from_px4.remaining_ah, 0.8, 1e-9);
+  const double hover_a = 4 * pe::hoverPoint(model, thrust_per_motor_n, 11.0)->current_a;
+  EXPECT_NEAR(from_px4.hover_endurance_s, 3600.0 * 0.8 / hover_a, 0.1 * 3600.0 * 0.8 / hover_a);
+
+  // Unknown (NaN, MAVROS' -1): as if ignored, in every mode.
+  for (pe::CapabilityConfig config : {fraction, px4}) {
+    for (double unknown : {pe::kNaN, -1.0}) {
+      pe::CapabilityEstimator estimator(model, 4, config);
+      feedPack(&estimator, 0.6, 32.0, 0.03, pe::BatteryReport{unknown, pe::kNaN});
+      const pe::CapabilityReport c = estimator.evaluate(hovering(1.5, voltage));
+      EXPECT_DOUBLE_EQ(c.hover_endurance_s, plain.evaluate(hovering(1.5, voltage)).hover_endurance_s)
+          << pe::percentageModeName(config.percentage) << " " << unknown;
+    }
+  }
+  EXPECT_EQ(pe::percentageModeFromName("px4_remaining"), pe::PercentageMode::kPx4Remaining);
+  try {
+    pe::percentageModeFromName("remaining");
+    FAIL();
+  } catch (const pe::FieldError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "capability/battery/percentage: \"remaining\" is not ignore, px4_remaining or capacity_fraction");
+  }
 }
 
 TEST(Capability, WithoutACurrentSurfaceTheMeasuredCurrentCarriesTheEndurance) {
@@ -154,17 +241,12 @@ TEST(Capability, WithoutACurrentSurfaceTheMeasuredCurrentCarriesTheEndurance) {
       "  current: {unit: A, none: no current sensor on the stand}\n"
       "  power: {unit: W, none: no current sensor on the stand}\n"
       "  efficiency: {unit: g/W, none: no power without current}");
-  const pe::CapabilityEstimator estimator(model, 4, configured());
-  pe::BatteryReport battery;
-  battery.percentage = 0.8;
-  battery.current_a = -24.0;  // PX4 through MAVROS: negative when discharging
-  const pe::CapabilityReport c = estimator.evaluate(hovering(1.5, 12.0), battery);
-  EXPECT_NEAR(c.hover_endurance_s, 3600.0 * 2.4 / 24.0, 1e-9);
-  EXPECT_EQ(c.endurance_basis, "measured current 24.0 A, charge from percentage");
-  battery.current_a = pe::kNaN;
-  const pe::CapabilityReport none = estimator.evaluate(hovering(1.5, 12.0), battery);
-  EXPECT_TRUE(std::isnan(none.hover_endurance_s));
-  EXPECT_EQ(none.endurance_basis, "no current surface and no current measured");
+  pe::CapabilityEstimator estimator(model, 4, configured());
+  const double voltage = feedPack(&estimator, 0.8, 24.0, 0.03);
+  const pe::CapabilityReport c = estimator.evaluate(hovering(1.5, voltage));
+  const double cut_soc = pe::OcvCurve::lipo().stateOfCharge(3.5 + c.internal_resistance_ohm * 24.0 / 3);
+  EXPECT_NEAR(c.hover_endurance_s, 3600.0 * (c.state_of_charge - cut_soc) * 4.0 / 24.0, 1e-6);
+  EXPECT_EQ(c.endurance_basis, "measured current 24.0 A held, charge from open-circuit curve and coulomb counting");
 }
 
 TEST(Capability, NaNWithTheReasonWhenAFigureCannotBeComputed) {
@@ -199,9 +281,9 @@ TEST(Capability, TheDiagnosticWarnsOfAnOverloadALowEnduranceAndAFlaggedMotor) {
   const pe::PropulsionModel model = voltageCurrentModel();
   pe::CapabilityConfig config = configured();
   config.reserve_s = 300.0;
-  pe::BatteryReport battery;
-  battery.percentage = 0.8;
-  const pe::CapabilityReport c = pe::CapabilityEstimator(model, 4, config).evaluate(hovering(2.6, 12.0), battery);
+  pe::CapabilityEstimator estimator(model, 4, config);
+  const double voltage = feedPack(&estimator, 0.5, 40.0, 0.03);
+  const pe::CapabilityReport c = estimator.evaluate(hovering(2.6, voltage));
   pe::MotorHealthVerdict health;
   health.judged = true;
   health.motors = {{1, 0.01, 0.01}, {2, -0.01, 0.01}, {3, 0.15, 0.01}, {4, 0.0, 0.01}};
@@ -232,7 +314,14 @@ TEST(CapabilityConfig, RefusesBadParametersWithOneLine) {
   EXPECT_EQ(refusal(config), "capability/battery/capacity_ah: must be a positive number, got -2");
   config = configured();
   config.cell_cutoff_v = 4.3;
-  EXPECT_EQ(refusal(config), "capability/battery/cell_cutoff_v: 4.3 V is not below capability/battery/cell_full_v 4.2 V");
+  EXPECT_EQ(refusal(config), "capability/battery/cell_cutoff_v: 4.3 V is not below the open-circuit curve's full 4.2 V");
+  config = configured();
+  config.chemistry = "lifepo4";
+  EXPECT_EQ(refusal(config), "capability/battery/chemistry: \"lifepo4\" is not lipo or li_ion");
+  config = configured();
+  config.ocv_table_soc = {0.0, 0.5, 1.0};
+  config.ocv_table_cell_v = {3.3, 3.9, 3.8};
+  EXPECT_EQ(refusal(config), "capability/battery/ocv_table/cell_v: must increase with soc (3.8 after 3.9)");
   config = configured();
   config.cells.reset();
   EXPECT_EQ(refusal(config), "capability/battery/cells: required with capability/battery/capacity_ah");

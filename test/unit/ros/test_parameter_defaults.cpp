@@ -69,8 +69,8 @@ TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
   EXPECT_EQ(number("capability/rate_hz"), k.rate_hz);
   EXPECT_EQ(number("capability/min_thrust_to_weight"), k.min_thrust_to_weight);
   EXPECT_EQ(number("capability/reserve_s"), k.reserve_s);
-  EXPECT_EQ(number("capability/battery/usable_fraction"), k.usable_fraction);
-  EXPECT_EQ(number("capability/battery/cell_full_v"), k.cell_full_v);
+  EXPECT_EQ(text("capability/battery/chemistry"), k.chemistry);
+  EXPECT_EQ(text("capability/battery/percentage"), pe::percentageModeName(k.percentage));
   EXPECT_EQ(number("capability/battery/cell_cutoff_v"), k.cell_cutoff_v);
   EXPECT_EQ(number("capability/motor_health/block_s"), k.motor_health.block_s);
   EXPECT_EQ(number("capability/motor_health/window_s"), k.motor_health.window_s);

@@ -8,7 +8,8 @@ namespace sim {
 
 /// Lithium-polymer pack as a first-order Thevenin equivalent circuit (G. Plett, Battery Management
 /// Systems vol. 1, 2015, ch. 2): open-circuit voltage as a function of state of charge, a series
-/// resistance, and one RC pair for the polarisation that builds up under load and relaxes after.
+/// resistance, and one or two RC pairs for the polarisation that builds up under load and relaxes
+/// after (a fast one, tens of seconds, and an optional slow one, minutes: diffusion).
 struct LipoBatteryParams {
   std::string name;  ///< for metadata and messages
   int cells = 0;  ///< in series
@@ -21,9 +22,12 @@ struct LipoBatteryParams {
   double series_resistance_ohm = 0.0;  ///< whole pack
   double rc_resistance_ohm = 0.0;  ///< ohm, of the polarisation RC pair
   double rc_capacitance_f = 0.0;  ///< F, of the polarisation RC pair
+  double rc2_resistance_ohm = 0.0;  ///< ohm, of the second (slow) RC pair; 0 with 0 F: none
+  double rc2_capacitance_f = 0.0;  ///< F, of the second RC pair
 
   /// Throws FieldError (battery.*): 1..14 cells, a table from soc 0 to 1 with rising voltages
-  /// between 2.5 and 4.4 V per cell, positive resistances and capacity.
+  /// between 2.5 and 4.4 V per cell, positive resistances and capacity; a second RC pair with both
+  /// values positive or both 0.
   void validate() const;
 
   double openCircuitVoltage(double state_of_charge) const;  ///< whole pack
@@ -48,13 +52,14 @@ class LipoBattery {
 
   /// 0..1
   double stateOfCharge() const { return soc_; }
-  /// V across the RC pair
-  double polarisationVoltage() const { return polarisation_v_; }
+  /// V across the RC pairs
+  double polarisationVoltage() const { return polarisation_v_ + polarisation2_v_; }
 
  private:
   LipoBatteryParams params_;
   double soc_;
   double polarisation_v_ = 0.0;
+  double polarisation2_v_ = 0.0;
 };
 
 }  // namespace sim

@@ -1,0 +1,99 @@
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/onboard/ocv_curve.h"
+
+namespace propulsion_estimator {
+
+/// What the pack's state is estimated from: the user's cells and rated capacity, the cells'
+/// open-circuit curve, and how far a real pack may lie off that curve.
+struct BatteryEstimatorConfig {
+  int cells = 0;              ///< in series
+  double capacity_ah = 0.0;   ///< Ah; the rated capacity
+  OcvCurve curve = OcvCurve::lipo();  ///< the cells' open-circuit curve
+  /// s; the internal resistance's recursive least squares forgets older samples with this time
+  /// constant (the resistance grows as the pack empties and warms).
+  double resistance_memory_s = 300.0;
+  double voltage_sigma_v = 0.03;      ///< V; noise of one pack voltage reading
+  double curve_sigma_cell_v = 0.015;  ///< V per cell; a pack's resting voltage off the curve
+  double current_bias_a = 0.3;        ///< A; how far a current sensor may be off (drift of the count)
+  /// How far the charge a pack gives may lie off its rating (age, cold), relative: a spread of
+  /// the endurance no flight of a minute can narrow.
+  double capacity_rel_std = 0.05;
+  /// A; the least change of current the resistance needs to be identified (a take-off gives it).
+  double min_current_span_a = 2.0;
+  double max_resistance_rel_std = 0.35;  ///< the resistance's standard deviation over it, at most
+  double max_soc_std = 0.08;             ///< state of charge standard deviation (0..1), at most
+
+  /// Throws FieldError naming the field (capability/battery/...): cells outside 1..14, a capacity or
+  /// memory not positive, a sigma negative.
+  void validate() const;
+};
+
+/// The pack's state after the last reading; NaN before any.
+struct BatteryEstimate {
+  double state_of_charge = kNaN;      ///< 0..1 of the rated capacity
+  double state_of_charge_std = kNaN;  ///< including the curve's uncertainty
+  /// ohm; what the current sags the pack by (over the least squares' memory: the series
+  /// resistance and the part of the polarisation that builds within it).
+  double internal_resistance_ohm = kNaN;
+  double internal_resistance_std_ohm = kNaN;  ///< ohm; one standard deviation
+  double open_circuit_voltage_v = kNaN;  ///< pack; the terminal voltage plus resistance x current
+  double current_a = kNaN;               ///< the last current used (measured or given)
+  double current_span_a = 0.0;           ///< A; largest minus smallest current seen
+  double elapsed_s = 0.0;                ///< s since the first reading
+};
+
+/// The pack's state of charge and internal resistance from its terminal voltage and current, O(1)
+/// per reading, fixed memory. The resistance and the voltage the pack would rest at come from a
+/// recursive least squares with forgetting of voltage against current (V = E - R I, as PX4's
+/// battery estimator does), its E carried along the open-circuit curve as charge is drawn; the
+/// state of charge from a Kalman filter that counts the charge drawn (coulomb counting) and is
+/// corrected by the curve at the open-circuit voltage: the curve corrects the counter's drift, the
+/// counter the curve's flat middle.
+class BatteryEstimator {
+ public:
+  /// Throws FieldError for a bad config.
+  explicit BatteryEstimator(BatteryEstimatorConfig config);
+
+  /// One reading at `time_s`: terminal voltage in V, current drawn in A (its magnitude; NaN when
+  /// not measured: no charge is counted and the resistance is not updated). A NaN or non-positive
+  /// voltage, or a time not after the last, is ignored.
+  void add(double time_s, double voltage_v, double current_a);
+  /// A state of charge (0..1) reported by the autopilot as a share of the capacity, with its
+  /// standard deviation: a measurement of the filter. NaN or outside 0..1 is ignored.
+  void addStateOfCharge(double state_of_charge, double sigma);
+
+  /// The state after the last reading.
+  const BatteryEstimate& estimate() const { return estimate_; }
+  /// Empty when the estimate has converged; otherwise why the figures resting on it are withheld.
+  std::string withheldReason() const;
+  /// The validated configuration.
+  const BatteryEstimatorConfig& config() const { return config_; }
+
+ private:
+  void countCharge(double dt_s, double current_a);
+  void updateResistance(double dt_s, double voltage_v, double current_a);
+  Eigen::Matrix2d prior() const;
+  void correctWithCurve(double open_circuit_v, double variance);
+  void publish();
+
+  BatteryEstimatorConfig config_;
+  bool started_ = false;
+  double first_s_ = 0.0, last_s_ = 0.0;
+  double last_current_a_ = kNaN;
+  double min_current_a_ = kNaN, max_current_a_ = kNaN;
+  // State of charge and its variance.
+  double soc_ = 0.0, soc_var_ = 0.0;
+  // Recursive least squares of V = E - R I: theta = (E, R), its covariance p (in units of the
+  // voltage noise's variance).
+  Eigen::Vector2d theta_ = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d p_ = Eigen::Matrix2d::Zero();
+  BatteryEstimate estimate_;
+};
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,160 @@
+#include "propulsion_estimator/onboard/battery_estimator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
+
+namespace propulsion_estimator {
+namespace {
+
+constexpr double kSecondsPerHour = 3600.0;
+// The filter's prior before the first reading: the curve at the voltage read under an unknown load.
+constexpr double kInitialSocStd = 0.15;
+// Prior spreads of the least squares: the rest voltage within 1 V, the resistance within 50 mOhm.
+constexpr double kInitialEStdV = 1.0;
+constexpr double kInitialRStdOhm = 0.05;
+// A current sensor's bias holds for about this long: the count's variance grows with it.
+constexpr double kBiasCorrelationS = 60.0;
+// Below this the resistance's standard deviation counts as identified, however small the resistance.
+constexpr double kResistanceStdFloorOhm = 0.003;
+
+}  // namespace
+
+void BatteryEstimatorConfig::validate() const {
+  requireWithin("capability/battery/cells", cells, 1, 14);
+  requirePositive("capability/battery/capacity_ah", capacity_ah, 1000.0, " Ah");
+  requirePositive("capability/battery/resistance_memory_s", resistance_memory_s);
+  requirePositive("capability/battery/voltage_sigma_v", voltage_sigma_v);
+  requireWithin("capability/battery/curve_sigma_cell_v", curve_sigma_cell_v, 0.0, 0.5, " V");
+  requireWithin("capability/battery/current_bias_a", current_bias_a, 0.0, 100.0, " A");
+  requireWithin("capability/battery/capacity_rel_std", capacity_rel_std, 0.0, 0.5);
+  requireWithin("capability/battery/min_current_span_a", min_current_span_a, 0.0, 1000.0, " A");
+  requirePositive("capability/battery/max_resistance_rel_std", max_resistance_rel_std);
+  requirePositive("capability/battery/max_soc_std", max_soc_std, 1.0);
+}
+
+BatteryEstimator::BatteryEstimator(BatteryEstimatorConfig config) : config_(std::move(config)) { config_.validate(); }
+
+void BatteryEstimator::add(double time_s, double voltage_v, double current_a) {
+  if (!(voltage_v > 0.0) || std::isinf(voltage_v) || std::isnan(time_s)) return;
+  const bool have_current = std::isfinite(current_a);
+  const double sigma2 = config_.voltage_sigma_v * config_.voltage_sigma_v;
+  if (!started_) {
+    started_ = true;
+    first_s_ = last_s_ = time_s;
+    soc_ = config_.curve.stateOfCharge(voltage_v / config_.cells);
+    soc_var_ = kInitialSocStd * kInitialSocStd;
+    theta_ << voltage_v, 0.0;
+    p_ = prior();
+  } else {
+    if (!(time_s > last_s_)) return;
+    const double dt_s = time_s - last_s_;
+    last_s_ = time_s;
+    if (have_current) {
+      countCharge(dt_s, std::isfinite(last_current_a_) ? 0.5 * (current_a + last_current_a_) : current_a);
+      updateResistance(dt_s, voltage_v, current_a);
+    }
+  }
+  if (have_current) {
+    min_current_a_ = std::isnan(min_current_a_) ? current_a : std::min(min_current_a_, current_a);
+    max_current_a_ = std::isnan(max_current_a_) ? current_a : std::max(max_current_a_, current_a);
+    // The voltage the pack would rest at; its noise, the resistance's spread times the current and
+    // how far a pack may lie off the curve.
+    const double curve_v = config_.cells * config_.curve_sigma_cell_v;
+    const Eigen::Vector2d sag(0.0, current_a);
+    correctWithCurve(voltage_v + sag.dot(theta_), sigma2 * (1.0 + sag.dot(p_ * sag)) + curve_v * curve_v);
+  }
+  last_current_a_ = current_a;
+  publish();
+}
+
+void BatteryEstimator::countCharge(double dt_s, double current_a) {
+  const double drawn = current_a * dt_s / (kSecondsPerHour * config_.capacity_ah);
+  // The resting voltage the least squares holds follows the curve as the charge is drawn.
+  theta_(0) -= config_.cells * config_.curve.slope(soc_) * drawn;
+  soc_ = std::clamp(soc_ - drawn, 0.0, 1.0);
+  const double bias = config_.current_bias_a / (kSecondsPerHour * config_.capacity_ah);
+  soc_var_ += bias * bias * dt_s * kBiasCorrelationS;
+}
+
+Eigen::Matrix2d BatteryEstimator::prior() const {
+  const double sigma2 = config_.voltage_sigma_v * config_.voltage_sigma_v;
+  return Eigen::Vector2d(kInitialEStdV * kInitialEStdV, kInitialRStdOhm * kInitialRStdOhm).asDiagonal() * (1.0 / sigma2);
+}
+
+void BatteryEstimator::updateResistance(double dt_s, double voltage_v, double current_a) {
+  // Forgetting: the covariance grows as the old samples lose weight, each variance bounded by the
+  // prior so that a long steady hover (no excitation) does not wind it up.
+  const double forget = std::exp(-dt_s / config_.resistance_memory_s);
+  p_ /= forget;
+  const Eigen::Matrix2d bound = prior();
+  for (int k = 0; k < 2; ++k) {
+    if (p_(k, k) > bound(k, k)) {
+      const double scale = std::sqrt(bound(k, k) / p_(k, k));
+      p_.row(k) *= scale;
+      p_.col(k) *= scale;
+    }
+  }
+  const Eigen::Vector2d phi(1.0, -current_a);
+  const Eigen::Vector2d p_phi = p_ * phi;
+  const Eigen::Vector2d gain = p_phi / (1.0 + phi.dot(p_phi));
+  theta_ += gain * (voltage_v - phi.dot(theta_));
+  p_ -= gain * p_phi.transpose();
+  theta_(1) = std::max(0.0, theta_(1));
+}
+
+void BatteryEstimator::correctWithCurve(double open_circuit_v, double variance) {
+  const double h = config_.cells * config_.curve.cellVoltage(soc_);
+  const double slope = config_.cells * config_.curve.slope(soc_);
+  const double innovation_var = slope * slope * soc_var_ + variance;
+  const double gain = soc_var_ * slope / innovation_var;
+  soc_ = std::clamp(soc_ + gain * (open_circuit_v - h), 0.0, 1.0);
+  soc_var_ *= 1.0 - gain * slope;
+}
+
+void BatteryEstimator::addStateOfCharge(double state_of_charge, double sigma) {
+  if (!started_ || !(state_of_charge >= 0.0 && state_of_charge <= 1.0) || !(sigma > 0.0)) return;
+  const double gain = soc_var_ / (soc_var_ + sigma * sigma);
+  soc_ += gain * (state_of_charge - soc_);
+  soc_var_ *= 1.0 - gain;
+  publish();
+}
+
+void BatteryEstimator::publish() {
+  const double sigma2 = config_.voltage_sigma_v * config_.voltage_sigma_v;
+  // The curve's own uncertainty is a bias, not averaged away: the spread never falls below it.
+  const double curve_soc = config_.curve_sigma_cell_v / config_.curve.slope(soc_);
+  estimate_.state_of_charge = soc_;
+  estimate_.state_of_charge_std = std::sqrt(soc_var_ + curve_soc * curve_soc);
+  estimate_.internal_resistance_ohm = theta_(1);
+  estimate_.internal_resistance_std_ohm = std::sqrt(std::max(0.0, p_(1, 1) * sigma2));
+  estimate_.open_circuit_voltage_v = theta_(0);
+  estimate_.current_a = last_current_a_;
+  estimate_.current_span_a = std::isnan(max_current_a_) ? 0.0 : max_current_a_ - min_current_a_;
+  estimate_.elapsed_s = last_s_ - first_s_;
+}
+
+std::string BatteryEstimator::withheldReason() const {
+  if (!started_) return "no battery voltage yet";
+  const BatteryEstimate& b = estimate_;
+  if (std::isnan(b.current_a) && b.current_span_a == 0.0) return "no battery current (measured or modelled) yet";
+  if (b.current_span_a < config_.min_current_span_a) {
+    return "internal resistance not identified yet: the current has varied by " + formatPrintf("%.1f A", b.current_span_a) +
+           ", " + formatPrintf("%.1f A", config_.min_current_span_a) + " needed (a take-off gives it)";
+  }
+  if (b.internal_resistance_std_ohm >
+      std::max(config_.max_resistance_rel_std * b.internal_resistance_ohm, kResistanceStdFloorOhm)) {
+    return "internal resistance converging: " + formatPrintf("%.1f", 1000.0 * b.internal_resistance_ohm) + " +- " +
+           formatPrintf("%.1f mOhm", 1000.0 * b.internal_resistance_std_ohm);
+  }
+  if (b.state_of_charge_std > config_.max_soc_std) {
+    return "state of charge converging: " + formatPrintf("%.0f", 100.0 * b.state_of_charge) + " +- " +
+           formatPrintf("%.0f %%", 100.0 * b.state_of_charge_std);
+  }
+  return "";
+}
+
+}  // namespace propulsion_estimator
