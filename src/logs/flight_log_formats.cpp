@@ -1,6 +1,7 @@
 #include "propulsion_estimator/logs/flight_log_formats.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -8,6 +9,8 @@
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/text_file.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -41,6 +44,12 @@ void FlightLogOptions::validate(const std::string& what) const {
       throw ConfigError(what + ": '" + name + "' is not a signal (one of " + list + ")");
     }
     if (source.empty()) throw ConfigError(what + ": " + name + ": an empty source");
+  }
+  const bool min_given = !std::isnan(pwm_min_us);
+  if (min_given != !std::isnan(pwm_max_us)) throw ConfigError(what + ": a PWM range needs both its ends");
+  if (min_given && !(pwm_min_us >= 500.0 && pwm_max_us <= 2500.0 && pwm_min_us < pwm_max_us)) {
+    throw ConfigError(what + ": PWM range " + formatNumber(pwm_min_us) + ".." + formatNumber(pwm_max_us) +
+                      " us, expected min < max within 500..2500 us");
   }
 }
 
@@ -77,6 +86,12 @@ std::vector<std::string> FlightLogFormats::names() const {
   std::vector<std::string> names;
   for (const FlightLogFormat& format : formats_) names.push_back(format.name);
   return names;
+}
+
+std::string readFlightLogBytes(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
+  return readTextFile(path);
 }
 
 }  // namespace propulsion_estimator
