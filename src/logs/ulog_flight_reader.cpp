@@ -99,6 +99,7 @@ class SignalReader {
                                                          (options.pwm_max_us - options.pwm_min_us);
       }
     });
+    if (streams_->rc_out.empty()) throw DataError(path_ + ": rc_out: no " + topic + " messages (a required signal)");
     note("rc_out: " + topic + "[0]." + (pwm ? "output" : "control") + "[0.." + std::to_string(motors - 1) + "]" +
          (pwm ? " (us)" : " (0..1 mapped onto the PWM range given)"));
   }
@@ -113,6 +114,7 @@ class SignalReader {
       const double current_a = current ? value(message, *current) : kNaN;
       streams_->battery.push_back({time(message), value(message, *voltage), current_a == -1.0 ? kNaN : current_a});
     });
+    if (streams_->battery.empty()) throw DataError(path_ + ": battery: no battery_status messages (a required signal)");
     note(std::string("battery: battery_status[0].voltage_v") + (current ? ", current_a" : ", no current"));
   }
 
