@@ -7,9 +7,10 @@
 #include <map>
 #include <numeric>
 
-#include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/name_list.h"
+#include "propulsion_estimator/fitting/bench_metadata.h"
 #include "propulsion_estimator/fitting/grouped_least_squares.h"
 #include "propulsion_estimator/model/model_validation.h"
 #include "propulsion_estimator/common/number_format.h"
@@ -19,8 +20,6 @@
 namespace propulsion_estimator {
 namespace fitting {
 namespace {
-
-constexpr char kUnknownName[] = "unknown";
 
 const char* fileUnit(Output output) {
   switch (output) {
@@ -36,165 +35,6 @@ const char* fileUnit(Output output) {
       return "rpm";
   }
   return "";
-}
-
-// "a, b and c" for up to `shown` names, then "a, b and 3 more".
-std::string nameList(const std::vector<std::string>& names, std::size_t shown) {
-  std::string text;
-  const std::size_t listed = names.size() > shown + 1 ? shown : names.size();
-  for (std::size_t k = 0; k < listed; ++k) {
-    text += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
-  }
-  if (listed < names.size()) text += " and " + std::to_string(names.size() - listed) + " more";
-  return text;
-}
-
-// ---- metadata ---------------------------------------------------------------------------------
-
-// The one text value the logs agree on for `key`, or the option; nullopt when neither gives one,
-// DataError when the logs disagree.
-std::optional<std::string> metadataText(const std::vector<BenchLog>& logs, const std::string& key,
-                                        const std::optional<std::string>& option) {
-  if (option) return option;
-  std::optional<std::string> value;
-  std::string from;
-  for (const BenchLog& log : logs) {
-    const auto found = log.metadata.find(key);
-    if (found == log.metadata.end()) continue;
-    if (value && found->second != *value) {
-      throw DataError("logs disagree on " + key + ": '" + *value + "' (" + from + ") and '" + found->second + "' (" +
-                      log.source + "); pass --" + key + " to say which the model records");
-    }
-    value = found->second;
-    from = log.source;
-  }
-  return value;
-}
-
-// A name that only describes the combination (esc, motor, propeller): without one the model
-// records kUnknownName, and a note says so.
-std::string describingName(const std::vector<BenchLog>& logs, const std::string& key,
-                           const std::optional<std::string>& option, std::vector<std::string>* notes) {
-  if (const std::optional<std::string> name = metadataText(logs, key, option)) return *name;
-  notes->push_back(key + ": no log has a '# " + key + ":' line; the model records '" + kUnknownName + "' (pass --" +
-                   key + " to name it)");
-  return kUnknownName;
-}
-
-// A bench condition: the option, else the mean of the logs' metadata values, else the mean of
-// a logged column; nullopt when none gives it. `origin` says where the value came from, for a
-// refusal of it.
-std::optional<double> metadataNumber(const std::vector<BenchLog>& logs, const std::string& key, BenchColumn column,
-                                     const std::string& option_name, const std::optional<double>& option,
-                                     std::vector<std::string>* notes, std::string* origin) {
-  if (option) {
-    *origin = "given as " + option_name;
-    return option;
-  }
-  double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  int count = 0;
-  std::vector<std::string> origins;
-  for (const BenchLog& log : logs) {
-    const auto found = log.metadata.find(key);
-    double value = kNaN;
-    if (found != log.metadata.end()) {
-      char* end = nullptr;
-      value = std::strtod(found->second.c_str(), &end);
-      if (end == found->second.c_str() || *end != '\0' || !std::isfinite(value)) {
-        throw DataError(log.source + ": metadata " + key + ": '" + found->second + "' is not a number");
-      }
-      origins.push_back(log.source + " '# " + key + ":'");
-    } else if (log.has(column)) {
-      const std::vector<double>& values = log.column(column);
-      value = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
-      origins.push_back(log.source + " column " + benchColumnName(column));
-    } else {
-      continue;
-    }
-    sum += value;
-    lo = std::min(lo, value);
-    hi = std::max(hi, value);
-    ++count;
-  }
-  if (count == 0) return std::nullopt;
-  if (count > 1 && hi > lo) {
-    notes->push_back(key + ": mean of " + std::to_string(count) + " logs (" + formatPrintf("%g", lo) + " to " +
-                     formatPrintf("%g", hi) + ")");
-  }
-  *origin = "from " + nameList(origins, 2) + "; pass " + option_name;
-  return sum / count;
-}
-
-// What supplies a bench condition, for the refusal that lists the missing ones.
-std::string conditionSources(const std::string& key, std::optional<BenchColumn> column) {
-  std::string sources = key + " (a '# " + key + ":' line";
-  if (column) {
-    const std::string name = benchColumnName(*column);
-    sources += std::string(" or ") + (name.find_first_of("aeiou") == 0 ? "an " : "a ") + name + " column";
-  }
-  return sources + ")";
-}
-
-ModelMetadata resolveMetadata(const std::vector<BenchLog>& logs, const FitOptions& options,
-                              std::vector<std::string>* notes) {
-  ModelMetadata meta;
-  meta.esc = describingName(logs, "esc", options.esc, notes);
-  meta.motor = describingName(logs, "motor", options.motor, notes);
-  meta.propeller = describingName(logs, "propeller", options.propeller, notes);
-  // The physics: the air the thrust was measured in and the kind of supply. Every one missing is
-  // named at once.
-  std::vector<std::string> missing, missing_options;
-  std::string temperature_origin, pressure_origin;
-  const std::optional<double> temperature_c =
-      metadataNumber(logs, "air_temperature_c", BenchColumn::kAmbientTemp, "--air-temperature-c",
-                     options.air_temperature_c, notes, &temperature_origin);
-  if (!temperature_c) {
-    missing.push_back(conditionSources("air_temperature_c", BenchColumn::kAmbientTemp));
-    missing_options.push_back("--air-temperature-c");
-  }
-  const std::optional<double> pressure_pa =
-      metadataNumber(logs, "air_pressure_pa", BenchColumn::kPressure, "--air-pressure-pa", options.air_pressure_pa,
-                     notes, &pressure_origin);
-  if (!pressure_pa) {
-    missing.push_back(conditionSources("air_pressure_pa", BenchColumn::kPressure));
-    missing_options.push_back("--air-pressure-pa");
-  }
-  std::optional<std::string> supply;
-  if (!options.supply) {
-    supply = metadataText(logs, "supply", std::nullopt);
-    if (!supply) {
-      missing.push_back(conditionSources("supply", std::nullopt));
-      missing_options.push_back("--supply");
-    }
-  }
-  if (!missing.empty()) {
-    throw DataError("no log gives the bench's " + nameList(missing, missing.size()) + ": pass " +
-                    nameList(missing_options, missing_options.size()));
-  }
-  meta.bench_air_temperature_c = *temperature_c;
-  meta.bench_air_pressure_pa = *pressure_pa;
-  // The loader's own check, so that fit_surfaces never writes a model it would refuse.
-  try {
-    meta.validate();
-  } catch (const FieldError& e) {
-    const bool temperature = e.field() == "metadata.bench_air_temperature_c";
-    throw DataError(e.field() + ": " + e.problem() + " (" + (temperature ? temperature_origin : pressure_origin) + ")");
-  }
-  if (options.supply) {
-    meta.supply = *options.supply;
-  } else if (*supply == "regulated" || *supply == "battery") {
-    meta.supply = *supply == "battery" ? SupplyKind::kBattery : SupplyKind::kRegulated;
-  } else {
-    throw DataError("metadata supply: '" + *supply + "' is neither regulated nor battery");
-  }
-  std::string names;
-  for (std::size_t l = 0; l < logs.size() && l < 4; ++l) {
-    const std::string& path = logs[l].source;
-    names += (l ? ", " : "") + path.substr(path.find_last_of('/') + 1);
-  }
-  if (logs.size() > 4) names += ", ... (" + std::to_string(logs.size()) + " logs)";
-  meta.source = "fit_surfaces from " + names;
-  return meta;
 }
 
 // ---- data checks ------------------------------------------------------------------------------
@@ -493,140 +333,168 @@ bool measured(const BenchDataset& data, Output output) {
   return std::any_of(y.begin(), y.end(), [](double value) { return !std::isnan(value); });
 }
 
-}  // namespace
-
-void FitOptions::validate() const {
-  if (max_pwm_degree < 1 || max_pwm_degree > GroupedLeastSquares::kMaxPwmDegree) {
-    throw ConfigError("max PWM degree " + std::to_string(max_pwm_degree) + " is outside 1..5");
-  }
-  if (max_voltage_degree < 0 || max_voltage_degree > GroupedLeastSquares::kMaxVoltageDegree) {
-    throw ConfigError("max voltage degree " + std::to_string(max_voltage_degree) + " is outside 0..3");
-  }
-  if (!(parsimony >= 0.0)) throw ConfigError("parsimony must not be negative");
-  if (min_points < 3) throw ConfigError("min points must be at least 3");
-  if (without.count(Output::kThrust)) throw ConfigError("thrust cannot be left out: it is what the estimator is for");
-  if (without.count(Output::kEfficiency)) {
-    throw ConfigError("efficiency cannot be left out: it is derived from thrust and power at no cost");
-  }
-  levels.validate();
+// The box the bench covered, with the policy outside it.
+ModelDomain measuredDomain(const BenchDataset& data, OutsideDomain outside) {
+  ModelDomain domain;
+  const auto [pwm_lo, pwm_hi] = std::minmax_element(data.pwm_us.begin(), data.pwm_us.end());
+  const auto [voltage_lo, voltage_hi] = std::minmax_element(data.voltage_v.begin(), data.voltage_v.end());
+  domain.pwm_min_us = *pwm_lo;
+  domain.pwm_max_us = *pwm_hi;
+  domain.voltage_min_v = *voltage_lo;
+  domain.voltage_max_v = *voltage_hi;
+  domain.outside = outside;
+  return domain;
 }
+
+// Inputs centred and scaled to [-1, 1] over the domain.
+InputScaling domainScaling(const ModelDomain& domain) {
+  return {0.5 * (domain.pwm_min_us + domain.pwm_max_us), 0.5 * (domain.pwm_max_us - domain.pwm_min_us),
+          0.5 * (domain.voltage_min_v + domain.voltage_max_v), 0.5 * (domain.voltage_max_v - domain.voltage_min_v)};
+}
+
+// The outputs' definitions and reports as the fit decides them, output by output: fitted as a
+// surface, derived from others, or absent, each with why.
+class OutputPlan {
+ public:
+  OutputPlan(const BenchDataset& data, const Grouping& grouping, const InputScaling& scaling,
+             const FitOptions& options)
+      : data_(data), grouping_(grouping), scaling_(scaling), options_(options) {
+    for (Output output : kAllOutputs) {
+      definitions_[index(output)].unit = fileUnit(output);
+      reports_[index(output)].output = output;
+      reports_[index(output)].unit = fileUnit(output);
+    }
+  }
+
+  void fitted(Output output) {
+    SurfaceResult result = fitSurface(data_, output, grouping_, scaling_, options_);
+    definitions_[index(output)].source = OutputSource::kSurface;
+    definitions_[index(output)].surface = std::move(result.surface);
+    definitions_[index(output)].fit = result.quality;
+    reports_[index(output)].candidates = std::move(result.candidates);
+  }
+  void derived(Output output, const std::string& why) { set(output, OutputSource::kDerived, why); }
+  void absent(Output output, const std::string& why) { set(output, OutputSource::kNone, why); }
+  OutputSource source(Output output) const { return definitions_[index(output)].source; }
+  bool without(Output output) const { return options_.without.count(output) > 0; }
+
+  const std::array<OutputDefinition, kOutputCount>& definitions() const { return definitions_; }
+  std::array<OutputFitReport, kOutputCount>& reports() { return reports_; }
+
+ private:
+  static int index(Output output) { return static_cast<int>(output); }
+  void set(Output output, OutputSource source, const std::string& why) {
+    definitions_[index(output)].source = source;
+    definitions_[index(output)].note = why;
+  }
+
+  const BenchDataset& data_;
+  const Grouping& grouping_;
+  const InputScaling& scaling_;
+  const FitOptions& options_;
+  std::array<OutputDefinition, kOutputCount> definitions_;
+  std::array<OutputFitReport, kOutputCount> reports_;
+};
+
+// Current and power: each fitted where logged, derived from the other where it can be, else absent.
+void planCurrentAndPower(const std::vector<BenchLog>& logs, const BenchDataset& data, OutputPlan* plan) {
+  const bool power_column =
+      std::any_of(logs.begin(), logs.end(), [](const BenchLog& log) { return log.has(BenchColumn::kPower); });
+  if (plan->without(Output::kCurrent))
+    plan->absent(Output::kCurrent, "left out on request (--without current)");
+  else if (measured(data, Output::kCurrent))
+    plan->fitted(Output::kCurrent);
+  else if (power_column && !plan->without(Output::kPower))
+    plan->derived(Output::kCurrent, "the logs have no current column");
+  else
+    plan->absent(Output::kCurrent, "the logs have no current column");
+
+  if (plan->without(Output::kPower))
+    plan->absent(Output::kPower, "left out on request (--without power)");
+  else if (power_column)
+    plan->fitted(Output::kPower);
+  else if (plan->source(Output::kCurrent) == OutputSource::kSurface)
+    plan->derived(Output::kPower, "the logs have current but no power column");
+  else
+    plan->absent(Output::kPower, "the logs have neither power nor current");
+}
+
+// Efficiency derived as thrust / power unless its own surface is asked for; rpm fitted where logged.
+void planEfficiencyAndRpm(const BenchDataset& data, bool efficiency_surface, OutputPlan* plan) {
+  if (efficiency_surface)
+    plan->fitted(Output::kEfficiency);
+  else if (plan->source(Output::kPower) != OutputSource::kNone)
+    plan->derived(Output::kEfficiency, "thrust / power, as the bench defines it");
+  else
+    plan->absent(Output::kEfficiency, "no power to divide thrust by");
+
+  if (plan->without(Output::kRpm))
+    plan->absent(Output::kRpm, "left out on request (--without rpm)");
+  else if (measured(data, Output::kRpm))
+    plan->fitted(Output::kRpm);
+  else
+    plan->absent(Output::kRpm, "the logs have no rpm column");
+}
+
+// The model with each surface's FitQuality saying what the report says (R^2, RMSE and maximum
+// error against all rows).
+PropulsionModel modelWithQuality(const ModelMetadata& metadata, const ModelDomain& domain, const BenchDataset& data,
+                                 std::array<OutputDefinition, kOutputCount> definitions,
+                                 std::array<OutputFitReport, kOutputCount>* reports) {
+  const PropulsionModel model(metadata, domain, definitions);
+  for (Output output : kAllOutputs) {
+    const int o = static_cast<int>(output);
+    OutputFitReport& report = (*reports)[o];
+    report.source = model.output(output).source;
+    if (report.source != OutputSource::kNone) compare(data, model, &report);
+    if (!definitions[o].fit) continue;
+    definitions[o].fit->points = report.points;
+    definitions[o].fit->r2 = report.r2;
+    definitions[o].fit->rmse = report.rmse;
+    definitions[o].fit->max_error = report.max_error;
+  }
+  return PropulsionModel(metadata, domain, std::move(definitions));
+}
+
+// Empty when the model passes the loader's grid check, else why not, and for an output the model
+// can do without, how to have the rest.
+std::string gridCheckError(const PropulsionModel& model) {
+  try {
+    validateModelOnGrid(model);
+  } catch (const FieldError& e) {
+    std::string error = e.what();
+    for (Output output : {Output::kCurrent, Output::kPower, Output::kRpm}) {
+      if (e.field() == std::string("outputs.") + outputName(output)) {
+        error += std::string("; --without ") + outputName(output) + " writes the rest of the model";
+      }
+    }
+    return error;
+  }
+  return "";
+}
+
+}  // namespace
 
 BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& options) {
   options.validate();
   BenchDataset data = buildBenchDataset(logs, options.levels);
   requireSurfaceData(data);
   std::vector<std::string> notes = data.notes;
-  const ModelMetadata metadata = resolveMetadata(logs, options, &notes);
-
-  ModelDomain domain;
-  std::tie(domain.pwm_min_us, domain.pwm_max_us) = [&] {
-    const auto [lo, hi] = std::minmax_element(data.pwm_us.begin(), data.pwm_us.end());
-    return std::make_pair(*lo, *hi);
-  }();
-  std::tie(domain.voltage_min_v, domain.voltage_max_v) = [&] {
-    const auto [lo, hi] = std::minmax_element(data.voltage_v.begin(), data.voltage_v.end());
-    return std::make_pair(*lo, *hi);
-  }();
-  domain.outside = options.outside;
-  const InputScaling scaling{
-      0.5 * (domain.pwm_min_us + domain.pwm_max_us), 0.5 * (domain.pwm_max_us - domain.pwm_min_us),
-      0.5 * (domain.voltage_min_v + domain.voltage_max_v), 0.5 * (domain.voltage_max_v - domain.voltage_min_v)};
-
+  const ModelMetadata metadata = resolveBenchMetadata(logs, options, &notes);
+  const ModelDomain domain = measuredDomain(data, options.outside);
+  const InputScaling scaling = domainScaling(domain);
   const Grouping grouping = resolveGrouping(data, options.grouping);
 
-  std::array<OutputDefinition, kOutputCount> definitions;
-  std::array<OutputFitReport, kOutputCount> reports;
-  auto fitted = [&](Output output) {
-    const int o = static_cast<int>(output);
-    SurfaceResult result = fitSurface(data, output, grouping, scaling, options);
-    definitions[o].source = OutputSource::kSurface;
-    definitions[o].surface = std::move(result.surface);
-    definitions[o].fit = result.quality;
-    reports[o].candidates = std::move(result.candidates);
-  };
-  auto absent = [&](Output output, const std::string& why) {
-    definitions[static_cast<int>(output)].source = OutputSource::kNone;
-    definitions[static_cast<int>(output)].note = why;
-  };
-  auto derived = [&](Output output, const std::string& why) {
-    definitions[static_cast<int>(output)].source = OutputSource::kDerived;
-    definitions[static_cast<int>(output)].note = why;
-  };
-  for (Output output : kAllOutputs) {
-    definitions[static_cast<int>(output)].unit = fileUnit(output);
-    reports[static_cast<int>(output)].output = output;
-    reports[static_cast<int>(output)].unit = fileUnit(output);
-  }
+  OutputPlan plan(data, grouping, scaling, options);
+  plan.fitted(Output::kThrust);
+  planCurrentAndPower(logs, data, &plan);
+  planEfficiencyAndRpm(data, options.efficiency_surface, &plan);
 
-  fitted(Output::kThrust);
-  const bool current_logged = measured(data, Output::kCurrent);
-  const bool power_column =
-      std::any_of(logs.begin(), logs.end(), [](const BenchLog& log) { return log.has(BenchColumn::kPower); });
-  if (options.without.count(Output::kCurrent))
-    absent(Output::kCurrent, "left out on request (--without current)");
-  else if (current_logged)
-    fitted(Output::kCurrent);
-  else if (power_column && !options.without.count(Output::kPower))
-    derived(Output::kCurrent, "the logs have no current column");
-  else
-    absent(Output::kCurrent, "the logs have no current column");
-
-  if (options.without.count(Output::kPower)) {
-    absent(Output::kPower, "left out on request (--without power)");
-  } else if (power_column) {
-    fitted(Output::kPower);
-  } else if (definitions[static_cast<int>(Output::kCurrent)].source == OutputSource::kSurface) {
-    derived(Output::kPower, "the logs have current but no power column");
-  } else {
-    absent(Output::kPower, "the logs have neither power nor current");
-  }
-
-  const bool power_modelled = definitions[static_cast<int>(Output::kPower)].source != OutputSource::kNone;
-  if (options.efficiency_surface)
-    fitted(Output::kEfficiency);
-  else if (power_modelled)
-    derived(Output::kEfficiency, "thrust / power, as the bench defines it");
-  else
-    absent(Output::kEfficiency, "no power to divide thrust by");
-
-  if (options.without.count(Output::kRpm))
-    absent(Output::kRpm, "left out on request (--without rpm)");
-  else if (measured(data, Output::kRpm))
-    fitted(Output::kRpm);
-  else
-    absent(Output::kRpm, "the logs have no rpm column");
-
-  PropulsionModel model(metadata, domain, definitions);
-  for (Output output : kAllOutputs) {
-    OutputFitReport& report = reports[static_cast<int>(output)];
-    report.source = model.output(output).source;
-    if (report.source != OutputSource::kNone) compare(data, model, &report);
-  }
-  // FitQuality in the model says what the report says.
-  std::array<OutputDefinition, kOutputCount> with_quality = definitions;
-  for (Output output : kAllOutputs) {
-    const int o = static_cast<int>(output);
-    if (!with_quality[o].fit) continue;
-    with_quality[o].fit->points = reports[o].points;
-    with_quality[o].fit->r2 = reports[o].r2;
-    with_quality[o].fit->rmse = reports[o].rmse;
-    with_quality[o].fit->max_error = reports[o].max_error;
-  }
-  PropulsionModel final_model(metadata, domain, with_quality);
-  std::string validation_error;
-  try {
-    validateModelOnGrid(final_model);
-  } catch (const FieldError& e) {
-    validation_error = e.what();
-    // An output the model can do without: say how to have the rest.
-    for (Output output : {Output::kCurrent, Output::kPower, Output::kRpm}) {
-      if (e.field() == std::string("outputs.") + outputName(output)) {
-        validation_error += std::string("; --without ") + outputName(output) + " writes the rest of the model";
-      }
-    }
-  }
-  return BenchFit{std::move(final_model), validation_error, std::move(data), grouping.kind, grouping.description,
-                  reports, notes, options.parsimony};
+  std::array<OutputFitReport, kOutputCount> reports = plan.reports();
+  PropulsionModel model = modelWithQuality(metadata, domain, data, plan.definitions(), &reports);
+  std::string validation_error = gridCheckError(model);
+  return BenchFit{std::move(model), std::move(validation_error), std::move(data), grouping.kind,
+                  grouping.description, reports, notes, options.parsimony};
 }
 
 }  // namespace fitting

@@ -31,37 +31,6 @@ pe::FlightLogOptions options(int motors = 4) {
   return o;
 }
 
-void expectRoundTrip(const pe::FlightStreams& read, const RecordingFlightSink& sim, double pwm_tolerance_us) {
-  ASSERT_EQ(read.rc_out.size(), sim.rc_out.size());
-  for (std::size_t i = 0; i < sim.rc_out.size(); i += 7) {
-    EXPECT_NEAR(read.rc_out[i].time_s, sim.rc_out[i].time_s, 1e-6);
-    for (int k = 0; k < 4; ++k) {
-      // Stopped motors (below the range) read as its bottom when logged normalised.
-      const double pwm = std::max<double>(sim.rc_out[i].channels[k], pwm_tolerance_us > 0 ? 1100.0 : 0.0);
-      EXPECT_NEAR(read.rc_out[i].pwm_us[k], pwm, pwm_tolerance_us + 1e-3) << i;
-    }
-  }
-  ASSERT_EQ(read.battery.size(), sim.batteries.size());
-  EXPECT_NEAR(read.battery.back().voltage_v, sim.batteries.back().voltage_v, 1e-5);
-  EXPECT_NEAR(read.battery.back().current_a, sim.batteries.back().current_a, 1e-5);
-  ASSERT_EQ(read.imu.size(), sim.imus.size());
-  for (std::size_t i = 0; i < sim.imus.size(); i += 13) {
-    EXPECT_LT(read.imu[i].orientation.angularDistance(sim.imus[i].orientation), 1e-6) << i;
-    EXPECT_LT((read.imu[i].specific_force_m_s2 - sim.imus[i].linear_acceleration_m_s2).norm(), 1e-5) << i;
-  }
-  ASSERT_EQ(read.altitude_m.size(), sim.velocities.size());
-  EXPECT_NEAR(read.altitude_m[200].value, sim.poses[200].position_m.z(), 1e-6);
-  EXPECT_NEAR(read.vertical_speed_m_s[200].value, sim.velocities[200].linear_m_s.z(), 1e-6);
-  ASSERT_EQ(read.static_pressure_pa.size(), sim.pressures.size());
-  EXPECT_NEAR(read.static_pressure_pa[5].value, sim.pressures[5].value, 0.01);
-  EXPECT_FALSE(read.air_temperature_c.empty());
-  std::size_t in_range = 0;
-  for (const pe::sim::RangeSample& r : sim.ranges) in_range += r.range_m >= r.min_range_m && r.range_m <= r.max_range_m;
-  EXPECT_EQ(read.height_above_ground_m.size(), in_range);
-  ASSERT_EQ(read.motor_temperature_c.size(), sim.motor_temperatures.size());
-  EXPECT_NEAR(read.motor_temperature_c.back().value, sim.motor_temperatures.back().value, 1e-4);
-}
-
 std::string refusal(const std::string& bytes) {
   try {
     pe::UlogFlightReader reader(bytes, "f.ulg");

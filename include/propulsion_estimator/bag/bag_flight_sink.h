@@ -30,6 +30,9 @@ class BagFlightSink : public sim::FlightSink {
   BagFlightSink(const std::string& path, rosbag::compression::CompressionType compression);
   ~BagFlightSink() override;
 
+  /// Each writes one message on its topic (kRcOutTopic, ...), stamped kSimulatedBagStartSec plus
+  /// the sample's time; rosbag::BagException when the bag cannot be written.
+  ///@{
   void rcOut(const sim::RcOutSample& sample) override;
   void battery(const sim::BatterySample& sample) override;
   void imu(const sim::ImuSample& sample) override;
@@ -40,6 +43,7 @@ class BagFlightSink : public sim::FlightSink {
   void rangefinder(const sim::RangeSample& sample) override;
   void motorTemperature(const sim::ScalarSample& sample) override;
   void truth(const sim::TruthSample& sample) override;
+  ///@}
 
   /// Finishes the bag (rosbag::BagException when it cannot be written). The destructor closes it
   /// too, reporting a failure on stderr since it cannot throw.

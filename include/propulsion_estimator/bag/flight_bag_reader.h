@@ -46,6 +46,7 @@ class FlightBagReader : public FlightLogReader {
   FlightBagReader(const FlightBagReader&) = delete;
   FlightBagReader& operator=(const FlightBagReader&) = delete;
 
+  /// The bag's path, as given.
   const std::string& path() const override { return path_; }
   /// From the first message to the last, in seconds.
   double durationS() const override { return duration_s_; }

@@ -7,80 +7,48 @@
 #include <vector>
 
 #include "propulsion_estimator/fitting/bench_dataset.h"
+#include "propulsion_estimator/fitting/fit_options.h"
 #include "propulsion_estimator/logs/bench_log.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 
 namespace propulsion_estimator {
 namespace fitting {
 
-/// How rows are grouped for cross-validation: whole groups are held out, never random rows
-/// (neighbouring rows of one sweep are not independent, and a random split would reward
-/// over-fitting them).
-enum class FitGrouping {
-  kAuto,          ///< voltage levels when there are 3 or more, else PWM levels
-  kVoltageLevel,  ///< hold out one voltage level: tests interpolation across voltage
-  kPwmLevel,      ///< hold out one PWM level at every voltage: the only choice with 2 voltage levels
-  kLog,           ///< hold out one log file
-};
-
-/// Options of fit_surfaces: cross-validation grouping, maximum degrees, outputs left out, the
-/// outside-domain policy and the metadata that override the logs'.
-struct FitOptions {
-  FitGrouping grouping = FitGrouping::kAuto;
-  int max_pwm_degree = 5;      ///< 1..5
-  int max_voltage_degree = 3;  ///< 0..3
-  /// A candidate within this share of the best held-out RMSE that has fewer terms is preferred.
-  double parsimony = 0.02;
-  int min_points = 10;              ///< per fitted output
-  bool efficiency_surface = false;  ///< fit efficiency samples instead of deriving thrust / power
-  std::set<Output> without;         ///< current, power or rpm left out of the model
-  OutsideDomain outside = OutsideDomain::kClamp;
-  LevelOptions levels;
-  /// Model metadata; each overrides the logs' "# key: value" lines (esc, motor, propeller,
-  /// air_temperature_c, air_pressure_pa, supply) and their ambient_temp_c / pressure_pa columns.
-  /// A name neither gives is recorded as "unknown" with a note; the bench air and the supply are
-  /// physics and required.
-  std::optional<std::string> esc, motor, propeller;
-  std::optional<double> air_temperature_c, air_pressure_pa;
-  std::optional<SupplyKind> supply;
-
-  void validate() const;  ///< ConfigError naming the bad option
-};
-
 /// One candidate degree pair and its cross-validated error (NaN: not determined by the data when
 /// a group is held out).
 struct CandidateScore {
-  int pwm_degree = 0;
-  int voltage_degree = 0;
-  int terms = 0;
+  int pwm_degree = 0;  ///< PWM degree
+  int voltage_degree = 0;  ///< voltage degree
+  int terms = 0;  ///< number of polynomial terms
+  /// RMSE predicting each held-out group, in the output's file unit; NaN when not determined
   double held_out_rmse = 0.0;
 };
 
 /// How well each output matches the bench data, in its file unit. For a surface also the chosen
 /// degrees and every candidate's held-out error.
 struct OutputFitReport {
-  Output output = Output::kThrust;
-  OutputSource source = OutputSource::kNone;
-  std::string unit;
+  Output output = Output::kThrust;  ///< which output
+  OutputSource source = OutputSource::kNone;  ///< surface, derived or none
+  std::string unit;  ///< file unit of the figures (g, A, W, g/W, rpm)
   int points = 0;  ///< samples compared (for a derived output too)
-  double r2 = 0.0;
-  double rmse = 0.0;
-  double max_error = 0.0;
+  double r2 = 0.0;  ///< coefficient of determination
+  double rmse = 0.0;  ///< root mean square error
+  double max_error = 0.0;  ///< largest absolute error
   std::vector<CandidateScore> candidates;  ///< surfaces only
 };
 
 /// The result of fitBenchModel: the model, whether it may be written, the data it was fitted on and
 /// how well each output matches it.
 struct BenchFit {
-  PropulsionModel model;
+  PropulsionModel model;  ///< the fitted model
   /// Empty when the model passes the loader's grid check (model_validation.h); otherwise why
   /// not: such a model must not be written. When current, power or rpm fails, it adds that
   /// --without that output writes the rest.
   std::string validation_error;
-  BenchDataset data;
+  BenchDataset data;  ///< the rows it was fitted on
   FitGrouping grouping = FitGrouping::kVoltageLevel;  ///< the one used (never kAuto)
-  std::string grouping_description;
-  std::array<OutputFitReport, kOutputCount> outputs;
+  std::string grouping_description;  ///< the grouping in words, for the report
+  std::array<OutputFitReport, kOutputCount> outputs;  ///< one per Output
   std::vector<std::string> notes;  ///< data notes, then what the fit decided (metadata, grouping)
   double parsimony = 0.0;          ///< FitOptions::parsimony the degrees were chosen with
 };

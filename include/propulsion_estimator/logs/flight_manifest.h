@@ -9,7 +9,7 @@ namespace propulsion_estimator {
 /// tests and the input of the gap diagnosis.
 struct ManifestSegment {
   double start_s = 0.0;  ///< seconds from the log's first message
-  double end_s = 0.0;
+  double end_s = 0.0;    ///< seconds from the log's first message
   double mass_kg = 0.0;  ///< vehicle plus hanging payload
 };
 
@@ -17,7 +17,7 @@ struct ManifestSegment {
 /// segments whose mass is known.
 struct ManifestFlight {
   std::string log;  ///< as written in the manifest (`log:`, or `bag:`): relative to its folder, or absolute
-  std::vector<ManifestSegment> segments;
+  std::vector<ManifestSegment> segments;  ///< in time order, not overlapping
 
   /// Throws FieldError named from `at` ("flights[1]" gives "flights[1].segments[2].end") for a
   /// flight without log or segments, a segment with start < 0, end <= start, mass outside
@@ -31,7 +31,7 @@ struct ManifestFlight {
 ///       segments:
 ///         - {start: 5.0, end: 178.0, mass_kg: 1.315}
 struct FlightManifest {
-  std::vector<ManifestFlight> flights;
+  std::vector<ManifestFlight> flights;  ///< at least one
 
   /// Throws FieldError for no flights, or the first flight ManifestFlight::validate refuses.
   void validate() const;
@@ -53,7 +53,7 @@ void saveFlightManifest(const FlightManifest& manifest, const std::string& path,
 /// loadFlightManifest would locate it ("<file>:<line>: flights[1].segments[0].mass_kg: 0 is
 /// outside 0..100 kg").
 struct ManifestEntry {
-  ManifestFlight flight;
+  ManifestFlight flight;  ///< the flight as read
   std::string refusal;  ///< empty for a usable flight
 };
 /// Reads the manifest file `path` flight by flight (see ManifestEntry); InputError when it cannot

@@ -17,30 +17,30 @@ constexpr int kMaxMotors = 8;
 
 /// One ESC command: the pulse width of each motor, in rotor order.
 struct RcOutFrame {
-  double time_s = 0.0;
-  std::array<double, kMaxMotors> pwm_us{};
+  double time_s = 0.0;  ///< s from the log's first message
+  std::array<double, kMaxMotors> pwm_us{};  ///< per motor, us; motors beyond FlightStreams::motors are 0
 };
 
 /// One battery report as the autopilot sends it (MAVROS on PX4 negates the current: the sign is
 /// left as logged, and the diagnosis takes the discharge direction from the flight as a whole).
 struct BatteryReading {
-  double time_s = 0.0;
-  double voltage_v = 0.0;
+  double time_s = 0.0;  ///< s from the log's first message
+  double voltage_v = 0.0;  ///< V at the battery's terminals
   double current_a = 0.0;  ///< NaN when the autopilot has no current sensor
 };
 
 /// One IMU message: the attitude (body to local ENU, REP-103) and the specific force the
 /// accelerometer measures (gravity included: +9.81 m/s^2 up at rest), in the body frame.
 struct ImuReading {
-  double time_s = 0.0;
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d specific_force_m_s2 = Eigen::Vector3d::Zero();
+  double time_s = 0.0;  ///< s from the log's first message
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< rotates body into local ENU
+  Eigen::Vector3d specific_force_m_s2 = Eigen::Vector3d::Zero();  ///< m/s^2, body frame, gravity included
 };
 
 /// A scalar signal in time.
 struct ScalarReading {
-  double time_s = 0.0;
-  double value = 0.0;
+  double time_s = 0.0;  ///< s from the log's first message
+  double value = 0.0;  ///< in the unit the stream's name says
 };
 
 /// Everything the diagnosis reads from one flight, as logged, whatever the log's format: times in
@@ -49,15 +49,15 @@ struct ScalarReading {
 struct FlightStreams {
   std::string source;  ///< the log it came from, for messages
   int motors = 0;      ///< channels taken from each RcOutFrame
-  std::vector<RcOutFrame> rc_out;
-  std::vector<BatteryReading> battery;
-  std::vector<ImuReading> imu;
+  std::vector<RcOutFrame> rc_out;  ///< required
+  std::vector<BatteryReading> battery;  ///< required
+  std::vector<ImuReading> imu;  ///< empty without an IMU
   std::vector<ScalarReading> altitude_m;             ///< local position z (up)
   std::vector<ScalarReading> vertical_speed_m_s;     ///< local velocity z (up)
-  std::vector<ScalarReading> static_pressure_pa;
-  std::vector<ScalarReading> air_temperature_c;
+  std::vector<ScalarReading> static_pressure_pa;  ///< Pa
+  std::vector<ScalarReading> air_temperature_c;  ///< deg C
   std::vector<ScalarReading> height_above_ground_m;  ///< rangefinder range (valid readings only)
-  std::vector<ScalarReading> motor_temperature_c;
+  std::vector<ScalarReading> motor_temperature_c;  ///< deg C
   /// How the reader found the signals, one line each ("rc_out: actuator_outputs[0].output[0..3]",
   /// "motor_temperature: not in this log (no esc_status)"); empty for a reader that says nothing.
   std::vector<std::string> notes;
@@ -74,8 +74,8 @@ std::vector<std::size_t> signalCounts(const FlightStreams& streams);
 /// A flight of the manifest: its streams and its weighed segments.
 struct Flight {
   std::string name;  ///< the log as the manifest names it
-  FlightStreams streams;
-  std::vector<ManifestSegment> segments;
+  FlightStreams streams;  ///< the flight's signals
+  std::vector<ManifestSegment> segments;  ///< the weighed segments, on the streams' clock
 };
 
 }  // namespace propulsion_estimator

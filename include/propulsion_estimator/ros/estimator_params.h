@@ -5,9 +5,9 @@
 #include <ros/node_handle.h>
 
 #include "propulsion_estimator/common/mavros_topics.h"
-#include "propulsion_estimator/estimation/capability.h"
+#include "propulsion_estimator/onboard/capability.h"
 #include "propulsion_estimator/estimation/estimator_config.h"
-#include "propulsion_estimator/estimation/health_summary.h"
+#include "propulsion_estimator/onboard/health_summary.h"
 
 namespace propulsion_estimator {
 
@@ -16,9 +16,9 @@ struct EstimatorNodeParams {
   std::string model;       ///< required: path of the model YAML
   std::string urdf_file;   ///< optional: vehicle description; else robot_description, else no geometry
   std::string tare_file;   ///< optional: where ~tare persists the empty mass ("" = not persisted)
-  std::string battery_topic = kBatteryTopic;
-  std::string rc_out_topic = kRcOutTopic;
-  std::string imu_topic = kImuTopic;          ///< "" disables
+  std::string battery_topic = kBatteryTopic;    ///< sensor_msgs/BatteryState
+  std::string rc_out_topic = kRcOutTopic;       ///< mavros_msgs/RCOut
+  std::string imu_topic = kImuTopic;            ///< "" disables
   std::string velocity_topic = kVelocityTopic;  ///< "" disables
   /// The barometer: the hover check's vertical speed while no velocity is fresh, and the
   /// air_density effect's signal. "" disables.
@@ -35,8 +35,8 @@ struct EstimatorNodeParams {
   /// same default), the node ticks it once per period.
   double diagnostic_period_s = 1.0;
   HealthConfig health;  ///< domain_warn_fraction; its input names are the topics
-  EstimatorConfig estimator;
-  CapabilityConfig capability;
+  EstimatorConfig estimator;  ///< the estimator's parameters
+  CapabilityConfig capability;  ///< the capability/... parameters
 };
 
 /// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is

@@ -1,0 +1,13 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace propulsion_estimator {
+
+/// Names joined for a message: "a", "a and b", "a, b and c" when there are at most `shown` + 1,
+/// else the first `shown` and a count ("a, b and 3 more"). Throws nothing.
+std::string nameList(const std::vector<std::string>& names, std::size_t shown);
+
+}  // namespace propulsion_estimator
