@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/logs/flight_log_reader.h"
 
 namespace propulsion_estimator {
 namespace dataflash {
@@ -58,7 +59,7 @@ void File::parseMessages() {
   std::size_t at = 0;
   while (at < bytes_.size()) {
     const auto fail = [&](const std::string& what, const std::string& problem) {
-      refusal_ = source_ + ": at byte " + std::to_string(at) + ": " + what + ": " + problem;
+      refusal_ = source_ + ": at byte " + std::to_string(at) + ": " + printableBytes(what) + ": " + printableBytes(problem);
     };
     if (at + 3 > bytes_.size()) return fail("message header", "truncated (" + std::to_string(bytes_.size() - at) + " of 3 bytes)");
     if (bytes_[at] != '\xa3' || bytes_[at + 1] != '\x95') {

@@ -13,24 +13,6 @@
 #include "propulsion_estimator/common/text_file.h"
 
 namespace propulsion_estimator {
-namespace {
-
-// The bytes as C would spell them: printable ASCII as is, the rest as \xNN.
-std::string escaped(const std::string& bytes) {
-  std::string text;
-  for (const char c : bytes) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte >= 0x20 && byte < 0x7f && c != '"' && c != '\\') {
-      text += c;
-    } else {
-      static const char kHex[] = "0123456789abcdef";
-      text += std::string("\\x") + kHex[byte >> 4] + kHex[byte & 0xf];
-    }
-  }
-  return text;
-}
-
-}  // namespace
 
 void FlightLogOptions::validate(const std::string& what) const {
   if (motors < 1 || motors > kMaxMotors) {
@@ -78,7 +60,7 @@ std::unique_ptr<FlightLogReader> FlightLogFormats::open(const std::string& path)
   }
   std::string list;
   for (const std::string& name : names()) list += (list.empty() ? "" : ", ") + name;
-  throw DataError(path + ": not a flight log of a known format (" + list + "): it starts with \"" + escaped(head) +
+  throw DataError(path + ": not a flight log of a known format (" + list + "): it starts with \"" + printableBytes(head) +
                   "\"");
 }
 
@@ -92,6 +74,20 @@ std::string readFlightLogBytes(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
   return readTextFile(path);
+}
+
+std::string printableBytes(const std::string& bytes) {
+  static const char kHex[] = "0123456789abcdef";
+  std::string text;
+  for (const char c : bytes) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f && c != '"' && c != '\\') {
+      text += c;
+    } else {
+      text += std::string("\\x") + kHex[byte >> 4] + kHex[byte & 0xf];
+    }
+  }
+  return text;
 }
 
 }  // namespace propulsion_estimator

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/logs/flight_log_reader.h"
 
 namespace propulsion_estimator {
 namespace ulog {
@@ -117,7 +118,7 @@ void File::parseMessages() {
     }
     std::string problem;
     if (!parseMessage(type, payload, size, &problem)) {
-      refusal_ = source_ + ": at byte " + std::to_string(at) + ": " + name + " message: " + problem;
+      refusal_ = source_ + ": at byte " + std::to_string(at) + ": " + name + " message: " + printableBytes(problem);
       return;
     }
     at = payload + size;

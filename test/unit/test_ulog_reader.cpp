@@ -124,6 +124,16 @@ TEST(UlogReader, KeepsWhatCameBeforeATruncationOrACorruptMessage) {
   }
 }
 
+// Text from the file (a topic's name with a newline, found by fuzz_ulog) keeps the refusal on one line.
+TEST(UlogReader, KeepsARefusalOnOneLine) {
+  pe::ulog::Writer writer(0);
+  writer.format("battery_status:uint64_t timestamp;float voltage_v;");
+  writer.subscribe(0, "vehicle\nattitude");
+  EXPECT_EQ(refusal(writer.bytes()),
+            "throws: f.ulg: no data messages (f.ulg: at byte 69: A message: subscribes to 'vehicle\\x0aattitude', "
+            "which no format defines)");
+}
+
 TEST(UlogReader, FollowsAppendedDataAndCountsDropouts) {
   pe::ulog::Writer writer(0);
   writer.flagBits();

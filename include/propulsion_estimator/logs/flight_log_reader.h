@@ -52,4 +52,8 @@ class FlightLogReader {
 /// "<path>: no such file", or naming it when it cannot be read.
 std::string readFlightLogBytes(const std::string& path);
 
+/// `bytes` as C would spell them: printable ASCII as is, other bytes (a newline, a NUL) as \xNN;
+/// for text taken from a log into a one-line message.
+std::string printableBytes(const std::string& bytes);
+
 }  // namespace propulsion_estimator
