@@ -9,7 +9,7 @@
 # test/fuzz/corpus/<reader>/ (libFuzzer -merge=1), for the user to review and commit.
 set -u
 repo="$(cd "$(dirname "$0")/.." && pwd)"
-readers="model_yaml bench_csv tyto_csv flight_manifest flight_profile vehicle_urdf rcout tare_file"
+readers="model_yaml bench_csv tyto_csv flight_manifest flight_profile vehicle_urdf rcout tare_file ulog dataflash"
 seconds=60
 merge=0
 bin=""
@@ -36,6 +36,7 @@ max_len() {
     bench_csv|tyto_csv) echo 2048 ;;
     flight_manifest) echo 1024 ;;
     rcout|tare_file) echo 256 ;;
+    ulog|dataflash) echo 8192 ;;
   esac
 }
 

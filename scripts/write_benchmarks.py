@@ -2,7 +2,7 @@
 """Writes BENCHMARKS.md (make bench) from the template and the figures scripts/run_benchmarks.sh left
 in its results directory: the google benchmark JSON files (bench_<name>.json), the end-to-end and
 callgrind JSON of scripts/bench_node.py (e2e.json, callgrind.json), scripts/bench_diagnose_gap.sh's
-diagnose_gap.json, the commands run (commands.tsv: section, tab, command), the start date, the load
+diagnose_gap.json and scripts/bench_diagnose_ulog.sh's diagnose_ulog.json, the commands run (commands.tsv: section, tab, command), the start date, the load
 averages, the commit measured and the run time (started_utc.txt, load_start.txt, load_end.txt,
 commit.txt, runtime_s.txt).
 
@@ -160,6 +160,15 @@ def diagnose_gap_table(gap):
     return "\n".join(lines)
 
 
+def diagnose_ulog_table(ulog):
+    if ulog is None:
+        return NOT_MEASURED + " (make bench QUICK=1 skips it)."
+    return "\n".join(["%d MB of ULog." % ulog["ulogs_mb"], "",
+                      "| reading the logs | whole run | CPU time | peak memory |", "|---:|---:|---:|---:|",
+                      "| %.2f s | %.2f s | %.2f s | %.0f MB |" % (ulog["reading_s"], ulog["whole_s"], ulog["cpu_s"],
+                                                            ulog["peak_kb"] / 1024.0)])
+
+
 def machine():
     info = {"cpu_model": "?", "cpu_mhz": "?", "memory": "?"}
     try:
@@ -210,7 +219,8 @@ def values(results, args):
              runtime="%d min %02d s" % divmod(int(runtime), 60) if runtime else "?",
              e2e_table=e2e_table(e2e), e2e_ratios=e2e_ratios(e2e), e2e_commands=e2e_commands(e2e, commands, repo),
              callgrind_table=callgrind_table(callgrind), diagnose_gap_table=diagnose_gap_table(
-                 results.json("diagnose_gap.json")))
+                 results.json("diagnose_gap.json")), diagnose_ulog_table=diagnose_ulog_table(
+                 results.json("diagnose_ulog.json")))
     for key in ("channels", "rate_hz", "battery_rate_hz", "duration_s", "rounds"):
         v[key] = number(e2e[key]) if e2e else "?"
     for key, field in (("callgrind_sent", "rc_out_sent"), ("callgrind_handled", "handled"),

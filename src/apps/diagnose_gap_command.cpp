@@ -41,6 +41,7 @@ struct Arguments {
   std::string out;
   std::string urdf;
   std::vector<std::string> topics;
+  std::vector<double> pwm_range_us;
   std::vector<std::string> bench;
   double rotor_diameter_m = gap::DiagnosisConfig{}.rotor_diameter_m;
   int jobs = 1;
@@ -52,6 +53,7 @@ struct Arguments {
 struct FlightRead {
   std::optional<Flight> flight;
   std::string refusal;
+  std::string damage;  // a log read up to where it broke: the reader's one line
 };
 
 std::string signalNames() {
@@ -61,9 +63,15 @@ std::string signalNames() {
 }
 
 // The options every flight is read with: the motors and the --topic sources.
-FlightLogOptions optionsOf(const std::vector<std::string>& arguments, int motors) {
+FlightLogOptions optionsOf(const std::vector<std::string>& arguments, const std::vector<double>& pwm_range_us,
+                           int motors) {
   FlightLogOptions options;
   options.motors = motors;
+  if (!pwm_range_us.empty()) {
+    options.pwm_min_us = pwm_range_us[0];
+    options.pwm_max_us = pwm_range_us[1];
+    options.validate("--pwm-range-us");
+  }
   for (const std::string& argument : arguments) {
     const std::size_t equals = argument.find('=');
     if (equals == std::string::npos || equals + 1 == argument.size()) {
@@ -132,7 +140,7 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
                                   " (0.." + formatPrintf("%.3f", reader->durationS()) + " s)"};
       }
     }
-    return {Flight{entry.flight.log, reader->read(options), segments}, ""};
+    return {Flight{entry.flight.log, reader->read(options), segments}, "", reader->refusal()};
   } catch (const InputError& e) {
     return {std::nullopt, at + ": " + e.what()};
   }
@@ -223,7 +231,8 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
 int diagnose(const Arguments& args) {
   const PropulsionModel model = loadModelFile(args.model);
   const Vehicle vehicle = vehicleOf(args.urdf);
-  const FlightLogOptions options = optionsOf(args.topics, static_cast<int>(vehicle.rotors.size()));
+  const FlightLogOptions options =
+      optionsOf(args.topics, args.pwm_range_us, static_cast<int>(vehicle.rotors.size()));
   const gap::DiagnosisConfig config = configOf(args, options);
   const std::vector<ManifestEntry> entries = loadFlightManifestEntries(args.manifest);
   std::vector<BenchLog> bench;
@@ -239,6 +248,7 @@ int diagnose(const Arguments& args) {
 
   std::vector<Flight> flights;
   std::vector<std::string> refusals;
+  std::vector<std::string> damages;
   std::size_t readings = 0;
   for (FlightRead& read : reads) {
     if (!read.flight) {
@@ -246,14 +256,22 @@ int diagnose(const Arguments& args) {
       refusals.push_back(read.refusal);
       continue;
     }
+    if (!read.damage.empty()) {
+      const std::string problem = read.damage + " (the flight is read up to there)";
+      std::fprintf(stderr, "diagnose_gap: %s\n", problem.c_str());
+      damages.push_back(problem);
+    }
     std::printf("read %s: %s\n", read.flight->streams.source.c_str(),
                 streamSummary(read.flight->streams, &readings).c_str());
+    for (const std::string& note : read.flight->streams.notes) std::printf("  %s\n", note.c_str());
     flights.push_back(std::move(*read.flight));
   }
   std::printf("read %zu of %zu flights, %zu readings, in %s s with %d jobs\n", flights.size(), reads.size(), readings,
               formatPrintf("%.2f", seconds).c_str(), args.jobs);
 
-  if (!flights.empty()) diagnoseAndReport(args, model, vehicle, flights, config, bench, refusals);
+  std::vector<std::string> problems = refusals;
+  problems.insert(problems.end(), damages.begin(), damages.end());
+  if (!flights.empty()) diagnoseAndReport(args, model, vehicle, flights, config, bench, problems);
   if (refusals.empty()) return 0;
   std::fprintf(stderr, "diagnose_gap: %zu of %zu flights refused\n", refusals.size(), reads.size());
   return 1;
@@ -263,7 +281,7 @@ int diagnose(const Arguments& args) {
 
 int runDiagnoseGap(int argc, char** argv) {
   CLI::App app{
-      "Diagnoses the gap between a propulsion model and weighed flights: reads each flight's log (a rosbag's MAVROS topics) "
+      "Diagnoses the gap between a propulsion model and weighed flights: reads each flight's log (a rosbag's MAVROS topics, a PX4 ULog, an ArduPilot DataFlash log) "
       "and the manifest's segments of known mass."};
   Arguments args;
   app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
@@ -273,7 +291,11 @@ int runDiagnoseGap(int argc, char** argv) {
                  "Vehicle URDF: rotors (rotor_<k>_joint, in motor-channel order) and geometry (default: a quadcopter "
                  "on channels 1-4, geometry unknown)");
   app.add_option("--topic", args.topics,
-                 "NAME=TOPIC: read signal NAME from TOPIC instead of MAVROS' (repeatable); names: " + signalNames());
+                 "NAME=TOPIC: in a rosbag, read signal NAME from TOPIC instead of MAVROS' (repeatable); names: " + signalNames());
+  app.add_option("--pwm-range-us", args.pwm_range_us,
+                 "MIN MAX: the PWM range a ULog's normalised motor outputs (actuator_motors) map onto, when it "
+                 "logs no actuator_outputs (PX4's PWM_MAIN_MIN/MAX)")
+      ->expected(2);
   app.add_option("--bench", args.bench,
                  "Bench log measured under other conditions than the model's (another day, a battery, a warm motor): "
                  "its load cell is the truth (repeatable)");

@@ -1,6 +1,8 @@
 #include "flight_log_formats.h"
 
 #include "propulsion_estimator/bag/flight_bag_reader.h"
+#include "propulsion_estimator/logs/dataflash_flight_reader.h"
+#include "propulsion_estimator/logs/ulog_flight_reader.h"
 
 namespace propulsion_estimator {
 
@@ -9,6 +11,8 @@ const FlightLogFormats& flightLogFormats() {
     FlightLogFormats formats;
     // One line per format: its reader tells it from the file's first bytes.
     formats.add(flightBagFormat());
+    formats.add(ulogFormat());
+    formats.add(dataflashFormat());
     return formats;
   }();
   return kFormats;

@@ -14,7 +14,9 @@
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
+#include "propulsion_estimator/sim/flight/dataflash_flight_sink.h"
 #include "propulsion_estimator/sim/flight/flight_simulator.h"
+#include "propulsion_estimator/sim/flight/ulog_flight_sink.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/sim/physics/sim_effects_yaml.h"
 #include "propulsion_estimator/sim/physics/sim_params_yaml.h"
@@ -52,6 +54,7 @@ struct FlightOptions {
   std::string bag;
   std::string manifest;
   std::string compression = "none";
+  std::string log_format = "bag";
 };
 
 sim::SimEffects loadEffects(const std::string& path) {
@@ -126,9 +129,20 @@ void runFlight(const FlightOptions& options) {
     std::filesystem::remove(active, ignored);
   };
   try {
-    BagFlightSink sink(active, compression);
-    result = sim::simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
-    sink.close();
+    if (options.log_format == "ulog") {
+      // PX4 1.12's layout: actuator_outputs in us, as the other formats log them.
+      sim::UlogFlightSink sink(sim::UlogLayout::kPx4v1_12, profile.autopilot.pwm_min_us, profile.autopilot.pwm_max_us);
+      result = sim::simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
+      sink.save(active);
+    } else if (options.log_format == "dataflash") {
+      sim::DataflashFlightSink sink;
+      result = sim::simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
+      sink.save(active);
+    } else {
+      BagFlightSink sink(active, compression);
+      result = sim::simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
+      sink.close();
+    }
   } catch (const rosbag::BagException& e) {
     remove_active();
     throw InputError(options.bag + ": " + e.what());
@@ -204,12 +218,17 @@ int runSimulateCommand(int argc, char** argv) {
 
   FlightOptions flight;
   CLI::App* flight_command =
-      app.add_subcommand("flight", "Simulated hover flight -> rosbag with MAVROS topics, and its manifest");
+      app.add_subcommand("flight", "Simulated hover flight -> rosbag with MAVROS topics (or a ULog, a DataFlash log), and its manifest");
   flight_command->add_option("--params", flight.params, "Simulator parameter file (config/sim/*.yaml)")->required();
   flight_command->add_option("--profile", flight.profile, "Flight profile (config/sim/*_flight.yaml)")->required();
   flight_command->add_option("--effects", flight.effects, "Effects file (default: no effects)");
   flight_command->add_option("--seed", flight.seed, "Seed of the sensor noise (default 1)");
-  flight_command->add_option("--bag", flight.bag, "Bag to write")->required();
+  flight_command->add_option("--log,--bag", flight.bag, "Log to write (--bag, its old name)")->required();
+  flight_command
+      ->add_option("--log-format", flight.log_format,
+                   "bag (default: MAVROS topics and /sim/truth), ulog (PX4) or dataflash (ArduPilot .bin); the same "
+                   "flight in each")
+      ->check(CLI::IsMember({"bag", "ulog", "dataflash"}));
   flight_command->add_option("--manifest", flight.manifest,
                              "Manifest to write (hover or airborne segments with their true masses)");
   flight_command->add_option("--compression", flight.compression, "Bag compression: none (default), bz2 or lz4")

@@ -1,6 +1,7 @@
 #include "propulsion_estimator/logs/flight_log_formats.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -8,26 +9,10 @@
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/text_file.h"
 
 namespace propulsion_estimator {
-namespace {
-
-// The bytes as C would spell them: printable ASCII as is, the rest as \xNN.
-std::string escaped(const std::string& bytes) {
-  std::string text;
-  for (const char c : bytes) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte >= 0x20 && byte < 0x7f && c != '"' && c != '\\') {
-      text += c;
-    } else {
-      static const char kHex[] = "0123456789abcdef";
-      text += std::string("\\x") + kHex[byte >> 4] + kHex[byte & 0xf];
-    }
-  }
-  return text;
-}
-
-}  // namespace
 
 void FlightLogOptions::validate(const std::string& what) const {
   if (motors < 1 || motors > kMaxMotors) {
@@ -41,6 +26,12 @@ void FlightLogOptions::validate(const std::string& what) const {
       throw ConfigError(what + ": '" + name + "' is not a signal (one of " + list + ")");
     }
     if (source.empty()) throw ConfigError(what + ": " + name + ": an empty source");
+  }
+  const bool min_given = !std::isnan(pwm_min_us);
+  if (min_given != !std::isnan(pwm_max_us)) throw ConfigError(what + ": a PWM range needs both its ends");
+  if (min_given && !(pwm_min_us >= 500.0 && pwm_max_us <= 2500.0 && pwm_min_us < pwm_max_us)) {
+    throw ConfigError(what + ": PWM range " + formatNumber(pwm_min_us) + ".." + formatNumber(pwm_max_us) +
+                      " us, expected min < max within 500..2500 us");
   }
 }
 
@@ -69,7 +60,7 @@ std::unique_ptr<FlightLogReader> FlightLogFormats::open(const std::string& path)
   }
   std::string list;
   for (const std::string& name : names()) list += (list.empty() ? "" : ", ") + name;
-  throw DataError(path + ": not a flight log of a known format (" + list + "): it starts with \"" + escaped(head) +
+  throw DataError(path + ": not a flight log of a known format (" + list + "): it starts with \"" + printableBytes(head) +
                   "\"");
 }
 
@@ -77,6 +68,26 @@ std::vector<std::string> FlightLogFormats::names() const {
   std::vector<std::string> names;
   for (const FlightLogFormat& format : formats_) names.push_back(format.name);
   return names;
+}
+
+std::string readFlightLogBytes(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
+  return readTextFile(path);
+}
+
+std::string printableBytes(const std::string& bytes) {
+  static const char kHex[] = "0123456789abcdef";
+  std::string text;
+  for (const char c : bytes) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f && c != '"' && c != '\\') {
+      text += c;
+    } else {
+      text += std::string("\\x") + kHex[byte >> 4] + kHex[byte & 0xf];
+    }
+  }
+  return text;
 }
 
 }  // namespace propulsion_estimator

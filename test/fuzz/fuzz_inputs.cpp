@@ -9,8 +9,10 @@
 #include "propulsion_estimator/onboard/tare_file.h"
 #include "propulsion_estimator/logs/bench_csv.h"
 #include "propulsion_estimator/logs/csv_text.h"
+#include "propulsion_estimator/logs/dataflash_flight_reader.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
 #include "propulsion_estimator/logs/tyto_csv.h"
+#include "propulsion_estimator/logs/ulog_flight_reader.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
@@ -101,6 +103,34 @@ bool feedRcOut(const std::uint8_t* data, std::size_t size) {
   return decoded;
 }
 
+// A flight log read as diagnose_gap reads it; a log read up to a damaged message must say where,
+// in one line.
+template <typename Reader>
+bool feedFlightLog(const std::uint8_t* data, std::size_t size, const char* path) {
+  return acceptsText(data, size, [path](const std::string& bytes) {
+    const Reader reader(bytes, path);
+    FlightLogOptions options;
+    options.motors = 4;
+    options.pwm_min_us = 1000.0;
+    options.pwm_max_us = 2000.0;
+    const std::string refusal = reader.refusal();
+    if (!refusal.empty() && (refusal.rfind(std::string(path) + ": at byte ", 0) != 0 ||
+                             refusal.find('\n') != std::string::npos)) {
+      throw std::logic_error("a refusal not of one line naming the file and the byte: " + refusal);
+    }
+    const FlightStreams streams = reader.read(options);
+    if (streams.rc_out.empty() || streams.battery.empty()) throw std::logic_error("read without rc_out or battery");
+  });
+}
+
+bool feedUlog(const std::uint8_t* data, std::size_t size) {
+  return feedFlightLog<UlogFlightReader>(data, size, "fuzz.ulg");
+}
+
+bool feedDataflash(const std::uint8_t* data, std::size_t size) {
+  return feedFlightLog<DataflashFlightReader>(data, size, "fuzz.bin");
+}
+
 }  // namespace
 
 const std::vector<FuzzInput>& fuzzInputs() {
@@ -109,6 +139,7 @@ const std::vector<FuzzInput>& fuzzInputs() {
       {"tyto_csv", feedTytoCsv},               {"flight_manifest", feedFlightManifest},
       {"flight_profile", feedFlightProfile},   {"vehicle_urdf", feedVehicleUrdf},
       {"rcout", feedRcOut},                    {"tare_file", feedTareFile},
+      {"ulog", feedUlog},                      {"dataflash", feedDataflash},
   };
   return inputs;
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <map>
 #include <string>
 
@@ -13,9 +14,14 @@ struct FlightLogOptions {
   /// Signal name (flightSignalNames()) -> where the format finds it, in the format's terms (a
   /// rosbag's topic); a signal not named is read from the format's usual source.
   std::map<std::string, std::string> sources;
+  /// The PWM range in us that normalised motor outputs (PX4's actuator_motors, 0..1) map onto;
+  /// required only by a log whose outputs are logged normalised alone. NaN: not given.
+  double pwm_min_us = std::numeric_limits<double>::quiet_NaN();
+  double pwm_max_us = std::numeric_limits<double>::quiet_NaN();
 
-  /// Throws ConfigError "<what>: ..." for motors outside 1..kMaxMotors or a source whose name is
-  /// not a signal; `what` names the input the options came from ("--topic", a file).
+  /// Throws ConfigError "<what>: ..." for motors outside 1..kMaxMotors, a source whose name is
+  /// not a signal, or a PWM range given by half or not within 500..2500 us with min < max; `what`
+  /// names the input the options came from ("--topic", a file).
   void validate(const std::string& what) const;
 };
 
@@ -37,6 +43,17 @@ class FlightLogReader {
   /// signal missing, a malformed message: the message names the place) and ConfigError for
   /// options it cannot use.
   virtual FlightStreams read(const FlightLogOptions& options) const = 0;
+  /// "" for a log read to its end; else the one line that refused the rest of it ("<path>: at
+  /// byte <offset>: <message>: <problem>"): read() then gives what came before.
+  virtual std::string refusal() const { return ""; }
 };
+
+/// The whole of the flight log `path`, for a reader that parses it in memory. InputError
+/// "<path>: no such file", or naming it when it cannot be read.
+std::string readFlightLogBytes(const std::string& path);
+
+/// `bytes` as C would spell them: printable ASCII as is, other bytes (a newline, a NUL) as \xNN;
+/// for text taken from a log into a one-line message.
+std::string printableBytes(const std::string& bytes);
 
 }  // namespace propulsion_estimator

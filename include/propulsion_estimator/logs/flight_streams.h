@@ -58,6 +58,9 @@ struct FlightStreams {
   std::vector<ScalarReading> air_temperature_c;  ///< deg C
   std::vector<ScalarReading> height_above_ground_m;  ///< rangefinder range (valid readings only)
   std::vector<ScalarReading> motor_temperature_c;  ///< deg C
+  /// How the reader found the signals, one line each ("rc_out: actuator_outputs[0].output[0..3]",
+  /// "motor_temperature: not in this log (no esc_status)"); empty for a reader that says nothing.
+  std::vector<std::string> notes;
 };
 
 /// The signals of a flight, in FlightStreams' order: "rc_out", "battery", "imu", "pose" (altitude_m),

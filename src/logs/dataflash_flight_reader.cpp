@@ -1,0 +1,246 @@
+#include "propulsion_estimator/logs/dataflash_flight_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/common/units.h"
+
+namespace propulsion_estimator {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kGoodRange = 4;  // RFND Stat: RangeFinder::Status::Good
+constexpr double kDownward = 25;  // RFND Orient: ROTATION_PITCH_270
+
+// ArduPilot's attitude (roll, pitch, yaw in degrees: body FRD to local NED) as the package's
+// (body FLU to local ENU, REP-103).
+Eigen::Quaterniond enuFromNedEuler(double roll_deg, double pitch_deg, double yaw_deg) {
+  static const Eigen::Quaterniond kEnuNed(0.0, M_SQRT1_2, M_SQRT1_2, 0.0);
+  static const Eigen::Quaterniond kFrdFlu(0.0, 1.0, 0.0, 0.0);
+  const double r = roll_deg * M_PI / 180.0, p = pitch_deg * M_PI / 180.0, y = yaw_deg * M_PI / 180.0;
+  const Eigen::Quaterniond ned(Eigen::AngleAxisd(y, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(p, Eigen::Vector3d::UnitY()) *
+                               Eigen::AngleAxisd(r, Eigen::Vector3d::UnitX()));
+  return kEnuNed * ned * kFrdFlu;
+}
+
+// Reads one log's signals into FlightStreams on the manifest's clock.
+class SignalReader {
+ public:
+  SignalReader(const dataflash::File& file, double first_us, const std::string& path, FlightStreams* streams)
+      : file_(file), first_us_(first_us), path_(path), streams_(streams) {}
+
+  void note(const std::string& line) { streams_->notes.push_back(line); }
+
+  // The messages of type `name`, instance 0 where it has an instance column; with their time in s.
+  bool forEach(const std::string& name, const std::function<void(const dataflash::Message&, double)>& use) const {
+    const auto type = file_.typeNamed(name);
+    if (!type) return false;
+    const auto time = file_.column(*type, "TimeUS");
+    if (!time) return false;
+    std::optional<dataflash::Column> instance;
+    for (const char* label : {"Instance", "Inst", "I", "C"}) {
+      if ((instance = file_.column(*type, label))) break;
+    }
+    bool any = false;
+    for (const dataflash::Message& message : file_.messages()) {
+      if (message.type != *type || (instance && file_.value(message, *instance) != 0.0)) continue;
+      use(message, (file_.value(message, *time) - first_us_) / 1e6);
+      any = true;
+    }
+    return any;
+  }
+  std::optional<dataflash::Column> column(const std::string& type, const std::string& label) const {
+    const auto id = file_.typeNamed(type);
+    return id ? file_.column(*id, label) : std::nullopt;
+  }
+  double value(const dataflash::Message& message, const dataflash::Column& column) const {
+    return file_.value(message, column);
+  }
+
+  void rcOut(int motors) {
+    std::vector<dataflash::Column> channels;
+    for (int k = 1; k <= motors; ++k) {
+      const auto channel = column("RCOU", "C" + std::to_string(k));
+      if (!channel) {
+        throw DataError(path_ + (file_.typeNamed("RCOU") ? ": rc_out: RCOU has no column C" + std::to_string(k) +
+                                                               ", fewer channels than the " + std::to_string(motors) +
+                                                               " motors"
+                                                         : ": rc_out: no RCOU (a required signal)"));
+      }
+      channels.push_back(*channel);
+    }
+    const bool any = forEach("RCOU", [&](const dataflash::Message& message, double t) {
+      RcOutFrame& frame = streams_->rc_out.emplace_back();
+      frame.time_s = t;
+      for (int k = 0; k < motors; ++k) frame.pwm_us[k] = value(message, channels[k]);
+    });
+    if (!any) throw DataError(path_ + ": rc_out: no RCOU messages (a required signal)");
+    note("rc_out: RCOU C1..C" + std::to_string(motors) + " (us)");
+  }
+
+  void battery() {
+    const auto volt = column("BAT", "Volt");
+    const auto curr = column("BAT", "Curr");
+    if (!volt) throw DataError(path_ + ": battery: no BAT with Volt (a required signal)");
+    forEach("BAT", [&](const dataflash::Message& message, double t) {
+      streams_->battery.push_back({t, value(message, *volt), curr ? value(message, *curr) : kNaN});
+    });
+    if (streams_->battery.empty()) throw DataError(path_ + ": battery: no BAT messages (a required signal)");
+    note(std::string("battery: BAT Volt") + (curr ? ", Curr" : ", no current"));
+  }
+
+  void imu() {
+    const auto roll = column("ATT", "Roll"), pitch = column("ATT", "Pitch"), yaw = column("ATT", "Yaw");
+    const auto ax = column("IMU", "AccX"), ay = column("IMU", "AccY"), az = column("IMU", "AccZ");
+    if (!roll || !pitch || !yaw || !ax || !ay || !az) {
+      note(std::string("imu: not in this log (no ") + (roll ? "IMU" : "ATT") + ")");
+      return;
+    }
+    std::vector<std::pair<double, Eigen::Vector3d>> forces;
+    forEach("IMU", [&](const dataflash::Message& message, double t) {
+      forces.emplace_back(t, Eigen::Vector3d(value(message, *ax), -value(message, *ay), -value(message, *az)));
+    });
+    std::size_t next = 0;
+    forEach("ATT", [&](const dataflash::Message& message, double t) {
+      while (next < forces.size() && forces[next].first <= t) ++next;
+      if (next == 0 || t - forces[next - 1].first > 0.1) return;  // no fresh specific force
+      streams_->imu.push_back(
+          {t, enuFromNedEuler(value(message, *roll), value(message, *pitch), value(message, *yaw)), forces[next - 1].second});
+    });
+    note("imu: ATT Roll, Pitch, Yaw with IMU AccX..AccZ");
+  }
+
+  void localPosition() {
+    const auto pd = column("XKF1", "PD"), vd = column("XKF1", "VD");
+    if (pd && vd) {
+      forEach("XKF1", [&](const dataflash::Message& message, double t) {
+        streams_->altitude_m.push_back({t, -value(message, *pd)});
+        streams_->vertical_speed_m_s.push_back({t, -value(message, *vd)});
+      });
+      note("pose, velocity: XKF1 (core 0) -PD, -VD");
+      return;
+    }
+    const auto alt = column("CTUN", "Alt"), climb = column("CTUN", "CRt");
+    if (!alt) {
+      note("pose, velocity: not in this log (no XKF1 or CTUN)");
+      return;
+    }
+    forEach("CTUN", [&](const dataflash::Message& message, double t) {
+      streams_->altitude_m.push_back({t, value(message, *alt)});
+      if (climb) streams_->vertical_speed_m_s.push_back({t, 0.01 * value(message, *climb)});
+    });
+    note(std::string("pose, velocity: CTUN Alt") + (climb ? ", CRt (cm/s)" : ", no climb rate"));
+  }
+
+  void barometer() {
+    const auto press = column("BARO", "Press"), temp = column("BARO", "Temp");
+    if (!press) {
+      note("static_pressure, air_temperature: not in this log (no BARO)");
+      return;
+    }
+    forEach("BARO", [&](const dataflash::Message& message, double t) {
+      streams_->static_pressure_pa.push_back({t, value(message, *press)});
+      if (temp) streams_->air_temperature_c.push_back({t, value(message, *temp)});
+    });
+    note(std::string("static_pressure: BARO Press; air_temperature: ") + (temp ? "BARO Temp" : "not in this log"));
+  }
+
+  void rangefinder() {
+    const auto dist = column("RFND", "Dist"), stat = column("RFND", "Stat"), orient = column("RFND", "Orient");
+    if (!dist) {
+      note("rangefinder: not in this log (no RFND)");
+      return;
+    }
+    forEach("RFND", [&](const dataflash::Message& message, double t) {
+      if (stat && value(message, *stat) != kGoodRange) return;
+      if (orient && value(message, *orient) != kDownward) return;
+      streams_->height_above_ground_m.push_back({t, value(message, *dist)});
+    });
+    note("rangefinder: RFND Dist (good readings)");
+  }
+
+  void motorTemperature() {
+    const auto type = file_.typeNamed("ESC");
+    auto temp = column("ESC", "MotTemp");
+    if (!temp) temp = column("ESC", "MTemp");
+    const auto instance = column("ESC", "Instance");
+    const auto time = column("ESC", "TimeUS");
+    if (!temp || !instance || !time) {
+      note(type ? "motor_temperature: not in this log (ESC has no MotTemp)" : "motor_temperature: not in this log (no ESC)");
+      return;
+    }
+    // The hottest of the motors' latest readings, at each reading.
+    std::vector<double> latest(kMaxMotors, kNaN);
+    for (const dataflash::Message& message : file_.messages()) {
+      if (message.type != *type) continue;
+      const double k = value(message, *instance);
+      if (!(k >= 0 && k < kMaxMotors)) continue;
+      latest[static_cast<std::size_t>(k)] = value(message, *temp);
+      double hottest = -std::numeric_limits<double>::infinity();
+      for (const double reading : latest) {
+        if (!std::isnan(reading)) hottest = std::max(hottest, reading);
+      }
+      streams_->motor_temperature_c.push_back({(value(message, *time) - first_us_) / 1e6, hottest});
+    }
+    note("motor_temperature: the hottest ESC MotTemp");
+  }
+
+ private:
+  const dataflash::File& file_;
+  double first_us_;
+  const std::string& path_;
+  FlightStreams* streams_;
+};
+
+}  // namespace
+
+DataflashFlightReader::DataflashFlightReader(const std::string& path)
+    : DataflashFlightReader(readFlightLogBytes(path), path) {}
+
+DataflashFlightReader::DataflashFlightReader(std::string bytes, const std::string& path)
+    : path_(path), file_(std::make_unique<dataflash::File>(std::move(bytes), path)) {
+  double first = std::numeric_limits<double>::infinity();
+  double last = -first;
+  std::map<std::uint8_t, std::optional<dataflash::Column>> times;
+  for (const dataflash::Message& message : file_->messages()) {
+    auto time = times.find(message.type);
+    if (time == times.end()) time = times.emplace(message.type, file_->column(message.type, "TimeUS")).first;
+    if (!time->second) continue;
+    const double t = file_->value(message, *time->second);
+    first = std::min(first, t);
+    last = std::max(last, t);
+  }
+  if (!std::isfinite(first)) {
+    throw DataError(path_ + ": no timed messages" + (file_->refusal().empty() ? "" : " (" + file_->refusal() + ")"));
+  }
+  first_us_ = first;
+  duration_s_ = (last - first) / 1e6;
+}
+
+FlightStreams DataflashFlightReader::read(const FlightLogOptions& options) const {
+  options.validate(path_);
+  FlightStreams streams;
+  streams.source = path_;
+  streams.motors = options.motors;
+  SignalReader reader(*file_, first_us_, path_, &streams);
+  reader.rcOut(options.motors);
+  reader.battery();
+  reader.imu();
+  reader.localPosition();
+  reader.barometer();
+  reader.rangefinder();
+  reader.motorTemperature();
+  return streams;
+}
+
+FlightLogFormat dataflashFormat() {
+  return {"dataflash", std::string(dataflash::kMagic, 5),
+          [](const std::string& path) -> std::unique_ptr<FlightLogReader> {
+            return std::make_unique<DataflashFlightReader>(path);
+          }};
+}
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,75 @@
+// One simulated flight written as a rosbag, a PX4 ULog and an ArduPilot DataFlash log at once
+// (one simulation, three writers), each read through the flight-log registry as diagnose_gap reads
+// it: the three diagnoses select the same effects with the same parameters.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "propulsion_estimator/bag/bag_flight_sink.h"
+#include "propulsion_estimator/bag/flight_bag_reader.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/gap/diagnosis.h"
+#include "propulsion_estimator/logs/dataflash_flight_reader.h"
+#include "propulsion_estimator/logs/flight_manifest.h"
+#include "propulsion_estimator/logs/ulog_flight_reader.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/sim/flight/dataflash_flight_sink.h"
+#include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
+#include "propulsion_estimator/sim/flight/flight_simulator.h"
+#include "propulsion_estimator/sim/flight/ulog_flight_sink.h"
+#include "propulsion_estimator/sim/physics/sim_effects_yaml.h"
+#include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
+#include "simulated_flight_logs.h"
+
+namespace pe = propulsion_estimator;
+namespace fs = std::filesystem;
+
+TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
+  const fs::path dir = fs::temp_directory_path() / ("pe_formats_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const pe::sim::FlightProfile profile = pe::sim::loadFlightProfileFile(repoPath("config/demo/demo_flight_profile.yaml"));
+  const pe::Vehicle vehicle = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
+  pe::writeTextFile((dir / "effects.yaml").string(), "thrust_loss: {fraction: 0.06}\n");
+  pe::sim::FlightResult result;
+  {
+    pe::BagFlightSink bag((dir / "flight.bag").string(), rosbag::compression::Uncompressed);
+    pe::sim::UlogFlightSink ulog(pe::sim::UlogLayout::kPx4v1_12, profile.autopilot.pwm_min_us,
+                                 profile.autopilot.pwm_max_us);
+    pe::sim::DataflashFlightSink dataflash;
+    TeeFlightSink logs(&ulog, &dataflash);
+    TeeFlightSink all(&bag, &logs);
+    result = pe::sim::simulateFlight(pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")),
+                                     pe::sim::loadSimEffectsFile((dir / "effects.yaml").string()), profile, vehicle, 3,
+                                     &all);
+    bag.close();
+    ulog.save((dir / "flight.ulg").string());
+    dataflash.save((dir / "flight.bin").string());
+  }
+  pe::FlightLogFormats formats;
+  formats.add(pe::flightBagFormat());
+  formats.add(pe::ulogFormat());
+  formats.add(pe::dataflashFormat());
+  const pe::PropulsionModel model = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
+  pe::FlightLogOptions options;
+  options.motors = 4;
+  std::vector<pe::gap::Diagnosis> diagnoses;
+  for (const char* name : {"flight.bag", "flight.ulg", "flight.bin"}) {
+    const auto reader = formats.open((dir / name).string());
+    const std::vector<pe::Flight> flights = {{name, reader->read(options), result.segments}};
+    diagnoses.push_back(pe::gap::diagnoseGap(model, vehicle, flights, pe::gap::DiagnosisConfig{}, {}));
+  }
+  fs::remove_all(dir);
+  const pe::gap::Diagnosis& bag = diagnoses[0];
+  ASSERT_EQ(bag.selected, std::vector<pe::effects::Kind>{pe::effects::Kind::kThrustLoss});
+  const double fraction = *bag.fitted.parameter(pe::effects::Kind::kThrustLoss);
+  EXPECT_NEAR(fraction, 0.06, 0.01);
+  for (std::size_t i = 1; i < diagnoses.size(); ++i) {
+    const pe::gap::Diagnosis& other = diagnoses[i];
+    EXPECT_EQ(other.selected, bag.selected) << i;
+    EXPECT_NEAR(*other.fitted.parameter(pe::effects::Kind::kThrustLoss), fraction, 1e-4 * fraction) << i;
+    EXPECT_EQ(other.overall.samples, bag.overall.samples) << i;
+    EXPECT_NEAR(other.overall.rmse_pct, bag.overall.rmse_pct, 1e-3) << i;
+    EXPECT_NEAR(other.heldout.after_rmse_pct, bag.heldout.after_rmse_pct, 1e-3) << i;
+  }
+}
