@@ -156,7 +156,7 @@ TEST(BenchFit, SurfaceFollowsTheNoiseFreeChainAndReportsHonestErrors) {
   EXPECT_GT(thrust.max_error, 2.5 * set.thrust_sigma_g);  // the largest of 1128 normal residuals
   EXPECT_LT(thrust.max_error, 5.0 * set.thrust_sigma_g);
   // Degrees: 20 candidates scored; thrust ~ rpm^2 is (4, 2) in the chain, power needs more PWM terms.
-  EXPECT_EQ(thrust.candidates.size(), 20u);
+  EXPECT_EQ(thrust.candidates.size(), 23u);  // 20 polyXY degree pairs and drive curves of degree 1 to 3
   EXPECT_GE(quality.pwm_degree, 3);
   EXPECT_GE(quality.voltage_degree, 1);
   EXPECT_EQ(fit.model.output(pe::Output::kEfficiency).source, pe::OutputSource::kDerived);
@@ -489,16 +489,15 @@ TEST(BenchFitRefusals, EveryMissingBenchConditionInOneMessageAndUnknownNames) {
   }
 }
 
-TEST(BenchFitRefusals, ReportsAModelThatFailsTheLoadersGridCheckInsteadOfHidingIt) {
-  // A stand wired so that thrust reads negative, passed on without a sign correction.
+TEST(BenchFitRefusals, RefusesAThrustThatFallsAsPwmRises) {
+  // A stand wired so that thrust reads negative, passed on without a sign correction: no surface
+  // that rises with PWM fits it, and the fit says so instead of writing one that falls.
   auto negative = [](double x, double v) { return -0.1 * (x - 1100.0) + 0.0 * v; };
-  const pe::fitting::BenchFit fit =
-      pe::fitting::fitBenchModel({gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, negative),
-                                  gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, negative)},
-                                 {});
-  EXPECT_EQ(fit.validation_error,
-            "outputs.thrust: -80 g at pwm_us=1900, voltage_v=11.1: thrust must not be negative at the top of the PWM "
-            "range");
+  EXPECT_EQ(
+      refusal({gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, negative),
+               gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, negative)}),
+      "cannot fit thrust: no candidate surface rises with PWM and voltage over the bench's domain (does column "
+      "thrust_n fall as PWM rises? a sensor read with the wrong sign)");
 }
 
 TEST(BenchFitRefusals, BadOptions) {

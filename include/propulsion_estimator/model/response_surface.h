@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "propulsion_estimator/model/drive_curve.h"
 #include "propulsion_estimator/model/polynomial_2d.h"
 
 namespace propulsion_estimator {
@@ -18,22 +19,27 @@ struct InputScaling {
 };
 
 /// One output of a propulsion model as a function of PWM (us) and voltage (V): a polynomial or a
-/// ratio of two polynomials in the scaled inputs. Values are in the unit the model file states.
+/// ratio of two polynomials in the scaled inputs, or a drive curve (drive_curve.h). Values are in
+/// the unit the model file states.
 class ResponseSurface {
  public:
   ResponseSurface(Polynomial2D numerator, InputScaling scaling);
   ResponseSurface(Polynomial2D numerator, Polynomial2D denominator, InputScaling scaling);
+  explicit ResponseSurface(DriveCurve drive_curve);
 
   double evaluate(double pwm_us, double voltage_v) const;
 
   const Polynomial2D& numerator() const { return numerator_; }
   const std::optional<Polynomial2D>& denominator() const { return denominator_; }
   const InputScaling& scaling() const { return scaling_; }
+  /// Set for a drive curve, whose numerator is then empty and scaling the identity.
+  const std::optional<DriveCurve>& driveCurve() const { return drive_curve_; }
 
  private:
   Polynomial2D numerator_;
   std::optional<Polynomial2D> denominator_;
   InputScaling scaling_;
+  std::optional<DriveCurve> drive_curve_;
 };
 
 }  // namespace propulsion_estimator

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "propulsion_estimator/model/drive_curve.h"
+
+namespace propulsion_estimator {
+namespace fitting {
+
+/// Where a row sits for the extrapolation scores: the lowest voltage band, the highest, or between.
+enum class VoltageBand { kMiddle = 0, kLow = 1, kHigh = 2 };
+constexpr int kVoltageBandCount = 3;  ///< number of VoltageBand values
+static_assert(static_cast<int>(VoltageBand::kHigh) + 1 == kVoltageBandCount, "kVoltageBandCount");
+
+/// The rows of one output, each with its cross-validation group and voltage band.
+struct FitRows {
+  std::vector<double> pwm_us, voltage_v, y;
+  std::vector<int> group;
+  std::vector<VoltageBand> band;
+  int groups = 0;
+
+  std::size_t size() const { return y.size(); }
+};
+
+/// A drive curve fitted with non-negative coefficients (drive_curve.h), and its held-out errors in
+/// the output's unit: one group out at a time (pooled), the lowest voltage band fitted on the rest,
+/// the highest likewise. NaN where a fold leaves too few rows or drive levels.
+struct DriveCurveFit {
+  DriveCurve curve{0.0, {0.0}};
+  double held_out_rmse = 0.0;
+  double low_band_rmse = 0.0;
+  double high_band_rmse = 0.0;
+};
+
+/// Fits y = sum_k c_k u^k, k <= degree (1..DriveCurve::kMaxDegree), c_k >= 0, u = max(0, PWM - x0) /
+/// 1000 * V, with x0 the PWM at which the rotor starts, chosen on each fold's training rows by least
+/// squares over a grid (on an even subsample of at most 20000 rows; the final coefficients use all
+/// rows). nullopt when the rows cannot determine the curve (fewer rows than coefficients + 2).
+std::optional<DriveCurveFit> fitDriveCurve(const FitRows& rows, int degree);
+
+}  // namespace fitting
+}  // namespace propulsion_estimator
