@@ -35,7 +35,7 @@ constexpr const char* kSimTruthTopic = "/sim/truth";
 /// "base_link" (FLU body), "rangefinder", the motor's link.
 class BagFlightSink : public sim::FlightSink {
  public:
-  // Opens `path` for writing (rosbag::BagException for an unwritable path).
+  /// Opens `path` for writing (rosbag::BagException for an unwritable path).
   BagFlightSink(const std::string& path, rosbag::compression::CompressionType compression);
   ~BagFlightSink() override;
 
@@ -50,8 +50,8 @@ class BagFlightSink : public sim::FlightSink {
   void motorTemperature(const sim::ScalarSample& sample) override;
   void truth(const sim::TruthSample& sample) override;
 
-  // Finishes the bag (rosbag::BagException when it cannot be written). The destructor closes it
-  // too, reporting a failure on stderr since it cannot throw.
+  /// Finishes the bag (rosbag::BagException when it cannot be written). The destructor closes it
+  /// too, reporting a failure on stderr since it cannot throw.
   void close();
 
  private:

@@ -14,19 +14,19 @@ namespace propulsion_estimator {
 /// The topic of each signal of a flight bag; MAVROS' names (those the simulator writes) by default.
 /// rc_out and battery are required, the others optional.
 struct FlightBagTopics {
-  std::string rc_out = kRcOutTopic;                     // mavros_msgs/RCOut
-  std::string battery = kBatteryTopic;                  // sensor_msgs/BatteryState
-  std::string imu = kImuTopic;                          // sensor_msgs/Imu
-  std::string pose = kPoseTopic;                        // geometry_msgs/PoseStamped
-  std::string velocity = kVelocityTopic;                // geometry_msgs/TwistStamped
-  std::string static_pressure = kStaticPressureTopic;   // sensor_msgs/FluidPressure
-  std::string air_temperature = kAirTemperatureTopic;   // sensor_msgs/Temperature
-  std::string rangefinder = kRangefinderTopic;          // sensor_msgs/Range
-  std::string motor_temperature = kMotorTemperatureTopic;  // sensor_msgs/Temperature
+  std::string rc_out = kRcOutTopic;                     ///< mavros_msgs/RCOut
+  std::string battery = kBatteryTopic;                  ///< sensor_msgs/BatteryState
+  std::string imu = kImuTopic;                          ///< sensor_msgs/Imu
+  std::string pose = kPoseTopic;                        ///< geometry_msgs/PoseStamped
+  std::string velocity = kVelocityTopic;                ///< geometry_msgs/TwistStamped
+  std::string static_pressure = kStaticPressureTopic;   ///< sensor_msgs/FluidPressure
+  std::string air_temperature = kAirTemperatureTopic;   ///< sensor_msgs/Temperature
+  std::string rangefinder = kRangefinderTopic;          ///< sensor_msgs/Range
+  std::string motor_temperature = kMotorTemperatureTopic;  ///< sensor_msgs/Temperature
 
-  // The signals' names, as above: "rc_out", "battery", ..., "motor_temperature".
+  /// The signals' names, as above: "rc_out", "battery", ..., "motor_temperature".
   static const std::vector<std::string>& names();
-  // The topic of the signal `name`, or nullptr when there is no such signal.
+  /// The topic of the signal `name`, or nullptr when there is no such signal.
   std::string* find(const std::string& name);
 };
 
@@ -38,25 +38,25 @@ struct FlightBagTopics {
 /// lock, since rosbag loads and unloads a plugin then; no other rosbag::Bag may come or go meanwhile.
 class FlightBagReader {
  public:
-  // Opens `path`. InputError "<path>: no such file"; DataError "<path>: not a readable bag: <why>",
-  // "<path>: no messages".
+  /// Opens `path`. InputError "<path>: no such file"; DataError "<path>: not a readable bag: <why>",
+  /// "<path>: no messages".
   explicit FlightBagReader(const std::string& path);
   ~FlightBagReader();
   FlightBagReader(const FlightBagReader&) = delete;
   FlightBagReader& operator=(const FlightBagReader&) = delete;
 
   const std::string& path() const { return path_; }
-  // From the first message to the last, in seconds.
+  /// From the first message to the last, in seconds.
   double durationS() const { return duration_s_; }
 
-  // Reads the signals in one pass over their topics, in time order. Motors 1..`motors` are RCOut
-  // channels 1..`motors`. Values are as logged (the battery current keeps the autopilot's sign),
-  // except that IMU messages without orientation (covariance -1, REP-145) and rangefinder readings
-  // outside the sensor's min_range..max_range are left out. An optional topic that the bag lacks
-  // leaves its stream empty. DataError "<path>: <topic>: <problem>" for a required topic
-  // without messages, a topic of another type or md5sum than expected, an RCOut message with
-  // fewer channels than `motors`, or a malformed message; "<path>: <problem>" when the bag
-  // cannot be read to its end.
+  /// Reads the signals in one pass over their topics, in time order. Motors 1..`motors` are RCOut
+  /// channels 1..`motors`. Values are as logged (the battery current keeps the autopilot's sign),
+  /// except that IMU messages without orientation (covariance -1, REP-145) and rangefinder readings
+  /// outside the sensor's min_range..max_range are left out. An optional topic that the bag lacks
+  /// leaves its stream empty. DataError "<path>: <topic>: <problem>" for a required topic
+  /// without messages, a topic of another type or md5sum than expected, an RCOut message with
+  /// fewer channels than `motors`, or a malformed message; "<path>: <problem>" when the bag
+  /// cannot be read to its end.
   gap::FlightStreams read(const FlightBagTopics& topics, int motors) const;
 
  private:

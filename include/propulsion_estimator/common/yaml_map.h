@@ -16,30 +16,30 @@ namespace propulsion_estimator {
 /// ConfigError as "<source>:<line>: <key.path>: <problem>", so that the user sees where to look.
 class YamlMap {
  public:
-  // `path` is the dotted key path of this map ("" for the document root).
+  /// `path` is the dotted key path of this map ("" for the document root).
   YamlMap(const YAML::Node& node, std::string source, std::string path);
 
-  // Refuses any key not in `allowed`.
+  /// Refuses any key not in `allowed`.
   void allowOnly(std::initializer_list<const char*> allowed) const;
 
   bool has(const std::string& key) const;
   std::vector<std::string> keys() const;
 
-  double number(const std::string& key) const;  // finite
+  double number(const std::string& key) const;  ///< finite
   std::optional<double> optionalNumber(const std::string& key) const;
   int integer(const std::string& key) const;
   bool boolean(const std::string& key) const;
   std::string text(const std::string& key) const;
   std::optional<std::string> optionalText(const std::string& key) const;
-  std::pair<double, double> range(const std::string& key) const;  // [lo, hi], finite, lo < hi
-  std::vector<double> numbers(const std::string& key) const;      // a sequence of finite numbers
+  std::pair<double, double> range(const std::string& key) const;  ///< [lo, hi], finite, lo < hi
+  std::vector<double> numbers(const std::string& key) const;      ///< a sequence of finite numbers
   YamlMap map(const std::string& key) const;
   std::optional<YamlMap> optionalMap(const std::string& key) const;
-  std::vector<YamlMap> maps(const std::string& key) const;  // a sequence of mappings
-  // One of `choices`, reported with them when it is not.
+  std::vector<YamlMap> maps(const std::string& key) const;  ///< a sequence of mappings
+  /// One of `choices`, reported with them when it is not.
   std::string choice(const std::string& key, std::initializer_list<const char*> choices) const;
 
-  // "<source>:<line>: <path.key>" for messages about a key of this map.
+  /// "<source>:<line>: <path.key>" for messages about a key of this map.
   std::string where(const std::string& key) const;
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
 

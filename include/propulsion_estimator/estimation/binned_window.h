@@ -85,7 +85,7 @@ class BinnedWindow {
     bin = Bin{index, stamp_s, Aggregate{}};
   }
 
-  // The closed bins still in the window: a slot belongs to it when it holds the bin of its index.
+  /// The closed bins still in the window: a slot belongs to it when it holds the bin of its index.
   void mergeClosedBins() {
     closed_ = Aggregate{};
     std::int64_t oldest = newest_index_;

@@ -15,24 +15,24 @@ namespace propulsion_estimator {
 /// "Capability"). The battery is optional as a whole: without capacity and cells the endurance
 /// and the cut-off figures are NaN with the reason.
 struct CapabilityConfig {
-  double rate_hz = 1.0;                // Hz; how often ~capability is published
-  std::optional<double> pwm_max_us;    // us; top of the usable PWM range; default the model's domain maximum
-  // Attitude control needs headroom above the hover thrust: PX4 and ArduPilot practice keeps the
-  // hover throttle near or below half.
+  double rate_hz = 1.0;                ///< Hz; how often ~capability is published
+  std::optional<double> pwm_max_us;    ///< us; top of the usable PWM range; default the model's domain maximum
+  /// Attitude control needs headroom above the hover thrust: PX4 and ArduPilot practice keeps the
+  /// hover throttle near or below half.
   double min_thrust_to_weight = 1.6;
-  std::optional<double> capacity_ah;  // Ah; the pack's rated capacity
-  std::optional<int> cells;           // in series
-  double usable_fraction = 0.8;       // share of the capacity drawn at the cut-off (BatteryPack)
-  double cell_full_v = 4.2;           // V per cell
-  double cell_cutoff_v = 3.5;         // V per cell
-  double reserve_s = 120.0;           // s; hover endurance below this warns
+  std::optional<double> capacity_ah;  ///< Ah; the pack's rated capacity
+  std::optional<int> cells;           ///< in series
+  double usable_fraction = 0.8;       ///< share of the capacity drawn at the cut-off (BatteryPack)
+  double cell_full_v = 4.2;           ///< V per cell
+  double cell_cutoff_v = 3.5;         ///< V per cell
+  double reserve_s = 120.0;           ///< s; hover endurance below this warns
   MotorHealthConfig motor_health;
 
-  // FieldError naming capability/<field>: rate, PWM and thrust-to-weight not positive, a capacity
-  // at or below zero, cells outside 1..14, capacity without cells (or cells without capacity),
-  // usable fraction outside (0, 1], a cut-off at or above the full voltage, a negative reserve.
+  /// FieldError naming capability/<field>: rate, PWM and thrust-to-weight not positive, a capacity
+  /// at or below zero, cells outside 1..14, capacity without cells (or cells without capacity),
+  /// usable fraction outside (0, 1], a cut-off at or above the full voltage, a negative reserve.
   void validate() const;
-  // The pack when capacity and cells are configured.
+  /// The pack when capacity and cells are configured.
   std::optional<BatteryPack> pack() const;
 };
 
@@ -49,31 +49,31 @@ struct BatteryReport {
 /// The answers of thesis chapter 1 for the present flight, SI units; NaN where a figure cannot be
 /// computed, with the reason in the matching note.
 struct CapabilityReport {
-  // The mass the thrust holds in hover (the payload estimator's average) and what it rests on.
+  /// The mass the thrust holds in hover (the payload estimator's average) and what it rests on.
   double hover_mass_kg = kNaN;
   std::string hover_basis;
   double voltage_v = kNaN;
   double pwm_max_us = kNaN;
-  // At the present voltage, over all motors at pwm_max_us.
+  /// At the present voltage, over all motors at pwm_max_us.
   double max_thrust_n = kNaN;
   double thrust_to_weight = kNaN;
-  double max_additional_payload_kg = kNaN;  // keeping min_thrust_to_weight; negative: over the limit
-  // The same at the pack's cut-off voltage.
+  double max_additional_payload_kg = kNaN;  ///< keeping min_thrust_to_weight; negative: over the limit
+  /// The same at the pack's cut-off voltage.
   double cutoff_voltage_v = kNaN;
   double max_thrust_at_cutoff_n = kNaN;
   double thrust_to_weight_at_cutoff = kNaN;
   double max_additional_payload_at_cutoff_kg = kNaN;
-  std::string payload_note;  // why a payload figure is NaN; "" when all are computed
-  // The hover operating point at the present voltage, all motors.
+  std::string payload_note;  ///< why a payload figure is NaN; "" when all are computed
+  /// The hover operating point at the present voltage, all motors.
   double hover_pwm_us = kNaN;
   double hover_current_a = kNaN;
-  // The pack's state: share of the capacity left and on what it rests (percentage | charge |
-  // voltage), usable charge left above the cut-off in Ah.
+  /// The pack's state: share of the capacity left and on what it rests (percentage | charge |
+  /// voltage), usable charge left above the cut-off in Ah.
   double state_of_charge = kNaN;
   std::string charge_basis;
   double remaining_ah = kNaN;
   double hover_endurance_s = kNaN;
-  std::string endurance_basis;  // how it was computed, or why it is NaN
+  std::string endurance_basis;  ///< how it was computed, or why it is NaN
   bool payload_over_limit = false;
   bool endurance_below_reserve = false;
 };
@@ -83,8 +83,8 @@ struct CapabilityReport {
 /// (integrateHoverDischarge, as compare_models does) from the pack's present state to its cut-off.
 class CapabilityEstimator {
  public:
-  // Throws FieldError for a bad config, or a pwm_max_us at or below the model's lowest PWM. `model`
-  // must outlive the estimator (the Estimator's own).
+  /// Throws FieldError for a bad config, or a pwm_max_us at or below the model's lowest PWM. `model`
+  /// must outlive the estimator (the Estimator's own).
   CapabilityEstimator(const PropulsionModel& model, int motors, CapabilityConfig config);
 
   CapabilityReport evaluate(const EstimatorOutput& output, const BatteryReport& battery) const;
@@ -92,7 +92,7 @@ class CapabilityEstimator {
   const CapabilityConfig& config() const { return config_; }
 
  private:
-  // Thrust of all motors at the top PWM and `voltage_v`; NaN when the model rejects it.
+  /// Thrust of all motors at the top PWM and `voltage_v`; NaN when the model rejects it.
   double maxThrustN(double voltage_v) const;
   void evaluateEndurance(const BatteryReport& battery, CapabilityReport* c) const;
 

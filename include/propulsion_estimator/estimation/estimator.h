@@ -24,25 +24,25 @@ namespace propulsion_estimator {
 /// were: nothing is computed from it.
 enum class Rejection {
   kNone = 0,
-  kBadVoltage,      // battery voltage NaN, infinite, zero or negative
-  kBadImu,          // non-finite or non-unit orientation, non-finite acceleration
-  kBadVelocity,     // non-finite vertical speed
-  kNoBattery,       // motor outputs before any valid voltage
-  kStaleBattery,    // newest valid voltage older than battery_timeout_s
-  kDisarmed,        // a motor at or below disarmed_pwm_max_us (0, 900 us, ...)
-  kTooFewChannels,  // RCOut shorter than the highest motor channel
-  kTimeBackwards,   // RCOut stamp older than the previous accepted one
-  kStampAhead,      // RCOut stamped more than max_stamp_ahead_s ahead of its receipt
-  kDuplicate,       // RCOut with the stamp of the previous accepted one: the same message again
-  kOutsideDomain,   // outside the model's domain and the model says reject
-  kNonFiniteEstimate,  // the model gives NaN or infinity (a rational surface extrapolated to its pole)
-                       // for an output it has; one it lacks (`none`) is NaN and not refused
-  // Signals of the model's effects, refused outside what the quantity can be (a unit error):
-  kBadBatteryCurrent,   // infinite, or more than 1000 A either way
-  kBadStaticPressure,   // outside 30000..110000 Pa (the bench air's range)
-  kBadAirTemperature,   // outside -60..85 deg C
-  kBadRange,            // NaN, or finite outside the sensor's own min_range..max_range
-  kBadMotorTemperature,  // outside -40..200 deg C
+  kBadVoltage,      ///< battery voltage NaN, infinite, zero or negative
+  kBadImu,          ///< non-finite or non-unit orientation, non-finite acceleration
+  kBadVelocity,     ///< non-finite vertical speed
+  kNoBattery,       ///< motor outputs before any valid voltage
+  kStaleBattery,    ///< newest valid voltage older than battery_timeout_s
+  kDisarmed,        ///< a motor at or below disarmed_pwm_max_us (0, 900 us, ...)
+  kTooFewChannels,  ///< RCOut shorter than the highest motor channel
+  kTimeBackwards,   ///< RCOut stamp older than the previous accepted one
+  kStampAhead,      ///< RCOut stamped more than max_stamp_ahead_s ahead of its receipt
+  kDuplicate,       ///< RCOut with the stamp of the previous accepted one: the same message again
+  kOutsideDomain,   ///< outside the model's domain and the model says reject
+  kNonFiniteEstimate,  ///< the model gives NaN or infinity (a rational surface extrapolated to its pole)
+                       ///< for an output it has; one it lacks (`none`) is NaN and not refused
+  /// Signals of the model's effects, refused outside what the quantity can be (a unit error):
+  kBadBatteryCurrent,   ///< infinite, or more than 1000 A either way
+  kBadStaticPressure,   ///< outside 30000..110000 Pa (the bench air's range)
+  kBadAirTemperature,   ///< outside -60..85 deg C
+  kBadRange,            ///< NaN, or finite outside the sensor's own min_range..max_range
+  kBadMotorTemperature,  ///< outside -40..200 deg C
 };
 constexpr int kRejectionCount = 18;  ///< number of Rejection values
 /// "bad_voltage", "stale_battery", ...: the name of a rejection in diagnostics and counters.
@@ -51,10 +51,10 @@ const char* rejectionName(Rejection rejection);
 /// The last refusal with what it was about, turned into text only when someone asks.
 struct RejectionDetail {
   Rejection reason = Rejection::kNone;
-  int channel = 0;     // 1-based, for kDisarmed
-  double value = 0.0;  // offending value (voltage, PWM, channel count, seconds)
-  double limit = 0.0;  // what it was checked against
-  double limit_high = 0.0;  // upper end where the check is a range (kBadRange)
+  int channel = 0;     ///< 1-based, for kDisarmed
+  double value = 0.0;  ///< offending value (voltage, PWM, channel count, seconds)
+  double limit = 0.0;  ///< what it was checked against
+  double limit_high = 0.0;  ///< upper end where the check is a range (kBadRange)
 };
 /// One line for diagnostics: the rejection with its channel, value and limit ("none" for kNone).
 std::string describe(const RejectionDetail& detail);
@@ -78,7 +78,7 @@ struct Totals {
   double power_w = 0.0;
   double efficiency_n_per_w = 0.0;
   double mass_kg = 0.0;
-  double thrust_centre_x_m = 0.0;  // NaN without vehicle geometry
+  double thrust_centre_x_m = 0.0;  ///< NaN without vehicle geometry
   double thrust_centre_y_m = 0.0;
   int motors_out_of_domain = 0;
 };
@@ -93,9 +93,9 @@ const char* verticalSpeedSourceName(VerticalSpeedSource source);
 /// time in s.
 struct EstimatorOutput {
   double stamp_s = 0.0;
-  std::vector<MotorOutput> motors;  // sized once, one per rotor
+  std::vector<MotorOutput> motors;  ///< sized once, one per rotor
   Totals totals;
-  // The model's effects not applied to this message because their signal was missing or stale.
+  /// The model's effects not applied to this message because their signal was missing or stale.
   effects::KindMask effects_skipped = 0;
   HoverVerdict hover;
   VerticalSpeedSource vertical_speed_source = VerticalSpeedSource::kNone;
@@ -110,8 +110,8 @@ struct EstimatorCounters {
   std::uint64_t motor_samples = 0;
   std::uint64_t motor_samples_outside_domain = 0;
   std::uint64_t clock_resets = 0;
-  // Accepted messages on which each of the model's effects was applied, or skipped (its signal
-  // missing or stale), indexed by effects::Kind.
+  /// Accepted messages on which each of the model's effects was applied, or skipped (its signal
+  /// missing or stale), indexed by effects::Kind.
   std::array<std::uint64_t, effects::kKindCount> effect_applied{};
   std::array<std::uint64_t, effects::kKindCount> effect_skipped{};
 };
@@ -133,55 +133,55 @@ struct TareResult {
 /// is missing or older than its timeout is skipped for that message and counted.
 class Estimator {
  public:
-  // Throws ConfigError if the configuration does not fit the vehicle.
+  /// Throws ConfigError if the configuration does not fit the vehicle.
   Estimator(PropulsionModel model, Vehicle vehicle, EstimatorConfig config);
 
   Rejection addBattery(double receipt_s, double voltage_v);
-  // Orientation rotates body into the world (ENU); acceleration is the IMU's specific force in
-  // the body frame (about +9.81 m/s^2 on z at rest), as MAVROS publishes them.
+  /// Orientation rotates body into the world (ENU); acceleration is the IMU's specific force in
+  /// the body frame (about +9.81 m/s^2 on z at rest), as MAVROS publishes them.
   Rejection addImu(double receipt_s, const Eigen::Quaterniond& orientation, const Eigen::Vector3d& specific_force);
   Rejection addVerticalSpeed(double receipt_s, double vertical_speed_m_s);
 
-  // Signals of the model's effects; each is used until its timeout (EstimatorConfig).
-  // Battery current as the autopilot reports it: its magnitude is the current drawn, since the
-  // sign conventions differ (sensor_msgs/BatteryState and PX4's MAVROS: negative when
-  // discharging) and a flying multicopter only discharges. NaN is BatteryState's "not measured":
-  // ignored, not refused. Ages like the voltage (battery_timeout_s).
+  /// Signals of the model's effects; each is used until its timeout (EstimatorConfig).
+  /// Battery current as the autopilot reports it: its magnitude is the current drawn, since the
+  /// sign conventions differ (sensor_msgs/BatteryState and PX4's MAVROS: negative when
+  /// discharging) and a flying multicopter only discharges. NaN is BatteryState's "not measured":
+  /// ignored, not refused. Ages like the voltage (battery_timeout_s).
   Rejection addBatteryCurrent(double receipt_s, double current_a);
-  // Static pressure (Pa) and air temperature (deg C) give the air density p / (R T). The static
-  // pressure's height rate is also the hover check's vertical speed while no velocity is fresh.
+  /// Static pressure (Pa) and air temperature (deg C) give the air density p / (R T). The static
+  /// pressure's height rate is also the hover check's vertical speed while no velocity is fresh.
   Rejection addStaticPressure(double receipt_s, double pressure_pa);
   Rejection addAirTemperature(double receipt_s, double temperature_c);
-  // A downward rangefinder's reading (m), REP-117: +inf (nothing within max_range) is out of
-  // ground effect, -inf (closer than min_range) is taken as min_range, the farthest the ground
-  // can then be, so that the correction is never overdone. The height is the range times the
-  // cosine of the tilt while the IMU is fresh.
+  /// A downward rangefinder's reading (m), REP-117: +inf (nothing within max_range) is out of
+  /// ground effect, -inf (closer than min_range) is taken as min_range, the farthest the ground
+  /// can then be, so that the correction is never overdone. The height is the range times the
+  /// cosine of the tilt while the IMU is fresh.
   Rejection addRange(double receipt_s, double range_m, double min_range_m, double max_range_m);
   Rejection addMotorTemperature(double receipt_s, double temperature_c);
-  // The signals as the corrections read them at `now_s`: NaN where missing or stale.
+  /// The signals as the corrections read them at `now_s`: NaN where missing or stale.
   effects::Signals effectSignals(double now_s) const;
 
-  // One RCOut message: PWM of all channels (0-based array of the message's channels). Returns
-  // kNone and fills output(), or the reason nothing was computed.
+  /// One RCOut message: PWM of all channels (0-based array of the message's channels). Returns
+  /// kNone and fills output(), or the reason nothing was computed.
   Rejection addMotorOutputs(double stamp_s, double receipt_s, const std::uint16_t* channels, std::size_t count);
 
   const EstimatorOutput& output() const { return output_; }
   const EstimatorCounters& counters() const { return counters_; }
   const RejectionDetail& lastRejection() const { return last_rejection_; }
-  // Seconds since the newest valid voltage at `now_s`; infinity before any.
+  /// Seconds since the newest valid voltage at `now_s`; infinity before any.
   double batteryAge(double now_s) const;
 
-  // Records the current hover average as the empty mass, or refuses when not hovering at `now_s`
-  // (the estimator's clock), which includes a hover verdict expired by expireHover().
+  /// Records the current hover average as the empty mass, or refuses when not hovering at `now_s`
+  /// (the estimator's clock), which includes a hover verdict expired by expireHover().
   TareResult tare(double now_s);
-  // A hover verdict older than its window is no verdict: when no motor output was accepted within
-  // hover/window_s before `now_s`, the hover window is forgotten (verdict kExpired) and the payload
-  // holds its average, not hovering. Every input calls it; call it before reading the verdict when
-  // inputs may have stopped (services, diagnostics).
+  /// A hover verdict older than its window is no verdict: when no motor output was accepted within
+  /// hover/window_s before `now_s`, the hover window is forgotten (verdict kExpired) and the payload
+  /// holds its average, not hovering. Every input calls it; call it before reading the verdict when
+  /// inputs may have stopped (services, diagnostics).
   void expireHover(double now_s);
-  // Sets the empty mass from elsewhere (a tare file, a parameter, the URDF).
+  /// Sets the empty mass from elsewhere (a tare file, a parameter, the URDF).
   void setEmptyMass(double mass_kg, EmptyMassSource source);
-  // Clears the windows and the tare; the configured empty mass (parameter or URDF) applies again.
+  /// Clears the windows and the tare; the configured empty mass (parameter or URDF) applies again.
   void reset();
   std::string describeHover() const;
 
@@ -190,7 +190,7 @@ class Estimator {
   const EstimatorConfig& config() const { return config_; }
 
  private:
-  // The latest valid reading of one signal and when it arrived.
+  /// The latest valid reading of one signal and when it arrived.
   struct Reading {
     double value = 0.0;
     double receipt_s = 0.0;
@@ -201,7 +201,7 @@ class Estimator {
       receipt_s = receipt;
       have = true;
     }
-    // NaN when missing or older than `timeout_s` at `now_s`.
+    /// NaN when missing or older than `timeout_s` at `now_s`.
     double at(double now_s, double timeout_s) const;
   };
 
@@ -222,7 +222,7 @@ class Estimator {
   PayloadEstimator payload_;
   VerticalAccelerationFilter accel_filter_;
   BarometricVerticalSpeed barometric_speed_;
-  // Which outputs the model has: one it lacks is published as NaN, never refused as non-finite.
+  /// Which outputs the model has: one it lacks is published as NaN, never refused as non-finite.
   bool has_current_;
   bool has_power_;
   bool has_efficiency_;
@@ -240,10 +240,10 @@ class Estimator {
   double last_stamp_s_ = 0.0;
   bool have_stamp_ = false;
   double last_receipt_s_ = 0.0;
-  double last_accepted_receipt_s_ = 0.0;  // when the newest accepted motor output arrived
+  double last_accepted_receipt_s_ = 0.0;  ///< when the newest accepted motor output arrived
   bool have_accepted_ = false;
 
-  std::vector<OperatingPoint> scratch_;  // this message's motors, committed to output_ once all are valid
+  std::vector<OperatingPoint> scratch_;  ///< this message's motors, committed to output_ once all are valid
   EstimatorOutput output_;
   EstimatorCounters counters_;
   RejectionDetail last_rejection_;

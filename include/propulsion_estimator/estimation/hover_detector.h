@@ -15,22 +15,22 @@ namespace propulsion_estimator {
 /// spirit of ArduPilot's hover-throttle learning (vertical speed under 0.6 m/s, tilt under 5 deg).
 struct HoverConfig {
   double window_s = 2.0;
-  // Fraction of window_s the samples must span; at most 1 - 1/64 (the window's bins, see
-  // BinnedWindow).
+  /// Fraction of window_s the samples must span; at most 1 - 1/64 (the window's bins, see
+  /// BinnedWindow).
   double min_window_fill = 0.8;
-  double max_thrust_rel_std = 0.05;      // std / mean of vertical thrust over the window
+  double max_thrust_rel_std = 0.05;      ///< std / mean of vertical thrust over the window
   double max_tilt_deg = 5.0;
   double max_vertical_speed_m_s = 0.6;
-  double max_vertical_accel_m_s2 = 1.0;  // of the window's mean vertical acceleration
-  double min_mass_kg = 0.3;              // the thrust must carry at least this: not idling on the ground
+  double max_vertical_accel_m_s2 = 1.0;  ///< of the window's mean vertical acceleration
+  double min_mass_kg = 0.3;              ///< the thrust must carry at least this: not idling on the ground
 
-  void validate() const;  // ConfigError naming the field
+  void validate() const;  ///< ConfigError naming the field
 };
 
 /// One sample; NaN marks what is not measured (no fresh IMU, no fresh vertical speed source).
 struct HoverSample {
   double vertical_thrust_n = 0.0;
-  double mass_kg = 0.0;  // mass that thrust holds
+  double mass_kg = 0.0;  ///< mass that thrust holds
   double tilt_rad = 0.0;
   double vertical_speed_m_s = 0.0;
   double vertical_accel_m_s2 = 0.0;
@@ -45,8 +45,8 @@ enum class HoverBlocker {
   kTilted,
   kClimbingOrSinking,
   kAccelerating,
-  kSignalGap,  // a check's signal measured on some samples of the window only (it went stale)
-  kExpired,  // no sample within window_s before now: the last verdict is no longer one
+  kSignalGap,  ///< a check's signal measured on some samples of the window only (it went stale)
+  kExpired,  ///< no sample within window_s before now: the last verdict is no longer one
 };
 
 /// The hover checks that need a signal besides the thrust, as bits of a mask.
@@ -62,7 +62,7 @@ std::string hoverCheckNames(std::uint8_t mask);
 struct HoverStatistics {
   RunningMoments thrust_n;
   double mass_sum_kg = 0.0;
-  double max_tilt_rad = kNaN;  // NaN until a sample has one
+  double max_tilt_rad = kNaN;  ///< NaN until a sample has one
   std::uint64_t tilt_samples = 0;
   double max_abs_vertical_speed_m_s = kNaN;
   std::uint64_t vertical_speed_samples = 0;
@@ -82,10 +82,10 @@ struct HoverVerdict {
   double mean_thrust_n = 0.0;
   double thrust_rel_std = 0.0;
   double mean_mass_kg = 0.0;
-  double max_tilt_rad = 0.0;            // NaN without IMU
-  double max_abs_vertical_speed_m_s = 0.0;  // NaN without velocity
-  double mean_vertical_accel_m_s2 = 0.0;    // NaN without IMU
-  // Samples of the window that had each signal (for kSignalGap).
+  double max_tilt_rad = 0.0;            ///< NaN without IMU
+  double max_abs_vertical_speed_m_s = 0.0;  ///< NaN without velocity
+  double mean_vertical_accel_m_s2 = 0.0;    ///< NaN without IMU
+  /// Samples of the window that had each signal (for kSignalGap).
   std::size_t tilt_samples = 0;
   std::size_t vertical_speed_samples = 0;
   std::size_t vertical_accel_samples = 0;
@@ -108,12 +108,12 @@ class HoverDetector {
  public:
   explicit HoverDetector(const HoverConfig& config);
 
-  // Adds a sample and returns the verdict over the window, in O(1). Allocates nothing.
+  /// Adds a sample and returns the verdict over the window, in O(1). Allocates nothing.
   const HoverVerdict& add(double stamp_s, const HoverSample& sample);
   const HoverVerdict& verdict() const { return verdict_; }
   const HoverConfig& config() const { return config_; }
   void clear();
-  // Forgets the window because no sample came within window_s: the verdict says kExpired.
+  /// Forgets the window because no sample came within window_s: the verdict says kExpired.
   void expire();
 
  private:

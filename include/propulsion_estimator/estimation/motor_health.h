@@ -14,11 +14,11 @@ namespace propulsion_estimator {
 /// lack more than max_gap of its modelled thrust for the yaw balance to hold, and more than three
 /// standard errors.
 struct MotorHealthConfig {
-  double block_s = 1.0;    // s
-  double window_s = 10.0;  // s of steady hover; a whole number of blocks, at least three
-  double max_gap = 0.05;   // share of the motor's modelled thrust
+  double block_s = 1.0;    ///< s
+  double window_s = 10.0;  ///< s of steady hover; a whole number of blocks, at least three
+  double max_gap = 0.05;   ///< share of the motor's modelled thrust
 
-  // FieldError naming capability/motor_health/<field>.
+  /// FieldError naming capability/motor_health/<field>.
   void validate() const;
 };
 
@@ -36,14 +36,14 @@ struct MotorBalanceGap {
 struct MotorHealthVerdict {
   bool judged = false;
   std::string unavailable;
-  int blocks = 0;  // steady-hover blocks in the window
-  double yaw_imbalance = 0.0;      // sum(s_k T_k) / sum(T_k) over the window (rotor_balance.h)
-  double yaw_imbalance_std = 0.0;  // its standard error
+  int blocks = 0;  ///< steady-hover blocks in the window
+  double yaw_imbalance = 0.0;      ///< sum(s_k T_k) / sum(T_k) over the window (rotor_balance.h)
+  double yaw_imbalance_std = 0.0;  ///< its standard error
   std::vector<MotorBalanceGap> motors;
-  int flagged_channel = 0;  // 0: none
-  // The centre of gravity the thrusts balance about, less the URDF's, in m (body x, y): a
-  // centre-of-gravity offset moves every share consistently and is no motor fault. With a motor
-  // flagged, the centre its corrected thrust gives.
+  int flagged_channel = 0;  ///< 0: none
+  /// The centre of gravity the thrusts balance about, less the URDF's, in m (body x, y): a
+  /// centre-of-gravity offset moves every share consistently and is no motor fault. With a motor
+  /// flagged, the centre its corrected thrust gives.
   double cg_offset_x_m = 0.0;
   double cg_offset_y_m = 0.0;
 };
@@ -54,13 +54,13 @@ struct MotorHealthVerdict {
 /// lies nearest the URDF's centre of gravity, as the offline gap diagnosis chooses.
 class MotorHealth {
  public:
-  // Throws FieldError for a bad config; `channels` in rotor order.
+  /// Throws FieldError for a bad config; `channels` in rotor order.
   MotorHealth(Vehicle vehicle, std::vector<int> channels, MotorHealthConfig config);
 
-  // One accepted RCOut message's estimate; allocates nothing. A stamp older than the previous one
-  // (a bag restarted) forgets everything.
+  /// One accepted RCOut message's estimate; allocates nothing. A stamp older than the previous one
+  /// (a bag restarted) forgets everything.
   void add(const EstimatorOutput& output);
-  // Forgets the blocks (~reset).
+  /// Forgets the blocks (~reset).
   void clear();
   MotorHealthVerdict verdict() const;
 
@@ -71,12 +71,12 @@ class MotorHealth {
   std::vector<int> channels_;
   MotorHealthConfig config_;
   std::size_t window_blocks_;
-  // The block being filled: per-motor thrust sums over its samples.
+  /// The block being filled: per-motor thrust sums over its samples.
   std::vector<double> block_sums_;
   int block_samples_ = 0;
   double block_start_s_ = 0.0;
   double last_stamp_s_ = 0.0;
-  // Completed blocks' mean thrusts, a ring of window_blocks_ rows.
+  /// Completed blocks' mean thrusts, a ring of window_blocks_ rows.
   std::vector<std::vector<double>> blocks_;
   std::size_t next_block_ = 0;
   std::size_t block_count_ = 0;

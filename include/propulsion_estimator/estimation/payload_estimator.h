@@ -15,10 +15,10 @@ namespace propulsion_estimator {
 /// episode, since the payload may change between hovers (picked up on a cable, or after landing).
 struct PayloadConfig {
   double averaging_window_s = 10.0;
-  std::size_t min_samples = 25;  // before a mean is reported
+  std::size_t min_samples = 25;  ///< before a mean is reported
   double episode_gap_s = 1.0;
 
-  void validate() const;  // ConfigError naming the field
+  void validate() const;  ///< ConfigError naming the field
 };
 
 /// Where the empty mass came from: nowhere yet, the URDF, a node parameter, a tare file or a tare
@@ -38,11 +38,11 @@ const char* payloadStateName(PayloadState state);
 struct MassEstimate {
   PayloadState state = PayloadState::kWaitingForHover;
   bool hovering = false;
-  double total_mass_kg = 0.0;  // NaN until min_samples hover samples
+  double total_mass_kg = 0.0;  ///< NaN until min_samples hover samples
   double mass_std_kg = 0.0;
-  double empty_mass_kg = 0.0;  // NaN when unknown
+  double empty_mass_kg = 0.0;  ///< NaN when unknown
   EmptyMassSource empty_mass_source = EmptyMassSource::kNone;
-  double payload_mass_kg = 0.0;  // NaN without total and empty mass
+  double payload_mass_kg = 0.0;  ///< NaN without total and empty mass
   double window_s = 0.0;
   std::uint32_t window_samples = 0;
 };
@@ -53,20 +53,20 @@ class PayloadEstimator {
  public:
   explicit PayloadEstimator(const PayloadConfig& config);
 
-  // The mass the thrust holds at `stamp_s`, and whether the vehicle hovers. O(1), allocates nothing.
+  /// The mass the thrust holds at `stamp_s`, and whether the vehicle hovers. O(1), allocates nothing.
   const MassEstimate& add(double stamp_s, double mass_kg, bool hovering);
   const MassEstimate& estimate() const { return estimate_; }
 
   void setEmptyMass(double mass_kg, EmptyMassSource source);
   void clearEmptyMass();
-  // Forgets the hover samples (landing, clock reset, reset service).
+  /// Forgets the hover samples (landing, clock reset, reset service).
   void clearWindow();
-  // The hover ended without a sample saying so (its verdict expired): the average is held.
+  /// The hover ended without a sample saying so (its verdict expired): the average is held.
   void endHover();
 
  private:
-  // The window's statistics change only when a sample is added or the window cleared; the state
-  // also when hovering starts or stops, or the empty mass changes.
+  /// The window's statistics change only when a sample is added or the window cleared; the state
+  /// also when hovering starts or stops, or the empty mass changes.
   void updateStatistics();
   void updateState(bool hovering);
 

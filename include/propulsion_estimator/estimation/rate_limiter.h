@@ -26,8 +26,8 @@ class RateLimiter {
  private:
   double period_s_;
   bool started_ = false;
-  double due_s_ = 0.0;   // when the next event may pass
-  double last_s_ = 0.0;  // the previous event's stamp, admitted or not
+  double due_s_ = 0.0;   ///< when the next event may pass
+  double last_s_ = 0.0;  ///< the previous event's stamp, admitted or not
 };
 
 }  // namespace propulsion_estimator

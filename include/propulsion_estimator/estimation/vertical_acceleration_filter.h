@@ -16,7 +16,7 @@ class VerticalAccelerationFilter {
 
   VerticalAccelerationFilter(double fast_time_constant_s, double bias_time_constant_s);
 
-  // `accel_m_s2`: world-vertical specific force minus g. Returns the filtered acceleration.
+  /// `accel_m_s2`: world-vertical specific force minus g. Returns the filtered acceleration.
   double add(double stamp_s, double accel_m_s2);
   double value() const { return fast_ - slow_; }
   void clear() { started_ = false; fast_ = slow_ = 0.0; }

@@ -15,17 +15,17 @@ namespace fitting {
 /// at the top of the sweep; a log whose voltage wanders (a battery discharge, thesis 4.2 and 4.3)
 /// has no levels of its own, and its rows are binned by voltage.
 struct LevelOptions {
-  // A log is one level when the median absolute deviation of its voltage is at most this.
+  /// A log is one level when the median absolute deviation of its voltage is at most this.
   double steady_voltage_mad_v = 0.15;
-  // Width of the voltage bins of the other logs' rows (thesis sweeps were 0.3 V apart).
+  /// Width of the voltage bins of the other logs' rows (thesis sweeps were 0.3 V apart).
   double voltage_bin_v = 0.3;
-  // Steady logs whose median voltages are closer than this are the same level (repeated runs).
+  /// Steady logs whose median voltages are closer than this are the same level (repeated runs).
   double same_level_v = 0.1;
-  // PWM levels are the distinct commanded values to 1 us; with more than this many, equal-width
-  // bins instead (a continuous ramp).
+  /// PWM levels are the distinct commanded values to 1 us; with more than this many, equal-width
+  /// bins instead (a continuous ramp).
   int max_pwm_levels = 20;
 
-  void validate() const;  // ConfigError for a non-positive value, naming its fit_surfaces option
+  void validate() const;  ///< ConfigError for a non-positive value, naming its fit_surfaces option
 };
 
 /// A level: its centre and how many rows it holds.
@@ -37,18 +37,18 @@ struct Level {
 /// All rows of the logs of one fit, with outputs in the model's file units (thrust g, current A,
 /// power W, efficiency g/W, rpm); NaN where a log did not measure an output.
 struct BenchDataset {
-  std::vector<std::string> sources;  // one per log
-  std::vector<int> log;              // per row: index into sources
-  std::vector<int> line;             // per row: line in its file
+  std::vector<std::string> sources;  ///< one per log
+  std::vector<int> log;              ///< per row: index into sources
+  std::vector<int> line;             ///< per row: line in its file
   std::vector<double> pwm_us;
   std::vector<double> voltage_v;
   std::array<std::vector<double>, kOutputCount> values;
 
-  std::vector<int> voltage_level;  // per row, index into voltage_levels
+  std::vector<int> voltage_level;  ///< per row, index into voltage_levels
   std::vector<Level> voltage_levels;
-  std::vector<int> pwm_level;  // per row, index into pwm_levels
+  std::vector<int> pwm_level;  ///< per row, index into pwm_levels
   std::vector<Level> pwm_levels;
-  std::vector<std::string> notes;  // readers' notes and what building the dataset decided
+  std::vector<std::string> notes;  ///< readers' notes and what building the dataset decided
 
   std::size_t rows() const { return pwm_us.size(); }
   const std::vector<double>& output(Output o) const { return values[static_cast<int>(o)]; }

@@ -24,19 +24,19 @@ enum class FitGrouping {
 /// outside-domain policy and the metadata that override the logs'.
 struct FitOptions {
   FitGrouping grouping = FitGrouping::kAuto;
-  int max_pwm_degree = 5;      // 1..5
-  int max_voltage_degree = 3;  // 0..3
-  // A candidate within this share of the best held-out RMSE that has fewer terms is preferred.
+  int max_pwm_degree = 5;      ///< 1..5
+  int max_voltage_degree = 3;  ///< 0..3
+  /// A candidate within this share of the best held-out RMSE that has fewer terms is preferred.
   double parsimony = 0.02;
-  int min_points = 10;              // per fitted output
-  bool efficiency_surface = false;  // fit efficiency samples instead of deriving thrust / power
-  std::set<Output> without;         // current, power or rpm left out of the model
+  int min_points = 10;              ///< per fitted output
+  bool efficiency_surface = false;  ///< fit efficiency samples instead of deriving thrust / power
+  std::set<Output> without;         ///< current, power or rpm left out of the model
   OutsideDomain outside = OutsideDomain::kClamp;
   LevelOptions levels;
-  // Model metadata; each overrides the logs' "# key: value" lines (esc, motor, propeller,
-  // air_temperature_c, air_pressure_pa, supply) and their ambient_temp_c / pressure_pa columns.
-  // A name neither gives is recorded as "unknown" with a note; the bench air and the supply are
-  // physics and required.
+  /// Model metadata; each overrides the logs' "# key: value" lines (esc, motor, propeller,
+  /// air_temperature_c, air_pressure_pa, supply) and their ambient_temp_c / pressure_pa columns.
+  /// A name neither gives is recorded as "unknown" with a note; the bench air and the supply are
+  /// physics and required.
   std::optional<std::string> esc, motor, propeller;
   std::optional<double> air_temperature_c, air_pressure_pa;
   std::optional<SupplyKind> supply;

@@ -18,24 +18,24 @@ class GroupedLeastSquares {
   static constexpr int kMaxPwmDegree = 5;
   static constexpr int kMaxVoltageDegree = 3;
 
-  // `y_offset` is subtracted from every y before accumulation (keeps y'y small, so that
-  // y'y - 2 b'X'y + b'X'Xb loses no digits); it returns in the intercept.
+  /// `y_offset` is subtracted from every y before accumulation (keeps y'y small, so that
+  /// y'y - 2 b'X'y + b'X'Xb loses no digits); it returns in the intercept.
   GroupedLeastSquares(int groups, double y_offset);
 
-  // Adds rows x, v (already scaled) and y of one group.
+  /// Adds rows x, v (already scaled) and y of one group.
   void add(int group, const double* x, const double* v, const double* y, std::size_t count);
 
-  // Indices into fullBasis() of the terms of polynomialBasis(pwm_degree, voltage_degree).
+  /// Indices into fullBasis() of the terms of polynomialBasis(pwm_degree, voltage_degree).
   static std::vector<int> subBasis(int pwm_degree, int voltage_degree);
   static const std::vector<std::pair<int, int>>& fullBasis();
 
-  // Coefficients of the sub-basis fitted on all groups but `left_out` (-1: all groups), with the
-  // offset restored in the intercept (the first term); nullopt when the normal matrix is
-  // numerically singular.
+  /// Coefficients of the sub-basis fitted on all groups but `left_out` (-1: all groups), with the
+  /// offset restored in the intercept (the first term); nullopt when the normal matrix is
+  /// numerically singular.
   std::optional<Eigen::VectorXd> solve(const std::vector<int>& terms, int left_out = -1) const;
 
-  // Root mean square error of predicting each group from the others, pooled over all rows;
-  // nullopt when a fold's fit is singular.
+  /// Root mean square error of predicting each group from the others, pooled over all rows;
+  /// nullopt when a fold's fit is singular.
   std::optional<double> heldOutRmse(const std::vector<int>& terms) const;
 
   // RMSE of group `group` alone predicted from all the others; nullopt when that fit is singular
@@ -49,11 +49,11 @@ class GroupedLeastSquares {
   long rows(int group) const { return count_[group]; }
 
  private:
-  // Normal equations of the sub-basis on all groups but `left_out`, solved for centred y.
+  /// Normal equations of the sub-basis on all groups but `left_out`, solved for centred y.
   std::optional<Eigen::VectorXd> solveCentred(const std::vector<int>& terms, int left_out) const;
 
   double y_offset_;
-  std::vector<Eigen::MatrixXd> xtx_;  // full symmetric
+  std::vector<Eigen::MatrixXd> xtx_;  ///< full symmetric
   std::vector<Eigen::VectorXd> xty_;
   std::vector<double> yty_;
   std::vector<long> count_;

@@ -20,13 +20,13 @@ namespace fitting {
 struct CandidateScore {
   int pwm_degree = 0;
   int voltage_degree = 0;
-  int terms = 0;  // coefficients; a drive curve's x0 counts as one
+  int terms = 0;  ///< coefficients; a drive curve's x0 counts as one
   double held_out_rmse = 0.0;
-  std::string basis = "polynomial";  // or "drive_curve"
-  double low_band_rmse = 0.0;        // fitted above the lowest voltage band, judged on it
-  double high_band_rmse = 0.0;       // fitted below the highest voltage band, judged on it
-  // Non-decreasing in PWM and in voltage over the covered domain (always for a drive curve;
-  // efficiency, which need not be, counts as physical).
+  std::string basis = "polynomial";  ///< or "drive_curve"
+  double low_band_rmse = 0.0;        ///< fitted above the lowest voltage band, judged on it
+  double high_band_rmse = 0.0;       ///< fitted below the highest voltage band, judged on it
+  /// Non-decreasing in PWM and in voltage over the covered domain (always for a drive curve;
+  /// efficiency, which need not be, counts as physical).
   bool physical = true;
 };
 
@@ -34,9 +34,9 @@ struct CandidateScore {
 /// same for the highest). Levels whose centre lies in the lowest quarter of the span of level centres
 /// form the low band (the lowest level alone with two levels), the highest quarter the high band.
 struct VoltageBands {
-  double low_min_v = 0.0, low_max_v = 0.0;    // the rows of the low band
-  double rest_min_v = 0.0;                    // the lowest row voltage above it (fitted on)
-  double high_min_v = 0.0, high_max_v = 0.0;  // the rows of the high band
+  double low_min_v = 0.0, low_max_v = 0.0;    ///< the rows of the low band
+  double rest_min_v = 0.0;                    ///< the lowest row voltage above it (fitted on)
+  double high_min_v = 0.0, high_max_v = 0.0;  ///< the rows of the high band
 };
 
 /// How well each output matches the bench data, in its file unit. For a surface also the chosen
@@ -45,29 +45,29 @@ struct OutputFitReport {
   Output output = Output::kThrust;
   OutputSource source = OutputSource::kNone;
   std::string unit;
-  int points = 0;  // samples compared (for a derived output too)
+  int points = 0;  ///< samples compared (for a derived output too)
   double r2 = 0.0;
   double rmse = 0.0;
   double max_error = 0.0;
-  std::vector<CandidateScore> candidates;  // surfaces only
-  std::string left_out;                    // why a poorly fitting output was left out, else empty
+  std::vector<CandidateScore> candidates;  ///< surfaces only
+  std::string left_out;                    ///< why a poorly fitting output was left out, else empty
 };
 
 /// The result of fitBenchModel: the model, whether it may be written, the data it was fitted on and
 /// how well each output matches it.
 struct BenchFit {
   PropulsionModel model;
-  // Empty when the model passes the loader's grid check (model_validation.h); otherwise why
-  // not: such a model must not be written. When current, power or rpm fails, it adds that
-  // --without that output writes the rest.
+  /// Empty when the model passes the loader's grid check (model_validation.h); otherwise why
+  /// not: such a model must not be written. When current, power or rpm fails, it adds that
+  /// --without that output writes the rest.
   std::string validation_error;
   BenchDataset data;
-  FitGrouping grouping = FitGrouping::kVoltageLevel;  // the one used (never kAuto)
+  FitGrouping grouping = FitGrouping::kVoltageLevel;  ///< the one used (never kAuto)
   std::string grouping_description;
   std::array<OutputFitReport, kOutputCount> outputs;
-  std::vector<std::string> notes;  // data notes, then what the fit decided (metadata, grouping)
-  double parsimony = 0.0;          // FitOptions::parsimony the degrees were chosen with
-  VoltageBands bands;              // of the extrapolation scores
+  std::vector<std::string> notes;  ///< data notes, then what the fit decided (metadata, grouping)
+  double parsimony = 0.0;          ///< FitOptions::parsimony the degrees were chosen with
+  VoltageBands bands;              ///< of the extrapolation scores
 };
 
 /// Fits the model: per output the physical candidate (non-decreasing in PWM and voltage over the

@@ -9,14 +9,15 @@
 
 namespace propulsion_estimator {
 
-// The package's native bench CSV:
-//   # key: value          metadata lines (esc, motor, propeller, supply, air_temperature_c,
-//   #                     air_pressure_pa, experiment, ...), other '#' lines are comments
-//   pwm_us,voltage_v,thrust_g,...   header of named columns, any order
-//   1500,11.1,312.5,...             one row per sample
-// Required columns: pwm_us, voltage_v, and thrust_g or thrust_n. Optional: time_s, current_a,
-// power_w, rpm, ambient_temp_c, motor_temp_c, pressure_pa. Unknown columns are kept in
-// BenchLog::extra_columns.
+/// @file
+/// The package's native bench CSV:
+///   # key: value          metadata lines (esc, motor, propeller, supply, air_temperature_c,
+///   #                     air_pressure_pa, experiment, ...), other '#' lines are comments
+///   pwm_us,voltage_v,thrust_g,...   header of named columns, any order
+///   1500,11.1,312.5,...             one row per sample
+/// Required columns: pwm_us, voltage_v, and thrust_g or thrust_n. Optional: time_s, current_a,
+/// power_w, rpm, ambient_temp_c, motor_temp_c, pressure_pa. Unknown columns are kept in
+/// BenchLog::extra_columns.
 
 /// The unit of a native log's thrust column: gram-force (thrust_g) or newton (thrust_n).
 enum class ThrustUnit { kGram, kNewton };

@@ -9,16 +9,16 @@ namespace propulsion_estimator {
 
 /// The quantities a thrust stand logs, in SI (thrust in N) except PWM (us), rpm and deg C.
 enum class BenchColumn {
-  kTime = 0,     // time_s
-  kPwm,          // pwm_us
-  kVoltage,      // voltage_v
-  kThrust,       // thrust_n (files may give thrust_g)
-  kCurrent,      // current_a
-  kPower,        // power_w
-  kRpm,          // rpm
-  kAmbientTemp,  // ambient_temp_c
-  kMotorTemp,    // motor_temp_c
-  kPressure,     // pressure_pa
+  kTime = 0,     ///< time_s
+  kPwm,          ///< pwm_us
+  kVoltage,      ///< voltage_v
+  kThrust,       ///< thrust_n (files may give thrust_g)
+  kCurrent,      ///< current_a
+  kPower,        ///< power_w
+  kRpm,          ///< rpm
+  kAmbientTemp,  ///< ambient_temp_c
+  kMotorTemp,    ///< motor_temp_c
+  kPressure,     ///< pressure_pa
 };
 constexpr int kBenchColumnCount = 10;  ///< number of BenchColumn values
 /// The native CSV name of a column ("pwm_us", ...; thrust is "thrust_n").
@@ -27,14 +27,14 @@ const char* benchColumnName(BenchColumn column);
 /// One thrust-stand log, column-wise. A column that was not logged is empty; a logged one has
 /// one value per row.
 struct BenchLog {
-  std::string source;                           // file it came from, for messages and reports
-  std::map<std::string, std::string> metadata;  // "# key: value" lines of a native file
+  std::string source;                           ///< file it came from, for messages and reports
+  std::map<std::string, std::string> metadata;  ///< "# key: value" lines of a native file
   std::array<std::vector<double>, kBenchColumnCount> columns;
-  std::vector<int> line_numbers;  // file line of each row
-  // Columns the package does not use, kept for reports: name -> one text value per row.
+  std::vector<int> line_numbers;  ///< file line of each row
+  /// Columns the package does not use, kept for reports: name -> one text value per row.
   std::map<std::string, std::vector<std::string>> extra_columns;
-  // What the reader decided about ambiguous content (a negated thrust, the rpm column it took),
-  // one sentence each, for the reports.
+  /// What the reader decided about ambiguous content (a negated thrust, the rpm column it took),
+  /// one sentence each, for the reports.
   std::vector<std::string> notes;
 
   std::size_t rows() const { return line_numbers.size(); }

@@ -26,8 +26,8 @@ BenchLogFormat detectBenchLogFormat(const CsvText& table);
 /// directory, a symbolic link; compared as canonical paths): it is read once, or it would count
 /// twice in the fit and sit on both sides of a cross-validation fold.
 struct BenchLogFile {
-  std::string path;                        // as first named (an argument, or a file of a directory)
-  std::vector<std::string> also_named_by;  // arguments (files or directories) that named it again
+  std::string path;                        ///< as first named (an argument, or a file of a directory)
+  std::vector<std::string> also_named_by;  ///< arguments (files or directories) that named it again
 };
 
 /// Command-line log arguments to files: a file stays, a directory stands for its *.csv files

@@ -22,10 +22,10 @@ struct CsvText {
   std::string source;
   char delimiter = ',';
   bool had_byte_order_mark = false;
-  std::vector<Line> comments;  // text after the '#', in file order
+  std::vector<Line> comments;  ///< text after the '#', in file order
   int header_line = 0;
-  std::vector<std::string> header;  // trailing empty names (a trailing delimiter) removed
-  std::vector<Row> rows;            // as many fields as the header (a trailing empty field dropped)
+  std::vector<std::string> header;  ///< trailing empty names (a trailing delimiter) removed
+  std::vector<Row> rows;            ///< as many fields as the header (a trailing empty field dropped)
 };
 
 /// Splits `text`: strips a UTF-8 byte-order mark, takes lines starting with '#' as comments and

@@ -8,19 +8,19 @@ namespace propulsion_estimator {
 /// A stretch of a flight whose lifted mass is known (weighed): the ground truth of the estimator's
 /// tests and the input of the gap diagnosis.
 struct ManifestSegment {
-  double start_s = 0.0;  // seconds from the bag's first message
+  double start_s = 0.0;  ///< seconds from the bag's first message
   double end_s = 0.0;
-  double mass_kg = 0.0;  // vehicle plus hanging payload
+  double mass_kg = 0.0;  ///< vehicle plus hanging payload
 };
 
 /// One flight of a manifest: its bag and the segments whose mass is known.
 struct ManifestFlight {
-  std::string bag;  // as written in the manifest: relative to the manifest's folder, or absolute
+  std::string bag;  ///< as written in the manifest: relative to the manifest's folder, or absolute
   std::vector<ManifestSegment> segments;
 
-  // Throws FieldError named from `at` ("flights[1]" gives "flights[1].segments[2].end") for a
-  // flight without bag or segments, a segment with start < 0, end <= start, mass outside
-  // 0..100 kg, or segments out of order or overlapping.
+  /// Throws FieldError named from `at` ("flights[1]" gives "flights[1].segments[2].end") for a
+  /// flight without bag or segments, a segment with start < 0, end <= start, mass outside
+  /// 0..100 kg, or segments out of order or overlapping.
   void validate(const std::string& at) const;
 };
 
@@ -32,7 +32,7 @@ struct ManifestFlight {
 struct FlightManifest {
   std::vector<ManifestFlight> flights;
 
-  // Throws FieldError for no flights, or the first flight ManifestFlight::validate refuses.
+  /// Throws FieldError for no flights, or the first flight ManifestFlight::validate refuses.
   void validate() const;
 };
 
@@ -53,7 +53,7 @@ void saveFlightManifest(const FlightManifest& manifest, const std::string& path,
 /// outside 0..100 kg").
 struct ManifestEntry {
   ManifestFlight flight;
-  std::string refusal;  // empty for a usable flight
+  std::string refusal;  ///< empty for a usable flight
 };
 /// Reads the manifest file `path` flight by flight (see ManifestEntry); InputError when it cannot
 /// be read, ConfigError for a refusal of the file as a whole.

@@ -9,11 +9,12 @@
 
 namespace propulsion_estimator {
 
-// The CSV that Tyto Robotics' RCbenchmark / Flight Stand software exports: one header of
-// "Name (unit)" columns, e.g. "ESC signal (µs)", "Thrust (kgf)" (or gf, N, lbf, ozf),
-// "Voltage (V)", "Current (A)", "Electrical Power (W)", "Motor Electrical Speed (RPM)",
-// "Motor Optical Speed (RPM)", plus dozens the package does not use (servo channels, torque,
-// vibration, "App message"), often with a byte-order mark and a trailing delimiter.
+/// @file
+/// The CSV that Tyto Robotics' RCbenchmark / Flight Stand software exports: one header of
+/// "Name (unit)" columns, e.g. "ESC signal (µs)", "Thrust (kgf)" (or gf, N, lbf, ozf),
+/// "Voltage (V)", "Current (A)", "Electrical Power (W)", "Motor Electrical Speed (RPM)",
+/// "Motor Optical Speed (RPM)", plus dozens the package does not use (servo channels, torque,
+/// vibration, "App message"), often with a byte-order mark and a trailing delimiter.
 
 /// True when the header has an "ESC signal (µs)" (or "(us)") column.
 bool isTytoHeader(const std::vector<std::string>& header);

@@ -14,7 +14,7 @@ namespace propulsion_estimator {
 struct BatteryPack {
   int cells = 0;
   double capacity_ah = 0.0;
-  double usable_fraction = 0.8;  // share of the capacity drawn when the cut-off is reached
+  double usable_fraction = 0.8;  ///< share of the capacity drawn when the cut-off is reached
   double cell_full_v = 4.2;
   double cell_cutoff_v = 3.5;
 
@@ -33,13 +33,13 @@ struct BatteryPack {
 struct HoverPoint {
   double voltage_v = 0.0;
   double pwm_us = 0.0;
-  double current_a = 0.0;  // per motor
-  double power_w = 0.0;    // per motor
+  double current_a = 0.0;  ///< per motor
+  double power_w = 0.0;    ///< per motor
   double efficiency_g_per_w = 0.0;
-  // The hover thrust is below the model's thrust at the lowest PWM of its domain: the hover PWM
-  // lies below the measured range, and pwm_us (with its current and power) is that lowest PWM.
+  /// The hover thrust is below the model's thrust at the lowest PWM of its domain: the hover PWM
+  /// lies below the measured range, and pwm_us (with its current and power) is that lowest PWM.
   bool below_pwm_domain = false;
-  bool in_domain = false;  // false: the voltage was clamped or extrapolated, or below_pwm_domain
+  bool in_domain = false;  ///< false: the voltage was clamped or extrapolated, or below_pwm_domain
 };
 
 /// The operating point where one motor gives `thrust_n` at `voltage_v` (evaluate(): the model's
@@ -49,7 +49,7 @@ std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust
 /// One step of the hover discharge: hover time in s, battery voltage in V, total current in A and
 /// the pulse width in us that holds the hover.
 struct DischargeStep {
-  double time_s = 0.0;  // hover time at the end of the step
+  double time_s = 0.0;  ///< hover time at the end of the step
   double voltage_v = 0.0;
   double total_current_a = 0.0;
   double pwm_us = 0.0;

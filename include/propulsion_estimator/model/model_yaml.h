@@ -6,8 +6,9 @@
 
 namespace propulsion_estimator {
 
-// Reader and writer of the model file (one ESC-motor-propeller combination; schema in README).
-// Both throw ConfigError with one line naming the file, the line, the key and the value.
+/// @file
+/// Reader and writer of the model file (one ESC-motor-propeller combination; schema in README).
+/// Both throw ConfigError with one line naming the file, the line, the key and the value.
 
 /// Parses and validates a model: structure, types, units, finiteness, the values of every output
 /// on a grid over the domain (model_validation.h), and the optional `effects:` section

@@ -19,7 +19,7 @@ class Polynomial2D {
   static constexpr int kMaxPower = 9;
 
   Polynomial2D() = default;
-  // Throws std::invalid_argument for a power outside [0, kMaxPower] or a repeated (i, j).
+  /// Throws std::invalid_argument for a power outside [0, kMaxPower] or a repeated (i, j).
   explicit Polynomial2D(std::vector<PolynomialTerm> terms);
 
   double evaluate(double x, double v) const;

@@ -28,26 +28,26 @@ enum class OutputSource { kSurface, kDerived, kNone };
 
 /// How well a fitted surface matched its bench data (written by fit_surfaces, in the output's unit).
 struct FitQuality {
-  int pwm_degree = 0;  // a drive curve's degree in u, for both
+  int pwm_degree = 0;  ///< a drive curve's degree in u, for both
   int voltage_degree = 0;
   int points = 0;
   double r2 = 0.0;
   double rmse = 0.0;
   double max_error = 0.0;
-  double held_out_rmse = 0.0;  // cross-validated, data grouped as `grouping` says
+  double held_out_rmse = 0.0;  ///< cross-validated, data grouped as `grouping` says
   std::string grouping;
-  std::string basis = "polynomial";     // or "drive_curve"
-  std::optional<double> low_band_rmse;   // fitted above the lowest voltage band, judged on it
-  std::optional<double> high_band_rmse;  // fitted below the highest voltage band, judged on it
+  std::string basis = "polynomial";     ///< or "drive_curve"
+  std::optional<double> low_band_rmse;   ///< fitted above the lowest voltage band, judged on it
+  std::optional<double> high_band_rmse;  ///< fitted below the highest voltage band, judged on it
 };
 
 /// One output of a model file: its unit, how it is obtained (surface, derived, none) and the fit
 /// that produced its surface.
 struct OutputDefinition {
-  std::string unit;  // unit of the surface values, as written in the file (g, N, A, W, g/W, rpm...)
+  std::string unit;  ///< unit of the surface values, as written in the file (g, N, A, W, g/W, rpm...)
   OutputSource source = OutputSource::kNone;
-  std::optional<ResponseSurface> surface;  // set iff source == kSurface
-  std::string note;                        // why derived or absent; kept for the file's readers
+  std::optional<ResponseSurface> surface;  ///< set iff source == kSurface
+  std::string note;                        ///< why derived or absent; kept for the file's readers
   std::optional<FitQuality> fit;
 };
 
@@ -83,6 +83,7 @@ struct ModelDomain {
 
   /// The voltage range covered at `pwm_us` (clamped to the PWM range): the box's without `covered`.
   std::pair<double, double> voltageRange(double pwm_us) const;
+  /// Whether (us, V) lies in the box and, with `covered`, in the covered voltage range at that PWM.
   bool contains(double pwm_us, double voltage_v) const;
   /// The nearest point of the domain in PWM first, then in voltage at that PWM.
   void clamp(double* pwm_us, double* voltage_v) const;
@@ -102,20 +103,20 @@ struct ModelMetadata {
   std::string esc;
   std::string motor;
   std::string propeller;
-  // Air on the bench, both or neither: a model whose bench air is unknown estimates as well,
-  // but cannot be corrected for the flight air's density (the air_density effect).
+  /// Air on the bench, both or neither: a model whose bench air is unknown estimates as well,
+  /// but cannot be corrected for the flight air's density (the air_density effect).
   std::optional<double> bench_air_temperature_c;
   std::optional<double> bench_air_pressure_pa;
   SupplyKind supply = SupplyKind::kRegulated;
   std::string source;
 
   bool hasBenchAir() const { return bench_air_temperature_c && bench_air_pressure_pa; }
-  // Air density on the bench, p / (R T), kg/m^3: the reference of the air_density effect; NaN
-  // without bench air.
+  /// Air density on the bench, p / (R T), kg/m^3: the reference of the air_density effect; NaN
+  /// without bench air.
   double benchAirDensity() const;
-  // FieldError ("metadata.bench_air_temperature_c", ...) for bench air outside the ranges the
-  // model loader accepts, or only one of the two given; fit_surfaces applies the same check
-  // before it writes a model.
+  /// FieldError ("metadata.bench_air_temperature_c", ...) for bench air outside the ranges the
+  /// model loader accepts, or only one of the two given; fit_surfaces applies the same check
+  /// before it writes a model.
   void validate() const;
 };
 
@@ -133,35 +134,35 @@ struct OperatingPoint {
 /// flight that they leave out (the model file's optional `effects:` section).
 class PropulsionModel {
  public:
-  // Throws ConfigError (without file context) for a unit that does not fit its output, a
-  // derivation that is circular or refers to an absent output, thrust not modelled, or an
-  // empty domain; FieldError ("effects.<name>.<key>") for effects that ModelEffects::validate()
-  // refuses. The effects' bench air density is taken from the metadata, whatever `effects` says.
+  /// Throws ConfigError (without file context) for a unit that does not fit its output, a
+  /// derivation that is circular or refers to an absent output, thrust not modelled, or an
+  /// empty domain; FieldError ("effects.<name>.<key>") for effects that ModelEffects::validate()
+  /// refuses. The effects' bench air density is taken from the metadata, whatever `effects` says.
   PropulsionModel(ModelMetadata metadata, ModelDomain domain, std::array<OutputDefinition, kOutputCount> outputs,
                   effects::ModelEffects effects = {});
 
-  // The same surfaces with other effects (a corrected model); throws as the constructor does.
+  /// The same surfaces with other effects (a corrected model); throws as the constructor does.
   PropulsionModel withEffects(effects::ModelEffects effects) const;
 
-  // Evaluates all outputs. Outside the domain the inputs are clamped, or the surfaces
-  // extrapolated, as the model says, and in_domain is false; with the reject policy nothing is
-  // computed and false is returned. Thrust, current, power and rpm are floored at zero (an idling
-  // polynomial may dip below it); efficiency is zero where power is zero.
+  /// Evaluates all outputs. Outside the domain the inputs are clamped, or the surfaces
+  /// extrapolated, as the model says, and in_domain is false; with the reject policy nothing is
+  /// computed and false is returned. Thrust, current, power and rpm are floored at zero (an idling
+  /// polynomial may dip below it); efficiency is zero where power is zero.
   bool evaluate(double pwm_us, double voltage_v, OperatingPoint* estimate) const;
 
-  // One output in its file unit at any point, without clamping to the domain: a surface's own
-  // value (not floored), a derived output as evaluate() derives it, NaN if not modelled.
+  /// One output in its file unit at any point, without clamping to the domain: a surface's own
+  /// value (not floored), a derived output as evaluate() derives it, NaN if not modelled.
   double evaluateRaw(Output output, double pwm_us, double voltage_v) const;
 
   const ModelMetadata& metadata() const { return metadata_; }
   const ModelDomain& domain() const { return domain_; }
   const OutputDefinition& output(Output output) const { return outputs_[static_cast<int>(output)]; }
-  // What the surfaces leave out; evaluate() does not apply it (the Estimator does, with the
-  // signals the effects read).
+  /// What the surfaces leave out; evaluate() does not apply it (the Estimator does, with the
+  /// signals the effects read).
   const effects::ModelEffects& effects() const { return effects_; }
 
  private:
-  // All outputs in SI, floored as evaluate() documents, in dependency order.
+  /// All outputs in SI, floored as evaluate() documents, in dependency order.
   std::array<double, kOutputCount> computeSi(double pwm_us, double voltage_v) const;
   double evaluateSi(Output output, double pwm_us, double voltage_v, const std::array<double, kOutputCount>& done) const;
 

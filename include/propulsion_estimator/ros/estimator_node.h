@@ -38,8 +38,8 @@ namespace propulsion_estimator {
 /// (ros::spin()). The two share the estimator under one mutex.
 class EstimatorNode {
  public:
-  // Throws ConfigError for bad parameters, model or URDF. A tare file that cannot be read is moved
-  // aside and named on the Tare file diagnostic; the node starts without it.
+  /// Throws ConfigError for bad parameters, model or URDF. A tare file that cannot be read is moved
+  /// aside and named on the Tare file diagnostic; the node starts without it.
   EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
 
  private:
@@ -51,17 +51,17 @@ class EstimatorNode {
   void onAirTemperature(const sensor_msgs::Temperature::ConstPtr& message);
   void onRange(const sensor_msgs::Range::ConstPtr& message);
   void onMotorTemperature(const sensor_msgs::Temperature::ConstPtr& message);
-  // Subscribes to what the model's effects read (and refuses a needed topic set to ""); logs
-  // which effects apply with which parameters.
+  /// Subscribes to what the model's effects read (and refuses a needed topic set to ""); logs
+  /// which effects apply with which parameters.
   void subscribeEffectSignals(ros::NodeHandle& input_nh, const ros::NodeHandle& private_nh,
                               const ros::TransportHints& hints);
-  // Applies the tare file of an earlier run, if any and taken with this model.
+  /// Applies the tare file of an earlier run, if any and taken with this model.
   void loadTare();
-  // What the Tare file diagnostic says (and the log, once).
+  /// What the Tare file diagnostic says (and the log, once).
   void setTareFileStatus(std::uint8_t level, const std::string& message);
   void logRejection(Rejection rejection);
   void publish();
-  // ~capability, from its own timer at capability/rate_hz.
+  /// ~capability, from its own timer at capability/rate_hz.
   void publishCapability();
 
   bool onTare(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
@@ -79,7 +79,7 @@ class EstimatorNode {
   CapabilityReport last_capability_;
   MotorHealthVerdict last_health_;
 
-  bool pass_battery_current_ = false;  // only a supply_resistance effect reads it
+  bool pass_battery_current_ = false;  ///< only a supply_resistance effect reads it
   ros::Publisher motors_pub_, totals_pub_, payload_pub_, capability_pub_;
   ros::ServiceServer tare_srv_, detect_hover_srv_, reset_srv_;
   diagnostic_updater::Updater diagnostics_;
@@ -95,14 +95,14 @@ class EstimatorNode {
 
   ros::Timer diagnostics_timer_, capability_timer_;
   InputActivity inputs_;
-  // Counts at each diagnostics task's previous run, from which it derives rates and fractions.
+  /// Counts at each diagnostics task's previous run, from which it derives rates and fractions.
   HealthSnapshot inputs_before_, outputs_before_, domain_before_, effects_before_;
 
-  // What the subscriptions' callbacks (network thread) share with timers and services (spinner).
+  /// What the subscriptions' callbacks (network thread) share with timers and services (spinner).
   std::mutex state_;
   InlineCallbackQueue input_queue_;
-  // Declared last, so destroyed first: a subscriber's destruction waits for its running callback,
-  // which uses everything above.
+  /// Declared last, so destroyed first: a subscriber's destruction waits for its running callback,
+  /// which uses everything above.
   ros::Subscriber rc_out_sub_, battery_sub_, imu_sub_, velocity_sub_;
   ros::Subscriber static_pressure_sub_, air_temperature_sub_, range_sub_, motor_temperature_sub_;
 };

@@ -12,28 +12,28 @@ namespace propulsion_estimator {
 
 /// Everything estimator_node reads from its private namespace (documented in the README).
 struct EstimatorNodeParams {
-  std::string model;       // required: path of the model YAML
-  std::string urdf_file;   // optional: vehicle description; else robot_description, else no geometry
-  std::string tare_file;   // optional: where ~tare persists the empty mass ("" = not persisted)
+  std::string model;       ///< required: path of the model YAML
+  std::string urdf_file;   ///< optional: vehicle description; else robot_description, else no geometry
+  std::string tare_file;   ///< optional: where ~tare persists the empty mass ("" = not persisted)
   std::string battery_topic = "/mavros/battery";
   std::string rc_out_topic = "/mavros/rc/out";
-  std::string imu_topic = "/mavros/imu/data";          // "" disables
-  std::string velocity_topic = "/mavros/local_position/velocity_local";  // "" disables
-  // The barometer: the hover check's vertical speed while no velocity is fresh, and the
-  // air_density effect's signal. "" disables.
-  std::string static_pressure_topic = "/mavros/imu/static_pressure";     // sensor_msgs/FluidPressure
-  // Signals of the model's effects, subscribed only when an effect of the model reads them.
-  std::string air_temperature_topic = "/mavros/imu/temperature_baro";    // sensor_msgs/Temperature
-  std::string rangefinder_topic = "/mavros/rangefinder/rangefinder";     // sensor_msgs/Range
-  std::string motor_temperature_topic = "/motor_temperature";            // sensor_msgs/Temperature
-  // Highest rate of ~motors, ~totals and ~payload, Hz, on the RCOut stamps; 0 publishes every
-  // accepted RCOut. Every message is still estimated and averaged. 50 Hz passes MAVROS' usual
-  // rc/out whole, and keeps a 400 Hz stream's cost near roscpp's own (BENCHMARKS.md).
+  std::string imu_topic = "/mavros/imu/data";          ///< "" disables
+  std::string velocity_topic = "/mavros/local_position/velocity_local";  ///< "" disables
+  /// The barometer: the hover check's vertical speed while no velocity is fresh, and the
+  /// air_density effect's signal. "" disables.
+  std::string static_pressure_topic = "/mavros/imu/static_pressure";     ///< sensor_msgs/FluidPressure
+  /// Signals of the model's effects, subscribed only when an effect of the model reads them.
+  std::string air_temperature_topic = "/mavros/imu/temperature_baro";    ///< sensor_msgs/Temperature
+  std::string rangefinder_topic = "/mavros/rangefinder/rangefinder";     ///< sensor_msgs/Range
+  std::string motor_temperature_topic = "/motor_temperature";            ///< sensor_msgs/Temperature
+  /// Highest rate of ~motors, ~totals and ~payload, Hz, on the RCOut stamps; 0 publishes every
+  /// accepted RCOut. Every message is still estimated and averaged. 50 Hz passes MAVROS' usual
+  /// rc/out whole, and keeps a 400 Hz stream's cost near roscpp's own (BENCHMARKS.md).
   double publish_rate_hz = 50.0;
-  // Seconds between /diagnostics updates; diagnostic_updater reads the same parameter (and has the
-  // same default), the node ticks it once per period.
+  /// Seconds between /diagnostics updates; diagnostic_updater reads the same parameter (and has the
+  /// same default), the node ticks it once per period.
   double diagnostic_period_s = 1.0;
-  HealthConfig health;  // domain_warn_fraction; its input names are the topics
+  HealthConfig health;  ///< domain_warn_fraction; its input names are the topics
   EstimatorConfig estimator;
   CapabilityConfig capability;
 };

@@ -31,7 +31,7 @@ class InlineCallbackQueue : public ros::CallbackQueueInterface {
 
  private:
   ros::CallbackQueueInterface* fallback_;
-  // Held while a callback runs. Recursive: a callback may shut down another subscriber of this queue.
+  /// Held while a callback runs. Recursive: a callback may shut down another subscriber of this queue.
   std::recursive_mutex calling_;
 };
 

@@ -37,8 +37,8 @@ class RcOutDecoder {
   bool decode(const topic_tools::ShapeShifter& message, RcOutMessage* out, std::string* error);
   /// Bytes of serialization buffer kept for the next message.
   std::size_t keptBytes() const { return buffer_.capacity(); }
-  // The serialized message alone, for a reader that has checked the type itself (a bag's
-  // connection): false with a one-line reason for a malformed payload.
+  /// The serialized message alone, for a reader that has checked the type itself (a bag's
+  /// connection): false with a one-line reason for a malformed payload.
   static bool decodePayload(const std::uint8_t* data, std::uint32_t size, RcOutMessage* out, std::string* error);
 
  private:

@@ -14,8 +14,8 @@ namespace propulsion_estimator {
 struct Rotor {
   std::string name;
   Eigen::Vector3d position_m = Eigen::Vector3d::Constant(kNaN);
-  Eigen::Vector3d thrust_axis = Eigen::Vector3d::UnitZ();  // unit vector
-  int spin_direction = 1;                                  // +1 counter-clockwise seen from above
+  Eigen::Vector3d thrust_axis = Eigen::Vector3d::UnitZ();  ///< unit vector
+  int spin_direction = 1;                                  ///< +1 counter-clockwise seen from above
 };
 
 /// Mass properties of a rigid body: mass in kg, centre of mass in m in the body frame, inertia
@@ -23,7 +23,7 @@ struct Rotor {
 struct MassProperties {
   double mass_kg = 0.0;
   Eigen::Vector3d centre_of_mass_m = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();  // about the centre of mass
+  Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();  ///< about the centre of mass
 };
 
 /// The multicopter: its rotors (in motor-channel order) and, when known, its empty mass
@@ -34,9 +34,9 @@ struct Vehicle {
 
   bool hasGeometry() const;
 
-  // n rotors thrusting along +z at unknown positions: what the thesis' method needs.
+  /// n rotors thrusting along +z at unknown positions: what the thesis' method needs.
   static Vehicle upwardRotors(int n);
-  // Quad X in PX4/ArduPilot motor order (front-right, rear-left, front-left, rear-right).
+  /// Quad X in PX4/ArduPilot motor order (front-right, rear-left, front-left, rear-right).
   static Vehicle quadX(double arm_length_m);
 };
 

@@ -4,8 +4,9 @@
 #include <optional>
 #include <string>
 
-// The simulated vehicle as the flight physics and the autopilot see it: what a flight profile
-// sets besides its script of segments.
+/// @file
+/// The simulated vehicle as the flight physics and the autopilot see it: what a flight profile
+/// sets besides its script of segments.
 namespace propulsion_estimator {
 namespace sim {
 
@@ -17,28 +18,28 @@ enum class AutopilotFlavour { kPx4, kArduPilot };
 /// The autopilot's flavour, PWM end points in us and the rate of its /mavros/rc/out in Hz.
 struct AutopilotParams {
   AutopilotFlavour flavour = AutopilotFlavour::kPx4;
-  double pwm_min_us = 0.0;       // mixer output 0 while armed (PX4 PWM_MAIN_MIN, ArduPilot MOT_PWM_MIN/SPIN_ARM)
-  double pwm_max_us = 0.0;       // mixer output 1
-  double disarmed_pwm_us = 0.0;  // what the ESCs get while disarmed
-  double rc_out_rate_hz = 0.0;   // /mavros/rc/out (and /sim/truth) publication rate
+  double pwm_min_us = 0.0;       ///< mixer output 0 while armed (PX4 PWM_MAIN_MIN, ArduPilot MOT_PWM_MIN/SPIN_ARM)
+  double pwm_max_us = 0.0;       ///< mixer output 1
+  double disarmed_pwm_us = 0.0;  ///< what the ESCs get while disarmed
+  double rc_out_rate_hz = 0.0;   ///< /mavros/rc/out (and /sim/truth) publication rate
 };
 
 /// What a profile sets of the vehicle besides its URDF's content: centre-of-mass offset, landing
 /// gear, drag area and the battery's initial state of charge (SI units).
 struct VehicleSetup {
-  std::string urdf_path;                                              // resolved against the profile's folder
-  Eigen::Vector3d centre_of_mass_offset_m = Eigen::Vector3d::Zero();  // added to the URDF's centre of mass
-  double landing_gear_height_m = 0.0;                                 // base_link above the ground when landed
-  double landing_gear_half_width_m = 0.0;                             // feet at (+-w, +-w) under base_link
-  double drag_area_m2 = 0.0;                                          // Cd A of the airframe
+  std::string urdf_path;                                              ///< resolved against the profile's folder
+  Eigen::Vector3d centre_of_mass_offset_m = Eigen::Vector3d::Zero();  ///< added to the URDF's centre of mass
+  double landing_gear_height_m = 0.0;                                 ///< base_link above the ground when landed
+  double landing_gear_half_width_m = 0.0;                             ///< feet at (+-w, +-w) under base_link
+  double drag_area_m2 = 0.0;                                          ///< Cd A of the airframe
   double battery_initial_soc = 1.0;
 };
 
 /// A payload hangs on a cable from a point of the airframe; it is attached and changed while landed.
 struct PayloadCable {
   double length_m = 0.0;
-  Eigen::Vector3d attach_point_m = Eigen::Vector3d::Zero();  // in base_link
-  double stiffness_n_per_m = 0.0;                            // along the cable, which only pulls
+  Eigen::Vector3d attach_point_m = Eigen::Vector3d::Zero();  ///< in base_link
+  double stiffness_n_per_m = 0.0;                            ///< along the cable, which only pulls
   double damping_n_s_per_m = 0.0;
 };
 
@@ -46,8 +47,8 @@ struct PayloadCable {
 /// size): flown as a geometrically similar smaller propeller (scaledPropeller), so it absorbs less
 /// torque too.
 struct PropellerFault {
-  int motor = 0;               // 1-based, in the vehicle's rotor order (its RC channel)
-  double thrust_factor = 1.0;  // of the intact propeller's thrust at the same rotor speed
+  int motor = 0;               ///< 1-based, in the vehicle's rotor order (its RC channel)
+  double thrust_factor = 1.0;  ///< of the intact propeller's thrust at the same rotor speed
 };
 
 /// Faults of the vehicle that the library of effects does not hold, for validating the gap

@@ -13,7 +13,7 @@ namespace sim {
 
 /// The vehicle's state as the autopilot's estimator gives it (the simulator passes the true state).
 struct NavigationState {
-  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // base_link, world ENU
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  ///< base_link, world ENU
   Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
   Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();
   Eigen::Vector3d angular_velocity_body_rad_s = Eigen::Vector3d::Zero();
@@ -23,8 +23,8 @@ struct NavigationState {
 /// vertical speed in m/s, and whether it is landing.
 struct HeightSetpoint {
   double height_m = 0.0;
-  double vertical_speed_m_s = 0.0;  // feed-forward
-  bool landing = false;             // the land detector runs only while landing
+  double vertical_speed_m_s = 0.0;  ///< feed-forward
+  bool landing = false;             ///< the land detector runs only while landing
 };
 
 /// A cascaded PX4-style controller that, like a real one, knows the geometry but nothing of the
@@ -40,7 +40,7 @@ class FlightController {
   FlightController(const Vehicle& vehicle, const AutopilotParams& autopilot, double landed_height_m);
 
   void arm();
-  // Pulse widths for the next control period.
+  /// Pulse widths for the next control period.
   const std::vector<double>& update(const HeightSetpoint& setpoint, const NavigationState& state, double dt_s);
 
   bool armed() const { return armed_; }
@@ -51,7 +51,7 @@ class FlightController {
   double landed_height_m_;
   bool armed_ = false;
   double hover_throttle_;
-  double takeoff_ramp_ = 0.0;  // upper limit of the collective while taking off
+  double takeoff_ramp_ = 0.0;  ///< upper limit of the collective while taking off
   Eigen::Vector3d rate_integral_ = Eigen::Vector3d::Zero();
   double landed_for_s_ = 0.0;
   std::vector<double> pwm_us_;

@@ -16,10 +16,10 @@ const char* segmentKindName(SegmentKind kind);
 /// One step of the flight script. Heights are of base_link above the ground.
 struct FlightSegment {
   SegmentKind kind = SegmentKind::kWait;
-  double duration_s = 0.0;       // wait, hover, payload
-  double height_m = 0.0;         // takeoff, climb, descend: target height
-  double rate_m_s = 0.0;         // takeoff, climb, descend, land: vertical speed
-  double payload_mass_kg = 0.0;  // payload: the new payload, 0.01..5 kg (0 = none)
+  double duration_s = 0.0;       ///< wait, hover, payload
+  double height_m = 0.0;         ///< takeoff, climb, descend: target height
+  double rate_m_s = 0.0;         ///< takeoff, climb, descend, land: vertical speed
+  double payload_mass_kg = 0.0;  ///< payload: the new payload, 0.01..5 kg (0 = none)
 };
 
 /// What the manifest of a flight holds (see manifestSpans): its hovers, or every stretch in the
@@ -29,34 +29,34 @@ enum class ManifestSpans { kHovers, kAirborne };
 /// A simulated flight: the autopilot, the vehicle, the payload cable, faults, the manifest's spans
 /// and the script of segments (config/sim/*_flight.yaml).
 struct FlightProfile {
-  std::string source;  // file it came from, for messages
+  std::string source;  ///< file it came from, for messages
   AutopilotParams autopilot;
   VehicleSetup vehicle;
   PayloadCable cable;
   VehicleFaults faults;
-  double manifest_settle_s = 0.0;  // a span enters the manifest this long after it starts
+  double manifest_settle_s = 0.0;  ///< a span enters the manifest this long after it starts
   ManifestSpans manifest_spans = ManifestSpans::kHovers;
   std::vector<FlightSegment> segments;
 
-  // Throws FieldError naming the key ("segments[3].height_m", "autopilot.pwm_max_us") for values
-  // out of range and for segments impossible where they stand: taking off or changing the payload
-  // while flying, hovering, climbing, descending or landing while on the ground, climbing to a
-  // lower or descending to a higher height, hovering so low that the payload would rest on the
-  // ground (with airborne manifest spans: taking off, climbing or descending so low), and a
-  // profile that does not end on the ground. A weak propeller's motor is checked against the
-  // vehicle by checkFlight.
+  /// Throws FieldError naming the key ("segments[3].height_m", "autopilot.pwm_max_us") for values
+  /// out of range and for segments impossible where they stand: taking off or changing the payload
+  /// while flying, hovering, climbing, descending or landing while on the ground, climbing to a
+  /// lower or descending to a higher height, hovering so low that the payload would rest on the
+  /// ground (with airborne manifest spans: taking off, climbing or descending so low), and a
+  /// profile that does not end on the ground. A weak propeller's motor is checked against the
+  /// vehicle by checkFlight.
   void validate() const;
 };
 
 /// A segment placed in time, with the height setpoint at its ends.
 struct ScheduledSegment {
   FlightSegment segment;
-  int index = 0;  // in FlightProfile::segments
+  int index = 0;  ///< in FlightProfile::segments
   double start_s = 0.0;
   double end_s = 0.0;
   double start_height_m = 0.0;
   double end_height_m = 0.0;
-  double payload_mass_kg = 0.0;  // attached during the segment
+  double payload_mass_kg = 0.0;  ///< attached during the segment
 };
 
 /// Spin-up on the ground before a take-off climbs, and time a landing gets after touching down to

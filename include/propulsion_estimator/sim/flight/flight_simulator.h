@@ -21,10 +21,10 @@ constexpr double kFlightStepS = 0.002;
 /// What simulateFlight returns besides the messages it emits: the manifest's segments, the flight's
 /// duration in s and the battery's final state of charge (0..1).
 struct FlightResult {
-  // One segment per span of the profile's manifest (manifestSpans: its hovers, or its stretches in
-  // the air), with the vehicle's mass plus the hanging payload's; a span in which a foot or the
-  // payload touched the ground is cut there and resumes the settle time after the touch. Times
-  // from the first message.
+  /// One segment per span of the profile's manifest (manifestSpans: its hovers, or its stretches in
+  /// the air), with the vehicle's mass plus the hanging payload's; a span in which a foot or the
+  /// payload touched the ground is cut there and resumes the settle time after the touch. Times
+  /// from the first message.
   std::vector<ManifestSegment> segments;
   double duration_s = 0.0;
   double final_state_of_charge = 0.0;

@@ -9,31 +9,32 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// What a simulated flight emits, message by message, in SI units and the frames MAVROS uses:
-// ENU world ("map", origin at base_link's start position), FLU body ("base_link"). Times are
-// seconds of simulated time from the first message. Each reading carries the standard deviation
-// of its noise for the message's covariance or variance fields.
+/// @file
+/// What a simulated flight emits, message by message, in SI units and the frames MAVROS uses:
+/// ENU world ("map", origin at base_link's start position), FLU body ("base_link"). Times are
+/// seconds of simulated time from the first message. Each reading carries the standard deviation
+/// of its noise for the message's covariance or variance fields.
 
 /// /mavros/rc/out: the pulse width in us of each output channel.
 struct RcOutSample {
   double time_s = 0.0;
-  std::vector<std::uint16_t> channels;  // motor k on channel k (1-based), unused channels 0
+  std::vector<std::uint16_t> channels;  ///< motor k on channel k (1-based), unused channels 0
 };
 
 /// /mavros/battery: terminal voltage in V, current in A and remaining charge.
 struct BatterySample {
   double time_s = 0.0;
-  double voltage_v = 0.0;   // at the battery's terminals
-  double current_a = 0.0;   // sign as the autopilot reports it through MAVROS (PX4: negative when discharging)
-  double percentage = 0.0;  // 0..1
+  double voltage_v = 0.0;   ///< at the battery's terminals
+  double current_a = 0.0;   ///< sign as the autopilot reports it through MAVROS (PX4: negative when discharging)
+  double percentage = 0.0;  ///< 0..1
 };
 
 /// /mavros/imu/data: orientation, body rates in rad/s and specific force in m/s^2, with their noise.
 struct ImuSample {
   double time_s = 0.0;
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();    // body
-  Eigen::Vector3d linear_acceleration_m_s2 = Eigen::Vector3d::Zero();  // specific force, body (+g at rest)
+  Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();    ///< body
+  Eigen::Vector3d linear_acceleration_m_s2 = Eigen::Vector3d::Zero();  ///< specific force, body (+g at rest)
   double orientation_sigma_rad = 0.0;
   double angular_velocity_sigma_rad_s = 0.0;
   double linear_acceleration_sigma_m_s2 = 0.0;
@@ -49,8 +50,8 @@ struct PoseSample {
 /// /mavros/local_position/velocity_local: linear (m/s) and angular (rad/s) velocity, world frame.
 struct VelocitySample {
   double time_s = 0.0;
-  Eigen::Vector3d linear_m_s = Eigen::Vector3d::Zero();     // world
-  Eigen::Vector3d angular_rad_s = Eigen::Vector3d::Zero();  // world
+  Eigen::Vector3d linear_m_s = Eigen::Vector3d::Zero();     ///< world
+  Eigen::Vector3d angular_rad_s = Eigen::Vector3d::Zero();  ///< world
 };
 
 /// A scalar reading: static pressure (Pa), air or motor temperature (deg C).
@@ -58,13 +59,13 @@ struct ScalarSample {
   double time_s = 0.0;
   double value = 0.0;
   double sigma = 0.0;
-  std::string frame_id;  // the hottest motor's link for the motor temperature, base_link otherwise
+  std::string frame_id;  ///< the hottest motor's link for the motor temperature, base_link otherwise
 };
 
 /// /mavros/rangefinder/rangefinder: distance to the ground in m, with the sensor's limits.
 struct RangeSample {
   double time_s = 0.0;
-  double range_m = 0.0;  // -inf below min_range_m, +inf beyond max_range_m (REP-117)
+  double range_m = 0.0;  ///< -inf below min_range_m, +inf beyond max_range_m (REP-117)
   double min_range_m = 0.0;
   double max_range_m = 0.0;
   double field_of_view_rad = 0.0;
@@ -73,32 +74,32 @@ struct RangeSample {
 /// Per-motor truth.
 struct MotorTruth {
   double pwm_us = 0.0;
-  double thrust_n = 0.0;   // force on the airframe along the rotor axis, all effects included
-  double current_a = 0.0;  // ESC input current
-  double power_w = 0.0;    // ESC input power
+  double thrust_n = 0.0;   ///< force on the airframe along the rotor axis, all effects included
+  double current_a = 0.0;  ///< ESC input current
+  double power_w = 0.0;    ///< ESC input power
   double rpm = 0.0;
-  // The inflow effects' thrust factors at the rotor's speed: the climb's, and the ground's on top
-  // of it (thrust = the propeller's static thrust x climb x ground; 1 when off).
+  /// The inflow effects' thrust factors at the rotor's speed: the climb's, and the ground's on top
+  /// of it (thrust = the propeller's static thrust x climb x ground; 1 when off).
   double ground_effect_factor = 1.0;
   double climb_factor = 1.0;
   double winding_temperature_c = 0.0;
-  bool in_bench_range = false;  // pulse width within the parameter file's bench sweep range
+  bool in_bench_range = false;  ///< pulse width within the parameter file's bench sweep range
 };
 
 /// What a real flight cannot measure, for tests and the gap diagnosis.
 struct TruthSample {
   double time_s = 0.0;
-  double total_mass_kg = 0.0;  // vehicle plus payload
+  double total_mass_kg = 0.0;  ///< vehicle plus payload
   double payload_mass_kg = 0.0;
-  double cable_tension_n = 0.0;  // 0 while the payload rests on the ground
-  double height_m = 0.0;         // base_link above the ground
+  double cable_tension_n = 0.0;  ///< 0 while the payload rests on the ground
+  double height_m = 0.0;         ///< base_link above the ground
   double vertical_speed_m_s = 0.0;
   double air_density_kg_m3 = 0.0;
-  double density_ratio = 1.0;      // flight air over bench air
-  double battery_voltage_v = 0.0;  // at the terminals, without sensor noise
-  double esc_voltage_v = 0.0;      // after the supply path
+  double density_ratio = 1.0;      ///< flight air over bench air
+  double battery_voltage_v = 0.0;  ///< at the terminals, without sensor noise
+  double esc_voltage_v = 0.0;      ///< after the supply path
   double battery_current_a = 0.0;
-  double climb_factor = 1.0;  // summed rotor thrust with the climb's inflow over without, at the rotors' speeds
+  double climb_factor = 1.0;  ///< summed rotor thrust with the climb's inflow over without, at the rotors' speeds
   double thrust_loss_factor = 1.0;
   std::vector<MotorTruth> motors;
 };

@@ -16,15 +16,15 @@ namespace sim {
 /// roll, pitch, yaw and thrust independently.
 class MotorMixer {
  public:
-  explicit MotorMixer(const Vehicle& vehicle);  // needs rotor positions
+  explicit MotorMixer(const Vehicle& vehicle);  ///< needs rotor positions
 
-  // Normalised motor outputs for a collective throttle (0..1) and roll, pitch, yaw commands
-  // (positive about body x, y, z).
+  /// Normalised motor outputs for a collective throttle (0..1) and roll, pitch, yaw commands
+  /// (positive about body x, y, z).
   const std::vector<double>& mix(double collective, double roll, double pitch, double yaw);
 
  private:
-  Eigen::Matrix<double, Eigen::Dynamic, 4> matrix_;  // motors x (roll, pitch, yaw, collective)
-  Eigen::VectorXd commands_;                         // unclamped outputs, sized once: mix() does not allocate
+  Eigen::Matrix<double, Eigen::Dynamic, 4> matrix_;  ///< motors x (roll, pitch, yaw, collective)
+  Eigen::VectorXd commands_;                         ///< unclamped outputs, sized once: mix() does not allocate
   std::vector<double> outputs_;
 };
 

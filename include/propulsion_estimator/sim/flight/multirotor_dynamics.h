@@ -22,40 +22,40 @@ namespace sim {
 /// a vehicle without rotor positions or empty mass properties.
 class MultirotorDynamics {
  public:
-  // `vehicle` needs its rotors' geometry and empty mass properties. The vehicle starts landed at
-  // the origin, level, facing east (x); no payload.
+  /// `vehicle` needs its rotors' geometry and empty mass properties. The vehicle starts landed at
+  /// the origin, level, facing east (x); no payload.
   MultirotorDynamics(const Vehicle& vehicle, const VehicleSetup& setup, const PayloadCable& cable);
 
-  // Advances by dt under the rotors' thrusts (N, along each rotor's axis) and the propellers'
-  // aerodynamic torques (N m, positive; the body feels -spin * torque about the axis), in air of
-  // `air_density_kg_m3` (drag).
+  /// Advances by dt under the rotors' thrusts (N, along each rotor's axis) and the propellers'
+  /// aerodynamic torques (N m, positive; the body feels -spin * torque about the axis), in air of
+  /// `air_density_kg_m3` (drag).
   void step(const std::vector<double>& thrust_n, const std::vector<double>& torque_nm, double air_density_kg_m3,
             double dt_s);
 
-  // Puts a payload of `mass_kg` (0: none) on the ground under the attachment point, at rest.
+  /// Puts a payload of `mass_kg` (0: none) on the ground under the attachment point, at rest.
   void setPayload(double mass_kg);
 
-  Eigen::Vector3d basePosition() const;  // base_link in the world
+  Eigen::Vector3d basePosition() const;  ///< base_link in the world
   Eigen::Vector3d baseVelocity() const;
   const Eigen::Quaterniond& attitude() const { return attitude_; }
   const Eigen::Vector3d& angularVelocityBody() const { return omega_body_; }
-  // Non-gravitational acceleration of the centre of mass in the body frame: what an accelerometer
-  // there reads (the IMU's lever arm of a few centimetres is neglected).
+  /// Non-gravitational acceleration of the centre of mass in the body frame: what an accelerometer
+  /// there reads (the IMU's lever arm of a few centimetres is neglected).
   const Eigen::Vector3d& specificForceBody() const { return specific_force_body_; }
-  Eigen::Vector3d rotorPosition(int k) const;  // in the world
-  Eigen::Vector3d rotorVelocity(int k) const;  // of rotor k's hub, in the world
+  Eigen::Vector3d rotorPosition(int k) const;  ///< in the world
+  Eigen::Vector3d rotorVelocity(int k) const;  ///< of rotor k's hub, in the world
   double cableTensionN() const { return cable_tension_n_; }
-  // Whether a foot or the payload pressed on the ground during the last step.
+  /// Whether a foot or the payload pressed on the ground during the last step.
   bool touchedGround() const { return touched_ground_; }
   double payloadMassKg() const { return payload_mass_kg_; }
   double vehicleMassKg() const { return mass_kg_; }
 
-  // Whether the whole state (vehicle and payload) is finite.
+  /// Whether the whole state (vehicle and payload) is finite.
   bool isFinite() const;
 
  private:
-  // Tension of the taut cable over the next step, given its direction from the attachment point
-  // to the payload, its stretch, and every other force on the payload and the vehicle.
+  /// Tension of the taut cable over the next step, given its direction from the attachment point
+  /// to the payload, its stretch, and every other force on the payload and the vehicle.
   double cableTension(const Eigen::Vector3d& along, double stretch_m, const Eigen::Vector3d& payload_force,
                       const Eigen::Vector3d& vehicle_force, const Eigen::Vector3d& vehicle_torque_body,
                       double dt_s) const;
@@ -73,7 +73,7 @@ class MultirotorDynamics {
   double drag_area_m2_;
   PayloadCable cable_;
 
-  // Centre of mass state.
+  /// Centre of mass state.
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();
   Eigen::Quaterniond attitude_ = Eigen::Quaterniond::Identity();
@@ -84,7 +84,7 @@ class MultirotorDynamics {
   Eigen::Vector3d payload_position_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d payload_velocity_ = Eigen::Vector3d::Zero();
   double cable_tension_n_ = 0.0;
-  bool touched_ground_ = true;  // it starts landed
+  bool touched_ground_ = true;  ///< it starts landed
 };
 
 }  // namespace sim

@@ -12,19 +12,19 @@ struct SensorNoise {
   double resolution = 0.0;
 
   double measure(double true_value, std::mt19937_64& rng) const;
-  // sqrt(sigma^2 + resolution^2 / 12): noise plus uniform quantisation error.
+  /// sqrt(sigma^2 + resolution^2 / 12): noise plus uniform quantisation error.
   double effectiveSigma() const;
 };
 
 /// The thesis bench's sensors (chapter 3), in SI units.
 struct BenchSensors {
-  SensorNoise thrust_n;       // load cell + HX711
-  SensorNoise current_a;      // ACS712-30A on the Arduino's 10-bit ADC
-  SensorNoise voltage_v;      // B25 divider on the Arduino's 10-bit ADC
-  SensorNoise rpm;            // optical tachometer
-  SensorNoise temperature_c;  // MLX90615 infrared thermometer (motor and room)
+  SensorNoise thrust_n;       ///< load cell + HX711
+  SensorNoise current_a;      ///< ACS712-30A on the Arduino's 10-bit ADC
+  SensorNoise voltage_v;      ///< B25 divider on the Arduino's 10-bit ADC
+  SensorNoise rpm;            ///< optical tachometer
+  SensorNoise temperature_c;  ///< MLX90615 infrared thermometer (motor and room)
 
-  // Throws FieldError (bench.sensors.<sensor>) for a negative or absurd sigma or resolution.
+  /// Throws FieldError (bench.sensors.<sensor>) for a negative or absurd sigma or resolution.
   void validate() const;
 };
 

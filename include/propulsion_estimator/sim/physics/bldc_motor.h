@@ -16,22 +16,22 @@ constexpr double kCopperReferenceTemperatureC = 20.0;  ///< deg C at which that 
 struct BldcMotorParams {
   std::string name;
   double kv_rpm_per_v = 0.0;
-  double winding_resistance_ohm = 0.0;  // at reference_temperature_c
+  double winding_resistance_ohm = 0.0;  ///< at reference_temperature_c
   double no_load_current_a = 0.0;
-  double reference_temperature_c = 0.0;             // winding temperature at which kv and resistance hold
-  double flux_temperature_coefficient_per_c = 0.0;  // magnet remanence; NdFeB about -0.0012
-  double rotor_inertia_kg_m2 = 0.0;                 // bell and magnets, without the propeller
+  double reference_temperature_c = 0.0;             ///< winding temperature at which kv and resistance hold
+  double flux_temperature_coefficient_per_c = 0.0;  ///< magnet remanence; NdFeB about -0.0012
+  double rotor_inertia_kg_m2 = 0.0;                 ///< bell and magnets, without the propeller
   double thermal_capacity_j_per_c = 0.0;
-  double thermal_resistance_c_per_w = 0.0;  // winding to air, with propeller wash
+  double thermal_resistance_c_per_w = 0.0;  ///< winding to air, with propeller wash
 
-  // Throws FieldError (motor.*) for a value outside its physical range.
+  /// Throws FieldError (motor.*) for a value outside its physical range.
   void validate() const;
 };
 
 /// Electrical constants at one winding temperature.
 struct MotorConstants {
-  double torque_constant_nm_per_a = 0.0;  // = back-EMF constant in V s/rad
-  double resistance_ohm = 0.0;            // winding only
+  double torque_constant_nm_per_a = 0.0;  ///< = back-EMF constant in V s/rad
+  double resistance_ohm = 0.0;            ///< winding only
   double no_load_current_a = 0.0;
 };
 

@@ -21,11 +21,11 @@ struct Supply {
 /// temperatures in deg C, and the voltages (V) and total current (A) on the supply side.
 struct PowerTrainState {
   std::vector<double> duty;
-  std::vector<ChainState> motors;  // rotors in their inflow: thrust before airframe effects
+  std::vector<ChainState> motors;  ///< rotors in their inflow: thrust before airframe effects
   std::vector<double> winding_temperature_c;
   double esc_voltage_v = 0.0;
-  double terminal_voltage_v = 0.0;  // at the supply's terminals, where the voltage is sensed
-  double current_a = 0.0;           // drawn from the supply by all ESCs
+  double terminal_voltage_v = 0.0;  ///< at the supply's terminals, where the voltage is sensed
+  double current_a = 0.0;           ///< drawn from the supply by all ESCs
 };
 
 /// Chains on one supply, one per motor, with the rotor speeds' first-order lag and the motors'
@@ -36,25 +36,25 @@ struct PowerTrainState {
 /// speed and current, answers a climb or the ground as the rotor's torque does.
 class PowerTrain {
  public:
-  // `motors` identical chains.
+  /// `motors` identical chains.
   PowerTrain(PropulsionChain chain, int motors, const SimEffects& effects, double initial_temperature_c);
-  // One chain per motor (a damaged propeller on one of them).
+  /// One chain per motor (a damaged propeller on one of them).
   PowerTrain(std::vector<PropulsionChain> chains, const SimEffects& effects, double initial_temperature_c);
 
-  // What rotor k's disc sees from the next step on; still air out of ground effect until set.
+  /// What rotor k's disc sees from the next step on; still air out of ground effect until set.
   void setInflow(int k, const RotorInflow& inflow) { inflow_[k] = inflow; }
 
-  // Electrical state at the present rotor speeds for these pulse widths (the ESC voltage solved
-  // in closed form: with the speeds given, every ESC's input current is linear in it), with each
-  // rotor's load factors at its present speed and inflow; then the rotor speeds move towards
-  // their steady values and the windings heat or cool over dt_s. Returns the state at the start
-  // of the step; dt_s = 0 only evaluates it.
+  /// Electrical state at the present rotor speeds for these pulse widths (the ESC voltage solved
+  /// in closed form: with the speeds given, every ESC's input current is linear in it), with each
+  /// rotor's load factors at its present speed and inflow; then the rotor speeds move towards
+  /// their steady values and the windings heat or cool over dt_s. Returns the state at the start
+  /// of the step; dt_s = 0 only evaluates it.
   const PowerTrainState& step(const std::vector<double>& pwm_us, const Supply& supply, const AirConditions& air,
                               double dt_s);
 
   const PropulsionChain& chain(int k = 0) const { return chains_[k]; }
   int motors() const { return static_cast<int>(omega_rad_s_.size()); }
-  // The temperature the electrical constants of motor k are taken at.
+  /// The temperature the electrical constants of motor k are taken at.
   double electricalTemperatureC(int k) const;
 
  private:
@@ -66,7 +66,7 @@ class PowerTrain {
   double thermal_resistance_c_per_w_;
   std::vector<double> omega_rad_s_;
   std::vector<double> temperature_c_;
-  std::vector<ChainInput> inputs_;  // of the present step, sized once
+  std::vector<ChainInput> inputs_;  ///< of the present step, sized once
   std::vector<RotorLoad> loads_;
   PowerTrainState state_;
 };

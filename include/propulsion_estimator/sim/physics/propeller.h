@@ -16,21 +16,21 @@ constexpr double kInducedPowerFactor = 1.15;
 struct PropellerParams {
   std::string name;
   double diameter_m = 0.0;
-  double thrust_coefficient = 0.0;  // CT
-  double torque_coefficient = 0.0;  // CQ (power coefficient CP = 2 pi CQ)
+  double thrust_coefficient = 0.0;  ///< CT
+  double torque_coefficient = 0.0;  ///< CQ (power coefficient CP = 2 pi CQ)
   double inertia_kg_m2 = 0.0;
-  double solidity = 0.0;  // blade area over disc area, blades x chord at 3/4 radius / (pi R)
+  double solidity = 0.0;  ///< blade area over disc area, blades x chord at 3/4 radius / (pi R)
 
-  // Throws FieldError (propeller.*) for a value outside its physical range, and
-  // propeller.torque_coefficient for a torque below the induced torque of the thrust (figure of
-  // merit above 1 / kInducedPowerFactor).
+  /// Throws FieldError (propeller.*) for a value outside its physical range, and
+  /// propeller.torque_coefficient for a torque below the induced torque of the thrust (figure of
+  /// merit above 1 / kInducedPowerFactor).
   void validate() const;
 
   double radiusM() const { return 0.5 * diameter_m; }
   double thrustN(double air_density_kg_m3, double rev_per_s) const;
   double torqueNm(double air_density_kg_m3, double rev_per_s) const;
-  // The rotorcraft coefficients C_T = T / (rho pi R^2 (Omega R)^2) = 4 CT / pi^3 and
-  // C_Q = Q / (rho pi R^2 (Omega R)^2 R) = 8 CQ / pi^3.
+  /// The rotorcraft coefficients C_T = T / (rho pi R^2 (Omega R)^2) = 4 CT / pi^3 and
+  /// C_Q = Q / (rho pi R^2 (Omega R)^2 R) = 8 CQ / pi^3.
   double rotorThrustCoefficient() const;
   double rotorTorqueCoefficient() const;
 };

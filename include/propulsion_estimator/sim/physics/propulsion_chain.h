@@ -14,7 +14,7 @@ struct ChainParams {
   BldcMotorParams motor;
   PropellerParams propeller;
 
-  void validate() const;  // FieldError esc.* / motor.* / propeller.*
+  void validate() const;  ///< FieldError esc.* / motor.* / propeller.*
 };
 
 /// What the chain runs at: ESC duty, ESC input voltage, air, and the winding temperature the
@@ -31,11 +31,11 @@ struct ChainInput {
 struct ChainState {
   double omega_rad_s = 0.0;
   double thrust_n = 0.0;
-  double torque_nm = 0.0;  // propeller's aerodynamic torque
+  double torque_nm = 0.0;  ///< propeller's aerodynamic torque
   double motor_current_a = 0.0;
-  double input_current_a = 0.0;  // drawn by the ESC from its supply
-  double input_power_w = 0.0;    // ESC input voltage * input current
-  double heat_w = 0.0;           // dissipated in the motor (winding copper + no-load losses)
+  double input_current_a = 0.0;  ///< drawn by the ESC from its supply
+  double input_power_w = 0.0;    ///< ESC input voltage * input current
+  double heat_w = 0.0;           ///< dissipated in the motor (winding copper + no-load losses)
 
   double rpm() const;
 };
@@ -47,30 +47,30 @@ struct ChainState {
 /// thrust and torque (RotorAerodynamics::load); the default is still air out of ground effect.
 class PropulsionChain {
  public:
-  explicit PropulsionChain(ChainParams params);  // validates
+  explicit PropulsionChain(ChainParams params);  ///< validates
 
-  // Steady operating point: the motor torque Kt (I - I0) balances the propeller's torque, with
-  // I = (duty V - Kt w) / R and R the winding plus the ESC's resistance; a quadratic in w,
-  // solved in closed form with the load factors held (they depend on w only through the inflow;
-  // the power train re-evaluates them every step). Below the voltage that overcomes the no-load
-  // current the rotor stands.
+  /// Steady operating point: the motor torque Kt (I - I0) balances the propeller's torque, with
+  /// I = (duty V - Kt w) / R and R the winding plus the ESC's resistance; a quadratic in w,
+  /// solved in closed form with the load factors held (they depend on w only through the inflow;
+  /// the power train re-evaluates them every step). Below the voltage that overcomes the no-load
+  /// current the rotor stands.
   ChainState steady(const ChainInput& input, const RotorLoad& load = {}) const;
 
-  // Electrical state at a given rotor speed (during a speed change the motor current is set by
-  // the voltage balance alone, its electrical time constant being microseconds).
+  /// Electrical state at a given rotor speed (during a speed change the motor current is set by
+  /// the voltage balance alone, its electrical time constant being microseconds).
   ChainState atSpeed(const ChainInput& input, double omega_rad_s, const RotorLoad& load = {}) const;
 
-  // Time constant of the rotor speed's first-order response at `omega_rad_s`: rotor and propeller
-  // inertia over the derivative of the net torque, J / (Kt^2 / R + 2 kQ w).
+  /// Time constant of the rotor speed's first-order response at `omega_rad_s`: rotor and propeller
+  /// inertia over the derivative of the net torque, J / (Kt^2 / R + 2 kQ w).
   double speedTimeConstantS(const ChainInput& input, double omega_rad_s, const RotorLoad& load = {}) const;
 
-  // Steady operating point of `motors` identical chains at the same duty fed from a source of EMF
-  // `source_v` through `path_ohm`: the ESC voltage solves V = source_v - path_ohm * motors * I(V)
-  // (bisection; I(V) rises with V, so the root is unique). `esc_voltage_v` receives V.
+  /// Steady operating point of `motors` identical chains at the same duty fed from a source of EMF
+  /// `source_v` through `path_ohm`: the ESC voltage solves V = source_v - path_ohm * motors * I(V)
+  /// (bisection; I(V) rises with V, so the root is unique). `esc_voltage_v` receives V.
   ChainState steadyFromSource(const ChainInput& input, double source_v, double path_ohm, int motors,
                               double* esc_voltage_v) const;
 
-  // Deceleration of a rotor whose ESC is off: propeller drag and no-load friction only.
+  /// Deceleration of a rotor whose ESC is off: propeller drag and no-load friction only.
   double coastingDecelerationRadS2(const ChainInput& input, double omega_rad_s, const RotorLoad& load = {}) const;
 
   const ChainParams& params() const { return params_; }
@@ -78,7 +78,7 @@ class PropulsionChain {
   double inertiaKgM2() const { return params_.motor.rotor_inertia_kg_m2 + params_.propeller.inertia_kg_m2; }
 
  private:
-  // kQ of Q = kQ w^2, with the load's torque factor.
+  /// kQ of Q = kQ w^2, with the load's torque factor.
   double torqueFactor(double air_density_kg_m3, const RotorLoad& load) const;
 
   ChainParams params_;

@@ -5,54 +5,55 @@
 namespace propulsion_estimator {
 namespace sim {
 
-// The propeller as a rotor of blade-element momentum theory (BEMT) with uniform inflow, so that
-// its thrust AND torque at a given rotor speed follow the air flowing through the disc. The
-// static coefficients CT, CQ of the parameter file hold in still air out of ground effect (the
-// bench); a climb, a descent or the ground change the inflow, and with it both.
-//
-// References: J. G. Leishman, Principles of Helicopter Aerodynamics, 2nd ed., Cambridge 2006
-// (ch. 2: momentum theory in hover, climb and descent, the induced power factor, the measured
-// induced velocity in the vortex ring state; ch. 3: blade element theory); I. C. Cheeseman and
-// W. E. Bennett, The effect of the ground on a helicopter rotor in forward flight, ARC R&M 3021, 1955.
-//
-// Rotorcraft notation: Omega rotor speed, R radius, A = pi R^2; C_T = T / (rho A (Omega R)^2),
-// C_Q = Q / (rho A (Omega R)^2 R) (= C_P); from the propeller's CT, CQ (n in rev/s, D = 2 R)
-// C_T = 4 CT / pi^3 and C_Q = 8 CQ / pi^3. Inflows are velocities over Omega R.
-//
-// Blade element theory, linear twist, uniform inflow lambda = lambda_c + lambda_i:
-//   C_T = k (Theta - lambda)                k = sigma a / 4, Theta = 2 theta_75 / 3
-//   C_Q = lambda C_T + C_Q0                  induced and climb torque, plus profile torque sigma Cd0 / 8
-// with sigma the solidity, a the sections' lift slope, theta_75 the blade angle at 3/4 radius
-// from the zero-lift line, lambda_c = axial speed / (Omega R) (climb > 0). The induced inflow from
-// momentum theory at the rotor's own thrust, lambda_h = sqrt(C_T / 2) (ideal hover) and
-// x = lambda_c / lambda_h:
-//   climb              x >= 0       lambda_i = kappa G lambda_h (sqrt(x^2 / 4 + 1) - x / 2)
-//   vortex ring state  -2 <= x < 0  lambda_i = G lambda_h (kappa + k1 x + k2 x^2 + k3 x^3 + k4 x^4)
-//                                   (Leishman's curve through the measurements: k1 = -1.125,
-//                                   k2 = -1.372, k3 = -1.718, k4 = -0.655; momentum theory fails here)
-//   windmill brake     x < -2       lambda_i = kappa G lambda_h (-x / 2 - sqrt(x^2 / 4 - 1))
-// kappa = kInducedPowerFactor (propeller.h), G <= 1 the ground's share
-// of the induced inflow at the same thrust (Cheeseman-Bennett's image rotor: G = 1 - (R / 4z)^2).
-// Calibration: in hover out of ground effect (lambda_c = 0, G = 1) the rotor makes exactly CT and
-// CQ, which fixes Theta = C_T0 / k + kappa lambda_h0 and C_Q0 = C_Q - kappa lambda_h0 C_T0.
-//
-// What follows, at fixed rotor speed: thrust and torque depend on the effects only through the
-// total inflow lambda, C_T ~ Theta - lambda and C_Q - C_Q0 = k lambda (Theta - lambda).
-//   - Ground effect lowers lambda: thrust rises, but by less than Cheeseman-Bennett's factor (an
-//     equal-power ratio): with lambda_0 = kappa lambda_h0 and G = 1 - eps, to first order
-//     dT / T = lambda_0 / (Theta - lambda_0 / 2) eps (0.68 eps for the thesis' DJI 9443).
-//   - A climb raises lambda: dT / T = -(1 - kappa / 2) / (Theta - lambda_0 / 2) lambda_c (-4.8 %
-//     per m/s at the thesis quad's hover speed); a slow descent changes it little (the induced
-//     inflow rises almost as fast as the rotor descends), a faster one raises the thrust.
-//   - The torque changes by k (Theta - 2 lambda) dlambda: the induced torque is largest at
-//     lambda = Theta / 2, where the blade's angle of attack at 3/4 radius equals the inflow angle.
-//     Rotors at the usual blade loading (C_T / sigma ~ 0.1) hover near it, so at fixed speed their
-//     torque hardly moves (DJI 9443: Theta = 0.164, 2 lambda_0 = 0.166; +0.01 % in ground effect at
-//     z = 2R, -0.3 % at 1 m/s of climb). The induced torque falls in ground effect at the same
-//     THRUST (P_i ~ G): the flight controller, holding the thrust, slows the rotor and draws less
-//     current.
-// Left out: edgewise flow (forward flight, translational lift), the blades' drag rising with
-// their angle of attack, windmilling (the torque is held at 0 or above, the thrust too).
+/// @file
+/// The propeller as a rotor of blade-element momentum theory (BEMT) with uniform inflow, so that
+/// its thrust AND torque at a given rotor speed follow the air flowing through the disc. The
+/// static coefficients CT, CQ of the parameter file hold in still air out of ground effect (the
+/// bench); a climb, a descent or the ground change the inflow, and with it both.
+///
+/// References: J. G. Leishman, Principles of Helicopter Aerodynamics, 2nd ed., Cambridge 2006
+/// (ch. 2: momentum theory in hover, climb and descent, the induced power factor, the measured
+/// induced velocity in the vortex ring state; ch. 3: blade element theory); I. C. Cheeseman and
+/// W. E. Bennett, The effect of the ground on a helicopter rotor in forward flight, ARC R&M 3021, 1955.
+///
+/// Rotorcraft notation: Omega rotor speed, R radius, A = pi R^2; C_T = T / (rho A (Omega R)^2),
+/// C_Q = Q / (rho A (Omega R)^2 R) (= C_P); from the propeller's CT, CQ (n in rev/s, D = 2 R)
+/// C_T = 4 CT / pi^3 and C_Q = 8 CQ / pi^3. Inflows are velocities over Omega R.
+///
+/// Blade element theory, linear twist, uniform inflow lambda = lambda_c + lambda_i:
+///   C_T = k (Theta - lambda)                k = sigma a / 4, Theta = 2 theta_75 / 3
+///   C_Q = lambda C_T + C_Q0                  induced and climb torque, plus profile torque sigma Cd0 / 8
+/// with sigma the solidity, a the sections' lift slope, theta_75 the blade angle at 3/4 radius
+/// from the zero-lift line, lambda_c = axial speed / (Omega R) (climb > 0). The induced inflow from
+/// momentum theory at the rotor's own thrust, lambda_h = sqrt(C_T / 2) (ideal hover) and
+/// x = lambda_c / lambda_h:
+///   climb              x >= 0       lambda_i = kappa G lambda_h (sqrt(x^2 / 4 + 1) - x / 2)
+///   vortex ring state  -2 <= x < 0  lambda_i = G lambda_h (kappa + k1 x + k2 x^2 + k3 x^3 + k4 x^4)
+///                                   (Leishman's curve through the measurements: k1 = -1.125,
+///                                   k2 = -1.372, k3 = -1.718, k4 = -0.655; momentum theory fails here)
+///   windmill brake     x < -2       lambda_i = kappa G lambda_h (-x / 2 - sqrt(x^2 / 4 - 1))
+/// kappa = kInducedPowerFactor (propeller.h), G <= 1 the ground's share
+/// of the induced inflow at the same thrust (Cheeseman-Bennett's image rotor: G = 1 - (R / 4z)^2).
+/// Calibration: in hover out of ground effect (lambda_c = 0, G = 1) the rotor makes exactly CT and
+/// CQ, which fixes Theta = C_T0 / k + kappa lambda_h0 and C_Q0 = C_Q - kappa lambda_h0 C_T0.
+///
+/// What follows, at fixed rotor speed: thrust and torque depend on the effects only through the
+/// total inflow lambda, C_T ~ Theta - lambda and C_Q - C_Q0 = k lambda (Theta - lambda).
+///   - Ground effect lowers lambda: thrust rises, but by less than Cheeseman-Bennett's factor (an
+///     equal-power ratio): with lambda_0 = kappa lambda_h0 and G = 1 - eps, to first order
+///     dT / T = lambda_0 / (Theta - lambda_0 / 2) eps (0.68 eps for the thesis' DJI 9443).
+///   - A climb raises lambda: dT / T = -(1 - kappa / 2) / (Theta - lambda_0 / 2) lambda_c (-4.8 %
+///     per m/s at the thesis quad's hover speed); a slow descent changes it little (the induced
+///     inflow rises almost as fast as the rotor descends), a faster one raises the thrust.
+///   - The torque changes by k (Theta - 2 lambda) dlambda: the induced torque is largest at
+///     lambda = Theta / 2, where the blade's angle of attack at 3/4 radius equals the inflow angle.
+///     Rotors at the usual blade loading (C_T / sigma ~ 0.1) hover near it, so at fixed speed their
+///     torque hardly moves (DJI 9443: Theta = 0.164, 2 lambda_0 = 0.166; +0.01 % in ground effect at
+///     z = 2R, -0.3 % at 1 m/s of climb). The induced torque falls in ground effect at the same
+///     THRUST (P_i ~ G): the flight controller, holding the thrust, slows the rotor and draws less
+///     current.
+/// Left out: edgewise flow (forward flight, translational lift), the blades' drag rising with
+/// their angle of attack, windmilling (the torque is held at 0 or above, the thrust too).
 
 /// Lift slope a of the blade sections, per radian (2 pi x 0.91, the value Leishman uses for
 /// rotor blades; thin cambered sections at propeller Reynolds numbers are near it).
@@ -60,8 +61,8 @@ constexpr double kBladeLiftSlopePerRad = 5.73;
 
 /// What a rotor's disc sees besides its own wake.
 struct RotorInflow {
-  double axial_speed_m_s = 0.0;      // the disc's speed along its thrust axis, climb positive
-  double ground_inflow_ratio = 1.0;  // G: induced inflow in ground effect over that out of it, same thrust
+  double axial_speed_m_s = 0.0;      ///< the disc's speed along its thrust axis, climb positive
+  double ground_inflow_ratio = 1.0;  ///< G: induced inflow in ground effect over that out of it, same thrust
 
   bool still() const { return axial_speed_m_s == 0.0 && ground_inflow_ratio == 1.0; }
 };
@@ -77,12 +78,12 @@ struct RotorLoad {
 /// rotor speed in rad/s relative to its static coefficients, for a given inflow.
 class RotorAerodynamics {
  public:
-  // Calibrates the blade model on the propeller's static CT and CQ; validates it (FieldError
-  // propeller.*, including a torque coefficient below the induced torque of its thrust).
+  /// Calibrates the blade model on the propeller's static CT and CQ; validates it (FieldError
+  /// propeller.*, including a torque coefficient below the induced torque of its thrust).
   explicit RotorAerodynamics(const PropellerParams& propeller);
 
-  // Thrust and torque factors at `omega_rad_s` in `inflow`; exactly {1, 1} in still air out of
-  // ground effect, and for a rotor at rest.
+  /// Thrust and torque factors at `omega_rad_s` in `inflow`; exactly {1, 1} in still air out of
+  /// ground effect, and for a rotor at rest.
   RotorLoad load(double omega_rad_s, const RotorInflow& inflow) const;
 
  private:

@@ -22,19 +22,19 @@ namespace sim {
 struct SimEffects {
   std::optional<double> supply_resistance_ohm;
   std::optional<AirConditions> air;
-  std::optional<double> ground_effect_strength;  // 1 = Cheeseman-Bennett's image rotor
+  std::optional<double> ground_effect_strength;  ///< 1 = Cheeseman-Bennett's image rotor
   std::optional<double> thrust_loss_fraction;
-  std::optional<double> motor_thermal_resistance_c_per_w;  // the motors' cooling during the run
-  std::optional<double> climb_inflow_strength;             // 1 = the rotor's axial speed, all of it
+  std::optional<double> motor_thermal_resistance_c_per_w;  ///< the motors' cooling during the run
+  std::optional<double> climb_inflow_strength;             ///< 1 = the rotor's axial speed, all of it
   std::optional<double> esc_offset_us;
 
-  // Throws FieldError "<effect>.<parameter>" for a value outside its physical range.
+  /// Throws FieldError "<effect>.<parameter>" for a value outside its physical range.
   void validate() const;
-  // The effects a thrust stand shows (supply_resistance, air_density, motor_temperature); the others
-  // need an airframe, the ground or flight, or (esc_offset) are by definition the bench's reference.
+  /// The effects a thrust stand shows (supply_resistance, air_density, motor_temperature); the others
+  /// need an airframe, the ground or flight, or (esc_offset) are by definition the bench's reference.
   SimEffects onTheBench() const;
-  // "none", or the effects that are on with their parameters, e.g.
-  // "ground_effect(strength=1) thrust_loss(fraction=0.05)"; for logs and bag metadata.
+  /// "none", or the effects that are on with their parameters, e.g.
+  /// "ground_effect(strength=1) thrust_loss(fraction=0.05)"; for logs and bag metadata.
   std::string summary() const;
 };
 

@@ -12,12 +12,12 @@ namespace sim {
 
 /// The thrust stand the chain was characterised on.
 struct BenchParams {
-  AirConditions air;              // also the air of flights unless the air_density effect is on
-  double sweep_pwm_min_us = 0.0;  // the PWM range of this ESC's sweeps (thesis 4.1 and ch. 7)
+  AirConditions air;              ///< also the air of flights unless the air_density effect is on
+  double sweep_pwm_min_us = 0.0;  ///< the PWM range of this ESC's sweeps (thesis 4.1 and ch. 7)
   double sweep_pwm_max_us = 0.0;
   BenchSensors sensors;
 
-  void validate() const;  // FieldError bench.*
+  void validate() const;  ///< FieldError bench.*
 };
 
 /// Everything the simulator needs about one propulsion combination: the contents of a
@@ -26,7 +26,7 @@ struct SimParams {
   ChainParams chain;
   LipoBatteryParams battery;
   BenchParams bench;
-  std::string source;  // file it came from, for messages and metadata
+  std::string source;  ///< file it came from, for messages and metadata
 
   void validate() const;
 };

@@ -13,9 +13,9 @@ namespace sim {
 
 /// The thesis' three bench experiments (chapter 4).
 enum class BenchExperimentKind {
-  kPwmSweep,        // 4.1: PWM stepped up at constant voltage, regulated supply, one sweep per voltage
-  kDischarge,       // 4.2: constant PWM from a full battery down to the cut-off voltage, one run per PWM
-  kConstantThrust,  // 4.3: thrust held by the bench's controller while the battery discharges, one run per thrust
+  kPwmSweep,        ///< 4.1: PWM stepped up at constant voltage, regulated supply, one sweep per voltage
+  kDischarge,       ///< 4.2: constant PWM from a full battery down to the cut-off voltage, one run per PWM
+  kConstantThrust,  ///< 4.3: thrust held by the bench's controller while the battery discharges, one run per thrust
 };
 /// "pwm_sweep", "discharge", "constant_thrust".
 const char* benchExperimentName(BenchExperimentKind kind);
@@ -24,25 +24,25 @@ const char* benchExperimentName(BenchExperimentKind kind);
 /// at, and its timing in s.
 struct BenchExperiment {
   BenchExperimentKind kind = BenchExperimentKind::kPwmSweep;
-  // pwm_sweep
+  /// pwm_sweep
   std::vector<double> voltages_v;
   double pwm_start_us = 0.0;
   double pwm_end_us = 0.0;
   double pwm_step_us = 0.0;
-  double step_duration_s = 1.0;  // dwell at each pulse width; the row is logged at its end
-  // discharge
+  double step_duration_s = 1.0;  ///< dwell at each pulse width; the row is logged at its end
+  /// discharge
   std::vector<double> pwms_us;
-  // constant_thrust
+  /// constant_thrust
   std::vector<double> thrusts_n;
-  double thrust_gain_us_per_n_s = 80.0;  // the bench controller's integral gain on the load cell
-  // discharge and constant_thrust
+  double thrust_gain_us_per_n_s = 80.0;  ///< the bench controller's integral gain on the load cell
+  /// discharge and constant_thrust
   double sample_interval_s = 1.0;
-  double cutoff_voltage_v = 10.5;  // a run stops when the measured voltage falls below it
-  double initial_soc = 1.0;        // each run starts on a battery charged to this
+  double cutoff_voltage_v = 10.5;  ///< a run stops when the measured voltage falls below it
+  double initial_soc = 1.0;        ///< each run starts on a battery charged to this
 
-  // Throws FieldError naming the member (e.g. "pwm_step_us") for an empty or inconsistent setup,
-  // a sweep of more than 1e6 pulse widths, or a dwell or sample interval outside 0.02..3600 s
-  // (one integration step to an hour).
+  /// Throws FieldError naming the member (e.g. "pwm_step_us") for an empty or inconsistent setup,
+  /// a sweep of more than 1e6 pulse widths, or a dwell or sample interval outside 0.02..3600 s
+  /// (one integration step to an hour).
   void validate() const;
 };
 
