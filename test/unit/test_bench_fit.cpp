@@ -347,12 +347,14 @@ TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedThe
   // a1_7's own top-of-sweep droop (0.18 V under its median), and the report says where it lies.
   EXPECT_NEAR(fit.model.domain().voltage_min_v, 7.14, 0.01);
   const std::string report = pe::fitting::fitReportMarkdown(fit, "a1.yaml");
-  EXPECT_NE(report.find("- Domain: PWM 1050 to 2000 us, voltage 7.14 to 11.09 V: the bounding box of all rows at their "
-                        "measured voltage, supply droop and sag included (7.14 V was logged at 2000 us, 11.09 V at "
-                        "1050 us; the voltage levels are centred at 7.32 to 10.99 V); outside it the model will "
-                        "clamp.\n"),
+  EXPECT_NE(report.find("- Domain: PWM 1050 to 2000 us, voltage 7.14 to 11.09 V at the rows' measured voltage (7.14 V "
+                        "was logged at 2000 us, 11.09 V at 1050 us). Within that box the model's domain is only what "
+                        "the bench covered, the voltage range logged at each PWM level (interpolated between levels); "
+                        "outside it the model will clamp, and the estimator flags the sample.\n"),
             std::string::npos)
       << report;
+  // At 2000 us the bench went from a1_7's droop to a1_11's collapse, nowhere else.
+  EXPECT_NE(report.find("| 2000 | 7.14 to 8.30 |\n"), std::string::npos) << report;
   // At the collapsed point the surface matches the measured 377 gf at 8.30 V.
   EXPECT_NEAR(fit.model.evaluateRaw(pe::Output::kThrust, 2000.0, 8.304389367087847), 376.9, 6.0);
 }
