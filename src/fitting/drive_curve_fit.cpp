@@ -13,8 +13,8 @@ namespace fitting {
 namespace {
 
 constexpr std::size_t kSearchRows = 20000;
-constexpr int kCoarseSteps = 41;
-constexpr int kFineSteps = 21;
+constexpr int kCoarseSteps = 25;
+constexpr int kFineSteps = 9;
 constexpr int kMaxTerms = DriveCurve::kMaxDegree + 1;
 
 using Matrix = Eigen::MatrixXd;
@@ -81,48 +81,71 @@ std::optional<Vector> nonNegativeSolve(const Moments& m) {
   return best;
 }
 
-// Moments per (group, band) cell of some rows at one x0.
+// Moments of the full basis t^0..t^3 per (group, band) cell of some rows at one x0; any degree's
+// moments are their leading block.
 class CellMoments {
  public:
-  CellMoments(const FitRows& rows, const std::vector<std::size_t>& picked, int terms, double x0, double scale)
-      : groups_(rows.groups), cells_(rows.groups * kVoltageBandCount, Moments(terms)), total_(terms) {
-    double t_pow[kMaxTerms];
+  CellMoments(const FitRows& rows, const std::vector<std::size_t>& picked, double x0, double scale)
+      : groups_(rows.groups), cells_(rows.groups * kVoltageBandCount) {
+    const double factor = 1e-3 / scale;
     for (std::size_t r : picked) {
-      const double t = std::max(0.0, rows.pwm_us[r] - x0) * 1e-3 * rows.voltage_v[r] / scale;
-      t_pow[0] = 1.0;
-      for (int k = 1; k < terms; ++k) t_pow[k] = t_pow[k - 1] * t;
-      Moments& cell = cells_[rows.group[r] * kVoltageBandCount + static_cast<int>(rows.band[r])];
-      for (int i = 0; i < terms; ++i) {
-        cell.xty(i) += t_pow[i] * rows.y[r];
-        for (int j = 0; j <= i; ++j) cell.xtx(i, j) += t_pow[i] * t_pow[j];
-      }
-      cell.yty += rows.y[r] * rows.y[r];
+      const double t = std::max(0.0, rows.pwm_us[r] - x0) * factor * rows.voltage_v[r];
+      const double y = rows.y[r];
+      const double t2 = t * t, t3 = t2 * t;
+      Raw& cell = cells_[rows.group[r] * kVoltageBandCount + static_cast<int>(rows.band[r])];
+      cell.power[1] += t;
+      cell.power[2] += t2;
+      cell.power[3] += t3;
+      cell.power[4] += t2 * t2;
+      cell.power[5] += t3 * t2;
+      cell.power[6] += t3 * t3;
+      cell.ty[0] += y;
+      cell.ty[1] += t * y;
+      cell.ty[2] += t2 * y;
+      cell.ty[3] += t3 * y;
+      cell.yty += y * y;
       ++cell.n;
     }
-    for (Moments& cell : cells_) {
-      cell.xtx.template triangularView<Eigen::StrictlyUpper>() = cell.xtx.transpose();
-      total_ += cell;
-    }
   }
-  const Moments& total() const { return total_; }
-  Moments group(int g) const { return sum([&](int cg, int) { return cg == g; }); }
-  Moments band(VoltageBand b) const { return sum([&](int, int cb) { return cb == static_cast<int>(b); }); }
-  int groups() const { return groups_; }
+  Moments total(int terms) const { return sum(terms, [](int, int) { return true; }); }
+  Moments group(int terms, int g) const { return sum(terms, [&](int cg, int) { return cg == g; }); }
+  Moments band(int terms, VoltageBand b) const {
+    return sum(terms, [&](int, int cb) { return cb == static_cast<int>(b); });
+  }
 
  private:
+  // Sums of t^k (k = 0..6) and t^k y (k = 0..3): X'X of the basis t^i is the Hankel matrix of them.
+  struct Raw {
+    double power[2 * kMaxTerms - 1] = {};
+    double ty[kMaxTerms] = {};
+    double yty = 0.0;
+    long n = 0;
+  };
   template <typename Pick>
-  Moments sum(Pick pick) const {
-    Moments m(static_cast<int>(total_.xty.size()));
+  Moments sum(int terms, Pick pick) const {
+    Raw raw;
     for (int g = 0; g < groups_; ++g) {
       for (int b = 0; b < kVoltageBandCount; ++b) {
-        if (pick(g, b)) m += cells_[g * kVoltageBandCount + b];
+        if (!pick(g, b)) continue;
+        const Raw& cell = cells_[g * kVoltageBandCount + b];
+        for (int k = 1; k < 2 * kMaxTerms - 1; ++k) raw.power[k] += cell.power[k];
+        for (int k = 0; k < kMaxTerms; ++k) raw.ty[k] += cell.ty[k];
+        raw.yty += cell.yty;
+        raw.n += cell.n;
       }
     }
+    Moments m(terms);
+    raw.power[0] = static_cast<double>(raw.n);
+    for (int i = 0; i < terms; ++i) {
+      m.xty(i) = raw.ty[i];
+      for (int j = 0; j < terms; ++j) m.xtx(i, j) = raw.power[i + j];
+    }
+    m.yty = raw.yty;
+    m.n = raw.n;
     return m;
   }
   int groups_;
-  std::vector<Moments> cells_;
-  Moments total_;
+  std::vector<Raw> cells_;
 };
 
 // One x0 of the grid: its scale and moments.
@@ -159,7 +182,7 @@ double heldOutRmse(const std::vector<Trial>& trials, Held held, int terms) {
   const auto [trial, beta] = bestTrial(
       trials,
       [&](const Trial& t) {
-        Moments m = t.cells.total();
+        Moments m = t.cells.total(terms);
         m -= held(t);
         return m;
       },
@@ -169,68 +192,93 @@ double heldOutRmse(const std::vector<Trial>& trials, Held held, int terms) {
   return out.n > 0 ? std::sqrt(out.sse(beta) / static_cast<double>(out.n)) : kNaN;
 }
 
-std::vector<Trial> trialsOnGrid(const FitRows& rows, const std::vector<std::size_t>& picked, int terms, double from,
-                                double to, int steps, double v_max, double pwm_max) {
+// The curve of coefficients fitted on t = u / scale.
+DriveCurve toCurve(double x0, double scale, const Vector& beta) {
+  std::vector<double> coefficients(beta.size());
+  for (int k = 0; k < beta.size(); ++k) coefficients[k] = beta(k) / std::pow(scale, k);
+  return DriveCurve(x0, std::move(coefficients));
+}
+
+std::vector<Trial> trialsOnGrid(const FitRows& rows, const std::vector<std::size_t>& picked, double from, double to,
+                                int steps, double v_max, double pwm_max) {
   std::vector<Trial> trials;
   for (int s = 0; s < steps; ++s) {
     const double x0 = from + (to - from) * s / (steps - 1);
     const double scale = std::max(1e-9, (pwm_max - x0) * 1e-3 * v_max);
-    trials.push_back({x0, scale, CellMoments(rows, picked, terms, x0, scale)});
+    trials.push_back({x0, scale, CellMoments(rows, picked, x0, scale)});
   }
   return trials;
 }
 
+// Held-out RMSE pooled over the groups, as GroupedLeastSquares::heldOutRmse pools them.
+double pooledHeldOutRmse(const std::vector<Trial>& trials, int groups, int terms) {
+  double sse = 0.0;
+  long n = 0;
+  for (int g = 0; g < groups; ++g) {
+    const long held = trials.front().cells.group(terms, g).n;
+    if (held == 0) continue;
+    const double rmse = heldOutRmse(trials, [g, terms](const Trial& t) { return t.cells.group(terms, g); }, terms);
+    if (std::isnan(rmse)) return kNaN;
+    sse += rmse * rmse * static_cast<double>(held);
+    n += held;
+  }
+  return n > 0 ? std::sqrt(sse / static_cast<double>(n)) : kNaN;
+}
+
+// One degree's fit: x0 refined around the coarse grid's best, scores, and the final coefficients
+// on `all` rows.
+std::optional<DriveCurveFit> fitDegree(const FitRows& rows, const std::vector<std::size_t>& picked,
+                                       const std::vector<Trial>& coarse, double step, double v_max, double pwm_max,
+                                       int degree) {
+  const int terms = degree + 1;
+  const auto [coarse_best, unused] = bestTrial(coarse, [terms](const Trial& t) { return t.cells.total(terms); }, terms);
+  if (!coarse_best) return std::nullopt;
+  const std::vector<Trial> trials =
+      trialsOnGrid(rows, picked, coarse_best->x0 - step, coarse_best->x0 + step, kFineSteps, v_max, pwm_max);
+  DriveCurveFit fit;
+  fit.held_out_rmse = pooledHeldOutRmse(trials, rows.groups, terms);
+  fit.low_band_rmse =
+      heldOutRmse(trials, [terms](const Trial& t) { return t.cells.band(terms, VoltageBand::kLow); }, terms);
+  fit.high_band_rmse =
+      heldOutRmse(trials, [terms](const Trial& t) { return t.cells.band(terms, VoltageBand::kHigh); }, terms);
+  // The final curve: x0 chosen on all (sampled) rows, coefficients on all rows.
+  const auto [chosen, sampled_beta] =
+      bestTrial(trials, [terms](const Trial& t) { return t.cells.total(terms); }, terms);
+  if (!chosen) return std::nullopt;
+  fit.curve = toCurve(chosen->x0, chosen->scale, sampled_beta);
+  fit.scale = chosen->scale;
+  return fit;
+}
+
 }  // namespace
 
-std::optional<DriveCurveFit> fitDriveCurve(const FitRows& rows, int degree) {
-  const int terms = degree + 1;
-  if (rows.size() < static_cast<std::size_t>(terms + 2)) return std::nullopt;
+std::vector<std::optional<DriveCurveFit>> fitDriveCurves(const FitRows& rows) {
+  std::vector<std::optional<DriveCurveFit>> fits(DriveCurve::kMaxDegree);
+  if (rows.size() < 4) return fits;
   const std::size_t stride = std::max<std::size_t>(1, rows.size() / kSearchRows);
   std::vector<std::size_t> picked;
   for (std::size_t r = 0; r < rows.size(); r += stride) picked.push_back(r);
   const auto [pwm_lo, pwm_hi] = std::minmax_element(rows.pwm_us.begin(), rows.pwm_us.end());
   const double v_max = *std::max_element(rows.voltage_v.begin(), rows.voltage_v.end());
   const double span = *pwm_hi - *pwm_lo;
-  // x0 from half a span below the bench's lowest PWM to its middle; then finer around the best.
-  std::vector<Trial> coarse =
-      trialsOnGrid(rows, picked, terms, *pwm_lo - 0.5 * span, *pwm_lo + 0.5 * span, kCoarseSteps, v_max, *pwm_hi);
-  const auto [coarse_best, unused] = bestTrial(coarse, [](const Trial& t) { return t.cells.total(); }, terms);
-  if (!coarse_best) return std::nullopt;
+  // x0 from half a span below the bench's lowest PWM to its middle; then finer around each degree's best.
+  const std::vector<Trial> coarse =
+      trialsOnGrid(rows, picked, *pwm_lo - 0.5 * span, *pwm_lo + 0.5 * span, kCoarseSteps, v_max, *pwm_hi);
   const double step = span / (kCoarseSteps - 1);
-  const std::vector<Trial> trials = trialsOnGrid(rows, picked, terms, coarse_best->x0 - step, coarse_best->x0 + step,
-                                                 kFineSteps, v_max, *pwm_hi);
-
-  DriveCurveFit fit;
-  // Pooled over the groups, as GroupedLeastSquares::heldOutRmse pools them.
-  double sse = 0.0;
-  long n = 0;
-  for (int g = 0; g < rows.groups; ++g) {
-    const double rmse = heldOutRmse(trials, [g](const Trial& t) { return t.cells.group(g); }, terms);
-    const long held = trials.front().cells.group(g).n;
-    if (held == 0) continue;
-    if (std::isnan(rmse)) {
-      sse = kNaN;
-      break;
-    }
-    sse += rmse * rmse * static_cast<double>(held);
-    n += held;
+  for (int degree = 1; degree <= DriveCurve::kMaxDegree; ++degree) {
+    if (rows.size() < static_cast<std::size_t>(degree + 3)) continue;
+    fits[degree - 1] = fitDegree(rows, picked, coarse, step, v_max, *pwm_hi, degree);
   }
-  fit.held_out_rmse = n > 0 ? std::sqrt(sse / static_cast<double>(n)) : kNaN;
-  fit.low_band_rmse = heldOutRmse(trials, [](const Trial& t) { return t.cells.band(VoltageBand::kLow); }, terms);
-  fit.high_band_rmse = heldOutRmse(trials, [](const Trial& t) { return t.cells.band(VoltageBand::kHigh); }, terms);
+  return fits;
+}
 
-  // The final curve: x0 chosen on all (sampled) rows, coefficients on all rows.
-  const auto [chosen, sampled_beta] = bestTrial(trials, [](const Trial& t) { return t.cells.total(); }, terms);
-  if (!chosen) return std::nullopt;
+DriveCurve refitOnAllRows(const FitRows& rows, const DriveCurveFit& fit) {
   std::vector<std::size_t> all(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) all[r] = r;
-  const CellMoments full(rows, stride == 1 ? picked : all, terms, chosen->x0, chosen->scale);
-  const std::optional<Vector> beta = stride == 1 ? std::optional<Vector>(sampled_beta) : nonNegativeSolve(full.total());
-  if (!beta) return std::nullopt;
-  std::vector<double> coefficients(terms);
-  for (int k = 0; k < terms; ++k) coefficients[k] = (*beta)(k) / std::pow(chosen->scale, k);
-  fit.curve = DriveCurve(chosen->x0, std::move(coefficients));
-  return fit;
+  const double x0 = fit.curve.pwmZeroUs();
+  const std::optional<Vector> beta =
+      nonNegativeSolve(CellMoments(rows, all, x0, fit.scale).total(fit.curve.degree() + 1));
+  return beta ? toCurve(x0, fit.scale, *beta) : fit.curve;
 }
 
 }  // namespace fitting

@@ -95,17 +95,19 @@ int unphysicalCells(const ResponseSurface& surface, const ModelDomain& domain, d
 
 std::vector<SurfaceCandidate> driveCurveCandidates(const FitRows& rows) {
   std::vector<SurfaceCandidate> candidates;
+  const std::vector<std::optional<DriveCurveFit>> fits = fitDriveCurves(rows);
   for (int degree = 1; degree <= DriveCurve::kMaxDegree; ++degree) {
     SurfaceCandidate candidate;
     candidate.score.basis = "drive_curve";
     candidate.score.pwm_degree = candidate.score.voltage_degree = degree;
     candidate.score.terms = degree + 2;
     candidate.score.held_out_rmse = candidate.score.low_band_rmse = candidate.score.high_band_rmse = kNaN;
-    if (const std::optional<DriveCurveFit> fit = fitDriveCurve(rows, degree)) {
+    if (const std::optional<DriveCurveFit>& fit = fits[degree - 1]) {
       candidate.score.held_out_rmse = fit->held_out_rmse;
       candidate.score.low_band_rmse = fit->low_band_rmse;
       candidate.score.high_band_rmse = fit->high_band_rmse;
       candidate.surface = ResponseSurface(fit->curve);
+      candidate.drive_fit = fit;
     }
     candidates.push_back(std::move(candidate));
   }

@@ -238,6 +238,9 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const SurfaceC
   std::vector<std::vector<double>> gx(cells), gv(cells), gy(cells);
   FitRows rows;
   rows.groups = groups;
+  for (auto* column : {&rows.pwm_us, &rows.voltage_v, &rows.y}) column->reserve(data.rows());
+  rows.group.reserve(data.rows());
+  rows.band.reserve(data.rows());
   LevelPresence voltage_presence(groups, static_cast<int>(data.voltage_levels.size()));
   LevelPresence pwm_presence(groups, static_cast<int>(data.pwm_levels.size()));
   std::vector<bool> logs_with_output(data.sources.size(), false);
@@ -310,6 +313,9 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const SurfaceC
   if (std::isfinite(chosen->score.high_band_rmse)) quality.high_band_rmse = chosen->score.high_band_rmse;
   std::vector<CandidateScore> scores;
   for (const SurfaceCandidate& c : candidates) scores.push_back(c.score);
+  if (chosen->drive_fit && rows.size() > 0) {
+    return {ResponseSurface(refitOnAllRows(rows, *chosen->drive_fit)), quality, std::move(scores)};
+  }
   return {*chosen->surface, quality, std::move(scores)};
 }
 
@@ -420,11 +426,13 @@ class OutputPlan {
     definitions_[index(output)].note = why;
   }
 
-  // R^2 of a surface against the rows that have the output.
+  // R^2 of a surface against the rows that have the output (an even subsample of at most 100000
+  // rows: enough to tell a column that fits from one that does not).
   double explained(const ResponseSurface& surface, const std::vector<double>& y) const {
+    const std::size_t stride = std::max<std::size_t>(1, data_.rows() / 100000);
     double sse = 0.0, sum = 0.0, sum2 = 0.0;
     long n = 0;
-    for (std::size_t row = 0; row < data_.rows(); ++row) {
+    for (std::size_t row = 0; row < data_.rows(); row += stride) {
       if (std::isnan(y[row])) continue;
       const double error = surface.evaluate(data_.pwm_us[row], data_.voltage_v[row]) - y[row];
       sse += error * error;

@@ -31,13 +31,19 @@ struct DriveCurveFit {
   double held_out_rmse = 0.0;
   double low_band_rmse = 0.0;
   double high_band_rmse = 0.0;
+  double scale = 1.0;  ///< of u in the fit's basis t = u / scale (keeps the normal equations sane)
 };
 
-/// Fits y = sum_k c_k u^k, k <= degree (1..DriveCurve::kMaxDegree), c_k >= 0, u = max(0, PWM - x0) /
-/// 1000 * V, with x0 the PWM at which the rotor starts, chosen on each fold's training rows by least
-/// squares over a grid (on an even subsample of at most 20000 rows; the final coefficients use all
-/// rows). nullopt when the rows cannot determine the curve (fewer rows than coefficients + 2).
-std::optional<DriveCurveFit> fitDriveCurve(const FitRows& rows, int degree);
+/// Fits y = sum_k c_k u^k for each degree 1..DriveCurve::kMaxDegree (element degree - 1), c_k >= 0,
+/// u = max(0, PWM - x0) / 1000 * V, with x0 the PWM at which the rotor starts, chosen on each fold's
+/// training rows by least squares over a grid, on an even subsample of at most 20000 rows (refit
+/// the chosen one with refitOnAllRows). nullopt for a degree the rows cannot determine (fewer rows
+/// than coefficients + 2).
+std::vector<std::optional<DriveCurveFit>> fitDriveCurves(const FitRows& rows);
+
+/// `fit`'s curve with its x0 and the coefficients refitted (c_k >= 0) on every row; `fit`'s own
+/// curve when that fit is singular. Throws nothing.
+DriveCurve refitOnAllRows(const FitRows& rows, const DriveCurveFit& fit);
 
 }  // namespace fitting
 }  // namespace propulsion_estimator

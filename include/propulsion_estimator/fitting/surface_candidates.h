@@ -15,6 +15,7 @@ namespace fitting {
 struct SurfaceCandidate {
   CandidateScore score;
   std::optional<ResponseSurface> surface;
+  std::optional<DriveCurveFit> drive_fit;  ///< a drive curve's fit on the subsample, to refit on all rows
 };
 
 /// The band of each voltage level (VoltageBands says which), and the bands' voltages in `bands`.
