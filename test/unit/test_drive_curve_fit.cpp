@@ -256,3 +256,16 @@ TEST(DriveCurveFit, OldModelFilesWithoutACoveredRegionKeepTheBoxAsTheirDomain) {
   EXPECT_TRUE(thesis.domain().contains(1900.0, 10.5));
   EXPECT_FALSE(thesis.domain().contains(1900.0, 10.4));
 }
+
+TEST(DriveCurveFit, TheBundledThesisModelBendsAgainstPhysicsOnlyAtIdleAndByGrams) {
+  // config/e300_dji2212_dji9443.yaml is the thesis' published surfaces (no bench log to refit it
+  // from). Its thrust, poly21, falls as the voltage rises below 1215 us (p01 + p11 x < 0), by at
+  // most 3.6 g over the domain's 2.1 V: the first grid column only. Everything else rises.
+  const pe::PropulsionModel thesis = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
+  const pe::ModelDomain& domain = thesis.domain();
+  EXPECT_EQ(pe::fitting::unphysicalCells(*thesis.output(pe::Output::kThrust).surface, domain, 1e-9), 14);
+  EXPECT_EQ(pe::fitting::unphysicalCells(*thesis.output(pe::Output::kThrust).surface, domain, 3.6), 0);
+  for (pe::Output output : {pe::Output::kCurrent, pe::Output::kPower, pe::Output::kRpm}) {
+    EXPECT_EQ(pe::fitting::unphysicalCells(*thesis.output(output).surface, domain, 1e-9), 0) << pe::outputName(output);
+  }
+}
