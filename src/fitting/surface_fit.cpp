@@ -298,7 +298,7 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const SurfaceC
     if (determined) {
       throw DataError("cannot fit " + name + ": no candidate surface rises with PWM and voltage over the bench's " +
                       "domain (does column " + sampleColumn(output) + " fall as PWM rises? a sensor read with the " +
-                      "wrong sign)");
+                      "wrong sign)" + (output == Output::kThrust ? "" : "; leave it out with --without " + name));
     }
     throw DataError("cannot fit " + name + ": no candidate surface is determined with one group held out (" +
                     grouping.description + ")");

@@ -7,7 +7,7 @@
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/model/model_yaml.h"
-#include "propulsion_estimator/estimation/tare_file.h"
+#include "propulsion_estimator/onboard/tare_file.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 
 namespace propulsion_estimator {

@@ -6,7 +6,7 @@
 #include <topic_tools/shape_shifter.h>
 
 #include "propulsion_estimator/common/input_error.h"
-#include "propulsion_estimator/estimation/tare_file.h"
+#include "propulsion_estimator/onboard/tare_file.h"
 #include "propulsion_estimator/logs/bench_csv.h"
 #include "propulsion_estimator/logs/csv_text.h"
 #include "propulsion_estimator/logs/flight_manifest.h"

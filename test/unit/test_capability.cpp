@@ -9,7 +9,7 @@
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/units.h"
-#include "propulsion_estimator/estimation/capability.h"
+#include "propulsion_estimator/onboard/capability.h"
 #include "propulsion_estimator/estimation/motor_health.h"
 #include "propulsion_estimator/model/hover_endurance.h"
 #include "propulsion_estimator/model/model_yaml.h"

@@ -8,7 +8,8 @@
 #include "estimator_fixture.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/text_file.h"
-#include "propulsion_estimator/estimation/health_summary.h"
+#include "propulsion_estimator/estimation/tare_verdict.h"
+#include "propulsion_estimator/onboard/health_summary.h"
 
 namespace {
 

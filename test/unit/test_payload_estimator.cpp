@@ -11,7 +11,7 @@
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/estimation/payload_estimator.h"
-#include "propulsion_estimator/estimation/tare_file.h"
+#include "propulsion_estimator/onboard/tare_file.h"
 
 namespace pe = propulsion_estimator;
 

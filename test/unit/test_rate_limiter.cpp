@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "propulsion_estimator/estimation/rate_limiter.h"
+#include "propulsion_estimator/onboard/rate_limiter.h"
 
 namespace pe = propulsion_estimator;
 

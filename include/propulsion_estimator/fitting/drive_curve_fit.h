@@ -9,17 +9,24 @@ namespace propulsion_estimator {
 namespace fitting {
 
 /// Where a row sits for the extrapolation scores: the lowest voltage band, the highest, or between.
-enum class VoltageBand { kMiddle = 0, kLow = 1, kHigh = 2 };
+enum class VoltageBand {
+  kMiddle = 0,  ///< neither band
+  kLow = 1,     ///< the lowest voltage levels
+  kHigh = 2,    ///< the highest voltage levels
+};
 constexpr int kVoltageBandCount = 3;  ///< number of VoltageBand values
 static_assert(static_cast<int>(VoltageBand::kHigh) + 1 == kVoltageBandCount, "kVoltageBandCount");
 
 /// The rows of one output, each with its cross-validation group and voltage band.
 struct FitRows {
-  std::vector<double> pwm_us, voltage_v, y;
-  std::vector<int> group;
-  std::vector<VoltageBand> band;
-  int groups = 0;
+  std::vector<double> pwm_us;     ///< per row, us
+  std::vector<double> voltage_v;  ///< per row, V
+  std::vector<double> y;          ///< per row, the output in its file unit
+  std::vector<int> group;         ///< per row, its cross-validation group (0..groups - 1)
+  std::vector<VoltageBand> band;  ///< per row, its voltage band
+  int groups = 0;                 ///< number of cross-validation groups
 
+  /// Number of rows.
   std::size_t size() const { return y.size(); }
 };
 
@@ -27,10 +34,10 @@ struct FitRows {
 /// the output's unit: one group out at a time (pooled), the lowest voltage band fitted on the rest,
 /// the highest likewise. NaN where a fold leaves too few rows or drive levels.
 struct DriveCurveFit {
-  DriveCurve curve{0.0, {0.0}};
-  double held_out_rmse = 0.0;
-  double low_band_rmse = 0.0;
-  double high_band_rmse = 0.0;
+  DriveCurve curve{0.0, {0.0}};  ///< fitted on the subsample
+  double held_out_rmse = 0.0;    ///< one group out at a time, pooled
+  double low_band_rmse = 0.0;    ///< the lowest voltage band, fitted on the rest
+  double high_band_rmse = 0.0;   ///< the highest voltage band, fitted on the rest
   double scale = 1.0;  ///< of u in the fit's basis t = u / scale (keeps the normal equations sane)
 };
 

@@ -12,12 +12,13 @@ namespace fitting {
 /// How rows are grouped for cross-validation, resolved from FitOptions::grouping: the kind used
 /// (never kAuto), each row's group, the groups' names for messages and a description for reports.
 struct Grouping {
-  FitGrouping kind = FitGrouping::kVoltageLevel;
-  bool chosen_automatically = false;
-  std::vector<int> group_of_row;
+  FitGrouping kind = FitGrouping::kVoltageLevel;  ///< never kAuto
+  bool chosen_automatically = false;              ///< kAuto was asked for
+  std::vector<int> group_of_row;                  ///< per row of the dataset
   std::vector<std::string> group_names;  ///< "the 11.06 V level", "the 1500 us level", a log's source
-  std::string description;
+  std::string description;  ///< "leave one voltage level out (8 levels, ...)"
 
+  /// Number of groups.
   int groups() const { return static_cast<int>(group_names.size()); }
 };
 

@@ -13,8 +13,8 @@ namespace fitting {
 
 /// A candidate surface with its scores; no surface when the data cannot determine it.
 struct SurfaceCandidate {
-  CandidateScore score;
-  std::optional<ResponseSurface> surface;
+  CandidateScore score;                    ///< its scores
+  std::optional<ResponseSurface> surface;  ///< fitted on all rows (a drive curve: on the subsample)
   std::optional<DriveCurveFit> drive_fit;  ///< a drive curve's fit on the subsample, to refit on all rows
 };
 

@@ -12,7 +12,7 @@ namespace propulsion_estimator {
 /// everywhere, in the bench's domain and beyond it.
 class DriveCurve {
  public:
-  static constexpr int kMaxDegree = 3;
+  static constexpr int kMaxDegree = 3;  ///< highest power of u
 
   /// Throws std::invalid_argument for no coefficient, more than kMaxDegree + 1, or a pwm_zero_us
   /// or coefficient that is not finite.
@@ -23,8 +23,10 @@ class DriveCurve {
   /// The output in its file unit.
   double evaluate(double pwm_us, double voltage_v) const;
 
+  /// x0, us: the PWM at which the rotor starts.
   double pwmZeroUs() const { return pwm_zero_us_; }
   const std::vector<double>& coefficients() const { return coefficients_; }  ///< c_0, c_1, ...
+  /// The highest power of u.
   int degree() const { return static_cast<int>(coefficients_.size()) - 1; }
 
  private:

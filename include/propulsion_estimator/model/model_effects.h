@@ -32,10 +32,10 @@ enum class Signal { kNone, kBatteryCurrent, kAirDensity, kHeight, kMotorTemperat
 /// The fitted parameter of an effect: its key in model files and reports (with the unit in the
 /// name), the range a real vehicle can show, and the value at which the effect vanishes.
 struct ParameterSpec {
-  const char* key;
-  double min;
-  double max;
-  double neutral;
+  const char* key;  ///< the parameter's key, with its unit ("resistance_ohm")
+  double min;  ///< lowest plausible value
+  double max;  ///< highest plausible value
+  double neutral;  ///< the value at which the effect vanishes
 };
 
 /// "supply_resistance", "air_density", ...: the names in model files, reports and on the command line.
@@ -52,9 +52,9 @@ const ParameterSpec& parameterSpec(Kind kind);
 /// The signals the corrections read, in SI units; NaN where a signal is missing or stale.
 struct Signals {
   double battery_current_a = kNaN;  ///< drawn by all ESCs, >= 0
-  double air_density_kg_m3 = kNaN;
+  double air_density_kg_m3 = kNaN;  ///< kg/m^3
   double height_m = kNaN;  ///< of the height reference above the ground
-  double motor_temperature_c = kNaN;
+  double motor_temperature_c = kNaN;  ///< deg C
   double vertical_speed_m_s = kNaN;  ///< up positive (REP-103)
 
   /// The value of `signal`; NaN for Signal::kNone.
@@ -63,8 +63,8 @@ struct Signals {
 
 /// The inputs the ESCs really see.
 struct Inputs {
-  double pwm_us = 0.0;
-  double voltage_v = 0.0;
+  double pwm_us = 0.0;  ///< us, after the ESC offset
+  double voltage_v = 0.0;  ///< V at the ESCs, after the supply resistance
 };
 
 /// A model's `effects:` section: each effect is off unless set. The corrections, in the order
@@ -79,23 +79,23 @@ struct Inputs {
 ///   motor_temperature  T *= 1 + per_c * (T_motor - reference_c)
 ///   climb_inflow       T *= 1 - per_m_s * max(vertical speed, 0)   (climbs; a slow descent barely changes thrust)
 struct ModelEffects {
-  std::optional<double> esc_offset_us;
-  std::optional<double> supply_resistance_ohm;
-  std::optional<double> air_density_exponent;
+  std::optional<double> esc_offset_us;  ///< us
+  std::optional<double> supply_resistance_ohm;  ///< ohm
+  std::optional<double> air_density_exponent;  ///< dimensionless
   double bench_air_density_kg_m3 = kNaN;  ///< reference of air_density
-  std::optional<double> ground_effect_coefficient_m2;
+  std::optional<double> ground_effect_coefficient_m2;  ///< m^2
   double rotor_height_m = 0.0;  ///< rotor discs above the height reference, for ground_effect
-  std::optional<double> thrust_loss_fraction;
-  std::optional<double> motor_temperature_per_c;
+  std::optional<double> thrust_loss_fraction;  ///< share of the thrust lost, 0..1
+  std::optional<double> motor_temperature_per_c;  ///< share of the thrust per deg C
   double motor_reference_c = kNaN;  ///< reference of motor_temperature
-  std::optional<double> climb_inflow_per_m_s;
+  std::optional<double> climb_inflow_per_m_s;  ///< share of the thrust per m/s of climb
 
-  bool has(Kind kind) const;
+  bool has(Kind kind) const;  ///< whether `kind` is on
   /// The fitted parameter of `kind` (nullopt when the effect is off).
   std::optional<double> parameter(Kind kind) const;
   /// Switches `kind` on with `value` (or off with nullopt).
   void setParameter(Kind kind, std::optional<double> value);
-  bool empty() const;
+  bool empty() const;  ///< whether no effect is on
 
   /// Throws FieldError "effects.<name>.<key>" for a parameter outside its ParameterSpec range or
   /// non-finite, or a reference (bench air density, motor reference temperature) missing while the

@@ -19,11 +19,11 @@
 #include "propulsion_estimator/MotorEstimates.h"
 #include "propulsion_estimator/PayloadEstimate.h"
 #include "propulsion_estimator/PropulsionTotals.h"
-#include "propulsion_estimator/estimation/capability.h"
+#include "propulsion_estimator/onboard/capability.h"
 #include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/estimation/motor_health.h"
-#include "propulsion_estimator/estimation/health_summary.h"
-#include "propulsion_estimator/estimation/rate_limiter.h"
+#include "propulsion_estimator/onboard/health_summary.h"
+#include "propulsion_estimator/onboard/rate_limiter.h"
 #include "propulsion_estimator/ros/estimator_params.h"
 #include "propulsion_estimator/ros/inline_callback_queue.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
@@ -31,7 +31,7 @@
 namespace propulsion_estimator {
 
 /// estimator_node: adapts topics, services and diagnostics to the core Estimator. Nothing is
-/// computed or judged here: the diagnostics copy the health summary (estimation/health_summary.h).
+/// computed or judged here: the diagnostics copy the health summary (onboard/health_summary.h).
 ///
 /// Threads: the subscriptions' callbacks run in roscpp's network thread as each message is read
 /// (InlineCallbackQueue); timers and services run in the thread that spins the global queue

@@ -1,4 +1,4 @@
-#include "propulsion_estimator/estimation/health_summary.h"
+#include "propulsion_estimator/onboard/health_summary.h"
 
 #include <cmath>
 #include <sstream>
@@ -221,21 +221,6 @@ HealthStatus judgeEffects(const Estimator& estimator, const HealthSnapshot& befo
     status.message = "applied: " + applied;
   }
   return status;
-}
-
-TareVerdict judgeTare(const HoverVerdict& hover, const MassEstimate& estimate, const EstimatorConfig& config) {
-  TareVerdict verdict;
-  if (!hover.hovering) {
-    verdict.refusal = "refused: " + describe(hover, config.hover);
-  } else if (std::isnan(estimate.total_mass_kg)) {
-    std::ostringstream message;
-    message << "refused: hovering, but only " << estimate.window_samples << " of the " << config.payload.min_samples
-            << " hover samples needed are averaged yet";
-    verdict.refusal = message.str();
-  } else {
-    verdict.accepted = true;
-  }
-  return verdict;
 }
 
 }  // namespace propulsion_estimator

@@ -1,4 +1,4 @@
-#include "propulsion_estimator/estimation/capability.h"
+#include "propulsion_estimator/onboard/capability.h"
 
 #include <cmath>
 

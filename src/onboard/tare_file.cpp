@@ -1,4 +1,4 @@
-#include "propulsion_estimator/estimation/tare_file.h"
+#include "propulsion_estimator/onboard/tare_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
