@@ -1,9 +1,10 @@
 # Included by CMakeLists.txt, in the catkin build and in the ROS-free one (PE_ROS_FREE, make arm64).
 # --- Modules: one folder, one library. src/<module>/ mirrors include/propulsion_estimator/<module>/,
-# and test/unit/test_layering.cpp checks which module may include which, and that a module links only
+# and test/unit/package/test_layering.cpp checks which module may include which, and that a module links only
 # modules it may include. -----------------------------------------------------------------------------
 function(pe_module name folder)
-  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/${folder}/*.cpp")
+  # A module's own sub-folders too (model/effects: one file per effect); sim/ holds only modules.
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/${folder}/*.cpp")
   list(FILTER sources EXCLUDE REGEX "_main\\.cpp$")
   add_library(${name} ${sources})
   target_include_directories(${name} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)

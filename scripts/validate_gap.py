@@ -30,30 +30,38 @@ import sys
 
 import yaml
 
-EFFECTS = ["supply_resistance", "air_density", "ground_effect", "thrust_loss", "motor_temperature",
-           "climb_inflow", "esc_offset"]
+
+
+def known_effects(bin_dir):
+    """The effects the diagnosis knows, from its registry (diagnose_gap --list-effects)."""
+    out = subprocess.run([os.path.join(bin_dir, "diagnose_gap"), "--list-effects"], check=True,
+                         stdout=subprocess.PIPE, universal_newlines=True).stdout
+    return [line.strip() for line in out.splitlines() if line.strip()]
+
+
+def draw_air(rng):
+    """A high or hot site: 1500-3000 m, or a hot day at sea level."""
+    if rng.random() < 0.7:
+        return {"temperature_c": round(rng.uniform(5, 30), 1), "pressure_pa": round(rng.uniform(70000, 85000))}
+    return {"temperature_c": round(rng.uniform(35, 45), 1), "pressure_pa": round(rng.uniform(99000, 102000))}
+
+
+# How the simulator injects each effect the diagnosis knows: its effects-file entry at a realistic
+# random magnitude. The names come from diagnose_gap --list-effects; one missing here is refused.
+SIMULATED = {
+    "supply_resistance": lambda rng: {"ohm": round(rng.uniform(0.03, 0.08), 4)},
+    "air_density": draw_air,
+    "ground_effect": lambda rng: {"strength": round(rng.uniform(0.8, 1.6), 3)},
+    "thrust_loss": lambda rng: {"fraction": round(rng.uniform(0.03, 0.10), 4)},
+    "motor_temperature": lambda rng: {"thermal_resistance_c_per_w": round(rng.uniform(4.0, 10.0), 2)},
+    "climb_inflow": lambda rng: {"strength": round(rng.uniform(0.8, 1.6), 3)},
+    "esc_offset": lambda rng: {"us": round(rng.choice([-1, 1]) * rng.uniform(15, 40), 1)},
+}
 
 
 def draw_effect(name, rng):
     """The simulator's effects-file entry for one effect at a realistic random magnitude."""
-    if name == "supply_resistance":
-        return {"ohm": round(rng.uniform(0.03, 0.08), 4)}
-    if name == "air_density":
-        # A high or hot site: 1500-3000 m, or a hot day at sea level.
-        if rng.random() < 0.7:
-            return {"temperature_c": round(rng.uniform(5, 30), 1), "pressure_pa": round(rng.uniform(70000, 85000))}
-        return {"temperature_c": round(rng.uniform(35, 45), 1), "pressure_pa": round(rng.uniform(99000, 102000))}
-    if name == "ground_effect":
-        return {"strength": round(rng.uniform(0.8, 1.6), 3)}
-    if name == "thrust_loss":
-        return {"fraction": round(rng.uniform(0.03, 0.10), 4)}
-    if name == "motor_temperature":
-        return {"thermal_resistance_c_per_w": round(rng.uniform(4.0, 10.0), 2)}
-    if name == "climb_inflow":
-        return {"strength": round(rng.uniform(0.8, 1.6), 3)}
-    if name == "esc_offset":
-        return {"us": round(rng.choice([-1, 1]) * rng.uniform(15, 40), 1)}
-    raise ValueError(name)
+    return SIMULATED[name](rng)
 
 
 def effects_file(effects, rng):
@@ -201,9 +209,12 @@ def score(case, report):
     return row
 
 
-def make_cases(count, seed, quick):
+def make_cases(count, seed, quick, effects):
     rng = random.Random(seed)
-    kinds = ([("null", [])] + [(name, [name]) for name in EFFECTS]
+    missing = [name for name in effects if name not in SIMULATED]
+    if missing:
+        raise SystemExit("validate_gap.py: the simulator injects no %s: add it to draw_effect" % ", ".join(missing))
+    kinds = ([("null", [])] + [(name, [name]) for name in effects]
              + [("two", None), ("weak_propeller", []), ("cg_offset", [])])
     if quick:
         kinds = [("null", []), ("thrust_loss", ["thrust_loss"]), ("supply_resistance", ["supply_resistance"]),
@@ -255,7 +266,7 @@ def main():
     parser.add_argument("--markdown")
     parser.add_argument("--junit")
     args = parser.parse_args()
-    cases = make_cases(args.cases, args.seed, args.quick)
+    cases = make_cases(args.cases, args.seed, args.quick, known_effects(args.bin))
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         rows = list(pool.map(lambda case: run_case(case, args), cases))
     errors = [r for r in rows if "error" in r]

@@ -22,6 +22,7 @@
 #include "propulsion_estimator/logs/bench_log_reader.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
 #include "propulsion_estimator/logs/flight_streams.h"
+#include "propulsion_estimator/model/effect_description.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "flight_log_formats.h"
@@ -279,6 +280,14 @@ int runDiagnoseGap(int argc, char** argv) {
   app.add_option("--rotor-diameter-m", args.rotor_diameter_m, "Rotor diameter (ground effect within two diameters)")
       ->capture_default_str();
   app.add_option("--jobs", args.jobs, "Logs read in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+  // Before the required options are checked: a tool or test builds its list of effects from this.
+  app.add_flag_callback(
+      "--list-effects",
+      [] {
+        for (const std::string& name : effects::allNames()) std::printf("%s\n", name.c_str());
+        throw CLI::Success();
+      },
+      "Print the names of the effects the diagnosis knows, one per line, and exit");
   args.plotter.addTo(app);
   for (int i = 0; i < argc; ++i) args.command += (i == 0 ? "diagnose_gap" : " " + std::string(argv[i]));
   return runToolCommand("diagnose_gap", app, argc, argv, [&] { return diagnose(args); });

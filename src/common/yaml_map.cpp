@@ -133,13 +133,17 @@ void YamlMap::fail(const std::string& key, const std::string& problem) const {
 }
 
 void YamlMap::allowOnly(std::initializer_list<const char*> allowed) const {
+  allowOnly(std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+void YamlMap::allowOnly(const std::vector<std::string>& allowed) const {
   for (const auto& entry : node_) {
     const std::string key = entry.first.as<std::string>();
     bool known = false;
     std::string list;
-    for (const char* name : allowed) {
+    for (const std::string& name : allowed) {
       known = known || key == name;
-      list += (list.empty() ? "" : ", ") + std::string(name);
+      list += (list.empty() ? "" : ", ") + name;
     }
     if (!known) {
       throw ConfigError(source_ + ":" + lineOf(entry.first) + ": " + keyPath(key) + ": unknown key (allowed: " + list +

@@ -30,6 +30,10 @@ class Cursor {
   std::size_t next_ = 0;
 };
 
+// The signals a block averages besides PWM, voltage, current and IMU, in Accumulator::signal.
+enum class BlockSignal { kHeight, kVerticalSpeed, kAirDensity, kMotorTemperature, kCount };
+constexpr int kBlockSignalCount = static_cast<int>(BlockSignal::kCount);
+
 // Sums of one block; a signal is averaged only when every frame of the block had it.
 struct Accumulator {
   int frames = 0;
@@ -38,20 +42,48 @@ struct Accumulator {
   std::array<double, kMaxMotors> axis{};
   double voltage = 0.0, current = 0.0, force_up = 0.0, time = 0.0;
   int current_frames = 0, imu_frames = 0;
-  std::array<double, 5> signal{};
-  std::array<int, 5> signal_frames{};
+  std::array<double, kBlockSignalCount> signal{};
+  std::array<int, kBlockSignalCount> signal_frames{};
   double altitude = 0.0;
   int altitude_frames = 0;
   double collective_min = std::numeric_limits<double>::infinity();
   double collective_max = -std::numeric_limits<double>::infinity();
 
-  void addSignal(int k, double value) {
+  void addSignal(BlockSignal which, double value) {
+    const int k = static_cast<int>(which);
     if (std::isfinite(value)) {
       signal[k] += value;
       ++signal_frames[k];
     }
   }
-  double meanSignal(int k) const { return signal_frames[k] == frames ? signal[k] / frames : kNaN; }
+  double meanSignal(BlockSignal which) const {
+    const int k = static_cast<int>(which);
+    return signal_frames[k] == frames ? signal[k] / frames : kNaN;
+  }
+
+  // The block's averages (without its place in the flight, mass and truth); frames > 0.
+  Block average(int motors, double hover_max_vertical_speed_m_s) const {
+    Block block;
+    block.time_s = time / frames;
+    for (int k = 0; k < motors; ++k) {
+      block.pwm_us[k] = pwm[k] / frames;
+      block.axis_up[k] = axis[k] / frames;
+    }
+    block.voltage_v = voltage / frames;
+    block.current_a = current_frames == frames ? current / frames : kNaN;
+    block.specific_force_up_m_s2 = imu_frames == frames ? force_up / frames : kStandardGravity;
+    block.signals.height_m = meanSignal(BlockSignal::kHeight);
+    block.signals.vertical_speed_m_s = meanSignal(BlockSignal::kVerticalSpeed);
+    block.signals.air_density_kg_m3 = meanSignal(BlockSignal::kAirDensity);
+    block.signals.motor_temperature_c = meanSignal(BlockSignal::kMotorTemperature);
+    block.signals.battery_current_a = block.current_a;
+    block.altitude_m = altitude_frames == frames ? altitude / frames : kNaN;
+    const double vertical_speed = block.signals.vertical_speed_m_s;
+    block.hover = !std::isfinite(vertical_speed) || std::abs(vertical_speed) < hover_max_vertical_speed_m_s;
+    block.pwm_change_us = collective_max - collective_min;
+    block.accel_up_m_s2 = block.specific_force_up_m_s2 - kStandardGravity;
+    return block;
+  }
 };
 
 // Discharge current is positive: MAVROS on PX4 negates it, so the flight's own median decides.
@@ -126,31 +158,13 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
         acc = Accumulator();
         return;
       }
-      Block block;
+      Block block = acc.average(motors, config.hover_max_vertical_speed_m_s);
       block.flight = flight_index;
       block.segment = s;
       block.group = group + block_in_segment / blocks_per_group;
-      block.time_s = acc.time / acc.frames;
       block.flight_time_s = block.time_s - flight_start;
       block.mass_kg = segment.mass_kg;
-      for (int k = 0; k < motors; ++k) {
-        block.pwm_us[k] = acc.pwm[k] / acc.frames;
-        block.axis_up[k] = acc.axis[k] / acc.frames;
-      }
-      block.voltage_v = acc.voltage / acc.frames;
-      block.current_a = acc.current_frames == acc.frames ? acc.current / acc.frames : kNaN;
-      block.specific_force_up_m_s2 = acc.imu_frames == acc.frames ? acc.force_up / acc.frames : kStandardGravity;
       block.truth_n = block.mass_kg * block.specific_force_up_m_s2;
-      block.signals.height_m = acc.meanSignal(0);
-      block.signals.vertical_speed_m_s = acc.meanSignal(1);
-      block.signals.air_density_kg_m3 = acc.meanSignal(2);
-      block.signals.motor_temperature_c = acc.meanSignal(3);
-      block.signals.battery_current_a = block.current_a;
-      block.altitude_m = acc.altitude_frames == acc.frames ? acc.altitude / acc.frames : kNaN;
-      const double vertical_speed = block.signals.vertical_speed_m_s;
-      block.hover = !std::isfinite(vertical_speed) || std::abs(vertical_speed) < config.hover_max_vertical_speed_m_s;
-      block.pwm_change_us = acc.collective_max - acc.collective_min;
-      block.accel_up_m_s2 = block.specific_force_up_m_s2 - kStandardGravity;
       if (acc.imu_frames == acc.frames || !result.has_imu) {
         result.blocks.push_back(block);
         ++usable;
@@ -192,14 +206,14 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
         ++acc.imu_frames;
       }
       const ScalarReading* r = range.at(frame.time_s, timeout);
-      acc.addSignal(0, r ? r->value : kNaN);
+      acc.addSignal(BlockSignal::kHeight, r ? r->value : kNaN);
       const ScalarReading* v = speed.at(frame.time_s, timeout);
-      acc.addSignal(1, v ? v->value : kNaN);
+      acc.addSignal(BlockSignal::kVerticalSpeed, v ? v->value : kNaN);
       const ScalarReading* p = pressure.at(frame.time_s, timeout);
       const ScalarReading* a = air.at(frame.time_s, timeout);
-      acc.addSignal(2, p && a ? airDensity(p->value, a->value) : kNaN);
+      acc.addSignal(BlockSignal::kAirDensity, p && a ? airDensity(p->value, a->value) : kNaN);
       const ScalarReading* m = motor_temperature.at(frame.time_s, timeout);
-      acc.addSignal(3, m ? m->value : kNaN);
+      acc.addSignal(BlockSignal::kMotorTemperature, m ? m->value : kNaN);
       const ScalarReading* z = altitude.at(frame.time_s, timeout);
       if (z) {
         acc.altitude += z->value;

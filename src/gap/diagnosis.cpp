@@ -4,7 +4,6 @@
 #include <cmath>
 #include <functional>
 #include <map>
-#include <random>
 #include <set>
 
 #include "propulsion_estimator/common/data_error.h"
@@ -13,7 +12,9 @@
 #include "propulsion_estimator/gap/blocks.h"
 #include "propulsion_estimator/gap/effect_fit.h"
 #include "propulsion_estimator/gap/motor_balance.h"
+#include "propulsion_estimator/gap/sign_flip_test.h"
 #include "propulsion_estimator/gap/thrust_views.h"
+#include "propulsion_estimator/model/effect_description.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -32,161 +33,6 @@ struct HeldOutPrediction {
   std::vector<double> view_n;   // PWM view, N
 };
 
-ResidualStats statsOf(const std::vector<const Block*>& blocks, const std::function<double(const Block&)>& view) {
-  ResidualStats stats;
-  double sum_rel = 0.0, sum_rel2 = 0.0, sum_n = 0.0, sum_n2 = 0.0;
-  for (const Block* block : blocks) {
-    const double v = view(*block);
-    if (!std::isfinite(v)) continue;
-    const double diff = v - block->truth_n;
-    const double rel = diff / block->truth_n;
-    sum_rel += rel;
-    sum_rel2 += rel * rel;
-    sum_n += diff;
-    sum_n2 += diff * diff;
-    ++stats.samples;
-  }
-  if (stats.samples == 0) return stats;
-  stats.bias_pct = 100.0 * sum_rel / stats.samples;
-  stats.rmse_pct = 100.0 * std::sqrt(sum_rel2 / stats.samples);
-  stats.bias_n = sum_n / stats.samples;
-  stats.rmse_n = std::sqrt(sum_n2 / stats.samples);
-  return stats;
-}
-
-// The payload error the node would make, tare on the lightest segment: RMS over the heavier
-// segments of (estimated payload - weighed payload) / weighed payload, %.
-double payloadErrorPct(const std::vector<Block>& blocks, const std::vector<double>& view_n) {
-  std::map<std::pair<int, int>, std::pair<double, int>> estimate;
-  std::map<std::pair<int, int>, double> weighed;
-  for (std::size_t i = 0; i < blocks.size(); ++i) {
-    if (!std::isfinite(view_n[i])) continue;
-    const auto key = std::make_pair(blocks[i].flight, blocks[i].segment);
-    estimate[key].first += view_n[i] / blocks[i].specific_force_up_m_s2;
-    estimate[key].second += 1;
-    weighed[key] = blocks[i].mass_kg;
-  }
-  if (estimate.size() < 2) return kNaN;
-  auto lightest = weighed.begin();
-  for (auto it = weighed.begin(); it != weighed.end(); ++it) {
-    if (it->second < lightest->second) lightest = it;
-  }
-  const double tare = estimate[lightest->first].first / estimate[lightest->first].second;
-  double sum = 0.0;
-  int count = 0;
-  for (const auto& [key, mass] : weighed) {
-    const double payload = mass - lightest->second;
-    if (payload < 0.02) continue;
-    const double estimated = estimate[key].first / estimate[key].second - tare;
-    const double error = (estimated - payload) / payload;
-    sum += error * error;
-    ++count;
-  }
-  return count > 0 ? 100.0 * std::sqrt(sum / count) : kNaN;
-}
-
-// The breakdown of the PWM view's residual by a quantity, over fixed edges.
-Breakdown breakdownBy(const std::string& name, const std::vector<const Block*>& blocks,
-                      const std::function<double(const Block&)>& value, const std::vector<double>& edges,
-                      const std::function<double(const Block&)>& view, const char* format, const std::string& needs) {
-  Breakdown breakdown;
-  breakdown.name = name;
-  std::vector<std::vector<const Block*>> bins(edges.size() + 1);
-  int with_value = 0;
-  for (const Block* block : blocks) {
-    const double v = value(*block);
-    if (!std::isfinite(v)) continue;
-    ++with_value;
-    const std::size_t bin = std::upper_bound(edges.begin(), edges.end(), v) - edges.begin();
-    bins[bin].push_back(block);
-  }
-  if (with_value == 0) {
-    breakdown.unavailable = "needs " + needs;
-    return breakdown;
-  }
-  for (std::size_t b = 0; b < bins.size(); ++b) {
-    if (bins[b].empty()) continue;
-    std::string label;
-    if (b == 0) {
-      label = "< " + formatPrintf(format, edges.front());
-    } else if (b == edges.size()) {
-      label = ">= " + formatPrintf(format, edges.back());
-    } else {
-      label = formatPrintf(format, edges[b - 1]) + " - " + formatPrintf(format, edges[b]);
-    }
-    breakdown.bins.push_back({label, statsOf(bins[b], view)});
-  }
-  return breakdown;
-}
-
-// Edges at quantiles of a quantity, rounded to the format, for quantities without natural bins.
-std::vector<double> quantileEdges(const std::vector<const Block*>& blocks, const std::function<double(const Block&)>& value,
-                                  int bins) {
-  std::vector<double> values;
-  for (const Block* block : blocks) {
-    const double v = value(*block);
-    if (std::isfinite(v)) values.push_back(v);
-  }
-  std::vector<double> edges;
-  if (values.size() < 2) return {0.0};
-  std::sort(values.begin(), values.end());
-  for (int i = 1; i < bins; ++i) {
-    const double edge = values[values.size() * i / bins];
-    if (edges.empty() || edge > edges.back() + 1e-9) edges.push_back(edge);
-  }
-  if (edges.empty()) edges.push_back(values.front());
-  return edges;
-}
-
-// Sign-flip permutation test on the per-group improvements: the share of random sign patterns
-// whose mean improvement reaches the observed one.
-double signFlipPValue(const std::vector<double>& improvements, int permutations, unsigned seed) {
-  if (improvements.empty()) return 1.0;
-  double observed = 0.0;
-  for (double d : improvements) observed += d;
-  if (observed <= 0.0) return 1.0;
-  std::mt19937_64 rng(seed);
-  std::bernoulli_distribution flip(0.5);
-  int reached = 0;
-  for (int i = 0; i < permutations; ++i) {
-    double sum = 0.0;
-    for (double d : improvements) sum += flip(rng) ? d : -d;
-    if (sum >= observed) ++reached;
-  }
-  return (1.0 + reached) / (1.0 + permutations);
-}
-
-// The load cell against the model at each row's pulse width and voltage.
-BenchGap benchGap(const ThrustViews& views, const BenchLog& log) {
-  BenchGap gap;
-  gap.source = log.source;
-  const std::vector<double>& pwm = log.column(BenchColumn::kPwm);
-  const std::vector<double>& voltage = log.column(BenchColumn::kVoltage);
-  const std::vector<double>& thrust = log.column(BenchColumn::kThrust);
-  const double max_thrust = thrust.empty() ? 0.0 : *std::max_element(thrust.begin(), thrust.end());
-  // Rows as blocks: the truth is the load cell, the "view" the model at the logged inputs.
-  std::vector<Block> rows;
-  for (std::size_t i = 0; i < log.rows(); ++i) {
-    if (!(thrust[i] > 0.05 * max_thrust)) continue;
-    Block row;
-    row.pwm_us[0] = pwm[i];
-    row.voltage_v = voltage[i];
-    row.truth_n = thrust[i];
-    row.signals.motor_temperature_c = log.has(BenchColumn::kMotorTemp) ? log.column(BenchColumn::kMotorTemp)[i] : kNaN;
-    rows.push_back(row);
-  }
-  std::vector<const Block*> all;
-  for (const Block& row : rows) all.push_back(&row);
-  const auto view = [&](const Block& row) { return views.motorThrust(row.pwm_us[0], row.voltage_v); };
-  gap.stats = statsOf(all, view);
-  gap.where.push_back(breakdownBy("voltage_v", all, [](const Block& row) { return row.voltage_v; },
-                                  quantileEdges(all, [](const Block& row) { return row.voltage_v; }, 4), view, "%.2f",
-                                  "a voltage column"));
-  const auto temperature = [](const Block& row) { return row.signals.motor_temperature_c; };
-  gap.where.push_back(breakdownBy("motor_temperature_c", all, temperature, quantileEdges(all, temperature, 4), view,
-                                  "%.1f", "a motor_temp_c column"));
-  return gap;
-}
 
 class Diagnoser {
  public:
@@ -208,6 +54,23 @@ class Diagnoser {
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
   double suspectThrustFactor(int motor, double yaw_gap) const;
   double currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const;
+  double meanPwm(const Block& block) const;
+
+  // The steps of run(), in order.
+  void reportGap(const BlockView& pwm_view, const std::vector<double>& plain_view);
+  void reportWhere(const BlockView& pwm_view);
+  Breakdown operatingRegion(const BlockView& pwm_view) const;
+  Breakdown phase(const BlockView& pwm_view) const;
+  void balanceMotors();
+  HeldOutPrediction selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
+  // One round of the forward selection: every candidate tried on top of `selected`; the best one
+  // that passes every test, or nullopt.
+  std::optional<Kind> selectionRound(int round, const std::vector<Kind>& selected, const HeldOutPrediction& current,
+                                     std::map<Kind, EffectResult>* results, HeldOutPrediction* best_prediction);
+  void reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected);
+  void reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after);
+  std::string method() const;
+  void collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view);
 
   const PropulsionModel& model_;
   const Vehicle& vehicle_;
@@ -283,31 +146,25 @@ effects::ModelEffects Diagnoser::references() const {
 }
 
 std::string Diagnoser::testability(Kind kind) const {
-  const effects::Signal signal = effects::requiredSignal(kind);
-  if (kind == Kind::kAirDensity && !(references().bench_air_density_kg_m3 > 0.0)) {
-    return "the model has no bench air (metadata bench_air_temperature_c, bench_air_pressure_pa)";
+  const effects::EffectDescription& description = effects::describe(kind);
+  const effects::ModelEffects base = references();
+  if (description.reference.missing && !std::isfinite(base.*description.reference.member)) {
+    return description.reference.missing;
   }
-  if (kind == Kind::kMotorTemperature && !std::isfinite(references().motor_reference_c)) {
-    return "the model has no bench air temperature, the reference of the motor's temperature";
-  }
+  const effects::Signal signal = description.signal;
   if (signal == effects::Signal::kNone) return "";
   int with_signal = 0, informative = 0;
   for (const Block& block : blocks_) {
     const double value = block.signals.value(signal);
     if (!std::isfinite(value)) continue;
     ++with_signal;
-    if (kind == Kind::kGroundEffect && value < 2.0 * config_.rotor_diameter_m) ++informative;
-    if (kind == Kind::kClimbInflow && std::abs(value) > 0.3) ++informative;
+    if (description.informative && description.informative(value, config_.rotor_diameter_m)) ++informative;
   }
   const auto source = config_.signal_sources.find(signal);
   const std::string needs = source != config_.signal_sources.end() ? source->second : effects::signalName(signal);
   if (with_signal < static_cast<int>(blocks_.size()) / 2) return "needs " + needs;
   const int few = std::max(4, static_cast<int>(blocks_.size()) / 50);
-  if (kind == Kind::kGroundEffect && informative < few) {
-    return "no weighed flight within two rotor diameters (" + formatPrintf("%.2f", 2.0 * config_.rotor_diameter_m) +
-           " m) of the ground";
-  }
-  if (kind == Kind::kClimbInflow && informative < few) return "no weighed climb or descent faster than 0.3 m/s";
+  if (description.informative && informative < few) return description.uninformative(config_.rotor_diameter_m);
   return "";
 }
 
@@ -397,17 +254,15 @@ double Diagnoser::currentViewRatio(const effects::ModelEffects& without, const e
   return sum_xx > 0.0 ? sum_xy / sum_xx : kNaN;
 }
 
-Diagnosis Diagnoser::run() {
-  config_.validate();
-  cut();
-  findUnits();
-  const effects::ModelEffects plain = references();
-  const auto pwm_view = [&](const Block& block) { return views_.pwmView(block, plain); };
+double Diagnoser::meanPwm(const Block& block) const {
+  double sum = 0.0;
+  for (int k = 0; k < motorCount(); ++k) sum += block.pwm_us[k];
+  return sum / motorCount();
+}
 
-  // 1. The gap.
+// 1. The gap: over all flights, per flight, and on the extra bench logs.
+void Diagnoser::reportGap(const BlockView& pwm_view, const std::vector<double>& plain_view) {
   diagnosis_.overall = statsOf(all_, pwm_view);
-  std::vector<double> plain_view(blocks_.size());
-  for (std::size_t i = 0; i < blocks_.size(); ++i) plain_view[i] = pwm_view(blocks_[i]);
   diagnosis_.payload_err_pct = payloadErrorPct(blocks_, plain_view);
   for (int f = 0; f < static_cast<int>(flights_.size()); ++f) {
     std::vector<const Block*> mine;
@@ -423,61 +278,63 @@ Diagnosis Diagnoser::run() {
     }
     diagnosis_.flights.push_back(flight);
   }
-
   const ThrustViews single(model_, 1);
   for (const BenchLog& log : bench_) diagnosis_.bench.push_back(benchGap(single, log));
+}
 
-  // 2. Where it lies.
+// The residual over the model's domain: four pulse-width bands by three voltage bands.
+Breakdown Diagnoser::operatingRegion(const BlockView& pwm_view) const {
   const ModelDomain& domain = model_.domain();
-  const auto mean_pwm = [&](const Block& block) {
-    double sum = 0.0;
-    for (int k = 0; k < motorCount(); ++k) sum += block.pwm_us[k];
-    return sum / motorCount();
-  };
-  {
-    Breakdown region;
-    region.name = "operating_region";
-    std::map<std::string, std::vector<const Block*>> bins;
-    const double pwm_step = (domain.pwm_max_us - domain.pwm_min_us) / 4.0;
-    const double voltage_step = (domain.voltage_max_v - domain.voltage_min_v) / 3.0;
-    for (const Block* block : all_) {
-      bool outside = false;
-      for (int k = 0; k < motorCount(); ++k) outside |= !domain.contains(block->pwm_us[k], block->voltage_v);
-      if (outside) {
-        bins["outside the model's domain"].push_back(block);
-        continue;
-      }
-      const int p = std::min(3, static_cast<int>((mean_pwm(*block) - domain.pwm_min_us) / pwm_step));
-      const int v = std::min(2, static_cast<int>((block->voltage_v - domain.voltage_min_v) / voltage_step));
-      const std::string label = formatPrintf("%.0f", domain.pwm_min_us + p * pwm_step) + "-" +
-                                formatPrintf("%.0f", domain.pwm_min_us + (p + 1) * pwm_step) + " us x " +
-                                formatPrintf("%.2f", domain.voltage_min_v + v * voltage_step) + "-" +
-                                formatPrintf("%.2f", domain.voltage_min_v + (v + 1) * voltage_step) + " V";
-      bins[label].push_back(block);
+  Breakdown region;
+  region.name = "operating_region";
+  std::map<std::string, std::vector<const Block*>> bins;
+  const double pwm_step = (domain.pwm_max_us - domain.pwm_min_us) / 4.0;
+  const double voltage_step = (domain.voltage_max_v - domain.voltage_min_v) / 3.0;
+  for (const Block* block : all_) {
+    bool outside = false;
+    for (int k = 0; k < motorCount(); ++k) outside |= !domain.contains(block->pwm_us[k], block->voltage_v);
+    if (outside) {
+      bins["outside the model's domain"].push_back(block);
+      continue;
     }
-    for (const auto& [label, members] : bins) region.bins.push_back({label, statsOf(members, pwm_view)});
-    diagnosis_.where.push_back(region);
+    const int p = std::min(3, static_cast<int>((meanPwm(*block) - domain.pwm_min_us) / pwm_step));
+    const int v = std::min(2, static_cast<int>((block->voltage_v - domain.voltage_min_v) / voltage_step));
+    const std::string label = formatPrintf("%.0f", domain.pwm_min_us + p * pwm_step) + "-" +
+                              formatPrintf("%.0f", domain.pwm_min_us + (p + 1) * pwm_step) + " us x " +
+                              formatPrintf("%.2f", domain.voltage_min_v + v * voltage_step) + "-" +
+                              formatPrintf("%.2f", domain.voltage_min_v + (v + 1) * voltage_step) + " V";
+    bins[label].push_back(block);
   }
-  {
-    Breakdown phase;
-    phase.name = "phase";
-    std::map<std::string, std::vector<const Block*>> bins;
-    for (const Block* block : all_) {
-      const double height = block->signals.height_m;
-      const double speed = block->signals.vertical_speed_m_s;
-      if (std::isfinite(height) && height < 2.0 * config_.rotor_diameter_m) {
-        bins["near the ground"].push_back(block);
-      } else if (std::isfinite(speed) && speed > 0.2) {
-        bins["climb"].push_back(block);
-      } else if (std::isfinite(speed) && speed < -0.2) {
-        bins["descent"].push_back(block);
-      } else {
-        bins["hover"].push_back(block);
-      }
+  for (const auto& [label, members] : bins) region.bins.push_back({label, statsOf(members, pwm_view)});
+  return region;
+}
+
+// The residual by phase of flight: near the ground, climb, descent, hover.
+Breakdown Diagnoser::phase(const BlockView& pwm_view) const {
+  Breakdown phase;
+  phase.name = "phase";
+  std::map<std::string, std::vector<const Block*>> bins;
+  for (const Block* block : all_) {
+    const double height = block->signals.height_m;
+    const double speed = block->signals.vertical_speed_m_s;
+    if (std::isfinite(height) && height < 2.0 * config_.rotor_diameter_m) {
+      bins["near the ground"].push_back(block);
+    } else if (std::isfinite(speed) && speed > 0.2) {
+      bins["climb"].push_back(block);
+    } else if (std::isfinite(speed) && speed < -0.2) {
+      bins["descent"].push_back(block);
+    } else {
+      bins["hover"].push_back(block);
     }
-    for (const auto& [label, members] : bins) phase.bins.push_back({label, statsOf(members, pwm_view)});
-    diagnosis_.where.push_back(phase);
   }
+  for (const auto& [label, members] : bins) phase.bins.push_back({label, statsOf(members, pwm_view)});
+  return phase;
+}
+
+// 2. Where it lies: the residual broken down by region, phase, each signal and flight.
+void Diagnoser::reportWhere(const BlockView& pwm_view) {
+  diagnosis_.where.push_back(operatingRegion(pwm_view));
+  diagnosis_.where.push_back(phase(pwm_view));
   const auto source = [&](effects::Signal signal) { return config_.signal_sources.at(signal); };
   const auto height = [](const Block& b) { return b.signals.height_m; };
   const auto speed = [](const Block& b) { return b.signals.vertical_speed_m_s; };
@@ -499,112 +356,125 @@ Diagnosis Diagnoser::run() {
                                          "%.3f", source(effects::Signal::kAirDensity)));
   diagnosis_.where.push_back(
       breakdownBy("time_in_flight_s", all_, time, {60.0, 120.0, 300.0, 600.0}, pwm_view, "%.0f", "time"));
-  {
-    Breakdown by_flight;
-    by_flight.name = "flight";
-    for (const FlightGap& flight : diagnosis_.flights) {
-      if (flight.stats.samples > 0) by_flight.bins.push_back({flight.name, flight.stats});
-    }
-    diagnosis_.where.push_back(by_flight);
+  Breakdown by_flight;
+  by_flight.name = "flight";
+  for (const FlightGap& flight : diagnosis_.flights) {
+    if (flight.stats.samples > 0) by_flight.bins.push_back({flight.name, flight.stats});
   }
+  diagnosis_.where.push_back(by_flight);
+}
+
+// The moment balance; a motor it points at explains its share of the gap: the effects are sought
+// in what remains, so that a weak propeller is not named as an effect of the whole vehicle.
+void Diagnoser::balanceMotors() {
   std::vector<int> channels = config_.channels;
   if (channels.empty()) {
     for (int k = 0; k < motorCount(); ++k) channels.push_back(k + 1);
   }
-  diagnosis_.motors = balanceMotors(views_, vehicle_, blocks_, channels, config_.motor_min_gap);
-  // A motor the balance points at explains its share of the gap: the effects are sought in what
-  // remains, so that a weak propeller is not named as an effect of the whole vehicle.
-  if (diagnosis_.motors.suspect_channel) {
-    for (std::size_t k = 0; k < diagnosis_.motors.motors.size(); ++k) {
-      const MotorGap& motor = diagnosis_.motors.motors[k];
-      if (motor.channel == *diagnosis_.motors.suspect_channel) {
-        diagnosis_.motors.suspect_thrust_factor = suspectThrustFactor(static_cast<int>(k), motor.thrust_gap_pct / 100.0);
-        views_.setMotorScale(static_cast<int>(k), diagnosis_.motors.suspect_thrust_factor);
-      }
+  diagnosis_.motors = gap::balanceMotors(views_, vehicle_, blocks_, channels, config_.motor_min_gap);
+  if (!diagnosis_.motors.suspect_channel) return;
+  for (std::size_t k = 0; k < diagnosis_.motors.motors.size(); ++k) {
+    const MotorGap& motor = diagnosis_.motors.motors[k];
+    if (motor.channel == *diagnosis_.motors.suspect_channel) {
+      diagnosis_.motors.suspect_thrust_factor = suspectThrustFactor(static_cast<int>(k), motor.thrust_gap_pct / 100.0);
+      views_.setMotorScale(static_cast<int>(k), diagnosis_.motors.suspect_thrust_factor);
     }
   }
+}
 
-  // 3. Which effect: greedy forward selection on held-out flights.
-  std::vector<Kind> selected;
-  std::map<Kind, EffectResult> results;
+std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>& selected,
+                                              const HeldOutPrediction& current, std::map<Kind, EffectResult>* results,
+                                              HeldOutPrediction* best_prediction) {
+  const double base_ms = jointMeanSquare(current);
+  const effects::ModelEffects round_base = fitEffects(views_, all_, selected, references()).effects;
+  double base_pwm = 0.0;
+  for (double r : current.pwm) base_pwm += r * r / blocks_.size();
+  std::optional<Kind> best;
+  double best_ms = base_ms;
+  for (Kind kind : effects::kAllKinds) {
+    EffectResult& result = (*results)[kind];
+    if (!result.testable || std::find(selected.begin(), selected.end(), kind) != selected.end()) continue;
+    std::vector<Kind> kinds = selected;
+    kinds.push_back(kind);
+    const HeldOutPrediction prediction = predictHeldOut(kinds);
+    const double ms = jointMeanSquare(prediction);
+    double pwm_ms = 0.0;
+    for (double r : prediction.pwm) pwm_ms += r * r / blocks_.size();
+    result.heldout_rmse_pct = 100.0 * std::sqrt(pwm_ms);
+    result.p_value = signFlipPValue(groupImprovements(current, prediction), config_.permutations,
+                                    config_.seed + static_cast<unsigned>(kind));
+    const EffectFit fit = fitEffects(views_, all_, kinds, references());
+    result.parameter = *fit.effects.parameter(kind);
+    const double half = fit.ci_half.back();
+    result.ci_low = result.parameter - half;
+    result.ci_high = result.parameter + half;
+    const effects::ParameterSpec& spec = effects::parameterSpec(kind);
+    const double margin = 1e-3 * (spec.max - spec.min);
+    result.plausible = result.parameter > spec.min + margin && result.parameter < spec.max - margin;
+    result.current_view_ratio = currentViewRatio(round_base, fit.effects);
+    const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
+    const double drop_pct = 100.0 * (std::sqrt(base_pwm) - std::sqrt(pwm_ms));
+    const bool significant = result.p_value < config_.significance && drop_pct > config_.min_improvement_pct &&
+                             pwm_ms < kMinMeanSquareRatio * base_pwm && ms < base_ms;
+    if (!significant) {
+      result.reason = "held-out error " + formatPrintf("%.2f", result.heldout_rmse_pct) + " % against " +
+                      formatPrintf("%.2f", 100.0 * std::sqrt(base_pwm)) + " % (p = " +
+                      formatPrintf("%.3f", result.p_value) + "): not significant";
+    } else if (!result.plausible) {
+      result.reason = "fitted at the edge of its plausible range " + formatNumber(spec.min) + ".." +
+                      formatNumber(spec.max) + ": the gap is not of this effect's shape";
+    } else if (!excludes_neutral) {
+      result.reason = "its 95 % interval includes no effect";
+    } else {
+      result.reason = "lowers the held-out error significantly";
+      if (ms < best_ms) {
+        best_ms = ms;
+        best = kind;
+        *best_prediction = prediction;
+      }
+    }
+    diagnosis_.trace.push_back(
+        {round + 1, kind, result.heldout_rmse_pct, 100.0 * std::sqrt(ms), result.p_value, result.reason});
+  }
+  return best;
+}
+
+// 3. Which effect: greedy forward selection on held-out flights. Returns the held-out prediction
+// with the effects selected.
+HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results) {
   for (Kind kind : effects::kAllKinds) {
     EffectResult result;
     result.kind = kind;
     result.reason = testability(kind);
     result.testable = result.reason.empty();
-    results[kind] = result;
+    (*results)[kind] = result;
   }
   const bool can_hold_out = units_ >= 2;
-  HeldOutPrediction current_best = predictHeldOut({});
-  const HeldOutPrediction before = current_best;
+  HeldOutPrediction current = before;
   if (!can_hold_out) {
     diagnosis_.problems.push_back("one weighed segment only: nothing can be held out, so no effect is selected");
   }
+  std::vector<Kind> selected;
   for (int round = 0; can_hold_out && round < config_.max_effects; ++round) {
-    const double base_ms = jointMeanSquare(current_best);
-    const effects::ModelEffects round_base = fitEffects(views_, all_, selected, references()).effects;
-    double base_pwm = 0.0;
-    for (double r : current_best.pwm) base_pwm += r * r / blocks_.size();
-    Kind best_kind = Kind::kThrustLoss;
-    double best_ms = base_ms;
     HeldOutPrediction best_prediction;
-    bool found = false;
-    for (Kind kind : effects::kAllKinds) {
-      EffectResult& result = results[kind];
-      if (!result.testable || std::find(selected.begin(), selected.end(), kind) != selected.end()) continue;
-      std::vector<Kind> kinds = selected;
-      kinds.push_back(kind);
-      const HeldOutPrediction prediction = predictHeldOut(kinds);
-      const double ms = jointMeanSquare(prediction);
-      double pwm_ms = 0.0;
-      for (double r : prediction.pwm) pwm_ms += r * r / blocks_.size();
-      result.heldout_rmse_pct = 100.0 * std::sqrt(pwm_ms);
-      result.p_value = signFlipPValue(groupImprovements(current_best, prediction), config_.permutations,
-                                      config_.seed + static_cast<unsigned>(kind));
-      const EffectFit fit = fitEffects(views_, all_, kinds, references());
-      result.parameter = *fit.effects.parameter(kind);
-      const double half = fit.ci_half.back();
-      result.ci_low = result.parameter - half;
-      result.ci_high = result.parameter + half;
-      const effects::ParameterSpec& spec = effects::parameterSpec(kind);
-      const double margin = 1e-3 * (spec.max - spec.min);
-      result.plausible = result.parameter > spec.min + margin && result.parameter < spec.max - margin;
-      result.current_view_ratio = currentViewRatio(round_base, fit.effects);
-      const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
-      const double drop_pct = 100.0 * (std::sqrt(base_pwm) - std::sqrt(pwm_ms));
-      const bool significant = result.p_value < config_.significance && drop_pct > config_.min_improvement_pct &&
-                               pwm_ms < kMinMeanSquareRatio * base_pwm && ms < base_ms;
-      SelectionStep step{round + 1, kind, result.heldout_rmse_pct, 100.0 * std::sqrt(ms), result.p_value, ""};
-      if (!significant) {
-        result.reason = "held-out error " + formatPrintf("%.2f", result.heldout_rmse_pct) + " % against " +
-                        formatPrintf("%.2f", 100.0 * std::sqrt(base_pwm)) + " % (p = " +
-                        formatPrintf("%.3f", result.p_value) + "): not significant";
-      } else if (!result.plausible) {
-        result.reason = "fitted at the edge of its plausible range " + formatNumber(spec.min) + ".." +
-                        formatNumber(spec.max) + ": the gap is not of this effect's shape";
-      } else if (!excludes_neutral) {
-        result.reason = "its 95 % interval includes no effect";
-      } else {
-        result.reason = "lowers the held-out error significantly";
-        if (ms < best_ms) {
-          best_ms = ms;
-          best_kind = kind;
-          best_prediction = prediction;
-          found = true;
-        }
-      }
-      step.verdict = result.reason;
-      diagnosis_.trace.push_back(step);
-    }
-    if (!found) break;
-    selected.push_back(best_kind);
-    results[best_kind].reason = "selected in round " + std::to_string(round + 1) + ": held-out error " +
-                                formatPrintf("%.2f", results[best_kind].heldout_rmse_pct) + " % (p = " +
-                                formatPrintf("%.3f", results[best_kind].p_value) + ")";
-    current_best = best_prediction;
+    const std::optional<Kind> best = selectionRound(round, selected, current, results, &best_prediction);
+    if (!best) break;
+    selected.push_back(*best);
+    EffectResult& taken = (*results)[*best];
+    taken.reason = "selected in round " + std::to_string(round + 1) + ": held-out error " +
+                   formatPrintf("%.2f", taken.heldout_rmse_pct) + " % (p = " + formatPrintf("%.3f", taken.p_value) +
+                   ")";
+    current = best_prediction;
   }
+  diagnosis_.selected = selected;
+  return current;
+}
+
+// Every candidate's line of the report, the selected ones with their parameters fitted together
+// on all flights (diagnosis_.fitted).
+void Diagnoser::reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected) {
   for (Kind kind : effects::kAllKinds) {
-    EffectResult& result = results[kind];
+    EffectResult& result = (*results)[kind];
     if (result.testable && std::find(selected.begin(), selected.end(), kind) == selected.end() &&
         result.heldout_rmse_pct == 0.0) {
       // Untried in a round (selection stopped before): fit it alone for the report.
@@ -615,7 +485,6 @@ Diagnosis Diagnoser::run() {
     }
     diagnosis_.effects.push_back(result);
   }
-  diagnosis_.selected = selected;
   const EffectFit final_fit = fitEffects(views_, all_, selected, references());
   diagnosis_.fitted = final_fit.effects;
   for (std::size_t k = 0; k < selected.size(); ++k) {
@@ -626,9 +495,11 @@ Diagnosis Diagnoser::run() {
       result.ci_high = result.parameter + final_fit.ci_half[k];
     }
   }
+}
 
-  // 4. How far it shrinks, on held-out flights.
-  const auto held_stats = [&](const HeldOutPrediction& prediction, double* rmse, double* bias) {
+// 4. How far it shrinks, on held-out flights.
+void Diagnoser::reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after) {
+  const auto held_stats = [](const HeldOutPrediction& prediction, double* rmse, double* bias) {
     double sum = 0.0, sum2 = 0.0;
     for (double r : prediction.pwm) {
       sum += r;
@@ -638,23 +509,28 @@ Diagnosis Diagnoser::run() {
     *bias = 100.0 * sum / prediction.pwm.size();
   };
   held_stats(before, &diagnosis_.heldout.before_rmse_pct, &diagnosis_.heldout.before_bias_pct);
-  held_stats(current_best, &diagnosis_.heldout.after_rmse_pct, &diagnosis_.heldout.after_bias_pct);
+  held_stats(after, &diagnosis_.heldout.after_rmse_pct, &diagnosis_.heldout.after_bias_pct);
   diagnosis_.heldout.before_payload_err_pct = payloadErrorPct(blocks_, before.view_n);
-  diagnosis_.heldout.after_payload_err_pct = payloadErrorPct(blocks_, current_best.view_n);
-  diagnosis_.method = "Quasi-steady " + formatNumber(config_.block_s) + " s blocks only (collective PWM changing by at most " +
-                      formatNumber(config_.max_pwm_change_us) + " us within the block, vertical acceleration at most " +
-                      formatNumber(config_.max_accel_m_s2) + " m/s^2): " + std::to_string(diagnosis_.blocks) + " used, " +
-                      std::to_string(diagnosis_.transient_blocks) + " transient left out. Forward selection over " + std::to_string(units_) + " held-out " + unit_name_ +
-                      "s (each fitted on the others). An effect is added when the held-out RMSE of the PWM view falls "
-                      "by more than " + formatPrintf("%.2f", config_.min_improvement_pct) +
-                      " % of the truth and its mean square by a tenth, the joint error of both views falls, a sign-flip permutation "
-                      "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +
-                      std::to_string(config_.permutations) + " permutations) gives p < " +
-                      formatNumber(config_.significance) +
-                      ", and the fitted parameter lies inside its plausible range with a 95 % interval excluding "
-                      "no effect; at most " + std::to_string(config_.max_effects) + " effects.";
+  diagnosis_.heldout.after_payload_err_pct = payloadErrorPct(blocks_, after.view_n);
+}
 
-  // Samples for the figures.
+std::string Diagnoser::method() const {
+  return "Quasi-steady " + formatNumber(config_.block_s) + " s blocks only (collective PWM changing by at most " +
+         formatNumber(config_.max_pwm_change_us) + " us within the block, vertical acceleration at most " +
+         formatNumber(config_.max_accel_m_s2) + " m/s^2): " + std::to_string(diagnosis_.blocks) + " used, " +
+         std::to_string(diagnosis_.transient_blocks) + " transient left out. Forward selection over " +
+         std::to_string(units_) + " held-out " + unit_name_ +
+         "s (each fitted on the others). An effect is added when the held-out RMSE of the PWM view falls "
+         "by more than " + formatPrintf("%.2f", config_.min_improvement_pct) +
+         " % of the truth and its mean square by a tenth, the joint error of both views falls, a sign-flip permutation "
+         "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +
+         std::to_string(config_.permutations) + " permutations) gives p < " + formatNumber(config_.significance) +
+         ", and the fitted parameter lies inside its plausible range with a 95 % interval excluding "
+         "no effect; at most " + std::to_string(config_.max_effects) + " effects.";
+}
+
+// Every block with its signals and both views, for the figures.
+void Diagnoser::collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view) {
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     const Block& block = blocks_[i];
     GapSample sample;
@@ -664,7 +540,7 @@ Diagnosis Diagnoser::run() {
     sample.model_n = plain_view[i];
     sample.current_view_n = views_.currentView(block, plain);
     sample.corrected_n = views_.pwmView(block, diagnosis_.fitted);
-    sample.pwm_us = mean_pwm(block);
+    sample.pwm_us = meanPwm(block);
     sample.voltage_v = block.voltage_v;
     sample.current_a = block.current_a;
     sample.height_m = block.signals.height_m;
@@ -675,6 +551,26 @@ Diagnosis Diagnoser::run() {
     sample.hover = block.hover;
     diagnosis_.samples.push_back(sample);
   }
+}
+
+Diagnosis Diagnoser::run() {
+  config_.validate();
+  cut();
+  findUnits();
+  const effects::ModelEffects plain = references();
+  const BlockView pwm_view = [&](const Block& block) { return views_.pwmView(block, plain); };
+  std::vector<double> plain_view(blocks_.size());
+  for (std::size_t i = 0; i < blocks_.size(); ++i) plain_view[i] = pwm_view(blocks_[i]);
+  reportGap(pwm_view, plain_view);
+  reportWhere(pwm_view);
+  balanceMotors();
+  const HeldOutPrediction before = predictHeldOut({});
+  std::map<Kind, EffectResult> results;
+  const HeldOutPrediction after = selectEffects(before, &results);
+  reportEffects(&results, diagnosis_.selected);
+  reportHeldOut(before, after);
+  diagnosis_.method = method();
+  collectSamples(plain, plain_view);
   return diagnosis_;
 }
 

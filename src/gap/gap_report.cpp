@@ -8,6 +8,7 @@
 
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/model/effect_description.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -41,30 +42,6 @@ std::string statsRow(const std::string& label, const ResidualStats& stats) {
   return "| " + label + " | " + std::to_string(stats.samples) + " | " + formatPrintf("%.2f", stats.bias_pct, "n/a") +
          " | " + formatPrintf("%.2f", stats.rmse_pct, "n/a") + " | " + formatPrintf("%.3f", stats.bias_n, "n/a") +
          " |\n";
-}
-
-const char* effectMeaning(effects::Kind kind) {
-  switch (kind) {
-    case effects::Kind::kSupplyResistance:
-      return "wiring, connectors or a power module between the voltage sensor and the ESCs: the ESCs see less voltage "
-             "than is measured, more so the more current flows";
-    case effects::Kind::kAirDensity:
-      return "the flight's air is thinner or denser than the bench's: a propeller's thrust at a given speed follows "
-             "the density";
-    case effects::Kind::kGroundEffect:
-      return "rotors near the ground push against it: more thrust for the same power within about two diameters";
-    case effects::Kind::kThrustLoss:
-      return "arms and frame under the rotors, and rotors in each other's wake, take part of the thrust; an unweighed "
-             "mass looks the same";
-    case effects::Kind::kMotorTemperature:
-      return "a warm motor has more winding resistance and less magnet flux than on the bench";
-    case effects::Kind::kClimbInflow:
-      return "a climb adds axial inflow, lowering the blades' angle of attack and the thrust; a descent the reverse";
-    case effects::Kind::kEscOffset:
-      return "the flying ESCs' calibrated end points differ from the bench ESC's: the same pulse width is another "
-             "throttle";
-  }
-  return "";
 }
 
 }  // namespace
@@ -197,31 +174,10 @@ const std::vector<std::string>& gapReportFigures() {
   return figures;
 }
 
-std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel& model, const std::string& command) {
-  std::ostringstream md;
-  const ModelMetadata& meta = model.metadata();
-  md << "# Where the model and the flights part\n\n";
-  md << "Model: " << meta.esc << " / " << meta.motor << " / " << meta.propeller << " (" << meta.source << ").  \n";
-  md << "Command: `" << command << "`\n\n";
-  md << "The residual is the model's vertical thrust minus the thrust that flew (weighed mass x vertical specific "
-        "force from the IMU), in percent of the latter: positive when the model reads high. Samples are "
-        "quasi-steady blocks: "
-     << diagnosis.transient_blocks << " transient blocks (the rotors spinning up or down, where thrust lags the PWM) "
-        "are left out of everything below.\n\n";
+namespace {
 
-  md << "## 1. The gap\n\n";
-  md << "| | samples | bias % | RMSE % | bias N |\n|---|---|---|---|---|\n";
-  md << statsRow("all flights", diagnosis.overall);
-  for (const FlightGap& flight : diagnosis.flights) md << statsRow(flight.name, flight.stats);
-  for (const BenchGap& bench : diagnosis.bench) md << statsRow("bench: " + bench.source, bench.stats);
-  md << "\nPayload error of the node, tare on the lightest weighed segment: "
-     << formatPrintf("%.2f", diagnosis.payload_err_pct, "n/a") << " % (RMS over the heavier segments).\n\n";
-  if (!diagnosis.problems.empty()) {
-    md << "What could not be used:\n\n";
-    for (const std::string& problem : diagnosis.problems) md << "- " << problem << "\n";
-    md << "\n";
-  }
-
+// Section 2 of the Markdown report: the residual's breakdowns and the motors' balance.
+void writeWhereSection(std::ostream& md, const Diagnosis& diagnosis) {
   md << "## 2. Where it lies\n\n";
   for (const Breakdown& breakdown : diagnosis.where) {
     md << "### " << breakdown.name << "\n\n";
@@ -269,6 +225,10 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
     }
   }
 
+}
+
+// Section 3 of the Markdown report: one line per candidate effect, the selection and its rounds.
+void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
   md << "## 3. Which effect\n\n" << diagnosis.method << "\n\n";
   md << "| effect | testable | parameter | 95 % interval | held-out RMSE % | p | current-view ratio | verdict |\n"
         "|---|---|---|---|---|---|---|---|\n";
@@ -293,7 +253,7 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
       md << (k ? ", " : "") << effects::kindName(diagnosis.selected[k]);
     }
     md << ".\n\n";
-    for (effects::Kind kind : diagnosis.selected) md << "- `" << effects::kindName(kind) << "`: " << effectMeaning(kind) << ".\n";
+    for (effects::Kind kind : diagnosis.selected) md << "- `" << effects::kindName(kind) << "`: " << effects::describe(kind).meaning << ".\n";
     md << "\n";
   }
   if (!diagnosis.trace.empty()) {
@@ -310,6 +270,37 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
         "residual shows: about 1 for a thrust loss or a hidden mass, near 0 for an ESC offset, about a third for an "
         "electrical or an air-density cause, negative for motor heating.\n\n";
 
+}
+
+}  // namespace
+
+std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel& model, const std::string& command) {
+  std::ostringstream md;
+  const ModelMetadata& meta = model.metadata();
+  md << "# Where the model and the flights part\n\n";
+  md << "Model: " << meta.esc << " / " << meta.motor << " / " << meta.propeller << " (" << meta.source << ").  \n";
+  md << "Command: `" << command << "`\n\n";
+  md << "The residual is the model's vertical thrust minus the thrust that flew (weighed mass x vertical specific "
+        "force from the IMU), in percent of the latter: positive when the model reads high. Samples are "
+        "quasi-steady blocks: "
+     << diagnosis.transient_blocks << " transient blocks (the rotors spinning up or down, where thrust lags the PWM) "
+        "are left out of everything below.\n\n";
+
+  md << "## 1. The gap\n\n";
+  md << "| | samples | bias % | RMSE % | bias N |\n|---|---|---|---|---|\n";
+  md << statsRow("all flights", diagnosis.overall);
+  for (const FlightGap& flight : diagnosis.flights) md << statsRow(flight.name, flight.stats);
+  for (const BenchGap& bench : diagnosis.bench) md << statsRow("bench: " + bench.source, bench.stats);
+  md << "\nPayload error of the node, tare on the lightest weighed segment: "
+     << formatPrintf("%.2f", diagnosis.payload_err_pct, "n/a") << " % (RMS over the heavier segments).\n\n";
+  if (!diagnosis.problems.empty()) {
+    md << "What could not be used:\n\n";
+    for (const std::string& problem : diagnosis.problems) md << "- " << problem << "\n";
+    md << "\n";
+  }
+
+  writeWhereSection(md, diagnosis);
+  writeEffectsSection(md, diagnosis);
   md << "## 4. How far it shrinks (held-out flights)\n\n";
   md << "| | before | after |\n|---|---|---|\n";
   md << "| RMSE % | " << formatPrintf("%.2f", diagnosis.heldout.before_rmse_pct, "n/a") << " | "

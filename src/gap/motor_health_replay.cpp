@@ -13,22 +13,24 @@ namespace propulsion_estimator {
 namespace gap {
 namespace {
 
-// The streams' messages in arrival order: kind (0 battery, 1 IMU, 2 vertical speed, 3 RCOut) and
-// index; at equal times the inputs before the RCOut message they feed.
+// Which stream a message comes from; at equal times the inputs sort before the RCOut message they feed.
+enum class Stream { kBattery, kImu, kVerticalSpeed, kRcOut };
+
+// The streams' messages in arrival order: stream and index in it.
 struct Arrival {
   double time_s;
-  int kind;
+  Stream kind;
   std::size_t index;
 };
 
 std::vector<Arrival> arrivals(const FlightStreams& streams) {
   std::vector<Arrival> order;
-  for (std::size_t i = 0; i < streams.battery.size(); ++i) order.push_back({streams.battery[i].time_s, 0, i});
-  for (std::size_t i = 0; i < streams.imu.size(); ++i) order.push_back({streams.imu[i].time_s, 1, i});
+  for (std::size_t i = 0; i < streams.battery.size(); ++i) order.push_back({streams.battery[i].time_s, Stream::kBattery, i});
+  for (std::size_t i = 0; i < streams.imu.size(); ++i) order.push_back({streams.imu[i].time_s, Stream::kImu, i});
   for (std::size_t i = 0; i < streams.vertical_speed_m_s.size(); ++i) {
-    order.push_back({streams.vertical_speed_m_s[i].time_s, 2, i});
+    order.push_back({streams.vertical_speed_m_s[i].time_s, Stream::kVerticalSpeed, i});
   }
-  for (std::size_t i = 0; i < streams.rc_out.size(); ++i) order.push_back({streams.rc_out[i].time_s, 3, i});
+  for (std::size_t i = 0; i < streams.rc_out.size(); ++i) order.push_back({streams.rc_out[i].time_s, Stream::kRcOut, i});
   std::stable_sort(order.begin(), order.end(), [](const Arrival& a, const Arrival& b) {
     return a.time_s < b.time_s || (a.time_s == b.time_s && a.kind < b.kind);
   });
@@ -50,14 +52,14 @@ MotorHealthReplay replayMotorHealth(const PropulsionModel& model, const Vehicle&
   std::vector<std::uint16_t> channels(vehicle.rotors.size());
   for (const Arrival& a : arrivals(streams)) {
     switch (a.kind) {
-      case 0: estimator.addBattery(a.time_s, streams.battery[a.index].voltage_v); break;
-      case 1: {
+      case Stream::kBattery: estimator.addBattery(a.time_s, streams.battery[a.index].voltage_v); break;
+      case Stream::kImu: {
         const ImuReading& imu = streams.imu[a.index];
         estimator.addImu(a.time_s, imu.orientation, imu.specific_force_m_s2);
         break;
       }
-      case 2: estimator.addVerticalSpeed(a.time_s, streams.vertical_speed_m_s[a.index].value); break;
-      default: {
+      case Stream::kVerticalSpeed: estimator.addVerticalSpeed(a.time_s, streams.vertical_speed_m_s[a.index].value); break;
+      case Stream::kRcOut: {
         const RcOutFrame& frame = streams.rc_out[a.index];
         for (std::size_t k = 0; k < channels.size(); ++k) channels[k] = static_cast<std::uint16_t>(frame.pwm_us[k]);
         if (estimator.addMotorOutputs(a.time_s, a.time_s, channels.data(), channels.size()) != Rejection::kNone) break;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/model/effect_description.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -14,27 +15,8 @@ constexpr double kMaxShiftUs = 400.0;
 }  // namespace
 
 double currentViewExponent(effects::Kind kind, double parameter) {
-  switch (kind) {
-    // Blockage and interaction act on the air the rotor has already moved: same rotor state,
-    // same torque and current, less net force, in both views.
-    case effects::Kind::kThrustLoss: return 1.0;
-    // The battery current at the sensed voltage measures electrical power, and at a given power
-    // momentum theory gives T proportional to (rho P^2)^(1/3): the current view sees
-    // (rho / rho_bench)^(1/3) whatever exponent the PWM view was fitted with.
-    case effects::Kind::kAirDensity: return parameter > 0.0 ? (1.0 / 3.0) / parameter : 0.0;
-    // Cheeseman-Bennett's ratio is at constant power, and momentum theory gives a climb's loss
-    // at constant power about as at constant speed: both views see it alike.
-    case effects::Kind::kGroundEffect: return 1.0;
-    case effects::Kind::kClimbInflow: return 1.0;
-    // A hot motor spins faster at a given duty (weaker flux) but needs more current per newton
-    // metre and loses more in its hotter copper: the PWM view under-reads thrust while the
-    // current view over-reads it, by about as much (weaker magnets and costlier copper share
-    // the change between the two views).
-    case effects::Kind::kMotorTemperature: return -1.0;
-    case effects::Kind::kSupplyResistance:
-    case effects::Kind::kEscOffset: return 0.0;
-  }
-  return 0.0;
+  const effects::EffectDescription& description = effects::describe(kind);
+  return description.current_view_exponent ? description.current_view_exponent(parameter) : 0.0;
 }
 
 ThrustViews::ThrustViews(const PropulsionModel& model, int motors)

@@ -10,6 +10,7 @@
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/model/effect_description.h"
 #include "propulsion_estimator/model/model_validation.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/yaml_map.h"
@@ -171,22 +172,20 @@ OutputDefinition readOutput(const YamlMap& map, Output output) {
   return def;
 }
 
-// effects: {<name>: {<parameter key>: value[, reference: value]}, ...}; the keys are those of
-// effects::parameterSpec, the references those ModelEffects keeps beside the parameters.
+// effects: {<name>: {<parameter key>: value[, <reference key>: value]}, ...}: the names, keys and
+// references of each effect's EffectDescription.
 effects::ModelEffects readEffects(const YamlMap& map) {
-  map.allowOnly({"supply_resistance", "air_density", "ground_effect", "thrust_loss", "motor_temperature",
-                 "climb_inflow", "esc_offset"});
+  map.allowOnly(effects::allNames());
   effects::ModelEffects result;
   for (effects::Kind kind : effects::kAllKinds) {
-    const std::optional<YamlMap> entry = map.optionalMap(effects::kindName(kind));
+    const effects::EffectDescription& description = effects::describe(kind);
+    const std::optional<YamlMap> entry = map.optionalMap(description.name);
     if (!entry) continue;
-    const char* key = effects::parameterSpec(kind).key;
-    if (kind == effects::Kind::kGroundEffect) {
-      entry->allowOnly({key, "rotor_height_m"});
-      result.rotor_height_m = entry->number("rotor_height_m");
-    } else if (kind == effects::Kind::kMotorTemperature) {
-      entry->allowOnly({key, "reference_c"});
-      result.motor_reference_c = entry->number("reference_c");
+    const char* key = description.parameter.key;
+    const effects::ReferenceSpec& reference = description.reference;
+    if (reference.key) {
+      entry->allowOnly({key, reference.key});
+      result.*reference.member = entry->number(reference.key);
     } else {
       entry->allowOnly({key});
     }
@@ -200,13 +199,11 @@ void writeEffects(YAML::Emitter& out, const effects::ModelEffects& fx) {
   for (effects::Kind kind : effects::kAllKinds) {
     const std::optional<double> value = fx.parameter(kind);
     if (!value) continue;
-    out << YAML::Key << effects::kindName(kind) << YAML::Value << YAML::Flow << YAML::BeginMap;
-    out << YAML::Key << effects::parameterSpec(kind).key << YAML::Value << formatNumber(*value);
-    if (kind == effects::Kind::kGroundEffect) {
-      out << YAML::Key << "rotor_height_m" << YAML::Value << formatNumber(fx.rotor_height_m);
-    }
-    if (kind == effects::Kind::kMotorTemperature) {
-      out << YAML::Key << "reference_c" << YAML::Value << formatNumber(fx.motor_reference_c);
+    const effects::EffectDescription& description = effects::describe(kind);
+    out << YAML::Key << description.name << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << description.parameter.key << YAML::Value << formatNumber(*value);
+    if (const char* key = description.reference.key) {
+      out << YAML::Key << key << YAML::Value << formatNumber(fx.*description.reference.member);
     }
     out << YAML::EndMap;
   }

@@ -21,6 +21,8 @@ class YamlMap {
 
   /// Refuses any key not in `allowed`.
   void allowOnly(std::initializer_list<const char*> allowed) const;
+  /// The same, for a list built at run time (the effects' names).
+  void allowOnly(const std::vector<std::string>& allowed) const;
 
   bool has(const std::string& key) const;  ///< whether the mapping has `key`
   std::vector<std::string> keys() const;  ///< the mapping's keys, in file order

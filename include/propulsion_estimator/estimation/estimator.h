@@ -45,6 +45,8 @@ enum class Rejection {
   kBadMotorTemperature,  ///< outside -40..200 deg C
 };
 constexpr int kRejectionCount = 18;  ///< number of Rejection values
+static_assert(static_cast<int>(Rejection::kBadMotorTemperature) + 1 == kRejectionCount,
+              "kRejectionCount counts every Rejection");
 /// "bad_voltage", "stale_battery", ...: the name of a rejection in diagnostics and counters.
 const char* rejectionName(Rejection rejection);
 

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "propulsion_estimator/common/mavros_topics.h"
+#include "propulsion_estimator/gap/bench_gap.h"
+#include "propulsion_estimator/gap/residual_breakdown.h"
 #include "propulsion_estimator/logs/bench_log.h"
 #include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/model_effects.h"
@@ -42,28 +44,6 @@ struct DiagnosisConfig {
 
   /// Throws FieldError naming the setting.
   void validate() const;
-};
-
-/// Bias and spread of residuals (model minus truth) in N and in percent of the truth.
-struct ResidualStats {
-  int samples = 0;  ///< blocks behind the figures
-  double bias_n = 0.0;  ///< mean residual, N
-  double rmse_n = 0.0;  ///< root mean square residual, N
-  double bias_pct = 0.0;  ///< mean residual, % of the truth
-  double rmse_pct = 0.0;  ///< root mean square residual, % of the truth
-};
-
-/// One bin of a breakdown of the residual.
-struct Bin {
-  std::string label;  ///< the bin's range or name
-  ResidualStats stats;  ///< the residual within it
-};
-
-/// The residual broken down by one quantity, or why it could not be.
-struct Breakdown {
-  std::string name;  ///< "height_above_ground_m", "phase", ...
-  std::vector<Bin> bins;  ///< in the quantity's order
-  std::string unavailable;  ///< empty, or "needs /mavros/rangefinder/rangefinder"
 };
 
 /// In steady hover, each motor's model thrust against the share the roll and pitch moment
@@ -129,13 +109,6 @@ struct FlightGap {
   ResidualStats stats;  ///< the model's residual over its blocks
   double mean_mass_kg = 0.0;  ///< kg, mean weighed mass
   std::vector<std::string> problems;  ///< one line each: a segment outside the log, a missing signal
-};
-
-/// A bench log measured under other conditions than the model's: the load cell is the truth.
-struct BenchGap {
-  std::string source;  ///< the bench log's file
-  ResidualStats stats;                 ///< model thrust minus the load cell, rows with thrust above 5 % of the log's maximum
-  std::vector<Breakdown> where;        ///< by voltage, and by motor temperature where logged
 };
 
 /// One sample inside a weighed segment, with the signals and both views; for the figures.

@@ -21,6 +21,7 @@ enum class BenchColumn {
   kPressure,     ///< pressure_pa
 };
 constexpr int kBenchColumnCount = 10;  ///< number of BenchColumn values
+static_assert(static_cast<int>(BenchColumn::kPressure) + 1 == kBenchColumnCount, "kBenchColumnCount counts every BenchColumn");
 /// The native CSV name of a column ("pwm_us", ...; thrust is "thrust_n").
 const char* benchColumnName(BenchColumn column);
 

@@ -5,37 +5,50 @@
 #include <string>
 
 #include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/model/effect_list.h"
 
 namespace propulsion_estimator {
 namespace effects {
 
 /// The physical effects that response surfaces measured on a thrust stand leave out, and that
-/// the gap diagnosis can name, fit and hand to the node as a model's `effects:` section.
+/// the gap diagnosis can name, fit and hand to the node as a model's `effects:` section. One
+/// enumerator per line of PE_EFFECT_LIST (effect_list.h); each is described once, in its
+/// EffectDescription (effect_description.h).
 enum class Kind {
-  kSupplyResistance = 0,  ///< wiring and connectors between the voltage sensor and the ESCs
-  kAirDensity,            ///< flight air thinner or denser than the bench's
-  kGroundEffect,          ///< thrust gain of rotors close to the ground
-  kThrustLoss,            ///< airframe blockage, rotor-rotor interaction (or an unweighed mass)
-  kMotorTemperature,      ///< winding resistance and magnet flux following the motor's temperature
-  kClimbInflow,           ///< thrust lost to the axial inflow of a climb
-  kEscOffset,             ///< the flying ESCs' end points differ from the bench ESC's
+#define PE_EFFECT_ENUMERATOR(enumerator, describer) enumerator,
+  PE_EFFECT_LIST(PE_EFFECT_ENUMERATOR)
+#undef PE_EFFECT_ENUMERATOR
 };
-constexpr int kKindCount = 7;  ///< number of Kind values
+namespace detail {
+/// The effects counted: kEffectCount follows the last.
+enum EffectCounter {
+#define PE_EFFECT_COUNTER(enumerator, describer) enumerator,
+  PE_EFFECT_LIST(PE_EFFECT_COUNTER)
+#undef PE_EFFECT_COUNTER
+  kEffectCount
+};
+}  // namespace detail
+constexpr int kKindCount = detail::kEffectCount;  ///< number of Kind values
 /// Every Kind, in declaration order (bit k of a KindMask is kAllKinds[k]).
-constexpr std::array<Kind, kKindCount> kAllKinds = {Kind::kSupplyResistance, Kind::kAirDensity, Kind::kGroundEffect,
-                                                    Kind::kThrustLoss,       Kind::kMotorTemperature,
-                                                    Kind::kClimbInflow,      Kind::kEscOffset};
+constexpr std::array<Kind, kKindCount> kAllKinds = {
+#define PE_EFFECT_KIND(enumerator, describer) Kind::enumerator,
+    PE_EFFECT_LIST(PE_EFFECT_KIND)
+#undef PE_EFFECT_KIND
+};
+static_assert(kKindCount <= 32, "a KindMask holds one bit per effect");
 
 /// What an effect reads besides the ESC pulse width and the sensed battery voltage.
 enum class Signal { kNone, kBatteryCurrent, kAirDensity, kHeight, kMotorTemperature, kVerticalSpeed };
+constexpr int kSignalCount = 6;  ///< number of Signal values, kNone included
+static_assert(static_cast<int>(Signal::kVerticalSpeed) + 1 == kSignalCount, "kSignalCount counts every Signal");
 
 /// The fitted parameter of an effect: its key in model files and reports (with the unit in the
 /// name), the range a real vehicle can show, and the value at which the effect vanishes.
 struct ParameterSpec {
-  const char* key;  ///< the parameter's key, with its unit ("resistance_ohm")
-  double min;  ///< lowest plausible value
-  double max;  ///< highest plausible value
-  double neutral;  ///< the value at which the effect vanishes
+  const char* key;  ///< "resistance_ohm": the unit is in the key
+  double min;       ///< lowest plausible value, in the key's unit
+  double max;       ///< highest plausible value, in the key's unit
+  double neutral;   ///< the value at which the effect vanishes
 };
 
 /// "supply_resistance", "air_density", ...: the names in model files, reports and on the command line.
@@ -68,7 +81,8 @@ struct Inputs {
 };
 
 /// A model's `effects:` section: each effect is off unless set. The corrections, in the order
-/// they apply to one motor's model evaluation at pulse width u and sensed voltage V:
+/// they apply to one motor's model evaluation at pulse width u and sensed voltage V (each is
+/// described in its file in src/model/effects/):
 ///   esc_offset         u' = u - offset_us
 ///   supply_resistance  V' = V - resistance_ohm * battery current
 ///   (the surfaces evaluated at u', V' give thrust T and every other output)
@@ -79,19 +93,12 @@ struct Inputs {
 ///   motor_temperature  T *= 1 + per_c * (T_motor - reference_c)
 ///   climb_inflow       T *= 1 - per_m_s * max(vertical speed, 0)   (climbs; a slow descent barely changes thrust)
 struct ModelEffects {
-  std::optional<double> esc_offset_us;  ///< us
-  std::optional<double> supply_resistance_ohm;  ///< ohm
-  std::optional<double> air_density_exponent;  ///< dimensionless
-  double bench_air_density_kg_m3 = kNaN;  ///< reference of air_density
-  std::optional<double> ground_effect_coefficient_m2;  ///< m^2
+  double bench_air_density_kg_m3 = kNaN;  ///< reference of air_density (the model's bench air)
   double rotor_height_m = 0.0;  ///< rotor discs above the height reference, for ground_effect
-  std::optional<double> thrust_loss_fraction;  ///< share of the thrust lost, 0..1
-  std::optional<double> motor_temperature_per_c;  ///< share of the thrust per deg C
   double motor_reference_c = kNaN;  ///< reference of motor_temperature
-  std::optional<double> climb_inflow_per_m_s;  ///< share of the thrust per m/s of climb
 
   bool has(Kind kind) const;  ///< whether `kind` is on
-  /// The fitted parameter of `kind` (nullopt when the effect is off).
+  /// The fitted parameter of `kind`, in its ParameterSpec's unit (nullopt when the effect is off).
   std::optional<double> parameter(Kind kind) const;
   /// Switches `kind` on with `value` (or off with nullopt).
   void setParameter(Kind kind, std::optional<double> value);
@@ -101,6 +108,9 @@ struct ModelEffects {
   /// non-finite, or a reference (bench air density, motor reference temperature) missing while the
   /// effect that needs it is on.
   void validate() const;
+
+ private:
+  std::array<std::optional<double>, kKindCount> parameters_;
 };
 
 /// "resistance_ohm 0.035", "coefficient_m2 0.0011, rotor_height_m 0.05", ...: the parameter of

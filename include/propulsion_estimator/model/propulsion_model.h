@@ -15,6 +15,7 @@ namespace propulsion_estimator {
 /// efficiency N/W, rotor speed rpm.
 enum class Output { kThrust = 0, kCurrent, kPower, kEfficiency, kRpm };
 constexpr int kOutputCount = 5;  ///< number of Output values
+static_assert(static_cast<int>(Output::kRpm) + 1 == kOutputCount, "kOutputCount counts every Output");
 /// Every Output, in declaration order.
 constexpr std::array<Output, kOutputCount> kAllOutputs = {Output::kThrust, Output::kCurrent, Output::kPower,
                                                           Output::kEfficiency, Output::kRpm};

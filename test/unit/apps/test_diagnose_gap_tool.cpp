@@ -12,6 +12,7 @@
 #include <string>
 
 #include "propulsion_estimator/bag/bag_flight_sink.h"
+#include "propulsion_estimator/model/effect_description.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 #include "test_paths.h"
@@ -73,6 +74,14 @@ std::string readLines(const std::string& out) {
 }
 
 }  // namespace
+
+TEST_F(DiagnoseGapTool, ListsTheEffectsOfTheRegistry) {
+  const ToolRun listed = run("--list-effects");
+  ASSERT_EQ(listed.status, 0) << listed.err;
+  std::string expected;
+  for (const std::string& name : pe::effects::allNames()) expected += name + "\n";
+  EXPECT_EQ(listed.out, expected);
+}
 
 TEST_F(DiagnoseGapTool, ReadsEveryFlightInManifestOrderWhateverTheJobs) {
   writeFlightBag(file("a.bag"), 10.0);

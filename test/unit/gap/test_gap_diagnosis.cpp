@@ -151,7 +151,7 @@ TEST_F(SyntheticFlights, NamesAThrustLossAndShrinksTheGap) {
   world.thrust_loss = 0.06;
   const gap::Diagnosis diagnosis = diagnose(world);
   ASSERT_EQ(diagnosis.selected, std::vector<Kind>{Kind::kThrustLoss});
-  EXPECT_NEAR(*diagnosis.fitted.thrust_loss_fraction, 0.06, 0.005);
+  EXPECT_NEAR(*diagnosis.fitted.parameter(Kind::kThrustLoss), 0.06, 0.005);
   EXPECT_GT(diagnosis.overall.bias_pct, 5.0);
   EXPECT_LT(diagnosis.heldout.after_rmse_pct, 0.3 * diagnosis.heldout.before_rmse_pct);
 }
@@ -161,7 +161,7 @@ TEST_F(SyntheticFlights, TellsASupplyResistanceFromAThrustLossByTheCurrent) {
   world.supply_resistance = 0.08;
   const gap::Diagnosis diagnosis = diagnose(world);
   ASSERT_EQ(diagnosis.selected, std::vector<Kind>{Kind::kSupplyResistance});
-  EXPECT_NEAR(*diagnosis.fitted.supply_resistance_ohm, 0.08, 0.01);
+  EXPECT_NEAR(*diagnosis.fitted.parameter(Kind::kSupplyResistance), 0.08, 0.01);
   EXPECT_LT(diagnosis.heldout.after_rmse_pct, 0.3 * diagnosis.heldout.before_rmse_pct);
 }
 
@@ -170,7 +170,7 @@ TEST_F(SyntheticFlights, NamesAnEscOffset) {
   world.esc_offset_us = 25.0;
   const gap::Diagnosis diagnosis = diagnose(world);
   ASSERT_EQ(diagnosis.selected, std::vector<Kind>{Kind::kEscOffset});
-  EXPECT_NEAR(*diagnosis.fitted.esc_offset_us, 25.0, 3.0);
+  EXPECT_NEAR(*diagnosis.fitted.parameter(Kind::kEscOffset), 25.0, 3.0);
 }
 
 TEST_F(SyntheticFlights, PointsAtAWeakPropellerAndNamesNoEffect) {

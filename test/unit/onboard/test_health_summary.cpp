@@ -310,10 +310,10 @@ TEST(HealthSummary, EffectsNoneForAPlainModel) {
 
 TEST(HealthSummary, EffectsWarnNamingEachCorrectionSkippedForItsSignal) {
   pe::effects::ModelEffects effects;
-  effects.supply_resistance_ohm = 0.04;
-  effects.ground_effect_coefficient_m2 = 0.0011;
+  effects.setParameter(pe::effects::Kind::kSupplyResistance, 0.04);
+  effects.setParameter(pe::effects::Kind::kGroundEffect, 0.0011);
   effects.rotor_height_m = 0.05;
-  effects.thrust_loss_fraction = 0.03;
+  effects.setParameter(pe::effects::Kind::kThrustLoss, 0.03);
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), effects);
   pe::HealthConfig config = nodeConfig();
   config.rangefinder_input = "/mavros/rangefinder/rangefinder";

@@ -41,15 +41,15 @@ TEST(Estimator, EvaluatesMotorOutputsWithoutHeapAllocation) {
 
 TEST(Estimator, AppliesEveryEffectWithoutHeapAllocation) {
   pe::effects::ModelEffects effects;
-  effects.esc_offset_us = 10.0;
-  effects.supply_resistance_ohm = 0.04;
-  effects.air_density_exponent = 0.9;
-  effects.ground_effect_coefficient_m2 = 0.001;
+  effects.setParameter(pe::effects::Kind::kEscOffset, 10.0);
+  effects.setParameter(pe::effects::Kind::kSupplyResistance, 0.04);
+  effects.setParameter(pe::effects::Kind::kAirDensity, 0.9);
+  effects.setParameter(pe::effects::Kind::kGroundEffect, 0.001);
   effects.rotor_height_m = 0.1;
-  effects.thrust_loss_fraction = 0.03;
-  effects.motor_temperature_per_c = 0.001;
+  effects.setParameter(pe::effects::Kind::kThrustLoss, 0.03);
+  effects.setParameter(pe::effects::Kind::kMotorTemperature, 0.001);
   effects.motor_reference_c = 22.0;
-  effects.climb_inflow_per_m_s = 0.03;
+  effects.setParameter(pe::effects::Kind::kClimbInflow, 0.03);
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), effects);
   f.fly(1690.0, 20.0);
   const std::vector<std::uint16_t> channels{1690, 1700, 1680, 1695, 1000, 1000, 1000, 1000};

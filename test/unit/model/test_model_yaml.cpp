@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/model/effect_description.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/common/yaml_map.h"
 #include "test_paths.h"
@@ -243,6 +244,13 @@ const std::string kAllEffects = R"(effects:
 
 std::string withEffects(const std::string& effects) { return kValid + "effects:\n" + effects; }
 
+// "supply_resistance, air_density, ...": every effect of the registry, as a refusal lists them.
+std::string allEffectNames() {
+  std::string names;
+  for (const std::string& name : pe::effects::allNames()) names += (names.empty() ? "" : ", ") + name;
+  return names;
+}
+
 std::string withoutBenchAir() {
   std::string text = replaced("  bench_air_temperature_c: 20\n", "");
   const std::string pressure = "  bench_air_pressure_pa: 101325\n";
@@ -255,22 +263,31 @@ std::string withoutBenchAir() {
 TEST(ModelYaml, ReadsTheEffectsSection) {
   const pe::PropulsionModel model = pe::parseModelYaml(kValid + kAllEffects, "m.yaml");
   const pe::effects::ModelEffects& fx = model.effects();
-  EXPECT_EQ(fx.supply_resistance_ohm, 0.035);
-  EXPECT_EQ(fx.ground_effect_coefficient_m2, 0.0011);
+  EXPECT_EQ(fx.parameter(pe::effects::Kind::kSupplyResistance), 0.035);
+  EXPECT_EQ(fx.parameter(pe::effects::Kind::kGroundEffect), 0.0011);
   EXPECT_EQ(fx.rotor_height_m, 0.05);
-  EXPECT_EQ(fx.motor_temperature_per_c, 0.0012);
+  EXPECT_EQ(fx.parameter(pe::effects::Kind::kMotorTemperature), 0.0012);
   EXPECT_EQ(fx.motor_reference_c, 22.0);
-  EXPECT_EQ(fx.air_density_exponent, 0.85);
+  EXPECT_EQ(fx.parameter(pe::effects::Kind::kAirDensity), 0.85);
   EXPECT_DOUBLE_EQ(fx.bench_air_density_kg_m3, model.metadata().benchAirDensity());
   EXPECT_NEAR(fx.bench_air_density_kg_m3, 1.2041, 1e-4);  // 101325 Pa, 20 deg C
-  EXPECT_EQ(fx.thrust_loss_fraction, 0.04);
-  EXPECT_EQ(fx.climb_inflow_per_m_s, 0.03);
-  EXPECT_EQ(fx.esc_offset_us, 12.0);
+  EXPECT_EQ(fx.parameter(pe::effects::Kind::kThrustLoss), 0.04);
+  EXPECT_EQ(fx.parameter(pe::effects::Kind::kClimbInflow), 0.03);
+  EXPECT_EQ(fx.parameter(pe::effects::Kind::kEscOffset), 12.0);
   EXPECT_TRUE(pe::parseModelYaml(kValid, "m.yaml").effects().empty());
 }
 
 TEST(ModelYaml, RoundTripsEveryEffect) {
-  const pe::PropulsionModel original = pe::parseModelYaml(kValid + kAllEffects, "original");
+  // Every effect of the registry on, its parameter and reference inside their ranges.
+  pe::effects::ModelEffects all;
+  for (pe::effects::Kind kind : pe::effects::kAllKinds) {
+    const pe::effects::EffectDescription& description = pe::effects::describe(kind);
+    const pe::effects::ParameterSpec& spec = description.parameter;
+    all.setParameter(kind, spec.min + 0.375 * (spec.max - spec.min));
+    const pe::effects::ReferenceSpec& reference = description.reference;
+    if (reference.key) all.*reference.member = reference.min + 0.625 * (reference.max - reference.min);
+  }
+  const pe::PropulsionModel original = pe::parseModelYaml(kValid, "plain").withEffects(all);
   const std::string written = pe::modelToYaml(original);
   const pe::PropulsionModel reread = pe::parseModelYaml(written, "reread");
   EXPECT_EQ(pe::modelToYaml(reread), written);
@@ -288,23 +305,22 @@ TEST(ModelYaml, RoundTripsEveryEffect) {
 TEST(ModelYaml, WithEffectsAddsTheSectionAndTakesTheBenchAirFromTheMetadata) {
   const pe::PropulsionModel plain = pe::parseModelYaml(kValid, "m.yaml");
   pe::effects::ModelEffects fx;
-  fx.air_density_exponent = 0.8;
+  fx.setParameter(pe::effects::Kind::kAirDensity, 0.8);
   fx.bench_air_density_kg_m3 = 0.9;  // not the metadata's: overridden
-  fx.thrust_loss_fraction = 0.05;
+  fx.setParameter(pe::effects::Kind::kThrustLoss, 0.05);
   const pe::PropulsionModel corrected = plain.withEffects(fx);
   EXPECT_DOUBLE_EQ(corrected.effects().bench_air_density_kg_m3, plain.metadata().benchAirDensity());
   const std::string written = pe::modelToYaml(corrected);
   EXPECT_NE(written.find("effects:\n  air_density: {exponent: 0.8}\n  thrust_loss: {fraction: 0.05}\n"),
             std::string::npos)
       << written;
-  EXPECT_EQ(pe::parseModelYaml(written, "corrected").effects().thrust_loss_fraction, 0.05);
+  EXPECT_EQ(pe::parseModelYaml(written, "corrected").effects().parameter(pe::effects::Kind::kThrustLoss), 0.05);
   EXPECT_TRUE(plain.effects().empty()) << "withEffects returns a copy";
 }
 
 TEST(ModelYaml, RefusesAnUnknownEffectOrKey) {
   EXPECT_EQ(refusal(withEffects("  thrust_loss: {fraction: 0.04}\n  wind: {speed_m_s: 3}\n")),
-            "m.yaml:33: effects.wind: unknown key (allowed: supply_resistance, air_density, ground_effect, "
-            "thrust_loss, motor_temperature, climb_inflow, esc_offset)");
+            "m.yaml:33: effects.wind: unknown key (allowed: " + allEffectNames() + ")");
   EXPECT_EQ(refusal(withEffects("  thrust_loss: {fraction: 0.04, percent: 4}\n")),
             "m.yaml:32: effects.thrust_loss.percent: unknown key (allowed: fraction)");
   EXPECT_EQ(refusal(withEffects("  ground_effect: {coefficient_m2: 0.001, rotor_height_m: 0.05, strength: 1}\n")),
@@ -350,7 +366,7 @@ TEST(ModelYaml, LoadsAModelWithoutBenchAir) {
   // Every effect but air_density is corrected without it.
   EXPECT_EQ(pe::parseModelYaml(withoutBenchAir() + "effects:\n  thrust_loss: {fraction: 0.04}\n", "m.yaml")
                 .effects()
-                .thrust_loss_fraction,
+                .parameter(pe::effects::Kind::kThrustLoss),
             0.04);
 }
 
@@ -359,7 +375,7 @@ TEST(ModelYaml, RefusesAirDensityWithoutBenchAir) {
             "m.yaml:30: effects.air_density: needs the bench air of the model's metadata (bench_air_temperature_c, "
             "bench_air_pressure_pa) as its reference, and the model has none");
   pe::effects::ModelEffects fx;
-  fx.air_density_exponent = 0.85;
+  fx.setParameter(pe::effects::Kind::kAirDensity, 0.85);
   try {
     pe::parseModelYaml(withoutBenchAir(), "m.yaml").withEffects(fx);
     FAIL() << "accepted";

@@ -1,0 +1,31 @@
+// motor_temperature: winding resistance and magnet flux following the motor's temperature.
+#include "propulsion_estimator/model/effect_description.h"
+
+namespace propulsion_estimator {
+namespace effects {
+
+const EffectDescription& motorTemperatureEffect() {
+  static const EffectDescription description = [] {
+    EffectDescription d{};
+    d.name = "motor_temperature";
+    // Copper +0.39 %/K and NdFeB flux -0.12 %/K move thrust by under 0.3 %/K.
+    d.parameter = {"per_c", -0.01, 0.01, 0.0};
+    d.signal = Signal::kMotorTemperature;
+    d.meaning = "a warm motor has more winding resistance and less magnet flux than on the bench";
+    d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
+      return 1.0 + value * (signals.motor_temperature_c - references.motor_reference_c);
+    };
+    // A hot motor spins faster at a given duty (weaker flux) but needs more current per newton
+    // metre and loses more in its hotter copper: the PWM view under-reads thrust while the
+    // current view over-reads it, by about as much (weaker magnets and costlier copper share
+    // the change between the two views).
+    d.current_view_exponent = [](double) { return -1.0; };
+    d.reference = {"reference_c", &ModelEffects::motor_reference_c, -40.0, 150.0,
+                   "the model has no bench air temperature, the reference of the motor's temperature"};
+    return d;
+  }();
+  return description;
+}
+
+}  // namespace effects
+}  // namespace propulsion_estimator

@@ -1,0 +1,106 @@
+// Cutting a weighed flight into blocks: averages, signals, the current's sign and what is refused.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/gap/blocks.h"
+#include "propulsion_estimator/vehicle/vehicle.h"
+
+namespace pe = propulsion_estimator;
+namespace gap = propulsion_estimator::gap;
+
+namespace {
+
+// 20 s of level flight at 10 Hz: rc/out ramping 1500 -> 1519 us over each second, battery 12 V
+// with -8 A (PX4's sign), level IMU at 1 g, rangefinder 1.5 m; one segment 2-12 s of 1.2 kg.
+pe::Flight levelFlight() {
+  pe::Flight flight;
+  flight.name = "f.bag";
+  flight.streams.motors = 4;
+  for (int i = 0; i <= 200; ++i) {
+    const double t = 0.1 * i;
+    pe::RcOutFrame frame;
+    frame.time_s = t;
+    for (int k = 0; k < 4; ++k) frame.pwm_us[k] = 1500.0 + 2.0 * (i % 10);
+    flight.streams.rc_out.push_back(frame);
+    flight.streams.battery.push_back({t, 12.0, -8.0});
+    pe::ImuReading imu;
+    imu.time_s = t;
+    imu.specific_force_m_s2 = Eigen::Vector3d(0.0, 0.0, pe::kStandardGravity);
+    flight.streams.imu.push_back(imu);
+    flight.streams.height_above_ground_m.push_back({t, 1.5});
+  }
+  flight.segments.push_back({2.0, 12.0, 1.2});
+  return flight;
+}
+
+gap::BlockConfig config() {
+  gap::BlockConfig config;
+  config.motors = 4;
+  return config;
+}
+
+}  // namespace
+
+TEST(GapBlocks, AveragesEachBlockOfASegment) {
+  const gap::FlightBlocks cut = gap::cutIntoBlocks(levelFlight(), 0, pe::Vehicle::quadX(0.225), config(), 0);
+  EXPECT_TRUE(cut.problems.empty());
+  EXPECT_TRUE(cut.has_imu);
+  EXPECT_TRUE(cut.has_current);
+  ASSERT_EQ(cut.blocks.size(), 10u);  // 2-12 s in 1 s blocks (the frame at 12 s alone is dropped)
+  const gap::Block& block = cut.blocks.front();
+  EXPECT_NEAR(block.pwm_us[0], 1509.0, 1e-9);
+  EXPECT_NEAR(block.pwm_change_us, 18.0, 1e-9);
+  EXPECT_NEAR(block.voltage_v, 12.0, 1e-12);
+  EXPECT_NEAR(block.current_a, 8.0, 1e-12) << "discharge counts positive whatever the autopilot's sign";
+  EXPECT_NEAR(block.truth_n, 1.2 * pe::kStandardGravity, 1e-9);
+  EXPECT_NEAR(block.axis_up[2], 1.0, 1e-12);
+  EXPECT_NEAR(block.signals.height_m, 1.5, 1e-12);
+  EXPECT_TRUE(std::isnan(block.signals.air_density_kg_m3)) << "no pressure or air temperature logged";
+  EXPECT_TRUE(std::isnan(block.signals.vertical_speed_m_s));
+  EXPECT_TRUE(block.hover);
+  EXPECT_NEAR(block.accel_up_m_s2, 0.0, 1e-12);
+  EXPECT_TRUE(gap::isQuasiSteady(block, 40.0, 0.8));
+  EXPECT_FALSE(gap::isQuasiSteady(block, 10.0, 0.8));
+}
+
+TEST(GapBlocks, GroupsConsecutiveBlocksForTheTest) {
+  gap::BlockConfig grouped = config();
+  grouped.group_s = 5.0;
+  const gap::FlightBlocks cut = gap::cutIntoBlocks(levelFlight(), 3, pe::Vehicle::quadX(0.225), grouped, 7);
+  ASSERT_EQ(cut.blocks.size(), 10u);
+  EXPECT_EQ(cut.blocks[0].flight, 3);
+  EXPECT_EQ(cut.blocks[0].group, 7);
+  EXPECT_EQ(cut.blocks[4].group, 7);
+  EXPECT_EQ(cut.blocks[5].group, 8);
+}
+
+TEST(GapBlocks, NamesASegmentOutsideTheLogAndAFlightWithoutBattery) {
+  pe::Flight flight = levelFlight();
+  flight.segments.push_back({15.0, 30.0, 1.0});
+  const gap::FlightBlocks cut = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
+  ASSERT_EQ(cut.problems.size(), 1u);
+  EXPECT_EQ(cut.problems[0], "f.bag: segment 2 (15-30 s) lies outside the log's rc/out span 0.00-20.00 s; skipped");
+  EXPECT_EQ(cut.blocks.size(), 10u);
+
+  flight.streams.battery.clear();
+  const gap::FlightBlocks none = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
+  EXPECT_TRUE(none.blocks.empty());
+  ASSERT_EQ(none.problems.size(), 1u);
+  EXPECT_EQ(none.problems[0], "f.bag: no rc/out or battery messages");
+}
+
+TEST(GapBlocks, WithoutImuTheWeightIsTheTruthAndItIsSaid) {
+  pe::Flight flight = levelFlight();
+  flight.streams.imu.clear();
+  const gap::FlightBlocks cut = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
+  ASSERT_FALSE(cut.blocks.empty());
+  EXPECT_NEAR(cut.blocks[0].truth_n, 1.2 * pe::kStandardGravity, 1e-9);
+  ASSERT_EQ(cut.problems.size(), 1u);
+  EXPECT_NE(cut.problems[0].find("no IMU"), std::string::npos);
+}
+
+TEST(GapBlocks, AirDensityOfDryAir) {
+  EXPECT_NEAR(gap::airDensity(101325.0, 15.0), 1.225, 1e-3);
+}
