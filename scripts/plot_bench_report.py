@@ -25,6 +25,11 @@ LABELS = {"thrust": "Thrust", "current": "Current", "power": "Electrical power",
 DPI = 110
 
 
+
+def cell(text):
+    """A number from a report CSV cell; an empty cell (outside the covered domain) is NaN, a gap."""
+    return float(text) if text != "" else float("nan")
+
 def read_rows(directory, name):
     with open(os.path.join(directory, name), newline="") as handle:
         return list(csv.DictReader(handle))
@@ -93,7 +98,7 @@ def plot_fit(directory):
             axis.scatter([float(r["pwm_us"]) for r in off], [float(r["measured"]) for r in off], s=22,
                          facecolors="none", edgecolors=colours[level])
             curve = [r for r in pwm_curves if r["output"] == output and float(r["voltage_v"]) == level]
-            axis.plot([float(r["pwm_us"]) for r in curve], [float(r["fitted"]) for r in curve], color=colours[level],
+            axis.plot([float(r["pwm_us"]) for r in curve], [cell(r["fitted"]) for r in curve], color=colours[level],
                       linewidth=1.6, label=None if many_levels else "%.2f V" % level)
         axis.set_xlabel("PWM (\u00b5s)")
         axis.set_ylabel(axis_label(output, units[output]))
@@ -113,7 +118,7 @@ def plot_fit(directory):
             axis.scatter([float(r["voltage_v"]) for r in rows], [float(r["measured_at_pwm_level"]) for r in rows],
                          s=10, color=pwm_colours[pwm], alpha=0.6)
             curve = [r for r in voltage_curves if r["output"] == output and float(r["pwm_us"]) == pwm]
-            axis.plot([float(r["voltage_v"]) for r in curve], [float(r["fitted"]) for r in curve],
+            axis.plot([float(r["voltage_v"]) for r in curve], [cell(r["fitted"]) for r in curve],
                       color=pwm_colours[pwm], linewidth=1.6, label="%.0f \u00b5s" % pwm)
         axis.set_xlabel("Supply voltage (V)")
         axis.set_ylabel(axis_label(output, units[output]))
@@ -148,7 +153,7 @@ def plot_fit(directory):
         pwm_index = {p: k for k, p in enumerate(pwms)}
         volt_index = {v: k for k, v in enumerate(volts)}
         for r in rows:
-            values[volt_index[float(r["voltage_v"])], pwm_index[float(r["pwm_us"])]] = float(r["value"])
+            values[volt_index[float(r["voltage_v"])], pwm_index[float(r["pwm_us"])]] = cell(r["value"])
         filled = axis.contourf(pwms, volts, values, levels=14, cmap="viridis")
         lines = axis.contour(pwms, volts, values, levels=7, colors="white", linewidths=0.6)
         axis.clabel(lines, fontsize=7, fmt=contour_label)

@@ -42,7 +42,10 @@ void printSummary(const fitting::BenchFit& fit) {
       continue;
     }
     const std::string degrees =
-        def.fit ? "(" + std::to_string(def.fit->pwm_degree) + "," + std::to_string(def.fit->voltage_degree) + ")" : "";
+        !def.fit                           ? ""
+        : def.fit->basis == "drive_curve" ? "drive " + std::to_string(def.fit->pwm_degree)
+                                           : "(" + std::to_string(def.fit->pwm_degree) + "," +
+                                                 std::to_string(def.fit->voltage_degree) + ")";
     std::printf("%-10s %-8s %-8s %6d %9.5f %10.4g %10.4g", outputName(output),
                 def.source == OutputSource::kSurface ? "surface" : "derived", degrees.c_str(), report.points, report.r2,
                 report.rmse, report.max_error);

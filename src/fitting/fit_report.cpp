@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
 
@@ -48,6 +49,11 @@ std::vector<int> sectionPwmLevels(const BenchDataset& data) {
     levels.push_back(static_cast<int>(shown == 1 ? 0 : k * (n - 1) / (shown - 1)));
   }
   return levels;
+}
+
+// An output where the bench covered the inputs; NaN (an empty cell, a gap in a figure) elsewhere.
+double coveredValue(const PropulsionModel& model, Output output, double pwm_us, double voltage_v) {
+  return model.domain().contains(pwm_us, voltage_v) ? model.evaluateRaw(output, pwm_us, voltage_v) : kNaN;
 }
 
 std::vector<Output> modelled(const PropulsionModel& model) {
@@ -110,7 +116,7 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
       for (int k = 0; k < kCurvePoints; ++k) {
         const double x = lerp(domain.pwm_min_us, domain.pwm_max_us, k, kCurvePoints);
         pwm_curves << outputName(output) << "," << formatCsvNumber(level.centre) << "," << formatCsvNumber(x) << ","
-                   << formatCsvNumber(model.evaluateRaw(output, x, level.centre)) << "\n";
+                   << formatCsvNumber(coveredValue(model, output, x, level.centre)) << "\n";
       }
     }
   }
@@ -124,7 +130,7 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
       for (int k = 0; k < kCurvePoints; ++k) {
         const double v = lerp(domain.voltage_min_v, domain.voltage_max_v, k, kCurvePoints);
         voltage_curves << outputName(output) << "," << formatCsvNumber(x) << "," << formatCsvNumber(v) << ","
-                       << formatCsvNumber(model.evaluateRaw(output, x, v)) << "\n";
+                       << formatCsvNumber(coveredValue(model, output, x, v)) << "\n";
       }
     }
   }
@@ -137,7 +143,7 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
       for (int a = 0; a < kGridPwm; ++a) {
         const double x = lerp(domain.pwm_min_us, domain.pwm_max_us, a, kGridPwm);
         grid << outputName(output) << "," << formatCsvNumber(x) << "," << formatCsvNumber(v) << ","
-             << formatCsvNumber(model.evaluateRaw(output, x, v)) << "\n";
+             << formatCsvNumber(coveredValue(model, output, x, v)) << "\n";
       }
     }
   }
@@ -149,13 +155,20 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
 
 namespace {
 
-// The logs, the domain, the bench, the levels and how the fit was cross-validated.
-void writeDataSection(std::ostringstream& md, const BenchFit& fit) {
-  const PropulsionModel& model = fit.model;
-  const ModelMetadata& meta = model.metadata();
-  const ModelDomain& domain = model.domain();
-  const BenchDataset& data = fit.data;
-  md << "## Data\n\n";
+void writeVerdict(const BenchFit& fit, const std::string& model_path, std::ostringstream& md) {
+  const ModelMetadata& meta = fit.model.metadata();
+  md << "# Response surfaces: " << meta.esc << " / " << meta.motor << " / " << meta.propeller << "\n\n";
+  if (fit.validation_error.empty()) {
+    md << "Model written to `" << model_path << "`; it passes the loader's checks (`loadModelFile`).\n\n";
+  } else {
+    md << "**The fitted model fails the loader's check on its domain grid and was not written:** "
+       << fit.validation_error
+       << ". The data do not determine the surface there; see the figures, log more points where it fails, or "
+          "narrow the data to the range that will be flown.\n\n";
+  }
+}
+
+void writeLogTable(const BenchDataset& data, std::ostringstream& md) {
   md << "| log | rows | PWM (us) | voltage (V) |\n|---|---:|---|---|\n";
   for (std::size_t l = 0; l < data.sources.size(); ++l) {
     double xlo = 1e300, xhi = -1e300, vlo = 1e300, vhi = -1e300;
@@ -172,19 +185,34 @@ void writeDataSection(std::ostringstream& md, const BenchFit& fit) {
        << formatPrintf("%.0f", xhi, "") << " | " << formatPrintf("%.2f", vlo, "") << "-"
        << formatPrintf("%.2f", vhi, "") << " |\n";
   }
-  // The voltage bounds are single rows (a sweep's top under load); say where they were measured,
-  // since the domain is a box and its other corners were not.
+}
+
+// The box and, inside it, the voltages the bench covered at each PWM level.
+void writeDomain(const BenchDataset& data, const ModelDomain& domain, std::ostringstream& md) {
   const auto [vlo, vhi] = std::minmax_element(data.voltage_v.begin(), data.voltage_v.end());
   md << "\n- Domain: PWM " << formatPrintf("%.0f", domain.pwm_min_us, "") << " to "
      << formatPrintf("%.0f", domain.pwm_max_us, "") << " us, voltage " << formatPrintf("%.2f", domain.voltage_min_v, "")
-     << " to " << formatPrintf("%.2f", domain.voltage_max_v, "")
-     << " V: the bounding box of all rows at their measured voltage, supply droop and sag included ("
+     << " to " << formatPrintf("%.2f", domain.voltage_max_v, "") << " V at the rows' measured voltage ("
      << formatPrintf("%.2f", *vlo, "") << " V was logged at "
      << formatPrintf("%.0f", data.pwm_us[vlo - data.voltage_v.begin()], "") << " us, " << formatPrintf("%.2f", *vhi, "")
      << " V at " << formatPrintf("%.0f", data.pwm_us[vhi - data.voltage_v.begin()], "")
-     << " us; the voltage levels are centred at " << formatPrintf("%.2f", data.voltage_levels.front().centre, "")
-     << " to " << formatPrintf("%.2f", data.voltage_levels.back().centre, "") << " V); outside it the model will "
-     << outsideDomainName(domain.outside) << ".\n";
+     << " us). Within that box the model's domain is only what the bench covered, the voltage range logged at "
+        "each PWM level (interpolated between levels); outside it the model will "
+     << outsideDomainName(domain.outside) << ", and the estimator flags the sample.\n\n";
+  md << "| PWM level (us) | covered voltage (V) |\n|---:|---|\n";
+  for (const CoveredLevel& level : domain.covered) {
+    md << "| " << formatPrintf("%.0f", level.pwm_us, "") << " | " << formatPrintf("%.2f", level.voltage_min_v, "")
+       << " to " << formatPrintf("%.2f", level.voltage_max_v, "") << " |\n";
+  }
+  md << "\n";
+}
+
+void writeDataSection(const BenchFit& fit, std::ostringstream& md) {
+  const ModelMetadata& meta = fit.model.metadata();
+  const BenchDataset& data = fit.data;
+  md << "## Data\n\n";
+  writeLogTable(data, md);
+  writeDomain(data, fit.model.domain(), md);
   if (meta.hasBenchAir()) {
     md << "- Bench: air " << formatPrintf("%.1f", *meta.bench_air_temperature_c, "") << " deg C, "
        << formatPrintf("%.0f", *meta.bench_air_pressure_pa, "") << " Pa (density "
@@ -202,9 +230,14 @@ void writeDataSection(std::ostringstream& md, const BenchFit& fit) {
      << formatPrintf("%.0f", data.pwm_levels.front().centre, "") << " to "
      << formatPrintf("%.0f", data.pwm_levels.back().centre, "") << " us.\n";
   md << "- Cross-validation: " << fit.grouping_description
-     << ". Whole groups are held out, never random rows; candidates are the MATLAB polyXY degrees up to (5, 3) "
-        "that every fold determines, and the one with the fewest terms within "
-     << formatPrintf("%g", 100.0 * fit.parsimony, "") << "% of the lowest held-out RMSE is chosen.\n\n";
+     << ". Whole groups are held out, never random rows. Candidates are the MATLAB polyXY degrees up to (5, 3) and "
+        "drive curves y = sum c_k u^k, u = max(0, PWM - x0) / 1000 us * V, of degree 1 to 3 with c_k >= 0 (they "
+        "rise with PWM and voltage everywhere); each is also fitted above the lowest voltage band and judged on it, "
+        "and below the highest. A polynomial that falls with PWM or voltage anywhere in the covered domain is not "
+        "chosen; of the rest, the one with the fewest terms within "
+     << formatPrintf("%g", 100.0 * fit.parsimony, "")
+     << "% of the lowest worst score (the largest of its determined held-out, low-band and high-band RMSE) is "
+        "chosen.\n\n";
   if (!fit.notes.empty()) {
     md << "### Notes\n\n";
     for (const std::string& note : fit.notes) md << "- " << note << "\n";
@@ -212,27 +245,36 @@ void writeDataSection(std::ostringstream& md, const BenchFit& fit) {
   }
 }
 
-// One row per output: how it is modelled and how well the surface fits.
-void writeFitQuality(std::ostringstream& md, const BenchFit& fit) {
+std::string degrees(const FitQuality& fit) {
+  if (fit.basis == "drive_curve") return "drive curve, degree " + std::to_string(fit.pwm_degree);
+  return "(" + std::to_string(fit.pwm_degree) + ", " + std::to_string(fit.voltage_degree) + ")";
+}
+
+std::string optionalNumber(const std::optional<double>& value) {
+  return value ? formatPrintf("%.4g", *value, "") : "-";
+}
+
+void writeQualitySection(const BenchFit& fit, std::ostringstream& md) {
   const PropulsionModel& model = fit.model;
   md << "## Fit quality\n\n";
-  md << "| output | unit | model | degrees (x, v) | points | R^2 | RMSE | max error | held-out RMSE |\n";
-  md << "|---|---|---|---|---:|---:|---:|---:|---:|\n";
+  md << "| output | unit | model | degrees (x, v) | points | R^2 | RMSE | max error | held-out RMSE | low-band RMSE | "
+        "high-band RMSE |\n";
+  md << "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for (Output output : kAllOutputs) {
     const OutputDefinition& def = model.output(output);
     const OutputFitReport& report = fit.outputs[static_cast<int>(output)];
     md << "| " << outputName(output) << " | " << def.unit << " | " << sourceName(def.source);
     if (def.source == OutputSource::kNone) {
-      md << ": " << def.note << " | | | | | | |\n";
+      md << ": " << def.note << " | | | | | | | | |\n";
       continue;
     }
     if (def.source == OutputSource::kDerived) md << " (" << def.note << ")";
-    md << " | "
-       << (def.fit ? "(" + std::to_string(def.fit->pwm_degree) + ", " + std::to_string(def.fit->voltage_degree) + ")"
-                   : "")
-       << " | " << report.points << " | " << formatPrintf("%.5f", report.r2, "") << " | "
-       << formatPrintf("%.4g", report.rmse, "") << " | " << formatPrintf("%.4g", report.max_error, "") << " | "
-       << (def.fit ? formatPrintf("%.4g", def.fit->held_out_rmse, "") : "") << " |\n";
+    md << " | " << (def.fit ? degrees(*def.fit) : "") << " | " << report.points << " | "
+       << formatPrintf("%.5f", report.r2, "") << " | " << formatPrintf("%.4g", report.rmse, "") << " | "
+       << formatPrintf("%.4g", report.max_error, "") << " | "
+       << (def.fit ? formatPrintf("%.4g", def.fit->held_out_rmse, "") : "") << " | "
+       << (def.fit ? optionalNumber(def.fit->low_band_rmse) : "") << " | "
+       << (def.fit ? optionalNumber(def.fit->high_band_rmse) : "") << " |\n";
   }
   md << "\nDerived outputs are compared with the bench's own ratio where the row drew at least "
      << formatPrintf("%.0f", 100.0 * kEfficiencyMinPowerShare, "") << "% of its log's peak power.";
@@ -241,43 +283,70 @@ void writeFitQuality(std::ostringstream& md, const BenchFit& fit) {
   md << "\n\n";
 }
 
-// The held-out RMSE of every candidate degree pair, the chosen one in bold.
-void writeCandidates(std::ostringstream& md, const BenchFit& fit) {
-  const PropulsionModel& model = fit.model;
-  md << "### Held-out RMSE of every candidate (rows: PWM degree, columns: voltage degree; - : not determined)\n\n";
-  for (Output output : kAllOutputs) {
-    const OutputFitReport& report = fit.outputs[static_cast<int>(output)];
-    if (report.candidates.empty()) continue;
-    int max_dv = 0;
-    for (const CandidateScore& c : report.candidates) max_dv = std::max(max_dv, c.voltage_degree);
-    md << "**" << outputName(output) << "** (" << report.unit << ")\n\n| x \\ v |";
-    for (int dv = 0; dv <= max_dv; ++dv) md << " " << dv << " |";
-    md << "\n|---|";
-    for (int dv = 0; dv <= max_dv; ++dv) md << "---:|";
-    const FitQuality& chosen = *model.output(output).fit;
-    int last_dx = -1;
-    for (const CandidateScore& c : report.candidates) {
-      if (c.pwm_degree != last_dx) md << "\n| " << c.pwm_degree << " |";
-      last_dx = c.pwm_degree;
-      const bool is_chosen = c.pwm_degree == chosen.pwm_degree && c.voltage_degree == chosen.voltage_degree;
-      const std::string value = std::isnan(c.held_out_rmse) ? "-" : formatPrintf("%.4g", c.held_out_rmse, "");
-      md << " " << (is_chosen ? "**" + value + "**" : value) << " |";
-    }
-    md << "\n\n";
+// How far below the bench's lowest voltage the thrust surface is trusted: the depth of the low band
+// held out, when the surface fitted above it predicted it within twice its held-out RMSE.
+void writeExtrapolationSection(const BenchFit& fit, std::ostringstream& md) {
+  const VoltageBands& bands = fit.bands;
+  const FitQuality& thrust = *fit.model.output(Output::kThrust).fit;
+  md << "## Extrapolation\n\n";
+  md << "Low band: fitted on the rows at " << formatPrintf("%.2f", bands.rest_min_v, "") << " V and above, judged on "
+     << formatPrintf("%.2f", bands.low_min_v, "") << " to " << formatPrintf("%.2f", bands.low_max_v, "")
+     << " V; high band: fitted below it, judged on " << formatPrintf("%.2f", bands.high_min_v, "") << " to "
+     << formatPrintf("%.2f", bands.high_max_v, "") << " V.\n\n";
+  const double depth_v = bands.rest_min_v - bands.low_min_v;
+  if (!thrust.low_band_rmse) {
+    md << "The chosen thrust surface (" << degrees(thrust)
+       << ") cannot be fitted without the low band, so its extrapolation is unchecked: **it is not trusted below "
+       << formatPrintf("%.2f", bands.low_min_v, "") << " V**, the bench's lowest voltage.\n\n";
+  } else if (*thrust.low_band_rmse <= 2.0 * thrust.held_out_rmse) {
+    md << "Fitted without it, the chosen thrust surface predicts the low band within "
+       << formatPrintf("%.3g", *thrust.low_band_rmse, "") << " " << fit.model.output(Output::kThrust).unit
+       << " RMSE (held-out RMSE " << formatPrintf("%.3g", thrust.held_out_rmse, "")
+       << "): **it is trusted about " << formatPrintf("%.2f", depth_v, "") << " V below the bench's lowest voltage, to "
+       << formatPrintf("%.2f", bands.low_min_v - depth_v, "") << " V** (the depth of that check).\n\n";
+  } else {
+    md << "Fitted without it, the chosen thrust surface misses the low band by "
+       << formatPrintf("%.3g", *thrust.low_band_rmse, "") << " RMSE, more than twice its held-out RMSE: **it is not "
+       << "trusted below " << formatPrintf("%.2f", bands.low_min_v, "") << " V**, the bench's lowest voltage.\n\n";
   }
 }
 
-// The figures with their captions.
-void writeFigures(std::ostringstream& md) {
+std::string score(double value) { return std::isnan(value) ? "-" : formatPrintf("%.4g", value, ""); }
+
+void writeCandidatesSection(const BenchFit& fit, std::ostringstream& md) {
+  md << "### Every candidate (held-out / low-band / high-band RMSE; - : not determined; x : falls with PWM or "
+        "voltage in the covered domain)\n\n";
+  for (Output output : kAllOutputs) {
+    const OutputFitReport& report = fit.outputs[static_cast<int>(output)];
+    if (report.candidates.empty()) continue;
+    const std::optional<FitQuality>& chosen = fit.model.output(output).fit;
+    md << "**" << outputName(output) << "** (" << report.unit << ")\n\n| candidate | held-out | low band | high "
+       << "band |\n|---|---:|---:|---:|\n";
+    for (const CandidateScore& c : report.candidates) {
+      const bool drive = c.basis == "drive_curve";
+      const std::string name = drive ? "drive curve " + std::to_string(c.pwm_degree)
+                                     : "(" + std::to_string(c.pwm_degree) + ", " + std::to_string(c.voltage_degree) + ")";
+      const bool is_chosen = chosen && chosen->basis == c.basis && chosen->pwm_degree == c.pwm_degree &&
+                             chosen->voltage_degree == c.voltage_degree;
+      md << "| " << (is_chosen ? "**" + name + "**" : name) << (c.physical ? "" : " x") << " | "
+         << score(c.held_out_rmse) << " | " << score(c.low_band_rmse) << " | " << score(c.high_band_rmse) << " |\n";
+    }
+    md << "\n";
+  }
+}
+
+void writeFiguresSection(std::ostringstream& md) {
   md << "## Figures\n\n";
   const char* captions[] = {
       "Outputs against PWM at each voltage level (thesis 4.1): bench points and the fitted surface's section at the "
-      "level's voltage; hollow points sit more than 0.5 V off their level (supply sag).",
-      "Outputs against voltage at fixed PWM (thesis 4.2): the surface's section and the points of that PWM level "
-      "(binned PWM: each point moved along the surface to the level's PWM, so the scatter is the noise).",
+      "level's voltage, drawn where the bench covered it; hollow points sit more than 0.5 V off their level "
+      "(supply sag).",
+      "Outputs against voltage at fixed PWM (thesis 4.2): the surface's section over the voltages covered at that PWM "
+      "and the points of that PWM level (binned PWM: each point moved along the surface to the level's PWM, so the "
+      "scatter is the noise).",
       "Residuals (fitted - measured) against PWM, coloured by voltage.",
-      "The surfaces as contour maps over the domain, with the bench points (where data are missing, the surface "
-      "extrapolates)."};
+      "The surfaces as contour maps over the covered domain (blank where the bench did not go), with the bench "
+      "points."};
   for (std::size_t k = 0; k < fitReportFigures().size(); ++k) {
     md << captions[k] << "\n\n![" << fitReportFigures()[k] << "](" << fitReportFigures()[k] << ")\n\n";
   }
@@ -286,23 +355,13 @@ void writeFigures(std::ostringstream& md) {
 }  // namespace
 
 std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path) {
-  const PropulsionModel& model = fit.model;
-  const ModelMetadata& meta = model.metadata();
   std::ostringstream md;
-  md << "# Response surfaces: " << meta.esc << " / " << meta.motor << " / " << meta.propeller << "\n\n";
-  if (fit.validation_error.empty()) {
-    md << "Model written to `" << model_path << "`; it passes the loader's checks (`loadModelFile`).\n\n";
-  } else {
-    md << "**The fitted model fails the loader's check on its domain grid and was not written:** "
-       << fit.validation_error
-       << ". The data do not determine the surface there; see the figures, log more points where it fails, or "
-          "narrow the data to the range that will be flown.\n\n";
-  }
-
-  writeDataSection(md, fit);
-  writeFitQuality(md, fit);
-  writeCandidates(md, fit);
-  writeFigures(md);
+  writeVerdict(fit, model_path, md);
+  writeDataSection(fit, md);
+  writeQualitySection(fit, md);
+  writeExtrapolationSection(fit, md);
+  writeCandidatesSection(fit, md);
+  writeFiguresSection(md);
   return md.str();
 }
 

@@ -129,5 +129,29 @@ std::optional<double> GroupedLeastSquares::heldOutRmse(const std::vector<int>& t
   return std::sqrt(sse / static_cast<double>(rows));
 }
 
+std::optional<double> GroupedLeastSquares::heldOutRmseOf(const std::vector<int>& terms, int group) const {
+  if (count_[group] == 0) return std::nullopt;
+  const std::optional<Eigen::VectorXd> beta = solveCentred(terms, group);
+  if (!beta) return std::nullopt;
+  const Eigen::MatrixXd xtx = subMatrix(xtx_[group], terms);
+  const Eigen::VectorXd xty = subVector(xty_[group], terms);
+  const double sse = std::max(0.0, yty_[group] - 2.0 * beta->dot(xty) + beta->dot(xtx * *beta));
+  return std::sqrt(sse / static_cast<double>(count_[group]));
+}
+
+GroupedLeastSquares GroupedLeastSquares::merged(const std::vector<int>& new_group_of, int groups) const {
+  GroupedLeastSquares result(groups, y_offset_);
+  for (int g = 0; g < this->groups(); ++g) {
+    const int to = new_group_of[g];
+    result.xtx_[to] += xtx_[g];
+    result.xty_[to] += xty_[g];
+    result.yty_[to] += yty_[g];
+    result.count_[to] += count_[g];
+  }
+  result.total_xtx_ = total_xtx_;
+  result.total_xty_ = total_xty_;
+  return result;
+}
+
 }  // namespace fitting
 }  // namespace propulsion_estimator

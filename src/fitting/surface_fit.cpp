@@ -11,7 +11,9 @@
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/fitting/bench_metadata.h"
+#include "propulsion_estimator/fitting/fit_grouping.h"
 #include "propulsion_estimator/fitting/grouped_least_squares.h"
+#include "propulsion_estimator/fitting/surface_candidates.h"
 #include "propulsion_estimator/model/model_validation.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/not_a_number.h"
@@ -36,6 +38,9 @@ const char* fileUnit(Output output) {
   }
   return "";
 }
+
+// A fall by more than this share of the output's range between grid neighbours is not physical.
+constexpr double kMonotoneTolerance = 0.005;
 
 // ---- data checks ------------------------------------------------------------------------------
 
@@ -92,54 +97,6 @@ const char* sampleColumn(Output output) {
   return "";
 }
 
-// How rows are grouped for cross-validation, resolved from FitOptions::grouping.
-struct Grouping {
-  FitGrouping kind = FitGrouping::kVoltageLevel;
-  bool chosen_automatically = false;
-  std::vector<int> group_of_row;
-  std::vector<std::string> group_names;  // "the 11.06 V level", "the 1500 us level", a log's source
-  std::string description;
-
-  int groups() const { return static_cast<int>(group_names.size()); }
-};
-
-Grouping resolveGrouping(const BenchDataset& data, FitGrouping requested) {
-  Grouping grouping;
-  const int voltage_levels = static_cast<int>(data.voltage_levels.size());
-  grouping.chosen_automatically = requested == FitGrouping::kAuto;
-  // Voltage levels when holding one out leaves at least two to fit a voltage term.
-  grouping.kind = requested != FitGrouping::kAuto ? requested
-                  : voltage_levels >= 3          ? FitGrouping::kVoltageLevel
-                                                 : FitGrouping::kPwmLevel;
-  switch (grouping.kind) {
-    case FitGrouping::kVoltageLevel:
-      grouping.group_of_row = data.voltage_level;
-      for (const Level& level : data.voltage_levels) {
-        grouping.group_names.push_back(formatPrintf("the %.2f V level", level.centre));
-      }
-      grouping.description = "leave one voltage level out (" + std::to_string(grouping.groups()) + " levels, " +
-                             formatPrintf("%.2f", data.voltage_levels.front().centre) + " to " +
-                             formatPrintf("%.2f V", data.voltage_levels.back().centre) + ")";
-      break;
-    case FitGrouping::kPwmLevel:
-      grouping.group_of_row = data.pwm_level;
-      for (const Level& level : data.pwm_levels) {
-        grouping.group_names.push_back(formatPrintf("the %.0f us level", level.centre));
-      }
-      grouping.description = "leave one PWM level out (" + std::to_string(grouping.groups()) + " levels, " +
-                             formatPrintf("%.0f", data.pwm_levels.front().centre) + " to " +
-                             formatPrintf("%.0f us", data.pwm_levels.back().centre) + ")";
-      if (voltage_levels == 2) grouping.description += "; 2 voltage levels only, so the voltage degree is at most 1";
-      break;
-    default:
-      grouping.group_of_row = data.log;
-      grouping.group_names = data.sources;
-      grouping.description = "leave one log out (" + std::to_string(grouping.groups()) + " logs)";
-      break;
-  }
-  return grouping;
-}
-
 // ---- one surface --------------------------------------------------------------------------------
 
 struct SurfaceResult {
@@ -175,13 +132,6 @@ struct LevelPresence {
   }
 };
 
-std::string groupingFlag(const Grouping& grouping) {
-  const char* kind = grouping.kind == FitGrouping::kVoltageLevel ? "voltage"
-                     : grouping.kind == FitGrouping::kPwmLevel   ? "pwm"
-                                                                 : "log";
-  return grouping.chosen_automatically ? std::string("--group-by auto (by ") + kind + ")"
-                                       : std::string("--group-by ") + kind;
-}
 
 // Every fold must keep two voltage levels of the output's rows, or every candidate has voltage
 // degree 0 and the model silently ignores voltage.
@@ -213,13 +163,84 @@ void requireVoltageLevelsPerFold(const BenchDataset& data, Output output, const 
   }
 }
 
-SurfaceResult fitSurface(const BenchDataset& data, Output output, const Grouping& grouping,
-                         const InputScaling& scaling, const FitOptions& options) {
+// What the fits of one output need besides its rows: how rows are grouped and banded, where the
+// surfaces are judged, and the options.
+struct SurfaceContext {
+  const Grouping& grouping;
+  const std::vector<VoltageBand>& band_of_level;
+  const ModelDomain& domain;
+  const InputScaling& scaling;
+  const FitOptions& options;
+};
+
+// The polyXY candidates, each with its held-out and band errors and whether it is physical.
+std::vector<SurfaceCandidate> polynomialCandidates(const GroupedLeastSquares& cells, const SurfaceContext& context,
+                                                   const LevelPresence& voltage_presence,
+                                                   const LevelPresence& pwm_presence, long points, bool monotone,
+                                                   double tolerance) {
+  const int groups = context.grouping.groups();
+  std::vector<int> group_of_cell(cells.groups()), band_of_cell(cells.groups());
+  for (int c = 0; c < cells.groups(); ++c) {
+    group_of_cell[c] = c / kVoltageBandCount;
+    band_of_cell[c] = c % kVoltageBandCount;
+  }
+  const GroupedLeastSquares squares = cells.merged(group_of_cell, groups);
+  const GroupedLeastSquares by_band = cells.merged(band_of_cell, kVoltageBandCount);
+  // Voltage levels left when a band is held out, to say which candidates a band fold determines.
+  std::array<int, kVoltageBandCount> levels_without_band{};
+  for (std::size_t level = 0; level < voltage_presence.total.size(); ++level) {
+    for (int b = 0; b < kVoltageBandCount; ++b) {
+      levels_without_band[b] += voltage_presence.total[level] > 0 && static_cast<int>(context.band_of_level[level]) != b;
+    }
+  }
+  std::vector<SurfaceCandidate> candidates;
+  for (int dx = 1; dx <= context.options.max_pwm_degree; ++dx) {
+    for (int dv = 0; dv <= context.options.max_voltage_degree; ++dv) {
+      const std::vector<int> terms = GroupedLeastSquares::subBasis(dx, dv);
+      SurfaceCandidate candidate;
+      candidate.score = CandidateScore{dx, dv, static_cast<int>(terms.size()), kNaN, "polynomial", kNaN, kNaN, true};
+      bool determined = true;
+      for (int g = 0; g < groups && determined; ++g) {
+        if (squares.rows(g) == 0) continue;
+        determined = dv <= voltage_presence.presentWithout(g) - 1 && dx <= pwm_presence.presentWithout(g) - 1 &&
+                     points - squares.rows(g) > static_cast<long>(terms.size());
+      }
+      if (determined) candidate.score.held_out_rmse = squares.heldOutRmse(terms).value_or(kNaN);
+      for (VoltageBand b : {VoltageBand::kLow, VoltageBand::kHigh}) {
+        const int i = static_cast<int>(b);
+        if (dv > levels_without_band[i] - 1 || points - by_band.rows(i) <= static_cast<long>(terms.size())) continue;
+        (b == VoltageBand::kLow ? candidate.score.low_band_rmse : candidate.score.high_band_rmse) =
+            by_band.heldOutRmseOf(terms, i).value_or(kNaN);
+      }
+      if (const std::optional<Eigen::VectorXd> beta = squares.solve(terms)) {
+        std::vector<PolynomialTerm> polynomial;
+        for (std::size_t t = 0; t < terms.size(); ++t) {
+          const auto [i, j] = GroupedLeastSquares::fullBasis()[terms[t]];
+          polynomial.push_back({i, j, (*beta)(t)});
+        }
+        candidate.surface = ResponseSurface(Polynomial2D(std::move(polynomial)), context.scaling);
+        candidate.score.physical = !monotone || isNonDecreasing(*candidate.surface, context.domain, tolerance);
+      }
+      candidates.push_back(std::move(candidate));
+    }
+  }
+  return candidates;
+}
+
+SurfaceResult fitSurface(const BenchDataset& data, Output output, const SurfaceContext& context) {
   const std::vector<double>& y = data.output(output);
   const std::string name = outputName(output);
+  const Grouping& grouping = context.grouping;
+  const InputScaling& scaling = context.scaling;
   const int groups = grouping.groups();
-  // Rows of this output, gathered per group.
-  std::vector<std::vector<double>> gx(groups), gv(groups), gy(groups);
+  const int cells = groups * kVoltageBandCount;
+  // Rows of this output, gathered per (group, band) cell.
+  std::vector<std::vector<double>> gx(cells), gv(cells), gy(cells);
+  FitRows rows;
+  rows.groups = groups;
+  for (auto* column : {&rows.pwm_us, &rows.voltage_v, &rows.y}) column->reserve(data.rows());
+  rows.group.reserve(data.rows());
+  rows.band.reserve(data.rows());
   LevelPresence voltage_presence(groups, static_cast<int>(data.voltage_levels.size()));
   LevelPresence pwm_presence(groups, static_cast<int>(data.pwm_levels.size()));
   std::vector<bool> logs_with_output(data.sources.size(), false);
@@ -228,9 +249,16 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const Grouping
   for (std::size_t row = 0; row < data.rows(); ++row) {
     if (std::isnan(y[row])) continue;
     const int g = grouping.group_of_row[row];
-    gx[g].push_back((data.pwm_us[row] - scaling.pwm_center_us) / scaling.pwm_scale_us);
-    gv[g].push_back((data.voltage_v[row] - scaling.voltage_center_v) / scaling.voltage_scale_v);
-    gy[g].push_back(y[row]);
+    const VoltageBand band = context.band_of_level[data.voltage_level[row]];
+    const int cell = g * kVoltageBandCount + static_cast<int>(band);
+    gx[cell].push_back((data.pwm_us[row] - scaling.pwm_center_us) / scaling.pwm_scale_us);
+    gv[cell].push_back((data.voltage_v[row] - scaling.voltage_center_v) / scaling.voltage_scale_v);
+    gy[cell].push_back(y[row]);
+    rows.pwm_us.push_back(data.pwm_us[row]);
+    rows.voltage_v.push_back(data.voltage_v[row]);
+    rows.y.push_back(y[row]);
+    rows.group.push_back(g);
+    rows.band.push_back(band);
     voltage_presence.add(g, data.voltage_level[row]);
     pwm_presence.add(g, data.pwm_level[row]);
     logs_with_output[data.log[row]] = true;
@@ -239,10 +267,10 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const Grouping
     sum += y[row];
     ++points;
   }
-  if (points < options.min_points) {
+  if (points < context.options.min_points) {
     throw DataError("cannot fit " + name + ": " + std::to_string(points) + " rows" +
                     (points > 0 ? " of " + logNames(data, logs_with_output) : std::string()) + " have " +
-                    sampleColumn(output) + ", at least " + std::to_string(options.min_points) + " are needed");
+                    sampleColumn(output) + ", at least " + std::to_string(context.options.min_points) + " are needed");
   }
   if (hi == lo) {
     throw DataError("cannot fit " + name + ": column " + sampleColumn(output) + " is " + formatPrintf("%g", lo) + " " +
@@ -250,60 +278,45 @@ SurfaceResult fitSurface(const BenchDataset& data, Output output, const Grouping
                     logNames(data, logs_with_output) + " (a sensor that was not connected?)" +
                     (output == Output::kThrust ? "" : "; leave it out with --without " + name));
   }
-  std::vector<long> rows_per_group(groups);
-  for (int g = 0; g < groups; ++g) rows_per_group[g] = static_cast<long>(gy[g].size());
+  std::vector<long> rows_per_group(groups, 0);
+  for (int c = 0; c < cells; ++c) rows_per_group[c / kVoltageBandCount] += static_cast<long>(gy[c].size());
   requireVoltageLevelsPerFold(data, output, grouping, voltage_presence, rows_per_group, logs_with_output, points);
-  const double mean = sum / static_cast<double>(points);
-  GroupedLeastSquares squares(groups, mean);
-  for (int g = 0; g < groups; ++g) squares.add(g, gx[g].data(), gv[g].data(), gy[g].data(), gy[g].size());
+  GroupedLeastSquares squares(cells, sum / static_cast<double>(points));
+  for (int c = 0; c < cells; ++c) squares.add(c, gx[c].data(), gv[c].data(), gy[c].data(), gy[c].size());
 
-  // Candidates: every degree pair the data determines in every fold.
-  std::vector<CandidateScore> candidates;
-  for (int dx = 1; dx <= options.max_pwm_degree; ++dx) {
-    for (int dv = 0; dv <= options.max_voltage_degree; ++dv) {
-      const std::vector<int> terms = GroupedLeastSquares::subBasis(dx, dv);
-      CandidateScore score{dx, dv, static_cast<int>(terms.size()), kNaN};
-      bool determined = true;
-      for (int g = 0; g < groups && determined; ++g) {
-        if (squares.rows(g) == 0) continue;
-        determined = dv <= voltage_presence.presentWithout(g) - 1 && dx <= pwm_presence.presentWithout(g) - 1 &&
-                     points - squares.rows(g) > static_cast<long>(terms.size());
-      }
-      if (determined) score.held_out_rmse = squares.heldOutRmse(terms).value_or(kNaN);
-      candidates.push_back(score);
+  // Efficiency need not rise with PWM; every other output does, and a surface that does not is refused.
+  const bool monotone = output != Output::kEfficiency;
+  const double tolerance = kMonotoneTolerance * (hi - lo);
+  std::vector<SurfaceCandidate> candidates =
+      polynomialCandidates(squares, context, voltage_presence, pwm_presence, points, monotone, tolerance);
+  for (SurfaceCandidate& c : driveCurveCandidates(rows)) candidates.push_back(std::move(c));
+  const SurfaceCandidate* chosen = chooseCandidate(candidates, context.options.parsimony);
+  if (!chosen) {
+    const bool determined = std::any_of(candidates.begin(), candidates.end(), [](const SurfaceCandidate& c) {
+      return c.surface && std::isfinite(c.score.held_out_rmse);
+    });
+    if (determined) {
+      throw DataError("cannot fit " + name + ": no candidate surface rises with PWM and voltage over the bench's " +
+                      "domain (does column " + sampleColumn(output) + " fall as PWM rises? a sensor read with the " +
+                      "wrong sign)" + (output == Output::kThrust ? "" : "; leave it out with --without " + name));
     }
-  }
-  double best = std::numeric_limits<double>::infinity();
-  for (const CandidateScore& c : candidates) {
-    if (std::isfinite(c.held_out_rmse)) best = std::min(best, c.held_out_rmse);
-  }
-  if (!std::isfinite(best)) {
-    throw DataError("cannot fit " + name + ": no polynomial degree is determined with one group held out (" +
+    throw DataError("cannot fit " + name + ": no candidate surface is determined with one group held out (" +
                     grouping.description + ")");
   }
-  const CandidateScore* chosen = nullptr;
-  for (const CandidateScore& c : candidates) {
-    if (!(c.held_out_rmse <= best * (1.0 + options.parsimony))) continue;
-    if (!chosen || c.terms < chosen->terms || (c.terms == chosen->terms && c.held_out_rmse < chosen->held_out_rmse)) {
-      chosen = &c;
-    }
-  }
-  const std::vector<int> terms = GroupedLeastSquares::subBasis(chosen->pwm_degree, chosen->voltage_degree);
-  const std::optional<Eigen::VectorXd> beta = squares.solve(terms);
-  if (!beta) throw DataError("cannot fit " + name + ": the normal equations are singular on all data");
-  std::vector<PolynomialTerm> polynomial;
-  for (std::size_t t = 0; t < terms.size(); ++t) {
-    const auto [i, j] = GroupedLeastSquares::fullBasis()[terms[t]];
-    polynomial.push_back({i, j, (*beta)(t)});
-  }
-  ResponseSurface surface(Polynomial2D(std::move(polynomial)), scaling);
-
   FitQuality quality;
-  quality.pwm_degree = chosen->pwm_degree;
-  quality.voltage_degree = chosen->voltage_degree;
-  quality.held_out_rmse = chosen->held_out_rmse;
+  quality.basis = chosen->score.basis;
+  quality.pwm_degree = chosen->score.pwm_degree;
+  quality.voltage_degree = chosen->score.voltage_degree;
+  quality.held_out_rmse = chosen->score.held_out_rmse;
   quality.grouping = grouping.description;
-  return {std::move(surface), quality, std::move(candidates)};
+  if (std::isfinite(chosen->score.low_band_rmse)) quality.low_band_rmse = chosen->score.low_band_rmse;
+  if (std::isfinite(chosen->score.high_band_rmse)) quality.high_band_rmse = chosen->score.high_band_rmse;
+  std::vector<CandidateScore> scores;
+  for (const SurfaceCandidate& c : candidates) scores.push_back(c.score);
+  if (chosen->drive_fit && rows.size() > 0) {
+    return {ResponseSurface(refitOnAllRows(rows, *chosen->drive_fit)), quality, std::move(scores)};
+  }
+  return {*chosen->surface, quality, std::move(scores)};
 }
 
 // R^2, RMSE and maximum error of the model's output against the samples.
@@ -343,6 +356,18 @@ ModelDomain measuredDomain(const BenchDataset& data, OutsideDomain outside) {
   domain.voltage_min_v = *voltage_lo;
   domain.voltage_max_v = *voltage_hi;
   domain.outside = outside;
+  // Per PWM level the voltages logged there: a discharge never logs a high PWM on a low battery.
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<CoveredLevel> covered(data.pwm_levels.size(), CoveredLevel{0.0, inf, -inf});
+  for (std::size_t row = 0; row < data.rows(); ++row) {
+    CoveredLevel& level = covered[data.pwm_level[row]];
+    level.voltage_min_v = std::min(level.voltage_min_v, data.voltage_v[row]);
+    level.voltage_max_v = std::max(level.voltage_max_v, data.voltage_v[row]);
+  }
+  for (std::size_t k = 0; k < covered.size(); ++k) {
+    covered[k].pwm_us = std::clamp(data.pwm_levels[k].centre, domain.pwm_min_us, domain.pwm_max_us);
+  }
+  domain.covered = std::move(covered);
   return domain;
 }
 
@@ -356,9 +381,7 @@ InputScaling domainScaling(const ModelDomain& domain) {
 // surface, derived from others, or absent, each with why.
 class OutputPlan {
  public:
-  OutputPlan(const BenchDataset& data, const Grouping& grouping, const InputScaling& scaling,
-             const FitOptions& options)
-      : data_(data), grouping_(grouping), scaling_(scaling), options_(options) {
+  OutputPlan(const BenchDataset& data, const SurfaceContext& context) : data_(data), context_(context) {
     for (Output output : kAllOutputs) {
       definitions_[index(output)].unit = fileUnit(output);
       reports_[index(output)].output = output;
@@ -367,7 +390,22 @@ class OutputPlan {
   }
 
   void fitted(Output output) {
-    SurfaceResult result = fitSurface(data_, output, grouping_, scaling_, options_);
+    SurfaceResult result = fitSurface(data_, output, context_);
+    const double r2 = explained(result.surface, data_.output(output));
+    if (output != Output::kThrust && r2 < kPoorFitR2) {
+      const std::string name = outputName(output);
+      const std::string why = formatPrintf("its best surface explains only R^2 %.2f", r2) + " of column " +
+                              sampleColumn(output) +
+                              (output == Output::kRpm ? " (an electrical speed, or dropouts?): map the rotor's speed "
+                                                        "with --map rpm=<column>, or log it with the motor's pole "
+                                                        "count set in the stand's software"
+                                                      : " (a noisy or misread sensor?): map another column with "
+                                                        "--map " + name + "=<column>");
+      absent(output, "left out: " + why);
+      reports_[index(output)].candidates = std::move(result.candidates);
+      reports_[index(output)].left_out = name + " left out: " + why;
+      return;
+    }
     definitions_[index(output)].source = OutputSource::kSurface;
     definitions_[index(output)].surface = std::move(result.surface);
     definitions_[index(output)].fit = result.quality;
@@ -376,7 +414,7 @@ class OutputPlan {
   void derived(Output output, const std::string& why) { set(output, OutputSource::kDerived, why); }
   void absent(Output output, const std::string& why) { set(output, OutputSource::kNone, why); }
   OutputSource source(Output output) const { return definitions_[index(output)].source; }
-  bool without(Output output) const { return options_.without.count(output) > 0; }
+  bool without(Output output) const { return context_.options.without.count(output) > 0; }
 
   const std::array<OutputDefinition, kOutputCount>& definitions() const { return definitions_; }
   std::array<OutputFitReport, kOutputCount>& reports() { return reports_; }
@@ -388,10 +426,26 @@ class OutputPlan {
     definitions_[index(output)].note = why;
   }
 
+  // R^2 of a surface against the rows that have the output (an even subsample of at most 100000
+  // rows: enough to tell a column that fits from one that does not).
+  double explained(const ResponseSurface& surface, const std::vector<double>& y) const {
+    const std::size_t stride = std::max<std::size_t>(1, data_.rows() / 100000);
+    double sse = 0.0, sum = 0.0, sum2 = 0.0;
+    long n = 0;
+    for (std::size_t row = 0; row < data_.rows(); row += stride) {
+      if (std::isnan(y[row])) continue;
+      const double error = surface.evaluate(data_.pwm_us[row], data_.voltage_v[row]) - y[row];
+      sse += error * error;
+      sum += y[row];
+      sum2 += y[row] * y[row];
+      ++n;
+    }
+    const double sst = sum2 - sum * sum / static_cast<double>(n);
+    return sst > 0.0 ? 1.0 - sse / sst : 1.0;
+  }
+
   const BenchDataset& data_;
-  const Grouping& grouping_;
-  const InputScaling& scaling_;
-  const FitOptions& options_;
+  const SurfaceContext& context_;
   std::array<OutputDefinition, kOutputCount> definitions_;
   std::array<OutputFitReport, kOutputCount> reports_;
 };
@@ -484,17 +538,23 @@ BenchFit fitBenchModel(const std::vector<BenchLog>& logs, const FitOptions& opti
   const ModelDomain domain = measuredDomain(data, options.outside);
   const InputScaling scaling = domainScaling(domain);
   const Grouping grouping = resolveGrouping(data, options.grouping);
+  VoltageBands bands;
+  const std::vector<VoltageBand> band_of_level = voltageBandOfLevels(data, &bands);
 
-  OutputPlan plan(data, grouping, scaling, options);
+  const SurfaceContext context{grouping, band_of_level, domain, scaling, options};
+  OutputPlan plan(data, context);
   plan.fitted(Output::kThrust);
   planCurrentAndPower(logs, data, &plan);
   planEfficiencyAndRpm(data, options.efficiency_surface, &plan);
 
   std::array<OutputFitReport, kOutputCount> reports = plan.reports();
+  for (const OutputFitReport& report : reports) {
+    if (!report.left_out.empty()) notes.push_back(report.left_out);
+  }
   PropulsionModel model = modelWithQuality(metadata, domain, data, plan.definitions(), &reports);
   std::string validation_error = gridCheckError(model);
   return BenchFit{std::move(model), std::move(validation_error), std::move(data), grouping.kind,
-                  grouping.description, reports, notes, options.parsimony};
+                  grouping.description, reports, notes, options.parsimony, bands};
 }
 
 }  // namespace fitting

@@ -33,6 +33,8 @@ void validateModelOnGrid(const PropulsionModel& model) {
       const double x = gridValue(domain.pwm_min_us, domain.pwm_max_us, a, kPwmPoints);
       for (int b = 0; b < kVoltagePoints; ++b) {
         const double v = gridValue(domain.voltage_min_v, domain.voltage_max_v, b, kVoltagePoints);
+        // Where the bench did not go, a clamped or rejected model is never evaluated.
+        if (domain.outside != OutsideDomain::kExtrapolate && !domain.contains(x, v)) continue;
         const double value = model.evaluateRaw(output, x, v);
         if (!std::isfinite(value)) refuse(output, value, def.unit, x, v, "not finite");
         if (def.surface && def.surface->denominator()) {

@@ -44,6 +44,60 @@ Polynomial2D readPolynomial(const YamlMap& map) {
   return Polynomial2D(std::move(terms));
 }
 
+// drive_curve: {pwm_zero_us: x0, c0: .., c1: .., ...}: y = sum c_k u^k, u = max(0, PWM - x0) / 1000 * V.
+DriveCurve readDriveCurve(const YamlMap& map) {
+  static const std::regex kCoefficientKey("c([0-9])");
+  std::vector<double> coefficients;
+  for (const std::string& key : map.keys()) {
+    std::smatch match;
+    if (key == "pwm_zero_us") continue;
+    if (!std::regex_match(key, match, kCoefficientKey) || std::stoi(match[1]) > DriveCurve::kMaxDegree) {
+      map.fail(key, "unknown key (a drive curve has pwm_zero_us and coefficients c0 to c" +
+                        std::to_string(DriveCurve::kMaxDegree) + ")");
+    }
+    const auto k = static_cast<std::size_t>(std::stoi(match[1]));
+    if (coefficients.size() <= k) coefficients.resize(k + 1, 0.0);
+    coefficients[k] = map.number(key);
+  }
+  if (coefficients.empty()) map.fail("c0", "missing: a drive curve needs coefficients c0..");
+  return DriveCurve(map.number("pwm_zero_us"), std::move(coefficients));
+}
+
+// covered: {pwm_us: [...], voltage_min_v: [...], voltage_max_v: [...]}, one entry per PWM level.
+std::vector<CoveredLevel> readCovered(const YamlMap& map) {
+  map.allowOnly({"pwm_us", "voltage_min_v", "voltage_max_v"});
+  const std::vector<double> pwm = map.numbers("pwm_us");
+  const std::vector<double> lo = map.numbers("voltage_min_v");
+  const std::vector<double> hi = map.numbers("voltage_max_v");
+  if (lo.size() != pwm.size()) map.fail("voltage_min_v", "needs one value per pwm_us level");
+  if (hi.size() != pwm.size()) map.fail("voltage_max_v", "needs one value per pwm_us level");
+  std::vector<CoveredLevel> covered;
+  for (std::size_t k = 0; k < pwm.size(); ++k) covered.push_back({pwm[k], lo[k], hi[k]});
+  return covered;
+}
+
+void writeCovered(YAML::Emitter& out, const std::vector<CoveredLevel>& covered) {
+  out << YAML::Key << "covered" << YAML::Value << YAML::BeginMap;
+  for (const char* key : {"pwm_us", "voltage_min_v", "voltage_max_v"}) {
+    out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (const CoveredLevel& level : covered) {
+      const std::string k = key;
+      out << formatNumber(k == "pwm_us" ? level.pwm_us : k == "voltage_min_v" ? level.voltage_min_v : level.voltage_max_v);
+    }
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
+}
+
+void writeDriveCurve(YAML::Emitter& out, const DriveCurve& curve) {
+  out << YAML::Key << "drive_curve" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "pwm_zero_us" << YAML::Value << formatNumber(curve.pwmZeroUs());
+  for (std::size_t k = 0; k < curve.coefficients().size(); ++k) {
+    out << YAML::Key << "c" + std::to_string(k) << YAML::Value << formatNumber(curve.coefficients()[k]);
+  }
+  out << YAML::EndMap;
+}
+
 InputScaling readScaling(const YamlMap& map) {
   map.allowOnly({"pwm_center_us", "pwm_scale_us", "voltage_center_v", "voltage_scale_v"});
   InputScaling scaling{map.number("pwm_center_us"), map.number("pwm_scale_us"), map.number("voltage_center_v"),
@@ -54,21 +108,34 @@ InputScaling readScaling(const YamlMap& map) {
 }
 
 FitQuality readFit(const YamlMap& map) {
-  map.allowOnly({"pwm_degree", "voltage_degree", "points", "r2", "rmse", "max_error", "held_out_rmse", "grouping"});
-  return FitQuality{map.integer("pwm_degree"), map.integer("voltage_degree"), map.integer("points"), map.number("r2"),
-                    map.number("rmse"),        map.number("max_error"),      map.number("held_out_rmse"),
-                    map.text("grouping")};
+  map.allowOnly({"basis", "pwm_degree", "voltage_degree", "points", "r2", "rmse", "max_error", "held_out_rmse",
+                 "grouping", "low_band_rmse", "high_band_rmse"});
+  FitQuality fit;
+  fit.pwm_degree = map.integer("pwm_degree");
+  fit.voltage_degree = map.integer("voltage_degree");
+  fit.points = map.integer("points");
+  fit.r2 = map.number("r2");
+  fit.rmse = map.number("rmse");
+  fit.max_error = map.number("max_error");
+  fit.held_out_rmse = map.number("held_out_rmse");
+  fit.grouping = map.text("grouping");
+  fit.basis = map.has("basis") ? map.choice("basis", {"polynomial", "drive_curve"}) : "polynomial";
+  fit.low_band_rmse = map.optionalNumber("low_band_rmse");
+  fit.high_band_rmse = map.optionalNumber("high_band_rmse");
+  return fit;
 }
 
 OutputDefinition readOutput(const YamlMap& map, Output output) {
-  map.allowOnly({"unit", "polynomial", "numerator", "denominator", "scaling", "derived", "none", "note", "fit"});
+  map.allowOnly(
+      {"unit", "polynomial", "numerator", "denominator", "drive_curve", "scaling", "derived", "none", "note", "fit"});
   OutputDefinition def;
   def.unit = map.text("unit");
   if (!unitToSi(output, def.unit)) map.fail("unit", "'" + def.unit + "' is not a unit of " + outputName(output));
   def.note = map.optionalText("note").value_or("");
-  const int kinds = map.has("polynomial") + map.has("numerator") + map.has("derived") + map.has("none");
+  const int kinds = map.has("polynomial") + map.has("numerator") + map.has("drive_curve") + map.has("derived") +
+                    map.has("none");
   if (kinds != 1) {
-    map.fail("unit", "give exactly one of polynomial, numerator+denominator, derived or none");
+    map.fail("unit", "give exactly one of polynomial, numerator+denominator, drive_curve, derived or none");
   }
   if (map.has("denominator") != map.has("numerator")) {
     map.fail(map.has("numerator") ? "numerator" : "denominator", "numerator and denominator go together");
@@ -85,6 +152,9 @@ OutputDefinition readOutput(const YamlMap& map, Output output) {
       def.source = OutputSource::kSurface;
       def.surface =
           ResponseSurface(readPolynomial(map.map("numerator")), readPolynomial(map.map("denominator")), scaling);
+    } else if (map.has("drive_curve")) {
+      def.source = OutputSource::kSurface;
+      def.surface = ResponseSurface(readDriveCurve(map.map("drive_curve")));
     } else if (map.has("derived")) {
       def.source = OutputSource::kDerived;
       const std::string formula = map.text("derived");
@@ -173,7 +243,7 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
   metadata.source = meta.text("source");
 
   const YamlMap dom = root.map("domain");
-  dom.allowOnly({"pwm_us", "voltage_v", "outside"});
+  dom.allowOnly({"pwm_us", "voltage_v", "covered", "outside"});
   ModelDomain domain;
   std::tie(domain.pwm_min_us, domain.pwm_max_us) = dom.range("pwm_us");
   std::tie(domain.voltage_min_v, domain.voltage_max_v) = dom.range("voltage_v");
@@ -181,6 +251,7 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
   domain.outside = outside == "clamp" ? OutsideDomain::kClamp
                    : outside == "extrapolate" ? OutsideDomain::kExtrapolate
                                               : OutsideDomain::kReject;
+  if (const std::optional<YamlMap> covered = dom.optionalMap("covered")) domain.covered = readCovered(*covered);
 
   const YamlMap outs = root.map("outputs");
   outs.allowOnly({"thrust", "current", "power", "efficiency", "rpm"});
@@ -229,6 +300,7 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
       << formatNumber(domain.pwm_max_us) << YAML::EndSeq;
   out << YAML::Key << "voltage_v" << YAML::Value << YAML::Flow << YAML::BeginSeq << formatNumber(domain.voltage_min_v)
       << formatNumber(domain.voltage_max_v) << YAML::EndSeq;
+  if (!domain.covered.empty()) writeCovered(out, domain.covered);
   out << YAML::Key << "outside" << YAML::Value << outsideDomainName(domain.outside);
   out << YAML::EndMap;
 
@@ -240,7 +312,9 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
     if (!def.note.empty() && def.source != OutputSource::kNone) out << YAML::Key << "note" << YAML::Value << def.note;
     if (def.source == OutputSource::kDerived) out << YAML::Key << "derived" << YAML::Value << derivationText(output);
     if (def.source == OutputSource::kNone) out << YAML::Key << "none" << YAML::Value << def.note;
-    if (def.surface) {
+    if (def.surface && def.surface->driveCurve()) {
+      writeDriveCurve(out, *def.surface->driveCurve());
+    } else if (def.surface) {
       const InputScaling& s = def.surface->scaling();
       if (!s.isIdentity()) {
         out << YAML::Key << "scaling" << YAML::Value << YAML::Flow << YAML::BeginMap;
@@ -263,6 +337,7 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
     if (def.fit) {
       const FitQuality& fit = *def.fit;
       out << YAML::Key << "fit" << YAML::Value << YAML::BeginMap;
+      if (fit.basis != "polynomial") out << YAML::Key << "basis" << YAML::Value << fit.basis;
       out << YAML::Key << "pwm_degree" << YAML::Value << fit.pwm_degree;
       out << YAML::Key << "voltage_degree" << YAML::Value << fit.voltage_degree;
       out << YAML::Key << "points" << YAML::Value << fit.points;
@@ -271,6 +346,8 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
       out << YAML::Key << "max_error" << YAML::Value << formatNumber(fit.max_error);
       out << YAML::Key << "held_out_rmse" << YAML::Value << formatNumber(fit.held_out_rmse);
       out << YAML::Key << "grouping" << YAML::Value << fit.grouping;
+      if (fit.low_band_rmse) out << YAML::Key << "low_band_rmse" << YAML::Value << formatNumber(*fit.low_band_rmse);
+      if (fit.high_band_rmse) out << YAML::Key << "high_band_rmse" << YAML::Value << formatNumber(*fit.high_band_rmse);
       out << YAML::EndMap;
     }
     out << YAML::EndMap;

@@ -67,8 +67,50 @@ const char* outsideDomainName(OutsideDomain policy) {
 
 const char* supplyKindName(SupplyKind supply) { return supply == SupplyKind::kBattery ? "battery" : "regulated"; }
 
+std::pair<double, double> ModelDomain::voltageRange(double pwm_us) const {
+  if (covered.empty()) return {voltage_min_v, voltage_max_v};
+  if (pwm_us <= covered.front().pwm_us) return {covered.front().voltage_min_v, covered.front().voltage_max_v};
+  if (pwm_us >= covered.back().pwm_us) return {covered.back().voltage_min_v, covered.back().voltage_max_v};
+  const auto above = std::upper_bound(covered.begin(), covered.end(), pwm_us,
+                                      [](double x, const CoveredLevel& level) { return x < level.pwm_us; });
+  const CoveredLevel& lo = *(above - 1);
+  const CoveredLevel& hi = *above;
+  const double t = (pwm_us - lo.pwm_us) / (hi.pwm_us - lo.pwm_us);
+  return {lo.voltage_min_v + t * (hi.voltage_min_v - lo.voltage_min_v),
+          lo.voltage_max_v + t * (hi.voltage_max_v - lo.voltage_max_v)};
+}
+
 bool ModelDomain::contains(double pwm_us, double voltage_v) const {
-  return pwm_us >= pwm_min_us && pwm_us <= pwm_max_us && voltage_v >= voltage_min_v && voltage_v <= voltage_max_v;
+  if (!(pwm_us >= pwm_min_us && pwm_us <= pwm_max_us && voltage_v >= voltage_min_v && voltage_v <= voltage_max_v)) {
+    return false;
+  }
+  const auto [lo, hi] = voltageRange(pwm_us);
+  return voltage_v >= lo && voltage_v <= hi;
+}
+
+void ModelDomain::clamp(double* pwm_us, double* voltage_v) const {
+  *pwm_us = std::clamp(*pwm_us, pwm_min_us, pwm_max_us);
+  const auto [lo, hi] = voltageRange(*pwm_us);
+  *voltage_v = std::clamp(*voltage_v, lo, hi);
+}
+
+void ModelDomain::validate() const {
+  if (!(pwm_min_us < pwm_max_us) || !(voltage_min_v < voltage_max_v)) {
+    throw ConfigError("domain is empty: pwm_us [" + formatNumber(pwm_min_us) + ", " + formatNumber(pwm_max_us) +
+                      "], voltage_v [" + formatNumber(voltage_min_v) + ", " + formatNumber(voltage_max_v) + "]");
+  }
+  for (std::size_t k = 0; k < covered.size(); ++k) {
+    const CoveredLevel& level = covered[k];
+    const std::string where = "domain.covered: level " + std::to_string(k + 1) + " (" + formatNumber(level.pwm_us) +
+                              " us, " + formatNumber(level.voltage_min_v) + " to " +
+                              formatNumber(level.voltage_max_v) + " V)";
+    if (k > 0 && !(level.pwm_us > covered[k - 1].pwm_us)) throw ConfigError(where + ": PWM levels must ascend");
+    if (level.pwm_us < pwm_min_us || level.pwm_us > pwm_max_us) throw ConfigError(where + ": outside pwm_us");
+    if (!(level.voltage_min_v <= level.voltage_max_v) || level.voltage_min_v < voltage_min_v ||
+        level.voltage_max_v > voltage_max_v) {
+      throw ConfigError(where + ": not a voltage range inside voltage_v");
+    }
+  }
 }
 
 double ModelMetadata::benchAirDensity() const {
@@ -100,11 +142,7 @@ PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,
   // One source for the reference: an effects section cannot claim other bench air than the metadata's.
   effects_.bench_air_density_kg_m3 = metadata_.benchAirDensity();
   effects_.validate();
-  if (!(domain_.pwm_min_us < domain_.pwm_max_us) || !(domain_.voltage_min_v < domain_.voltage_max_v)) {
-    throw ConfigError("domain is empty: pwm_us [" + std::to_string(domain_.pwm_min_us) + ", " +
-                      std::to_string(domain_.pwm_max_us) + "], voltage_v [" + std::to_string(domain_.voltage_min_v) +
-                      ", " + std::to_string(domain_.voltage_max_v) + "]");
-  }
+  domain_.validate();
   for (Output output : kAllOutputs) {
     const OutputDefinition& def = outputs_[index(output)];
     const std::string name = outputName(output);
@@ -185,10 +223,7 @@ bool PropulsionModel::evaluate(double pwm_us, double voltage_v, OperatingPoint* 
   const bool inside = domain_.contains(pwm_us, voltage_v);
   if (!inside) {
     if (domain_.outside == OutsideDomain::kReject) return false;
-    if (domain_.outside == OutsideDomain::kClamp) {
-      pwm_us = std::clamp(pwm_us, domain_.pwm_min_us, domain_.pwm_max_us);
-      voltage_v = std::clamp(voltage_v, domain_.voltage_min_v, domain_.voltage_max_v);
-    }
+    if (domain_.outside == OutsideDomain::kClamp) domain_.clamp(&pwm_us, &voltage_v);
   }
   const std::array<double, kOutputCount> si = computeSi(pwm_us, voltage_v);
   estimate->thrust_n = si[index(Output::kThrust)];

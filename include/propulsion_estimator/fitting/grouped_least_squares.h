@@ -39,6 +39,13 @@ class GroupedLeastSquares {
   /// nullopt when a fold's fit is singular.
   std::optional<double> heldOutRmse(const std::vector<int>& terms) const;
 
+  /// RMSE of group `group` alone predicted from all the others; nullopt when that fit is singular
+  /// or the group has no rows.
+  std::optional<double> heldOutRmseOf(const std::vector<int>& terms, int group) const;
+
+  /// The same rows in coarser groups: group g joins new group `new_group_of[g]` (0..groups - 1).
+  GroupedLeastSquares merged(const std::vector<int>& new_group_of, int groups) const;
+
   /// Number of groups (folds).
   int groups() const { return static_cast<int>(count_.size()); }
   /// Rows added to `group`.

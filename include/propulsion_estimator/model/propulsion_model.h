@@ -3,6 +3,8 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/model/response_surface.h"
@@ -27,14 +29,17 @@ enum class OutputSource { kSurface, kDerived, kNone };
 
 /// How well a fitted surface matched its bench data (written by fit_surfaces, in the output's unit).
 struct FitQuality {
-  int pwm_degree = 0;  ///< PWM degree of the surface
-  int voltage_degree = 0;  ///< voltage degree of the surface
-  int points = 0;  ///< bench samples it was fitted on
-  double r2 = 0.0;  ///< coefficient of determination
-  double rmse = 0.0;  ///< root mean square error
-  double max_error = 0.0;  ///< largest absolute error
+  int pwm_degree = 0;          ///< PWM degree of the surface (a drive curve's degree in u)
+  int voltage_degree = 0;      ///< voltage degree of the surface (a drive curve's degree in u)
+  int points = 0;              ///< bench samples it was fitted on
+  double r2 = 0.0;             ///< coefficient of determination
+  double rmse = 0.0;           ///< root mean square error
+  double max_error = 0.0;      ///< largest absolute error
   double held_out_rmse = 0.0;  ///< cross-validated, data grouped as `grouping` says
-  std::string grouping;  ///< "voltage_level", "pwm_level" or "log"
+  std::string grouping;        ///< "voltage_level", "pwm_level" or "log"
+  std::string basis = "polynomial";      ///< or "drive_curve"
+  std::optional<double> low_band_rmse;   ///< fitted above the lowest voltage band, judged on it
+  std::optional<double> high_band_rmse;  ///< fitted below the highest voltage band, judged on it
 };
 
 /// One output of a model file: its unit, how it is obtained (surface, derived, none) and the fit
@@ -57,16 +62,35 @@ enum class OutsideDomain { kClamp, kExtrapolate, kReject };
 /// "clamp", "extrapolate", "reject": as the model file spells the policy.
 const char* outsideDomainName(OutsideDomain policy);
 
-/// The inputs a model was measured over: ESC pulse width in us, supply voltage in V, and the
-/// policy outside them.
-struct ModelDomain {
-  double pwm_min_us = 0.0;  ///< us
-  double pwm_max_us = 0.0;  ///< us
-  double voltage_min_v = 0.0;  ///< V
-  double voltage_max_v = 0.0;  ///< V
-  OutsideDomain outside = OutsideDomain::kClamp;  ///< what evaluating does outside the domain
+/// The voltage range the bench covered at one PWM level (us, V).
+struct CoveredLevel {
+  double pwm_us = 0.0;         ///< the level's PWM, us
+  double voltage_min_v = 0.0;  ///< lowest voltage logged there, V
+  double voltage_max_v = 0.0;  ///< highest voltage logged there, V
+};
 
-  bool contains(double pwm_us, double voltage_v) const;  ///< whether (pwm_us, voltage_v) lies inside, bounds included
+/// The inputs a model was measured over: ESC pulse width in us, supply voltage in V, and the
+/// policy outside them. `covered`, when given, is where the bench went inside that box: per PWM
+/// level (ascending) the voltage range logged there, linearly interpolated between levels (a
+/// battery discharge never logs a high PWM at a low voltage, and a surface there is a guess). Old
+/// model files have no `covered`: their domain is the box.
+struct ModelDomain {
+  double pwm_min_us = 0.0;                         ///< us
+  double pwm_max_us = 0.0;                         ///< us
+  double voltage_min_v = 0.0;                      ///< V
+  double voltage_max_v = 0.0;                      ///< V
+  OutsideDomain outside = OutsideDomain::kClamp;  ///< what evaluating does outside the domain
+  std::vector<CoveredLevel> covered;               ///< empty: the box is the domain
+
+  /// The voltage range covered at `pwm_us` (clamped to the PWM range): the box's without `covered`.
+  std::pair<double, double> voltageRange(double pwm_us) const;
+  /// Whether (us, V) lies in the box and, with `covered`, in the covered voltage range at that PWM.
+  bool contains(double pwm_us, double voltage_v) const;
+  /// The nearest point of the domain in PWM first, then in voltage at that PWM.
+  void clamp(double* pwm_us, double* voltage_v) const;
+  /// Throws ConfigError naming the field for an empty box or a `covered` whose levels are not
+  /// ascending, outside the box, or with an empty voltage range.
+  void validate() const;
 };
 
 /// What fed the ESC on the bench: a regulated supply or a battery.

@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "propulsion_estimator/model/drive_curve.h"
 #include "propulsion_estimator/model/polynomial_2d.h"
 
 namespace propulsion_estimator {
@@ -18,13 +19,16 @@ struct InputScaling {
 };
 
 /// One output of a propulsion model as a function of PWM (us) and voltage (V): a polynomial or a
-/// ratio of two polynomials in the scaled inputs. Values are in the unit the model file states.
+/// ratio of two polynomials in the scaled inputs, or a drive curve (drive_curve.h). Values are in
+/// the unit the model file states.
 class ResponseSurface {
  public:
   /// A polynomial surface in the inputs scaled by `scaling` (non-zero scales, checked by the model reader).
   ResponseSurface(Polynomial2D numerator, InputScaling scaling);
   /// A rational surface, numerator / denominator, in the scaled inputs.
   ResponseSurface(Polynomial2D numerator, Polynomial2D denominator, InputScaling scaling);
+  /// A drive curve in the raw inputs (no scaling).
+  explicit ResponseSurface(DriveCurve drive_curve);
 
   /// The value at (pwm_us, voltage_v), in the file's unit; infinite or NaN at a rational surface's pole.
   double evaluate(double pwm_us, double voltage_v) const;
@@ -35,11 +39,14 @@ class ResponseSurface {
   const std::optional<Polynomial2D>& denominator() const { return denominator_; }
   /// How the inputs are centred and scaled.
   const InputScaling& scaling() const { return scaling_; }
+  /// Set for a drive curve, whose numerator is then empty and scaling the identity.
+  const std::optional<DriveCurve>& driveCurve() const { return drive_curve_; }
 
  private:
   Polynomial2D numerator_;
   std::optional<Polynomial2D> denominator_;
   InputScaling scaling_;
+  std::optional<DriveCurve> drive_curve_;
 };
 
 }  // namespace propulsion_estimator

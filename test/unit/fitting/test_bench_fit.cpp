@@ -156,7 +156,7 @@ TEST(BenchFit, SurfaceFollowsTheNoiseFreeChainAndReportsHonestErrors) {
   EXPECT_GT(thrust.max_error, 2.5 * set.thrust_sigma_g);  // the largest of 1128 normal residuals
   EXPECT_LT(thrust.max_error, 5.0 * set.thrust_sigma_g);
   // Degrees: 20 candidates scored; thrust ~ rpm^2 is (4, 2) in the chain, power needs more PWM terms.
-  EXPECT_EQ(thrust.candidates.size(), 20u);
+  EXPECT_EQ(thrust.candidates.size(), 23u);  // 20 polyXY degree pairs and drive curves of degree 1 to 3
   EXPECT_GE(quality.pwm_degree, 3);
   EXPECT_GE(quality.voltage_degree, 1);
   EXPECT_EQ(fit.model.output(pe::Output::kEfficiency).source, pe::OutputSource::kDerived);
@@ -347,12 +347,14 @@ TEST(BenchFitStrawson, KeepsAndReportsRowsWhereTheSupplyCurrentLimitCollapsedThe
   // a1_7's own top-of-sweep droop (0.18 V under its median), and the report says where it lies.
   EXPECT_NEAR(fit.model.domain().voltage_min_v, 7.14, 0.01);
   const std::string report = pe::fitting::fitReportMarkdown(fit, "a1.yaml");
-  EXPECT_NE(report.find("- Domain: PWM 1050 to 2000 us, voltage 7.14 to 11.09 V: the bounding box of all rows at their "
-                        "measured voltage, supply droop and sag included (7.14 V was logged at 2000 us, 11.09 V at "
-                        "1050 us; the voltage levels are centred at 7.32 to 10.99 V); outside it the model will "
-                        "clamp.\n"),
+  EXPECT_NE(report.find("- Domain: PWM 1050 to 2000 us, voltage 7.14 to 11.09 V at the rows' measured voltage (7.14 V "
+                        "was logged at 2000 us, 11.09 V at 1050 us). Within that box the model's domain is only what "
+                        "the bench covered, the voltage range logged at each PWM level (interpolated between levels); "
+                        "outside it the model will clamp, and the estimator flags the sample.\n"),
             std::string::npos)
       << report;
+  // At 2000 us the bench went from a1_7's droop to a1_11's collapse, nowhere else.
+  EXPECT_NE(report.find("| 2000 | 7.14 to 8.30 |\n"), std::string::npos) << report;
   // At the collapsed point the surface matches the measured 377 gf at 8.30 V.
   EXPECT_NEAR(fit.model.evaluateRaw(pe::Output::kThrust, 2000.0, 8.304389367087847), 376.9, 6.0);
 }
@@ -489,16 +491,15 @@ TEST(BenchFitRefusals, EveryMissingBenchConditionInOneMessageAndUnknownNames) {
   }
 }
 
-TEST(BenchFitRefusals, ReportsAModelThatFailsTheLoadersGridCheckInsteadOfHidingIt) {
-  // A stand wired so that thrust reads negative, passed on without a sign correction.
+TEST(BenchFitRefusals, RefusesAThrustThatFallsAsPwmRises) {
+  // A stand wired so that thrust reads negative, passed on without a sign correction: no surface
+  // that rises with PWM fits it, and the fit says so instead of writing one that falls.
   auto negative = [](double x, double v) { return -0.1 * (x - 1100.0) + 0.0 * v; };
-  const pe::fitting::BenchFit fit =
-      pe::fitting::fitBenchModel({gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, negative),
-                                  gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, negative)},
-                                 {});
-  EXPECT_EQ(fit.validation_error,
-            "outputs.thrust: -80 g at pwm_us=1900, voltage_v=11.1: thrust must not be negative at the top of the PWM "
-            "range");
+  EXPECT_EQ(
+      refusal({gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, negative),
+               gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, negative)}),
+      "cannot fit thrust: no candidate surface rises with PWM and voltage over the bench's domain (does column "
+      "thrust_n fall as PWM rises? a sensor read with the wrong sign)");
 }
 
 TEST(BenchFitRefusals, BadOptions) {

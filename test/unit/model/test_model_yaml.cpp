@@ -92,7 +92,8 @@ TEST(ModelYaml, RefusesMissingKey) {
   EXPECT_EQ(refusal(replaced("  rpm:\n    unit: rpm\n    none: no tachometer\n", "")),
             "m.yaml:15: outputs.rpm: missing key");
   EXPECT_EQ(refusal(replaced("    none: no tachometer", "")),
-            "m.yaml:29: outputs.rpm.unit: give exactly one of polynomial, numerator+denominator, derived or none");
+            "m.yaml:29: outputs.rpm.unit: give exactly one of polynomial, numerator+denominator, drive_curve, derived or "
+            "none");
 }
 
 TEST(ModelYaml, RefusesWrongType) {
