@@ -253,6 +253,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
   Noise noise(seed);
   const Eigen::Vector3d origin = dynamics.basePosition();
   const double current_sign = profile.autopilot.flavour == AutopilotFlavour::kPx4 ? -1.0 : 1.0;
+  const double avionics_a = profile.vehicle.avionics_current_a;
   GaussMarkov3 position_error(sensors.position_sigma_m, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
                               &noise);
   GaussMarkov3 velocity_error(sensors.velocity_sigma_m_s, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
@@ -296,8 +297,12 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
                                axial_speed);
       train.setInflow(k, inflows[k]);
     }
-    const PowerTrainState& power =
-        train.step(pwm, Supply{battery.sourceVoltage(), battery.seriesResistanceOhm()}, air, kFlightStepS);
+    // The avionics load the battery beside the ESCs: the ESCs' supply is the battery's Thevenin
+    // source less the avionics' drop across its series resistance.
+    const PowerTrainState& power = train.step(
+        pwm, Supply{battery.sourceVoltage() - battery.seriesResistanceOhm() * avionics_a, battery.seriesResistanceOhm()},
+        air, kFlightStepS);
+    const double battery_current_a = power.current_a + avionics_a;
     for (int k = 0; k < rotors; ++k) {
       thrust[k] = power.motors[k].thrust_n * airframe_share;
       torque[k] = power.motors[k].torque_nm;
@@ -323,7 +328,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
         sample.density_ratio = density / params.bench.air.densityKgM3();
         sample.battery_voltage_v = power.terminal_voltage_v;
         sample.esc_voltage_v = power.esc_voltage_v;
-        sample.battery_current_a = power.current_a;
+        sample.battery_current_a = battery_current_a;
         sample.thrust_loss_factor = airframe_share;
         double static_thrust = 0.0, climb_thrust = 0.0;
         for (int k = 0; k < rotors; ++k) {
@@ -345,7 +350,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
       }
       if (battery_stream.due(t)) {
         sink->battery({t, power.terminal_voltage_v + noise(sensors.battery_voltage_sigma_v),
-                       current_sign * (power.current_a + noise(sensors.battery_current_sigma_a)),
+                       current_sign * (battery_current_a + noise(sensors.battery_current_sigma_a)),
                        std::round(100.0 * std::clamp(battery.stateOfCharge(), 0.0, 1.0)) / 100.0});
       }
       if (imu.due(t)) {
@@ -404,7 +409,7 @@ FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, 
       }
       ground_contacts.back().second = t + kFlightStepS;
     }
-    battery.draw(power.current_a, kFlightStepS);
+    battery.draw(battery_current_a, kFlightStepS);
     if (battery.stateOfCharge() < kEmptyStateOfCharge) {
       throw SimulationError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +
                             formatPrintf("%.3g", t) + " s into the flight");
