@@ -1,6 +1,7 @@
 # Included by CMakeLists.txt, in the catkin build and in the ROS-free one (PE_ROS_FREE, make arm64).
 # --- Modules: one folder, one library. src/<module>/ mirrors include/propulsion_estimator/<module>/,
-# and test/unit/test_layering.cpp checks which module may include which. ---------------------------
+# and test/unit/package/test_layering.cpp checks which module may include which, and that a module links only
+# modules it may include. -----------------------------------------------------------------------------
 function(pe_module name folder)
   # A module's own sub-folders too (model/effects: one file per effect); sim/ holds only modules.
   file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/${folder}/*.cpp")
@@ -27,7 +28,8 @@ pe_module(propulsion_estimator_estimation estimation
   propulsion_estimator_model propulsion_estimator_vehicle propulsion_estimator_common)
 # ... and what only the node uses: rate limiter, tare file, health summary, capability.
 pe_module(propulsion_estimator_onboard onboard propulsion_estimator_estimation)
-# Bench log formats (libcsv tokenizes them) and the flight manifest.
+# Bench log formats (libcsv tokenizes them), the flight manifest, the flight streams and the
+# flight-log reader interface with its registry of formats.
 pe_module(propulsion_estimator_logs logs propulsion_estimator_common)
 target_include_directories(propulsion_estimator_logs PRIVATE ${CSV_INCLUDE_DIR})
 target_link_libraries(propulsion_estimator_logs PRIVATE ${CSV_LIBRARY})

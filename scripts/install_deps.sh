@@ -1,7 +1,7 @@
 #!/bin/sh
 # Installs what building, running and testing the package needs, from Debian 12's own packages
 # (ROS 1 lives in /usr there); python3-numpy, valgrind and time are make bench's (the rospy peer,
-# the instructions per message, diagnose_gap's peak memory). Does nothing when everything is
+# the instructions per message, diagnose_gap's peak memory); doxygen is make docs'. Does nothing when everything is
 # already installed.
 # `install_deps.sh fuzz` adds clang and its libFuzzer runtime, which only `make fuzz` needs.
 set -eu
@@ -18,7 +18,7 @@ PACKAGES="
   liburdfdom-dev libtinyxml-dev libeigen3-dev libyaml-cpp-dev libcli11-dev libcsv-dev libgtest-dev libbenchmark-dev
   python3-std-msgs python3-sensor-msgs python3-geometry-msgs python3-diagnostic-msgs python3-std-srvs
   python3-topic-tools python3-matplotlib python3-yaml
-  python3-numpy valgrind time
+  python3-numpy valgrind time doxygen
 "
 if [ "${1:-}" = fuzz ]; then
   PACKAGES="$PACKAGES clang libclang-rt-14-dev"

@@ -20,7 +20,7 @@ def load_segments(manifest_path, flight_index=0):
     with open(manifest_path) as f:
         manifest = yaml.safe_load(f)
     flight = manifest["flights"][flight_index]
-    bag = os.path.join(os.path.dirname(os.path.abspath(manifest_path)), flight["bag"])
+    bag = os.path.join(os.path.dirname(os.path.abspath(manifest_path)), flight.get("log", flight.get("bag")))
     return bag, [dict(start=float(s["start"]), end=float(s["end"]), mass_kg=float(s["mass_kg"]))
                  for s in flight["segments"]]
 

@@ -11,10 +11,10 @@
 #include <optional>
 #include <thread>
 
-#include "propulsion_estimator/bag/flight_bag_reader.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/common/mavros_topics.h"
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
@@ -23,9 +23,11 @@
 #include "propulsion_estimator/gap/motor_health_replay.h"
 #include "propulsion_estimator/logs/bench_log_reader.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
+#include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/effect_description.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
+#include "flight_log_formats.h"
 #include "report_plotter.h"
 #include "tool_command.h"
 
@@ -52,31 +54,30 @@ struct Arguments {
 
 // A flight of the manifest, read, or refused with one line.
 struct FlightRead {
-  std::optional<gap::Flight> flight;
+  std::optional<Flight> flight;
   std::string refusal;
 };
 
 std::string signalNames() {
   std::string names;
-  for (const std::string& name : FlightBagTopics::names()) names += (names.empty() ? "" : ", ") + name;
+  for (const std::string& name : flightSignalNames()) names += (names.empty() ? "" : ", ") + name;
   return names;
 }
 
-FlightBagTopics topicsOf(const std::vector<std::string>& arguments) {
-  FlightBagTopics topics;
+// The options every flight is read with: the motors and the --topic sources.
+FlightLogOptions optionsOf(const std::vector<std::string>& arguments, int motors) {
+  FlightLogOptions options;
+  options.motors = motors;
   for (const std::string& argument : arguments) {
     const std::size_t equals = argument.find('=');
     if (equals == std::string::npos || equals + 1 == argument.size()) {
       throw ConfigError("--topic " + argument + ": expected NAME=TOPIC");
     }
     const std::string name = argument.substr(0, equals);
-    std::string* topic = topics.find(name);
-    if (topic == nullptr) {
-      throw ConfigError("--topic " + argument + ": '" + name + "' is not a signal (one of " + signalNames() + ")");
-    }
-    *topic = argument.substr(equals + 1);
+    options.sources[name] = argument.substr(equals + 1);
+    options.validate("--topic " + argument);
   }
-  return topics;
+  return options;
 }
 
 Vehicle vehicleOf(const Arguments& args) {
@@ -95,14 +96,14 @@ Vehicle vehicleOf(const Arguments& args) {
   }
   Vehicle vehicle = loadVehicleUrdf(urdf);
   const int rotors = static_cast<int>(vehicle.rotors.size());
-  if (rotors > gap::kMaxMotors) {
+  if (rotors > kMaxMotors) {
     throw ConfigError(urdf + ": " + std::to_string(rotors) + " rotors, more than the " +
-                      std::to_string(gap::kMaxMotors) + " diagnose_gap reads");
+                      std::to_string(kMaxMotors) + " diagnose_gap reads");
   }
   return vehicle;
 }
 
-gap::DiagnosisConfig configOf(const Arguments& args, const FlightBagTopics& topics) {
+gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& options) {
   gap::DiagnosisConfig config;
   config.rotor_diameter_m = args.rotor_diameter_m;
   try {
@@ -111,32 +112,38 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightBagTopics& topi
     throw ConfigError("--rotor-diameter-m: " + e.problem());
   }
   // The report says which topic an untestable effect needs: the topics read, not the defaults.
+  const auto source = [&options](const std::string& name, const char* usual) {
+    const auto given = options.sources.find(name);
+    return given == options.sources.end() ? std::string(usual) : given->second;
+  };
   using effects::Signal;
   config.signal_sources = {
-      {Signal::kBatteryCurrent, topics.battery + " (current)"},
-      {Signal::kAirDensity, topics.static_pressure + " and " + topics.air_temperature},
-      {Signal::kHeight, topics.rangefinder},
-      {Signal::kMotorTemperature, topics.motor_temperature},
-      {Signal::kVerticalSpeed, topics.velocity},
+      {Signal::kBatteryCurrent, source("battery", kBatteryTopic) + " (current)"},
+      {Signal::kAirDensity,
+       source("static_pressure", kStaticPressureTopic) + " and " + source("air_temperature", kAirTemperatureTopic)},
+      {Signal::kHeight, source("rangefinder", kRangefinderTopic)},
+      {Signal::kMotorTemperature, source("motor_temperature", kMotorTemperatureTopic)},
+      {Signal::kVerticalSpeed, source("velocity", kVelocityTopic)},
   };
   return config;
 }
 
 FlightRead readFlight(const std::string& manifest, std::size_t index, const ManifestEntry& entry,
-                      const FlightBagTopics& topics, int motors) {
+                      const FlightLogOptions& options) {
   if (!entry.refusal.empty()) return {std::nullopt, entry.refusal};
   const std::string at = manifest + ": flights[" + std::to_string(index) + "]";
   try {
-    const FlightBagReader reader(resolveBagPath(manifest, entry.flight.bag));
+    const std::unique_ptr<FlightLogReader> reader =
+        flightLogFormats().open(resolveLogPath(manifest, entry.flight.log));
     const std::vector<ManifestSegment>& segments = entry.flight.segments;
     for (std::size_t s = 0; s < segments.size(); ++s) {
-      if (segments[s].end_s > reader.durationS()) {
+      if (segments[s].end_s > reader->durationS()) {
         return {std::nullopt, at + ".segments[" + std::to_string(s) + "]: " + formatNumber(segments[s].start_s) +
-                                  ".." + formatNumber(segments[s].end_s) + " s is outside " + reader.path() +
-                                  " (0.." + formatPrintf("%.3f", reader.durationS()) + " s)"};
+                                  ".." + formatNumber(segments[s].end_s) + " s is outside " + reader->path() +
+                                  " (0.." + formatPrintf("%.3f", reader->durationS()) + " s)"};
       }
     }
-    return {gap::Flight{entry.flight.bag, reader.read(topics, motors), segments}, ""};
+    return {Flight{entry.flight.log, reader->read(options), segments}, ""};
   } catch (const InputError& e) {
     return {std::nullopt, at + ": " + e.what()};
   }
@@ -144,14 +151,14 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
 
 // Reads the flights on `jobs` threads; the results in manifest order.
 std::vector<FlightRead> readFlights(const std::string& manifest, const std::vector<ManifestEntry>& entries,
-                                    const FlightBagTopics& topics, int motors, int jobs) {
+                                    const FlightLogOptions& options, int jobs) {
   std::vector<FlightRead> reads(entries.size());
   std::vector<std::exception_ptr> failures(entries.size());
   std::atomic<std::size_t> next{0};
   const auto work = [&] {
     for (std::size_t i = next++; i < entries.size(); i = next++) {
       try {
-        reads[i] = readFlight(manifest, i, entries[i], topics, motors);
+        reads[i] = readFlight(manifest, i, entries[i], options);
       } catch (...) {
         failures[i] = std::current_exception();
       }
@@ -169,19 +176,11 @@ std::vector<FlightRead> readFlights(const std::string& manifest, const std::vect
 }
 
 // "rc_out 90115, battery 1803, ..., no rangefinder, ...": the readings of each signal.
-std::string streamSummary(const gap::FlightStreams& streams, std::size_t* readings) {
-  const std::size_t counts[] = {streams.rc_out.size(),
-                                streams.battery.size(),
-                                streams.imu.size(),
-                                streams.altitude_m.size(),
-                                streams.vertical_speed_m_s.size(),
-                                streams.static_pressure_pa.size(),
-                                streams.air_temperature_c.size(),
-                                streams.height_above_ground_m.size(),
-                                streams.motor_temperature_c.size()};  // in FlightBagTopics::names() order
+std::string streamSummary(const FlightStreams& streams, std::size_t* readings) {
+  const std::vector<std::size_t> counts = signalCounts(streams);
   std::string text;
-  for (std::size_t i = 0; i < FlightBagTopics::names().size(); ++i) {
-    const std::string& name = FlightBagTopics::names()[i];
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    const std::string& name = flightSignalNames()[i];
     text += (text.empty() ? "" : ", ") + (counts[i] == 0 ? "no " + name : name + " " + std::to_string(counts[i]));
     *readings += counts[i];
   }
@@ -191,7 +190,7 @@ std::string streamSummary(const gap::FlightStreams& streams, std::size_t* readin
 // The diagnosis of the flights read, and its report in `out`: report.md, report.yaml, the
 // figures and their data. The flights refused are listed among what could not be used.
 void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, const Vehicle& vehicle,
-                       const std::vector<gap::Flight>& flights, const gap::DiagnosisConfig& config,
+                       const std::vector<Flight>& flights, const gap::DiagnosisConfig& config,
                        const std::vector<BenchLog>& bench, const std::vector<std::string>& refusals) {
   gap::Diagnosis diagnosis = gap::diagnoseGap(model, vehicle, flights, config, bench);
   diagnosis.problems.insert(diagnosis.problems.begin(), refusals.begin(), refusals.end());
@@ -222,7 +221,7 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   std::vector<std::string> names;
   std::vector<gap::MotorHealthReplay> replays;
   int flagged = 0;
-  for (const gap::Flight& flight : flights) {
+  for (const Flight& flight : flights) {
     names.push_back(flight.name);
     replays.push_back(gap::replayMotorHealth(model, vehicle, flight.streams));
     flagged += !replays.back().flagged_channels.empty();
@@ -235,8 +234,8 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
 int diagnose(const Arguments& args) {
   const PropulsionModel model = loadModelFile(args.model);
   const Vehicle vehicle = vehicleOf(args);
-  const FlightBagTopics topics = topicsOf(args.topics);
-  const gap::DiagnosisConfig config = configOf(args, topics);
+  const FlightLogOptions options = optionsOf(args.topics, static_cast<int>(vehicle.rotors.size()));
+  const gap::DiagnosisConfig config = configOf(args, options);
   const std::vector<ManifestEntry> entries = loadFlightManifestEntries(args.manifest);
   std::vector<BenchLog> bench;
   for (const std::string& path : args.bench) bench.push_back(readBenchLog(path));
@@ -246,10 +245,10 @@ int diagnose(const Arguments& args) {
 
   const auto started = std::chrono::steady_clock::now();
   std::vector<FlightRead> reads =
-      readFlights(args.manifest, entries, topics, static_cast<int>(vehicle.rotors.size()), args.jobs);
+      readFlights(args.manifest, entries, options, args.jobs);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
-  std::vector<gap::Flight> flights;
+  std::vector<Flight> flights;
   std::vector<std::string> refusals;
   std::size_t readings = 0;
   for (FlightRead& read : reads) {
@@ -275,11 +274,11 @@ int diagnose(const Arguments& args) {
 
 int runDiagnoseGap(int argc, char** argv) {
   CLI::App app{
-      "Diagnoses the gap between a propulsion model and weighed flights: reads each flight's bag (MAVROS topics) "
+      "Diagnoses the gap between a propulsion model and weighed flights: reads each flight's log (a rosbag's MAVROS topics) "
       "and the manifest's segments of known mass."};
   Arguments args;
   app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
-  app.add_option("--manifest", args.manifest, "Flight manifest: bags and their weighed segments (YAML)")->required();
+  app.add_option("--manifest", args.manifest, "Flight manifest: logs and their weighed segments (YAML)")->required();
   app.add_option("--out", args.out, "Directory for the report")->required();
   app.add_option("--urdf", args.urdf,
                  "Vehicle URDF: rotors (rotor_<k>_joint, in motor-channel order) and geometry (default: a quadcopter "
@@ -294,7 +293,7 @@ int runDiagnoseGap(int argc, char** argv) {
                  "its load cell is the truth (repeatable)");
   app.add_option("--rotor-diameter-m", args.rotor_diameter_m, "Rotor diameter (ground effect within two diameters)")
       ->capture_default_str();
-  app.add_option("--jobs", args.jobs, "Bags read in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--jobs", args.jobs, "Logs read in parallel")->check(CLI::Range(1, 64))->capture_default_str();
   // Before the required options are checked: a tool or test builds its list of effects from this.
   app.add_flag_callback(
       "--list-effects",

@@ -68,7 +68,7 @@ std::vector<Source> sourcesOf(const FlightBagTopics& topics) {
 // buffer aside).
 class StreamBuilder {
  public:
-  StreamBuilder(gap::FlightStreams* streams, int motors) : streams_(streams), motors_(motors) {}
+  StreamBuilder(FlightStreams* streams, int motors) : streams_(streams), motors_(motors) {}
 
   // Decodes one message of `signal`; false with the reason in `error` for a malformed one or an
   // RCOut message with too few channels.
@@ -130,13 +130,13 @@ class StreamBuilder {
                " motors";
       return false;
     }
-    gap::RcOutFrame& frame = streams_->rc_out.emplace_back();
+    RcOutFrame& frame = streams_->rc_out.emplace_back();
     frame.time_s = time_s;
     for (int k = 0; k < motors_; ++k) frame.pwm_us[k] = rc_out_.channels[k];
     return true;
   }
 
-  gap::FlightStreams* streams_;
+  FlightStreams* streams_;
   int motors_;
   RcOutMessage rc_out_;
   sensor_msgs::BatteryState battery_;
@@ -154,7 +154,7 @@ void reserveFor(const rosbag::Bag& bag, const std::string& topic, std::vector<Re
   stream->reserve(stream->size() + rosbag::View(bag, rosbag::TopicQuery(topic)).size());
 }
 
-void reserve(const rosbag::Bag& bag, const Source& source, gap::FlightStreams* streams) {
+void reserve(const rosbag::Bag& bag, const Source& source, FlightStreams* streams) {
   const std::string& topic = *source.topic;
   switch (source.signal) {
     case Signal::kRcOut: return reserveFor(bag, topic, &streams->rc_out);
@@ -180,12 +180,7 @@ std::mutex& bagLifetimeMutex() {
 
 }  // namespace
 
-const std::vector<std::string>& FlightBagTopics::names() {
-  static const std::vector<std::string> kNames = {"rc_out",          "battery",         "imu",
-                                                  "pose",            "velocity",        "static_pressure",
-                                                  "air_temperature", "rangefinder",     "motor_temperature"};
-  return kNames;
-}
+const std::vector<std::string>& FlightBagTopics::names() { return flightSignalNames(); }
 
 std::string* FlightBagTopics::find(const std::string& name) {
   std::string* const topics[] = {&rc_out,          &battery,         &imu,         &pose,
@@ -220,11 +215,21 @@ FlightBagReader::~FlightBagReader() {
   bag_.reset();
 }
 
-gap::FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int motors) const {
-  if (motors < 1 || motors > gap::kMaxMotors) {
-    throw ConfigError(path_ + ": " + std::to_string(motors) + " motors, expected 1.." + std::to_string(gap::kMaxMotors));
+FlightStreams FlightBagReader::read(const FlightLogOptions& options) const {
+  FlightBagTopics topics;
+  for (const auto& [name, topic] : options.sources) {
+    std::string* slot = topics.find(name);
+    if (slot == nullptr) options.validate(path_);  // throws, naming the signal
+    *slot = topic;
   }
-  gap::FlightStreams streams;
+  return read(topics, options.motors);
+}
+
+FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int motors) const {
+  if (motors < 1 || motors > kMaxMotors) {
+    throw ConfigError(path_ + ": " + std::to_string(motors) + " motors, expected 1.." + std::to_string(kMaxMotors));
+  }
+  FlightStreams streams;
   streams.source = path_;
   streams.motors = motors;
   const std::vector<Source> sources = sourcesOf(topics);
@@ -274,6 +279,13 @@ gap::FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int moto
     throw DataError(path_ + ": reading failed after " + formatPrintf("%.3f", time_s) + " s: " + e.what());
   }
   return streams;
+}
+
+FlightLogFormat flightBagFormat() {
+  return {"rosbag", "#ROSBAG V2.0",
+          [](const std::string& path) -> std::unique_ptr<FlightLogReader> {
+            return std::make_unique<FlightBagReader>(path);
+          }};
 }
 
 }  // namespace propulsion_estimator

@@ -278,6 +278,28 @@ double Estimator::batteryAge(double now_s) const {
 Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std::uint16_t* channels,
                                      std::size_t count) {
   checkClock(receipt_s);
+  Rejection rejection = checkBatteryAndChannels(receipt_s, channels, count);
+  if (rejection == Rejection::kNone) rejection = checkStamp(receipt_s, &stamp_s);
+  effects::KindMask skipped = 0;
+  if (rejection == Rejection::kNone) rejection = evaluateMotors(receipt_s, channels, &skipped);
+  if (rejection != Rejection::kNone) return rejection;
+
+  const bool imu_fresh = imuFresh(receipt_s);
+  const double vertical_accel = imu_fresh ? accel_filter_.value() : kNaN;
+  const Totals totals = sumMotors(channels, imu_fresh, vertical_accel);
+  VerticalSpeedSource speed_source = VerticalSpeedSource::kNone;
+  const HoverSample sample = hoverSample(totals, receipt_s, imu_fresh, vertical_accel, &speed_source);
+  output_.hover = hover_.add(stamp_s, sample);
+  output_.payload = payload_.add(stamp_s, totals.mass_kg, output_.hover.hovering);
+  output_.vertical_speed_source = speed_source;
+  output_.totals = totals;
+  output_.stamp_s = stamp_s;
+  output_.effects_skipped = skipped;
+  countAccepted(stamp_s, receipt_s, totals, skipped);
+  return Rejection::kNone;
+}
+
+Rejection Estimator::checkBatteryAndChannels(double receipt_s, const std::uint16_t* channels, std::size_t count) {
   if (!have_voltage_) return reject(Rejection::kNoBattery);
   const double battery_age = receipt_s - voltage_receipt_s_;
   if (battery_age > config_.battery_timeout_s) {
@@ -296,37 +318,44 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
       return reject(Rejection::kDisarmed, channel, pwm, config_.disarmed_pwm_max_us);
     }
   }
-  if (stamp_s == 0.0) {
-    stamp_s = receipt_s;  // an unstamped message is taken as stamped on arrival
+  return Rejection::kNone;
+}
+
+Rejection Estimator::checkStamp(double receipt_s, double* stamp_s) {
+  if (*stamp_s == 0.0) {
+    *stamp_s = receipt_s;  // an unstamped message is taken as stamped on arrival
   } else {
     // Accepted, a stamp far ahead would make every message of the next second go back in time.
-    if (stamp_s - receipt_s > config_.max_stamp_ahead_s) {
-      return reject(Rejection::kStampAhead, 0, stamp_s - receipt_s, config_.max_stamp_ahead_s);
+    if (*stamp_s - receipt_s > config_.max_stamp_ahead_s) {
+      return reject(Rejection::kStampAhead, 0, *stamp_s - receipt_s, config_.max_stamp_ahead_s);
     }
     // The same message twice (a relay, a bag recorded from two sources) would count twice in the
     // windows. Unstamped ones are exempt: two can arrive within one tick of a simulated clock.
-    if (have_stamp_ && stamp_s == last_stamp_s_) return reject(Rejection::kDuplicate, 0, stamp_s);
+    if (have_stamp_ && *stamp_s == last_stamp_s_) return reject(Rejection::kDuplicate, 0, *stamp_s);
   }
-  if (have_stamp_ && stamp_s < last_stamp_s_) {
+  if (have_stamp_ && *stamp_s < last_stamp_s_) {
     // A message out of order is refused; stamps that restart (an autopilot reboot, a time-sync
     // reset, a bag looped without --clock) would otherwise refuse everything that follows.
-    if (last_stamp_s_ - stamp_s <= config_.clock_jump_reset_s) {
-      return reject(Rejection::kTimeBackwards, 0, last_stamp_s_ - stamp_s);
+    if (last_stamp_s_ - *stamp_s <= config_.clock_jump_reset_s) {
+      return reject(Rejection::kTimeBackwards, 0, last_stamp_s_ - *stamp_s);
     }
     clearWindows();
     ++counters_.clock_resets;
   }
+  return Rejection::kNone;
+}
+
+Rejection Estimator::evaluateMotors(double receipt_s, const std::uint16_t* channels, effects::KindMask* skipped) {
   // Every motor is evaluated before anything is committed, so that a refusal leaves the
   // estimates as they were. The surfaces are evaluated at the inputs the ESCs really see.
   const effects::ModelEffects& model_effects = model_.effects();
   const effects::Signals signals = effectSignals(receipt_s);
-  effects::KindMask skipped = 0;
   // Floored as the surfaces' thrust is: a linear law (climb inflow) pushed far past its range.
-  const double thrust_factor = std::max(0.0, effects::thrustFactor(model_effects, signals, &skipped));
+  const double thrust_factor = std::max(0.0, effects::thrustFactor(model_effects, signals, skipped));
   for (std::size_t i = 0; i < scratch_.size(); ++i) {
     const int channel = config_.motor_channels[i];
     const effects::Inputs in =
-        effects::correctInputs(model_effects, channels[channel - 1], voltage_v_, signals, &skipped);
+        effects::correctInputs(model_effects, channels[channel - 1], voltage_v_, signals, skipped);
     if (!model_.evaluate(in.pwm_us, in.voltage_v, &scratch_[i])) {
       return reject(Rejection::kOutsideDomain, channel, in.pwm_us);
     }
@@ -340,11 +369,11 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
       return reject(Rejection::kNonFiniteEstimate, channel, in.pwm_us, in.voltage_v);
     }
   }
+  return Rejection::kNone;
+}
 
-  const bool imu_fresh = imuFresh(receipt_s);
-  const bool velocity_fresh = velocityFresh(receipt_s);
+Totals Estimator::sumMotors(const std::uint16_t* channels, bool imu_fresh, double vertical_accel) {
   const bool tilt_known = imu_fresh && config_.compensate_tilt;
-
   Totals totals;
   totals.voltage_v = voltage_v_;
   double moment_x = 0.0, moment_y = 0.0;
@@ -362,7 +391,6 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
     moment_x += thrust * rotor.position_m.x();
     moment_y += thrust * rotor.position_m.y();
   }
-  const double vertical_accel = imu_fresh ? accel_filter_.value() : kNaN;
   const double accel_used = imu_fresh && config_.compensate_acceleration ? vertical_accel : 0.0;
   // NaN sums stand for what the model lacks; so does the efficiency without power or efficiency.
   totals.efficiency_n_per_w = !(has_power_ && has_efficiency_) ? kNaN
@@ -371,34 +399,35 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   totals.mass_kg = totals.vertical_thrust_n / (kStandardGravity + accel_used);
   totals.thrust_centre_x_m = totals.thrust_n > 0.0 ? moment_x / totals.thrust_n : kNaN;
   totals.thrust_centre_y_m = totals.thrust_n > 0.0 ? moment_y / totals.thrust_n : kNaN;
+  return totals;
+}
 
+HoverSample Estimator::hoverSample(const Totals& totals, double receipt_s, bool imu_fresh, double vertical_accel,
+                                   VerticalSpeedSource* speed_source) const {
   HoverSample sample;
   sample.vertical_thrust_n = totals.vertical_thrust_n;
   sample.mass_kg = totals.mass_kg;
   sample.tilt_rad = imu_fresh ? std::acos(std::clamp(body_to_world_(2, 2), -1.0, 1.0)) : kNaN;
-  VerticalSpeedSource speed_source = VerticalSpeedSource::kNone;
   sample.vertical_speed_m_s = kNaN;
-  if (velocity_fresh) {
+  if (velocityFresh(receipt_s)) {
     sample.vertical_speed_m_s = vertical_speed_m_s_;
-    speed_source = VerticalSpeedSource::kVelocity;
+    *speed_source = VerticalSpeedSource::kVelocity;
   } else if (!std::isnan(static_pressure_pa_.at(receipt_s, config_.static_pressure_timeout_s)) &&
              !std::isnan(barometric_speed_.value())) {
     sample.vertical_speed_m_s = barometric_speed_.value();
-    speed_source = VerticalSpeedSource::kBarometer;
+    *speed_source = VerticalSpeedSource::kBarometer;
   }
   sample.vertical_accel_m_s2 = vertical_accel;
-  output_.hover = hover_.add(stamp_s, sample);
-  output_.payload = payload_.add(stamp_s, totals.mass_kg, output_.hover.hovering);
-  output_.vertical_speed_source = speed_source;
-  output_.totals = totals;
-  output_.stamp_s = stamp_s;
-  output_.effects_skipped = skipped;
+  return sample;
+}
+
+void Estimator::countAccepted(double stamp_s, double receipt_s, const Totals& totals, effects::KindMask skipped) {
+  const effects::ModelEffects& model_effects = model_.effects();
   for (effects::Kind kind : effects::kAllKinds) {
     if (!model_effects.has(kind)) continue;
     const std::size_t k = static_cast<std::size_t>(kind);
     ++((skipped & effects::bit(kind)) ? counters_.effect_skipped[k] : counters_.effect_applied[k]);
   }
-
   counters_.motor_samples += vehicle_.rotors.size();
   counters_.motor_samples_outside_domain += static_cast<std::uint64_t>(totals.motors_out_of_domain);
   ++counters_.accepted;
@@ -406,7 +435,6 @@ Rejection Estimator::addMotorOutputs(double stamp_s, double receipt_s, const std
   have_stamp_ = true;
   last_accepted_receipt_s_ = receipt_s;
   have_accepted_ = true;
-  return Rejection::kNone;
 }
 
 TareResult Estimator::tare(double now_s) {

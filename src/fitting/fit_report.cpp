@@ -147,22 +147,14 @@ void writeFitReportData(const BenchFit& fit, const std::string& directory) {
   }
 }
 
-std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path) {
+namespace {
+
+// The logs, the domain, the bench, the levels and how the fit was cross-validated.
+void writeDataSection(std::ostringstream& md, const BenchFit& fit) {
   const PropulsionModel& model = fit.model;
   const ModelMetadata& meta = model.metadata();
   const ModelDomain& domain = model.domain();
   const BenchDataset& data = fit.data;
-  std::ostringstream md;
-  md << "# Response surfaces: " << meta.esc << " / " << meta.motor << " / " << meta.propeller << "\n\n";
-  if (fit.validation_error.empty()) {
-    md << "Model written to `" << model_path << "`; it passes the loader's checks (`loadModelFile`).\n\n";
-  } else {
-    md << "**The fitted model fails the loader's check on its domain grid and was not written:** "
-       << fit.validation_error
-       << ". The data do not determine the surface there; see the figures, log more points where it fails, or "
-          "narrow the data to the range that will be flown.\n\n";
-  }
-
   md << "## Data\n\n";
   md << "| log | rows | PWM (us) | voltage (V) |\n|---|---:|---|---|\n";
   for (std::size_t l = 0; l < data.sources.size(); ++l) {
@@ -218,7 +210,11 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
     for (const std::string& note : fit.notes) md << "- " << note << "\n";
     md << "\n";
   }
+}
 
+// One row per output: how it is modelled and how well the surface fits.
+void writeFitQuality(std::ostringstream& md, const BenchFit& fit) {
+  const PropulsionModel& model = fit.model;
   md << "## Fit quality\n\n";
   md << "| output | unit | model | degrees (x, v) | points | R^2 | RMSE | max error | held-out RMSE |\n";
   md << "|---|---|---|---|---:|---:|---:|---:|---:|\n";
@@ -243,7 +239,11 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
   const long stride = plotStride(fit.outputs[static_cast<int>(Output::kThrust)].points);
   if (stride > 1) md << " The figures show every " << stride << "th sample.";
   md << "\n\n";
+}
 
+// The held-out RMSE of every candidate degree pair, the chosen one in bold.
+void writeCandidates(std::ostringstream& md, const BenchFit& fit) {
+  const PropulsionModel& model = fit.model;
   md << "### Held-out RMSE of every candidate (rows: PWM degree, columns: voltage degree; - : not determined)\n\n";
   for (Output output : kAllOutputs) {
     const OutputFitReport& report = fit.outputs[static_cast<int>(output)];
@@ -265,7 +265,10 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
     }
     md << "\n\n";
   }
+}
 
+// The figures with their captions.
+void writeFigures(std::ostringstream& md) {
   md << "## Figures\n\n";
   const char* captions[] = {
       "Outputs against PWM at each voltage level (thesis 4.1): bench points and the fitted surface's section at the "
@@ -278,6 +281,28 @@ std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path
   for (std::size_t k = 0; k < fitReportFigures().size(); ++k) {
     md << captions[k] << "\n\n![" << fitReportFigures()[k] << "](" << fitReportFigures()[k] << ")\n\n";
   }
+}
+
+}  // namespace
+
+std::string fitReportMarkdown(const BenchFit& fit, const std::string& model_path) {
+  const PropulsionModel& model = fit.model;
+  const ModelMetadata& meta = model.metadata();
+  std::ostringstream md;
+  md << "# Response surfaces: " << meta.esc << " / " << meta.motor << " / " << meta.propeller << "\n\n";
+  if (fit.validation_error.empty()) {
+    md << "Model written to `" << model_path << "`; it passes the loader's checks (`loadModelFile`).\n\n";
+  } else {
+    md << "**The fitted model fails the loader's check on its domain grid and was not written:** "
+       << fit.validation_error
+       << ". The data do not determine the surface there; see the figures, log more points where it fails, or "
+          "narrow the data to the range that will be flown.\n\n";
+  }
+
+  writeDataSection(md, fit);
+  writeFitQuality(md, fit);
+  writeCandidates(md, fit);
+  writeFigures(md);
   return md.str();
 }
 

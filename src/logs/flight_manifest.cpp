@@ -13,7 +13,7 @@
 namespace propulsion_estimator {
 
 void ManifestFlight::validate(const std::string& at) const {
-  if (bag.empty()) throw FieldError(at + ".bag", "is empty");
+  if (log.empty()) throw FieldError(at + ".log", "is empty");
   if (segments.empty()) throw FieldError(at + ".segments", "no segments");
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const ManifestSegment& segment = segments[s];
@@ -43,9 +43,11 @@ std::vector<ManifestFlight> readFlights(const YamlMap& root) {
   root.allowOnly({"flights"});
   std::vector<ManifestFlight> flights;
   for (const YamlMap& flight : root.maps("flights")) {
-    flight.allowOnly({"bag", "segments"});
+    flight.allowOnly({"log", "bag", "segments"});
     ManifestFlight entry;
-    entry.bag = flight.text("bag");
+    // `bag:`, the field's name before logs of other formats were read, is still read.
+    if (flight.has("log") && flight.has("bag")) flight.fail("bag", "give log or bag (its old name), not both");
+    entry.log = flight.text(flight.has("bag") ? "bag" : "log");
     for (const YamlMap& segment : flight.maps("segments")) {
       segment.allowOnly({"start", "end", "mass_kg"});
       entry.segments.push_back({segment.number("start"), segment.number("end"), segment.number("mass_kg")});
@@ -91,7 +93,7 @@ std::string flightManifestToYaml(const FlightManifest& manifest, const std::stri
   if (!comment.empty()) out << YAML::Comment(comment) << YAML::Newline;
   out << YAML::BeginMap << YAML::Key << "flights" << YAML::Value << YAML::BeginSeq;
   for (const ManifestFlight& flight : manifest.flights) {
-    out << YAML::BeginMap << YAML::Key << "bag" << YAML::Value << flight.bag;
+    out << YAML::BeginMap << YAML::Key << "log" << YAML::Value << flight.log;
     out << YAML::Key << "segments" << YAML::Value << YAML::BeginSeq;
     for (const ManifestSegment& segment : flight.segments) {
       out << YAML::Flow << YAML::BeginMap;
@@ -110,9 +112,9 @@ void saveFlightManifest(const FlightManifest& manifest, const std::string& path,
   writeTextFile(path, flightManifestToYaml(manifest, comment));
 }
 
-std::string resolveBagPath(const std::string& manifest_path, const std::string& bag) {
-  const std::filesystem::path path(bag);
-  if (path.is_absolute()) return bag;
+std::string resolveLogPath(const std::string& manifest_path, const std::string& log) {
+  const std::filesystem::path path(log);
+  if (path.is_absolute()) return log;
   return (std::filesystem::path(manifest_path).parent_path() / path).string();
 }
 

@@ -41,6 +41,8 @@ class ParamReader {
     *value = read;
   }
 
+  std::string resolveName(const std::string& name) const { return nh_.resolveName(name); }
+
   // A parameter another component reads from the same namespace: known, not read here.
   void readElsewhere(const std::string& name) { known_.insert(name); }
 
@@ -69,11 +71,9 @@ class ParamReader {
   std::set<std::string> known_;
 };
 
-}  // namespace
-
-EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
-  ParamReader read(nh);
-  EstimatorNodeParams p;
+// The node's own parameters: the model, files, topics.
+void readFilesAndTopics(ParamReader& read, EstimatorNodeParams* params) {
+  EstimatorNodeParams& p = *params;
   read.required("model", &p.model);
   read.optional("urdf_file", &p.urdf_file);
   read.optional("tare_file", &p.tare_file);
@@ -87,7 +87,11 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("motor_temperature_topic", &p.motor_temperature_topic);
   read.optional("domain_warn_fraction", &p.health.domain_warn_fraction);
 
-  EstimatorConfig& c = p.estimator;
+}
+
+// The estimator's parameters, and publish_rate_hz read among them.
+void readEstimatorConfig(ParamReader& read, EstimatorConfig* config, double* publish_rate_hz) {
+  EstimatorConfig& c = *config;
   read.optional("motor_channels", &c.motor_channels);
   read.optional("disarmed_pwm_max_us", &c.disarmed_pwm_max_us);
   read.optional("battery_timeout_s", &c.battery_timeout_s);
@@ -101,7 +105,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("air_temperature/timeout_s", &c.air_temperature_timeout_s);
   read.optional("rangefinder/timeout_s", &c.rangefinder_timeout_s);
   read.optional("motor_temperature/timeout_s", &c.motor_temperature_timeout_s);
-  read.optional("publish_rate_hz", &p.publish_rate_hz);
+  read.optional("publish_rate_hz", publish_rate_hz);
   read.optional("clock_jump_reset_s", &c.clock_jump_reset_s);
   read.optional("max_stamp_ahead_s", &c.max_stamp_ahead_s);
   read.optional("empty_mass_kg", &c.empty_mass_kg);
@@ -115,10 +119,13 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("payload/averaging_window_s", &c.payload.averaging_window_s);
   int min_samples = static_cast<int>(c.payload.min_samples);
   read.optional("payload/min_samples", &min_samples);
-  if (min_samples < 0) throw ConfigError(nh.resolveName("payload/min_samples") + ": must not be negative");
+  if (min_samples < 0) throw ConfigError(read.resolveName("payload/min_samples") + ": must not be negative");
   c.payload.min_samples = static_cast<std::size_t>(min_samples);
   read.optional("payload/episode_gap_s", &c.payload.episode_gap_s);
-  CapabilityConfig& k = p.capability;
+}
+
+void readCapabilityConfig(ParamReader& read, CapabilityConfig* config) {
+  CapabilityConfig& k = *config;
   read.optional("capability/rate_hz", &k.rate_hz);
   read.optional("capability/pwm_max_us", &k.pwm_max_us);
   read.optional("capability/min_thrust_to_weight", &k.min_thrust_to_weight);
@@ -131,8 +138,11 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   read.optional("capability/motor_health/block_s", &k.motor_health.block_s);
   read.optional("capability/motor_health/window_s", &k.motor_health.window_s);
   read.optional("capability/motor_health/max_gap", &k.motor_health.max_gap);
-  read.optional("diagnostic_period", &p.diagnostic_period_s);  // diagnostic_updater reads it too
-  read.refuseUnknown();
+}
+
+// What depends on several parameters, checked once all are read.
+void validateNodeParams(const ros::NodeHandle& nh, EstimatorNodeParams* params) {
+  EstimatorNodeParams& p = *params;
   p.health.battery_input = p.battery_topic;
   p.health.rc_out_input = p.rc_out_topic;
   p.health.velocity_input = p.velocity_topic;
@@ -141,7 +151,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   p.health.rangefinder_input = p.rangefinder_topic;
   p.health.motor_temperature_input = p.motor_temperature_topic;
   p.health.validate();
-  k.validate();
+  p.capability.validate();
   // 0 would tick the diagnostics timer without pause.
   if (!(p.diagnostic_period_s > 0.0) || !std::isfinite(p.diagnostic_period_s)) {
     throw ConfigError(nh.resolveName("diagnostic_period") + ": must be a positive number of seconds, got " +
@@ -151,7 +161,12 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
     throw ConfigError(nh.resolveName("publish_rate_hz") + ": must be 0 (every message) or a positive rate in Hz, got " +
                       formatNumber(p.publish_rate_hz));
   }
+}
 
+// Each loaded value, logged once.
+void logNodeParams(const EstimatorNodeParams& p) {
+  const EstimatorConfig& c = p.estimator;
+  const CapabilityConfig& k = p.capability;
   std::ostringstream channels;
   for (std::size_t i = 0; i < c.motor_channels.size(); ++i) channels << (i ? ", " : "") << c.motor_channels[i];
   ROS_INFO_STREAM("propulsion_estimator parameters:"
@@ -196,6 +211,21 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
                   << ", cell_full_v " << k.cell_full_v << ", cell_cutoff_v " << k.cell_cutoff_v
                   << "\n  capability/motor_health: block_s " << k.motor_health.block_s << ", window_s "
                   << k.motor_health.window_s << ", max_gap " << k.motor_health.max_gap);
+
+}
+
+}  // namespace
+
+EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
+  ParamReader read(nh);
+  EstimatorNodeParams p;
+  readFilesAndTopics(read, &p);
+  readEstimatorConfig(read, &p.estimator, &p.publish_rate_hz);
+  readCapabilityConfig(read, &p.capability);
+  read.optional("diagnostic_period", &p.diagnostic_period_s);  // diagnostic_updater reads it too
+  read.refuseUnknown();
+  validateNodeParams(nh, &p);
+  logNodeParams(p);
   return p;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "propulsion_estimator/common/mavros_topics.h"
 #include "propulsion_estimator/sim/flight/flight_sink.h"
 
 namespace propulsion_estimator {
@@ -14,19 +15,9 @@ namespace propulsion_estimator {
 /// the same bag.
 constexpr std::uint32_t kSimulatedBagStartSec = 1600000000;
 
-/// Topics of a simulated flight, as MAVROS names them.
-///@{
-constexpr const char* kRcOutTopic = "/mavros/rc/out";
-constexpr const char* kBatteryTopic = "/mavros/battery";
-constexpr const char* kImuTopic = "/mavros/imu/data";
-constexpr const char* kPoseTopic = "/mavros/local_position/pose";
-constexpr const char* kVelocityTopic = "/mavros/local_position/velocity_local";
-constexpr const char* kStaticPressureTopic = "/mavros/imu/static_pressure";
-constexpr const char* kAirTemperatureTopic = "/mavros/imu/temperature_baro";
-constexpr const char* kRangefinderTopic = "/mavros/rangefinder/rangefinder";
-constexpr const char* kMotorTemperatureTopic = "/motor_temperature";
+/// The simulator's ground truth (propulsion_estimator/SimTruth); the flight's other topics are
+/// MAVROS' (mavros_topics.h).
 constexpr const char* kSimTruthTopic = "/sim/truth";
-///@}
 
 /// Writes a simulated flight into a bag: MAVROS topics with their message types
 /// (/mavros/rc/out as mavros_msgs/RCOut through rcout_codec), the hottest motor's temperature as
@@ -39,6 +30,9 @@ class BagFlightSink : public sim::FlightSink {
   BagFlightSink(const std::string& path, rosbag::compression::CompressionType compression);
   ~BagFlightSink() override;
 
+  /// Each writes one message on its topic (kRcOutTopic, ...), stamped kSimulatedBagStartSec plus
+  /// the sample's time; rosbag::BagException when the bag cannot be written.
+  ///@{
   void rcOut(const sim::RcOutSample& sample) override;
   void battery(const sim::BatterySample& sample) override;
   void imu(const sim::ImuSample& sample) override;
@@ -49,6 +43,7 @@ class BagFlightSink : public sim::FlightSink {
   void rangefinder(const sim::RangeSample& sample) override;
   void motorTemperature(const sim::ScalarSample& sample) override;
   void truth(const sim::TruthSample& sample) override;
+  ///@}
 
   /// Finishes the bag (rosbag::BagException when it cannot be written). The destructor closes it
   /// too, reporting a failure on stderr since it cannot throw.

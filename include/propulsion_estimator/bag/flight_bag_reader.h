@@ -6,8 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "propulsion_estimator/bag/bag_flight_sink.h"
-#include "propulsion_estimator/gap/flight_streams.h"
+#include "propulsion_estimator/common/mavros_topics.h"
+#include "propulsion_estimator/logs/flight_log_formats.h"
+#include "propulsion_estimator/logs/flight_log_reader.h"
 
 namespace propulsion_estimator {
 
@@ -24,7 +25,7 @@ struct FlightBagTopics {
   std::string rangefinder = kRangefinderTopic;          ///< sensor_msgs/Range
   std::string motor_temperature = kMotorTemperatureTopic;  ///< sensor_msgs/Temperature
 
-  /// The signals' names, as above: "rc_out", "battery", ..., "motor_temperature".
+  /// The signals' names, as above: flightSignalNames().
   static const std::vector<std::string>& names();
   /// The topic of the signal `name`, or nullptr when there is no such signal.
   std::string* find(const std::string& name);
@@ -36,18 +37,22 @@ struct FlightBagTopics {
 /// read: the simulator's /sim/truth is not one of them, and its type matches none of the signals.
 /// Readers may work on different threads: their bags are made, opened and destroyed under one
 /// lock, since rosbag loads and unloads a plugin then; no other rosbag::Bag may come or go meanwhile.
-class FlightBagReader {
+class FlightBagReader : public FlightLogReader {
  public:
   /// Opens `path`. InputError "<path>: no such file"; DataError "<path>: not a readable bag: <why>",
   /// "<path>: no messages".
   explicit FlightBagReader(const std::string& path);
-  ~FlightBagReader();
+  ~FlightBagReader() override;
   FlightBagReader(const FlightBagReader&) = delete;
   FlightBagReader& operator=(const FlightBagReader&) = delete;
 
-  const std::string& path() const { return path_; }
+  /// The bag's path, as given.
+  const std::string& path() const override { return path_; }
   /// From the first message to the last, in seconds.
-  double durationS() const { return duration_s_; }
+  double durationS() const override { return duration_s_; }
+
+  /// read(topics, motors) with the options' sources as topics (ConfigError for bad options).
+  FlightStreams read(const FlightLogOptions& options) const override;
 
   /// Reads the signals in one pass over their topics, in time order. Motors 1..`motors` are RCOut
   /// channels 1..`motors`. Values are as logged (the battery current keeps the autopilot's sign),
@@ -57,7 +62,7 @@ class FlightBagReader {
   /// without messages, a topic of another type or md5sum than expected, an RCOut message with
   /// fewer channels than `motors`, or a malformed message; "<path>: <problem>" when the bag
   /// cannot be read to its end.
-  gap::FlightStreams read(const FlightBagTopics& topics, int motors) const;
+  FlightStreams read(const FlightBagTopics& topics, int motors) const;
 
  private:
   std::string path_;
@@ -65,5 +70,9 @@ class FlightBagReader {
   ros::Time start_;
   double duration_s_ = 0.0;
 };
+
+/// The rosbag format for the FlightLogFormats registry: files that start with "#ROSBAG V2.0",
+/// opened as FlightBagReader.
+FlightLogFormat flightBagFormat();
 
 }  // namespace propulsion_estimator

@@ -10,6 +10,7 @@ namespace propulsion_estimator {
 /// effects, manifest, tare file), a URDF, a node parameter or a command-line option.
 class ConfigError : public InputError {
  public:
+  /// `message`: one line naming the file, key or field and the value.
   explicit ConfigError(const std::string& message) : InputError(message) {}
 };
 

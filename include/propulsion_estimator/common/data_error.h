@@ -10,6 +10,7 @@ namespace propulsion_estimator {
 /// whole cannot determine what is asked of them (one voltage level, a constant column).
 class DataError : public InputError {
  public:
+  /// `message`: one line naming the file, where in it, and the problem.
   explicit DataError(const std::string& message) : InputError(message) {}
 };
 

@@ -12,10 +12,13 @@ namespace propulsion_estimator {
 /// where the struct came from; a reader turns it into a located ConfigError with throwAtField.
 class FieldError : public ConfigError {
  public:
+  /// `field`: the key path ("motor.kv_rpm_per_v"); `problem`: what is wrong with its value.
   FieldError(const std::string& field, const std::string& problem)
       : ConfigError(field + ": " + problem), field_(field), problem_(problem) {}
 
+  /// The key path of the refused value.
   const std::string& field() const { return field_; }
+  /// What is wrong with it, without the key path.
   const std::string& problem() const { return problem_; }
 
  private:

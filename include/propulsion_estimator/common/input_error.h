@@ -12,6 +12,7 @@ namespace propulsion_estimator {
 /// caller that only reports catches this one.
 class InputError : public std::runtime_error {
  public:
+  /// `message`: one line naming the input and the problem.
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 

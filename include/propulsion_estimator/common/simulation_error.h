@@ -11,6 +11,7 @@ namespace propulsion_estimator {
 /// input that asked for it.
 class SimulationError : public InputError {
  public:
+  /// `message`: one line naming the input (profile, parameters) and what went wrong when.
   explicit SimulationError(const std::string& message) : InputError(message) {}
 };
 

@@ -24,18 +24,21 @@ class YamlMap {
   /// The same, for a list built at run time (the effects' names).
   void allowOnly(const std::vector<std::string>& allowed) const;
 
-  bool has(const std::string& key) const;
-  std::vector<std::string> keys() const;
+  bool has(const std::string& key) const;  ///< whether the mapping has `key`
+  std::vector<std::string> keys() const;  ///< the mapping's keys, in file order
 
   double number(const std::string& key) const;  ///< finite
+  /// A finite number, or nullopt when the key is absent.
   std::optional<double> optionalNumber(const std::string& key) const;
-  int integer(const std::string& key) const;
-  bool boolean(const std::string& key) const;
-  std::string text(const std::string& key) const;
+  int integer(const std::string& key) const;  ///< an integer (a number with a fractional part is refused)
+  bool boolean(const std::string& key) const;  ///< true or false
+  std::string text(const std::string& key) const;  ///< a scalar as text
+  /// A scalar as text, or nullopt when the key is absent.
   std::optional<std::string> optionalText(const std::string& key) const;
   std::pair<double, double> range(const std::string& key) const;  ///< [lo, hi], finite, lo < hi
   std::vector<double> numbers(const std::string& key) const;      ///< a sequence of finite numbers
-  YamlMap map(const std::string& key) const;
+  YamlMap map(const std::string& key) const;  ///< the mapping under `key`
+  /// The mapping under `key`, or nullopt when the key is absent.
   std::optional<YamlMap> optionalMap(const std::string& key) const;
   std::vector<YamlMap> maps(const std::string& key) const;  ///< a sequence of mappings
   /// One of `choices`, reported with them when it is not.
@@ -43,9 +46,12 @@ class YamlMap {
 
   /// "<source>:<line>: <path.key>" for messages about a key of this map.
   std::string where(const std::string& key) const;
+  /// Throws ConfigError "<source>:<line>: <path.key>: <problem>" (the line of `key`, or of this map).
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
 
+  /// The file or name messages give for the document.
   const std::string& source() const { return source_; }
+  /// The dotted key path of this map.
   const std::string& path() const { return path_; }
 
  private:

@@ -11,8 +11,8 @@ namespace propulsion_estimator {
 /// about tau_slow.
 class BarometricVerticalSpeed {
  public:
-  static constexpr double kFastTimeConstantS = 0.3;
-  static constexpr double kSlowTimeConstantS = 1.0;
+  static constexpr double kFastTimeConstantS = 0.3;  ///< s, tau_fast
+  static constexpr double kSlowTimeConstantS = 1.0;  ///< s, tau_slow
   /// The speed is given once the pressure has been followed this long (both filters settled).
   static constexpr double kSettlingS = 2.0;
 
@@ -20,6 +20,7 @@ class BarometricVerticalSpeed {
   void add(double stamp_s, double pressure_pa);
   /// Vertical speed in m/s, up positive; NaN before kSettlingS of readings.
   double value() const;
+  /// Forgets the height history (the speed is NaN again for kSettlingS).
   void clear() { started_ = false; }
 
  private:

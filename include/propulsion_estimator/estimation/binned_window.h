@@ -20,7 +20,7 @@ namespace propulsion_estimator {
 template <typename Aggregate>
 class BinnedWindow {
  public:
-  static constexpr std::size_t kBins = 64;
+  static constexpr std::size_t kBins = 64;  ///< bins per window
 
   /// `span_s` > 0 (validated by the owner's config).
   explicit BinnedWindow(double span_s) : bin_s_(span_s / static_cast<double>(kBins)) {}
@@ -52,12 +52,14 @@ class BinnedWindow {
     return all;
   }
 
+  /// Forgets every sample.
   void clear() {
     samples_ = 0;
     closed_ = Aggregate{};
     // A bin of before must not pass for one of after when the clock comes back to its index.
     for (Bin& bin : bins_) bin.index = kNoBin;
   }
+  /// Whether the window holds no sample.
   bool empty() const { return samples_ == 0; }
   /// Time between the oldest and the newest sample in the window, s.
   double span() const { return empty() ? 0.0 : newest_stamp_s_ - bins_[slot(oldest_index_)].first_stamp_s; }

@@ -52,7 +52,7 @@ const char* rejectionName(Rejection rejection);
 
 /// The last refusal with what it was about, turned into text only when someone asks.
 struct RejectionDetail {
-  Rejection reason = Rejection::kNone;
+  Rejection reason = Rejection::kNone;  ///< the last refusal's reason (kNone before any)
   int channel = 0;     ///< 1-based, for kDisarmed
   double value = 0.0;  ///< offending value (voltage, PWM, channel count, seconds)
   double limit = 0.0;  ///< what it was checked against
@@ -64,25 +64,25 @@ std::string describe(const RejectionDetail& detail);
 /// One motor's estimate for the last accepted RCOut message: its channel (1-based), pulse width in
 /// us and the model's operating point (SI units) with the effects applied.
 struct MotorOutput {
-  int channel = 0;
-  double pwm_us = 0.0;
-  OperatingPoint estimate;
+  int channel = 0;  ///< RCOut channel, 1-based
+  double pwm_us = 0.0;  ///< the pulse width the channel carried, us
+  OperatingPoint estimate;  ///< thrust N, current A, power W, efficiency N/W, rpm, in_domain
 };
 
 /// The vehicle's totals over all motors, SI units: summed thrust and its vertical part, current
 /// and power, and the mass they lift (vertical thrust over g plus the vertical acceleration).
 /// Current, power and efficiency are NaN when the model lacks them (see unmodelledOutputs()).
 struct Totals {
-  double voltage_v = 0.0;
-  double thrust_n = 0.0;
-  double vertical_thrust_n = 0.0;
-  double current_a = 0.0;
-  double power_w = 0.0;
-  double efficiency_n_per_w = 0.0;
-  double mass_kg = 0.0;
+  double voltage_v = 0.0;  ///< battery voltage the motors were evaluated at, V
+  double thrust_n = 0.0;  ///< summed thrust along the rotor axes, N
+  double vertical_thrust_n = 0.0;  ///< the vertical part of the thrust, N (tilt-compensated while the IMU is fresh)
+  double current_a = 0.0;  ///< summed current, A
+  double power_w = 0.0;  ///< summed electrical power, W
+  double efficiency_n_per_w = 0.0;  ///< thrust over power, N/W
+  double mass_kg = 0.0;  ///< the mass the vertical thrust lifts, kg
   double thrust_centre_x_m = 0.0;  ///< NaN without vehicle geometry
-  double thrust_centre_y_m = 0.0;
-  int motors_out_of_domain = 0;
+  double thrust_centre_y_m = 0.0;  ///< NaN without vehicle geometry
+  int motors_out_of_domain = 0;  ///< motors whose PWM or voltage lay outside the model's domain
 };
 
 /// Where the hover detector's vertical speed came from: the velocity topic, the barometer's height
@@ -94,35 +94,36 @@ const char* verticalSpeedSourceName(VerticalSpeedSource source);
 /// Everything the estimator computed for the last accepted RCOut message; `stamp_s` is its header
 /// time in s.
 struct EstimatorOutput {
-  double stamp_s = 0.0;
+  double stamp_s = 0.0;  ///< the message's header time, s (its receipt time when unstamped)
   std::vector<MotorOutput> motors;  ///< sized once, one per rotor
-  Totals totals;
+  Totals totals;  ///< over all motors
   /// The model's effects not applied to this message because their signal was missing or stale.
   effects::KindMask effects_skipped = 0;
-  HoverVerdict hover;
+  HoverVerdict hover;  ///< the hover detector's verdict after this message
+  /// Where the hover check's vertical speed came from.
   VerticalSpeedSource vertical_speed_source = VerticalSpeedSource::kNone;
-  MassEstimate payload;
+  MassEstimate payload;  ///< total, empty and payload mass
 };
 
 /// Counts of the inputs accepted and rejected (by Rejection) since start, and of the motor samples
 /// and effects applied, for diagnostics.
 struct EstimatorCounters {
-  std::array<std::uint64_t, kRejectionCount> rejected{};
-  std::uint64_t accepted = 0;
-  std::uint64_t motor_samples = 0;
-  std::uint64_t motor_samples_outside_domain = 0;
-  std::uint64_t clock_resets = 0;
+  std::array<std::uint64_t, kRejectionCount> rejected{};  ///< refused inputs, indexed by Rejection
+  std::uint64_t accepted = 0;  ///< RCOut messages accepted
+  std::uint64_t motor_samples = 0;  ///< motor estimates computed (accepted messages times motors)
+  std::uint64_t motor_samples_outside_domain = 0;  ///< of which outside the model's domain
+  std::uint64_t clock_resets = 0;  ///< times the clock went back (a bag restarted) and everything was reset
   /// Accepted messages on which each of the model's effects was applied, or skipped (its signal
   /// missing or stale), indexed by effects::Kind.
   std::array<std::uint64_t, effects::kKindCount> effect_applied{};
-  std::array<std::uint64_t, effects::kKindCount> effect_skipped{};
+  std::array<std::uint64_t, effects::kKindCount> effect_skipped{};  ///< see effect_applied
 };
 
 /// Answer of tare(): the new empty mass, or why there is none.
 struct TareResult {
-  bool ok = false;
-  double empty_mass_kg = 0.0;
-  std::string message;
+  bool ok = false;  ///< whether the empty mass was recorded
+  double empty_mass_kg = 0.0;  ///< the new empty mass, kg
+  std::string message;  ///< why the tare was refused, or what was recorded
 };
 
 /// The whole onboard estimation, free of ROS: inputs in, estimates out. `receipt_s` is the time
@@ -138,10 +139,12 @@ class Estimator {
   /// Throws ConfigError if the configuration does not fit the vehicle.
   Estimator(PropulsionModel model, Vehicle vehicle, EstimatorConfig config);
 
+  /// Battery voltage in V, received at `receipt_s` (s); kBadVoltage for NaN, infinite, zero or negative.
   Rejection addBattery(double receipt_s, double voltage_v);
   /// Orientation rotates body into the world (ENU); acceleration is the IMU's specific force in
   /// the body frame (about +9.81 m/s^2 on z at rest), as MAVROS publishes them.
   Rejection addImu(double receipt_s, const Eigen::Quaterniond& orientation, const Eigen::Vector3d& specific_force);
+  /// Vertical speed in m/s (ENU, up positive); kBadVelocity when not finite.
   Rejection addVerticalSpeed(double receipt_s, double vertical_speed_m_s);
 
   /// Signals of the model's effects; each is used until its timeout (EstimatorConfig).
@@ -153,12 +156,14 @@ class Estimator {
   /// Static pressure (Pa) and air temperature (deg C) give the air density p / (R T). The static
   /// pressure's height rate is also the hover check's vertical speed while no velocity is fresh.
   Rejection addStaticPressure(double receipt_s, double pressure_pa);
+  /// Air temperature in deg C; kBadAirTemperature outside -60..85 deg C.
   Rejection addAirTemperature(double receipt_s, double temperature_c);
   /// A downward rangefinder's reading (m), REP-117: +inf (nothing within max_range) is out of
   /// ground effect, -inf (closer than min_range) is taken as min_range, the farthest the ground
   /// can then be, so that the correction is never overdone. The height is the range times the
   /// cosine of the tilt while the IMU is fresh.
   Rejection addRange(double receipt_s, double range_m, double min_range_m, double max_range_m);
+  /// Motor winding or bell temperature in deg C; kBadMotorTemperature outside -40..200 deg C.
   Rejection addMotorTemperature(double receipt_s, double temperature_c);
   /// The signals as the corrections read them at `now_s`: NaN where missing or stale.
   effects::Signals effectSignals(double now_s) const;
@@ -167,8 +172,11 @@ class Estimator {
   /// kNone and fills output(), or the reason nothing was computed.
   Rejection addMotorOutputs(double stamp_s, double receipt_s, const std::uint16_t* channels, std::size_t count);
 
+  /// The last accepted message's estimates.
   const EstimatorOutput& output() const { return output_; }
+  /// Counts since start.
   const EstimatorCounters& counters() const { return counters_; }
+  /// The last refusal and its values.
   const RejectionDetail& lastRejection() const { return last_rejection_; }
   /// Seconds since the newest valid voltage at `now_s`; infinity before any.
   double batteryAge(double now_s) const;
@@ -185,10 +193,13 @@ class Estimator {
   void setEmptyMass(double mass_kg, EmptyMassSource source);
   /// Clears the windows and the tare; the configured empty mass (parameter or URDF) applies again.
   void reset();
-  std::string describeHover() const;
+  std::string describeHover() const;  ///< the hover verdict as one line, describe(HoverVerdict, HoverConfig)
 
+  /// The model, with its effects.
   const PropulsionModel& model() const { return model_; }
+  /// The vehicle's rotors and mass properties.
   const Vehicle& vehicle() const { return vehicle_; }
+  /// As validated.
   const EstimatorConfig& config() const { return config_; }
 
  private:
@@ -213,6 +224,20 @@ class Estimator {
   bool imuFresh(double now_s) const;
   bool velocityFresh(double now_s) const;
   void clearWindows();
+  /// addMotorOutputs' steps, in order; the checks return kNone or what refused the message.
+  /// This one refuses a message without a fresh voltage, with too few channels or a motor disarmed.
+  Rejection checkBatteryAndChannels(double receipt_s, const std::uint16_t* channels, std::size_t count);
+  /// Takes an unstamped message as stamped on arrival; refuses stamps ahead, repeated or back in time.
+  Rejection checkStamp(double receipt_s, double* stamp_s);
+  /// Every motor into scratch_, with the effects' corrections; nothing committed on a refusal.
+  Rejection evaluateMotors(double receipt_s, const std::uint16_t* channels, effects::KindMask* skipped);
+  /// Commits scratch_ to output_.motors and sums it into the totals.
+  Totals sumMotors(const std::uint16_t* channels, bool imu_fresh, double vertical_accel);
+  /// What the hover detector judges: the totals, the tilt and the freshest vertical speed.
+  HoverSample hoverSample(const Totals& totals, double receipt_s, bool imu_fresh, double vertical_accel,
+                          VerticalSpeedSource* speed_source) const;
+  /// Counts an accepted message and the effects it applied or skipped.
+  void countAccepted(double stamp_s, double receipt_s, const Totals& totals, effects::KindMask skipped);
 
   PropulsionModel model_;
   Vehicle vehicle_;

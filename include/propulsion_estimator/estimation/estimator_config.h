@@ -17,17 +17,19 @@ struct EstimatorConfig {
   /// raise it to 1000 for ArduPilot).
   double disarmed_pwm_max_us = 950.0;
   double battery_timeout_s = 5.0;  ///< MAVROS on PX4 may publish the battery at 0.5-1 Hz
-  double imu_timeout_s = 0.5;
-  double velocity_timeout_s = 0.5;
+  double imu_timeout_s = 0.5;  ///< s; an older attitude is not used for tilt or acceleration compensation
+  double velocity_timeout_s = 0.5;  ///< s; an older vertical speed is not used by the hover check
   /// How long a reading of a signal of the model's effects stays in use; older, the correction that
   /// reads it is skipped. The battery current ages with the voltage (battery_timeout_s), the
   /// vertical speed with the velocity (velocity_timeout_s). Defaults: a few periods of what MAVROS
   /// publishes (static pressure 10-50 Hz, its temperature and a motor temperature about 1 Hz, a
   /// rangefinder 10-50 Hz).
+  ///@{
   double static_pressure_timeout_s = 1.0;
   double air_temperature_timeout_s = 5.0;
   double rangefinder_timeout_s = 0.5;
   double motor_temperature_timeout_s = 5.0;
+  ///@}
   bool compensate_tilt = true;          ///< vertical thrust = sum T_i (R a_i) . z, with the IMU's attitude
   bool compensate_acceleration = true;  ///< mass = vertical thrust / (g + vertical acceleration)
   double accel_filter_s = 0.3;          ///< low-pass of the vertical acceleration
@@ -37,8 +39,8 @@ struct EstimatorConfig {
   /// replayed bag's simulated clock may lag the stamps by a few of its ticks.
   double max_stamp_ahead_s = 0.5;
   std::optional<double> empty_mass_kg;  ///< configured empty mass; a tare overrides it
-  HoverConfig hover;
-  PayloadConfig payload;
+  HoverConfig hover;  ///< when the vehicle hovers
+  PayloadConfig payload;  ///< how the hover mass is averaged
 
   /// ConfigError naming the parameter and its value. `rotors`: how many rotors the vehicle has.
   /// The windows are sized by time, in fixed memory (BinnedWindow), so no rate bounds them.

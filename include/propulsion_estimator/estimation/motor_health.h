@@ -18,7 +18,7 @@ struct MotorHealthConfig {
   double window_s = 10.0;  ///< s of steady hover; a whole number of blocks, at least three
   double max_gap = 0.05;   ///< share of the motor's modelled thrust
 
-  /// FieldError naming capability/motor_health/<field>.
+  /// FieldError naming `capability/motor_health/<field>`.
   void validate() const;
 };
 
@@ -26,26 +26,28 @@ struct MotorHealthConfig {
 /// modelled thrust it would lack for the balance to hold (positive: weaker than modelled) and
 /// that share's standard error.
 struct MotorBalanceGap {
-  int channel = 0;
-  double thrust_gap = 0.0;
-  double thrust_gap_std = 0.0;
+  int channel = 0;  ///< RCOut channel, 1-based
+  double thrust_gap = 0.0;  ///< share of the modelled thrust missing, positive when weaker than modelled
+  double thrust_gap_std = 0.0;  ///< its standard error
 };
 
 /// What the motor balance says after the newest steady-hover window; `judged` false (and
 /// `unavailable` saying why) until a window is full or without rotor geometry.
 struct MotorHealthVerdict {
-  bool judged = false;
-  std::string unavailable;
+  bool judged = false;  ///< whether a full window was judged
+  std::string unavailable;  ///< why not, when judged is false
   int blocks = 0;  ///< steady-hover blocks in the window
   double yaw_imbalance = 0.0;      ///< sum(s_k T_k) / sum(T_k) over the window (rotor_balance.h)
   double yaw_imbalance_std = 0.0;  ///< its standard error
-  std::vector<MotorBalanceGap> motors;
+  std::vector<MotorBalanceGap> motors;  ///< one per motor, in rotor order
   int flagged_channel = 0;  ///< 0: none
   /// The centre of gravity the thrusts balance about, less the URDF's, in m (body x, y): a
   /// centre-of-gravity offset moves every share consistently and is no motor fault. With a motor
   /// flagged, the centre its corrected thrust gives.
+  ///@{
   double cg_offset_x_m = 0.0;
   double cg_offset_y_m = 0.0;
+  ///@}
 };
 
 /// Propulsion health from the moment balance of steady hover (vehicle/rotor_balance.h): a motor
@@ -62,8 +64,9 @@ class MotorHealth {
   void add(const EstimatorOutput& output);
   /// Forgets the blocks (~reset).
   void clear();
-  MotorHealthVerdict verdict() const;
+  MotorHealthVerdict verdict() const;  ///< the newest window's verdict
 
+  /// As validated.
   const MotorHealthConfig& config() const { return config_; }
 
  private:

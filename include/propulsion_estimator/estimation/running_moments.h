@@ -7,10 +7,11 @@ namespace propulsion_estimator {
 /// Count, mean and sum of squared deviations of a set of numbers, updated one at a time (Welford)
 /// and merged exactly (Chan, Golub and LeVeque), without the cancellation of sums of squares.
 struct RunningMoments {
-  std::uint64_t count = 0;
-  double mean = 0.0;
+  std::uint64_t count = 0;  ///< how many numbers
+  double mean = 0.0;  ///< their mean
   double m2 = 0.0;  ///< sum of squared deviations from the mean
 
+  /// Adds one number.
   void add(double x) {
     ++count;
     const double delta = x - mean;
@@ -18,6 +19,7 @@ struct RunningMoments {
     m2 += delta * (x - mean);
   }
 
+  /// Adds the numbers of `other`, as if they had been added one by one.
   void merge(const RunningMoments& other) {
     if (other.count == 0) return;
     if (count == 0) {

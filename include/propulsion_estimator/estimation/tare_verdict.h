@@ -10,7 +10,7 @@ namespace propulsion_estimator {
 
 /// Whether a tare would be accepted now, and if not why.
 struct TareVerdict {
-  bool accepted = false;
+  bool accepted = false;  ///< whether a tare would be accepted now
   std::string refusal;  ///< "refused: <why>"; empty when accepted
 };
 

@@ -14,11 +14,14 @@ class VerticalAccelerationFilter {
   /// whole gap: its old value is stale.
   static constexpr double kMaxBiasStepS = 0.1;
 
+  /// Time constants in s of the fast low-pass and of the bias average (both > 0, validated by the owner).
   VerticalAccelerationFilter(double fast_time_constant_s, double bias_time_constant_s);
 
   /// `accel_m_s2`: world-vertical specific force minus g. Returns the filtered acceleration.
   double add(double stamp_s, double accel_m_s2);
+  /// The filtered acceleration, m/s^2, up positive.
   double value() const { return fast_ - slow_; }
+  /// Forgets everything (after a clock reset).
   void clear() { started_ = false; fast_ = slow_ = 0.0; }
 
  private:

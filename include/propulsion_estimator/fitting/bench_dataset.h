@@ -30,8 +30,8 @@ struct LevelOptions {
 
 /// A level: its centre and how many rows it holds.
 struct Level {
-  double centre = 0.0;
-  int rows = 0;
+  double centre = 0.0;  ///< the level's value: V for a voltage level, us for a PWM level
+  int rows = 0;  ///< rows in the level
 };
 
 /// All rows of the logs of one fit, with outputs in the model's file units (thrust g, current A,
@@ -40,17 +40,19 @@ struct BenchDataset {
   std::vector<std::string> sources;  ///< one per log
   std::vector<int> log;              ///< per row: index into sources
   std::vector<int> line;             ///< per row: line in its file
-  std::vector<double> pwm_us;
-  std::vector<double> voltage_v;
-  std::array<std::vector<double>, kOutputCount> values;
+  std::vector<double> pwm_us;  ///< per row, the commanded pulse width, us
+  std::vector<double> voltage_v;  ///< per row, the measured voltage, V
+  std::array<std::vector<double>, kOutputCount> values;  ///< per row and Output, in the model's file units
 
   std::vector<int> voltage_level;  ///< per row, index into voltage_levels
-  std::vector<Level> voltage_levels;
+  std::vector<Level> voltage_levels;  ///< voltage levels in rising order
   std::vector<int> pwm_level;  ///< per row, index into pwm_levels
-  std::vector<Level> pwm_levels;
+  std::vector<Level> pwm_levels;  ///< PWM levels in rising order
   std::vector<std::string> notes;  ///< readers' notes and what building the dataset decided
 
+  /// Number of rows.
   std::size_t rows() const { return pwm_us.size(); }
+  /// The values of one output, per row.
   const std::vector<double>& output(Output o) const { return values[static_cast<int>(o)]; }
 };
 

@@ -15,8 +15,8 @@ namespace fitting {
 /// and folds.
 class GroupedLeastSquares {
  public:
-  static constexpr int kMaxPwmDegree = 5;
-  static constexpr int kMaxVoltageDegree = 3;
+  static constexpr int kMaxPwmDegree = 5;  ///< highest PWM degree of the full basis
+  static constexpr int kMaxVoltageDegree = 3;  ///< highest voltage degree of the full basis
 
   /// `y_offset` is subtracted from every y before accumulation (keeps y'y small, so that
   /// y'y - 2 b'X'y + b'X'Xb loses no digits); it returns in the intercept.
@@ -27,6 +27,7 @@ class GroupedLeastSquares {
 
   /// Indices into fullBasis() of the terms of polynomialBasis(pwm_degree, voltage_degree).
   static std::vector<int> subBasis(int pwm_degree, int voltage_degree);
+  /// The (PWM power, voltage power) of each term of the full basis.
   static const std::vector<std::pair<int, int>>& fullBasis();
 
   /// Coefficients of the sub-basis fitted on all groups but `left_out` (-1: all groups), with the
@@ -38,7 +39,9 @@ class GroupedLeastSquares {
   /// nullopt when a fold's fit is singular.
   std::optional<double> heldOutRmse(const std::vector<int>& terms) const;
 
+  /// Number of groups (folds).
   int groups() const { return static_cast<int>(count_.size()); }
+  /// Rows added to `group`.
   long rows(int group) const { return count_[group]; }
 
  private:

@@ -12,7 +12,7 @@ namespace gap {
 
 /// A bench log measured under other conditions than the model's: the load cell is the truth.
 struct BenchGap {
-  std::string source;
+  std::string source;                 ///< the bench log's file
   ResidualStats stats;                 ///< model thrust minus the load cell, rows with thrust above 5 % of the log's maximum
   std::vector<Breakdown> where;        ///< by voltage, and by motor temperature where logged
 };

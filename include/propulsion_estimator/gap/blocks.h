@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "propulsion_estimator/gap/flight_streams.h"
+#include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 
@@ -20,10 +20,10 @@ struct Block {
   int group = 0;    ///< consecutive blocks of one segment share a group (the permutation test's unit)
   double time_s = 0.0;         ///< middle of the block, on the flight's clock
   double flight_time_s = 0.0;  ///< since the flight's first weighed segment began
-  double mass_kg = 0.0;
-  std::array<double, kMaxMotors> pwm_us{};
+  double mass_kg = 0.0;  ///< kg, vehicle plus payload as weighed
+  std::array<double, kMaxMotors> pwm_us{};  ///< per motor, mean over the block, us
   std::array<double, kMaxMotors> axis_up{};  ///< vertical component of each rotor's thrust axis
-  double voltage_v = 0.0;
+  double voltage_v = 0.0;  ///< mean battery voltage, V
   double current_a = 0.0;        ///< battery discharge current, >= 0; NaN without a current sensor
   double specific_force_up_m_s2 = 0.0;  ///< vertical specific force (g + vertical acceleration)
   double truth_n = 0.0;          ///< mass x specific_force_up: the vertical thrust that flew
@@ -36,11 +36,11 @@ struct Block {
 
 /// How flights are cut into blocks.
 struct BlockConfig {
-  int motors = 4;
-  double block_s = 1.0;
-  double group_s = 10.0;
-  double signal_timeout_s = 1.0;
-  double hover_max_vertical_speed_m_s = 0.2;
+  int motors = 4;  ///< rotors, in rotor order
+  double block_s = 1.0;  ///< s; length of a block
+  double group_s = 10.0;  ///< s; consecutive blocks within this long form one group
+  double signal_timeout_s = 1.0;  ///< s; an older reading of a signal counts as missing
+  double hover_max_vertical_speed_m_s = 0.2;  ///< m/s; a block slower than this vertically is a hover
 };
 
 /// Whether a block is quasi-steady: its collective PWM changed by at most `max_pwm_change_us`
@@ -51,10 +51,10 @@ bool isQuasiSteady(const Block& block, double max_pwm_change_us, double max_acce
 
 /// The result of cutting one flight: its blocks and one line for each thing that could not be used.
 struct FlightBlocks {
-  std::vector<Block> blocks;
-  std::vector<std::string> problems;
-  bool has_imu = false;
-  bool has_current = false;
+  std::vector<Block> blocks;  ///< in time order
+  std::vector<std::string> problems;  ///< one line for each thing that could not be used
+  bool has_imu = false;  ///< whether the flight had an IMU
+  bool has_current = false;  ///< whether the flight had a battery current
 };
 
 /// Cuts `flight` into blocks inside its weighed segments. A segment outside the log's time span,

@@ -5,10 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "propulsion_estimator/common/mavros_topics.h"
 #include "propulsion_estimator/gap/bench_gap.h"
-#include "propulsion_estimator/gap/flight_streams.h"
 #include "propulsion_estimator/gap/residual_breakdown.h"
 #include "propulsion_estimator/logs/bench_log.h"
+#include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
@@ -34,11 +35,11 @@ struct DiagnosisConfig {
   std::vector<int> channels;         ///< RCOut channel of each motor, 1-based; empty: 1..motors
   /// Where each signal comes from, for "not testable: needs ..." lines.
   std::map<effects::Signal, std::string> signal_sources = {
-      {effects::Signal::kBatteryCurrent, "/mavros/battery (current)"},
-      {effects::Signal::kAirDensity, "/mavros/imu/static_pressure and /mavros/imu/temperature_baro"},
-      {effects::Signal::kHeight, "/mavros/rangefinder/rangefinder"},
-      {effects::Signal::kMotorTemperature, "/motor_temperature"},
-      {effects::Signal::kVerticalSpeed, "/mavros/local_position/velocity_local"},
+      {effects::Signal::kBatteryCurrent, std::string(kBatteryTopic) + " (current)"},
+      {effects::Signal::kAirDensity, std::string(kStaticPressureTopic) + " and " + kAirTemperatureTopic},
+      {effects::Signal::kHeight, kRangefinderTopic},
+      {effects::Signal::kMotorTemperature, kMotorTemperatureTopic},
+      {effects::Signal::kVerticalSpeed, kVelocityTopic},
   };
 
   /// Throws FieldError naming the setting.
@@ -48,7 +49,7 @@ struct DiagnosisConfig {
 /// In steady hover, each motor's model thrust against the share the roll and pitch moment
 /// balance demands.
 struct MotorGap {
-  int channel = 0;
+  int channel = 0;  ///< RCOut channel, 1-based
   double thrust_gap_pct = 0.0;  ///< model thrust above (+) the balanced share
   double ci_pct = 0.0;          ///< half-width of its 95 % interval
 };
@@ -56,22 +57,22 @@ struct MotorGap {
 /// Each motor's thrust gap from the steady-hover moment balance, the motor suspected alone, and the
 /// centre of thrust it implies (m, body frame).
 struct MotorBalance {
-  std::vector<MotorGap> motors;
+  std::vector<MotorGap> motors;        ///< one per motor, in rotor order
   std::optional<int> suspect_channel;  ///< a motor whose model is off alone
   double suspect_thrust_factor = 1.0;  ///< its thrust over the model's, fitted; the effects are sought with it applied
   double cg_offset_x_m = 0.0;          ///< centre of thrust against base_link, body frame
-  double cg_offset_y_m = 0.0;
+  double cg_offset_y_m = 0.0;  ///< see cg_offset_x_m
   std::string unavailable;  ///< empty, or why (no geometry, no hover, fewer than 4 motors)
 };
 
 /// One candidate effect, fitted on training flights and scored on held-out flights.
 struct EffectResult {
-  effects::Kind kind = effects::Kind::kThrustLoss;
-  bool testable = false;
+  effects::Kind kind = effects::Kind::kThrustLoss;  ///< which effect
+  bool testable = false;  ///< whether the flights carry the signal it needs
   std::string reason;                ///< why not testable, or what the fit says
   double parameter = 0.0;            ///< fitted on all flights
   double ci_low = 0.0;               ///< 95 % interval of the parameter
-  double ci_high = 0.0;
+  double ci_high = 0.0;  ///< see ci_low
   bool plausible = false;            ///< inside the effect's ParameterSpec range
   double heldout_rmse_pct = 0.0;     ///< with this effect added to those selected before it
   double p_value = 1.0;              ///< of the held-out improvement, permutation test
@@ -81,40 +82,47 @@ struct EffectResult {
 /// One candidate tried in one round of the forward selection, for the report's trace.
 struct SelectionStep {
   int round = 0;                  ///< 1-based
-  effects::Kind kind = effects::Kind::kThrustLoss;
+  effects::Kind kind = effects::Kind::kThrustLoss;  ///< which effect
   double heldout_rmse_pct = 0.0;  ///< PWM view, with the effects selected before and this one
   double joint_rmse_pct = 0.0;    ///< both views together
-  double p_value = 1.0;
+  double p_value = 1.0;  ///< of its improvement, permutation test
   std::string verdict;            ///< why it was or was not taken
 };
 
 /// Held-out scores before and after the selected effects.
 struct HeldOut {
+  /// RMSE, bias (% of the truth) and the payload estimate's error (%) on held-out flights, without
+  /// and with the selected effects.
+  ///@{
   double before_rmse_pct = 0.0;
   double after_rmse_pct = 0.0;
   double before_bias_pct = 0.0;
   double after_bias_pct = 0.0;
   double before_payload_err_pct = 0.0;
   double after_payload_err_pct = 0.0;
+  ///@}
 };
 
 /// A flight's gap, and what could not be read of it.
 struct FlightGap {
-  std::string name;
-  ResidualStats stats;
-  double mean_mass_kg = 0.0;
+  std::string name;  ///< the flight's name (its bag)
+  ResidualStats stats;  ///< the model's residual over its blocks
+  double mean_mass_kg = 0.0;  ///< kg, mean weighed mass
   std::vector<std::string> problems;  ///< one line each: a segment outside the log, a missing signal
 };
 
 /// One sample inside a weighed segment, with the signals and both views; for the figures.
 struct GapSample {
-  int flight = 0;
-  double time_s = 0.0;
+  int flight = 0;  ///< index in the flights given
+  double time_s = 0.0;  ///< s, on the flight's clock
   double truth_n = 0.0;           ///< mass x vertical specific force
   double model_n = 0.0;           ///< vertical thrust from PWM and voltage
   double current_view_n = 0.0;    ///< vertical thrust from the measured current (NaN without)
   double corrected_n = 0.0;       ///< with the selected effects
   double pwm_us = 0.0;            ///< mean over the motors
+  /// The signals at the sample, SI units (V, A, m, m/s, kg/m^3, deg C, s since the first weighed
+  /// segment); NaN where missing.
+  ///@{
   double voltage_v = 0.0;
   double current_a = 0.0;
   double height_m = 0.0;
@@ -122,26 +130,27 @@ struct GapSample {
   double air_density_kg_m3 = 0.0;
   double motor_temperature_c = 0.0;
   double flight_time_s = 0.0;
-  bool hover = false;
+  ///@}
+  bool hover = false;  ///< steady: slow vertical speed, steady commands
 };
 
 /// Everything diagnose_gap reports.
 struct Diagnosis {
-  ResidualStats overall;
+  ResidualStats overall;  ///< the model's residual over every block
   int blocks = 0;            ///< quasi-steady blocks diagnosed
   int transient_blocks = 0;  ///< blocks left out as transient (DiagnosisConfig::max_pwm_change_us, max_accel_m_s2)
   double payload_err_pct = 0.0;  ///< of the node's payload estimate, tare on the lightest flight
-  std::vector<FlightGap> flights;
-  std::vector<BenchGap> bench;
-  std::vector<Breakdown> where;
-  MotorBalance motors;
+  std::vector<FlightGap> flights;  ///< one per flight
+  std::vector<BenchGap> bench;  ///< one per extra bench log
+  std::vector<Breakdown> where;  ///< the residual by height, vertical speed, phase, ...
+  MotorBalance motors;  ///< the steady-hover moment balance
   std::vector<EffectResult> effects;  ///< every candidate, in kAllKinds order
-  std::vector<effects::Kind> selected;
+  std::vector<effects::Kind> selected;  ///< the selected effects, in the order they were taken
   effects::ModelEffects fitted;  ///< the selected effects, fitted on all flights
-  HeldOut heldout;
+  HeldOut heldout;  ///< scores on held-out flights before and after them
   std::vector<SelectionStep> trace;  ///< every candidate of every round, in order
   std::string method;  ///< how selection was decided, for the report
-  std::vector<GapSample> samples;
+  std::vector<GapSample> samples;  ///< one per block, for the figures
   std::vector<std::string> problems;  ///< what could not be done, one line each
 };
 

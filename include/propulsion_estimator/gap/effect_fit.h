@@ -12,7 +12,7 @@ namespace gap {
 /// Parameters of a set of effects fitted by least squares of the PWM view's relative residual
 /// (model / truth - 1), each bounded to its plausible range.
 struct EffectFit {
-  std::vector<effects::Kind> kinds;
+  std::vector<effects::Kind> kinds;  ///< the effects fitted, in the order given
   effects::ModelEffects effects;  ///< the references given, with the fitted parameters set
   std::vector<double> ci_half;    ///< 95 % half-widths, in kinds' order
   double rms_relative = 0.0;      ///< of the fitted residual

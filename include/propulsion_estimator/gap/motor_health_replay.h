@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "propulsion_estimator/estimation/motor_health.h"
-#include "propulsion_estimator/gap/flight_streams.h"
+#include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 
@@ -15,9 +15,9 @@ namespace gap {
 /// how many times (once a second) it judged a full window, the channels it flagged (each once, in
 /// the order first flagged) and when it first did, in s on the flight's clock (NaN: never).
 struct MotorHealthReplay {
-  int judgements = 0;
-  std::vector<int> flagged_channels;
-  double first_flag_s = 0.0;
+  int judgements = 0;  ///< full windows judged, once a second
+  std::vector<int> flagged_channels;  ///< flagged channels, 1-based, each once, in the order first flagged
+  double first_flag_s = 0.0;  ///< s on the flight's clock; NaN when none was flagged
 };
 
 /// Replays a flight's logged streams through the core Estimator (default configuration, the

@@ -11,23 +11,23 @@ namespace gap {
 
 /// Bias and spread of residuals (model minus truth) in N and in percent of the truth.
 struct ResidualStats {
-  int samples = 0;
-  double bias_n = 0.0;
-  double rmse_n = 0.0;
-  double bias_pct = 0.0;
-  double rmse_pct = 0.0;
+  int samples = 0;         ///< blocks behind the figures
+  double bias_n = 0.0;     ///< mean residual, N
+  double rmse_n = 0.0;     ///< root mean square residual, N
+  double bias_pct = 0.0;   ///< mean residual, % of the truth
+  double rmse_pct = 0.0;   ///< root mean square residual, % of the truth
 };
 
 /// One bin of a breakdown of the residual.
 struct Bin {
-  std::string label;
-  ResidualStats stats;
+  std::string label;    ///< the bin's range or name
+  ResidualStats stats;  ///< the residual within it
 };
 
 /// The residual broken down by one quantity, or why it could not be.
 struct Breakdown {
   std::string name;  ///< "height_above_ground_m", "phase", ...
-  std::vector<Bin> bins;
+  std::vector<Bin> bins;  ///< in the quantity's order
   std::string unavailable;  ///< empty, or "needs /mavros/rangefinder/rangefinder"
 };
 

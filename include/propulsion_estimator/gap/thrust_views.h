@@ -32,7 +32,9 @@ class ThrustViews {
 
   /// A per-motor factor on thrust (1 = as modelled), for a motor the balance shows to be off.
   void setMotorScale(int motor, double scale) { motor_scale_[motor] = scale; }
+  /// Whether the model has a current surface (else the current view is NaN).
   bool hasCurrentSurface() const { return has_current_; }
+  /// As given.
   int motors() const { return motors_; }
 
  private:

@@ -30,7 +30,7 @@ const char* benchColumnName(BenchColumn column);
 struct BenchLog {
   std::string source;                           ///< file it came from, for messages and reports
   std::map<std::string, std::string> metadata;  ///< "# key: value" lines of a native file
-  std::array<std::vector<double>, kBenchColumnCount> columns;
+  std::array<std::vector<double>, kBenchColumnCount> columns;  ///< one vector per BenchColumn, empty when not logged
   std::vector<int> line_numbers;  ///< file line of each row
   /// Columns the package does not use, kept for reports: name -> one text value per row.
   std::map<std::string, std::vector<std::string>> extra_columns;
@@ -38,9 +38,13 @@ struct BenchLog {
   /// one sentence each, for the reports.
   std::vector<std::string> notes;
 
+  /// Number of rows.
   std::size_t rows() const { return line_numbers.size(); }
+  /// Whether `column` was logged.
   bool has(BenchColumn column) const { return !columns[static_cast<int>(column)].empty(); }
+  /// The values of `column`, one per row (empty when not logged).
   const std::vector<double>& column(BenchColumn column) const { return columns[static_cast<int>(column)]; }
+  /// The values of `column`, for the readers to fill.
   std::vector<double>& column(BenchColumn column) { return columns[static_cast<int>(column)]; }
 };
 

@@ -20,12 +20,12 @@ enum class SignPolicy {
 /// Choices the user makes for ambiguous logs (Tyto/RCbenchmark format; the native format has
 /// one meaning per column and ignores them, except `decimal`).
 struct BenchReadOptions {
-  SignPolicy thrust_sign = SignPolicy::kAuto;
+  SignPolicy thrust_sign = SignPolicy::kAuto;  ///< the thrust's sign
   SignPolicy current_sign = SignPolicy::kAuto;  ///< applies to the electrical power too
   /// Quantity -> header name, overriding the automatic choice ("rpm" -> "Motor Optical Speed
   /// (RPM)") or adding a column the format does not name (motor_temp_c -> "Temp 1 (degC)").
   std::map<BenchColumn, std::string> columns;
-  DecimalSeparator decimal = DecimalSeparator::kAuto;
+  DecimalSeparator decimal = DecimalSeparator::kAuto;  ///< point, comma, or detected from the cells
 };
 
 }  // namespace propulsion_estimator

@@ -10,20 +10,22 @@ namespace propulsion_estimator {
 /// interpreted: '#' comment lines, one header line of column names, and rows of text fields,
 /// each with its line in the file. Quoting follows RFC 4180 (libcsv does the tokenizing).
 struct CsvText {
+  /// A '#' comment line: its line in the file and the text after the '#'.
   struct Line {
-    int line = 0;
-    std::string text;
+    int line = 0;  ///< line in the file, 1-based
+    std::string text;  ///< the text
   };
+  /// A row: its line in the file and its fields, as text.
   struct Row {
-    int line = 0;
-    std::vector<std::string> fields;
+    int line = 0;  ///< line in the file, 1-based
+    std::vector<std::string> fields;  ///< one per column
   };
 
-  std::string source;
-  char delimiter = ',';
-  bool had_byte_order_mark = false;
+  std::string source;  ///< the file it came from, for messages
+  char delimiter = ',';  ///< ',' or ';'
+  bool had_byte_order_mark = false;  ///< whether the file began with a UTF-8 byte-order mark
   std::vector<Line> comments;  ///< text after the '#', in file order
-  int header_line = 0;
+  int header_line = 0;  ///< the header's line in the file, 1-based
   std::vector<std::string> header;  ///< trailing empty names (a trailing delimiter) removed
   std::vector<Row> rows;            ///< as many fields as the header (a trailing empty field dropped)
 };

@@ -8,29 +8,30 @@ namespace propulsion_estimator {
 /// A stretch of a flight whose lifted mass is known (weighed): the ground truth of the estimator's
 /// tests and the input of the gap diagnosis.
 struct ManifestSegment {
-  double start_s = 0.0;  ///< seconds from the bag's first message
-  double end_s = 0.0;
+  double start_s = 0.0;  ///< seconds from the log's first message
+  double end_s = 0.0;    ///< seconds from the log's first message
   double mass_kg = 0.0;  ///< vehicle plus hanging payload
 };
 
-/// One flight of a manifest: its bag and the segments whose mass is known.
+/// One flight of a manifest: its log (a rosbag or any format flight_log_formats.h knows) and the
+/// segments whose mass is known.
 struct ManifestFlight {
-  std::string bag;  ///< as written in the manifest: relative to the manifest's folder, or absolute
-  std::vector<ManifestSegment> segments;
+  std::string log;  ///< as written in the manifest (`log:`, or `bag:`): relative to its folder, or absolute
+  std::vector<ManifestSegment> segments;  ///< in time order, not overlapping
 
   /// Throws FieldError named from `at` ("flights[1]" gives "flights[1].segments[2].end") for a
-  /// flight without bag or segments, a segment with start < 0, end <= start, mass outside
+  /// flight without log or segments, a segment with start < 0, end <= start, mass outside
   /// 0..100 kg, or segments out of order or overlapping.
   void validate(const std::string& at) const;
 };
 
-/// A set of flights:
+/// A set of flights (`bag:` is read as `log:`, its name before other formats were read):
 ///   flights:
-///     - bag: flight_01.bag
+///     - log: flight_01.bag
 ///       segments:
 ///         - {start: 5.0, end: 178.0, mass_kg: 1.315}
 struct FlightManifest {
-  std::vector<ManifestFlight> flights;
+  std::vector<ManifestFlight> flights;  ///< at least one
 
   /// Throws FieldError for no flights, or the first flight ManifestFlight::validate refuses.
   void validate() const;
@@ -52,14 +53,14 @@ void saveFlightManifest(const FlightManifest& manifest, const std::string& path,
 /// loadFlightManifest would locate it ("<file>:<line>: flights[1].segments[0].mass_kg: 0 is
 /// outside 0..100 kg").
 struct ManifestEntry {
-  ManifestFlight flight;
+  ManifestFlight flight;  ///< the flight as read
   std::string refusal;  ///< empty for a usable flight
 };
 /// Reads the manifest file `path` flight by flight (see ManifestEntry); InputError when it cannot
 /// be read, ConfigError for a refusal of the file as a whole.
 std::vector<ManifestEntry> loadFlightManifestEntries(const std::string& path);
 
-/// A flight's bag path as a file path: relative paths are taken from the manifest's folder.
-std::string resolveBagPath(const std::string& manifest_path, const std::string& bag);
+/// A flight's log path as a file path: relative paths are taken from the manifest's folder.
+std::string resolveLogPath(const std::string& manifest_path, const std::string& log);
 
 }  // namespace propulsion_estimator

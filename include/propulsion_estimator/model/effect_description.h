@@ -14,14 +14,14 @@ struct ReferenceSpec {
   /// the model's metadata instead (the bench air of air_density) or the effect has none.
   const char* key = nullptr;
   double ModelEffects::*member = nullptr;  ///< where ModelEffects keeps it; nullptr: no reference
-  double min = 0.0;                        ///< range accepted in a model file, in the key's unit
-  double max = 0.0;
+  double min = 0.0;                        ///< lowest value accepted in a model file, in the key's unit
+  double max = 0.0;                        ///< highest value accepted in a model file, in the key's unit
   /// Why the diagnosis cannot test the effect when the model has no such reference (nullptr: it
   /// always has one, as the rotor height, which defaults to 0).
   const char* missing = nullptr;
 };
 
-/// Everything about one effect, in one place (src/model/effects/<name>.cpp): its name, its
+/// Everything about one effect, in one place (src/model/effects/NAME.cpp): its name, its
 /// parameter with unit and plausible range, the signal it reads, its correction of the PWM view
 /// (on the inputs or as a factor on thrust) and of the current view, and its report line. Model
 /// files, the node, the gap diagnosis and its report read effects only through this.

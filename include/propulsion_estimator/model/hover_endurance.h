@@ -12,14 +12,17 @@ namespace propulsion_estimator {
 /// charge drawn, from cells x cell_full_v to cells x cell_cutoff_v over usable_fraction x
 /// capacity: a plain, stated approximation of a LiPo discharge under a steady load.
 struct BatteryPack {
-  int cells = 0;
-  double capacity_ah = 0.0;
+  int cells = 0;  ///< in series
+  double capacity_ah = 0.0;  ///< rated capacity, Ah
   double usable_fraction = 0.8;  ///< share of the capacity drawn when the cut-off is reached
-  double cell_full_v = 4.2;
-  double cell_cutoff_v = 3.5;
+  double cell_full_v = 4.2;  ///< V per cell, full
+  double cell_cutoff_v = 3.5;  ///< V per cell at the cut-off
 
+  /// V, the full pack
   double fullVoltage() const { return cells * cell_full_v; }
+  /// V, the pack at its cut-off
   double cutoffVoltage() const { return cells * cell_cutoff_v; }
+  /// Ah drawn from full to the cut-off
   double usableAh() const { return usable_fraction * capacity_ah; }
   /// Charge in Ah drawn when the voltage reads `voltage_v`, clamped to 0..usableAh().
   double drawnAt(double voltage_v) const;
@@ -31,11 +34,11 @@ struct BatteryPack {
 /// One motor's hover operating point at a supply voltage: pulse width in us, current in A and power
 /// in W per motor, efficiency in g/W; NaN for an output the model does not have.
 struct HoverPoint {
-  double voltage_v = 0.0;
-  double pwm_us = 0.0;
+  double voltage_v = 0.0;  ///< V, the supply voltage of the point
+  double pwm_us = 0.0;  ///< us
   double current_a = 0.0;  ///< per motor
   double power_w = 0.0;    ///< per motor
-  double efficiency_g_per_w = 0.0;
+  double efficiency_g_per_w = 0.0;  ///< g/W
   /// The hover thrust is below the model's thrust at the lowest PWM of its domain: the hover PWM
   /// lies below the measured range, and pwm_us (with its current and power) is that lowest PWM.
   bool below_pwm_domain = false;
@@ -50,18 +53,18 @@ std::optional<HoverPoint> hoverPoint(const PropulsionModel& model, double thrust
 /// the pulse width in us that holds the hover.
 struct DischargeStep {
   double time_s = 0.0;  ///< hover time at the end of the step
-  double voltage_v = 0.0;
-  double total_current_a = 0.0;
-  double pwm_us = 0.0;
+  double voltage_v = 0.0;  ///< V at the end of the step
+  double total_current_a = 0.0;  ///< A, all motors
+  double pwm_us = 0.0;  ///< us at the step's mid voltage
 };
 
 /// The hover discharge of a pack from a charge state to its cut-off: the steps, the hover time in
 /// s when the cut-off is reached (nullopt when the hover ends before it, or cannot be integrated),
 /// and notes on why not or on what the figure rests.
 struct HoverDischarge {
-  std::vector<DischargeStep> steps;
-  std::optional<double> endurance_s;
-  std::vector<std::string> notes;
+  std::vector<DischargeStep> steps;  ///< in time order
+  std::optional<double> endurance_s;  ///< s of hover until the cut-off
+  std::vector<std::string> notes;  ///< why there is no endurance, or what it rests on
 };
 
 /// Integrates the hover of `motors` motors, each giving `thrust_per_motor_n`, while `charge_ah`

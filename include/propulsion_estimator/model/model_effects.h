@@ -46,8 +46,8 @@ static_assert(static_cast<int>(Signal::kVerticalSpeed) + 1 == kSignalCount, "kSi
 /// name), the range a real vehicle can show, and the value at which the effect vanishes.
 struct ParameterSpec {
   const char* key;  ///< "resistance_ohm": the unit is in the key
-  double min;       ///< plausible range, in the key's unit
-  double max;
+  double min;       ///< lowest plausible value, in the key's unit
+  double max;       ///< highest plausible value, in the key's unit
   double neutral;   ///< the value at which the effect vanishes
 };
 
@@ -65,9 +65,9 @@ const ParameterSpec& parameterSpec(Kind kind);
 /// The signals the corrections read, in SI units; NaN where a signal is missing or stale.
 struct Signals {
   double battery_current_a = kNaN;  ///< drawn by all ESCs, >= 0
-  double air_density_kg_m3 = kNaN;
+  double air_density_kg_m3 = kNaN;  ///< kg/m^3
   double height_m = kNaN;  ///< of the height reference above the ground
-  double motor_temperature_c = kNaN;
+  double motor_temperature_c = kNaN;  ///< deg C
   double vertical_speed_m_s = kNaN;  ///< up positive (REP-103)
 
   /// The value of `signal`; NaN for Signal::kNone.
@@ -76,8 +76,8 @@ struct Signals {
 
 /// The inputs the ESCs really see.
 struct Inputs {
-  double pwm_us = 0.0;
-  double voltage_v = 0.0;
+  double pwm_us = 0.0;  ///< us, after the ESC offset
+  double voltage_v = 0.0;  ///< V at the ESCs, after the supply resistance
 };
 
 /// A model's `effects:` section: each effect is off unless set. The corrections, in the order
@@ -97,12 +97,12 @@ struct ModelEffects {
   double rotor_height_m = 0.0;  ///< rotor discs above the height reference, for ground_effect
   double motor_reference_c = kNaN;  ///< reference of motor_temperature
 
-  bool has(Kind kind) const;
+  bool has(Kind kind) const;  ///< whether `kind` is on
   /// The fitted parameter of `kind`, in its ParameterSpec's unit (nullopt when the effect is off).
   std::optional<double> parameter(Kind kind) const;
   /// Switches `kind` on with `value` (or off with nullopt).
   void setParameter(Kind kind, std::optional<double> value);
-  bool empty() const;
+  bool empty() const;  ///< whether no effect is on
 
   /// Throws FieldError "effects.<name>.<key>" for a parameter outside its ParameterSpec range or
   /// non-finite, or a reference (bench air density, motor reference temperature) missing while the

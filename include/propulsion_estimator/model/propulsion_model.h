@@ -27,24 +27,24 @@ enum class OutputSource { kSurface, kDerived, kNone };
 
 /// How well a fitted surface matched its bench data (written by fit_surfaces, in the output's unit).
 struct FitQuality {
-  int pwm_degree = 0;
-  int voltage_degree = 0;
-  int points = 0;
-  double r2 = 0.0;
-  double rmse = 0.0;
-  double max_error = 0.0;
+  int pwm_degree = 0;  ///< PWM degree of the surface
+  int voltage_degree = 0;  ///< voltage degree of the surface
+  int points = 0;  ///< bench samples it was fitted on
+  double r2 = 0.0;  ///< coefficient of determination
+  double rmse = 0.0;  ///< root mean square error
+  double max_error = 0.0;  ///< largest absolute error
   double held_out_rmse = 0.0;  ///< cross-validated, data grouped as `grouping` says
-  std::string grouping;
+  std::string grouping;  ///< "voltage_level", "pwm_level" or "log"
 };
 
 /// One output of a model file: its unit, how it is obtained (surface, derived, none) and the fit
 /// that produced its surface.
 struct OutputDefinition {
   std::string unit;  ///< unit of the surface values, as written in the file (g, N, A, W, g/W, rpm...)
-  OutputSource source = OutputSource::kNone;
+  OutputSource source = OutputSource::kNone;  ///< surface, derived or none
   std::optional<ResponseSurface> surface;  ///< set iff source == kSurface
   std::string note;                        ///< why derived or absent; kept for the file's readers
-  std::optional<FitQuality> fit;
+  std::optional<FitQuality> fit;  ///< how the surface was fitted; absent for a hand-written one
 };
 
 /// Multiplier from a unit string to SI (N, A, W, N/W, rpm); nullopt when the unit does not fit
@@ -60,13 +60,13 @@ const char* outsideDomainName(OutsideDomain policy);
 /// The inputs a model was measured over: ESC pulse width in us, supply voltage in V, and the
 /// policy outside them.
 struct ModelDomain {
-  double pwm_min_us = 0.0;
-  double pwm_max_us = 0.0;
-  double voltage_min_v = 0.0;
-  double voltage_max_v = 0.0;
-  OutsideDomain outside = OutsideDomain::kClamp;
+  double pwm_min_us = 0.0;  ///< us
+  double pwm_max_us = 0.0;  ///< us
+  double voltage_min_v = 0.0;  ///< V
+  double voltage_max_v = 0.0;  ///< V
+  OutsideDomain outside = OutsideDomain::kClamp;  ///< what evaluating does outside the domain
 
-  bool contains(double pwm_us, double voltage_v) const;
+  bool contains(double pwm_us, double voltage_v) const;  ///< whether (pwm_us, voltage_v) lies inside, bounds included
 };
 
 /// What fed the ESC on the bench: a regulated supply or a battery.
@@ -77,16 +77,17 @@ const char* supplyKindName(SupplyKind supply);
 /// Where a model comes from: the ESC, motor and propeller names, the bench air (deg C, Pa) and
 /// supply, and the source of the data.
 struct ModelMetadata {
-  std::string esc;
-  std::string motor;
-  std::string propeller;
+  std::string esc;  ///< the ESC's name
+  std::string motor;  ///< the motor's name
+  std::string propeller;  ///< the propeller's name
   /// Air on the bench, both or neither: a model whose bench air is unknown estimates as well,
   /// but cannot be corrected for the flight air's density (the air_density effect).
   std::optional<double> bench_air_temperature_c;
-  std::optional<double> bench_air_pressure_pa;
-  SupplyKind supply = SupplyKind::kRegulated;
-  std::string source;
+  std::optional<double> bench_air_pressure_pa;  ///< Pa; see bench_air_temperature_c
+  SupplyKind supply = SupplyKind::kRegulated;  ///< what fed the ESC on the bench
+  std::string source;  ///< the bench data the model was fitted on
 
+  /// Whether both bench air values are known.
   bool hasBenchAir() const { return bench_air_temperature_c && bench_air_pressure_pa; }
   /// Air density on the bench, p / (R T), kg/m^3: the reference of the air_density effect; NaN
   /// without bench air.
@@ -99,12 +100,12 @@ struct ModelMetadata {
 
 /// Steady-state operating point of one motor from the surfaces, in SI units.
 struct OperatingPoint {
-  double thrust_n = 0.0;
-  double current_a = 0.0;
-  double power_w = 0.0;
-  double efficiency_n_per_w = 0.0;
-  double rpm = 0.0;
-  bool in_domain = false;
+  double thrust_n = 0.0;  ///< N
+  double current_a = 0.0;  ///< A
+  double power_w = 0.0;  ///< W
+  double efficiency_n_per_w = 0.0;  ///< N/W
+  double rpm = 0.0;  ///< rpm
+  bool in_domain = false;  ///< false when the inputs lay outside the domain (clamped or extrapolated)
 };
 
 /// The response surfaces of one ESC-motor-propeller combination, and the effects measured in
@@ -131,8 +132,11 @@ class PropulsionModel {
   /// value (not floored), a derived output as evaluate() derives it, NaN if not modelled.
   double evaluateRaw(Output output, double pwm_us, double voltage_v) const;
 
+  /// The ESC, motor, propeller, bench air and supply.
   const ModelMetadata& metadata() const { return metadata_; }
+  /// The inputs the surfaces were measured over.
   const ModelDomain& domain() const { return domain_; }
+  /// One output's unit, source and surface.
   const OutputDefinition& output(Output output) const { return outputs_[static_cast<int>(output)]; }
   /// What the surfaces leave out; evaluate() does not apply it (the Estimator does, with the
   /// signals the effects read).

@@ -16,9 +16,9 @@ enum class HealthLevel { kOk, kWarn, kError };
 /// One diagnostic task's verdict: its level, one line saying why, and the values shown with it
 /// (formatted as diagnostic_updater formats numbers, booleans as "True"/"False").
 struct HealthStatus {
-  HealthLevel level = HealthLevel::kOk;
-  std::string message;
-  std::vector<std::pair<std::string, std::string>> values;
+  HealthLevel level = HealthLevel::kOk;  ///< the diagnostic's severity
+  std::string message;  ///< one line saying why
+  std::vector<std::pair<std::string, std::string>> values;  ///< name and value pairs shown with it
 };
 
 /// The node's inputs, counted on arrival, before the estimator sees them.
@@ -38,8 +38,8 @@ struct InputActivity {
 /// The counts at one instant; a diagnostics period runs between two of them.
 struct HealthSnapshot {
   double time_s = 0.0;  ///< the estimator's clock (receipt times)
-  InputActivity inputs;
-  EstimatorCounters counters;
+  InputActivity inputs;  ///< the node's counts
+  EstimatorCounters counters;  ///< the estimator's counts
 };
 
 /// How the verdicts name the inputs, and the limit they apply that the estimator does not hold.
@@ -47,11 +47,13 @@ struct HealthConfig {
   std::string battery_input = "battery";     ///< e.g. the battery topic
   std::string rc_out_input = "motor outputs";  ///< e.g. the RCOut topic
   /// Where the effects' signals come from (the topics), for the Effects verdict.
+  ///@{
   std::string velocity_input = "velocity";
   std::string static_pressure_input = "static pressure";
   std::string air_temperature_input = "air temperature";
   std::string rangefinder_input = "rangefinder";
   std::string motor_temperature_input = "motor temperature";
+  ///@}
   /// Share of motor samples outside the model's domain per period above which "Model domain" warns.
   double domain_warn_fraction = 0.2;
 

@@ -13,6 +13,7 @@ class RateLimiter {
   /// `rate_hz` >= 0 (validated by the owner's parameters).
   explicit RateLimiter(double rate_hz) : period_s_(rate_hz > 0.0 ? 1.0 / rate_hz : 0.0) {}
 
+  /// Whether the event stamped `stamp_s` (s) passes; advances the schedule when it does.
   bool admit(double stamp_s) {
     if (period_s_ == 0.0) return true;
     const bool restart = !started_ || stamp_s < last_s_ || stamp_s > due_s_ + period_s_;

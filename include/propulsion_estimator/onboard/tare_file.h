@@ -7,15 +7,17 @@
 namespace propulsion_estimator {
 
 /// The tare survives a restart of the node in a small YAML file:
-///   empty_mass_kg: 1.3154
-///   model: <model file the tare was taken with>
-///   model_fingerprint: <modelFingerprint() of that model>
+/// @code{.yaml}
+/// empty_mass_kg: 1.3154
+/// model: <model file the tare was taken with>
+/// model_fingerprint: <modelFingerprint() of that model>
+/// @endcode
 /// A tare is only meaningful with the model it was measured through: the fingerprint tells
 /// whether the model now loaded is that one, wherever its file lies; the path is for people.
 struct TareRecord {
-  double empty_mass_kg = 0.0;
-  std::string model;
-  std::string model_fingerprint;
+  double empty_mass_kg = 0.0;  ///< kg
+  std::string model;  ///< the model file the tare was taken with, for people
+  std::string model_fingerprint;  ///< modelFingerprint() of that model
 };
 
 /// The tare in a tare file's text; ConfigError naming `source` for content that is not a tare.

@@ -4,6 +4,7 @@
 
 #include <ros/node_handle.h>
 
+#include "propulsion_estimator/common/mavros_topics.h"
 #include "propulsion_estimator/onboard/capability.h"
 #include "propulsion_estimator/estimation/estimator_config.h"
 #include "propulsion_estimator/onboard/health_summary.h"
@@ -15,17 +16,17 @@ struct EstimatorNodeParams {
   std::string model;       ///< required: path of the model YAML
   std::string urdf_file;   ///< optional: vehicle description; else robot_description, else no geometry
   std::string tare_file;   ///< optional: where ~tare persists the empty mass ("" = not persisted)
-  std::string battery_topic = "/mavros/battery";
-  std::string rc_out_topic = "/mavros/rc/out";
-  std::string imu_topic = "/mavros/imu/data";          ///< "" disables
-  std::string velocity_topic = "/mavros/local_position/velocity_local";  ///< "" disables
+  std::string battery_topic = kBatteryTopic;    ///< sensor_msgs/BatteryState
+  std::string rc_out_topic = kRcOutTopic;       ///< mavros_msgs/RCOut
+  std::string imu_topic = kImuTopic;            ///< "" disables
+  std::string velocity_topic = kVelocityTopic;  ///< "" disables
   /// The barometer: the hover check's vertical speed while no velocity is fresh, and the
   /// air_density effect's signal. "" disables.
-  std::string static_pressure_topic = "/mavros/imu/static_pressure";     ///< sensor_msgs/FluidPressure
+  std::string static_pressure_topic = kStaticPressureTopic;     ///< sensor_msgs/FluidPressure
   /// Signals of the model's effects, subscribed only when an effect of the model reads them.
-  std::string air_temperature_topic = "/mavros/imu/temperature_baro";    ///< sensor_msgs/Temperature
-  std::string rangefinder_topic = "/mavros/rangefinder/rangefinder";     ///< sensor_msgs/Range
-  std::string motor_temperature_topic = "/motor_temperature";            ///< sensor_msgs/Temperature
+  std::string air_temperature_topic = kAirTemperatureTopic;    ///< sensor_msgs/Temperature
+  std::string rangefinder_topic = kRangefinderTopic;     ///< sensor_msgs/Range
+  std::string motor_temperature_topic = kMotorTemperatureTopic;            ///< sensor_msgs/Temperature
   /// Highest rate of ~motors, ~totals and ~payload, Hz, on the RCOut stamps; 0 publishes every
   /// accepted RCOut. Every message is still estimated and averaged. 50 Hz passes MAVROS' usual
   /// rc/out whole, and keeps a 400 Hz stream's cost near roscpp's own (BENCHMARKS.md).
@@ -34,8 +35,8 @@ struct EstimatorNodeParams {
   /// same default), the node ticks it once per period.
   double diagnostic_period_s = 1.0;
   HealthConfig health;  ///< domain_warn_fraction; its input names are the topics
-  EstimatorConfig estimator;
-  CapabilityConfig capability;
+  EstimatorConfig estimator;  ///< the estimator's parameters
+  CapabilityConfig capability;  ///< the capability/... parameters
 };
 
 /// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is

@@ -24,6 +24,7 @@ class InlineCallbackQueue : public ros::CallbackQueueInterface {
   /// `fallback` must outlive this queue; by default the global queue that ros::spin() serves.
   explicit InlineCallbackQueue(ros::CallbackQueueInterface* fallback = ros::getGlobalCallbackQueue());
 
+  /// Runs `callback` now in this thread, or hands it to the fallback queue when roscpp answers TryAgain.
   void addCallback(const ros::CallbackInterfacePtr& callback, std::uint64_t owner_id) override;
   /// Returns once no callback of `owner_id` runs (roscpp calls it when a subscriber shuts down,
   /// after which it adds none of that owner's).

@@ -20,8 +20,8 @@ const std::string& rcOutDefinition();
 
 /// A decoded mavros_msgs/RCOut: its header and the pulse widths in us, one per output channel.
 struct RcOutMessage {
-  std_msgs::Header header;
-  std::vector<std::uint16_t> channels;
+  std_msgs::Header header;  ///< stamp and frame
+  std::vector<std::uint16_t> channels;  ///< pulse widths, us, one per output channel
 };
 
 /// Decoder of mavros_msgs/RCOut. decode() decodes into `out`, reusing its and `buffer`'s storage
@@ -34,6 +34,8 @@ class RcOutDecoder {
   /// Far above any real RCOut (a few dozen bytes); a larger buffer is not kept between messages.
   static constexpr std::size_t kMaxKeptBytes = 64 * 1024;
 
+  /// Decodes `message` into `out`; false with a one-line reason in `error` for another type or a
+  /// malformed payload.
   bool decode(const topic_tools::ShapeShifter& message, RcOutMessage* out, std::string* error);
   /// Bytes of serialization buffer kept for the next message.
   std::size_t keptBytes() const { return buffer_.capacity(); }

@@ -12,8 +12,8 @@ namespace propulsion_estimator {
 
 /// One rotor in the body frame (REP-103: x forward, y left, z up), origin at the base link.
 struct Rotor {
-  std::string name;
-  Eigen::Vector3d position_m = Eigen::Vector3d::Constant(kNaN);
+  std::string name;  ///< the URDF link's name
+  Eigen::Vector3d position_m = Eigen::Vector3d::Constant(kNaN);  ///< m, base_link frame; NaN when unknown
   Eigen::Vector3d thrust_axis = Eigen::Vector3d::UnitZ();  ///< unit vector
   int spin_direction = 1;                                  ///< +1 counter-clockwise seen from above
 };
@@ -21,18 +21,18 @@ struct Rotor {
 /// Mass properties of a rigid body: mass in kg, centre of mass in m in the body frame, inertia
 /// in kg m^2 about the centre of mass.
 struct MassProperties {
-  double mass_kg = 0.0;
-  Eigen::Vector3d centre_of_mass_m = Eigen::Vector3d::Zero();
+  double mass_kg = 0.0;  ///< kg
+  Eigen::Vector3d centre_of_mass_m = Eigen::Vector3d::Zero();  ///< m, base_link frame
   Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();  ///< about the centre of mass
 };
 
 /// The multicopter: its rotors (in motor-channel order) and, when known, its empty mass
 /// properties. Rotor positions are NaN when the geometry is unknown (no URDF given).
 struct Vehicle {
-  std::vector<Rotor> rotors;
-  std::optional<MassProperties> empty_mass;
+  std::vector<Rotor> rotors;  ///< in RCOut channel order
+  std::optional<MassProperties> empty_mass;  ///< from the URDF's inertials; none without one
 
-  bool hasGeometry() const;
+  bool hasGeometry() const;  ///< whether every rotor's position is known
 
   /// n rotors thrusting along +z at unknown positions: what the thesis' method needs.
   static Vehicle upwardRotors(int n);

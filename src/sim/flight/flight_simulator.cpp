@@ -223,6 +223,281 @@ class GaussMarkov3 {
   Eigen::Vector3d error_;
 };
 
+// One flight, step by step: the physics, the messages it emits and the manifest it yields.
+class FlightRun {
+ public:
+  FlightRun(const SimParams& params, const SimEffects& effects, const FlightProfile& profile, const Vehicle& vehicle,
+            std::uint64_t seed, FlightSink* sink, const FlightSensorParams& sensors)
+      : params_(params),
+        effects_(effects),
+        profile_(profile),
+        vehicle_(vehicle),
+        sensors_(sensors),
+        sink_(sink),
+        setup_(setUpFlight(params, effects, profile, vehicle, sensors)),
+        rotors_(static_cast<int>(vehicle.rotors.size())),
+        air_(effects.air.value_or(params.bench.air)),
+        density_(air_.densityKgM3()),
+        train_(makeChains(params, profile, rotors_), effects, air_.temperature_c),
+        battery_(params.battery, profile.vehicle.battery_initial_soc),
+        noise_(seed),
+        origin_(setup_.dynamics.basePosition()),
+        current_sign_(profile.autopilot.flavour == AutopilotFlavour::kPx4 ? -1.0 : 1.0),
+        avionics_a_(profile.vehicle.avionics_current_a),
+        position_error_(sensors.position_sigma_m, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
+                        &noise_),
+        velocity_error_(sensors.velocity_sigma_m_s, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
+                        &noise_),
+        rc_out_(profile.autopilot.rc_out_rate_hz),
+        truth_(profile.autopilot.rc_out_rate_hz),
+        battery_stream_(sensors.battery_rate_hz),
+        imu_(sensors.imu_rate_hz),
+        pose_(sensors.pose_rate_hz),
+        pressure_(sensors.pressure_rate_hz),
+        air_temperature_(sensors.air_temperature_rate_hz),
+        range_(sensors.rangefinder_rate_hz),
+        motor_temperature_(sensors.motor_temperature_rate_hz),
+        thrust_(rotors_),
+        torque_(rotors_),
+        inflows_(rotors_),
+        airframe_share_(1.0 - effects.thrust_loss_fraction.value_or(0.0)) {}
+
+  FlightResult fly() {
+    const std::vector<ScheduledSegment>& schedule = setup_.schedule;
+    MultirotorDynamics& dynamics = setup_.dynamics;
+    const long steps = std::lround(schedule.back().end_s / kFlightStepS);
+    for (long step = 0; step <= steps; ++step) {
+      const double t = step * kFlightStepS;
+      const ScheduledSegment& segment = enterSegment(t);
+      const NavigationState navigation{dynamics.basePosition(), dynamics.baseVelocity(), dynamics.attitude(),
+                                       dynamics.angularVelocityBody()};
+      const std::vector<double>& pwm =
+          setup_.controller.update(setpointAt(segment, t), navigation, kFlightStepS);
+      const PowerTrainState& power = drivePropulsion(pwm, navigation);
+      if (sink_) emit(t, pwm, power, navigation);
+      advance(step, t, segment, power);
+    }
+    checkSegmentEnd(profile_, schedule.back(), dynamics.basePosition().z(), setup_.controller.armed());
+    FlightResult result;
+    result.segments = manifestSegments();
+    result.duration_s = steps * kFlightStepS;
+    result.final_state_of_charge = battery_.stateOfCharge();
+    return result;
+  }
+
+ private:
+  static std::vector<PropulsionChain> makeChains(const SimParams& params, const FlightProfile& profile, int rotors) {
+    std::vector<PropulsionChain> chains;
+    for (int k = 0; k < rotors; ++k) {
+      ChainParams chain = params.chain;
+      const std::optional<PropellerFault>& weak = profile.faults.weak_propeller;
+      if (weak && weak->motor == k + 1) chain.propeller = scaledPropeller(chain.propeller, weak->thrust_factor);
+      chains.emplace_back(chain);
+    }
+    return chains;
+  }
+
+  // The segment at `t`: the ones that ended are checked and left, a new one's action taken.
+  const ScheduledSegment& enterSegment(double t) {
+    const std::vector<ScheduledSegment>& schedule = setup_.schedule;
+    while (current_ + 1 < schedule.size() && t >= schedule[current_].end_s - 1e-9) {
+      checkSegmentEnd(profile_, schedule[current_], setup_.dynamics.basePosition().z(), setup_.controller.armed());
+      ++current_;
+      entered_ = false;
+    }
+    const ScheduledSegment& segment = schedule[current_];
+    if (!entered_) {
+      if (segment.segment.kind == SegmentKind::kPayload) setup_.dynamics.setPayload(segment.segment.payload_mass_kg);
+      if (segment.segment.kind == SegmentKind::kTakeoff) setup_.controller.arm();
+      entered_ = true;
+    }
+    return segment;
+  }
+
+  // The rotors' inflows, the power train's step from the battery, and the thrusts and torques.
+  const PowerTrainState& drivePropulsion(const std::vector<double>& pwm, const NavigationState& navigation) {
+    MultirotorDynamics& dynamics = setup_.dynamics;
+    for (int k = 0; k < rotors_; ++k) {
+      const double axial_speed = dynamics.rotorVelocity(k).dot(navigation.attitude * vehicle_.rotors[k].thrust_axis);
+      inflows_[k] = rotorInflow(effects_, train_.chain(k).params().propeller.radiusM(), dynamics.rotorPosition(k).z(),
+                                axial_speed);
+      train_.setInflow(k, inflows_[k]);
+    }
+    // The avionics load the battery beside the ESCs: the ESCs' supply is the battery's Thevenin
+    // source less the avionics' drop across its series resistance.
+    const PowerTrainState& power = train_.step(
+        pwm, Supply{battery_.sourceVoltage() - battery_.seriesResistanceOhm() * avionics_a_, battery_.seriesResistanceOhm()},
+        air_, kFlightStepS);
+    for (int k = 0; k < rotors_; ++k) {
+      thrust_[k] = power.motors[k].thrust_n * airframe_share_;
+      torque_[k] = power.motors[k].torque_nm;
+    }
+    return power;
+  }
+
+  // The airframe moves; it must stay finite and upright, and the battery must last.
+  void advance(long step, double t, const ScheduledSegment& segment, const PowerTrainState& power) {
+    MultirotorDynamics& dynamics = setup_.dynamics;
+    dynamics.step(thrust_, torque_, density_, kFlightStepS);
+    if (!dynamics.isFinite()) {
+      throw SimulationError(profile_.source + ": the simulation diverged at t = " +
+                            formatPrintf("%.3f", (step + 1) * kFlightStepS) + " s");
+    }
+    checkAttitude(profile_, segment, dynamics.attitude(), (step + 1) * kFlightStepS, &flipping_since_);
+    if (dynamics.touchedGround()) {
+      if (ground_contacts_.empty() || ground_contacts_.back().second < t - 0.5 * kFlightStepS) {
+        ground_contacts_.emplace_back(t, t);
+      }
+      ground_contacts_.back().second = t + kFlightStepS;
+    }
+    battery_.draw(power.current_a + avionics_a_, kFlightStepS);
+    if (battery_.stateOfCharge() < kEmptyStateOfCharge) {
+      throw SimulationError(profile_.source + ": vehicle.battery_initial_soc: the battery is empty " +
+                            formatPrintf("%.3g", t) + " s into the flight");
+    }
+  }
+
+  // Every stream due at `t`, in a fixed order: the noise is drawn from one generator.
+  void emit(double t, const std::vector<double>& pwm, const PowerTrainState& power, const NavigationState& navigation) {
+    const double height = navigation.position_m.z();
+    const Eigen::Matrix3d rotation = navigation.attitude.toRotationMatrix();
+    if (rc_out_.due(t)) {
+      RcOutSample sample{t, std::vector<std::uint16_t>(std::max(kMinRcOutChannels, rotors_), 0)};
+      for (int k = 0; k < rotors_; ++k) sample.channels[k] = static_cast<std::uint16_t>(pwm[k]);
+      sink_->rcOut(sample);
+    }
+    if (truth_.due(t)) sink_->truth(truthSample(t, pwm, power, navigation));
+    if (battery_stream_.due(t)) {
+      sink_->battery({t, power.terminal_voltage_v + noise_(sensors_.battery_voltage_sigma_v),
+                      current_sign_ * (power.current_a + avionics_a_ + noise_(sensors_.battery_current_sigma_a)),
+                      std::round(100.0 * std::clamp(battery_.stateOfCharge(), 0.0, 1.0)) / 100.0});
+    }
+    if (imu_.due(t)) sink_->imu(imuSample(t, navigation));
+    if (pose_.due(t)) {
+      sink_->pose({t, navigation.position_m - origin_ + position_error_.next(), navigation.attitude});
+      sink_->velocity(
+          {t, navigation.velocity_m_s + velocity_error_.next(), rotation * navigation.angular_velocity_body_rad_s});
+    }
+    if (pressure_.due(t)) {
+      sink_->staticPressure({t, air_.pressureAtHeightPa(height) + noise_(sensors_.pressure_sigma_pa),
+                             sensors_.pressure_sigma_pa, "base_link"});
+    }
+    if (air_temperature_.due(t)) {
+      sink_->airTemperature({t, air_.temperature_c + noise_(sensors_.air_temperature_sigma_c),
+                             sensors_.air_temperature_sigma_c, "base_link"});
+    }
+    if (range_.due(t)) {
+      double reading = rotation(2, 2) > 0.1 ? height / rotation(2, 2) + noise_(sensors_.rangefinder_sigma_m)
+                                            : std::numeric_limits<double>::infinity();
+      if (reading < sensors_.rangefinder_min_m) reading = -std::numeric_limits<double>::infinity();
+      if (reading > sensors_.rangefinder_max_m) reading = std::numeric_limits<double>::infinity();
+      sink_->rangefinder(
+          {t, reading, sensors_.rangefinder_min_m, sensors_.rangefinder_max_m, sensors_.rangefinder_fov_rad});
+    }
+    if (motor_temperature_.due(t)) {
+      const auto hottest = std::max_element(power.winding_temperature_c.begin(), power.winding_temperature_c.end());
+      const std::size_t k = static_cast<std::size_t>(hottest - power.winding_temperature_c.begin());
+      sink_->motorTemperature({t, *hottest + noise_(sensors_.motor_temperature_sigma_c),
+                               sensors_.motor_temperature_sigma_c, vehicle_.rotors[k].name});
+    }
+  }
+
+  TruthSample truthSample(double t, const std::vector<double>& pwm, const PowerTrainState& power,
+                          const NavigationState& navigation) const {
+    const MultirotorDynamics& dynamics = setup_.dynamics;
+    TruthSample sample;
+    sample.time_s = t;
+    sample.payload_mass_kg = dynamics.payloadMassKg();
+    sample.total_mass_kg = dynamics.vehicleMassKg() + sample.payload_mass_kg;
+    sample.cable_tension_n = dynamics.cableTensionN();
+    sample.height_m = navigation.position_m.z();
+    sample.vertical_speed_m_s = navigation.velocity_m_s.z();
+    sample.air_density_kg_m3 = density_;
+    sample.density_ratio = density_ / params_.bench.air.densityKgM3();
+    sample.battery_voltage_v = power.terminal_voltage_v;
+    sample.esc_voltage_v = power.esc_voltage_v;
+    sample.battery_current_a = power.current_a + avionics_a_;
+    sample.thrust_loss_factor = airframe_share_;
+    double static_thrust = 0.0, climb_thrust = 0.0;
+    for (int k = 0; k < rotors_; ++k) {
+      const ChainState& motor = power.motors[k];
+      // The two inflow effects split as thrust(climb, ground) = static x climb x ground at
+      // the rotor's speed: climb without the ground, the ground on top of the climb.
+      const RotorAerodynamics& rotor = train_.chain(k).rotor();
+      const double climb = rotor.load(motor.omega_rad_s, {inflows_[k].axial_speed_m_s, 1.0}).thrust;
+      const double with_ground = rotor.load(motor.omega_rad_s, inflows_[k]).thrust;
+      const double isolated = train_.chain(k).params().propeller.thrustN(density_, motor.omega_rad_s / kTwoPi);
+      static_thrust += isolated;
+      climb_thrust += isolated * climb;
+      sample.motors.push_back({pwm[k], thrust_[k], motor.input_current_a, motor.input_power_w, motor.rpm(),
+                               climb > 0.0 ? with_ground / climb : 1.0, climb, power.winding_temperature_c[k],
+                               pwm[k] >= params_.bench.sweep_pwm_min_us && pwm[k] <= params_.bench.sweep_pwm_max_us});
+    }
+    sample.climb_factor = static_thrust > 0.0 ? climb_thrust / static_thrust : 1.0;
+    return sample;
+  }
+
+  ImuSample imuSample(double t, const NavigationState& navigation) {
+    const Eigen::Vector3d tilt = noise_.vector(sensors_.orientation_sigma_rad);
+    ImuSample sample;
+    sample.time_s = t;
+    sample.orientation = tilt.norm() > 0.0
+                             ? navigation.attitude * Eigen::Quaterniond(Eigen::AngleAxisd(tilt.norm(), tilt.normalized()))
+                             : navigation.attitude;
+    sample.angular_velocity_rad_s = navigation.angular_velocity_body_rad_s + noise_.vector(sensors_.gyro_sigma_rad_s);
+    sample.linear_acceleration_m_s2 = setup_.dynamics.specificForceBody() + noise_.vector(sensors_.accel_sigma_m_s2);
+    sample.orientation_sigma_rad = sensors_.orientation_sigma_rad;
+    sample.angular_velocity_sigma_rad_s = sensors_.gyro_sigma_rad_s;
+    sample.linear_acceleration_sigma_m_s2 = sensors_.accel_sigma_m_s2;
+    return sample;
+  }
+
+  std::vector<ManifestSegment> manifestSegments() const {
+    // Microseconds and milligrams: enough for any use, and the manifest reads "16.88", not "16.879999999999999".
+    const auto micro = [](double value) { return std::round(value * 1e6) / 1e6; };
+    std::vector<ManifestSegment> segments;
+    for (const ManifestSpan& span : manifestSpans(profile_, setup_.schedule)) {
+      // The ground carries part of the weight while a foot or the payload touches it (a descent
+      // that overshoots onto the ground): that time is left out, and the settle time after it.
+      const double mass = micro(setup_.dynamics.vehicleMassKg() + span.payload_mass_kg);
+      double start = span.start_s;
+      for (const auto& [from, to] : ground_contacts_) {
+        if (to < start || from > span.end_s) continue;
+        if (from > start) segments.push_back({micro(start), micro(from), mass});
+        start = to + profile_.manifest_settle_s;
+      }
+      if (start < span.end_s) segments.push_back({micro(start), micro(span.end_s), mass});
+    }
+    return segments;
+  }
+
+  const SimParams& params_;
+  const SimEffects& effects_;
+  const FlightProfile& profile_;
+  const Vehicle& vehicle_;
+  const FlightSensorParams& sensors_;
+  FlightSink* sink_;
+  FlightSetup setup_;
+  const int rotors_;
+  const AirConditions air_;
+  const double density_;
+  PowerTrain train_;
+  LipoBattery battery_;
+  Noise noise_;
+  const Eigen::Vector3d origin_;
+  const double current_sign_;
+  const double avionics_a_;  // drawn from the battery beside the ESCs, A
+  GaussMarkov3 position_error_, velocity_error_;
+  Stream rc_out_, truth_, battery_stream_, imu_, pose_, pressure_, air_temperature_, range_, motor_temperature_;
+  std::vector<double> thrust_, torque_;
+  std::vector<RotorInflow> inflows_;
+  const double airframe_share_;
+  std::size_t current_ = 0;
+  bool entered_ = false;
+  std::optional<double> flipping_since_;
+  std::vector<std::pair<double, double>> ground_contacts_;  // [from, to] in s, merged step by step
+};
+
 }  // namespace
 
 void checkFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
@@ -233,208 +508,7 @@ void checkFlight(const SimParams& params, const SimEffects& effects, const Fligh
 FlightResult simulateFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
                             const Vehicle& vehicle, std::uint64_t seed, FlightSink* sink,
                             const FlightSensorParams& sensors) {
-  FlightSetup setup = setUpFlight(params, effects, profile, vehicle, sensors);
-  const std::vector<ScheduledSegment>& schedule = setup.schedule;
-  MultirotorDynamics& dynamics = setup.dynamics;
-  FlightController& controller = setup.controller;
-  const int rotors = static_cast<int>(vehicle.rotors.size());
-  const AirConditions air = effects.air.value_or(params.bench.air);
-  const double density = air.densityKgM3();
-
-  std::vector<PropulsionChain> chains;
-  for (int k = 0; k < rotors; ++k) {
-    ChainParams chain = params.chain;
-    const std::optional<PropellerFault>& weak = profile.faults.weak_propeller;
-    if (weak && weak->motor == k + 1) chain.propeller = scaledPropeller(chain.propeller, weak->thrust_factor);
-    chains.emplace_back(chain);
-  }
-  PowerTrain train(std::move(chains), effects, air.temperature_c);
-  LipoBattery battery(params.battery, profile.vehicle.battery_initial_soc);
-  Noise noise(seed);
-  const Eigen::Vector3d origin = dynamics.basePosition();
-  const double current_sign = profile.autopilot.flavour == AutopilotFlavour::kPx4 ? -1.0 : 1.0;
-  const double avionics_a = profile.vehicle.avionics_current_a;
-  GaussMarkov3 position_error(sensors.position_sigma_m, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
-                              &noise);
-  GaussMarkov3 velocity_error(sensors.velocity_sigma_m_s, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
-                              &noise);
-
-  Stream rc_out(profile.autopilot.rc_out_rate_hz), truth(profile.autopilot.rc_out_rate_hz),
-      battery_stream(sensors.battery_rate_hz), imu(sensors.imu_rate_hz), pose(sensors.pose_rate_hz),
-      pressure(sensors.pressure_rate_hz), air_temperature(sensors.air_temperature_rate_hz),
-      range(sensors.rangefinder_rate_hz), motor_temperature(sensors.motor_temperature_rate_hz);
-
-  std::vector<double> thrust(rotors), torque(rotors);
-  std::vector<RotorInflow> inflows(rotors);
-  const double airframe_share = 1.0 - effects.thrust_loss_fraction.value_or(0.0);
-  FlightResult result;
-  const double end_s = schedule.back().end_s;
-  const long steps = std::lround(end_s / kFlightStepS);
-  std::size_t current = 0;
-  bool entered = false;
-  std::optional<double> flipping_since;
-  std::vector<std::pair<double, double>> ground_contacts;  // [from, to] in s, merged step by step
-  for (long step = 0; step <= steps; ++step) {
-    const double t = step * kFlightStepS;
-    while (current + 1 < schedule.size() && t >= schedule[current].end_s - 1e-9) {
-      checkSegmentEnd(profile, schedule[current], dynamics.basePosition().z(), controller.armed());
-      ++current;
-      entered = false;
-    }
-    const ScheduledSegment& segment = schedule[current];
-    if (!entered) {
-      if (segment.segment.kind == SegmentKind::kPayload) dynamics.setPayload(segment.segment.payload_mass_kg);
-      if (segment.segment.kind == SegmentKind::kTakeoff) controller.arm();
-      entered = true;
-    }
-
-    const NavigationState navigation{dynamics.basePosition(), dynamics.baseVelocity(), dynamics.attitude(),
-                                     dynamics.angularVelocityBody()};
-    const std::vector<double>& pwm = controller.update(setpointAt(segment, t), navigation, kFlightStepS);
-    for (int k = 0; k < rotors; ++k) {
-      const double axial_speed = dynamics.rotorVelocity(k).dot(navigation.attitude * vehicle.rotors[k].thrust_axis);
-      inflows[k] = rotorInflow(effects, train.chain(k).params().propeller.radiusM(), dynamics.rotorPosition(k).z(),
-                               axial_speed);
-      train.setInflow(k, inflows[k]);
-    }
-    // The avionics load the battery beside the ESCs: the ESCs' supply is the battery's Thevenin
-    // source less the avionics' drop across its series resistance.
-    const PowerTrainState& power = train.step(
-        pwm, Supply{battery.sourceVoltage() - battery.seriesResistanceOhm() * avionics_a, battery.seriesResistanceOhm()},
-        air, kFlightStepS);
-    const double battery_current_a = power.current_a + avionics_a;
-    for (int k = 0; k < rotors; ++k) {
-      thrust[k] = power.motors[k].thrust_n * airframe_share;
-      torque[k] = power.motors[k].torque_nm;
-    }
-
-    if (sink) {
-      const double height = navigation.position_m.z();
-      const Eigen::Matrix3d rotation = navigation.attitude.toRotationMatrix();
-      if (rc_out.due(t)) {
-        RcOutSample sample{t, std::vector<std::uint16_t>(std::max(kMinRcOutChannels, rotors), 0)};
-        for (int k = 0; k < rotors; ++k) sample.channels[k] = static_cast<std::uint16_t>(pwm[k]);
-        sink->rcOut(sample);
-      }
-      if (truth.due(t)) {
-        TruthSample sample;
-        sample.time_s = t;
-        sample.payload_mass_kg = dynamics.payloadMassKg();
-        sample.total_mass_kg = dynamics.vehicleMassKg() + sample.payload_mass_kg;
-        sample.cable_tension_n = dynamics.cableTensionN();
-        sample.height_m = height;
-        sample.vertical_speed_m_s = navigation.velocity_m_s.z();
-        sample.air_density_kg_m3 = density;
-        sample.density_ratio = density / params.bench.air.densityKgM3();
-        sample.battery_voltage_v = power.terminal_voltage_v;
-        sample.esc_voltage_v = power.esc_voltage_v;
-        sample.battery_current_a = battery_current_a;
-        sample.thrust_loss_factor = airframe_share;
-        double static_thrust = 0.0, climb_thrust = 0.0;
-        for (int k = 0; k < rotors; ++k) {
-          const ChainState& motor = power.motors[k];
-          // The two inflow effects split as thrust(climb, ground) = static x climb x ground at
-          // the rotor's speed: climb without the ground, the ground on top of the climb.
-          const RotorAerodynamics& rotor = train.chain(k).rotor();
-          const double climb = rotor.load(motor.omega_rad_s, {inflows[k].axial_speed_m_s, 1.0}).thrust;
-          const double with_ground = rotor.load(motor.omega_rad_s, inflows[k]).thrust;
-          const double isolated = train.chain(k).params().propeller.thrustN(density, motor.omega_rad_s / kTwoPi);
-          static_thrust += isolated;
-          climb_thrust += isolated * climb;
-          sample.motors.push_back({pwm[k], thrust[k], motor.input_current_a, motor.input_power_w, motor.rpm(),
-                                   climb > 0.0 ? with_ground / climb : 1.0, climb, power.winding_temperature_c[k],
-                                   pwm[k] >= params.bench.sweep_pwm_min_us && pwm[k] <= params.bench.sweep_pwm_max_us});
-        }
-        sample.climb_factor = static_thrust > 0.0 ? climb_thrust / static_thrust : 1.0;
-        sink->truth(sample);
-      }
-      if (battery_stream.due(t)) {
-        sink->battery({t, power.terminal_voltage_v + noise(sensors.battery_voltage_sigma_v),
-                       current_sign * (battery_current_a + noise(sensors.battery_current_sigma_a)),
-                       std::round(100.0 * std::clamp(battery.stateOfCharge(), 0.0, 1.0)) / 100.0});
-      }
-      if (imu.due(t)) {
-        const Eigen::Vector3d tilt = noise.vector(sensors.orientation_sigma_rad);
-        ImuSample sample;
-        sample.time_s = t;
-        sample.orientation =
-            tilt.norm() > 0.0
-                ? navigation.attitude * Eigen::Quaterniond(Eigen::AngleAxisd(tilt.norm(), tilt.normalized()))
-                : navigation.attitude;
-        sample.angular_velocity_rad_s = navigation.angular_velocity_body_rad_s + noise.vector(sensors.gyro_sigma_rad_s);
-        sample.linear_acceleration_m_s2 = dynamics.specificForceBody() + noise.vector(sensors.accel_sigma_m_s2);
-        sample.orientation_sigma_rad = sensors.orientation_sigma_rad;
-        sample.angular_velocity_sigma_rad_s = sensors.gyro_sigma_rad_s;
-        sample.linear_acceleration_sigma_m_s2 = sensors.accel_sigma_m_s2;
-        sink->imu(sample);
-      }
-      if (pose.due(t)) {
-        sink->pose({t, navigation.position_m - origin + position_error.next(), navigation.attitude});
-        sink->velocity(
-            {t, navigation.velocity_m_s + velocity_error.next(), rotation * navigation.angular_velocity_body_rad_s});
-      }
-      if (pressure.due(t)) {
-        sink->staticPressure({t, air.pressureAtHeightPa(height) + noise(sensors.pressure_sigma_pa),
-                              sensors.pressure_sigma_pa, "base_link"});
-      }
-      if (air_temperature.due(t)) {
-        sink->airTemperature({t, air.temperature_c + noise(sensors.air_temperature_sigma_c),
-                              sensors.air_temperature_sigma_c, "base_link"});
-      }
-      if (range.due(t)) {
-        double reading = rotation(2, 2) > 0.1 ? height / rotation(2, 2) + noise(sensors.rangefinder_sigma_m)
-                                              : std::numeric_limits<double>::infinity();
-        if (reading < sensors.rangefinder_min_m) reading = -std::numeric_limits<double>::infinity();
-        if (reading > sensors.rangefinder_max_m) reading = std::numeric_limits<double>::infinity();
-        sink->rangefinder(
-            {t, reading, sensors.rangefinder_min_m, sensors.rangefinder_max_m, sensors.rangefinder_fov_rad});
-      }
-      if (motor_temperature.due(t)) {
-        const auto hottest = std::max_element(power.winding_temperature_c.begin(), power.winding_temperature_c.end());
-        const std::size_t k = static_cast<std::size_t>(hottest - power.winding_temperature_c.begin());
-        sink->motorTemperature({t, *hottest + noise(sensors.motor_temperature_sigma_c),
-                                sensors.motor_temperature_sigma_c, vehicle.rotors[k].name});
-      }
-    }
-
-    dynamics.step(thrust, torque, density, kFlightStepS);
-    if (!dynamics.isFinite()) {
-      throw SimulationError(profile.source + ": the simulation diverged at t = " +
-                            formatPrintf("%.3f", (step + 1) * kFlightStepS) + " s");
-    }
-    checkAttitude(profile, segment, dynamics.attitude(), (step + 1) * kFlightStepS, &flipping_since);
-    if (dynamics.touchedGround()) {
-      if (ground_contacts.empty() || ground_contacts.back().second < t - 0.5 * kFlightStepS) {
-        ground_contacts.emplace_back(t, t);
-      }
-      ground_contacts.back().second = t + kFlightStepS;
-    }
-    battery.draw(battery_current_a, kFlightStepS);
-    if (battery.stateOfCharge() < kEmptyStateOfCharge) {
-      throw SimulationError(profile.source + ": vehicle.battery_initial_soc: the battery is empty " +
-                            formatPrintf("%.3g", t) + " s into the flight");
-    }
-  }
-
-  checkSegmentEnd(profile, schedule.back(), dynamics.basePosition().z(), controller.armed());
-
-  // Microseconds and milligrams: enough for any use, and the manifest reads "16.88", not "16.879999999999999".
-  const auto micro = [](double value) { return std::round(value * 1e6) / 1e6; };
-  for (const ManifestSpan& span : manifestSpans(profile, schedule)) {
-    // The ground carries part of the weight while a foot or the payload touches it (a descent
-    // that overshoots onto the ground): that time is left out, and the settle time after it.
-    const double mass = micro(dynamics.vehicleMassKg() + span.payload_mass_kg);
-    double start = span.start_s;
-    for (const auto& [from, to] : ground_contacts) {
-      if (to < start || from > span.end_s) continue;
-      if (from > start) result.segments.push_back({micro(start), micro(from), mass});
-      start = to + profile.manifest_settle_s;
-    }
-    if (start < span.end_s) result.segments.push_back({micro(start), micro(span.end_s), mass});
-  }
-  result.duration_s = steps * kFlightStepS;
-  result.final_state_of_charge = battery.stateOfCharge();
-  return result;
+  return FlightRun(params, effects, profile, vehicle, seed, sink, sensors).fly();
 }
 
 }  // namespace sim

@@ -17,7 +17,7 @@ enum class AutopilotFlavour { kPx4, kArduPilot };
 
 /// The autopilot's flavour, PWM end points in us and the rate of its /mavros/rc/out in Hz.
 struct AutopilotParams {
-  AutopilotFlavour flavour = AutopilotFlavour::kPx4;
+  AutopilotFlavour flavour = AutopilotFlavour::kPx4;  ///< PX4 or ArduPilot
   double pwm_min_us = 0.0;       ///< mixer output 0 while armed (PX4 PWM_MAIN_MIN, ArduPilot MOT_PWM_MIN/SPIN_ARM)
   double pwm_max_us = 0.0;       ///< mixer output 1
   double disarmed_pwm_us = 0.0;  ///< what the ESCs get while disarmed
@@ -32,7 +32,7 @@ struct VehicleSetup {
   double landing_gear_height_m = 0.0;                                 ///< base_link above the ground when landed
   double landing_gear_half_width_m = 0.0;                             ///< feet at (+-w, +-w) under base_link
   double drag_area_m2 = 0.0;                                          ///< Cd A of the airframe
-  double battery_initial_soc = 1.0;
+  double battery_initial_soc = 1.0;  ///< 0..1, at the start of the flight
   /// Flight controller, companion computer, radios and camera: drawn from the battery beside the
   /// ESCs and seen by the current sensor, never by the ESCs (0 A unless the profile says).
   double avionics_current_a = 0.0;
@@ -40,10 +40,10 @@ struct VehicleSetup {
 
 /// A payload hangs on a cable from a point of the airframe; it is attached and changed while landed.
 struct PayloadCable {
-  double length_m = 0.0;
+  double length_m = 0.0;  ///< m, unstretched
   Eigen::Vector3d attach_point_m = Eigen::Vector3d::Zero();  ///< in base_link
   double stiffness_n_per_m = 0.0;                            ///< along the cable, which only pulls
-  double damping_n_s_per_m = 0.0;
+  double damping_n_s_per_m = 0.0;  ///< along the cable
 };
 
 /// A propeller that makes less thrust than the others at the same speed (chipped, bent, the wrong
@@ -57,7 +57,7 @@ struct PropellerFault {
 /// Faults of the vehicle that the library of effects does not hold, for validating the gap
 /// diagnosis (a centre of gravity off the centre is VehicleSetup::centre_of_mass_offset_m).
 struct VehicleFaults {
-  std::optional<PropellerFault> weak_propeller;
+  std::optional<PropellerFault> weak_propeller;  ///< a propeller weaker than the others; none when absent
 };
 
 }  // namespace sim

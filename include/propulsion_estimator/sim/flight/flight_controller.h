@@ -14,15 +14,15 @@ namespace sim {
 /// The vehicle's state as the autopilot's estimator gives it (the simulator passes the true state).
 struct NavigationState {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  ///< base_link, world ENU
-  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d angular_velocity_body_rad_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();  ///< base_link, world ENU, m/s
+  Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();  ///< rotates body (FLU) into world (ENU)
+  Eigen::Vector3d angular_velocity_body_rad_s = Eigen::Vector3d::Zero();  ///< body frame
 };
 
 /// What the script asks of the controller at one instant: height of base_link in m, feed-forward
 /// vertical speed in m/s, and whether it is landing.
 struct HeightSetpoint {
-  double height_m = 0.0;
+  double height_m = 0.0;  ///< m, base_link above the ground
   double vertical_speed_m_s = 0.0;  ///< feed-forward
   bool landing = false;             ///< the land detector runs only while landing
 };
@@ -37,12 +37,15 @@ struct HeightSetpoint {
 /// constructor throws ConfigError as MotorMixer's does.
 class FlightController {
  public:
+  /// `landed_height_m`: base_link above the ground when landed. Throws ConfigError as MotorMixer's
+  /// constructor does.
   FlightController(const Vehicle& vehicle, const AutopilotParams& autopilot, double landed_height_m);
 
-  void arm();
+  void arm();  ///< arms: the motors idle until a climb is commanded
   /// Pulse widths for the next control period.
   const std::vector<double>& update(const HeightSetpoint& setpoint, const NavigationState& state, double dt_s);
 
+  /// Whether armed (the land detector disarms).
   bool armed() const { return armed_; }
 
  private:

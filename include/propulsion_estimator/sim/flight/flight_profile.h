@@ -15,7 +15,7 @@ const char* segmentKindName(SegmentKind kind);
 
 /// One step of the flight script. Heights are of base_link above the ground.
 struct FlightSegment {
-  SegmentKind kind = SegmentKind::kWait;
+  SegmentKind kind = SegmentKind::kWait;  ///< what the segment does
   double duration_s = 0.0;       ///< wait, hover, payload
   double height_m = 0.0;         ///< takeoff, climb, descend: target height
   double rate_m_s = 0.0;         ///< takeoff, climb, descend, land: vertical speed
@@ -30,13 +30,13 @@ enum class ManifestSpans { kHovers, kAirborne };
 /// and the script of segments (config/sim/*_flight.yaml).
 struct FlightProfile {
   std::string source;  ///< file it came from, for messages
-  AutopilotParams autopilot;
-  VehicleSetup vehicle;
-  PayloadCable cable;
-  VehicleFaults faults;
+  AutopilotParams autopilot;  ///< flavour, PWM end points, rc/out rate
+  VehicleSetup vehicle;  ///< URDF, centre-of-mass offset, landing gear, drag, battery
+  PayloadCable cable;  ///< how the payload hangs
+  VehicleFaults faults;  ///< what is wrong with the vehicle, for validation
   double manifest_settle_s = 0.0;  ///< a span enters the manifest this long after it starts
-  ManifestSpans manifest_spans = ManifestSpans::kHovers;
-  std::vector<FlightSegment> segments;
+  ManifestSpans manifest_spans = ManifestSpans::kHovers;  ///< what the manifest's spans are
+  std::vector<FlightSegment> segments;  ///< the script, in order
 
   /// Throws FieldError naming the key ("segments[3].height_m", "autopilot.pwm_max_us") for values
   /// out of range and for segments impossible where they stand: taking off or changing the payload
@@ -50,12 +50,12 @@ struct FlightProfile {
 
 /// A segment placed in time, with the height setpoint at its ends.
 struct ScheduledSegment {
-  FlightSegment segment;
+  FlightSegment segment;  ///< as scripted
   int index = 0;  ///< in FlightProfile::segments
-  double start_s = 0.0;
-  double end_s = 0.0;
-  double start_height_m = 0.0;
-  double end_height_m = 0.0;
+  double start_s = 0.0;  ///< s from the flight's start
+  double end_s = 0.0;  ///< s from the flight's start
+  double start_height_m = 0.0;  ///< m, the height setpoint at the start
+  double end_height_m = 0.0;  ///< m, the height setpoint at the end
   double payload_mass_kg = 0.0;  ///< attached during the segment
 };
 
@@ -71,9 +71,9 @@ std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile);
 
 /// A stretch of a flight in which the vehicle carries a known payload, for the manifest.
 struct ManifestSpan {
-  double start_s = 0.0;
-  double end_s = 0.0;
-  double payload_mass_kg = 0.0;
+  double start_s = 0.0;  ///< s from the flight's start
+  double end_s = 0.0;  ///< s from the flight's start
+  double payload_mass_kg = 0.0;  ///< kg carried during the span
 };
 
 /// The spans of the profile's manifest, in time order, from its schedule:

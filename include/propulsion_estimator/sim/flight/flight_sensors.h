@@ -8,6 +8,7 @@ namespace sim {
 /// velocity errors, which are first-order Gauss-Markov processes (correlated from one output to the next).
 struct FlightSensorParams {
   /// MAVLink stream rates of a companion-computer link (PX4 "onboard" mode, ArduPilot SRx_*):
+  ///@{
   double battery_rate_hz = 1.0;    ///< SYS_STATUS / BATTERY_STATUS
   double imu_rate_hz = 50.0;       ///< ATTITUDE_QUATERNION + HIGHRES_IMU
   double pose_rate_hz = 30.0;      ///< LOCAL_POSITION_NED
@@ -15,30 +16,41 @@ struct FlightSensorParams {
   double air_temperature_rate_hz = 1.0;
   double rangefinder_rate_hz = 20.0;  ///< DISTANCE_SENSOR
   double motor_temperature_rate_hz = 1.0;
+  ///@}
 
   /// Power module (PX4 default analog module; ~12-bit ADC): a few tens of mV and ~0.1 A.
+  ///@{
   double battery_voltage_sigma_v = 0.02;
   double battery_current_sigma_a = 0.1;
+  ///@}
   /// ICM-20689-class IMU: noise density 0.01 deg/s/sqrt(Hz) and 100 ug/sqrt(Hz) over ~100 Hz
   /// bandwidth, raised by airframe vibration to these assumed values; EKF attitude ~0.3 deg.
+  ///@{
   double gyro_sigma_rad_s = 0.005;
   double accel_sigma_m_s2 = 0.05;
   double orientation_sigma_rad = 0.005;
+  ///@}
   /// EKF local position and velocity (GNSS or vision aided, assumed). An EKF's errors wander
   /// slowly rather than jump from one output to the next: first-order Gauss-Markov processes with
   /// this correlation time.
+  ///@{
   double position_sigma_m = 0.02;
   double velocity_sigma_m_s = 0.03;
   double navigation_error_correlation_s = 1.0;
+  ///@}
   /// MS5611 barometer at its highest oversampling: 0.012 mbar rms (datasheet); temperature
   /// resolution 0.01 deg C.
+  ///@{
   double pressure_sigma_pa = 1.2;
   double air_temperature_sigma_c = 0.05;
+  ///@}
   /// TFmini-S class lidar: 0.1-12 m, 2 deg field of view, ~1 cm repeatability indoors.
+  ///@{
   double rangefinder_sigma_m = 0.01;
   double rangefinder_min_m = 0.1;
   double rangefinder_max_m = 12.0;
   double rangefinder_fov_rad = 0.035;
+  ///@}
   /// Thermistor or IR sensor on the motor bell (assumed).
   double motor_temperature_sigma_c = 0.2;
 

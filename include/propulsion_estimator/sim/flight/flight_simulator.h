@@ -26,8 +26,8 @@ struct FlightResult {
   /// payload touched the ground is cut there and resumes the settle time after the touch. Times
   /// from the first message.
   std::vector<ManifestSegment> segments;
-  double duration_s = 0.0;
-  double final_state_of_charge = 0.0;
+  double duration_s = 0.0;  ///< s, from the first message to the last
+  double final_state_of_charge = 0.0;  ///< 0..1 at the end of the flight
 };
 
 /// The refusals simulateFlight makes before it flies, without flying (cheap: for callers that

@@ -36,18 +36,23 @@ class MultirotorDynamics {
   void setPayload(double mass_kg);
 
   Eigen::Vector3d basePosition() const;  ///< base_link in the world
-  Eigen::Vector3d baseVelocity() const;
+  Eigen::Vector3d baseVelocity() const;  ///< base_link's velocity in the world, m/s
+  /// Rotates body into world.
   const Eigen::Quaterniond& attitude() const { return attitude_; }
+  /// rad/s, body frame.
   const Eigen::Vector3d& angularVelocityBody() const { return omega_body_; }
   /// Non-gravitational acceleration of the centre of mass in the body frame: what an accelerometer
   /// there reads (the IMU's lever arm of a few centimetres is neglected).
   const Eigen::Vector3d& specificForceBody() const { return specific_force_body_; }
   Eigen::Vector3d rotorPosition(int k) const;  ///< in the world
   Eigen::Vector3d rotorVelocity(int k) const;  ///< of rotor k's hub, in the world
+  /// N, 0 while slack
   double cableTensionN() const { return cable_tension_n_; }
   /// Whether a foot or the payload pressed on the ground during the last step.
   bool touchedGround() const { return touched_ground_; }
+  /// kg, 0 without payload.
   double payloadMassKg() const { return payload_mass_kg_; }
+  /// kg, the vehicle without payload.
   double vehicleMassKg() const { return mass_kg_; }
 
   /// Whether the whole state (vehicle and payload) is finite.

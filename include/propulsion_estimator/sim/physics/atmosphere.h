@@ -5,10 +5,10 @@ namespace sim {
 
 /// Still air at one place and time. Density from the ideal gas law for dry air, rho = p / (R T).
 struct AirConditions {
-  double temperature_c = 0.0;
-  double pressure_pa = 0.0;
+  double temperature_c = 0.0;  ///< deg C
+  double pressure_pa = 0.0;  ///< Pa, static
 
-  double densityKgM3() const;
+  double densityKgM3() const;  ///< kg/m^3, p / (R T)
   /// Static pressure `height_m` above this place, in an isothermal layer (barometric formula).
   /// Against the standard atmosphere's lapse rate of 6.5 K/km the isothermal assumption errs by
   /// 0.014 Pa at 10 m, 0.12 Pa at 30 m and 1.3 Pa at 100 m: at most about one barometer sigma.

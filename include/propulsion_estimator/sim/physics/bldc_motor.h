@@ -14,14 +14,14 @@ constexpr double kCopperReferenceTemperatureC = 20.0;  ///< deg C at which that 
 /// current standing for iron and bearing losses. Magnet flux (hence 1/kv) and winding resistance
 /// depend on the winding temperature, which a lumped thermal model tracks.
 struct BldcMotorParams {
-  std::string name;
-  double kv_rpm_per_v = 0.0;
+  std::string name;  ///< for metadata and messages
+  double kv_rpm_per_v = 0.0;  ///< rpm per V, at reference_temperature_c
   double winding_resistance_ohm = 0.0;  ///< at reference_temperature_c
-  double no_load_current_a = 0.0;
+  double no_load_current_a = 0.0;  ///< A, at reference_temperature_c
   double reference_temperature_c = 0.0;             ///< winding temperature at which kv and resistance hold
   double flux_temperature_coefficient_per_c = 0.0;  ///< magnet remanence; NdFeB about -0.0012
   double rotor_inertia_kg_m2 = 0.0;                 ///< bell and magnets, without the propeller
-  double thermal_capacity_j_per_c = 0.0;
+  double thermal_capacity_j_per_c = 0.0;  ///< J per deg C, winding and stator
   double thermal_resistance_c_per_w = 0.0;  ///< winding to air, with propeller wash
 
   /// Throws FieldError (motor.*) for a value outside its physical range.
@@ -32,7 +32,7 @@ struct BldcMotorParams {
 struct MotorConstants {
   double torque_constant_nm_per_a = 0.0;  ///< = back-EMF constant in V s/rad
   double resistance_ohm = 0.0;            ///< winding only
-  double no_load_current_a = 0.0;
+  double no_load_current_a = 0.0;  ///< A
 };
 
 /// Winding resistance follows copper, R(T) = R(20 C) (1 + 0.00393 (T - 20)), scaled so that it is

@@ -9,7 +9,7 @@ namespace sim {
 /// voltage and the ESC draws duty * motor current. The duty follows the pulse width linearly
 /// between the ESC's calibrated end points and is clamped to 0..1; at duty 0 the bridge is off.
 struct EscParams {
-  std::string name;
+  std::string name;  ///< for metadata and messages
   double pwm_zero_us = 0.0;     ///< pulse width of duty 0 (calibrated low end point)
   double pwm_full_us = 0.0;     ///< pulse width of duty 1 (calibrated high end point)
   double resistance_ohm = 0.0;  ///< MOSFET on-resistance and motor leads, in series with the winding

@@ -13,17 +13,17 @@ namespace sim {
 /// polarisation, behind its series resistance), or a regulated source (no resistance). The
 /// voltage sensor of a bench or a power module sits at its terminals.
 struct Supply {
-  double source_voltage_v = 0.0;
-  double internal_resistance_ohm = 0.0;
+  double source_voltage_v = 0.0;  ///< V, the EMF
+  double internal_resistance_ohm = 0.0;  ///< ohm, 0 for a regulated source
 };
 
 /// The power train at one instant: each ESC's duty cycle (0..1) and motor state, the winding
 /// temperatures in deg C, and the voltages (V) and total current (A) on the supply side.
 struct PowerTrainState {
-  std::vector<double> duty;
+  std::vector<double> duty;  ///< one per ESC, 0..1
   std::vector<ChainState> motors;  ///< rotors in their inflow: thrust before airframe effects
-  std::vector<double> winding_temperature_c;
-  double esc_voltage_v = 0.0;
+  std::vector<double> winding_temperature_c;  ///< deg C, one per motor
+  double esc_voltage_v = 0.0;  ///< V at the ESCs' inputs, after any supply_resistance
   double terminal_voltage_v = 0.0;  ///< at the supply's terminals, where the voltage is sensed
   double current_a = 0.0;           ///< drawn from the supply by all ESCs
 };
@@ -52,7 +52,9 @@ class PowerTrain {
   const PowerTrainState& step(const std::vector<double>& pwm_us, const Supply& supply, const AirConditions& air,
                               double dt_s);
 
+  /// Chain `k`'s parameters and rotor model.
   const PropulsionChain& chain(int k = 0) const { return chains_[k]; }
+  /// Number of motors.
   int motors() const { return static_cast<int>(omega_rad_s_.size()); }
   /// The temperature the electrical constants of motor k are taken at.
   double electricalTemperatureC(int k) const;

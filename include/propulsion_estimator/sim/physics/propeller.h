@@ -14,11 +14,11 @@ constexpr double kInducedPowerFactor = 1.15;
 /// of ground effect), n in rev/s: T = CT rho n^2 D^4, Q = CQ rho n^2 D^5. How they change with the
 /// inflow (climb, descent, ground) is RotorAerodynamics' (rotor_inflow.h), which needs the solidity.
 struct PropellerParams {
-  std::string name;
-  double diameter_m = 0.0;
+  std::string name;  ///< for metadata and messages
+  double diameter_m = 0.0;  ///< m
   double thrust_coefficient = 0.0;  ///< CT
   double torque_coefficient = 0.0;  ///< CQ (power coefficient CP = 2 pi CQ)
-  double inertia_kg_m2 = 0.0;
+  double inertia_kg_m2 = 0.0;  ///< kg m^2, about the shaft
   double solidity = 0.0;  ///< blade area over disc area, blades x chord at 3/4 radius / (pi R)
 
   /// Throws FieldError (propeller.*) for a value outside its physical range, and
@@ -26,13 +26,16 @@ struct PropellerParams {
   /// merit above 1 / kInducedPowerFactor).
   void validate() const;
 
+  /// Radius, m.
   double radiusM() const { return 0.5 * diameter_m; }
+  /// N, T = CT rho n^2 D^4, in still air out of ground effect
   double thrustN(double air_density_kg_m3, double rev_per_s) const;
+  /// N m, Q = CQ rho n^2 D^5, in still air out of ground effect
   double torqueNm(double air_density_kg_m3, double rev_per_s) const;
   /// The rotorcraft coefficients C_T = T / (rho pi R^2 (Omega R)^2) = 4 CT / pi^3 and
   /// C_Q = Q / (rho pi R^2 (Omega R)^2 R) = 8 CQ / pi^3.
   double rotorThrustCoefficient() const;
-  double rotorTorqueCoefficient() const;
+  double rotorTorqueCoefficient() const;  ///< see rotorThrustCoefficient
 };
 
 /// A geometrically similar propeller that makes `thrust_factor` of this one's thrust at the same

@@ -10,9 +10,9 @@ namespace sim {
 
 /// One ESC-motor-propeller combination.
 struct ChainParams {
-  EscParams esc;
-  BldcMotorParams motor;
-  PropellerParams propeller;
+  EscParams esc;  ///< the ESC
+  BldcMotorParams motor;  ///< the motor
+  PropellerParams propeller;  ///< the propeller
 
   void validate() const;  ///< FieldError esc.* / motor.* / propeller.*
 };
@@ -20,24 +20,24 @@ struct ChainParams {
 /// What the chain runs at: ESC duty, ESC input voltage, air, and the winding temperature the
 /// motor's electrical constants are taken at.
 struct ChainInput {
-  double duty = 0.0;
-  double esc_voltage_v = 0.0;
-  double air_density_kg_m3 = 0.0;
-  double winding_temperature_c = 0.0;
+  double duty = 0.0;  ///< 0..1
+  double esc_voltage_v = 0.0;  ///< V at the ESC's input
+  double air_density_kg_m3 = 0.0;  ///< kg/m^3
+  double winding_temperature_c = 0.0;  ///< deg C, the motor's electrical constants are taken at it
 };
 
 /// State of one chain. Thrust is the rotor's in its inflow (the `load` it was evaluated with),
 /// without airframe effects.
 struct ChainState {
-  double omega_rad_s = 0.0;
-  double thrust_n = 0.0;
+  double omega_rad_s = 0.0;  ///< rotor speed, rad/s
+  double thrust_n = 0.0;  ///< N, along the rotor axis
   double torque_nm = 0.0;  ///< propeller's aerodynamic torque
-  double motor_current_a = 0.0;
+  double motor_current_a = 0.0;  ///< A, in the winding
   double input_current_a = 0.0;  ///< drawn by the ESC from its supply
   double input_power_w = 0.0;    ///< ESC input voltage * input current
   double heat_w = 0.0;           ///< dissipated in the motor (winding copper + no-load losses)
 
-  double rpm() const;
+  double rpm() const;  ///< rotor speed, rpm
 };
 
 /// One ESC, motor and propeller (ChainParams): the operating point at a rotor speed, the steady
@@ -73,8 +73,11 @@ class PropulsionChain {
   /// Deceleration of a rotor whose ESC is off: propeller drag and no-load friction only.
   double coastingDecelerationRadS2(const ChainInput& input, double omega_rad_s, const RotorLoad& load = {}) const;
 
+  /// As validated.
   const ChainParams& params() const { return params_; }
+  /// The rotor's inflow model.
   const RotorAerodynamics& rotor() const { return rotor_; }
+  /// kg m^2, motor rotor and propeller.
   double inertiaKgM2() const { return params_.motor.rotor_inertia_kg_m2 + params_.propeller.inertia_kg_m2; }
 
  private:

@@ -64,14 +64,15 @@ struct RotorInflow {
   double axial_speed_m_s = 0.0;      ///< the disc's speed along its thrust axis, climb positive
   double ground_inflow_ratio = 1.0;  ///< G: induced inflow in ground effect over that out of it, same thrust
 
+  /// Whether the disc sees still air out of ground effect.
   bool still() const { return axial_speed_m_s == 0.0 && ground_inflow_ratio == 1.0; }
 };
 
 /// Factors on the propeller's static thrust and torque (PropellerParams::thrustN, torqueNm) at the
 /// same rotor speed.
 struct RotorLoad {
-  double thrust = 1.0;
-  double torque = 1.0;
+  double thrust = 1.0;  ///< factor on the static thrust
+  double torque = 1.0;  ///< factor on the static torque
 };
 
 /// A propeller as a rotor of blade-element momentum theory (see above): its thrust and torque at a

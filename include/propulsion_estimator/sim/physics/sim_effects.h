@@ -20,13 +20,13 @@ namespace sim {
 ///   climb_inflow       flight         the axial inflow of a climb or descent through the rotors
 ///   esc_offset         flight         the flying ESCs' end points differ from the bench ESC's
 struct SimEffects {
-  std::optional<double> supply_resistance_ohm;
-  std::optional<AirConditions> air;
+  std::optional<double> supply_resistance_ohm;  ///< ohm between the battery's terminals and the ESCs
+  std::optional<AirConditions> air;  ///< the flight's air, instead of the bench's
   std::optional<double> ground_effect_strength;  ///< 1 = Cheeseman-Bennett's image rotor
-  std::optional<double> thrust_loss_fraction;
+  std::optional<double> thrust_loss_fraction;  ///< share of the rotors' thrust the airframe loses, 0..1
   std::optional<double> motor_thermal_resistance_c_per_w;  ///< the motors' cooling during the run
   std::optional<double> climb_inflow_strength;             ///< 1 = the rotor's axial speed, all of it
-  std::optional<double> esc_offset_us;
+  std::optional<double> esc_offset_us;  ///< us, both end points of the flying ESCs moved by this
 
   /// Throws FieldError "<effect>.<parameter>" for a value outside its physical range.
   void validate() const;

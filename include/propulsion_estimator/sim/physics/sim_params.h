@@ -14,8 +14,8 @@ namespace sim {
 struct BenchParams {
   AirConditions air;              ///< also the air of flights unless the air_density effect is on
   double sweep_pwm_min_us = 0.0;  ///< the PWM range of this ESC's sweeps (thesis 4.1 and ch. 7)
-  double sweep_pwm_max_us = 0.0;
-  BenchSensors sensors;
+  double sweep_pwm_max_us = 0.0;  ///< us, see sweep_pwm_min_us
+  BenchSensors sensors;  ///< noise and resolution of the bench's sensors
 
   void validate() const;  ///< FieldError bench.*
 };
@@ -23,12 +23,12 @@ struct BenchParams {
 /// Everything the simulator needs about one propulsion combination: the contents of a
 /// config/sim/*.yaml parameter file.
 struct SimParams {
-  ChainParams chain;
-  LipoBatteryParams battery;
-  BenchParams bench;
+  ChainParams chain;  ///< the ESC, motor and propeller
+  LipoBatteryParams battery;  ///< the flight battery
+  BenchParams bench;  ///< the thrust stand
   std::string source;  ///< file it came from, for messages and metadata
 
-  void validate() const;
+  void validate() const;  ///< FieldError naming the parameter (esc.*, motor.*, propeller.*, battery.*, bench.*)
 };
 
 }  // namespace sim

@@ -23,19 +23,21 @@ const char* benchExperimentName(BenchExperimentKind kind);
 /// The settings of one bench experiment: the pulse widths (us), voltages (V) or thrusts (N) it runs
 /// at, and its timing in s.
 struct BenchExperiment {
-  BenchExperimentKind kind = BenchExperimentKind::kPwmSweep;
-  /// pwm_sweep
+  BenchExperimentKind kind = BenchExperimentKind::kPwmSweep;  ///< which experiment
+  /// pwm_sweep: the supply voltages (V), the pulse widths from start to end in steps (us), the dwell.
+  ///@{
   std::vector<double> voltages_v;
   double pwm_start_us = 0.0;
   double pwm_end_us = 0.0;
   double pwm_step_us = 0.0;
   double step_duration_s = 1.0;  ///< dwell at each pulse width; the row is logged at its end
-  /// discharge
+  ///@}
+  /// discharge: the constant pulse width of each run, us.
   std::vector<double> pwms_us;
-  /// constant_thrust
+  /// constant_thrust: the thrust each run holds, N.
   std::vector<double> thrusts_n;
   double thrust_gain_us_per_n_s = 80.0;  ///< the bench controller's integral gain on the load cell
-  /// discharge and constant_thrust
+  /// discharge and constant_thrust: s between logged rows.
   double sample_interval_s = 1.0;
   double cutoff_voltage_v = 10.5;  ///< a run stops when the measured voltage falls below it
   double initial_soc = 1.0;        ///< each run starts on a battery charged to this

@@ -265,10 +265,10 @@ TEST(SimulateCommand, WritesAFlightBagAndItsManifest) {
   ASSERT_EQ(code, 0) << out;
   const pe::FlightManifest manifest = pe::loadFlightManifest(dir.file("flight.manifest.yaml"));
   ASSERT_EQ(manifest.flights.size(), 1u);
-  EXPECT_EQ(manifest.flights[0].bag, "flight.bag");
+  EXPECT_EQ(manifest.flights[0].log, "flight.bag");
   ASSERT_EQ(manifest.flights[0].segments.size(), 1u);
   EXPECT_EQ(manifest.flights[0].segments[0].mass_kg, 1.315);
-  EXPECT_TRUE(fs::exists(pe::resolveBagPath(dir.file("flight.manifest.yaml"), manifest.flights[0].bag)));
+  EXPECT_TRUE(fs::exists(pe::resolveLogPath(dir.file("flight.manifest.yaml"), manifest.flights[0].log)));
   const std::string text = pe::readTextFile(dir.file("flight.manifest.yaml"));
   EXPECT_NE(text.find("# Effects: thrust_loss(fraction=0.03)\n"), std::string::npos) << text;
 }

@@ -15,6 +15,8 @@
 
 #include "propulsion_estimator/bag/bag_flight_sink.h"
 #include "propulsion_estimator/bag/flight_bag_reader.h"
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
@@ -100,7 +102,7 @@ TEST_F(FlightBagReader, ReadsWhatTheSimulatorWritesOnTheManifestsClock) {
   }
   const pe::FlightBagReader reader(file("flight.bag"));
   EXPECT_NEAR(reader.durationS(), 0.9, 1e-9);
-  const pe::gap::FlightStreams streams = reader.read({}, 4);
+  const pe::FlightStreams streams = reader.read({}, 4);
 
   EXPECT_EQ(streams.source, file("flight.bag"));
   EXPECT_EQ(streams.motors, 4);
@@ -135,7 +137,7 @@ TEST_F(FlightBagReader, ReadsWhatTheSimulatorWritesOnTheManifestsClock) {
 
 TEST_F(FlightBagReader, LeavesTheStreamsOfMissingOptionalTopicsEmpty) {
   writeMinimalBag(file("minimal.bag"));
-  const pe::gap::FlightStreams streams = pe::FlightBagReader(file("minimal.bag")).read({}, 4);
+  const pe::FlightStreams streams = pe::FlightBagReader(file("minimal.bag")).read({}, 4);
   EXPECT_EQ(streams.rc_out.size(), 1u);
   EXPECT_EQ(streams.battery.size(), 1u);
   EXPECT_TRUE(streams.imu.empty());
@@ -156,7 +158,7 @@ TEST_F(FlightBagReader, SkipsImuMessagesWithoutOrientation) {
     imu.orientation_covariance[0] = -1.0;  // REP-145: no orientation
     bag.write(pe::kImuTopic, kStart + ros::Duration(0.2), imu);
   });
-  const pe::gap::FlightStreams streams = pe::FlightBagReader(file("imu.bag")).read({}, 4);
+  const pe::FlightStreams streams = pe::FlightBagReader(file("imu.bag")).read({}, 4);
   ASSERT_EQ(streams.imu.size(), 1u);
   EXPECT_NEAR(streams.imu[0].time_s, 0.1, 1e-9);
 }
@@ -171,7 +173,7 @@ TEST_F(FlightBagReader, ReadsTheTopicsItIsGiven) {
   *topics.find("motor_temperature") = "/esc/temperature";
   // Two signals may read one topic.
   *topics.find("air_temperature") = "/esc/temperature";
-  const pe::gap::FlightStreams streams = pe::FlightBagReader(file("renamed.bag")).read(topics, 4);
+  const pe::FlightStreams streams = pe::FlightBagReader(file("renamed.bag")).read(topics, 4);
   ASSERT_EQ(streams.motor_temperature_c.size(), 1u);
   EXPECT_DOUBLE_EQ(streams.motor_temperature_c[0].value, 30.0);
   ASSERT_EQ(streams.air_temperature_c.size(), 1u);
@@ -195,6 +197,40 @@ TEST_F(FlightBagReader, RefusesAFileThatIsNotABag) {
   EXPECT_EQ(refusal(file("text.bag")), file("text.bag") + ": not a readable bag: Error reading version line");
   { rosbag::Bag empty(file("empty.bag"), rosbag::bagmode::Write); }
   EXPECT_EQ(refusal(file("empty.bag")), file("empty.bag") + ": no messages");
+}
+
+// The registry tells a bag by its first bytes, not its name, and reads it through the interface.
+TEST_F(FlightBagReader, IsTheRegistrysRosbagFormat) {
+  pe::FlightLogFormats formats;
+  formats.add(pe::flightBagFormat());
+  EXPECT_EQ(formats.names(), std::vector<std::string>{"rosbag"});
+  EXPECT_THROW(formats.add(pe::flightBagFormat()), std::invalid_argument);
+  writeMinimalBag(file("flight.ulg"));
+  const std::unique_ptr<pe::FlightLogReader> reader = formats.open(file("flight.ulg"));
+  pe::FlightLogOptions options;
+  options.sources["battery"] = "/power";  // a source the bag lacks: the required signal is missing
+  EXPECT_THROW(reader->read(options), pe::DataError);
+  options.sources.clear();
+  const pe::FlightStreams streams = reader->read(options);
+  EXPECT_EQ(streams.rc_out.size(), 1u);
+  EXPECT_EQ(streams.battery.size(), 1u);
+  options.sources["truth"] = "/sim/truth";
+  EXPECT_THROW(reader->read(options), pe::ConfigError);
+
+  const auto refusal = [&formats](const std::string& path) {
+    try {
+      formats.open(path);
+    } catch (const pe::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(refusal(file("absent.bag")), file("absent.bag") + ": no such file");
+  std::ofstream(file("text.bag")) << "not a\tbag \"at all\"\n";
+  EXPECT_EQ(refusal(file("text.bag")),
+            file("text.bag") + ": not a flight log of a known format (rosbag): it starts with \"not a\\x09bag \\x22a\"");
+  std::ofstream(file("empty.bag")).flush();
+  EXPECT_EQ(refusal(file("empty.bag")), file("empty.bag") + ": not a flight log of a known format (rosbag): it starts with \"\"");
 }
 
 TEST_F(FlightBagReader, RefusesABagWithoutARequiredTopic) {

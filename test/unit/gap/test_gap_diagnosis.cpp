@@ -56,11 +56,11 @@ class SyntheticFlights : public ::testing::Test {
   }
 
   // A flight of three 40 s hovers at the given masses, the battery sagging from `voltage_v`.
-  gap::Flight fly(const std::string& name, const World& world, const std::vector<double>& masses, double voltage_v,
+  pe::Flight fly(const std::string& name, const World& world, const std::vector<double>& masses, double voltage_v,
                   unsigned seed) const {
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> force_noise(0.0, 0.3), pwm_noise(0.0, 2.0);
-    gap::Flight flight;
+    pe::Flight flight;
     flight.name = name;
     flight.streams.source = name;
     flight.streams.motors = 4;
@@ -83,13 +83,13 @@ class SyntheticFlights : public ::testing::Test {
           }
           esc_voltage = sensed - world.supply_resistance * current;
         }
-        gap::RcOutFrame frame;
+        pe::RcOutFrame frame;
         frame.time_s = t;
         const double kick = world.kicks && std::fmod(t, 10.0) >= 5.0 && std::fmod(t, 10.0) < 5.3 ? 60.0 : 0.0;
         for (int k = 0; k < 4; ++k) frame.pwm_us[k] = pwm[k] + kick + pwm_noise(rng);
         flight.streams.rc_out.push_back(frame);
         if (i % 5 == 0) flight.streams.battery.push_back({t, sensed, -current});  // PX4 through MAVROS: negated
-        gap::ImuReading imu;
+        pe::ImuReading imu;
         imu.time_s = t;
         imu.specific_force_m_s2 = Eigen::Vector3d(0.0, 0.0, pe::kStandardGravity + force_noise(rng));
         flight.streams.imu.push_back(imu);
@@ -100,7 +100,7 @@ class SyntheticFlights : public ::testing::Test {
     return flight;
   }
 
-  std::vector<gap::Flight> flights(const World& world) const {
+  std::vector<pe::Flight> flights(const World& world) const {
     return {fly("f1.bag", world, {1.3, 1.6, 1.75}, 12.4, 1), fly("f2.bag", world, {1.35, 1.5, 1.8}, 11.8, 2),
             fly("f3.bag", world, {1.3, 1.7, 1.55}, 11.3, 3), fly("f4.bag", world, {1.45, 1.65, 1.4}, 12.2, 4),
             fly("f5.bag", world, {1.6, 1.35, 1.8}, 11.6, 5)};
@@ -271,7 +271,7 @@ TEST_F(SyntheticFlights, TheMotorBalanceNamesNoMotorForAnOffCentreCogAlone) {
 }
 
 TEST_F(SyntheticFlights, DropsASegmentsLastBlockWhenItSpansLessThanHalfABlock) {
-  gap::Flight flight = fly("f1.bag", World{}, {1.3}, 12.0, 1);
+  pe::Flight flight = fly("f1.bag", World{}, {1.3}, 12.0, 1);
   gap::BlockConfig config;
   config.block_s = 1.0;
   const double start = flight.segments[0].start_s;
@@ -282,7 +282,7 @@ TEST_F(SyntheticFlights, DropsASegmentsLastBlockWhenItSpansLessThanHalfABlock) {
 }
 
 TEST_F(SyntheticFlights, ReportsWhatItCannotUseAndDiagnosesTheRest) {
-  std::vector<gap::Flight> all = flights(World{});
+  std::vector<pe::Flight> all = flights(World{});
   all[1].segments.push_back({1000.0, 1010.0, 1.4});
   const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{});
   ASSERT_EQ(diagnosis.problems.size(), 1u);
@@ -291,8 +291,8 @@ TEST_F(SyntheticFlights, ReportsWhatItCannotUseAndDiagnosesTheRest) {
 }
 
 TEST_F(SyntheticFlights, RefusesWhenNothingIsUsable) {
-  std::vector<gap::Flight> all = flights(World{});
-  for (gap::Flight& flight : all) flight.segments = {{5000.0, 5010.0, 1.4}};
+  std::vector<pe::Flight> all = flights(World{});
+  for (pe::Flight& flight : all) flight.segments = {{5000.0, 5010.0, 1.4}};
   EXPECT_THROW(gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{}), pe::DataError);
 }
 

@@ -299,7 +299,7 @@ TEST(FlightManifest, RoundTripsThroughItsWriter) {
   const pe::FlightManifest read = pe::parseFlightManifest(text, "m.yaml");
   ASSERT_EQ(read.flights.size(), 2u);
   for (std::size_t f = 0; f < 2; ++f) {
-    EXPECT_EQ(read.flights[f].bag, manifest.flights[f].bag);
+    EXPECT_EQ(read.flights[f].log, manifest.flights[f].log);
     ASSERT_EQ(read.flights[f].segments.size(), manifest.flights[f].segments.size());
     for (std::size_t s = 0; s < read.flights[f].segments.size(); ++s) {
       EXPECT_EQ(read.flights[f].segments[s].start_s, manifest.flights[f].segments[s].start_s);
@@ -309,8 +309,8 @@ TEST(FlightManifest, RoundTripsThroughItsWriter) {
   }
   EXPECT_EQ(refusal([&] { pe::saveFlightManifest(manifest, "/nonexistent/folder/m.yaml", ""); }),
             "/nonexistent/folder/m.yaml: cannot open for writing");
-  EXPECT_EQ(pe::resolveBagPath("/x/y/m.yaml", "flight_01.bag"), "/x/y/flight_01.bag");
-  EXPECT_EQ(pe::resolveBagPath("/x/y/m.yaml", "/data/flight_02.bag"), "/data/flight_02.bag");
+  EXPECT_EQ(pe::resolveLogPath("/x/y/m.yaml", "flight_01.bag"), "/x/y/flight_01.bag");
+  EXPECT_EQ(pe::resolveLogPath("/x/y/m.yaml", "/data/flight_02.bag"), "/data/flight_02.bag");
 }
 
 TEST(FlightManifest, ReadsTheIssuesExample) {
@@ -323,6 +323,25 @@ TEST(FlightManifest, ReadsTheIssuesExample) {
   EXPECT_EQ(manifest.flights[0].segments[0].end_s, 178.0);
 }
 
+// The field is `log:` (a rosbag or any format diagnose_gap reads); `bag:`, its old name, still reads.
+TEST(FlightManifest, ReadsLogAndTheOldBag) {
+  const std::string segments = "    segments:\n      - {start: 1, end: 2, mass_kg: 1.3}\n";
+  const pe::FlightManifest read =
+      pe::parseFlightManifest("flights:\n  - log: a.ulg\n" + segments + "  - bag: b.bag\n" + segments, "m.yaml");
+  ASSERT_EQ(read.flights.size(), 2u);
+  EXPECT_EQ(read.flights[0].log, "a.ulg");
+  EXPECT_EQ(read.flights[1].log, "b.bag");
+  // The writer writes the new name.
+  EXPECT_NE(pe::flightManifestToYaml(read).find("  - log: b.bag\n"), std::string::npos);
+  EXPECT_EQ(refusal([&] { pe::parseFlightManifest("flights:\n  - log: a.ulg\n    bag: a.bag\n" + segments, "m.yaml"); }),
+            "m.yaml:3: flights[0].bag: give log or bag (its old name), not both");
+  EXPECT_EQ(refusal([&] { pe::parseFlightManifest("flights:\n  - segments:\n      - {start: 1, end: 2, mass_kg: 1}\n",
+                                                  "m.yaml"); }),
+            "m.yaml:2: flights[0].log: missing key");
+  EXPECT_EQ(refusal([&] { pe::parseFlightManifest("flights:\n  - log: ''\n" + segments, "m.yaml"); }),
+            "m.yaml:2: flights[0].log: is empty");
+}
+
 TEST(FlightManifest, RefusesBadSegments) {
   EXPECT_EQ(manifestRefusal("{start: 40, end: 70.5,", "{start: 40, end: 40,"),
             "m.yaml:5: flights[0].segments[1].end: 40 is not after start 40");
@@ -333,7 +352,7 @@ TEST(FlightManifest, RefusesBadSegments) {
   EXPECT_EQ(manifestRefusal("mass_kg: 1.315}", "mass_kg: 1.315, weight_g: 1315}"),
             "m.yaml:4: flights[0].segments[0].weight_g: unknown key (allowed: start, end, mass_kg)");
   EXPECT_EQ(manifestRefusal("  - bag: a.bag\n", "  - file: a.bag\n"),
-            "m.yaml:2: flights[0].file: unknown key (allowed: bag, segments)");
+            "m.yaml:2: flights[0].file: unknown key (allowed: log, bag, segments)");
   EXPECT_EQ(refusal([] { pe::parseFlightManifest("flights: []\n", "m.yaml"); }), "m.yaml:1: flights: no flights");
 }
 
@@ -345,7 +364,7 @@ TEST(FlightManifest, EntriesKeepAFlightsRefusalAndTheOtherFlights) {
   ASSERT_EQ(entries.size(), 3u);
   EXPECT_EQ(entries[0].refusal, "");
   EXPECT_EQ(entries[0].flight.segments.size(), 2u);
-  EXPECT_EQ(entries[1].flight.bag, "b.bag");
+  EXPECT_EQ(entries[1].flight.log, "b.bag");
   EXPECT_EQ(entries[1].refusal,
             path + ":8: flights[1].segments[0].mass_kg: 0 is outside 0..100 kg (must be positive)");
   EXPECT_EQ(entries[2].refusal, "");
@@ -355,6 +374,6 @@ TEST(FlightManifest, EntriesKeepAFlightsRefusalAndTheOtherFlights) {
   EXPECT_EQ(refusal([&] { pe::loadFlightManifestEntries(path); }), path + ":1: flights: no flights");
   pe::writeTextFile(path, replaced(kManifest, "  - bag: a.bag\n", "  - file: a.bag\n"));
   EXPECT_EQ(refusal([&] { pe::loadFlightManifestEntries(path); }),
-            path + ":2: flights[0].file: unknown key (allowed: bag, segments)");
+            path + ":2: flights[0].file: unknown key (allowed: log, bag, segments)");
   std::filesystem::remove(path);
 }

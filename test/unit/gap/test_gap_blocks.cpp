@@ -14,18 +14,18 @@ namespace {
 
 // 20 s of level flight at 10 Hz: rc/out ramping 1500 -> 1519 us over each second, battery 12 V
 // with -8 A (PX4's sign), level IMU at 1 g, rangefinder 1.5 m; one segment 2-12 s of 1.2 kg.
-gap::Flight levelFlight() {
-  gap::Flight flight;
+pe::Flight levelFlight() {
+  pe::Flight flight;
   flight.name = "f.bag";
   flight.streams.motors = 4;
   for (int i = 0; i <= 200; ++i) {
     const double t = 0.1 * i;
-    gap::RcOutFrame frame;
+    pe::RcOutFrame frame;
     frame.time_s = t;
     for (int k = 0; k < 4; ++k) frame.pwm_us[k] = 1500.0 + 2.0 * (i % 10);
     flight.streams.rc_out.push_back(frame);
     flight.streams.battery.push_back({t, 12.0, -8.0});
-    gap::ImuReading imu;
+    pe::ImuReading imu;
     imu.time_s = t;
     imu.specific_force_m_s2 = Eigen::Vector3d(0.0, 0.0, pe::kStandardGravity);
     flight.streams.imu.push_back(imu);
@@ -77,7 +77,7 @@ TEST(GapBlocks, GroupsConsecutiveBlocksForTheTest) {
 }
 
 TEST(GapBlocks, NamesASegmentOutsideTheLogAndAFlightWithoutBattery) {
-  gap::Flight flight = levelFlight();
+  pe::Flight flight = levelFlight();
   flight.segments.push_back({15.0, 30.0, 1.0});
   const gap::FlightBlocks cut = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
   ASSERT_EQ(cut.problems.size(), 1u);
@@ -92,7 +92,7 @@ TEST(GapBlocks, NamesASegmentOutsideTheLogAndAFlightWithoutBattery) {
 }
 
 TEST(GapBlocks, WithoutImuTheWeightIsTheTruthAndItIsSaid) {
-  gap::Flight flight = levelFlight();
+  pe::Flight flight = levelFlight();
   flight.streams.imu.clear();
   const gap::FlightBlocks cut = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
   ASSERT_FALSE(cut.blocks.empty());

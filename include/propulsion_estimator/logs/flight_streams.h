@@ -1,0 +1,78 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "propulsion_estimator/logs/flight_manifest.h"
+
+namespace propulsion_estimator {
+
+/// The most motors a flight may have (RCOut carries up to 16 channels; multicopters use 4-8).
+constexpr int kMaxMotors = 8;
+
+/// One ESC command: the pulse width of each motor, in rotor order.
+struct RcOutFrame {
+  double time_s = 0.0;  ///< s from the log's first message
+  std::array<double, kMaxMotors> pwm_us{};  ///< per motor, us; motors beyond FlightStreams::motors are 0
+};
+
+/// One battery report as the autopilot sends it (MAVROS on PX4 negates the current: the sign is
+/// left as logged, and the diagnosis takes the discharge direction from the flight as a whole).
+struct BatteryReading {
+  double time_s = 0.0;  ///< s from the log's first message
+  double voltage_v = 0.0;  ///< V at the battery's terminals
+  double current_a = 0.0;  ///< NaN when the autopilot has no current sensor
+};
+
+/// One IMU message: the attitude (body to local ENU, REP-103) and the specific force the
+/// accelerometer measures (gravity included: +9.81 m/s^2 up at rest), in the body frame.
+struct ImuReading {
+  double time_s = 0.0;  ///< s from the log's first message
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< rotates body into local ENU
+  Eigen::Vector3d specific_force_m_s2 = Eigen::Vector3d::Zero();  ///< m/s^2, body frame, gravity included
+};
+
+/// A scalar signal in time.
+struct ScalarReading {
+  double time_s = 0.0;  ///< s from the log's first message
+  double value = 0.0;  ///< in the unit the stream's name says
+};
+
+/// Everything the diagnosis reads from one flight, as logged, whatever the log's format: times in
+/// seconds from the first message of the log (the manifest's clock), values in SI units. Only rc_out and battery are
+/// required; an empty stream is a signal the flight does not have.
+struct FlightStreams {
+  std::string source;  ///< the log it came from, for messages
+  int motors = 0;      ///< channels taken from each RcOutFrame
+  std::vector<RcOutFrame> rc_out;  ///< required
+  std::vector<BatteryReading> battery;  ///< required
+  std::vector<ImuReading> imu;  ///< empty without an IMU
+  std::vector<ScalarReading> altitude_m;             ///< local position z (up)
+  std::vector<ScalarReading> vertical_speed_m_s;     ///< local velocity z (up)
+  std::vector<ScalarReading> static_pressure_pa;  ///< Pa
+  std::vector<ScalarReading> air_temperature_c;  ///< deg C
+  std::vector<ScalarReading> height_above_ground_m;  ///< rangefinder range (valid readings only)
+  std::vector<ScalarReading> motor_temperature_c;  ///< deg C
+};
+
+/// The signals of a flight, in FlightStreams' order: "rc_out", "battery", "imu", "pose" (altitude_m),
+/// "velocity" (vertical_speed_m_s), "static_pressure", "air_temperature", "rangefinder"
+/// (height_above_ground_m), "motor_temperature". A log format names its sources by these.
+const std::vector<std::string>& flightSignalNames();
+
+/// The readings of each signal of `streams`, in flightSignalNames() order.
+std::vector<std::size_t> signalCounts(const FlightStreams& streams);
+
+/// A flight of the manifest: its streams and its weighed segments.
+struct Flight {
+  std::string name;  ///< the log as the manifest names it
+  FlightStreams streams;  ///< the flight's signals
+  std::vector<ManifestSegment> segments;  ///< the weighed segments, on the streams' clock
+};
+
+}  // namespace propulsion_estimator

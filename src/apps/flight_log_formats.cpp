@@ -1,0 +1,17 @@
+#include "flight_log_formats.h"
+
+#include "propulsion_estimator/bag/flight_bag_reader.h"
+
+namespace propulsion_estimator {
+
+const FlightLogFormats& flightLogFormats() {
+  static const FlightLogFormats kFormats = [] {
+    FlightLogFormats formats;
+    // One line per format: its reader tells it from the file's first bytes.
+    formats.add(flightBagFormat());
+    return formats;
+  }();
+  return kFormats;
+}
+
+}  // namespace propulsion_estimator

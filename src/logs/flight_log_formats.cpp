@@ -1,0 +1,82 @@
+#include "propulsion_estimator/logs/flight_log_formats.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/common/input_error.h"
+
+namespace propulsion_estimator {
+namespace {
+
+// The bytes as C would spell them: printable ASCII as is, the rest as \xNN.
+std::string escaped(const std::string& bytes) {
+  std::string text;
+  for (const char c : bytes) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f && c != '"' && c != '\\') {
+      text += c;
+    } else {
+      static const char kHex[] = "0123456789abcdef";
+      text += std::string("\\x") + kHex[byte >> 4] + kHex[byte & 0xf];
+    }
+  }
+  return text;
+}
+
+}  // namespace
+
+void FlightLogOptions::validate(const std::string& what) const {
+  if (motors < 1 || motors > kMaxMotors) {
+    throw ConfigError(what + ": " + std::to_string(motors) + " motors, expected 1.." + std::to_string(kMaxMotors));
+  }
+  for (const auto& [name, source] : sources) {
+    const std::vector<std::string>& names = flightSignalNames();
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      std::string list;
+      for (const std::string& signal : names) list += (list.empty() ? "" : ", ") + signal;
+      throw ConfigError(what + ": '" + name + "' is not a signal (one of " + list + ")");
+    }
+    if (source.empty()) throw ConfigError(what + ": " + name + ": an empty source");
+  }
+}
+
+void FlightLogFormats::add(FlightLogFormat format) {
+  if (format.magic.empty()) throw std::invalid_argument("flight-log format " + format.name + ": no magic bytes");
+  for (const FlightLogFormat& known : formats_) {
+    if (known.name == format.name || known.magic == format.magic) {
+      throw std::invalid_argument("flight-log format " + format.name + " added twice");
+    }
+  }
+  formats_.push_back(std::move(format));
+}
+
+std::unique_ptr<FlightLogReader> FlightLogFormats::open(const std::string& path) const {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
+  std::size_t longest = 0;
+  for (const FlightLogFormat& format : formats_) longest = std::max(longest, format.magic.size());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot be read");
+  std::string head(longest, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(longest));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  for (const FlightLogFormat& format : formats_) {
+    if (head.compare(0, format.magic.size(), format.magic) == 0) return format.open(path);
+  }
+  std::string list;
+  for (const std::string& name : names()) list += (list.empty() ? "" : ", ") + name;
+  throw DataError(path + ": not a flight log of a known format (" + list + "): it starts with \"" + escaped(head) +
+                  "\"");
+}
+
+std::vector<std::string> FlightLogFormats::names() const {
+  std::vector<std::string> names;
+  for (const FlightLogFormat& format : formats_) names.push_back(format.name);
+  return names;
+}
+
+}  // namespace propulsion_estimator
