@@ -22,6 +22,7 @@ issue 8 are missed (>= 90 % right, no null case named, weak propellers located, 
 import argparse
 import concurrent.futures
 import datetime
+import math
 import os
 import platform
 import random
@@ -64,6 +65,52 @@ def draw_effect(name, rng):
     return SIMULATED[name](rng)
 
 
+def draw_family(seed):
+    """One member of the randomized family: the case's hardware and vehicle drawn around the thesis
+    quad, for its bench sweep and its flights alike, so that the diagnosis meets physics it was not
+    tuned on (ESC end points and bridge resistance, motor Kv, winding resistance, no-load current,
+    magnet and thermal coefficients, propeller thrust and torque coefficients drawn independently,
+    battery resistances; drag, centre of gravity and the avionics' own current draw).
+    Its own random stream: the cases drawn from --seed are the same with or without the family.
+    The battery's sub-model family (open-circuit curve shape, RC pairs) is issue 19's, in
+    sim/physics: once it is in main, it is drawn here too."""
+    rng = random.Random(seed * 7919 + 17)
+    scale = lambda low, high: rng.uniform(low, high)  # noqa: E731
+    hardware = {
+        "esc": {"pwm_zero_us": round(1071 + rng.uniform(-25, 25), 1), "pwm_full_us": round(1957 + rng.uniform(-20, 20), 1),
+                "resistance_ohm": round(0.02 * scale(0.5, 2.0), 4)},
+        "motor": {"kv_rpm_per_v": round(920 * scale(0.94, 1.06), 1),
+                  "winding_resistance_ohm": round(0.21 * scale(0.75, 1.35), 4),
+                  "no_load_current_a": round(0.81 * scale(0.7, 1.4), 3),
+                  "flux_temperature_coefficient_per_c": round(rng.uniform(-0.0013, -0.0009), 5),
+                  "thermal_resistance_c_per_w": round(0.52 * scale(0.7, 1.5), 3)},
+        "propeller": {"thrust_coefficient": round(0.0807 * scale(0.93, 1.07), 5),
+                      "torque_coefficient": round(0.00445 * scale(0.9, 1.1), 6),
+                      "solidity": round(0.09 * scale(0.85, 1.15), 4)},
+        "battery": {"series_resistance_ohm": round(0.015 * scale(0.6, 2.0), 4),
+                    "rc_resistance_ohm": round(0.010 * scale(0.5, 2.0), 4),
+                    "rc_capacitance_f": round(3000 * scale(0.5, 2.0))},
+    }
+    angle = rng.uniform(0, 2 * math.pi)
+    # Within the old suite's 10 mm and on the F450's own landing gear: wider offsets and other gear
+    # tipped the simulated vehicle over on landing in the development seeds 156581 and 727793.
+    radius = rng.uniform(0.0, 0.010)
+    vehicle = {"drag_area_m2": round(rng.uniform(0.02, 0.08), 3),
+               "centre_of_mass_offset_m": [round(radius * math.cos(angle), 4), round(radius * math.sin(angle), 4), 0.0],
+               "avionics_current_a": round(rng.uniform(0.2, 2.0), 2)}
+    return hardware, vehicle
+
+
+def family_params(base_path, hardware, out_path):
+    """The thesis parameter file with the drawn hardware written over it."""
+    with open(base_path) as handle:
+        params = yaml.safe_load(handle)
+    for section, values in hardware.items():
+        params[section].update(values)
+    with open(out_path, "w") as handle:
+        yaml.safe_dump(params, handle, default_flow_style=None)
+
+
 def effects_file(effects, rng):
     """The effects section of a flight: per-flight air for air_density (sites differ day to day)."""
     out = {}
@@ -76,7 +123,7 @@ def effects_file(effects, rng):
     return out
 
 
-def flight_profile(rng, urdf, fault):
+def flight_profile(rng, urdf, fault, vehicle=None):
     """A flight of two lifts: take-off, hover, climb, hover, descent to near the ground, hover, land;
     then a new payload and again. Weighed spans cover the whole airborne time."""
     segments = [{"type": "wait", "duration_s": 3}]
@@ -116,6 +163,10 @@ def flight_profile(rng, urdf, fault):
         "manifest": {"settle_s": 4, "spans": "airborne"},
         "segments": segments,
     }
+    if vehicle:
+        profile["vehicle"].update(vehicle)
+        if fault and fault.get("cg_offset_m"):
+            profile["vehicle"]["centre_of_mass_offset_m"] = fault["cg_offset_m"]
     if fault and fault.get("weak_propeller"):
         profile["faults"] = {"weak_propeller": fault["weak_propeller"]}
     return profile
@@ -136,6 +187,12 @@ def run_case(case, args):
     log = os.path.join(folder, "log.txt")
     params = os.path.join(args.repo, "config/sim/e300_dji2212_dji9443.yaml")
     urdf = os.path.join(args.repo, "config/f450_quad.urdf")
+    vehicle = None
+    if args.family:
+        hardware, vehicle = draw_family(case["seed"])
+        case["family"] = dict(hardware, vehicle=vehicle)
+        family_params(params, hardware, os.path.join(folder, "params.yaml"))
+        params = os.path.join(folder, "params.yaml")
     tool = lambda name: os.path.join(args.bin, name)  # noqa: E731
     bench = os.path.join(folder, "bench.csv")
     model = os.path.join(folder, "model.yaml")
@@ -149,7 +206,7 @@ def run_case(case, args):
     for f in range(case["flights"]):
         stem = os.path.join(folder, "flight_%d" % (f + 1))
         with open(stem + ".profile.yaml", "w") as handle:
-            yaml.safe_dump(flight_profile(rng, urdf, case.get("fault")), handle, default_flow_style=None)
+            yaml.safe_dump(flight_profile(rng, urdf, case.get("fault"), vehicle), handle, default_flow_style=None)
         command = [tool("simulate"), "flight", "--params", params, "--profile", stem + ".profile.yaml",
                    "--seed", str(case["seed"] * 100 + f), "--bag", stem + ".bag", "--manifest", stem + ".manifest.yaml"]
         if case["effects"]:
@@ -253,19 +310,37 @@ def summarise(rows):
     return lines
 
 
+def write_section(path, marker, text):
+    """Writes `text` between <!-- marker --> lines of `path`, keeping the rest of the file."""
+    begin, end = "<!-- %s -->" % marker, "<!-- /%s -->" % marker
+    old = open(path).read() if os.path.exists(path) else "# Validation of diagnose_gap\n"
+    block = begin + "\n" + text.rstrip("\n") + "\n" + end + "\n"
+    if begin in old and end in old:
+        new = old[:old.index(begin)] + block + old[old.index(end) + len(end) + 1:]
+    else:
+        new = old.rstrip("\n") + "\n\n" + block
+    with open(path, "w") as handle:
+        handle.write(new)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--bin", required=True)
     parser.add_argument("--repo", required=True)
     parser.add_argument("--work", required=True)
     parser.add_argument("--cases", type=int, default=44)
-    parser.add_argument("--seed", type=int, default=2026)
+    parser.add_argument("--seed", type=int, help="repeat a run (default: a fresh seed, printed)")
+    parser.add_argument("--family", action="store_true",
+                        help="draw each case's hardware and vehicle from the randomized family (draw_family)")
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--reuse", action="store_true", help="diagnose the flights already simulated in --work again")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--markdown")
     parser.add_argument("--junit")
     args = parser.parse_args()
+    if args.seed is None:
+        args.seed = random.SystemRandom().randrange(1, 10**6)
+    print("SEED=%d%s" % (args.seed, " (family)" if args.family else ""), flush=True)
     cases = make_cases(args.cases, args.seed, args.quick, known_effects(args.bin))
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         rows = list(pool.map(lambda case: run_case(case, args), cases))
@@ -274,6 +349,10 @@ def main():
     right = sum(r["right"] for r in done)
     injected = [r for r in done if r["effects"] and r["before"]]
     shrink = [100.0 * (1.0 - r["after"] / r["before"]) for r in injected]
+    nulls = [r for r in done if r["label"] == "null"]
+    floor = sum(r["before"] for r in nulls) / len(nulls) if nulls else 0.0
+    excess = [100.0 * (r["before"] - r["after"]) / (r["before"] - floor) for r in injected if r["before"] > floor]
+    wrongly_named = [r for r in done if set(r["selected"]) - set(r["effects"])]
     nulls_named = [r for r in done if not r["effects"] and r["selected"]]
     weak = [r for r in done if r["label"] == "weak_propeller"]
     weak_right = sum(r["right"] for r in weak)
@@ -286,6 +365,11 @@ def main():
                     mean_shrink, len(shrink)))
     unfaulted = [r for r in done if r["label"] != "weak_propeller"]
     false_alarms = sum(r["health_false"] for r in unfaulted)
+    mean_excess = sum(excess) / len(excess) if excess else float("nan")
+    lines.append("An effect wrongly named in selected: %d of %d cases (%.0f %%). Mean held-out shrink as a share of "
+                 "its excess over the null floor (%.2f %%, the null cases' mean): %.0f %% over %d cases."
+                 % (len(wrongly_named), len(done), 100.0 * len(wrongly_named) / max(len(done), 1), floor,
+                    mean_excess, len(excess)))
     lines.append("Onboard motor-health check (~capability): capability false alarms: %d (flights flagged of %d "
                  "without a motor fault, centre-of-gravity offsets included); weak propeller flagged on its channel "
                  "on %d of %d flights, another channel flagged on %d."
@@ -304,21 +388,44 @@ def main():
             r["name"], injected_text, ", ".join(r["selected"]) or "none", r["suspect"], r["before"], r["after"],
             r["payload_before"], r["payload_after"]))
     print("\n".join(lines))
-    passed = (not errors and right >= 0.9 * len(done) and not nulls_named and weak_right == len(weak)
-              and (not shrink or mean_shrink >= 70.0) and false_alarms == 0)
-    if args.markdown:
-        with open(args.markdown, "w") as handle:
-            handle.write("# Validation of diagnose_gap\n\n")
-            handle.write("Run on %s with `make validate-gap` (`scripts/validate_gap.py --cases %d --seed %d`) on %s. "
-                         "Each case: a clean bench sweep simulated and fitted with fit_surfaces, five flights "
-                         "simulated with the injected effect or fault, diagnose_gap told nothing of it. Right means "
-                         "exactly the injected effects selected (none for null, weak-propeller and "
-                         "centre-of-gravity cases) and, for a weak propeller, its motor the suspect. Targets (issue "
-                         "8): >= 90 %% right, no null or fault case named, every weak propeller located, >= 70 %% "
-                         "mean held-out RMSE shrink where an effect was injected; and (issue 10) no capability false alarm: the "
-                         "onboard motor-health check, replayed on every flight, flags nothing without a motor fault.\n\n"
-                         % (datetime.date.today().isoformat(), args.cases, args.seed, "%s %s, %d cores" % (platform.system(), platform.machine(), os.cpu_count() or 1)))
-            handle.write("\n".join(lines) + "\n")
+    if args.family:
+        # Issue 18's targets on the randomized family.
+        passed = (not errors and right >= 0.9 * len(done) and len(wrongly_named) <= 0.02 * len(done)
+                  and not nulls_named and weak_right >= 0.9 * len(weak) and (not excess or mean_excess >= 70.0))
+    else:
+        passed = (not errors and right >= 0.9 * len(done) and not nulls_named and weak_right == len(weak)
+                  and (not shrink or mean_shrink >= 70.0) and false_alarms == 0)
+    machine = "%s %s, %d cores" % (platform.system(), platform.machine(), os.cpu_count() or 1)
+    today = datetime.date.today().isoformat()
+    if args.markdown and args.family:
+        write_section(args.markdown, "validate_gap:family seed %d" % args.seed,
+                      "## Randomized family, seed %d (%s)\n\n"
+                      "Run on %s with `make validate-gap SEED=%d` (`scripts/validate_gap.py --family --cases %d "
+                      "--seed %d`) on %s. Each case draws its hardware and vehicle from the family (ESC end points "
+                      "and bridge resistance, motor Kv, winding resistance, no-load current, flux and thermal "
+                      "coefficients, propeller thrust and torque coefficients independently, battery resistances, "
+                      "drag, centre of gravity, the avionics' own 0.2-2 A on the battery current), "
+                      "its bench sweep is simulated with that hardware and fitted, and its five flights are flown "
+                      "with it. Targets (issue 18): >= 90 %% exactly right, <= 2 %% with an effect wrongly named, "
+                      "no null or fault case named, >= 90 %% of weak propellers on their own motor, >= 70 %% "
+                      "mean held-out shrink of the excess over the null floor. %s\n\n"
+                      % (args.seed, "passed" if passed else "targets missed", today, args.seed, args.cases,
+                         args.seed, machine, "PASSED." if passed else "Targets missed.")
+                      + "\n".join(lines) + "\n")
+    elif args.markdown:
+        write_section(args.markdown, "validate_gap:fixed",
+                      "## The fixed suite (seed %d, the thesis hardware)\n\n" % args.seed +
+                      "Run on %s with `make validate-gap-fixed` (`scripts/validate_gap.py --cases %d --seed %d`) on %s. "
+                      "Each case: a clean bench sweep simulated and fitted with fit_surfaces, five flights "
+                      "simulated with the injected effect or fault, diagnose_gap told nothing of it. Right means "
+                      "exactly the injected effects selected (none for null, weak-propeller and "
+                      "centre-of-gravity cases) and, for a weak propeller, its motor the suspect. Targets (issue "
+                      "8): >= 90 %% right, no null or fault case named, every weak propeller located, >= 70 %% "
+                      "mean held-out RMSE shrink where an effect was injected; and (issue 10) no capability false alarm: the "
+                      "onboard motor-health check, replayed on every flight, flags nothing without a motor fault. "
+                      "This suite was re-run while the diagnosis was tuned: it measures the fit to our simulator, "
+                      "not a validation (the randomized family's sections are).\n\n"
+                      % (today, args.cases, args.seed, machine) + "\n".join(lines) + "\n")
     if args.junit:
         with open(args.junit, "w") as handle:
             failure = "" if passed else '<failure message="acceptance thresholds missed"/>'

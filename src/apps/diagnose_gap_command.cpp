@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/mavros_topics.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/gap/diagnosis.h"
@@ -40,6 +42,8 @@ struct Arguments {
   std::string manifest;
   std::string out;
   std::string urdf;
+  std::string frame;
+  double arm_m = kNaN;
   std::vector<std::string> topics;
   std::vector<double> pwm_range_us;
   std::vector<std::string> bench;
@@ -84,10 +88,17 @@ FlightLogOptions optionsOf(const std::vector<std::string>& arguments, const std:
   return options;
 }
 
-Vehicle vehicleOf(const std::string& urdf) {
+Vehicle vehicleOf(const Arguments& args) {
+  const std::string& urdf = args.urdf;
+  if (!args.frame.empty()) {
+    if (!urdf.empty()) throw ConfigError("--frame: give the frame or --urdf, not both");
+    if (std::isnan(args.arm_m)) throw ConfigError("--frame " + args.frame + ": needs --arm-m, the arm length in m");
+    return Vehicle::frame(args.frame, args.arm_m);
+  }
+  if (!std::isnan(args.arm_m)) throw ConfigError("--arm-m: needs --frame");
   if (urdf.empty()) {
-    std::printf("note: no --urdf: %d motors on RCOut channels 1-%d, thrusting up at unknown positions (the motor "
-                "balance needs the geometry)\n",
+    std::printf("note: no --urdf or --frame: %d motors on RCOut channels 1-%d, thrusting up at unknown positions "
+                "(the motor balance needs the geometry; a single weak motor cannot be told from an effect)\n",
                 kDefaultMotors, kDefaultMotors);
     return Vehicle::upwardRotors(kDefaultMotors);
   }
@@ -230,7 +241,7 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
 
 int diagnose(const Arguments& args) {
   const PropulsionModel model = loadModelFile(args.model);
-  const Vehicle vehicle = vehicleOf(args.urdf);
+  const Vehicle vehicle = vehicleOf(args);
   const FlightLogOptions options =
       optionsOf(args.topics, args.pwm_range_us, static_cast<int>(vehicle.rotors.size()));
   const gap::DiagnosisConfig config = configOf(args, options);
@@ -290,6 +301,9 @@ int runDiagnoseGap(int argc, char** argv) {
   app.add_option("--urdf", args.urdf,
                  "Vehicle URDF: rotors (rotor_<k>_joint, in motor-channel order) and geometry (default: a quadcopter "
                  "on channels 1-4, geometry unknown)");
+  app.add_option("--frame", args.frame,
+                 "Instead of --urdf, a common frame in ArduPilot's motor order: quad_x, hexa_x, octo_x (needs --arm-m)");
+  app.add_option("--arm-m", args.arm_m, "Arm length of --frame: centre to rotor hub, m");
   app.add_option("--topic", args.topics,
                  "NAME=TOPIC: in a rosbag, read signal NAME from TOPIC instead of MAVROS' (repeatable); names: " + signalNames());
   app.add_option("--pwm-range-us", args.pwm_range_us,

@@ -55,6 +55,8 @@ class Diagnoser {
   double suspectThrustFactor(int motor, double yaw_gap) const;
   double currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const;
   double meanPwm(const Block& block) const;
+  void addProblemOnce(const std::string& problem);
+  std::string standoutMotor() const;
 
   // The steps of run(), in order.
   void reportGap(const BlockView& pwm_view, const std::vector<double>& plain_view);
@@ -254,6 +256,37 @@ double Diagnoser::currentViewRatio(const effects::ModelEffects& without, const e
   return sum_xx > 0.0 ? sum_xy / sum_xx : kNaN;
 }
 
+void Diagnoser::addProblemOnce(const std::string& problem) {
+  if (std::find(diagnosis_.problems.begin(), diagnosis_.problems.end(), problem) == diagnosis_.problems.end()) {
+    diagnosis_.problems.push_back(problem);
+  }
+}
+
+// Without rotor geometry: a motor whose mean pulse width over the steady blocks stands out alone
+// from the others' median (by more than 15 us and 2.5 times the next one) may be weak, and a weak
+// motor draws more current and looks like a vehicle-wide effect. "" when none stands out; else the
+// line saying so.
+std::string Diagnoser::standoutMotor() const {
+  const int motors = motorCount();
+  if (motors < 3 || blocks_.empty()) return "";
+  std::vector<double> mean(motors, 0.0);
+  for (const Block& block : blocks_) {
+    for (int k = 0; k < motors; ++k) mean[k] += block.pwm_us[k] / blocks_.size();
+  }
+  std::vector<double> sorted = mean;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = 0.5 * (sorted[(motors - 1) / 2] + sorted[motors / 2]);
+  std::vector<std::pair<double, int>> deviation;
+  for (int k = 0; k < motors; ++k) deviation.push_back({std::abs(mean[k] - median), k});
+  std::sort(deviation.rbegin(), deviation.rend());
+  if (!(deviation[0].first > 15.0 && deviation[0].first > 2.5 * deviation[1].first)) return "";
+  const int channel = config_.channels.empty() ? deviation[0].second + 1 : config_.channels[deviation[0].second];
+  return "one motor may be at fault: channel " + std::to_string(channel) + "'s pulse width stands " +
+         formatPrintf("%.0f", mean[deviation[0].second] - median) +
+         " us from the others' and, without rotor geometry, a weak motor cannot be told from an effect: give the "
+         "frame (--frame quad_x|hexa_x|octo_x --arm-m) or --urdf; no effect is named";
+}
+
 double Diagnoser::meanPwm(const Block& block) const {
   double sum = 0.0;
   for (int k = 0; k < motorCount(); ++k) sum += block.pwm_us[k];
@@ -425,6 +458,13 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
                       formatNumber(spec.max) + ": the gap is not of this effect's shape";
     } else if (!excludes_neutral) {
       result.reason = "its 95 % interval includes no effect";
+    } else if (!vehicle_.hasGeometry() && effects::requiredSignal(kind) == effects::Signal::kNone) {
+      // A correction that reads no signal moves every block alike, and so does one weak motor:
+      // without the rotors' positions the moment balance cannot tell them apart.
+      result.reason = "lowers the held-out error, but without rotor geometry one weak motor looks the same: one "
+                      "motor may be at fault: give the frame (--frame quad_x|hexa_x|octo_x --arm-m) or --urdf";
+      addProblemOnce("one motor may be at fault: give the frame (--frame quad_x|hexa_x|octo_x --arm-m) or --urdf; "
+                     "without it an effect that reads no signal is not named");
     } else {
       result.reason = "lowers the held-out error significantly";
       if (ms < best_ms) {
@@ -449,10 +489,17 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
     result.testable = result.reason.empty();
     (*results)[kind] = result;
   }
-  const bool can_hold_out = units_ >= 2;
+  bool can_hold_out = units_ >= 2;
   HeldOutPrediction current = before;
   if (!can_hold_out) {
     diagnosis_.problems.push_back("one weighed segment only: nothing can be held out, so no effect is selected");
+  }
+  if (!vehicle_.hasGeometry()) {
+    const std::string standout = standoutMotor();
+    if (!standout.empty()) {
+      diagnosis_.problems.push_back(standout);
+      can_hold_out = false;
+    }
   }
   std::vector<Kind> selected;
   for (int round = 0; can_hold_out && round < config_.max_effects; ++round) {

@@ -38,6 +38,12 @@ struct Vehicle {
   static Vehicle upwardRotors(int n);
   /// Quad X in PX4/ArduPilot motor order (front-right, rear-left, front-left, rear-right).
   static Vehicle quadX(double arm_length_m);
+  /// A common frame by name, rotors `arm_length_m` from the centre in the plane of the base link,
+  /// in ArduPilot's motor order (AP_MotorsMatrix): "quad_x" (as quadX), "hexa_x", "octo_x".
+  /// Throws ConfigError for another name or an arm length outside 0.03..2 m.
+  static Vehicle frame(const std::string& name, double arm_length_m);
+  /// The names frame() knows.
+  static std::vector<std::string> frameNames();
 };
 
 }  // namespace propulsion_estimator

@@ -29,7 +29,8 @@ AutopilotParams readAutopilot(const YamlMap& map) {
 }
 
 VehicleSetup readVehicle(const YamlMap& map, const std::string& folder) {
-  map.allowOnly({"urdf", "centre_of_mass_offset_m", "landing_gear", "drag_area_m2", "battery_initial_soc"});
+  map.allowOnly({"urdf", "centre_of_mass_offset_m", "landing_gear", "drag_area_m2", "battery_initial_soc",
+                 "avionics_current_a"});
   VehicleSetup vehicle;
   const std::string urdf = map.text("urdf");
   vehicle.urdf_path =
@@ -41,6 +42,7 @@ VehicleSetup readVehicle(const YamlMap& map, const std::string& folder) {
   vehicle.landing_gear_half_width_m = gear.number("half_width_m");
   vehicle.drag_area_m2 = map.number("drag_area_m2");
   vehicle.battery_initial_soc = map.number("battery_initial_soc");
+  if (map.has("avionics_current_a")) vehicle.avionics_current_a = map.number("avionics_current_a");
   return vehicle;
 }
 

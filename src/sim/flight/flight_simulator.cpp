@@ -243,6 +243,7 @@ class FlightRun {
         noise_(seed),
         origin_(setup_.dynamics.basePosition()),
         current_sign_(profile.autopilot.flavour == AutopilotFlavour::kPx4 ? -1.0 : 1.0),
+        avionics_a_(profile.vehicle.avionics_current_a),
         position_error_(sensors.position_sigma_m, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
                         &noise_),
         velocity_error_(sensors.velocity_sigma_m_s, sensors.navigation_error_correlation_s, sensors.pose_rate_hz,
@@ -322,8 +323,11 @@ class FlightRun {
                                 axial_speed);
       train_.setInflow(k, inflows_[k]);
     }
-    const PowerTrainState& power =
-        train_.step(pwm, Supply{battery_.sourceVoltage(), battery_.seriesResistanceOhm()}, air_, kFlightStepS);
+    // The avionics load the battery beside the ESCs: the ESCs' supply is the battery's Thevenin
+    // source less the avionics' drop across its series resistance.
+    const PowerTrainState& power = train_.step(
+        pwm, Supply{battery_.sourceVoltage() - battery_.seriesResistanceOhm() * avionics_a_, battery_.seriesResistanceOhm()},
+        air_, kFlightStepS);
     for (int k = 0; k < rotors_; ++k) {
       thrust_[k] = power.motors[k].thrust_n * airframe_share_;
       torque_[k] = power.motors[k].torque_nm;
@@ -346,7 +350,7 @@ class FlightRun {
       }
       ground_contacts_.back().second = t + kFlightStepS;
     }
-    battery_.draw(power.current_a, kFlightStepS);
+    battery_.draw(power.current_a + avionics_a_, kFlightStepS);
     if (battery_.stateOfCharge() < kEmptyStateOfCharge) {
       throw SimulationError(profile_.source + ": vehicle.battery_initial_soc: the battery is empty " +
                             formatPrintf("%.3g", t) + " s into the flight");
@@ -365,7 +369,7 @@ class FlightRun {
     if (truth_.due(t)) sink_->truth(truthSample(t, pwm, power, navigation));
     if (battery_stream_.due(t)) {
       sink_->battery({t, power.terminal_voltage_v + noise_(sensors_.battery_voltage_sigma_v),
-                      current_sign_ * (power.current_a + noise_(sensors_.battery_current_sigma_a)),
+                      current_sign_ * (power.current_a + avionics_a_ + noise_(sensors_.battery_current_sigma_a)),
                       std::round(100.0 * std::clamp(battery_.stateOfCharge(), 0.0, 1.0)) / 100.0});
     }
     if (imu_.due(t)) sink_->imu(imuSample(t, navigation));
@@ -412,7 +416,7 @@ class FlightRun {
     sample.density_ratio = density_ / params_.bench.air.densityKgM3();
     sample.battery_voltage_v = power.terminal_voltage_v;
     sample.esc_voltage_v = power.esc_voltage_v;
-    sample.battery_current_a = power.current_a;
+    sample.battery_current_a = power.current_a + avionics_a_;
     sample.thrust_loss_factor = airframe_share_;
     double static_thrust = 0.0, climb_thrust = 0.0;
     for (int k = 0; k < rotors_; ++k) {
@@ -482,6 +486,7 @@ class FlightRun {
   Noise noise_;
   const Eigen::Vector3d origin_;
   const double current_sign_;
+  const double avionics_a_;  // drawn from the battery beside the ESCs, A
   GaussMarkov3 position_error_, velocity_error_;
   Stream rc_out_, truth_, battery_stream_, imu_, pose_, pressure_, air_temperature_, range_, motor_temperature_;
   std::vector<double> thrust_, torque_;

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -178,6 +179,36 @@ TEST_F(SyntheticFlights, PointsAtAWeakPropellerAndNamesNoEffect) {
   world.weak_motor = 2;
   world.weak_factor = 0.85;
   const gap::Diagnosis diagnosis = diagnose(world);
+  ASSERT_TRUE(diagnosis.motors.suspect_channel);
+  EXPECT_EQ(*diagnosis.motors.suspect_channel, 3);
+  EXPECT_TRUE(diagnosis.selected.empty());
+}
+
+TEST_F(SyntheticFlights, WithoutGeometryAWeakMotorIsNotNamedAsAnEffect) {
+  World world;
+  world.weak_motor = 2;
+  world.weak_factor = 0.85;
+  const gap::Diagnosis diagnosis =
+      gap::diagnoseGap(model_, pe::Vehicle::upwardRotors(4), flights(world), gap::DiagnosisConfig());
+  EXPECT_FALSE(diagnosis.motors.suspect_channel);
+  for (const gap::EffectResult& effect : diagnosis.effects) {
+    EXPECT_TRUE(std::find(diagnosis.selected.begin(), diagnosis.selected.end(), effect.kind) == diagnosis.selected.end())
+        << pe::effects::kindName(effect.kind) << ": " << effect.reason;
+  }
+  EXPECT_NE(std::find(diagnosis.problems.begin(), diagnosis.problems.end(),
+                      "one motor may be at fault: channel 3's pulse width stands 59 us from the others' and, without "
+                      "rotor geometry, a weak motor cannot be told from an effect: give the frame (--frame "
+                      "quad_x|hexa_x|octo_x --arm-m) or --urdf; no effect is named"),
+            diagnosis.problems.end())
+      << testing::PrintToString(diagnosis.problems);
+}
+
+TEST_F(SyntheticFlights, WithAFrameByNameTheWeakMotorIsFound) {
+  World world;
+  world.weak_motor = 2;
+  world.weak_factor = 0.85;
+  const gap::Diagnosis diagnosis =
+      gap::diagnoseGap(model_, pe::Vehicle::frame("quad_x", 0.225), flights(world), gap::DiagnosisConfig());
   ASSERT_TRUE(diagnosis.motors.suspect_channel);
   EXPECT_EQ(*diagnosis.motors.suspect_channel, 3);
   EXPECT_TRUE(diagnosis.selected.empty());

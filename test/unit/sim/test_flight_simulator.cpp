@@ -555,3 +555,18 @@ TEST(FlightSimulator, FliesAHexacopter) {
   });
   EXPECT_EQ(flight.sink.rc_out.front().channels, (std::vector<std::uint16_t>{900, 900, 900, 900, 900, 900, 0, 0}));
 }
+
+TEST(FlightSimulator, TheAvionicsDrawIsSensedButNotSeenByTheEscs) {
+  pe::sim::FlightProfile profile = defaultProfile();
+  profile.vehicle.avionics_current_a = 1.5;
+  const Flight flight = fly(profile);
+  // The battery current the sensor reports is the ESCs' input current plus the avionics' draw.
+  for (std::size_t i = 0; i < flight.sink.truths.size(); i += 500) {
+    const pe::sim::TruthSample& t = flight.sink.truths[i];
+    double escs = 0.0;
+    for (const pe::sim::MotorTruth& motor : t.motors) escs += motor.current_a;
+    EXPECT_NEAR(t.battery_current_a, escs + 1.5, 1e-9) << "at " << t.time_s << " s";
+  }
+  profile.vehicle.avionics_current_a = 6.0;
+  EXPECT_EQ(refusal(profile), "vehicle.avionics_current_a: 6 is outside 0..5 A");
+}

@@ -33,6 +33,9 @@ struct VehicleSetup {
   double landing_gear_half_width_m = 0.0;                             ///< feet at (+-w, +-w) under base_link
   double drag_area_m2 = 0.0;                                          ///< Cd A of the airframe
   double battery_initial_soc = 1.0;  ///< 0..1, at the start of the flight
+  /// Flight controller, companion computer, radios and camera: drawn from the battery beside the
+  /// ESCs and seen by the current sensor, never by the ESCs (0 A unless the profile says).
+  double avionics_current_a = 0.0;
 };
 
 /// A payload hangs on a cable from a point of the airframe; it is attached and changed while landed.
