@@ -28,7 +28,7 @@ class BinaryPayload {
     bytes_ += text.substr(0, size);
     return zeros(size - std::min(size, text.size()));
   }
-  const std::string& bytes() const { return bytes_; }
+  const std::string& bytes() const { return bytes_; }  ///< what has been appended
 
  private:
   std::string bytes_;

@@ -22,7 +22,7 @@ extern const char kMagic[6];  // 5 bytes and a NUL
 /// A column: where it lies in the message and its format character.
 struct Column {
   std::size_t offset = 0;  ///< from the message's start, header included
-  char format = 'f';
+  char format = 'f';       ///< the FMT message's format character
 };
 
 /// A message type as its FMT message defines it.
@@ -30,13 +30,13 @@ struct Type {
   std::string name;              ///< "RCOU"
   std::size_t length = 0;        ///< bytes, header included
   std::string format;            ///< "QHHHH..."
-  std::vector<std::string> labels;
+  std::vector<std::string> labels;  ///< the column names
   std::vector<Column> columns;   ///< one per label
 };
 
 /// A message, located in the file.
 struct Message {
-  std::uint8_t type = 0;
+  std::uint8_t type = 0;   ///< its Type's id
   std::size_t offset = 0;  ///< of its header
 };
 
@@ -48,11 +48,11 @@ class File {
   /// there, with refusal() saying where.
   File(std::string bytes, std::string source);
 
-  const std::string& source() const { return source_; }
+  const std::string& source() const { return source_; }  ///< the file, for messages
   /// "" for a file read to its end; else "<source>: at byte <offset>: <message>: <problem>".
   const std::string& refusal() const { return refusal_; }
-  const std::map<std::uint8_t, Type>& types() const { return types_; }
-  const std::vector<Message>& messages() const { return messages_; }
+  const std::map<std::uint8_t, Type>& types() const { return types_; }  ///< by id
+  const std::vector<Message>& messages() const { return messages_; }  ///< in the file's order
 
   /// The type id named `name` ("BAT"), or nothing.
   std::optional<std::uint8_t> typeNamed(const std::string& name) const;

@@ -21,7 +21,7 @@ class Writer {
   /// A message of type `id` with `payload` after its header.
   void write(std::uint8_t id, const BinaryPayload& payload);
 
-  const std::string& bytes() const { return bytes_; }
+  const std::string& bytes() const { return bytes_; }  ///< the log written so far
   /// Writes bytes() to `path`; InputError "<path>: cannot open for writing" / "cannot write".
   void save(const std::string& path) const;
 

@@ -16,8 +16,8 @@ struct FlightLogOptions {
   std::map<std::string, std::string> sources;
   /// The PWM range in us that normalised motor outputs (PX4's actuator_motors, 0..1) map onto;
   /// required only by a log whose outputs are logged normalised alone. NaN: not given.
-  double pwm_min_us = std::numeric_limits<double>::quiet_NaN();
-  double pwm_max_us = std::numeric_limits<double>::quiet_NaN();
+  double pwm_min_us = std::numeric_limits<double>::quiet_NaN();  ///< normalised 0 maps here, us
+  double pwm_max_us = std::numeric_limits<double>::quiet_NaN();  ///< normalised 1 maps here, us
 
   /// Throws ConfigError "<what>: ..." for motors outside 1..kMaxMotors, a source whose name is
   /// not a signal, or a PWM range given by half or not within 500..2500 us with min < max; `what`
@@ -52,7 +52,7 @@ class FlightLogReader {
 /// "<path>: no such file", or naming it when it cannot be read.
 std::string readFlightLogBytes(const std::string& path);
 
-/// `bytes` as C would spell them: printable ASCII as is, other bytes (a newline, a NUL) as \xNN;
+/// `bytes` as C would spell them: printable ASCII as is, other bytes (a newline, a NUL) as `\xNN`;
 /// for text taken from a log into a one-line message.
 std::string printableBytes(const std::string& bytes);
 

@@ -25,7 +25,7 @@ enum class Primitive { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kInt64, 
 
 /// A field of a format: a primitive or another format (nested), an array when `count` > 0.
 struct Field {
-  std::string name;
+  std::string name;                    ///< the field's name in its format
   std::optional<Primitive> primitive;  ///< empty for a nested format
   std::string nested;                  ///< the nested format's name
   int count = 0;                       ///< array length; 0 for a scalar
@@ -35,28 +35,28 @@ struct Field {
 
 /// A message format ("F"): its fields in order, and its size in bytes.
 struct Format {
-  std::string name;
-  std::vector<Field> fields;
-  std::size_t size = 0;
+  std::string name;          ///< "battery_status"
+  std::vector<Field> fields;  ///< in the message's order
+  std::size_t size = 0;      ///< bytes of a message of this format
 };
 
 /// Where a primitive value lies in a message: "voltage_v", "q[2]", "esc[1].esc_temperature".
 struct Locator {
-  std::size_t offset = 0;
-  Primitive primitive = Primitive::kFloat;
+  std::size_t offset = 0;                   ///< bytes from the message's first field
+  Primitive primitive = Primitive::kFloat;  ///< the value's type
 };
 
 /// An "A" message: topic `name`, instance `multi_id`, data messages tagged `msg_id`.
 struct Subscription {
-  std::string name;
-  int multi_id = 0;
+  std::string name;  ///< the topic (its format's name)
+  int multi_id = 0;  ///< the instance, 0 for the first
 };
 
 /// A data message ("D"), located in the file's bytes.
 struct DataMessage {
-  std::uint16_t msg_id = 0;
+  std::uint16_t msg_id = 0;  ///< the subscription it belongs to
   std::size_t offset = 0;  ///< of its payload after msg_id: the message's first field
-  std::size_t size = 0;
+  std::size_t size = 0;    ///< bytes of its payload
 };
 
 /// A parsed ULog. The bytes are kept: data messages point into them.
@@ -68,22 +68,23 @@ class File {
   /// where.
   File(std::string bytes, std::string source);
 
-  const std::string& source() const { return source_; }
+  const std::string& source() const { return source_; }  ///< the file, for messages
   /// "" for a file read to its end; else "<source>: at byte <offset>: <message>: <problem>".
   const std::string& refusal() const { return refusal_; }
   /// The header's timestamp, microseconds since boot.
   std::uint64_t startUs() const { return start_us_; }
   /// The logger's dropouts ("O"): how many, and their total in ms.
   int dropouts() const { return dropouts_; }
-  int dropoutMs() const { return dropout_ms_; }
+  int dropoutMs() const { return dropout_ms_; }  ///< total time lost to dropouts, ms
   /// Info messages ("I", and the first part of "M"): key without its type -> raw value bytes.
   const std::map<std::string, std::string>& info() const { return info_; }
   /// The info `key` as text (a char[] value), or "" when absent or of another type.
   std::string infoText(const std::string& key) const;
 
-  const std::map<std::string, Format>& formats() const { return formats_; }
+  const std::map<std::string, Format>& formats() const { return formats_; }  ///< by name
+  /// The subscriptions by msg_id.
   const std::map<std::uint16_t, Subscription>& subscriptions() const { return subscriptions_; }
-  const std::vector<DataMessage>& data() const { return data_; }
+  const std::vector<DataMessage>& data() const { return data_; }  ///< in the file's order
 
   /// Where `path` lies in format `format` ("q[0]", "esc[3].esc_temperature"), or nothing when the
   /// format has no such field (fields are found by name, never by a guessed offset).

@@ -15,6 +15,7 @@ namespace sim {
 /// written.
 class DataflashFlightSink : public FlightSink {
  public:
+  /// A sink whose log starts `boot_s` s after the autopilot booted.
   explicit DataflashFlightSink(double boot_s = 12.5);
 
   void rcOut(const RcOutSample& sample) override;
