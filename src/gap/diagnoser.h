@@ -1,0 +1,97 @@
+// The gap diagnosis' steps (private to src/gap/): diagnosis.cpp holds the cut into blocks and the
+// selection of effects, diagnosis_report.cpp what the diagnosis reports of them.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "propulsion_estimator/gap/diagnosis.h"
+#include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/gap/blocks.h"
+#include "propulsion_estimator/gap/effect_fit.h"
+#include "propulsion_estimator/gap/motor_balance.h"
+#include "propulsion_estimator/gap/sign_flip_test.h"
+#include "propulsion_estimator/gap/thrust_views.h"
+#include "propulsion_estimator/model/effect_description.h"
+
+namespace propulsion_estimator {
+namespace gap {
+namespace detail {
+
+
+// An effect must also lower the held-out mean square by a tenth: a significant but negligible
+// improvement names nothing.
+constexpr double kMinMeanSquareRatio = 0.9;
+using effects::Kind;
+
+// Held-out predictions of one set of effects: each block's relative residual in both views,
+// from the fit on the folds that left its flight (or segment) out.
+struct HeldOutPrediction {
+  std::vector<double> pwm;      // per block
+  std::vector<double> current;  // NaN where the current view is unavailable
+  std::vector<double> view_n;   // PWM view, N
+};
+
+
+class Diagnoser {
+ public:
+  Diagnoser(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
+            const DiagnosisConfig& config, const std::vector<BenchLog>& bench)
+      : model_(model), vehicle_(vehicle), flights_(flights), bench_(bench), config_(config), views_(model, motorCount()) {}
+
+  Diagnosis run();
+
+ private:
+  int motorCount() const { return static_cast<int>(vehicle_.rotors.size()); }
+  void cut();
+  void findUnits();
+  effects::ModelEffects references() const;
+  std::string testability(Kind kind) const;
+  HeldOutPrediction predictHeldOut(const std::vector<Kind>& kinds) const;
+  // Sum over blocks of the joint squared error (PWM view plus current view where it exists).
+  std::vector<double> groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const;
+  double jointMeanSquare(const HeldOutPrediction& prediction) const;
+  double suspectThrustFactor(int motor, double yaw_gap) const;
+  double currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const;
+  double meanPwm(const Block& block) const;
+  void addProblemOnce(const std::string& problem);
+  std::string standoutMotor() const;
+
+  // The steps of run(), in order.
+  void reportGap(const BlockView& pwm_view, const std::vector<double>& plain_view);
+  void reportWhere(const BlockView& pwm_view);
+  Breakdown operatingRegion(const BlockView& pwm_view) const;
+  Breakdown phase(const BlockView& pwm_view) const;
+  void balanceMotors();
+  HeldOutPrediction selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
+  // One round of the forward selection: every candidate tried on top of `selected`; the best one
+  // that passes every test, or nullopt.
+  std::optional<Kind> selectionRound(int round, const std::vector<Kind>& selected, const HeldOutPrediction& current,
+                                     std::map<Kind, EffectResult>* results, HeldOutPrediction* best_prediction);
+  void reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected);
+  void reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after);
+  std::string method() const;
+  void collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view);
+
+  const PropulsionModel& model_;
+  const Vehicle& vehicle_;
+  const std::vector<Flight>& flights_;
+  const std::vector<BenchLog>& bench_;
+  const DiagnosisConfig& config_;
+  ThrustViews views_;
+  std::vector<Block> blocks_;
+  std::vector<const Block*> all_;
+  std::vector<int> unit_of_block_;  // the held-out unit (flight or segment) of each block
+  int units_ = 0;
+  std::string unit_name_;
+  Diagnosis diagnosis_;
+};
+
+}  // namespace detail
+}  // namespace gap
+}  // namespace propulsion_estimator

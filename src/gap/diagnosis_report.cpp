@@ -1,0 +1,195 @@
+#include "diagnoser.h"
+
+namespace propulsion_estimator {
+namespace gap {
+namespace detail {
+
+void Diagnoser::reportGap(const BlockView& pwm_view, const std::vector<double>& plain_view) {
+  diagnosis_.overall = statsOf(all_, pwm_view);
+  diagnosis_.payload_err_pct = payloadErrorPct(blocks_, plain_view);
+  for (int f = 0; f < static_cast<int>(flights_.size()); ++f) {
+    std::vector<const Block*> mine;
+    double mass = 0.0;
+    for (const Block* block : all_) {
+      if (block->flight != f) continue;
+      mine.push_back(block);
+      mass += block->mass_kg;
+    }
+    FlightGap flight{flights_[f].name, statsOf(mine, pwm_view), mine.empty() ? kNaN : mass / mine.size(), {}};
+    for (const std::string& problem : diagnosis_.problems) {
+      if (problem.rfind(flights_[f].name + ":", 0) == 0) flight.problems.push_back(problem);
+    }
+    diagnosis_.flights.push_back(flight);
+  }
+  const ThrustViews single(model_, 1);
+  for (const BenchLog& log : bench_) diagnosis_.bench.push_back(benchGap(single, log));
+}
+
+// The residual over the model's domain: four pulse-width bands by three voltage bands.
+Breakdown Diagnoser::operatingRegion(const BlockView& pwm_view) const {
+  const ModelDomain& domain = model_.domain();
+  Breakdown region;
+  region.name = "operating_region";
+  std::map<std::string, std::vector<const Block*>> bins;
+  const double pwm_step = (domain.pwm_max_us - domain.pwm_min_us) / 4.0;
+  const double voltage_step = (domain.voltage_max_v - domain.voltage_min_v) / 3.0;
+  for (const Block* block : all_) {
+    bool outside = false;
+    for (int k = 0; k < motorCount(); ++k) outside |= !domain.contains(block->pwm_us[k], block->voltage_v);
+    if (outside) {
+      bins["outside the model's domain"].push_back(block);
+      continue;
+    }
+    const int p = std::min(3, static_cast<int>((meanPwm(*block) - domain.pwm_min_us) / pwm_step));
+    const int v = std::min(2, static_cast<int>((block->voltage_v - domain.voltage_min_v) / voltage_step));
+    const std::string label = formatPrintf("%.0f", domain.pwm_min_us + p * pwm_step) + "-" +
+                              formatPrintf("%.0f", domain.pwm_min_us + (p + 1) * pwm_step) + " us x " +
+                              formatPrintf("%.2f", domain.voltage_min_v + v * voltage_step) + "-" +
+                              formatPrintf("%.2f", domain.voltage_min_v + (v + 1) * voltage_step) + " V";
+    bins[label].push_back(block);
+  }
+  for (const auto& [label, members] : bins) region.bins.push_back({label, statsOf(members, pwm_view)});
+  return region;
+}
+
+// The residual by phase of flight: near the ground, climb, descent, hover.
+Breakdown Diagnoser::phase(const BlockView& pwm_view) const {
+  Breakdown phase;
+  phase.name = "phase";
+  std::map<std::string, std::vector<const Block*>> bins;
+  for (const Block* block : all_) {
+    const double height = block->signals.height_m;
+    const double speed = block->signals.vertical_speed_m_s;
+    if (std::isfinite(height) && height < 2.0 * config_.rotor_diameter_m) {
+      bins["near the ground"].push_back(block);
+    } else if (std::isfinite(speed) && speed > 0.2) {
+      bins["climb"].push_back(block);
+    } else if (std::isfinite(speed) && speed < -0.2) {
+      bins["descent"].push_back(block);
+    } else {
+      bins["hover"].push_back(block);
+    }
+  }
+  for (const auto& [label, members] : bins) phase.bins.push_back({label, statsOf(members, pwm_view)});
+  return phase;
+}
+
+// 2. Where it lies: the residual broken down by region, phase, each signal and flight.
+void Diagnoser::reportWhere(const BlockView& pwm_view) {
+  diagnosis_.where.push_back(operatingRegion(pwm_view));
+  diagnosis_.where.push_back(phase(pwm_view));
+  const auto source = [&](effects::Signal signal) { return config_.signal_sources.at(signal); };
+  const auto height = [](const Block& b) { return b.signals.height_m; };
+  const auto speed = [](const Block& b) { return b.signals.vertical_speed_m_s; };
+  const auto current = [](const Block& b) { return b.current_a; };
+  const auto motor_temperature = [](const Block& b) { return b.signals.motor_temperature_c; };
+  const auto density = [](const Block& b) { return b.signals.air_density_kg_m3; };
+  const auto time = [](const Block& b) { return b.flight_time_s; };
+  const double d = config_.rotor_diameter_m;
+  diagnosis_.where.push_back(breakdownBy("height_above_ground_m", all_, height, {d, 2 * d, 1.0, 2.0, 5.0}, pwm_view,
+                                         "%.2f", source(effects::Signal::kHeight)));
+  diagnosis_.where.push_back(breakdownBy("vertical_speed_m_s", all_, speed, {-1.0, -0.3, -0.1, 0.1, 0.3, 1.0}, pwm_view,
+                                         "%.1f", source(effects::Signal::kVerticalSpeed)));
+  diagnosis_.where.push_back(breakdownBy("total_current_a", all_, current, quantileEdges(all_, current, 4), pwm_view,
+                                         "%.1f", source(effects::Signal::kBatteryCurrent)));
+  diagnosis_.where.push_back(breakdownBy("motor_temperature_c", all_, motor_temperature,
+                                         quantileEdges(all_, motor_temperature, 4), pwm_view, "%.1f",
+                                         source(effects::Signal::kMotorTemperature)));
+  diagnosis_.where.push_back(breakdownBy("air_density_kg_m3", all_, density, quantileEdges(all_, density, 3), pwm_view,
+                                         "%.3f", source(effects::Signal::kAirDensity)));
+  diagnosis_.where.push_back(
+      breakdownBy("time_in_flight_s", all_, time, {60.0, 120.0, 300.0, 600.0}, pwm_view, "%.0f", "time"));
+  Breakdown by_flight;
+  by_flight.name = "flight";
+  for (const FlightGap& flight : diagnosis_.flights) {
+    if (flight.stats.samples > 0) by_flight.bins.push_back({flight.name, flight.stats});
+  }
+  diagnosis_.where.push_back(by_flight);
+}
+
+// The moment balance; a motor it points at explains its share of the gap: the effects are sought
+// in what remains, so that a weak propeller is not named as an effect of the whole vehicle.
+void Diagnoser::reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected) {
+  for (Kind kind : effects::kAllKinds) {
+    EffectResult& result = (*results)[kind];
+    if (result.testable && std::find(selected.begin(), selected.end(), kind) == selected.end() &&
+        result.heldout_rmse_pct == 0.0) {
+      // Untried in a round (selection stopped before): fit it alone for the report.
+      const EffectFit fit = fitEffects(views_, all_, {kind}, references());
+      result.parameter = *fit.effects.parameter(kind);
+      result.ci_low = result.parameter - fit.ci_half.back();
+      result.ci_high = result.parameter + fit.ci_half.back();
+    }
+    diagnosis_.effects.push_back(result);
+  }
+  const EffectFit final_fit = fitEffects(views_, all_, selected, references());
+  diagnosis_.fitted = final_fit.effects;
+  for (std::size_t k = 0; k < selected.size(); ++k) {
+    for (EffectResult& result : diagnosis_.effects) {
+      if (result.kind != selected[k]) continue;
+      result.parameter = *final_fit.effects.parameter(selected[k]);
+      result.ci_low = result.parameter - final_fit.ci_half[k];
+      result.ci_high = result.parameter + final_fit.ci_half[k];
+    }
+  }
+}
+
+// 4. How far it shrinks, on held-out flights.
+void Diagnoser::reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after) {
+  const auto held_stats = [](const HeldOutPrediction& prediction, double* rmse, double* bias) {
+    double sum = 0.0, sum2 = 0.0;
+    for (double r : prediction.pwm) {
+      sum += r;
+      sum2 += r * r;
+    }
+    *rmse = 100.0 * std::sqrt(sum2 / prediction.pwm.size());
+    *bias = 100.0 * sum / prediction.pwm.size();
+  };
+  held_stats(before, &diagnosis_.heldout.before_rmse_pct, &diagnosis_.heldout.before_bias_pct);
+  held_stats(after, &diagnosis_.heldout.after_rmse_pct, &diagnosis_.heldout.after_bias_pct);
+  diagnosis_.heldout.before_payload_err_pct = payloadErrorPct(blocks_, before.view_n);
+  diagnosis_.heldout.after_payload_err_pct = payloadErrorPct(blocks_, after.view_n);
+}
+
+std::string Diagnoser::method() const {
+  return "Quasi-steady " + formatNumber(config_.block_s) + " s blocks only (collective PWM changing by at most " +
+         formatNumber(config_.max_pwm_change_us) + " us within the block, vertical acceleration at most " +
+         formatNumber(config_.max_accel_m_s2) + " m/s^2): " + std::to_string(diagnosis_.blocks) + " used, " +
+         std::to_string(diagnosis_.transient_blocks) + " transient left out. Forward selection over " +
+         std::to_string(units_) + " held-out " + unit_name_ +
+         "s (each fitted on the others). An effect is added when the held-out RMSE of the PWM view falls "
+         "by more than " + formatPrintf("%.2f", config_.min_improvement_pct) +
+         " % of the truth and its mean square by a tenth, the joint error of both views falls, a sign-flip permutation "
+         "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +
+         std::to_string(config_.permutations) + " permutations) gives p < " + formatNumber(config_.significance) +
+         ", and the fitted parameter lies inside its plausible range with a 95 % interval excluding "
+         "no effect; at most " + std::to_string(config_.max_effects) + " effects.";
+}
+
+// Every block with its signals and both views, for the figures.
+void Diagnoser::collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view) {
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    const Block& block = blocks_[i];
+    GapSample sample;
+    sample.flight = block.flight;
+    sample.time_s = block.time_s;
+    sample.truth_n = block.truth_n;
+    sample.model_n = plain_view[i];
+    sample.current_view_n = views_.currentView(block, plain);
+    sample.corrected_n = views_.pwmView(block, diagnosis_.fitted);
+    sample.pwm_us = meanPwm(block);
+    sample.voltage_v = block.voltage_v;
+    sample.current_a = block.current_a;
+    sample.height_m = block.signals.height_m;
+    sample.vertical_speed_m_s = block.signals.vertical_speed_m_s;
+    sample.air_density_kg_m3 = block.signals.air_density_kg_m3;
+    sample.motor_temperature_c = block.signals.motor_temperature_c;
+    sample.flight_time_s = block.flight_time_s;
+    sample.hover = block.hover;
+    diagnosis_.samples.push_back(sample);
+  }
+}
+
+}  // namespace detail
+}  // namespace gap
+}  // namespace propulsion_estimator
