@@ -102,7 +102,7 @@ TEST_F(DiagnoseGapTool, ReadsEveryFlightInManifestOrderWhateverTheJobs) {
                 ": rc_out 201, battery 21, no imu, no pose, no velocity, no static_pressure, no air_temperature, no "
                 "rangefinder, no motor_temperature\n"
                 "read 2 of 2 flights, 334 readings,\n");
-  EXPECT_NE(one.out.find("note: no --urdf: 4 motors on RCOut channels 1-4"), std::string::npos) << one.out;
+  EXPECT_NE(one.out.find("note: no --urdf or --frame: 4 motors on RCOut channels 1-4"), std::string::npos) << one.out;
   EXPECT_NE(one.out.find("report: " + file("report") + "/report.md, corrected model: " + file("report") +
                          "/corrected_model.yaml\n"),
             std::string::npos)
