@@ -13,31 +13,7 @@ json="${2:-}"
 mkdir -p "$cache"
 
 if [ ! -f "$cache/flights.yaml" ]; then
-  # The thesis' hardware, with a pack large enough for half an hour of hover (the 4 Ah pack lasts
-  # about ten minutes); only the reading is measured here.
-  sed 's/^  capacity_ah: 4.0 .*/  capacity_ah: 24.0/' "$repo/config/sim/e300_dji2212_dji9443.yaml" >"$cache/params.yaml"
-  grep -q '^  capacity_ah: 24.0$' "$cache/params.yaml"
-  cat >"$cache/profile.yaml" <<EOF
-autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, rc_out_rate_hz: 50}
-vehicle:
-  urdf: $repo/config/f450_quad.urdf
-  centre_of_mass_offset_m: [0.008, -0.005, 0.0]
-  landing_gear: {height_m: 0.12, half_width_m: 0.12}
-  drag_area_m2: 0.04
-  battery_initial_soc: 0.95
-payload_cable: {length_m: 1.0, attach_point_m: [0.0, 0.0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: 10}
-manifest: {settle_s: 8}
-segments:
-  - {type: wait, duration_s: 5}
-  - {type: takeoff, height_m: 2.0, rate_m_s: 1.0}
-  - {type: hover, duration_s: 600}
-  - {type: climb, height_m: 5.0, rate_m_s: 1.0}
-  - {type: hover, duration_s: 600}
-  - {type: descend, height_m: 2.0, rate_m_s: 0.8}
-  - {type: hover, duration_s: 575}
-  - {type: land, rate_m_s: 0.5}
-  - {type: wait, duration_s: 5}
-EOF
+  "$repo/scripts/write_hour_flight.sh" "$cache" 50
   echo "flights:" >"$cache/flights.yaml.part"
   for seed in 1 2; do
     rosrun propulsion_estimator simulate flight --params "$cache/params.yaml" --profile "$cache/profile.yaml" \

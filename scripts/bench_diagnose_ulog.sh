@@ -1,6 +1,6 @@
 #!/bin/sh
 # Times diagnose_gap on an hour of PX4 ULog at PX4's default logging rates or faster: two simulated
-# 30-minute flights (the profile of bench_diagnose_gap.sh, actuator_outputs at 10 Hz,
+# 30-minute flights (scripts/write_hour_flight.sh, actuator_outputs at 10 Hz,
 # sensor_combined and vehicle_attitude at 200 Hz; see test/benchmark/px4_hour_ulog.cpp), written
 # once and kept in the cache directory, diagnosed whole (reading, diagnosis, report, figures).
 # Usage: scripts/bench_diagnose_ulog.sh BIN_DIR [CACHE_DIR [JSON]] (BIN_DIR holds px4_hour_ulog and
@@ -14,29 +14,7 @@ json="${3:-}"
 mkdir -p "$cache"
 
 if [ ! -f "$cache/flights.yaml" ]; then
-  sed 's/^  capacity_ah: 4.0 .*/  capacity_ah: 24.0/' "$repo/config/sim/e300_dji2212_dji9443.yaml" >"$cache/params.yaml"
-  grep -q '^  capacity_ah: 24.0$' "$cache/params.yaml"
-  cat >"$cache/profile.yaml" <<PROFILE
-autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, rc_out_rate_hz: 10}
-vehicle:
-  urdf: $repo/config/f450_quad.urdf
-  centre_of_mass_offset_m: [0.008, -0.005, 0.0]
-  landing_gear: {height_m: 0.12, half_width_m: 0.12}
-  drag_area_m2: 0.04
-  battery_initial_soc: 0.95
-payload_cable: {length_m: 1.0, attach_point_m: [0.0, 0.0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: 10}
-manifest: {settle_s: 8}
-segments:
-  - {type: wait, duration_s: 5}
-  - {type: takeoff, height_m: 2.0, rate_m_s: 1.0}
-  - {type: hover, duration_s: 600}
-  - {type: climb, height_m: 5.0, rate_m_s: 1.0}
-  - {type: hover, duration_s: 600}
-  - {type: descend, height_m: 2.0, rate_m_s: 0.8}
-  - {type: hover, duration_s: 575}
-  - {type: land, rate_m_s: 0.5}
-  - {type: wait, duration_s: 5}
-PROFILE
+  "$repo/scripts/write_hour_flight.sh" "$cache" 10
   "$bin/px4_hour_ulog" "$cache/params.yaml" "$cache/profile.yaml" "$cache"
 fi
 
