@@ -231,8 +231,15 @@ def diagnose(case, args, folder, model, manifest, log):
     tool = lambda name: os.path.join(args.bin, name)  # noqa: E731
     urdf = os.path.join(args.repo, "config/f450_quad.urdf")
     out = os.path.join(folder, "diagnosis")
-    code = run([tool("diagnose_gap"), "--model", model, "--manifest", manifest, "--urdf", urdf, "--out", out,
-                "--python", sys.executable], log)
+    command = [tool("diagnose_gap"), "--model", model, "--manifest", manifest, "--urdf", urdf, "--out", out,
+               "--python", sys.executable]
+    if args.no_figures:
+        # A plot script that draws nothing: the figures are most of a re-diagnosis' time.
+        quiet = os.path.join(args.work, "no_figures.py")
+        with open(quiet, "w") as handle:
+            handle.write("# validate_gap.py --no-figures\n")
+        command += ["--plot-script", quiet]
+    code = run(command, log)
     report_path = os.path.join(out, "report.yaml")
     if not os.path.exists(report_path):
         return "diagnose_gap wrote no report (exit %d, see %s)" % (code, log)
@@ -352,6 +359,7 @@ def main():
                         help="draw each case's hardware and vehicle from the randomized family (draw_family)")
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--reuse", action="store_true", help="diagnose the flights already simulated in --work again")
+    parser.add_argument("--no-figures", action="store_true", help="diagnose without drawing the report's figures")
     parser.add_argument("--simulate-only", action="store_true",
                         help="simulate the cases and stop (diagnose them later with --reuse)")
     parser.add_argument("--only", help="comma-separated case labels to run (null,weak_propeller,...): for calibration")
@@ -452,8 +460,10 @@ def main():
                       "drag, centre of gravity, the avionics' own 0.2-2 A on the battery current), "
                       "its bench sweep is simulated with that hardware and fitted, and its five flights are flown "
                       "with it. Targets (issue 18): >= 90 %% exactly right, <= 2 %% with an effect wrongly named, "
-                      "no null or fault case named, >= 90 %% of weak propellers on their own motor, >= 70 %% "
-                      "mean held-out shrink of the excess over the null floor. %s\n\n"
+                      "<= 10 %% ambiguous (the truth among the candidates; counted apart, not right), no null or "
+                      "fault case named, >= 90 %% of weak propellers on their own motor, >= 70 %% mean nested "
+                      "held-out shrink of the excess over the null floor (flights that took no part in selecting "
+                      "or fitting). %s\n\n"
                       % (args.seed, "passed" if passed else "targets missed", today, args.seed, args.cases,
                          args.seed, machine, "PASSED." if passed else "Targets missed.")
                       + "\n".join(lines) + "\n")

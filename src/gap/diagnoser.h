@@ -26,6 +26,10 @@ namespace detail {
 
 using effects::Kind;
 
+// A, the most the avionics (flight controller, companion computer, radios, camera) draw beside the
+// motors: the current view's nuisance is sought within 0..this.
+constexpr double kMaxAvionicsCurrentA = 3.0;
+
 // Held-out predictions of one set of effects: each block's relative residual in both views,
 // from the fit on the folds that left its flight (or segment) out.
 struct HeldOutPrediction {

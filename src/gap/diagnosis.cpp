@@ -136,12 +136,29 @@ HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) cons
       training.swap(thinned);
     }
     const EffectFit fit = fitEffects(views_, training, kinds, base);
+    // The current view's residual, and how it moves per ampere the avionics draw beside the motors.
+    double sum_rs = 0.0, sum_ss = 0.0;
+    std::vector<double> slope(blocks_.size(), kNaN);
     for (std::size_t i = 0; i < blocks_.size(); ++i) {
       if (unit_of_block_[i] != unit) continue;
       const double view = views_.pwmView(blocks_[i], fit.effects);
       prediction.view_n[i] = view;
       prediction.pwm[i] = relative(view, blocks_[i]);
       prediction.current[i] = relative(views_.currentView(blocks_[i], fit.effects), blocks_[i]);
+      Block less = blocks_[i];
+      less.current_a -= 1.0;
+      slope[i] = prediction.current[i] - relative(views_.currentView(less, fit.effects), blocks_[i]);
+      if (std::isfinite(prediction.current[i]) && std::isfinite(slope[i])) {
+        sum_rs += prediction.current[i] * slope[i];
+        sum_ss += slope[i] * slope[i];
+      }
+    }
+    // The avionics' own draw (flight controller, companion computer, radios, camera) is on the
+    // battery current but turns no rotor: a nuisance of the current view, not thrust. It is taken
+    // out per held-out unit, alike for every candidate, within 0..kMaxAvionicsCurrentA.
+    const double avionics_a = sum_ss > 0.0 ? std::clamp(sum_rs / sum_ss, 0.0, kMaxAvionicsCurrentA) : 0.0;
+    for (std::size_t i = 0; i < blocks_.size(); ++i) {
+      if (unit_of_block_[i] == unit && std::isfinite(slope[i])) prediction.current[i] -= avionics_a * slope[i];
     }
   }
   return prediction;
