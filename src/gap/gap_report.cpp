@@ -286,18 +286,20 @@ void writeWhereSection(std::ostream& md, const Diagnosis& diagnosis) {
 // Section 3 of the Markdown report: one line per candidate effect, the selection and its rounds.
 void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
   md << "## 3. Which effect\n\n" << diagnosis.method << "\n\n";
-  md << "| effect | testable | parameter | 95 % interval | held-out RMSE % | p | current-view ratio | verdict |\n"
-        "|---|---|---|---|---|---|---|---|\n";
+  md << "| effect | testable | parameter | 95 % interval | held-out RMSE % | joint RMSE %, before -> with it | p "
+        "(joint) | current-view ratio | verdict |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const EffectResult& effect : diagnosis.effects) {
     const effects::ParameterSpec& spec = effects::parameterSpec(effect.kind);
     md << "| " << effects::kindName(effect.kind) << " | " << (effect.testable ? "yes" : "no") << " | ";
     if (effect.testable) {
       md << spec.key << " = " << formatPrintf("%.4g", effect.parameter) << " | " << formatPrintf("%.4g", effect.ci_low)
          << " .. " << formatPrintf("%.4g", effect.ci_high) << " | "
-         << formatPrintf("%.2f", effect.heldout_rmse_pct, "n/a") << " | " << formatPrintf("%.3f", effect.p_value, "n/a")
+         << formatPrintf("%.2f", effect.heldout_rmse_pct, "n/a") << " | "
+         << formatPrintf("%.2f", effect.base_joint_rmse_pct, "n/a") << " -> "
+         << formatPrintf("%.2f", effect.joint_rmse_pct, "n/a") << " | " << formatPrintf("%.3f", effect.p_value, "n/a")
          << " | " << formatPrintf("%.2f", effect.current_view_ratio, "n/a") << " | ";
     } else {
-      md << " | | | | | ";
+      md << " | | | | | | ";
     }
     md << effect.reason << " |\n";
   }
