@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -21,12 +22,14 @@
 #include "propulsion_estimator/onboard/capability.h"
 #include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/estimation/motor_health.h"
+#include "propulsion_estimator/fitting/surface_fit.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_simulator.h"
 #include "propulsion_estimator/sim/physics/battery_family.h"
 #include "propulsion_estimator/sim/physics/propulsion_chain.h"
 #include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/sim/stand/bench_simulator.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "test_paths.h"
 
@@ -237,20 +240,15 @@ void expectEnduranceOnFamilyPacks(const std::vector<std::uint32_t>& seeds) {
   EXPECT_LT(errors[1][errors[1].size() / 2], 0.35);
 }
 
-}  // namespace
-
-TEST(CapabilityFlight, HoverEnduranceOnFamilyPacksDevelopmentSeeds) { expectEnduranceOnFamilyPacks({1, 2, 3, 4, 5, 6}); }
-
-TEST(CapabilityFlight, HoverEnduranceOnFamilyPacksHeldOutSeeds) {
-  expectEnduranceOnFamilyPacks({101, 102, 103, 104, 105, 106});
-}
-
 // The payload limit predicted at the first hover against the simulated vehicle's at full throttle:
 // the simulated propulsion at the model's top PWM fed by the pack as it is then (its EMF, the
 // terminal voltage plus its series resistance times the current), sagging through its series and
 // the supply resistance at the full-throttle current, the airframe's thrust loss applied; with
-// and without effects in the simulator and the model's effects: section.
-TEST(CapabilityFlight, PayloadLimitAgainstTheSimulatedFullThrottleWithSag) {
+// and without effects in the simulator and the model's effects: section. `model` gives the model
+// with an effects: section (YAML) appended; the figures are within `bar` of the payload limit, or
+// of the all-up mass at the limit when `of_all_up_mass`.
+void expectPayloadLimitAgainstFullThrottleWithSag(const std::function<pe::PropulsionModel(const std::string&)>& model,
+                                                  double bar, bool of_all_up_mass) {
   const std::string effects_yaml = "effects:\n  supply_resistance: {resistance_ohm: 0.05}\n  thrust_loss: {fraction: 0.06}\n";
   pe::sim::SimEffects injected;
   injected.supply_resistance_ohm = 0.05;
@@ -260,7 +258,7 @@ TEST(CapabilityFlight, PayloadLimitAgainstTheSimulatedFullThrottleWithSag) {
       const double payload_kg = seed == 7 ? 0.0 : 0.2;
       pe::sim::SimParams params = thesisParams();
       params.battery = pe::sim::drawBattery(pe::sim::BatteryFamily{}, seed).params;
-      CapabilitySink sink(f450(), userPack(), thesisModel(with_effects ? effects_yaml : ""));
+      CapabilitySink sink(f450(), userPack(), model(with_effects ? effects_yaml : ""));
       fly(profile(payload_kg, 20.0, 0.9), &sink, with_effects ? injected : pe::sim::SimEffects{}, params);
       ASSERT_TRUE(sink.prediction.has_value());
       const pe::sim::TruthSample& truth = sink.prediction_truth;
@@ -278,18 +276,56 @@ TEST(CapabilityFlight, PayloadLimitAgainstTheSimulatedFullThrottleWithSag) {
       const double terminal_v = source_v - params.battery.series_resistance_ohm * 4 * top.input_current_a;
       EXPECT_NEAR(sink.prediction->full_throttle_voltage_v, terminal_v, 0.1) << "effects " << with_effects;
       EXPECT_NEAR(sink.prediction->full_throttle_current_a, 4 * top.input_current_a, 0.05 * 4 * top.input_current_a);
-      // ... and the limit within 5 % of the all-up mass the vehicle may weigh at the limit: issue
-      // 19 asks 10 % of the payload limit, which the thesis surfaces' own 1.8-3.6 % excess of
-      // thrust over the simulator's physics at full throttle does not meet (README, Capability).
-      EXPECT_NEAR(predicted_kg, limit_kg, 0.05 * thrust_n / (pe::kStandardGravity * 1.6))
+      // ... and the limit.
+      const double all_up_kg = thrust_n / (pe::kStandardGravity * 1.6);
+      EXPECT_NEAR(predicted_kg, limit_kg, bar * (of_all_up_mass ? all_up_kg : std::abs(limit_kg)))
           << "payload " << payload_kg << ", effects " << with_effects << ": " << sink.prediction->payload_note;
       EXPECT_LT(sink.prediction->max_additional_payload_at_cutoff_kg, sink.prediction->max_additional_payload_kg);
       std::printf("effects %s, carrying %.3f kg: payload limit %.3f kg predicted (full throttle %.2f V, %.1f A), "
-                  "%.3f kg simulated (%.2f V at the ESCs, %.1f A)\n",
+                  "%.3f kg simulated (%.2f V at the ESCs, %.1f A): %+.1f %% of the limit, %+.1f %% of the all-up mass\n",
                   with_effects ? "on" : "off", payload_kg, predicted_kg, sink.prediction->full_throttle_voltage_v,
-                  sink.prediction->full_throttle_current_a, limit_kg, esc_v, 4 * top.input_current_a);
+                  sink.prediction->full_throttle_current_a, limit_kg, esc_v, 4 * top.input_current_a,
+                  100.0 * (predicted_kg - limit_kg) / std::abs(limit_kg), 100.0 * (predicted_kg - limit_kg) / all_up_kg);
     }
   }
+}
+
+// A model fitted, as a user would, on the simulated thrust stand of the vehicle's own propulsion
+// (PWM sweeps at 10.5-12.6 V with the stand's sensor noise, seed 3; fit_surfaces' choice of surface).
+pe::PropulsionModel benchFittedModel(const std::string& effects) {
+  static const std::string fitted = [] {
+    const pe::sim::SimParams params = thesisParams();
+    const pe::sim::BenchExperiment sweep =
+        pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
+    pe::fitting::FitOptions options;
+    options.air_temperature_c = 20.0;
+    options.air_pressure_pa = 101325.0;
+    const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel({pe::sim::simulateBench(params, {}, sweep, 3)}, options);
+    EXPECT_TRUE(fit.validation_error.empty()) << fit.validation_error;
+    return pe::modelToYaml(fit.model);
+  }();
+  return pe::parseModelYaml(fitted + effects, "bench-fitted model");
+}
+
+}  // namespace
+
+TEST(CapabilityFlight, HoverEnduranceOnFamilyPacksDevelopmentSeeds) { expectEnduranceOnFamilyPacks({1, 2, 3, 4, 5, 6}); }
+
+TEST(CapabilityFlight, HoverEnduranceOnFamilyPacksHeldOutSeeds) {
+  expectEnduranceOnFamilyPacks({101, 102, 103, 104, 105, 106});
+}
+
+// With the thesis surfaces, whose thrust at full throttle is 1.8-3.6 % above the simulator's
+// physics: the limit within 5 % of the all-up mass at the limit, not within 10 % of the limit
+// itself (a difference of two masses, so the surfaces' excess is multiplied; README, Capability).
+TEST(CapabilityFlight, PayloadLimitAgainstTheSimulatedFullThrottleWithSag) {
+  expectPayloadLimitAgainstFullThrottleWithSag([](const std::string& effects) { return thesisModel(effects); }, 0.05, true);
+}
+
+// With surfaces measured on the vehicle's own propulsion (here its simulated bench): issue 19's
+// bar, within 10 % of the limit, with and without effects.
+TEST(CapabilityFlight, PayloadLimitWithSurfacesFittedOnTheVehiclesOwnBench) {
+  expectPayloadLimitAgainstFullThrottleWithSag(benchFittedModel, 0.10, false);
 }
 
 TEST(CapabilityFlight, AWeakPropellerIsFlaggedWithin20sOfSteadyHover) {
