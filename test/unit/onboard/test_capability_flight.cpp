@@ -199,7 +199,7 @@ pe::Vehicle f450() { return pe::loadVehicleUrdf(repoPath("config/f450_quad.urdf"
 // hover time left predicted 20 s and 60 s after take-off against the time the vehicle took.
 // Development seeds 1-6 chose the estimator's settings; seeds 101-106 were first run after.
 void expectEnduranceOnFamilyPacks(const std::vector<std::uint32_t>& seeds) {
-  std::array<int, 2> cases{}, within_bar{};
+  std::array<int, 2> cases{}, within_bar{}, within_sigma{}, within_2sigma{};
   std::array<std::vector<double>, 2> errors;
   for (std::uint32_t seed : seeds) {
     const pe::sim::DrawnBattery drawn = pe::sim::drawBattery(pe::sim::BatteryFamily{}, seed);
@@ -226,12 +226,16 @@ void expectEnduranceOnFamilyPacks(const std::vector<std::uint32_t>& seeds) {
         EXPECT_FALSE(std::isnan(c.hover_endurance_s)) << "seed " << seed << ": " << c.endurance_basis;
         ++cases[k];
         within_bar[k] += std::abs(error) < bound;
+        within_sigma[k] += std::abs(c.hover_endurance_s - flown_s) <= c.hover_endurance_std_s;
+        within_2sigma[k] += std::abs(c.hover_endurance_s - flown_s) <= 2.0 * c.hover_endurance_std_s;
         errors[k].push_back(std::abs(error));
       }
     }
   }
   std::printf("within 15 %% after 20 s: %d of %d; within 10 %% after 60 s: %d of %d\n", within_bar[0], cases[0],
               within_bar[1], cases[1]);
+  std::printf("the truth within the stated 1 / 2 standard deviations: after 20 s %d / %d, after 60 s %d / %d of %d\n",
+              within_sigma[0], within_2sigma[0], within_sigma[1], within_2sigma[1], cases[1]);
   // Issue 19's bar (within 15 % after 20 s and 10 % after 60 s, every case) does NOT hold on this
   // family (README, Capability: the knee of a pack's curve that is not ours, its slow polarisation
   // and a cold pack's lost capacity). What is asserted is a regression guard on the median error
