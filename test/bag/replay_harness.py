@@ -1,6 +1,6 @@
 """One simulated flight bag played once, on simulated time, through several estimator_nodes at the
 same time, each with its own model: what the bag replay rostests share (test_replay_effects.py,
-test_diagnose_then_replay.py). Each node is tared in the manifest's empty segment; the result is,
+test_diagnose_then_replay.py; test_replay_payload.py plays through the launch file's node). Each node is tared in the manifest's empty segment; the result is,
 per node, the SegmentReport of its ~payload estimates and its last "Effects" diagnostic."""
 import os
 import signal
@@ -51,14 +51,26 @@ def replay(bag_path, manifest, models, urdf, rate):
         rospy.wait_for_service("/%s/tare" % name, timeout=30.0)
         tares[name] = rospy.ServiceProxy("/%s/tare" % name, Trigger)
 
+    try:
+        status = play(bag_path, rate, [(reports[name], tares[name]) for name in models])
+    finally:
+        for process in processes:
+            process.stop()
+        launch.stop()
+    return reports, effects_status, status
+
+
+def play(bag_path, rate, tared_reports):
+    """Plays `bag_path` on simulated time at `rate`, calling each (SegmentReport, ~tare proxy) pair's
+    ~tare once its report says it is due; returns the player's exit status."""
     # Its own process group: `rosbag play` runs the player in a child process that must stop too.
     player = subprocess.Popen(["rosbag", "play", "--clock", "--quiet", "--delay=1", "--rate=%s" % rate, bag_path],
                               start_new_session=True)
     try:
         while player.poll() is None:
-            for name, report in reports.items():
+            for report, tare in tared_reports:
                 if report.tare_due(rospy.Time.now().to_sec()):
-                    answer = tares[name]()
+                    answer = tare()
                     report.tared = answer.success
                     report.tare_answer = answer.message
             time.sleep(0.1)  # wall time: simulated time stops with the bag
@@ -66,7 +78,4 @@ def replay(bag_path, manifest, models, urdf, rate):
         if player.poll() is None:
             os.killpg(player.pid, signal.SIGTERM)
             player.wait()
-        for process in processes:
-            process.stop()
-        launch.stop()
-    return reports, effects_status, player.returncode
+    return player.returncode
