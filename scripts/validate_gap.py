@@ -14,7 +14,8 @@ Usage: validate_gap.py --bin DIR --repo DIR --work DIR [--cases N] [--quick] [--
   --bin      folder holding simulate, fit_surfaces and diagnose_gap
   --quick    one case of each kind the CI needs (null, thrust loss, supply resistance, weak propeller)
   --markdown write the table (VALIDATION.md)
-  --reuse    diagnose the cases already simulated in --work again (after a change to the diagnosis)
+  --reuse    diagnose the cases already simulated in --work again (after a change to the diagnosis);
+             cases not simulated there count as errors
 
 Prints a confusion matrix and the mean held-out shrink; exits 1 when the acceptance thresholds of
 issue 8 are missed (>= 90 % right, no null case named, weak propellers located, >= 70 % shrink).
@@ -197,7 +198,10 @@ def run_case(case, args):
     bench = os.path.join(folder, "bench.csv")
     model = os.path.join(folder, "model.yaml")
     manifest = os.path.join(folder, "flights.manifest.yaml")
-    if args.reuse and os.path.exists(manifest) and os.path.exists(model):
+    if args.reuse:
+        # Only what was simulated: a case whose simulation failed stays failed (see its log).
+        if not (os.path.exists(manifest) and os.path.exists(model)):
+            return dict(case, error="not simulated in --work (see %s)" % log)
         if args.simulate_only:
             return dict(case, simulated=True)
         return score(case, diagnose(case, args, folder, model, manifest, log))
@@ -316,8 +320,8 @@ def make_cases(count, seed, quick, effects):
 
 
 def outcome(row):
-    """What a case's report named: its selected effects, and each ambiguous group as (a | b)."""
-    names = list(row.get("selected") or []) + ["(%s)" % " | ".join(g) for g in row.get("ambiguous") or []]
+    """What a case's report named: its selected effects, and each ambiguous group as (a or b)."""
+    names = list(row.get("selected") or []) + ["(%s)" % " or ".join(g) for g in row.get("ambiguous") or []]
     return " + ".join(names or ["none"])
 
 
