@@ -218,6 +218,7 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   const gap::ResidualStats& overall = diagnosis.overall;
   std::printf("gap: %d samples, model minus flight: bias %s %%, RMSE %s %%\n", overall.samples,
               formatPrintf("%.2f", overall.bias_pct).c_str(), formatPrintf("%.2f", overall.rmse_pct).c_str());
+  if (!diagnosis.steady_data_shortfall.empty()) std::printf("%s\n", diagnosis.steady_data_shortfall.c_str());
   std::string selected;
   for (effects::Kind kind : diagnosis.selected) selected += (selected.empty() ? "" : ", ") + std::string(effects::kindName(kind));
   std::printf("selected: %s; held-out RMSE %s %% -> %s %%\n", selected.empty() ? "none" : selected.c_str(),

@@ -139,6 +139,9 @@ struct Diagnosis {
   ResidualStats overall;  ///< the model's residual over every block
   int blocks = 0;            ///< quasi-steady blocks diagnosed
   int transient_blocks = 0;  ///< blocks left out as transient (DiagnosisConfig::max_pwm_change_us, max_accel_m_s2)
+  /// "" when the quasi-steady blocks span enough group_s stretches for the selection's test to reach
+  /// its significance; else one line, "not enough steady data: ...", also among the problems.
+  std::string steady_data_shortfall;
   double payload_err_pct = 0.0;  ///< of the node's payload estimate, tare on the lightest flight
   std::vector<FlightGap> flights;  ///< one per flight
   std::vector<BenchGap> bench;  ///< one per extra bench log
