@@ -31,7 +31,7 @@ void Diagnoser::cut() {
   }
   diagnosis_.blocks = static_cast<int>(blocks_.size());
   if (blocks_.empty()) {
-    throw DataError("diagnose_gap: no usable sample in any weighed segment of any flight" +
+    throw DataError("no usable sample in any weighed segment of any flight" +
                       (diagnosis_.transient_blocks > 0
                            ? " (all " + std::to_string(diagnosis_.transient_blocks) + " blocks transient)"
                            : std::string()));
