@@ -199,12 +199,15 @@ def run_case(case, args):
     model = os.path.join(folder, "model.yaml")
     manifest = os.path.join(folder, "flights.manifest.yaml")
     if args.reuse:
-        # Only what was simulated: a case whose simulation failed stays failed (see its log).
-        if not (os.path.exists(manifest) and os.path.exists(model)):
+        # Only what was simulated: a case whose simulation failed stays failed (see its log), unless
+        # --simulate-missing tries it again.
+        simulated = os.path.exists(manifest) and os.path.exists(model)
+        if not simulated and not args.simulate_missing:
             return dict(case, error="not simulated in --work (see %s)" % log)
-        if args.simulate_only:
+        if simulated and args.simulate_only:
             return dict(case, simulated=True)
-        return score(case, diagnose(case, args, folder, model, manifest, log))
+        if simulated:
+            return score(case, diagnose(case, args, folder, model, manifest, log))
     if run([tool("simulate"), "bench", "--params", params, "--experiment", "pwm_sweep", "--seed", str(case["seed"]),
             "--output", bench], log) or run([tool("fit_surfaces"), bench, "--out", model], log):
         return dict(case, error="bench or fit failed (see %s)" % log)
@@ -364,6 +367,8 @@ def main():
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--reuse", action="store_true", help="diagnose the flights already simulated in --work again")
     parser.add_argument("--no-figures", action="store_true", help="diagnose without drawing the report's figures")
+    parser.add_argument("--simulate-missing", action="store_true",
+                        help="with --reuse: simulate the cases whose simulation is not in --work (a failed one again)")
     parser.add_argument("--simulate-only", action="store_true",
                         help="simulate the cases and stop (diagnose them later with --reuse)")
     parser.add_argument("--only", help="comma-separated case labels to run (null,weak_propeller,...): for calibration")
