@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/model/effect_signals.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -86,15 +87,9 @@ struct Accumulator {
   }
 };
 
-// Discharge current is positive: MAVROS on PX4 negates it, so the flight's own median decides.
-double currentSign(const std::vector<BatteryReading>& battery) {
-  std::vector<double> currents;
-  for (const BatteryReading& reading : battery) {
-    if (std::isfinite(reading.current_a)) currents.push_back(reading.current_a);
-  }
-  if (currents.empty()) return kNaN;
-  std::nth_element(currents.begin(), currents.begin() + currents.size() / 2, currents.end());
-  return currents[currents.size() / 2] < 0.0 ? -1.0 : 1.0;
+bool hasCurrent(const std::vector<BatteryReading>& battery) {
+  return std::any_of(battery.begin(), battery.end(),
+                     [](const BatteryReading& reading) { return std::isfinite(reading.current_a); });
 }
 
 std::string segmentName(const Flight& flight, int index) {
@@ -109,17 +104,12 @@ bool isQuasiSteady(const Block& block, double max_pwm_change_us, double max_acce
   return block.pwm_change_us <= max_pwm_change_us && std::abs(block.accel_up_m_s2) <= max_accel_m_s2;
 }
 
-double airDensity(double pressure_pa, double temperature_c) {
-  return pressure_pa / (kSpecificGasConstantDryAir * (temperature_c + kZeroCelsiusInKelvin));
-}
-
 FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle& vehicle, const BlockConfig& config,
                            int first_group) {
   FlightBlocks result;
   const FlightStreams& streams = flight.streams;
   result.has_imu = !streams.imu.empty();
-  const double sign = currentSign(streams.battery);
-  result.has_current = std::isfinite(sign);
+  result.has_current = hasCurrent(streams.battery);
   if (streams.rc_out.empty() || streams.battery.empty()) {
     result.problems.push_back(flight.name + ": no rc/out or battery messages");
     return result;
@@ -188,11 +178,26 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       acc.last_time = frame.time_s;
       acc.time += frame.time_s;
       acc.voltage += b->voltage_v;
-      if (std::isfinite(sign) && std::isfinite(b->current_a)) {
-        acc.current += sign * b->current_a;
+      const ImuReading* i = imu.at(frame.time_s, timeout);
+      // The node's preparation of the effects' signals (effect_signals.h), frame by frame.
+      effects::RawSignals raw;
+      raw.battery_current_a = b->current_a;
+      raw.body_z_up = i ? (i->orientation * Eigen::Vector3d::UnitZ()).z() : 1.0;
+      const ScalarReading* r = range.at(frame.time_s, timeout);
+      raw.range_m = r ? r->value : kNaN;
+      const ScalarReading* v = speed.at(frame.time_s, timeout);
+      raw.vertical_speed_m_s = v ? v->value : kNaN;
+      const ScalarReading* p = pressure.at(frame.time_s, timeout);
+      raw.static_pressure_pa = p ? p->value : kNaN;
+      const ScalarReading* a = air.at(frame.time_s, timeout);
+      raw.air_temperature_c = a ? a->value : kNaN;
+      const ScalarReading* m = motor_temperature.at(frame.time_s, timeout);
+      raw.motor_temperature_c = m ? m->value : kNaN;
+      const effects::Signals prepared = effects::prepareSignals(raw);
+      if (std::isfinite(prepared.battery_current_a)) {
+        acc.current += prepared.battery_current_a;
         ++acc.current_frames;
       }
-      const ImuReading* i = imu.at(frame.time_s, timeout);
       double collective = 0.0;
       for (int k = 0; k < motors; ++k) collective += frame.pwm_us[k] / motors;
       acc.collective_min = std::min(acc.collective_min, collective);
@@ -205,15 +210,10 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
         acc.force_up += (i->orientation * i->specific_force_m_s2).z();
         ++acc.imu_frames;
       }
-      const ScalarReading* r = range.at(frame.time_s, timeout);
-      acc.addSignal(BlockSignal::kHeight, r ? r->value : kNaN);
-      const ScalarReading* v = speed.at(frame.time_s, timeout);
-      acc.addSignal(BlockSignal::kVerticalSpeed, v ? v->value : kNaN);
-      const ScalarReading* p = pressure.at(frame.time_s, timeout);
-      const ScalarReading* a = air.at(frame.time_s, timeout);
-      acc.addSignal(BlockSignal::kAirDensity, p && a ? airDensity(p->value, a->value) : kNaN);
-      const ScalarReading* m = motor_temperature.at(frame.time_s, timeout);
-      acc.addSignal(BlockSignal::kMotorTemperature, m ? m->value : kNaN);
+      acc.addSignal(BlockSignal::kHeight, prepared.height_m);
+      acc.addSignal(BlockSignal::kVerticalSpeed, prepared.vertical_speed_m_s);
+      acc.addSignal(BlockSignal::kAirDensity, prepared.air_density_kg_m3);
+      acc.addSignal(BlockSignal::kMotorTemperature, prepared.motor_temperature_c);
       const ScalarReading* z = altitude.at(frame.time_s, timeout);
       if (z) {
         acc.altitude += z->value;

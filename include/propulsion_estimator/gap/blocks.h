@@ -63,8 +63,5 @@ struct FlightBlocks {
 FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle& vehicle, const BlockConfig& config,
                            int first_group);
 
-/// Air density from static pressure and air temperature (dry air), kg/m^3.
-double airDensity(double pressure_pa, double temperature_c);
-
 }  // namespace gap
 }  // namespace propulsion_estimator
