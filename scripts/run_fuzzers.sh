@@ -9,7 +9,7 @@
 # test/fuzz/corpus/<reader>/ (libFuzzer -merge=1), for the user to review and commit.
 set -u
 repo="$(cd "$(dirname "$0")/.." && pwd)"
-readers="model_yaml bench_csv tyto_csv flight_manifest flight_profile vehicle_urdf rcout tare_file ulog dataflash"
+readers="model_yaml bench_csv tyto_csv flight_manifest flight_profile vehicle_urdf rcout tare_file ulog dataflash flight_bag"
 seconds=60
 merge=0
 bin=""
@@ -37,6 +37,7 @@ max_len() {
     flight_manifest) echo 1024 ;;
     rcout|tare_file) echo 256 ;;
     ulog|dataflash) echo 8192 ;;
+    flight_bag) echo 16384 ;;
   esac
 }
 

@@ -55,6 +55,7 @@ struct FlightOptions {
   std::string manifest;
   std::string compression = "none";
   std::string log_format = "bag";
+  std::string ulog_layout = "px4-1.12";
 };
 
 sim::SimEffects loadEffects(const std::string& path) {
@@ -130,8 +131,11 @@ void runFlight(const FlightOptions& options) {
   };
   try {
     if (options.log_format == "ulog") {
-      // PX4 1.12's layout: actuator_outputs in us, as the other formats log them.
-      sim::UlogFlightSink sink(sim::UlogLayout::kPx4v1_12, profile.autopilot.pwm_min_us, profile.autopilot.pwm_max_us);
+      // PX4 1.12's layout by default: actuator_outputs in us, as the other formats log them; the
+      // newer one logs actuator_motors (normalised), read through --pwm-range-us.
+      const sim::UlogLayout layout =
+          options.ulog_layout == "px4-1.14" ? sim::UlogLayout::kPx4v1_14 : sim::UlogLayout::kPx4v1_12;
+      sim::UlogFlightSink sink(layout, profile.autopilot.pwm_min_us, profile.autopilot.pwm_max_us);
       result = sim::simulateFlight(params, effects, profile, vehicle, options.seed, &sink);
       sink.save(active);
     } else if (options.log_format == "dataflash") {
@@ -229,6 +233,13 @@ int runSimulateCommand(int argc, char** argv) {
                    "bag (default: MAVROS topics and /sim/truth), ulog (PX4) or dataflash (ArduPilot .bin); the same "
                    "flight in each")
       ->check(CLI::IsMember({"bag", "ulog", "dataflash"}));
+  CLI::Option* ulog_layout =
+      flight_command
+          ->add_option("--ulog-layout", flight.ulog_layout,
+                       "With --log-format ulog: px4-1.12 (default: actuator_outputs in us, sensor_combined) or "
+                       "px4-1.14 (actuator_motors normalised 0..1 only, vehicle_acceleration; diagnose_gap then "
+                       "needs --pwm-range-us, the profile's pwm_min_us and pwm_max_us)")
+          ->check(CLI::IsMember({"px4-1.12", "px4-1.14"}));
   flight_command->add_option("--manifest", flight.manifest,
                              "Manifest to write (hover or airborne segments with their true masses)");
   flight_command->add_option("--compression", flight.compression, "Bag compression: none (default), bz2 or lz4")
@@ -236,6 +247,9 @@ int runSimulateCommand(int argc, char** argv) {
 
   return runToolCommand("simulate", app, argc, argv, [&] {
     if (bench_command->parsed()) runBench(bench);
+    if (ulog_layout->count() > 0 && flight.log_format != "ulog") {
+      throw ConfigError("--ulog-layout: " + flight.ulog_layout + " is for --log-format ulog, not " + flight.log_format);
+    }
     if (flight_command->parsed()) runFlight(flight);
     return 0;
   });

@@ -1,5 +1,6 @@
 #include "propulsion_estimator/gap/sign_flip_test.h"
 
+#include <cmath>
 #include <random>
 
 namespace propulsion_estimator {
@@ -19,6 +20,12 @@ double signFlipPValue(const std::vector<double>& improvements, int permutations,
     if (sum >= observed) ++reached;
   }
   return (1.0 + reached) / (1.0 + permutations);
+}
+
+int fewestGroupsForSignificance(double significance) {
+  int groups = 1;
+  while (std::ldexp(1.0, -groups) >= significance) ++groups;
+  return groups;
 }
 
 }  // namespace gap

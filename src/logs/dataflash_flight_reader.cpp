@@ -26,6 +26,18 @@ Eigen::Quaterniond enuFromNedEuler(double roll_deg, double pitch_deg, double yaw
   return kEnuNed * ned * kFrdFlu;
 }
 
+// A type's time column in microseconds: TimeUS, or TimeMS in logs before ArduPilot 3.3.
+struct TimeColumn {
+  dataflash::Column column;
+  double to_us = 1.0;
+};
+
+std::optional<TimeColumn> timeColumn(const dataflash::File& file, std::uint8_t type) {
+  if (const auto us = file.column(type, "TimeUS")) return TimeColumn{*us, 1.0};
+  if (const auto ms = file.column(type, "TimeMS")) return TimeColumn{*ms, 1e3};
+  return std::nullopt;
+}
+
 // Reads one log's signals into FlightStreams on the manifest's clock.
 class SignalReader {
  public:
@@ -38,7 +50,7 @@ class SignalReader {
   bool forEach(const std::string& name, const std::function<void(const dataflash::Message&, double)>& use) const {
     const auto type = file_.typeNamed(name);
     if (!type) return false;
-    const auto time = file_.column(*type, "TimeUS");
+    const auto time = timeColumn(file_, *type);
     if (!time) return false;
     std::optional<dataflash::Column> instance;
     for (const char* label : {"Instance", "Inst", "I", "C"}) {
@@ -47,7 +59,7 @@ class SignalReader {
     bool any = false;
     for (const dataflash::Message& message : file_.messages()) {
       if (message.type != *type || (instance && file_.value(message, *instance) != 0.0)) continue;
-      use(message, (file_.value(message, *time) - first_us_) / 1e6);
+      use(message, (file_.value(message, time->column) * time->to_us - first_us_) / 1e6);
       any = true;
     }
     return any;
@@ -62,8 +74,10 @@ class SignalReader {
 
   void rcOut(int motors) {
     std::vector<dataflash::Column> channels;
+    // Ch1..Ch8 before ArduPilot 3.3, C1..C14 since.
+    const std::string prefix = column("RCOU", "C1") || !column("RCOU", "Ch1") ? "C" : "Ch";
     for (int k = 1; k <= motors; ++k) {
-      const auto channel = column("RCOU", "C" + std::to_string(k));
+      const auto channel = column("RCOU", prefix + std::to_string(k));
       if (!channel) {
         throw DataError(path_ + (file_.typeNamed("RCOU") ? ": rc_out: RCOU has no column C" + std::to_string(k) +
                                                                ", fewer channels than the " + std::to_string(motors) +
@@ -78,18 +92,25 @@ class SignalReader {
       for (int k = 0; k < motors; ++k) frame.pwm_us[k] = value(message, channels[k]);
     });
     if (!any) throw DataError(path_ + ": rc_out: no RCOU messages (a required signal)");
-    note("rc_out: RCOU C1..C" + std::to_string(motors) + " (us)");
+    note("rc_out: RCOU " + prefix + "1.." + prefix + std::to_string(motors) + " (us)");
   }
 
+  // BAT since ArduPilot 3.3; CURR before, whose integer Volt and Curr are in hundredths.
   void battery() {
-    const auto volt = column("BAT", "Volt");
-    const auto curr = column("BAT", "Curr");
+    const std::string name = column("BAT", "Volt") || !column("CURR", "Volt") ? "BAT" : "CURR";
+    const auto volt = column(name, "Volt");
+    const auto curr = column(name, "Curr");
     if (!volt) throw DataError(path_ + ": battery: no BAT with Volt (a required signal)");
-    forEach("BAT", [&](const dataflash::Message& message, double t) {
-      streams_->battery.push_back({t, value(message, *volt), curr ? value(message, *curr) : kNaN});
+    const auto scale = [](const dataflash::Column& c) {
+      return std::string("hHiI").find(c.format) != std::string::npos ? 0.01 : 1.0;
+    };
+    forEach(name, [&](const dataflash::Message& message, double t) {
+      streams_->battery.push_back(
+          {t, scale(*volt) * value(message, *volt), curr ? scale(*curr) * value(message, *curr) : kNaN});
     });
-    if (streams_->battery.empty()) throw DataError(path_ + ": battery: no BAT messages (a required signal)");
-    note(std::string("battery: BAT Volt") + (curr ? ", Curr" : ", no current"));
+    if (streams_->battery.empty()) throw DataError(path_ + ": battery: no " + name + " messages (a required signal)");
+    note("battery: " + name + " Volt" + (curr ? ", Curr" : ", no current") +
+         (scale(*volt) != 1.0 ? " (hundredths)" : ""));
   }
 
   void imu() {
@@ -114,18 +135,20 @@ class SignalReader {
   }
 
   void localPosition() {
-    const auto pd = column("XKF1", "PD"), vd = column("XKF1", "VD");
-    if (pd && vd) {
-      forEach("XKF1", [&](const dataflash::Message& message, double t) {
+    // XKF1 (EKF3, core 0), NKF1 (EKF2), EKF1 (the first EKF, in logs of ArduPilot 3.2 and 3.3).
+    for (const char* ekf : {"XKF1", "NKF1", "EKF1"}) {
+      const auto pd = column(ekf, "PD"), vd = column(ekf, "VD");
+      if (!pd || !vd) continue;
+      forEach(ekf, [&](const dataflash::Message& message, double t) {
         streams_->altitude_m.push_back({t, -value(message, *pd)});
         streams_->vertical_speed_m_s.push_back({t, -value(message, *vd)});
       });
-      note("pose, velocity: XKF1 (core 0) -PD, -VD");
+      note(std::string("pose, velocity: ") + ekf + (ekf == std::string("XKF1") ? " (core 0)" : "") + " -PD, -VD");
       return;
     }
     const auto alt = column("CTUN", "Alt"), climb = column("CTUN", "CRt");
     if (!alt) {
-      note("pose, velocity: not in this log (no XKF1 or CTUN)");
+      note("pose, velocity: not in this log (no XKF1, NKF1, EKF1 or CTUN)");
       return;
     }
     forEach("CTUN", [&](const dataflash::Message& message, double t) {
@@ -167,7 +190,7 @@ class SignalReader {
     auto temp = column("ESC", "MotTemp");
     if (!temp) temp = column("ESC", "MTemp");
     const auto instance = column("ESC", "Instance");
-    const auto time = column("ESC", "TimeUS");
+    const auto time = type ? timeColumn(file_, *type) : std::nullopt;
     if (!temp || !instance || !time) {
       note(type ? "motor_temperature: not in this log (ESC has no MotTemp)" : "motor_temperature: not in this log (no ESC)");
       return;
@@ -183,7 +206,7 @@ class SignalReader {
       for (const double reading : latest) {
         if (!std::isnan(reading)) hottest = std::max(hottest, reading);
       }
-      streams_->motor_temperature_c.push_back({(value(message, *time) - first_us_) / 1e6, hottest});
+      streams_->motor_temperature_c.push_back({(value(message, time->column) * time->to_us - first_us_) / 1e6, hottest});
     }
     note("motor_temperature: the hottest ESC MotTemp");
   }
@@ -204,12 +227,12 @@ DataflashFlightReader::DataflashFlightReader(std::string bytes, const std::strin
     : path_(path), file_(std::make_unique<dataflash::File>(std::move(bytes), path)) {
   double first = std::numeric_limits<double>::infinity();
   double last = -first;
-  std::map<std::uint8_t, std::optional<dataflash::Column>> times;
+  std::map<std::uint8_t, std::optional<TimeColumn>> times;
   for (const dataflash::Message& message : file_->messages()) {
     auto time = times.find(message.type);
-    if (time == times.end()) time = times.emplace(message.type, file_->column(message.type, "TimeUS")).first;
+    if (time == times.end()) time = times.emplace(message.type, timeColumn(*file_, message.type)).first;
     if (!time->second) continue;
-    const double t = file_->value(message, *time->second);
+    const double t = file_->value(message, time->second->column) * time->second->to_us;
     first = std::min(first, t);
     last = std::max(last, t);
   }

@@ -31,6 +31,7 @@ void BatteryEstimatorConfig::validate() const {
   requireWithin("capability/battery/curve_sigma_cell_v", curve_sigma_cell_v, 0.0, 0.5, " V");
   requireWithin("capability/battery/current_bias_a", current_bias_a, 0.0, 100.0, " A");
   requireWithin("capability/battery/capacity_rel_std", capacity_rel_std, 0.0, 0.5);
+  requireWithin("capability/battery/knee_soc_std", knee_soc_std, 0.0, 0.5);
   requireWithin("capability/battery/min_current_span_a", min_current_span_a, 0.0, 1000.0, " A");
   requirePositive("capability/battery/max_resistance_rel_std", max_resistance_rel_std);
   requirePositive("capability/battery/max_soc_std", max_soc_std, 1.0);

@@ -262,10 +262,11 @@ void CapabilityEstimator::evaluateEndurance(const Correction& correction, Capabi
   c->endurance_basis = px4 ? "PX4's remaining drawn at the model's hover current"
                            : "to the loaded cut-off at the model's hover current, internal resistance included";
   if (px4) return;
-  // The spread: the endurance at one standard deviation less charge, at one more resistance, and
-  // the capacity's.
-  const HoverDischarge less_charge = discharge(std::max(0.0, b.state_of_charge - b.state_of_charge_std), resistance,
-                                               thrust_per_motor_n, correction);
+  // The spread: the endurance at one standard deviation less charge (the estimate's and where the
+  // pack's knee lies against the curve's), at one more resistance, and the capacity's.
+  const double charge_std = std::hypot(b.state_of_charge_std, battery_->config().knee_soc_std);
+  const HoverDischarge less_charge =
+      discharge(std::max(0.0, b.state_of_charge - charge_std), resistance, thrust_per_motor_n, correction);
   const HoverDischarge more_resistance = discharge(b.state_of_charge, resistance + b.internal_resistance_std_ohm,
                                                    thrust_per_motor_n, correction);
   const double by_charge = c->hover_endurance_s - less_charge.endurance_s.value_or(0.0);

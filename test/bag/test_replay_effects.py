@@ -5,26 +5,17 @@ two estimator_nodes, one with the plain model and one with the model plus an eff
 written here. The corrected model's payload error must be below the plain model's, by a margin,
 and within a tolerance; tolerances are test parameters."""
 import os
-import signal
 import subprocess
-import sys
 import tempfile
-import time
 import unittest
 
-import rosbag
-import roslaunch
 import roslib.packages
-import rospkg
 import rospy
 import rostest
 import yaml
-from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
-from propulsion_estimator.msg import PayloadEstimate
-from std_srvs.srv import Trigger
+from diagnostic_msgs.msg import DiagnosticStatus
 
-sys.path.insert(0, os.path.join(rospkg.RosPack().get_path("propulsion_estimator"), "scripts"))
-from payload_report import SegmentReport, load_segments  # noqa: E402
+from replay_harness import replay
 
 ESTIMATORS = ("plain_estimator", "corrected_estimator")
 
@@ -49,53 +40,10 @@ class ReplayEffectsTest(unittest.TestCase):
             f.write(text + "\n" + yaml.safe_dump({"effects": rospy.get_param("~model_effects")},
                                                  default_flow_style=None))
 
-        _, segments = load_segments(manifest)
-        with rosbag.Bag(bag_path) as bag:
-            start = bag.get_start_time()
-        reports = {name: SegmentReport(segments, start, tare_segment=0) for name in ESTIMATORS}
-        effects_status = {}
-
-        def on_diagnostics(message):
-            for status in message.status:
-                for name in ESTIMATORS:
-                    if name in status.name and status.name.endswith(": Effects"):
-                        effects_status[name] = status
-
-        launch = roslaunch.scriptapi.ROSLaunch()
-        launch.start()
-        processes = []
-        for name, model in zip(ESTIMATORS, (plain_model, corrected_model)):
-            rospy.set_param("/%s/model" % name, model)
-            rospy.set_param("/%s/urdf_file" % name, rospy.get_param("~urdf"))
-            processes.append(launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name=name,
-                                                               namespace="/", output="log")))
-            rospy.Subscriber("/%s/payload" % name, PayloadEstimate, reports[name].on_payload)
-        rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
-        tares = {}
-        for name in ESTIMATORS:
-            rospy.wait_for_service("/%s/tare" % name, timeout=30.0)
-            tares[name] = rospy.ServiceProxy("/%s/tare" % name, Trigger)
-
-        # Its own process group: `rosbag play` runs the player in a child process that must stop too.
-        player = subprocess.Popen(["rosbag", "play", "--clock", "--quiet", "--delay=1",
-                                   "--rate=%s" % rospy.get_param("~rate"), bag_path], start_new_session=True)
-        try:
-            while player.poll() is None:
-                for name in ESTIMATORS:
-                    report = reports[name]
-                    if report.tare_due(rospy.Time.now().to_sec()):
-                        answer = tares[name]()
-                        report.tared = answer.success
-                        report.tare_answer = answer.message
-                time.sleep(0.1)  # wall time: simulated time stops with the bag
-        finally:
-            if player.poll() is None:
-                os.killpg(player.pid, signal.SIGTERM)
-                player.wait()
-            for process in processes:
-                process.stop()
-            launch.stop()
-        self.assertEqual(player.returncode, 0)
+        reports, effects_status, player_status = replay(
+            bag_path, manifest, {ESTIMATORS[0]: plain_model, ESTIMATORS[1]: corrected_model},
+            rospy.get_param("~urdf"), rospy.get_param("~rate"))
+        self.assertEqual(player_status, 0)
 
         errors = {}
         for name in ESTIMATORS:

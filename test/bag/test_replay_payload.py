@@ -4,23 +4,18 @@ the response surfaces), the bag plays on simulated time through the running esti
 the estimates are checked against the manifest's true masses and the bag's /sim/truth, with
 tolerances given as test parameters."""
 import os
-import signal
 import subprocess
-import sys
 import tempfile
-import time
 import unittest
 
 import rosbag
 import roslib.packages
-import rospkg
 import rospy
 import rostest
 from propulsion_estimator.msg import PayloadEstimate, PropulsionTotals, SimTruth
 from std_srvs.srv import Trigger
 
-sys.path.insert(0, os.path.join(rospkg.RosPack().get_path("propulsion_estimator"), "scripts"))
-from payload_report import SegmentReport, load_segments  # noqa: E402
+from replay_harness import SegmentReport, load_segments, play
 
 
 class ReplayPayloadTest(unittest.TestCase):
@@ -62,21 +57,7 @@ class ReplayPayloadTest(unittest.TestCase):
         rospy.wait_for_service("/propulsion_estimator/tare", timeout=30.0)
         tare = rospy.ServiceProxy("/propulsion_estimator/tare", Trigger)
 
-        # Its own process group: `rosbag play` runs the player in a child process that must stop too.
-        player = subprocess.Popen(["rosbag", "play", "--clock", "--quiet", "--delay=1",
-                                   "--rate=%s" % rospy.get_param("~rate"), bag_path], start_new_session=True)
-        try:
-            while player.poll() is None:
-                if report.tare_due(rospy.Time.now().to_sec()):
-                    answer = tare()
-                    report.tared = answer.success
-                    report.tare_answer = answer.message
-                time.sleep(0.1)  # wall time: simulated time stops with the bag
-        finally:
-            if player.poll() is None:
-                os.killpg(player.pid, signal.SIGTERM)
-                player.wait()
-        self.assertEqual(player.returncode, 0)
+        self.assertEqual(play(bag_path, rospy.get_param("~rate"), [(report, tare)]), 0)
         self.assertTrue(report.tared, "no successful ~tare in the empty segment: %s" % report.tare_answer)
         print(report.table())
 

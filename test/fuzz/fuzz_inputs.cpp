@@ -1,10 +1,15 @@
 #include "fuzz_inputs.h"
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include <ros/serialization.h>
 #include <topic_tools/shape_shifter.h>
 
+#include "propulsion_estimator/bag/flight_bag_reader.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/onboard/tare_file.h"
 #include "propulsion_estimator/logs/bench_csv.h"
@@ -131,6 +136,24 @@ bool feedDataflash(const std::uint8_t* data, std::size_t size) {
   return feedFlightLog<DataflashFlightReader>(data, size, "fuzz.bin");
 }
 
+// A rosbag as diagnose_gap reads it. rosbag opens files only: the input goes to a file of this
+// process first.
+bool feedFlightBag(const std::uint8_t* data, std::size_t size) {
+  static const std::string path =
+      (std::filesystem::temp_directory_path() / ("pe_fuzz_" + std::to_string(::getpid()) + ".bag")).string();
+  std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), size);
+  try {
+    const FlightBagReader reader(path);
+    FlightLogOptions options;
+    options.motors = 4;
+    const FlightStreams streams = reader.read(options);
+    if (streams.rc_out.empty() || streams.battery.empty()) throw std::logic_error("read without rc_out or battery");
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
 }  // namespace
 
 const std::vector<FuzzInput>& fuzzInputs() {
@@ -140,6 +163,7 @@ const std::vector<FuzzInput>& fuzzInputs() {
       {"flight_profile", feedFlightProfile},   {"vehicle_urdf", feedVehicleUrdf},
       {"rcout", feedRcOut},                    {"tare_file", feedTareFile},
       {"ulog", feedUlog},                      {"dataflash", feedDataflash},
+      {"flight_bag", feedFlightBag},
   };
   return inputs;
 }

@@ -11,14 +11,14 @@ namespace propulsion_estimator {
 
 /// An ArduPilot DataFlash flight read into FlightStreams, columns found by their FMT labels
 /// (instance 0 of each, where the message has an instance column):
-/// - rc_out: RCOU C1..Cn (PWM us);
-/// - battery: BAT Volt, Curr;
+/// - rc_out: RCOU C1..Cn (PWM us; Ch1..Chn in logs before ArduPilot 3.3);
+/// - battery: BAT Volt, Curr; without BAT, CURR Volt, Curr (hundredths where logged as integers);
 /// - imu: ATT Roll, Pitch, Yaw (deg, NED/FRD, turned to ENU/FLU) with the latest IMU AccX..AccZ;
-/// - pose, velocity: XKF1 (core 0) -PD, -VD; without it CTUN Alt and CRt (cm/s);
+/// - pose, velocity: XKF1 (core 0), else NKF1 or EKF1, -PD, -VD; without them CTUN Alt and CRt (cm/s);
 /// - static_pressure, air_temperature: BARO Press, Temp;
 /// - rangefinder: RFND Dist (m; Stat 4, good, only, and a downward Orient 25 where logged);
 /// - motor_temperature: the hottest ESC MotTemp (MTemp; the ESC's own Temp is not a motor's, not read).
-/// Times: TimeUS, seconds from the log's first timed message.
+/// Times: TimeUS (TimeMS in older logs), seconds from the log's first timed message.
 class DataflashFlightReader : public FlightLogReader {
  public:
   /// Reads and parses `path`. InputError "<path>: no such file"; DataError "<path>: not a

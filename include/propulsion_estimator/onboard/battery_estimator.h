@@ -23,7 +23,10 @@ struct BatteryEstimatorConfig {
   double current_bias_a = 0.3;        ///< A; how far a current sensor may be off (drift of the count)
   /// How far the charge a pack gives may lie off its rating (age, cold), relative: a spread of
   /// the endurance no flight of a minute can narrow.
-  double capacity_rel_std = 0.05;
+  double capacity_rel_std = 0.10;
+  /// How far along the charge axis a pack's knee near empty may lie off the curve's (0..1): where
+  /// the loaded cut-off falls, which no minute of hover above the knee shows.
+  double knee_soc_std = 0.05;
   /// A; the least change of current the resistance needs to be identified (a take-off gives it).
   double min_current_span_a = 2.0;
   double max_resistance_rel_std = 0.35;  ///< the resistance's standard deviation over it, at most

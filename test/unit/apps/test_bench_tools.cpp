@@ -300,6 +300,15 @@ TEST_F(BenchTools, SimulateAnswersLikeTheOtherTools) {
       run(PE_SIMULATE, "flight --params " + params + " --profile p.yaml --bag f.bag --compression zip");
   EXPECT_EQ(bad_value.status, 2);
   EXPECT_EQ(bad_value.err, "simulate flight: --compression: zip not in {none,bz2,lz4} (see --help)\n");
+  // The ULog layout: one of the two, and only for a ULog.
+  const ToolRun bad_layout =
+      run(PE_SIMULATE, "flight --params " + params + " --profile p.yaml --log f.ulg --log-format ulog --ulog-layout px4-2");
+  EXPECT_EQ(bad_layout.status, 2);
+  EXPECT_EQ(bad_layout.err, "simulate flight: --ulog-layout: px4-2 not in {px4-1.12,px4-1.14} (see --help)\n");
+  const ToolRun layout_of_a_bag =
+      run(PE_SIMULATE, "flight --params " + params + " --profile p.yaml --log f.bag --ulog-layout px4-1.14");
+  EXPECT_EQ(layout_of_a_bag.status, 1);
+  EXPECT_EQ(layout_of_a_bag.err, "simulate flight: --ulog-layout: px4-1.14 is for --log-format ulog, not bag\n");
   const ToolRun no_command = run(PE_SIMULATE, "");
   EXPECT_EQ(no_command.status, 2);
   EXPECT_EQ(no_command.err, "simulate: A subcommand is required (see --help)\n");

@@ -1,6 +1,7 @@
-// One simulated flight written as a rosbag, a PX4 ULog and an ArduPilot DataFlash log at once
-// (one simulation, three writers), each read through the flight-log registry as diagnose_gap reads
-// it: the three diagnoses select the same effects with the same parameters.
+// One simulated flight written as a rosbag, a PX4 ULog in PX4 1.12's and in the newer layout and an
+// ArduPilot DataFlash log at once (one simulation, four writers), each read through the flight-log
+// registry as diagnose_gap reads it: the four diagnoses select the same effects with the same
+// parameters.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -36,14 +37,18 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
     pe::BagFlightSink bag((dir / "flight.bag").string(), rosbag::compression::Uncompressed);
     pe::sim::UlogFlightSink ulog(pe::sim::UlogLayout::kPx4v1_12, profile.autopilot.pwm_min_us,
                                  profile.autopilot.pwm_max_us);
+    pe::sim::UlogFlightSink newer_ulog(pe::sim::UlogLayout::kPx4v1_14, profile.autopilot.pwm_min_us,
+                                       profile.autopilot.pwm_max_us);
     pe::sim::DataflashFlightSink dataflash;
-    TeeFlightSink logs(&ulog, &dataflash);
+    TeeFlightSink ulogs(&ulog, &newer_ulog);
+    TeeFlightSink logs(&ulogs, &dataflash);
     TeeFlightSink all(&bag, &logs);
     result = pe::sim::simulateFlight(pe::sim::loadSimParamsFile(repoPath("config/sim/e300_dji2212_dji9443.yaml")),
                                      pe::sim::loadSimEffectsFile((dir / "effects.yaml").string()), profile, vehicle, 3,
                                      &all);
     bag.close();
     ulog.save((dir / "flight.ulg").string());
+    newer_ulog.save((dir / "flight_newer.ulg").string());
     dataflash.save((dir / "flight.bin").string());
   }
   pe::FlightLogFormats formats;
@@ -54,9 +59,15 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
   pe::FlightLogOptions options;
   options.motors = 4;
   std::vector<pe::gap::Diagnosis> diagnoses;
-  for (const char* name : {"flight.bag", "flight.ulg", "flight.bin"}) {
+  for (const char* name : {"flight.bag", "flight.ulg", "flight.bin", "flight_newer.ulg"}) {
     const auto reader = formats.open((dir / name).string());
-    const std::vector<pe::Flight> flights = {{name, reader->read(options), result.segments}};
+    // The newer layout logs actuator_motors only: the user gives the PWM range it maps onto.
+    pe::FlightLogOptions read_options = options;
+    if (std::string(name) == "flight_newer.ulg") {
+      read_options.pwm_min_us = profile.autopilot.pwm_min_us;
+      read_options.pwm_max_us = profile.autopilot.pwm_max_us;
+    }
+    const std::vector<pe::Flight> flights = {{name, reader->read(read_options), result.segments}};
     diagnoses.push_back(pe::gap::diagnoseGap(model, vehicle, flights, pe::gap::DiagnosisConfig{}, {}));
   }
   fs::remove_all(dir);
