@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/gap/rotor_lag.h"
 #include "propulsion_estimator/model/effect_signals.h"
 
 namespace propulsion_estimator {
@@ -121,6 +122,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
   const double log_end = streams.rc_out.back().time_s;
   const double flight_start = flight.segments.empty() ? 0.0 : flight.segments.front().start_s;
   const int motors = config.motors;
+  const std::vector<RcOutFrame> commands = laggedCommands(streams.rc_out, motors, config.rotor_time_constant_s);
   int group = first_group;
 
   for (int s = 0; s < static_cast<int>(flight.segments.size()); ++s) {
@@ -163,7 +165,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       acc = Accumulator();
     };
 
-    for (const RcOutFrame& frame : streams.rc_out) {
+    for (const RcOutFrame& frame : commands) {
       if (frame.time_s < segment.start_s) continue;
       if (frame.time_s > segment.end_s) break;
       const int index = static_cast<int>((frame.time_s - segment.start_s) / config.block_s);
