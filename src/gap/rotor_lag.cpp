@@ -11,6 +11,7 @@ namespace {
 
 constexpr double kMaxTimeConstantS = 0.3;
 constexpr double kStepS = 0.005;
+constexpr double kCoarseStepS = 0.02;
 constexpr double kMinWithinBlockStdUs = 2.0;
 
 // One frame of a weighed segment: its block (flight, segment, index), collective and vertical force.
@@ -23,22 +24,26 @@ struct FrameSample {
 // The weighed frames with a fresh IMU reading (within 0.1 s), `commands` giving the collective.
 void collectFrames(const Flight& flight, const std::vector<RcOutFrame>& commands, int motors, double block_s,
                    long first_block, std::vector<FrameSample>* out) {
-  const FlightStreams& streams = flight.streams;
-  std::size_t imu = 0;
+  const std::vector<ImuReading>& imus = flight.streams.imu;
+  if (imus.empty()) return;
+  const auto earlier = [](const auto& reading, double time_s) { return reading.time_s < time_s; };
   for (std::size_t s = 0; s < flight.segments.size(); ++s) {
     const ManifestSegment& segment = flight.segments[s];
-    for (const RcOutFrame& frame : commands) {
-      if (frame.time_s < segment.start_s || frame.time_s > segment.end_s) continue;
-      while (imu + 1 < streams.imu.size() && streams.imu[imu + 1].time_s <= frame.time_s) ++imu;
-      if (streams.imu.empty() || std::abs(streams.imu[imu].time_s - frame.time_s) > 0.1) continue;
+    auto imu = std::lower_bound(imus.begin(), imus.end(), segment.start_s, earlier);
+    for (auto frame = std::lower_bound(commands.begin(), commands.end(), segment.start_s, earlier);
+         frame != commands.end() && frame->time_s <= segment.end_s; ++frame) {
+      while (imu != imus.end() && imu->time_s < frame->time_s) ++imu;
+      const auto nearest = imu == imus.end() || (imu != imus.begin() && frame->time_s - (imu - 1)->time_s <
+                                                                            imu->time_s - frame->time_s)
+                               ? imu - 1
+                               : imu;
+      if (std::abs(nearest->time_s - frame->time_s) > 0.1) continue;
       double collective = 0.0;
-      for (int k = 0; k < motors; ++k) collective += frame.pwm_us[k] / motors;
-      const ImuReading& reading = streams.imu[imu];
-      const long index = static_cast<long>((frame.time_s - segment.start_s) / block_s);
+      for (int k = 0; k < motors; ++k) collective += frame->pwm_us[k] / motors;
+      const long index = static_cast<long>((frame->time_s - segment.start_s) / block_s);
       out->push_back({first_block + static_cast<long>(s) * 100000 + index, collective,
-                      (reading.orientation * reading.specific_force_m_s2).z()});
+                      (nearest->orientation * nearest->specific_force_m_s2).z()});
     }
-    imu = 0;
   }
 }
 
@@ -82,8 +87,8 @@ std::vector<RcOutFrame> laggedCommands(const std::vector<RcOutFrame>& rc_out, in
 }
 
 std::optional<RotorLag> identifyRotorLag(const std::vector<Flight>& flights, int motors, double block_s) {
-  std::optional<RotorLag> best;
-  for (double tau = 0.0; tau <= kMaxTimeConstantS + 1e-9; tau += kStepS) {
+  // How well the command lagged by `tau` explains the force within blocks; nullopt without data.
+  const auto fitAt = [&](double tau) -> std::optional<RotorLag> {
     std::vector<FrameSample> frames;
     for (std::size_t f = 0; f < flights.size(); ++f) {
       collectFrames(flights[f], laggedCommands(flights[f].streams.rc_out, motors, tau), motors, block_s,
@@ -91,8 +96,19 @@ std::optional<RotorLag> identifyRotorLag(const std::vector<Flight>& flights, int
     }
     const Moments m = withinBlockMoments(frames);
     if (m.n < 50 || !(std::sqrt(m.xx / m.n) >= kMinWithinBlockStdUs) || !(m.yy > 0.0)) return std::nullopt;
-    const double r2 = m.xy * m.xy / (m.xx * m.yy);
-    if (!best || r2 > best->fit_r2) best = RotorLag{tau, r2, static_cast<int>(m.n)};
+    return RotorLag{tau, m.xy * m.xy / (m.xx * m.yy), static_cast<int>(m.n)};
+  };
+  // A coarse grid, then the fine one around its best: the fit is smooth in the time constant.
+  std::optional<RotorLag> best;
+  for (double tau = 0.0; tau <= kMaxTimeConstantS + 1e-9; tau += kCoarseStepS) {
+    const std::optional<RotorLag> fit = fitAt(tau);
+    if (!fit) return std::nullopt;
+    if (!best || fit->fit_r2 > best->fit_r2) best = fit;
+  }
+  const double centre = best->time_constant_s;
+  for (double tau = std::max(0.0, centre - kCoarseStepS); tau <= centre + kCoarseStepS + 1e-9; tau += kStepS) {
+    const std::optional<RotorLag> fit = fitAt(tau);
+    if (fit && fit->fit_r2 > best->fit_r2) best = fit;
   }
   return best;
 }

@@ -18,7 +18,7 @@ struct RotorLag {
   int frames = 0;  ///< frames of the weighed segments it was identified on
 };
 
-/// Identifies the time constant, 0..0.3 s in 5 ms steps, as the one whose lagged collective (the
+/// Identifies the time constant, 0..0.3 s to 5 ms, as the one whose lagged collective (the
 /// mean over `motors` of each motor's lagged pulse width) best explains the vertical specific force
 /// within `block_s` windows of the weighed segments, pooled over `flights`. nullopt when the
 /// flights hold no IMU or too little change of command within their blocks (a collective standard
