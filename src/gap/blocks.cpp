@@ -93,6 +93,34 @@ bool hasCurrent(const std::vector<BatteryReading>& battery) {
                      [](const BatteryReading& reading) { return std::isfinite(reading.current_a); });
 }
 
+// The readings of the signals the effects read, in force at each frame (Cursor's rules).
+struct SignalCursors {
+  explicit SignalCursors(const FlightStreams& streams)
+      : speed(streams.vertical_speed_m_s),
+        pressure(streams.static_pressure_pa),
+        air(streams.air_temperature_c),
+        range(streams.height_above_ground_m),
+        motor_temperature(streams.motor_temperature_c) {}
+
+  effects::RawSignals at(double time_s, double timeout_s, const BatteryReading& battery, const ImuReading* imu) {
+    const auto value = [&](Cursor<ScalarReading>& cursor) {
+      const ScalarReading* reading = cursor.at(time_s, timeout_s);
+      return reading ? reading->value : kNaN;
+    };
+    effects::RawSignals raw;
+    raw.battery_current_a = battery.current_a;
+    raw.body_z_up = imu ? (imu->orientation * Eigen::Vector3d::UnitZ()).z() : 1.0;
+    raw.range_m = value(range);
+    raw.vertical_speed_m_s = value(speed);
+    raw.static_pressure_pa = value(pressure);
+    raw.air_temperature_c = value(air);
+    raw.motor_temperature_c = value(motor_temperature);
+    return raw;
+  }
+
+  Cursor<ScalarReading> speed, pressure, air, range, motor_temperature;
+};
+
 std::string segmentName(const Flight& flight, int index) {
   const ManifestSegment& segment = flight.segments[index];
   return flight.name + ": segment " + std::to_string(index + 1) + " (" + formatNumber(segment.start_s) + "-" +
@@ -134,9 +162,8 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     }
     Cursor<BatteryReading> battery(streams.battery);
     Cursor<ImuReading> imu(streams.imu);
-    Cursor<ScalarReading> altitude(streams.altitude_m), speed(streams.vertical_speed_m_s),
-        pressure(streams.static_pressure_pa), air(streams.air_temperature_c), range(streams.height_above_ground_m),
-        motor_temperature(streams.motor_temperature_c);
+    Cursor<ScalarReading> altitude(streams.altitude_m);
+    SignalCursors signals(streams);
     const double timeout = config.signal_timeout_s;
     const int blocks_per_group = std::max(1, static_cast<int>(std::lround(config.group_s / config.block_s)));
     int block_in_segment = 0;
@@ -182,20 +209,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       acc.voltage += b->voltage_v;
       const ImuReading* i = imu.at(frame.time_s, timeout);
       // The node's preparation of the effects' signals (effect_signals.h), frame by frame.
-      effects::RawSignals raw;
-      raw.battery_current_a = b->current_a;
-      raw.body_z_up = i ? (i->orientation * Eigen::Vector3d::UnitZ()).z() : 1.0;
-      const ScalarReading* r = range.at(frame.time_s, timeout);
-      raw.range_m = r ? r->value : kNaN;
-      const ScalarReading* v = speed.at(frame.time_s, timeout);
-      raw.vertical_speed_m_s = v ? v->value : kNaN;
-      const ScalarReading* p = pressure.at(frame.time_s, timeout);
-      raw.static_pressure_pa = p ? p->value : kNaN;
-      const ScalarReading* a = air.at(frame.time_s, timeout);
-      raw.air_temperature_c = a ? a->value : kNaN;
-      const ScalarReading* m = motor_temperature.at(frame.time_s, timeout);
-      raw.motor_temperature_c = m ? m->value : kNaN;
-      const effects::Signals prepared = effects::prepareSignals(raw);
+      const effects::Signals prepared = effects::prepareSignals(signals.at(frame.time_s, timeout, *b, i));
       if (std::isfinite(prepared.battery_current_a)) {
         acc.current += prepared.battery_current_a;
         ++acc.current_frames;

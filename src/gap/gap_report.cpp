@@ -78,9 +78,10 @@ void emitNested(YAML::Emitter& out, const NestedHoldOut& nested) {
 
 }  // namespace
 
-std::string gapReportYaml(const Diagnosis& diagnosis) {
-  YAML::Emitter out;
-  out << YAML::BeginMap;
+namespace {
+
+// The report's gap section: overall, the blocks used and left out, per flight and per bench log.
+void emitGap(YAML::Emitter& out, const Diagnosis& diagnosis) {
   out << YAML::Key << "gap" << YAML::Value << YAML::BeginMap;
   emitField(out, "bias_pct", diagnosis.overall.bias_pct);
   emitField(out, "rmse_pct", diagnosis.overall.rmse_pct);
@@ -107,6 +108,14 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
     out << YAML::EndMap;
   }
   out << YAML::EndSeq << YAML::EndMap;
+}
+
+}  // namespace
+
+std::string gapReportYaml(const Diagnosis& diagnosis) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  emitGap(out, diagnosis);
 
   out << YAML::Key << "where" << YAML::Value << YAML::BeginMap;
   for (const Breakdown& breakdown : diagnosis.where) {
