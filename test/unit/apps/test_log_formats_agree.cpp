@@ -72,12 +72,19 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
   }
   fs::remove_all(dir);
   const pe::gap::Diagnosis& bag = diagnoses[0];
-  ASSERT_EQ(bag.selected, std::vector<pe::effects::Kind>{pe::effects::Kind::kThrustLoss});
+  // The thrust loss leads, selected or, on one flight whose three payloads barely separate it from
+  // a supply resistance, as the leader of an ambiguous pair (what the corrections are fitted with).
+  const bool selected = bag.selected == std::vector<pe::effects::Kind>{pe::effects::Kind::kThrustLoss};
+  const bool leads_ambiguity = bag.selected.empty() && bag.ambiguous.size() == 1 &&
+                               bag.ambiguous[0].kinds.front() == pe::effects::Kind::kThrustLoss;
+  ASSERT_TRUE(selected || leads_ambiguity);
   const double fraction = *bag.fitted.parameter(pe::effects::Kind::kThrustLoss);
   EXPECT_NEAR(fraction, 0.06, 0.01);
   for (std::size_t i = 1; i < diagnoses.size(); ++i) {
     const pe::gap::Diagnosis& other = diagnoses[i];
     EXPECT_EQ(other.selected, bag.selected) << i;
+    ASSERT_EQ(other.ambiguous.size(), bag.ambiguous.size()) << i;
+    if (!bag.ambiguous.empty()) EXPECT_EQ(other.ambiguous[0].kinds, bag.ambiguous[0].kinds) << i;
     EXPECT_NEAR(*other.fitted.parameter(pe::effects::Kind::kThrustLoss), fraction, 1e-4 * fraction) << i;
     EXPECT_EQ(other.overall.samples, bag.overall.samples) << i;
     EXPECT_NEAR(other.overall.rmse_pct, bag.overall.rmse_pct, 1e-3) << i;
