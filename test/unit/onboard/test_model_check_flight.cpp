@@ -16,7 +16,10 @@
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/fitting/rpm_thrust_fit.h"
 #include "propulsion_estimator/onboard/model_check.h"
+#include "propulsion_estimator/onboard/rpm_mass_view.h"
+#include "propulsion_estimator/sim/stand/bench_simulator.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_simulator.h"
 #include "propulsion_estimator/sim/physics/sim_params_yaml.h"
@@ -54,6 +57,7 @@ class CheckSink : public pe::sim::FlightSink {
     }
     const pe::EstimatorOutput& out = estimator_.output();
     check.addEstimate(s.time_s, out);
+    if (view) view->add(s.time_s, out, check, pe::kNaN);
     if (out.hover.hovering && !first_hover_s) first_hover_s = s.time_s;
     if (s.time_s < next_report_s_) return;
     next_report_s_ = s.time_s + 0.5;
@@ -83,9 +87,11 @@ class CheckSink : public pe::sim::FlightSink {
   void airTemperature(const pe::sim::ScalarSample&) override {}
   void rangefinder(const pe::sim::RangeSample&) override {}
   void motorTemperature(const pe::sim::ScalarSample&) override {}
-  void truth(const pe::sim::TruthSample&) override {}
+  void truth(const pe::sim::TruthSample& s) override { true_mass_kg = s.total_mass_kg; }
 
   pe::ModelCheck check;
+  std::optional<pe::RpmMassView> view;
+  double true_mass_kg = pe::kNaN;
   pe::ModelCheckReport last, first_flag;
   std::optional<double> first_hover_s, first_flag_s;
   unsigned flags = 0;
@@ -121,8 +127,10 @@ pe::sim::FlightProfile hoverProfile(double hover_s, int weak_motor, double thrus
 }
 
 std::unique_ptr<CheckSink> fly(const pe::Vehicle& vehicle, const pe::sim::FlightProfile& profile, std::uint64_t seed,
-                               const pe::sim::SimEffects& effects = {}, const pe::ModelCheckConfig& config = {}) {
+                               const pe::sim::SimEffects& effects = {}, const pe::ModelCheckConfig& config = {},
+                               const std::optional<pe::RpmThrust>& rpm_thrust = std::nullopt) {
   auto sink = std::make_unique<CheckSink>(vehicle, config);
+  if (rpm_thrust) sink->view.emplace(*rpm_thrust, 10.0);
   pe::sim::simulateFlight(thesisParams(), effects, profile, vehicle, seed, sink.get());
   return sink;
 }
@@ -199,4 +207,33 @@ TEST(ModelCheckFlight, NoFlagOnTwoHundredFlightsWithoutAFault) {
   }
   EXPECT_GE(judged, 190);
   std::printf("%d of 200 judged, %d with the verdict supply\n", judged, supply);
+}
+
+// Thrust from rpm fitted on the simulated bench of the vehicle's own hardware (its rpm column),
+// flown with what moves the PWM view and not the rotor's speed-to-thrust: ESCs whose end points
+// differ from the bench ESC's, and a supply resistance the model does not know.
+TEST(ModelCheckFlight, TheMassFromRpmHoldsWhereThePwmViewIsOff) {
+  const pe::sim::SimParams params = thesisParams();
+  const pe::BenchLog bench = pe::sim::simulateBench(
+      params, {}, pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params), 7);
+  const pe::RpmThrust rpm_thrust = pe::fitRpmThrust({bench}, params.bench.air.densityKgM3());
+  EXPECT_GT(rpm_thrust.rows, 100);
+  const pe::Vehicle quad = pe::loadVehicleUrdf(repoPath("config/f450_quad.urdf"));
+  int seed = 300, checked = 0;
+  for (double offset_us : {-40.0, 40.0}) {
+    for (double ohm : {0.0, 0.08}) {
+      pe::sim::SimEffects effects;
+      effects.esc_offset_us = offset_us;
+      if (ohm > 0.0) effects.supply_resistance_ohm = ohm;
+      const auto sink = fly(quad, hoverProfile(25.0, 0, 1.0, seed % 2 == 0), ++seed, effects, {}, rpm_thrust);
+      const double truth = sink->true_mass_kg;
+      const double rpm_error = sink->view->massKg() / truth - 1.0;
+      const double pwm_error = sink->view->pwmMassKg() / truth - 1.0;
+      std::printf("offset %+.0f us, supply %.2f ohm: PWM view %+.1f %%, rpm view %+.1f %% (%.1f s of hover)\n",
+                  offset_us, ohm, 100.0 * pwm_error, 100.0 * rpm_error, sink->view->hoverS());
+      EXPECT_LT(std::fabs(rpm_error), 0.02) << offset_us << " us, " << ohm << " ohm";
+      if (std::fabs(pwm_error) > 0.05) ++checked;
+    }
+  }
+  EXPECT_GE(checked, 2) << "the PWM view was off by more than 5 % on too few flights to show anything";
 }
