@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <mutex>
 
+#include "propulsion_estimator/bag/bag_records.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/input_error.h"
@@ -192,11 +193,23 @@ std::string* FlightBagTopics::find(const std::string& name) {
   return nullptr;
 }
 
+namespace {
+
+// Seconds from `start` to `time`, from their nanoseconds: ros::Duration throws std::runtime_error
+// for a span beyond 2^31 s, which a corrupt stamp gives (found by fuzz_flight_bag).
+double secondsSince(const ros::Time& start, const ros::Time& time) {
+  return static_cast<double>(static_cast<std::int64_t>(time.toNSec() - start.toNSec())) * 1e-9;
+}
+
+}  // namespace
+
 FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
   // Declared after the lock, a bag refused here is destroyed before the lock is released.
   const std::lock_guard<std::mutex> lock(bagLifetimeMutex());
+  const std::string damaged = checkBagRecords(path);
+  if (!damaged.empty()) throw DataError(path + ": not a readable bag: " + damaged);
   auto bag = std::make_unique<rosbag::Bag>();
   try {
     bag->open(path, rosbag::bagmode::Read);
@@ -206,7 +219,7 @@ FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
   rosbag::View all(*bag);
   if (all.size() == 0) throw DataError(path + ": no messages");
   start_ = all.getBeginTime();
-  duration_s_ = (all.getEndTime() - start_).toSec();
+  duration_s_ = secondsSince(start_, all.getEndTime());
   bag_ = std::move(bag);
 }
 
@@ -256,7 +269,7 @@ FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int motors) c
   double time_s = 0.0;
   try {
     for (const rosbag::MessageInstance& message : rosbag::View(*bag_, rosbag::TopicQuery(requested))) {
-      time_s = (message.getTime() - start_).toSec();
+      time_s = secondsSince(start_, message.getTime());
       const std::uint32_t size = message.size();
       if (buffer.size() < size) buffer.resize(size);
       ros::serialization::OStream out(buffer.data(), size);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <thread>
 
@@ -197,6 +198,24 @@ TEST_F(FlightBagReader, RefusesAFileThatIsNotABag) {
   EXPECT_EQ(refusal(file("text.bag")), file("text.bag") + ": not a readable bag: Error reading version line");
   { rosbag::Bag empty(file("empty.bag"), rosbag::bagmode::Write); }
   EXPECT_EQ(refusal(file("empty.bag")), file("empty.bag") + ": no messages");
+}
+
+// A record whose stated length runs past the file's end is refused before rosbag allocates it
+// (fuzz_flight_bag's finding: 2.3 GB asked for by a 12 kB file), and so is a truncated bag.
+TEST_F(FlightBagReader, RefusesARecordLongerThanTheFileBeforeRosbagReadsIt) {
+  writeMinimalBag(file("good.bag"));
+  std::ifstream in(file("good.bag"), std::ios::binary);
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string huge = good;
+  huge.replace(13, 4, std::string("\xff\xff\xff\x7f", 4));  // the bag header record's header length
+  std::ofstream(file("huge.bag"), std::ios::binary) << huge;
+  EXPECT_EQ(refusal(file("huge.bag")), file("huge.bag") + ": not a readable bag: at byte 13: record header of "
+                                           "2147483647 bytes, beyond the file's end (" + std::to_string(good.size()) +
+                                           " bytes)");
+  std::ofstream(file("cut.bag"), std::ios::binary) << good.substr(0, good.size() - 10);
+  EXPECT_EQ(refusal(file("cut.bag")).rfind(file("cut.bag") + ": not a readable bag: at byte ", 0), 0u)
+      << refusal(file("cut.bag"));
+  std::cout << "  " << refusal(file("cut.bag")) << "\n";
 }
 
 // The registry tells a bag by its first bytes, not its name, and reads it through the interface.

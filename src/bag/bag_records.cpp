@@ -1,0 +1,187 @@
+#include "propulsion_estimator/bag/bag_records.h"
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <set>
+
+namespace propulsion_estimator {
+namespace {
+
+constexpr char kBagMagic[] = "#ROSBAG V2.0\n";
+constexpr std::uint8_t kBagHeaderOp = 0x03, kIndexDataOp = 0x04, kChunkOp = 0x05, kChunkInfoOp = 0x06;
+constexpr double kMaxCompressionRatio = 1000.0;
+constexpr std::uint64_t kMaxChunkBytes = 1ull << 30;
+
+// A record header's fields ("name=value", each after its 4-byte length); empty when malformed,
+// which rosbag itself refuses.
+std::map<std::string, std::string> headerFields(const std::string& header) {
+  std::map<std::string, std::string> fields;
+  std::size_t at = 0;
+  while (at + 4 <= header.size()) {
+    std::uint32_t length = 0;
+    std::memcpy(&length, header.data() + at, 4);
+    at += 4;
+    if (length > header.size() - at) return {};
+    const std::string field = header.substr(at, length);
+    at += length;
+    const std::size_t equals = field.find('=');
+    if (equals != std::string::npos) fields[field.substr(0, equals)] = field.substr(equals + 1);
+  }
+  return fields;
+}
+
+// A little-endian integer field of 4 or 8 bytes; `fallback` when absent or of another size.
+std::uint64_t number(const std::map<std::string, std::string>& fields, const char* name, std::uint64_t fallback) {
+  const auto field = fields.find(name);
+  if (field == fields.end() || (field->second.size() != 4 && field->second.size() != 8)) return fallback;
+  std::uint64_t value = 0;
+  std::memcpy(&value, field->second.data(), field->second.size());
+  return value;
+}
+
+// Walks the file's records, keeping what later records point at: rosbag follows the bag header's
+// index position, the chunk infos' chunk positions and the index entries' offsets into a chunk
+// without checking them.
+class BagWalker {
+ public:
+  explicit BagWalker(const std::string& path) : in_(path, std::ios::binary) {
+    in_.seekg(0, std::ios::end);
+    size_ = static_cast<std::uint64_t>(in_.tellg());
+    in_.seekg(0);
+  }
+
+  std::string walk() {
+    char magic[sizeof(kBagMagic) - 1] = {};
+    if (!in_.read(magic, sizeof magic) || std::memcmp(magic, kBagMagic, sizeof magic) != 0) return "";  // rosbag says
+    std::uint64_t at = sizeof magic;
+    while (at < size_) {
+      const std::uint64_t record = at;
+      std::string header, problem;
+      std::uint32_t data_length = 0;
+      if (!readLength(&at, "header", &problem) || !readBytes(&at, &header) ||
+          !readLength(&at, "data", &problem, &data_length)) {
+        return "at byte " + std::to_string(record) + ": " + (problem.empty() ? "record truncated" : problem);
+      }
+      record_starts_.insert(record);
+      problem = checkRecord(record, headerFields(header), at, data_length);
+      if (!problem.empty()) return "at byte " + std::to_string(record) + ": " + problem;
+      at += data_length;
+      in_.seekg(static_cast<std::streamoff>(at));
+    }
+    if (index_pos_ != 0 && record_starts_.count(index_pos_) == 0 && index_pos_ != size_) {
+      return "the bag header's index position " + std::to_string(index_pos_) + " is not a record's start";
+    }
+    return "";
+  }
+
+ private:
+  bool readLength(std::uint64_t* at, const char* what, std::string* problem, std::uint32_t* out = nullptr) {
+    std::uint32_t length = 0;
+    if (size_ - *at < 4) return false;
+    in_.read(reinterpret_cast<char*>(&length), 4);
+    *at += 4;
+    if (length > size_ - *at) {
+      *problem = std::string("record ") + what + " of " + std::to_string(length) + " bytes, beyond the file's end (" +
+                 std::to_string(size_) + " bytes)";
+      return false;
+    }
+    pending_ = length;
+    if (out) *out = length;
+    return true;
+  }
+  bool readBytes(std::uint64_t* at, std::string* bytes) {
+    bytes->assign(pending_, '\0');
+    in_.read(&(*bytes)[0], pending_);
+    *at += pending_;
+    return true;
+  }
+  std::string data(std::uint64_t at, std::uint32_t length) {
+    std::string bytes(length, '\0');
+    in_.seekg(static_cast<std::streamoff>(at));
+    in_.read(&bytes[0], length);
+    return bytes;
+  }
+
+  std::string checkRecord(std::uint64_t record, const std::map<std::string, std::string>& fields, std::uint64_t at,
+                          std::uint32_t data_length) {
+    const auto op = fields.find("op");
+    if (op == fields.end() || op->second.size() != 1) return "";  // rosbag refuses it
+    switch (static_cast<std::uint8_t>(op->second[0])) {
+      case kBagHeaderOp:
+        index_pos_ = number(fields, "index_pos", 0);
+        return "";
+      case kChunkOp:
+        chunk_starts_.insert(record);
+        return checkChunk(fields, at, data_length);
+      case kIndexDataOp:
+        return checkIndex(data(at, data_length));
+      case kChunkInfoOp:
+        return chunk_starts_.count(number(fields, "chunk_pos", 0)) ? ""
+                                                                    : "chunk info pointing at no chunk's start";
+      default:
+        return "";
+    }
+  }
+
+  // A chunk's stated uncompressed size, and without compression the records inside it.
+  std::string checkChunk(const std::map<std::string, std::string>& fields, std::uint64_t at,
+                         std::uint32_t data_length) {
+    const auto compression = fields.find("compression");
+    chunk_size_ = number(fields, "size", 0);
+    chunk_records_.clear();
+    if (compression == fields.end()) return "";  // rosbag refuses it
+    const bool none = compression->second == "none";
+    if (none ? chunk_size_ != data_length
+             : chunk_size_ > kMaxChunkBytes || chunk_size_ > kMaxCompressionRatio * data_length + 4096.0) {
+      return "chunk of " + std::to_string(data_length) + " bytes (" + compression->second + ") states " +
+             std::to_string(chunk_size_) + " bytes uncompressed";
+    }
+    chunk_walked_ = none;
+    if (!none) return "";
+    const std::string bytes = data(at, data_length);
+    for (std::uint64_t inner = 0; inner < bytes.size();) {
+      chunk_records_.insert(inner);
+      std::uint64_t next = inner;
+      for (int part = 0; part < 2; ++part) {
+        std::uint32_t length = 0;
+        if (bytes.size() - next < 4) return "a record inside the chunk at offset " + std::to_string(inner) + " truncated";
+        std::memcpy(&length, bytes.data() + next, 4);
+        next += 4;
+        if (length > bytes.size() - next) {
+          return "a record inside the chunk at offset " + std::to_string(inner) + " runs past the chunk's end";
+        }
+        next += length;
+      }
+      inner = next;
+    }
+    return "";
+  }
+
+  // Index entries (time, offset into the preceding chunk) must point at one of its records.
+  std::string checkIndex(const std::string& entries) {
+    for (std::size_t at = 8; at + 4 <= entries.size(); at += 12) {
+      std::uint32_t offset = 0;
+      std::memcpy(&offset, entries.data() + at, 4);
+      if (chunk_walked_ ? chunk_records_.count(offset) == 0 : offset >= chunk_size_) {
+        return "index entry pointing at offset " + std::to_string(offset) + ", not a record of its chunk";
+      }
+    }
+    return "";
+  }
+
+  std::ifstream in_;
+  std::uint64_t size_ = 0;
+  std::uint32_t pending_ = 0;
+  std::uint64_t index_pos_ = 0;
+  std::set<std::uint64_t> record_starts_, chunk_starts_, chunk_records_;
+  std::uint64_t chunk_size_ = 0;
+  bool chunk_walked_ = false;
+};
+
+}  // namespace
+
+std::string checkBagRecords(const std::string& path) { return BagWalker(path).walk(); }
+
+}  // namespace propulsion_estimator
