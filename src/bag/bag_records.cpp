@@ -14,8 +14,22 @@ constexpr std::uint8_t kBagHeaderOp = 0x03, kIndexDataOp = 0x04, kChunkOp = 0x05
 constexpr double kMaxCompressionRatio = 1000.0;
 constexpr std::uint64_t kMaxChunkBytes = 1ull << 30;
 
-// A record header's fields ("name=value", each after its 4-byte length); empty when malformed,
-// which rosbag itself refuses.
+// Whether a record header's fields (each a 4-byte length and "name=value") exactly fill it:
+// rosbag's header parser reads past the header when a field's length does not fit.
+bool fieldsFit(const char* header, std::uint64_t size) {
+  std::uint64_t at = 0;
+  while (at < size) {
+    std::uint32_t length = 0;
+    if (size - at < 4) return false;
+    std::memcpy(&length, header + at, 4);
+    at += 4;
+    if (length > size - at) return false;
+    at += length;
+  }
+  return true;
+}
+
+// A record header's fields, by name (call on a header whose fields fit).
 std::map<std::string, std::string> headerFields(const std::string& header) {
   std::map<std::string, std::string> fields;
   std::size_t at = 0;
@@ -23,7 +37,6 @@ std::map<std::string, std::string> headerFields(const std::string& header) {
     std::uint32_t length = 0;
     std::memcpy(&length, header.data() + at, 4);
     at += 4;
-    if (length > header.size() - at) return {};
     const std::string field = header.substr(at, length);
     at += length;
     const std::size_t equals = field.find('=');
@@ -65,6 +78,7 @@ class BagWalker {
         return "at byte " + std::to_string(record) + ": " + (problem.empty() ? "record truncated" : problem);
       }
       record_starts_.insert(record);
+      if (!fieldsFit(header.data(), header.size())) return "at byte " + std::to_string(record) + ": malformed header";
       problem = checkRecord(record, headerFields(header), at, data_length);
       if (!problem.empty()) return "at byte " + std::to_string(record) + ": " + problem;
       at += data_length;
@@ -151,6 +165,9 @@ class BagWalker {
         next += 4;
         if (length > bytes.size() - next) {
           return "a record inside the chunk at offset " + std::to_string(inner) + " runs past the chunk's end";
+        }
+        if (part == 0 && !fieldsFit(bytes.data() + next, length)) {
+          return "a record inside the chunk at offset " + std::to_string(inner) + " has a malformed header";
         }
         next += length;
       }
