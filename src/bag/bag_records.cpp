@@ -10,7 +10,8 @@ namespace propulsion_estimator {
 namespace {
 
 constexpr char kBagMagic[] = "#ROSBAG V2.0\n";
-constexpr std::uint8_t kBagHeaderOp = 0x03, kIndexDataOp = 0x04, kChunkOp = 0x05, kChunkInfoOp = 0x06;
+constexpr std::uint8_t kBagHeaderOp = 0x03, kIndexDataOp = 0x04, kChunkOp = 0x05, kChunkInfoOp = 0x06,
+                       kConnectionOp = 0x07;
 constexpr double kMaxCompressionRatio = 1000.0;
 constexpr std::uint64_t kMaxChunkBytes = 1ull << 30;
 
@@ -29,6 +30,9 @@ bool fieldsFit(const char* header, std::uint64_t size) {
   return true;
 }
 
+// Whether a record's header (whose fields fit) is a connection's: its data is a header too.
+bool isConnection(const std::string& header);
+
 // A record header's fields, by name (call on a header whose fields fit).
 std::map<std::string, std::string> headerFields(const std::string& header) {
   std::map<std::string, std::string> fields;
@@ -43,6 +47,12 @@ std::map<std::string, std::string> headerFields(const std::string& header) {
     if (equals != std::string::npos) fields[field.substr(0, equals)] = field.substr(equals + 1);
   }
   return fields;
+}
+
+bool isConnection(const std::string& header) {
+  const std::map<std::string, std::string> fields = headerFields(header);
+  const auto op = fields.find("op");
+  return op != fields.end() && op->second.size() == 1 && static_cast<std::uint8_t>(op->second[0]) == kConnectionOp;
 }
 
 // A little-endian integer field of 4 or 8 bytes; `fallback` when absent or of another size.
@@ -131,6 +141,10 @@ class BagWalker {
         return checkChunk(fields, at, data_length);
       case kIndexDataOp:
         return checkIndex(data(at, data_length));
+      case kConnectionOp: {
+        const std::string connection = data(at, data_length);
+        return fieldsFit(connection.data(), connection.size()) ? "" : "malformed connection header";
+      }
       case kChunkInfoOp:
         return chunk_starts_.count(number(fields, "chunk_pos", 0)) ? ""
                                                                     : "chunk info pointing at no chunk's start";
@@ -158,6 +172,7 @@ class BagWalker {
     for (std::uint64_t inner = 0; inner < bytes.size();) {
       chunk_records_.insert(inner);
       std::uint64_t next = inner;
+      bool connection = false;
       for (int part = 0; part < 2; ++part) {
         std::uint32_t length = 0;
         if (bytes.size() - next < 4) return "a record inside the chunk at offset " + std::to_string(inner) + " truncated";
@@ -166,9 +181,11 @@ class BagWalker {
         if (length > bytes.size() - next) {
           return "a record inside the chunk at offset " + std::to_string(inner) + " runs past the chunk's end";
         }
-        if (part == 0 && !fieldsFit(bytes.data() + next, length)) {
+        // Both parts of a connection record are headers; a message's data is the message.
+        if ((part == 0 || connection) && !fieldsFit(bytes.data() + next, length)) {
           return "a record inside the chunk at offset " + std::to_string(inner) + " has a malformed header";
         }
+        if (part == 0) connection = isConnection(bytes.substr(next, length));
         next += length;
       }
       inner = next;

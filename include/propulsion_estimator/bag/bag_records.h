@@ -12,7 +12,7 @@ namespace propulsion_estimator {
 /// length, header, data length, data) before rosbag reads it: "" when every record's header and
 /// data lie within the file, every chunk's stated uncompressed size is plausible (equal to its data
 /// without compression, at most 1000 times its data and 1 GiB with it), every header's fields fill it
-/// exactly (rosbag's parser reads past it otherwise), the records inside an
+/// exactly, and so do a connection record's data's (rosbag's parser reads past them otherwise), the records inside an
 /// uncompressed chunk lie within it, and what rosbag follows without checking points at a record
 /// (the bag header's index position, each chunk info's chunk, each index entry's offset into its
 /// chunk); else "at byte <offset>: <problem>" for the first record that is not. A file that does not
