@@ -1,15 +1,16 @@
 #include "propulsion_estimator/bag/bag_records.h"
 
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <set>
+#include <string>
 
 namespace propulsion_estimator {
 namespace {
 
-constexpr char kBagMagic[] = "#ROSBAG V2.0\n";
 constexpr std::uint8_t kBagHeaderOp = 0x03, kIndexDataOp = 0x04, kChunkOp = 0x05, kChunkInfoOp = 0x06,
                        kConnectionOp = 0x07;
 constexpr double kMaxCompressionRatio = 1000.0;
@@ -76,9 +77,15 @@ class BagWalker {
   }
 
   std::string walk() {
-    char magic[sizeof(kBagMagic) - 1] = {};
-    if (!in_.read(magic, sizeof magic) || std::memcmp(magic, kBagMagic, sizeof magic) != 0) return "";  // rosbag says
-    std::uint64_t at = sizeof magic;
+    // The version line read as rosbag reads it (sscanf, trailing bytes ignored); 2.0 is walked here.
+    std::string line;
+    std::getline(in_, line);
+    char name[64] = {};
+    int major = 0, minor = 0;
+    if (!in_ || std::sscanf(line.c_str(), "#ROS%63s V%d.%d", name, &major, &minor) != 3 || major != 2 || minor != 0) {
+      return "";  // rosbag reads or refuses it
+    }
+    std::uint64_t at = line.size() + 1;
     while (at < size_) {
       const std::uint64_t record = at;
       std::string header, problem;
