@@ -80,9 +80,9 @@ class BagWalker {
     // The version line read as rosbag reads it (sscanf, trailing bytes ignored); 2.0 is walked here.
     std::string line;
     std::getline(in_, line);
-    char name[64] = {};
+    std::string name(line.size() + 1, '\0');  // room for any word of the line
     int major = 0, minor = 0;
-    if (!in_ || std::sscanf(line.c_str(), "#ROS%63s V%d.%d", name, &major, &minor) != 3 || major != 2 || minor != 0) {
+    if (!in_ || std::sscanf(line.c_str(), "#ROS%s V%d.%d", &name[0], &major, &minor) != 3 || major != 2 || minor != 0) {
       return "";  // rosbag reads or refuses it
     }
     std::uint64_t at = line.size() + 1;
