@@ -8,12 +8,12 @@ include(cmake/pe_modules.cmake)
 get_filename_component(PE_REPO_DIR "${CMAKE_CURRENT_SOURCE_DIR}" REALPATH)
 
 # Every unit test source but those that need ROS: the ROS layer and the bag reader and writer
-# (rcout_codec, inline_callback_queue, estimator_params, bag/), the process tests of the
+# (rcout_codec, esc_telemetry_codec, inline_callback_queue, estimator_params, bag/), the process tests of the
 # command-line tools, which link the CLI layer and with it rosbag, the fuzz corpora's replay
 # (it decodes RCOut), estimator_node's ldd check, and the log formats' agreement (it writes a bag).
 file(GLOB_RECURSE PE_ROS_FREE_TESTS CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/test/unit/test_*.cpp")
 list(FILTER PE_ROS_FREE_TESTS EXCLUDE REGEX
-  "/test_(rcout_codec|inline_callback_queue|parameter_defaults|no_allocation|bag_flight_sink|flight_bag_reader|bench_tools|diagnose_gap_tool|fuzz_corpus|node_links|log_formats_agree)\.cpp$")
+  "/test_(rcout_codec|esc_telemetry_codec|inline_callback_queue|parameter_defaults|no_allocation|bag_flight_sink|flight_bag_reader|bench_tools|diagnose_gap_tool|fuzz_corpus|node_links|log_formats_agree)\.cpp$")
 enable_testing()
 find_package(GTest REQUIRED)
 include(GoogleTest)

@@ -198,6 +198,8 @@ def run_case(case, args):
     model = os.path.join(folder, "model.yaml")
     manifest = os.path.join(folder, "flights.manifest.yaml")
     if args.reuse and os.path.exists(manifest) and os.path.exists(model):
+        if args.simulate_only:
+            return dict(case, simulated=True)
         return score(case, diagnose(case, args, folder, model, manifest, log))
     if run([tool("simulate"), "bench", "--params", params, "--experiment", "pwm_sweep", "--seed", str(case["seed"]),
             "--output", bench], log) or run([tool("fit_surfaces"), bench, "--out", model], log):
@@ -219,6 +221,8 @@ def run_case(case, args):
             flights += yaml.safe_load(handle)["flights"]
     with open(manifest, "w") as handle:
         yaml.safe_dump({"flights": flights}, handle, default_flow_style=None)
+    if args.simulate_only:
+        return dict(case, simulated=True)
     return score(case, diagnose(case, args, folder, model, manifest, log))
 
 
@@ -227,8 +231,15 @@ def diagnose(case, args, folder, model, manifest, log):
     tool = lambda name: os.path.join(args.bin, name)  # noqa: E731
     urdf = os.path.join(args.repo, "config/f450_quad.urdf")
     out = os.path.join(folder, "diagnosis")
-    code = run([tool("diagnose_gap"), "--model", model, "--manifest", manifest, "--urdf", urdf, "--out", out,
-                "--python", sys.executable], log)
+    command = [tool("diagnose_gap"), "--model", model, "--manifest", manifest, "--urdf", urdf, "--out", out,
+               "--python", sys.executable]
+    if args.no_figures:
+        # A plot script that draws nothing: the figures are most of a re-diagnosis' time.
+        quiet = os.path.join(args.work, "no_figures.py")
+        with open(quiet, "w") as handle:
+            handle.write("# validate_gap.py --no-figures\n")
+        command += ["--plot-script", quiet]
+    code = run(command, log)
     report_path = os.path.join(out, "report.yaml")
     if not os.path.exists(report_path):
         return "diagnose_gap wrote no report (exit %d, see %s)" % (code, log)
@@ -244,17 +255,25 @@ def score(case, report):
     if isinstance(report, str):
         return dict(case, error=report)
     selected = sorted(report.get("selected") or [])
+    ambiguous = [sorted(group) for group in report.get("ambiguous") or []]
     suspect = report["where"].get("suspect_motor")
     held = report["heldout"]
-    row = dict(case, selected=selected, suspect=suspect, before=held["before_rmse_pct"], after=held["after_rmse_pct"],
+    nested = held.get("nested") or {}
+    row = dict(case, selected=selected, ambiguous=ambiguous, suspect=suspect, before=held["before_rmse_pct"],
+               after=held["after_rmse_pct"], nested_before=nested.get("before_rmse_pct"),
+               nested_after=nested.get("after_rmse_pct"),
                payload_before=held["before_payload_err_pct"], payload_after=held["after_payload_err_pct"])
     expected = sorted(case["effects"])
-    right = selected == expected
+    suspect_right = suspect is None
     if case.get("fault", {}).get("weak_propeller"):
-        right = right and suspect == case["fault"]["weak_propeller"]["motor"]
-    elif suspect is not None:
-        right = False
-    row["right"] = right
+        suspect_right = suspect == case["fault"]["weak_propeller"]["motor"]
+    row["right"] = selected == expected and not ambiguous and suspect_right
+    # An honest "one of these": nothing wrong in selected, every true effect selected or in a group,
+    # and every group holding a true effect.
+    in_groups = {name for group in ambiguous for name in group}
+    row["ambiguous_ok"] = bool(ambiguous and suspect_right and set(selected) <= set(expected)
+                               and set(expected) <= set(selected) | in_groups
+                               and all(set(group) & set(expected) for group in ambiguous))
     # The onboard check (~capability) on each flight: a flag on a flight without a motor fault is
     # a false alarm; on a weak propeller's flight, the flag is on its channel or on another.
     weak = case.get("fault", {}).get("weak_propeller")
@@ -296,15 +315,21 @@ def make_cases(count, seed, quick, effects):
     return cases
 
 
+def outcome(row):
+    """What a case's report named: its selected effects, and each ambiguous group as (a | b)."""
+    names = list(row.get("selected") or []) + ["(%s)" % " | ".join(g) for g in row.get("ambiguous") or []]
+    return " + ".join(names or ["none"])
+
+
 def summarise(rows):
     lines = []
     labels = sorted({r["label"] for r in rows})
-    outcomes = sorted({" + ".join(r.get("selected") or ["none"]) for r in rows if "error" not in r})
+    outcomes = sorted({outcome(r) for r in rows if "error" not in r})
     lines.append("| injected \\ selected | " + " | ".join(outcomes) + " | right |")
     lines.append("|---" * (len(outcomes) + 2) + "|")
     for label in labels:
         mine = [r for r in rows if r["label"] == label and "error" not in r]
-        counts = [sum(1 for r in mine if " + ".join(r.get("selected") or ["none"]) == o) for o in outcomes]
+        counts = [sum(1 for r in mine if outcome(r) == o) for o in outcomes]
         lines.append("| %s | %s | %d/%d |" % (label, " | ".join(str(c) for c in counts),
                                                sum(r["right"] for r in mine), len(mine)))
     return lines
@@ -334,6 +359,10 @@ def main():
                         help="draw each case's hardware and vehicle from the randomized family (draw_family)")
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--reuse", action="store_true", help="diagnose the flights already simulated in --work again")
+    parser.add_argument("--no-figures", action="store_true", help="diagnose without drawing the report's figures")
+    parser.add_argument("--simulate-only", action="store_true",
+                        help="simulate the cases and stop (diagnose them later with --reuse)")
+    parser.add_argument("--only", help="comma-separated case labels to run (null,weak_propeller,...): for calibration")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--markdown")
     parser.add_argument("--junit")
@@ -342,16 +371,32 @@ def main():
         args.seed = random.SystemRandom().randrange(1, 10**6)
     print("SEED=%d%s" % (args.seed, " (family)" if args.family else ""), flush=True)
     cases = make_cases(args.cases, args.seed, args.quick, known_effects(args.bin))
+    if args.only:
+        cases = [case for case in cases if case["label"] in args.only.split(",")]
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         rows = list(pool.map(lambda case: run_case(case, args), cases))
     errors = [r for r in rows if "error" in r]
+    if args.simulate_only:
+        print("Simulated %d cases, %d failed%s" % (len(rows), len(errors),
+                                                  "".join("\n%s: %s" % (r["name"], r["error"]) for r in errors)))
+        return 0 if not errors else 1
     done = [r for r in rows if "error" not in r]
     right = sum(r["right"] for r in done)
+    ambiguous_ok = [r for r in done if r["ambiguous_ok"]]
+    ambiguous_bad = [r for r in done if r["ambiguous"] and not r["ambiguous_ok"]]
     injected = [r for r in done if r["effects"] and r["before"]]
     shrink = [100.0 * (1.0 - r["after"] / r["before"]) for r in injected]
     nulls = [r for r in done if r["label"] == "null"]
     floor = sum(r["before"] for r in nulls) / len(nulls) if nulls else 0.0
     excess = [100.0 * (r["before"] - r["after"]) / (r["before"] - floor) for r in injected if r["before"] > floor]
+    # Nested: the flights that score took no part in selecting or fitting anything (the suspect
+    # motor's factor included); its floor is the null cases' plain-model error on the same flights.
+    nested = [r for r in injected if r["nested_before"] and r["nested_after"] is not None]
+    nested_nulls = [r for r in nulls if r["nested_before"]]
+    nested_floor = (sum(r["nested_before"] for r in nested_nulls) / len(nested_nulls)) if nested_nulls else 0.0
+    nested_excess = [100.0 * (r["nested_before"] - r["nested_after"]) / (r["nested_before"] - nested_floor)
+                     for r in nested if r["nested_before"] > nested_floor]
+    mean_nested = sum(nested_excess) / len(nested_excess) if nested_excess else float("nan")
     wrongly_named = [r for r in done if set(r["selected"]) - set(r["effects"])]
     nulls_named = [r for r in done if not r["effects"] and r["selected"]]
     weak = [r for r in done if r["label"] == "weak_propeller"]
@@ -375,23 +420,31 @@ def main():
                  "on %d of %d flights, another channel flagged on %d."
                  % (false_alarms, sum(r["health_flights"] for r in unfaulted), sum(r["health_found"] for r in weak),
                     sum(r["health_flights"] for r in weak), sum(r["health_elsewhere"] for r in weak)))
+    lines.append("Ambiguous (counted apart, not right): %d of %d cases (%.0f %%) with the truth among the candidates, "
+                 "%d without. Nested held-out shrink of the excess over the null floor (%.2f %%), scored on flights "
+                 "that took no part in selecting or fitting: %.0f %% over %d cases (selection-time figure above)."
+                 % (len(ambiguous_ok), len(done), 100.0 * len(ambiguous_ok) / max(len(done), 1), len(ambiguous_bad),
+                    nested_floor, mean_nested, len(nested_excess)))
     for r in errors:
         lines.append("Error in %s: %s" % (r["name"], r["error"]))
     lines.append("")
-    lines.append("| case | injected | selected | suspect | held-out RMSE % before | after | payload err % before | after |")
-    lines.append("|---|---|---|---|---|---|---|---|")
+    lines.append("| case | injected | named | suspect | held-out RMSE % before | after | nested before | nested after "
+                 "| payload err % before | after |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|")
+    cell = lambda value: "n/a" if value is None else "%.2f" % value  # noqa: E731
     for r in done:
         injected_text = ", ".join("%s %s" % (k, v) for k, v in r["effects"].items()) or "none"
         if r.get("fault"):
             injected_text += " " + str(r["fault"])
-        lines.append("| %s | %s | %s | %s | %.2f | %.2f | %s | %s |" % (
-            r["name"], injected_text, ", ".join(r["selected"]) or "none", r["suspect"], r["before"], r["after"],
-            r["payload_before"], r["payload_after"]))
+        lines.append("| %s | %s | %s | %s | %.2f | %.2f | %s | %s | %s | %s |" % (
+            r["name"], injected_text, outcome(r), r["suspect"], r["before"], r["after"], cell(r["nested_before"]),
+            cell(r["nested_after"]), r["payload_before"], r["payload_after"]))
     print("\n".join(lines))
     if args.family:
         # Issue 18's targets on the randomized family.
         passed = (not errors and right >= 0.9 * len(done) and len(wrongly_named) <= 0.02 * len(done)
-                  and not nulls_named and weak_right >= 0.9 * len(weak) and (not excess or mean_excess >= 70.0))
+                  and not nulls_named and weak_right >= 0.9 * len(weak) and len(ambiguous_ok) <= 0.1 * len(done)
+                  and not ambiguous_bad and (not nested_excess or mean_nested >= 70.0))
     else:
         passed = (not errors and right >= 0.9 * len(done) and not nulls_named and weak_right == len(weak)
                   and (not shrink or mean_shrink >= 70.0) and false_alarms == 0)
@@ -407,8 +460,10 @@ def main():
                       "drag, centre of gravity, the avionics' own 0.2-2 A on the battery current), "
                       "its bench sweep is simulated with that hardware and fitted, and its five flights are flown "
                       "with it. Targets (issue 18): >= 90 %% exactly right, <= 2 %% with an effect wrongly named, "
-                      "no null or fault case named, >= 90 %% of weak propellers on their own motor, >= 70 %% "
-                      "mean held-out shrink of the excess over the null floor. %s\n\n"
+                      "<= 10 %% ambiguous (the truth among the candidates; counted apart, not right), no null or "
+                      "fault case named, >= 90 %% of weak propellers on their own motor, >= 70 %% mean nested "
+                      "held-out shrink of the excess over the null floor (flights that took no part in selecting "
+                      "or fitting). %s\n\n"
                       % (args.seed, "passed" if passed else "targets missed", today, args.seed, args.cases,
                          args.seed, machine, "PASSED." if passed else "Targets missed.")
                       + "\n".join(lines) + "\n")

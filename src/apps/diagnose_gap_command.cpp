@@ -211,6 +211,10 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   for (effects::Kind kind : diagnosis.selected) {
     selected_names += (selected_names.empty() ? "" : ", ") + std::string(effects::kindName(kind));
   }
+  for (const gap::Ambiguity& ambiguity : diagnosis.ambiguous) {
+    selected_names += (selected_names.empty() ? "" : ", ") + std::string(effects::kindName(ambiguity.kinds[0])) +
+                      " (ambiguous, the best fit of its group)";
+  }
   saveModelFile(model.withEffects(diagnosis.fitted), args.out + "/corrected_model.yaml",
                 args.model + " with the effects diagnose_gap selected (" +
                     (selected_names.empty() ? std::string("none") : selected_names) + "); see report.md");
@@ -224,6 +228,17 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   std::printf("selected: %s; held-out RMSE %s %% -> %s %%\n", selected.empty() ? "none" : selected.c_str(),
               formatPrintf("%.2f", diagnosis.heldout.before_rmse_pct).c_str(),
               formatPrintf("%.2f", diagnosis.heldout.after_rmse_pct).c_str());
+  for (const gap::Ambiguity& ambiguity : diagnosis.ambiguous) {
+    std::string group;
+    for (effects::Kind kind : ambiguity.kinds) group += (group.empty() ? "" : " or ") + std::string(effects::kindName(kind));
+    std::printf("ambiguous: %s (the correction uses %s); %s\n", group.c_str(), effects::kindName(ambiguity.kinds[0]),
+                ambiguity.separating_flight.c_str());
+  }
+  if (diagnosis.heldout.nested.unavailable.empty()) {
+    std::printf("nested held-out RMSE (flights that chose nothing) %s %% -> %s %%\n",
+                formatPrintf("%.2f", diagnosis.heldout.nested.before_rmse_pct).c_str(),
+                formatPrintf("%.2f", diagnosis.heldout.nested.after_rmse_pct).c_str());
+  }
   std::printf("report: %s/report.md, corrected model: %s/corrected_model.yaml\n", args.out.c_str(), args.out.c_str());
 
   // What the node's onboard check would have said of the same flights, with the same model.

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "propulsion_estimator/SimTruth.h"
+#include "propulsion_estimator/ros/esc_telemetry_codec.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
 namespace propulsion_estimator {
@@ -161,6 +162,18 @@ void BagFlightSink::writeTemperature(const char* topic, const sim::ScalarSample&
   bag_.write(topic, msg.header.stamp, msg);
 }
 
+void BagFlightSink::escTelemetry(const sim::EscTelemetrySample& sample) {
+  // MAVROS stamps the message and every item it refreshes with the time it received them.
+  const ros::Time time = stamp(sample.time_s);
+  EscTelemetry message;
+  message.stamp_s = time.toSec();
+  for (const sim::EscReading& reading : sample.escs) {
+    message.escs.push_back({time.toSec(), reading.rpm, reading.current_a, reading.voltage_v, reading.temperature_c,
+                            reading.count});
+  }
+  bag_.write(sample.px4 ? kEscStatusTopic : kEscTelemetryTopic, time, encodeEscTelemetry(message, sample.px4));
+}
+
 void BagFlightSink::truth(const sim::TruthSample& sample) {
   SimTruth msg;
   msg.header = header(stamp(sample.time_s), "base_link");
@@ -189,6 +202,9 @@ void BagFlightSink::truth(const sim::TruthSample& sample) {
     estimate.efficiency_n_per_w = motor.power_w > 0.0 ? motor.thrust_n / motor.power_w : 0.0;
     estimate.rpm = motor.rpm;
     estimate.in_domain = motor.in_bench_range;
+    // The truth is not a measurement: no ESC telemetry beside it.
+    estimate.measured_rpm = estimate.measured_current_a = std::numeric_limits<double>::quiet_NaN();
+    estimate.rpm_ratio = estimate.current_ratio = std::numeric_limits<double>::quiet_NaN();
     msg.motors.push_back(estimate);
   }
   bag_.write(kSimTruthTopic, msg.header.stamp, msg);

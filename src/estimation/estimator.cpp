@@ -465,6 +465,16 @@ TareResult Estimator::tare(double now_s) {
   return result;
 }
 
+void Estimator::setEffect(effects::Kind kind, std::optional<double> value) {
+  effects::ModelEffects fx = model_.effects();
+  if (value) {
+    const effects::ParameterSpec& spec = effects::parameterSpec(kind);
+    value = std::clamp(*value, spec.min, spec.max);
+  }
+  fx.setParameter(kind, value);
+  model_ = model_.withEffects(fx);
+}
+
 void Estimator::setEmptyMass(double mass_kg, EmptyMassSource source) {
   payload_.setEmptyMass(mass_kg, source);
   output_.payload = payload_.estimate();

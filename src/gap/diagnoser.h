@@ -24,10 +24,11 @@ namespace gap {
 namespace detail {
 
 
-// An effect must also lower the held-out mean square by a tenth: a significant but negligible
-// improvement names nothing.
-constexpr double kMinMeanSquareRatio = 0.9;
 using effects::Kind;
+
+// A, the most the avionics (flight controller, companion computer, radios, camera) draw beside the
+// motors: the current view's nuisance is sought within 0..this.
+constexpr double kMaxAvionicsCurrentA = 3.0;
 
 // Held-out predictions of one set of effects: each block's relative residual in both views,
 // from the fit on the folds that left its flight (or segment) out.
@@ -47,6 +48,17 @@ class Diagnoser {
   Diagnosis run();
 
  private:
+  // A diagnosis of the outer one's blocks in the units kept only, for the nested hold-out.
+  Diagnoser(const Diagnoser& outer, const std::vector<bool>& keep_unit);
+  // The suspect motor, the selection and the fit, on this diagnoser's blocks only: the effects the
+  // correction uses (selected and ambiguous leaders), fitted; views_ carries the suspect's factor.
+  effects::ModelEffects selectAndFit();
+  void nestedHoldOut();
+  // Whether the flights tell `leader` from the other candidates that passed every test in its
+  // round (`admissible`, their held-out predictions): the group it cannot be told from, or nullopt.
+  std::optional<Ambiguity> ambiguityOf(Kind leader, const std::map<Kind, HeldOutPrediction>& admissible);
+  // Each candidate's one line once the selection is over: taken, ambiguous, or why not.
+  void finishReasons(std::map<Kind, EffectResult>* results) const;
   int motorCount() const { return static_cast<int>(vehicle_.rotors.size()); }
   void cut();
   void findUnits();
@@ -72,7 +84,11 @@ class Diagnoser {
   // One round of the forward selection: every candidate tried on top of `selected`; the best one
   // that passes every test, or nullopt.
   std::optional<Kind> selectionRound(int round, const std::vector<Kind>& selected, const HeldOutPrediction& current,
-                                     std::map<Kind, EffectResult>* results, HeldOutPrediction* best_prediction);
+                                     std::map<Kind, EffectResult>* results,
+                                     std::map<Kind, HeldOutPrediction>* admissible);
+  // Why a candidate that lowers nothing enough was not taken, in the numbers the tests used.
+  std::string notSignificant(const EffectResult& result, double base_pwm_rmse_pct, double drop_pct,
+                             double mean_square_ratio) const;
   void reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected);
   void reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after);
   std::string method() const;
@@ -87,6 +103,9 @@ class Diagnoser {
   std::vector<Block> blocks_;
   std::vector<const Block*> all_;
   std::vector<int> unit_of_block_;  // the held-out unit (flight or segment) of each block
+  std::vector<std::string> unit_names_;  // of each unit: the flight's name, or "flight#segment"
+  std::vector<Kind> working_;  // the effects the correction uses: selected and ambiguous leaders
+  std::set<Kind> grouped_;     // members of an ambiguous group: not tried again
   int units_ = 0;
   std::string unit_name_;
   Diagnosis diagnosis_;

@@ -65,10 +65,36 @@ void Diagnoser::findUnits() {
   std::map<std::pair<int, int>, int> index;
   for (const Block& block : blocks_) {
     const auto key = by_flight ? std::make_pair(block.flight, 0) : std::make_pair(block.flight, block.segment);
-    const auto found = index.emplace(key, static_cast<int>(index.size())).first;
-    unit_of_block_.push_back(found->second);
+    const auto found = index.emplace(key, static_cast<int>(index.size()));
+    if (found.second) {
+      const std::string& flight = flights_[block.flight].name;
+      unit_names_.push_back(by_flight ? flight : flight + "#" + std::to_string(block.segment + 1));
+    }
+    unit_of_block_.push_back(found.first->second);
   }
   units_ = static_cast<int>(index.size());
+}
+
+Diagnoser::Diagnoser(const Diagnoser& outer, const std::vector<bool>& keep_unit)
+    : model_(outer.model_),
+      vehicle_(outer.vehicle_),
+      flights_(outer.flights_),
+      bench_(outer.bench_),
+      config_(outer.config_),
+      views_(outer.model_, outer.motorCount()) {
+  for (std::size_t i = 0; i < outer.blocks_.size(); ++i) {
+    if (keep_unit[outer.unit_of_block_[i]]) blocks_.push_back(outer.blocks_[i]);
+  }
+  for (const Block& block : blocks_) all_.push_back(&block);
+  diagnosis_.blocks = static_cast<int>(blocks_.size());
+  findUnits();
+}
+
+effects::ModelEffects Diagnoser::selectAndFit() {
+  balanceMotors();
+  std::map<Kind, EffectResult> results;
+  selectEffects(predictHeldOut({}), &results);
+  return fitEffects(views_, all_, working_, references()).effects;
 }
 
 effects::ModelEffects Diagnoser::references() const {
@@ -125,12 +151,29 @@ HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) cons
       training.swap(thinned);
     }
     const EffectFit fit = fitEffects(views_, training, kinds, base);
+    // The current view's residual, and how it moves per ampere the avionics draw beside the motors.
+    double sum_rs = 0.0, sum_ss = 0.0;
+    std::vector<double> slope(blocks_.size(), kNaN);
     for (std::size_t i = 0; i < blocks_.size(); ++i) {
       if (unit_of_block_[i] != unit) continue;
       const double view = views_.pwmView(blocks_[i], fit.effects);
       prediction.view_n[i] = view;
       prediction.pwm[i] = relative(view, blocks_[i]);
       prediction.current[i] = relative(views_.currentView(blocks_[i], fit.effects), blocks_[i]);
+      Block less = blocks_[i];
+      less.current_a -= 1.0;
+      slope[i] = prediction.current[i] - relative(views_.currentView(less, fit.effects), blocks_[i]);
+      if (std::isfinite(prediction.current[i]) && std::isfinite(slope[i])) {
+        sum_rs += prediction.current[i] * slope[i];
+        sum_ss += slope[i] * slope[i];
+      }
+    }
+    // The avionics' own draw (flight controller, companion computer, radios, camera) is on the
+    // battery current but turns no rotor: a nuisance of the current view, not thrust. It is taken
+    // out per held-out unit, alike for every candidate, within 0..kMaxAvionicsCurrentA.
+    const double avionics_a = sum_ss > 0.0 ? std::clamp(sum_rs / sum_ss, 0.0, kMaxAvionicsCurrentA) : 0.0;
+    for (std::size_t i = 0; i < blocks_.size(); ++i) {
+      if (unit_of_block_[i] == unit && std::isfinite(slope[i])) prediction.current[i] -= avionics_a * slope[i];
     }
   }
   return prediction;
@@ -248,16 +291,20 @@ void Diagnoser::balanceMotors() {
 
 std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>& selected,
                                               const HeldOutPrediction& current, std::map<Kind, EffectResult>* results,
-                                              HeldOutPrediction* best_prediction) {
+                                              std::map<Kind, HeldOutPrediction>* admissible) {
   const double base_ms = jointMeanSquare(current);
   const effects::ModelEffects round_base = fitEffects(views_, all_, selected, references()).effects;
   double base_pwm = 0.0;
   for (double r : current.pwm) base_pwm += r * r / blocks_.size();
   std::optional<Kind> best;
   double best_ms = base_ms;
+  std::vector<std::size_t> admissible_steps;
   for (Kind kind : effects::kAllKinds) {
     EffectResult& result = (*results)[kind];
-    if (!result.testable || std::find(selected.begin(), selected.end(), kind) != selected.end()) continue;
+    if (!result.testable || std::find(selected.begin(), selected.end(), kind) != selected.end() ||
+        grouped_.count(kind)) {
+      continue;
+    }
     std::vector<Kind> kinds = selected;
     kinds.push_back(kind);
     const HeldOutPrediction prediction = predictHeldOut(kinds);
@@ -265,6 +312,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     double pwm_ms = 0.0;
     for (double r : prediction.pwm) pwm_ms += r * r / blocks_.size();
     result.heldout_rmse_pct = 100.0 * std::sqrt(pwm_ms);
+    result.joint_rmse_pct = 100.0 * std::sqrt(ms);
+    result.base_joint_rmse_pct = 100.0 * std::sqrt(base_ms);
     result.p_value = signFlipPValue(groupImprovements(current, prediction), config_.permutations,
                                     config_.seed + static_cast<unsigned>(kind));
     const EffectFit fit = fitEffects(views_, all_, kinds, references());
@@ -279,11 +328,9 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
     const double drop_pct = 100.0 * (std::sqrt(base_pwm) - std::sqrt(pwm_ms));
     const bool significant = result.p_value < config_.significance && drop_pct > config_.min_improvement_pct &&
-                             pwm_ms < kMinMeanSquareRatio * base_pwm && ms < base_ms;
+                             pwm_ms < config_.max_mean_square_ratio * base_pwm && ms < base_ms;
     if (!significant) {
-      result.reason = "held-out error " + formatPrintf("%.2f", result.heldout_rmse_pct) + " % against " +
-                      formatPrintf("%.2f", 100.0 * std::sqrt(base_pwm)) + " % (p = " +
-                      formatPrintf("%.3f", result.p_value) + "): not significant";
+      result.reason = notSignificant(result, 100.0 * std::sqrt(base_pwm), drop_pct, pwm_ms / base_pwm);
     } else if (!result.plausible) {
       result.reason = "fitted at the edge of its plausible range " + formatNumber(spec.min) + ".." +
                       formatNumber(spec.max) + ": the gap is not of this effect's shape";
@@ -297,17 +344,53 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
       addProblemOnce("one motor may be at fault: give the frame (--frame quad_x|hexa_x|octo_x --arm-m) or --urdf; "
                      "without it an effect that reads no signal is not named");
     } else {
-      result.reason = "lowers the held-out error significantly";
+      result.reason = "passes every test";
+      (*admissible)[kind] = prediction;
+      admissible_steps.push_back(diagnosis_.trace.size());
       if (ms < best_ms) {
         best_ms = ms;
         best = kind;
-        *best_prediction = prediction;
       }
     }
     diagnosis_.trace.push_back(
-        {round + 1, kind, result.heldout_rmse_pct, 100.0 * std::sqrt(ms), result.p_value, result.reason});
+        {round + 1, kind, result.heldout_rmse_pct, result.joint_rmse_pct, result.p_value, result.reason});
+  }
+  // The candidates that passed every test but lowered the joint error less than the one taken.
+  for (std::size_t step : admissible_steps) {
+    SelectionStep& entry = diagnosis_.trace[step];
+    if (entry.kind == *best) continue;
+    entry.verdict = "passes every test, but " + std::string(effects::kindName(*best)) +
+                    " lowers the joint held-out error more (" + formatPrintf("%.2f", 100.0 * std::sqrt(best_ms)) +
+                    " % against " + formatPrintf("%.2f", entry.joint_rmse_pct) + " %)";
+    (*results)[entry.kind].reason = entry.verdict;
   }
   return best;
+}
+
+// The verdict of a candidate that failed the test of improvement, naming the test that failed in
+// the very numbers it used: p tests the joint error of both views, the thresholds the PWM view's.
+std::string Diagnoser::notSignificant(const EffectResult& result, double base_pwm_rmse_pct, double drop_pct,
+                                      double mean_square_ratio) const {
+  const std::string pwm = "PWM-view held-out error " + formatPrintf("%.2f", result.heldout_rmse_pct) + " % against " +
+                          formatPrintf("%.2f", base_pwm_rmse_pct) + " %";
+  const std::string joint = "joint error of both views " + formatPrintf("%.2f", result.joint_rmse_pct) +
+                            " % against " + formatPrintf("%.2f", result.base_joint_rmse_pct) + " % (p = " +
+                            formatPrintf("%.3f", result.p_value) + ")";
+  if (result.joint_rmse_pct >= result.base_joint_rmse_pct) {
+    return drop_pct > 0.0 ? "not taken: lowers the " + pwm + ", but the current view disagrees: " + joint
+                          : "not taken: no lower held-out error: " + pwm + ", " + joint;
+  }
+  if (result.p_value >= config_.significance) {
+    return "not taken: " + joint + ", not significant (p must be below " + formatNumber(config_.significance) + ")";
+  }
+  if (drop_pct <= config_.min_improvement_pct || mean_square_ratio >= config_.max_mean_square_ratio) {
+    return "not taken: significant (" + joint + "), but the " + pwm + " falls by " + formatPrintf("%.3f", drop_pct) +
+           " points (" + formatPrintf("%.0f", 100.0 * (1.0 - mean_square_ratio)) +
+           " % of its mean square): at most what a mismatch of model family alone gives on null flights (> " +
+           formatPrintf("%.2f", config_.min_improvement_pct) + " points and " +
+           formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) + " % needed)";
+  }
+  return "not taken: " + joint;
 }
 
 // 3. Which effect: greedy forward selection on held-out flights. Returns the held-out prediction
@@ -332,19 +415,26 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
       can_hold_out = false;
     }
   }
-  std::vector<Kind> selected;
   for (int round = 0; can_hold_out && round < config_.max_effects; ++round) {
-    HeldOutPrediction best_prediction;
-    const std::optional<Kind> best = selectionRound(round, selected, current, results, &best_prediction);
+    std::map<Kind, HeldOutPrediction> admissible;
+    const std::optional<Kind> best = selectionRound(round, working_, current, results, &admissible);
     if (!best) break;
-    selected.push_back(*best);
+    working_.push_back(*best);
     EffectResult& taken = (*results)[*best];
-    taken.reason = "selected in round " + std::to_string(round + 1) + ": held-out error " +
-                   formatPrintf("%.2f", taken.heldout_rmse_pct) + " % (p = " + formatPrintf("%.3f", taken.p_value) +
-                   ")";
-    current = best_prediction;
+    const std::optional<Ambiguity> ambiguity = ambiguityOf(*best, admissible);
+    if (ambiguity) {
+      diagnosis_.ambiguous.push_back(*ambiguity);
+      grouped_.insert(ambiguity->kinds.begin(), ambiguity->kinds.end());
+    } else {
+      diagnosis_.selected.push_back(*best);
+      taken.reason = "selected in round " + std::to_string(round + 1) + ": joint held-out error " +
+                     formatPrintf("%.2f", taken.joint_rmse_pct) + " % against " +
+                     formatPrintf("%.2f", taken.base_joint_rmse_pct) + " % (p = " + formatPrintf("%.3f", taken.p_value) +
+                     ")";
+    }
+    current = admissible.at(*best);
   }
-  diagnosis_.selected = selected;
+  finishReasons(results);
   return current;
 }
 
@@ -364,8 +454,9 @@ Diagnosis Diagnoser::run() {
   const HeldOutPrediction before = predictHeldOut({});
   std::map<Kind, EffectResult> results;
   const HeldOutPrediction after = selectEffects(before, &results);
-  reportEffects(&results, diagnosis_.selected);
+  reportEffects(&results, working_);
   reportHeldOut(before, after);
+  nestedHoldOut();
   diagnosis_.method = method();
   collectSamples(plain, plain_view);
   return diagnosis_;

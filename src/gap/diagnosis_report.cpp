@@ -109,6 +109,7 @@ void Diagnoser::reportWhere(const BlockView& pwm_view) {
 
 // The moment balance; a motor it points at explains its share of the gap: the effects are sought
 // in what remains, so that a weak propeller is not named as an effect of the whole vehicle.
+// `selected`: every effect the correction uses.
 void Diagnoser::reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected) {
   for (Kind kind : effects::kAllKinds) {
     EffectResult& result = (*results)[kind];
@@ -122,6 +123,7 @@ void Diagnoser::reportEffects(std::map<Kind, EffectResult>* results, const std::
     }
     diagnosis_.effects.push_back(result);
   }
+  // The selected effects and the ambiguous groups' leaders, fitted together.
   const EffectFit final_fit = fitEffects(views_, all_, selected, references());
   diagnosis_.fitted = final_fit.effects;
   for (std::size_t k = 0; k < selected.size(); ++k) {
@@ -158,12 +160,19 @@ std::string Diagnoser::method() const {
          std::to_string(diagnosis_.transient_blocks) + " transient left out. Forward selection over " +
          std::to_string(units_) + " held-out " + unit_name_ +
          "s (each fitted on the others). An effect is added when the held-out RMSE of the PWM view falls "
-         "by more than " + formatPrintf("%.2f", config_.min_improvement_pct) +
-         " % of the truth and its mean square by a tenth, the joint error of both views falls, a sign-flip permutation "
+         "by more than " + formatPrintf("%.2f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
+         formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
+         " % (more than a mismatch of model family alone gives on null flights), the joint error of both views "
+         "falls, a sign-flip permutation "
          "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +
          std::to_string(config_.permutations) + " permutations) gives p < " + formatNumber(config_.significance) +
          ", and the fitted parameter lies inside its plausible range with a 95 % interval excluding "
-         "no effect; at most " + std::to_string(config_.max_effects) + " effects.";
+         "no effect; at most " + std::to_string(config_.max_effects) +
+         " effects. When another candidate also passes every test and the leader's lower held-out error over it "
+         "is not significant (sign-flip p >= " + formatNumber(config_.ambiguity_p) +
+         "), the round's effects are reported ambiguous, not selected; the correction uses the leader. The nested "
+         "hold-out runs all of this again on the flights outside each of " +
+         std::to_string(std::min(units_, config_.nested_folds)) + " outer folds and scores that fold.";
 }
 
 // Every block with its signals and both views, for the figures.

@@ -44,6 +44,38 @@ std::string statsRow(const std::string& label, const ResidualStats& stats) {
          " |\n";
 }
 
+std::vector<std::string> kindNames(const std::vector<effects::Kind>& kinds) {
+  std::vector<std::string> names;
+  for (effects::Kind kind : kinds) names.push_back(effects::kindName(kind));
+  return names;
+}
+
+void emitNested(YAML::Emitter& out, const NestedHoldOut& nested) {
+  out << YAML::Key << "nested" << YAML::Value << YAML::BeginMap;
+  if (!nested.unavailable.empty()) {
+    out << YAML::Key << "unavailable" << YAML::Value << nested.unavailable << YAML::EndMap;
+    return;
+  }
+  emitField(out, "before_rmse_pct", nested.before_rmse_pct);
+  emitField(out, "after_rmse_pct", nested.after_rmse_pct);
+  emitField(out, "before_bias_pct", nested.before_bias_pct);
+  emitField(out, "after_bias_pct", nested.after_bias_pct);
+  out << YAML::Key << "folds" << YAML::Value << YAML::BeginSeq;
+  for (const NestedFold& fold : nested.folds) {
+    out << YAML::BeginMap << YAML::Key << "fitted_on" << YAML::Value << YAML::Flow << fold.fitted_on;
+    out << YAML::Key << "scored_on" << YAML::Value << YAML::Flow << fold.scored_on;
+    out << YAML::Key << "effects" << YAML::Value << YAML::Flow << kindNames(fold.effects);
+    out << YAML::Key << "suspect_motor" << YAML::Value;
+    if (fold.suspect_channel) {
+      out << *fold.suspect_channel;
+    } else {
+      out << YAML::Null;
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+}
+
 }  // namespace
 
 std::string gapReportYaml(const Diagnosis& diagnosis) {
@@ -128,6 +160,8 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
           << formatPrintf("%.4g", effect.ci_high) << YAML::EndSeq << YAML::EndMap;
       out << YAML::Key << "plausible" << YAML::Value << effect.plausible;
       emitField(out, "heldout_rmse_pct", effect.heldout_rmse_pct);
+      emitField(out, "joint_rmse_pct", effect.joint_rmse_pct);
+      emitField(out, "base_joint_rmse_pct", effect.base_joint_rmse_pct);
       emitField(out, "p_value", effect.p_value);
       emitField(out, "current_view_ratio", effect.current_view_ratio, "%.3f");
     }
@@ -138,6 +172,27 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
   out << YAML::Key << "selected" << YAML::Value << YAML::Flow << YAML::BeginSeq;
   for (effects::Kind kind : diagnosis.selected) out << effects::kindName(kind);
   out << YAML::EndSeq;
+  out << YAML::Key << "ambiguous" << YAML::Value << YAML::BeginSeq;
+  for (const Ambiguity& ambiguity : diagnosis.ambiguous) out << YAML::Flow << kindNames(ambiguity.kinds);
+  out << YAML::EndSeq;
+  out << YAML::Key << "ambiguity" << YAML::Value << YAML::BeginSeq;
+  for (const Ambiguity& ambiguity : diagnosis.ambiguous) {
+    out << YAML::BeginMap << YAML::Key << "effects" << YAML::Value << YAML::Flow << kindNames(ambiguity.kinds);
+    emitField(out, "swap_loss_pct", ambiguity.swap_loss_pct);
+    emitField(out, "swap_p_value", ambiguity.swap_p_value);
+    out << YAML::Key << "separating_flight" << YAML::Value << ambiguity.separating_flight << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "trace" << YAML::Value << YAML::BeginSeq;
+  for (const SelectionStep& step : diagnosis.trace) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "round" << YAML::Value << step.round << YAML::Key << "name"
+        << YAML::Value << effects::kindName(step.kind);
+    emitField(out, "heldout_rmse_pct", step.heldout_rmse_pct);
+    emitField(out, "joint_rmse_pct", step.joint_rmse_pct);
+    emitField(out, "p_value", step.p_value);
+    out << YAML::Key << "verdict" << YAML::Value << step.verdict << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
   out << YAML::Key << "heldout" << YAML::Value << YAML::BeginMap;
   emitField(out, "before_rmse_pct", diagnosis.heldout.before_rmse_pct);
   emitField(out, "after_rmse_pct", diagnosis.heldout.after_rmse_pct);
@@ -145,6 +200,7 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
   emitField(out, "after_bias_pct", diagnosis.heldout.after_bias_pct);
   emitField(out, "before_payload_err_pct", diagnosis.heldout.before_payload_err_pct);
   emitField(out, "after_payload_err_pct", diagnosis.heldout.after_payload_err_pct);
+  emitNested(out, diagnosis.heldout.nested);
   out << YAML::EndMap;
   out << YAML::Key << "method" << YAML::Value << diagnosis.method;
   out << YAML::Key << "problems" << YAML::Value << diagnosis.problems;
@@ -230,24 +286,27 @@ void writeWhereSection(std::ostream& md, const Diagnosis& diagnosis) {
 // Section 3 of the Markdown report: one line per candidate effect, the selection and its rounds.
 void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
   md << "## 3. Which effect\n\n" << diagnosis.method << "\n\n";
-  md << "| effect | testable | parameter | 95 % interval | held-out RMSE % | p | current-view ratio | verdict |\n"
-        "|---|---|---|---|---|---|---|---|\n";
+  md << "| effect | testable | parameter | 95 % interval | held-out RMSE % | joint RMSE %, before -> with it | p "
+        "(joint) | current-view ratio | verdict |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const EffectResult& effect : diagnosis.effects) {
     const effects::ParameterSpec& spec = effects::parameterSpec(effect.kind);
     md << "| " << effects::kindName(effect.kind) << " | " << (effect.testable ? "yes" : "no") << " | ";
     if (effect.testable) {
       md << spec.key << " = " << formatPrintf("%.4g", effect.parameter) << " | " << formatPrintf("%.4g", effect.ci_low)
          << " .. " << formatPrintf("%.4g", effect.ci_high) << " | "
-         << formatPrintf("%.2f", effect.heldout_rmse_pct, "n/a") << " | " << formatPrintf("%.3f", effect.p_value, "n/a")
+         << formatPrintf("%.2f", effect.heldout_rmse_pct, "n/a") << " | "
+         << formatPrintf("%.2f", effect.base_joint_rmse_pct, "n/a") << " -> "
+         << formatPrintf("%.2f", effect.joint_rmse_pct, "n/a") << " | " << formatPrintf("%.3f", effect.p_value, "n/a")
          << " | " << formatPrintf("%.2f", effect.current_view_ratio, "n/a") << " | ";
     } else {
-      md << " | | | | | ";
+      md << " | | | | | | ";
     }
     md << effect.reason << " |\n";
   }
   md << "\n**Selected:** ";
   if (diagnosis.selected.empty()) {
-    md << "none of the known effects explains the gap significantly.\n\n";
+    md << (diagnosis.ambiguous.empty() ? "none of the known effects explains the gap significantly.\n\n"
+                                       : "none established.\n\n");
   } else {
     for (std::size_t k = 0; k < diagnosis.selected.size(); ++k) {
       md << (k ? ", " : "") << effects::kindName(diagnosis.selected[k]);
@@ -255,6 +314,17 @@ void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
     md << ".\n\n";
     for (effects::Kind kind : diagnosis.selected) md << "- `" << effects::kindName(kind) << "`: " << effects::describe(kind).meaning << ".\n";
     md << "\n";
+  }
+  for (const Ambiguity& ambiguity : diagnosis.ambiguous) {
+    md << "**Ambiguous: one of ";
+    for (std::size_t k = 0; k < ambiguity.kinds.size(); ++k) {
+      md << (k ? ", " : "") << "`" << effects::kindName(ambiguity.kinds[k]) << "`";
+    }
+    md << "** explains part of the gap, but these flights cannot tell which: swapping the leader for the runner-up "
+          "raises the joint held-out error by only "
+       << formatPrintf("%.3f", ambiguity.swap_loss_pct) << " points (sign-flip p = "
+       << formatPrintf("%.3f", ambiguity.swap_p_value) << "). The correction uses the leader. The flight that would "
+       << "separate them: " << ambiguity.separating_flight << ".\n\n";
   }
   if (!diagnosis.trace.empty()) {
     md << "Selection, round by round (held-out RMSE of the PWM view, and of both views together):\n\n"
@@ -270,6 +340,31 @@ void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
         "residual shows: about 1 for a thrust loss or a hidden mass, near 0 for an ESC offset, about a third for an "
         "electrical or an air-density cause, negative for motor heating.\n\n";
 
+}
+
+// The nested hold-out's figures and what each outer fold chose.
+void writeNestedSection(std::ostream& md, const NestedHoldOut& nested) {
+  md << "These figures are optimistic: the flights that score them also selected the effects. Nested hold-out, "
+        "every flight scored by a diagnosis (suspect motor, selection, fit) that never saw it: ";
+  if (!nested.unavailable.empty()) {
+    md << "not available: " << nested.unavailable << ".\n\n";
+    return;
+  }
+  md << "RMSE " << formatPrintf("%.2f", nested.before_rmse_pct) << " % with the plain model, "
+     << formatPrintf("%.2f", nested.after_rmse_pct) << " % corrected (bias " << formatPrintf("%.2f", nested.before_bias_pct)
+     << " % -> " << formatPrintf("%.2f", nested.after_bias_pct) << " %).\n\n| scored on | chosen on | effects | suspect |\n"
+     << "|---|---|---|---|\n";
+  const auto join = [](const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text;
+  };
+  for (const NestedFold& fold : nested.folds) {
+    md << "| " << join(fold.scored_on) << " | " << join(fold.fitted_on) << " | "
+       << (fold.effects.empty() ? std::string("none") : join(kindNames(fold.effects))) << " | "
+       << (fold.suspect_channel ? std::to_string(*fold.suspect_channel) : std::string("none")) << " |\n";
+  }
+  md << "\n";
 }
 
 }  // namespace
@@ -309,6 +404,7 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
      << formatPrintf("%.2f", diagnosis.heldout.after_bias_pct, "n/a") << " |\n";
   md << "| payload error % | " << formatPrintf("%.2f", diagnosis.heldout.before_payload_err_pct, "n/a") << " | "
      << formatPrintf("%.2f", diagnosis.heldout.after_payload_err_pct, "n/a") << " |\n\n";
+  writeNestedSection(md, diagnosis.heldout.nested);
 
   md << "## Figures\n\n";
   md << "![Residual against each signal](gap_signals.png)\n\n"

@@ -68,6 +68,7 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
                                                       params_.capability);
   motor_health_ = std::make_unique<MotorHealth>(estimator_->vehicle(), params_.estimator.motor_channels,
                                                 params_.capability.motor_health);
+  model_check_ = std::make_unique<ModelCheck>(params_.estimator.motor_channels, params_.esc_telemetry);
   loadTare();
   const MassEstimate& payload = estimator_->output().payload;
   ROS_INFO_STREAM("empty mass: " << (std::isnan(payload.empty_mass_kg) ? std::string("unknown until ~tare")
@@ -144,6 +145,7 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   input_nh.setCallbackQueue(&input_queue_);
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
   subscribeEffectSignals(input_nh, private_nh, hints);
+  setUpEscTelemetry(input_nh, hints);
   rc_out_sub_ = input_nh.subscribe(params_.rc_out_topic, queue, &EstimatorNode::onRcOut, this, hints);
   battery_sub_ = input_nh.subscribe(params_.battery_topic, 5, &EstimatorNode::onBattery, this, hints);
   if (!params_.imu_topic.empty()) {
@@ -267,6 +269,7 @@ void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) 
     return;
   }
   motor_health_->add(estimator_->output());
+  model_check_->addEstimate(ros::Time::now().toSec(), estimator_->output());
   // Estimated and averaged always; published at most at publish_rate_hz (on the stamps, so that a
   // replayed bag publishes as the flight did).
   if (publish_limiter_.admit(estimator_->output().stamp_s)) publish();
@@ -278,6 +281,8 @@ void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message
   const double now = ros::Time::now().toSec();
   logRejection(estimator_->addBattery(now, message->voltage));
   if (pass_battery_current_) logRejection(estimator_->addBatteryCurrent(now, message->current));
+  model_check_->addBattery(now, message->voltage);
+  applySupplyResistance();
   // The modelled current stands in for a current the autopilot does not measure (NaN).
   const double modelled_a = estimator_->model().output(Output::kCurrent).source == OutputSource::kNone
                                 ? kNaN
@@ -353,6 +358,7 @@ void EstimatorNode::publish() {
     m.rpm = o.estimate.rpm;
     m.in_domain = o.estimate.in_domain;
   }
+  fillMeasured(ros::Time::now().toSec());
   motors_pub_.publish(motors_msg_);
 
   const Totals& t = out.totals;
@@ -431,6 +437,7 @@ void EstimatorNode::publishCapability() {
   msg.flagged_channel = static_cast<std::uint8_t>(h.flagged_channel);
   msg.cg_offset_x_m = h.cg_offset_x_m;
   msg.cg_offset_y_m = h.cg_offset_y_m;
+  fillModelCheck(ros::Time::now().toSec(), &msg);
   msg.payload_over_limit = c.payload_over_limit;
   msg.endurance_below_reserve = c.endurance_below_reserve;
   capability_pub_.publish(msg);
@@ -480,6 +487,7 @@ bool EstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   std::unique_lock<std::mutex> lock(state_);
   estimator_->reset();
   motor_health_->clear();
+  model_check_->reset();
   const MassEstimate p = estimator_->output().payload;
   lock.unlock();
   std::ostringstream message;

@@ -91,6 +91,8 @@ void readFilesAndTopics(ParamReader& read, EstimatorNodeParams* params) {
   read.optional("air_temperature_topic", &p.air_temperature_topic);
   read.optional("rangefinder_topic", &p.rangefinder_topic);
   read.optional("motor_temperature_topic", &p.motor_temperature_topic);
+  read.optional("esc_telemetry_topic", &p.esc_telemetry_topic);
+  read.optional("esc_status_topic", &p.esc_status_topic);
   read.optional("domain_warn_fraction", &p.health.domain_warn_fraction);
 
 }
@@ -167,6 +169,7 @@ void validateNodeParams(const ros::NodeHandle& nh, EstimatorNodeParams* params) 
   p.health.motor_temperature_input = p.motor_temperature_topic;
   p.health.validate();
   p.capability.validate();
+  p.esc_telemetry.validate();
   // 0 would tick the diagnostics timer without pause.
   if (!(p.diagnostic_period_s > 0.0) || !std::isfinite(p.diagnostic_period_s)) {
     throw ConfigError(nh.resolveName("diagnostic_period") + ": must be a positive number of seconds, got " +
@@ -178,10 +181,26 @@ void validateNodeParams(const ros::NodeHandle& nh, EstimatorNodeParams* params) 
   }
 }
 
+// The live model check's parameters (esc_telemetry/...).
+void readModelCheckConfig(ParamReader& read, ModelCheckConfig* config) {
+  ModelCheckConfig& m = *config;
+  read.optional("esc_telemetry/stale_after_s", &m.stale_after_s);
+  read.optional("esc_telemetry/window_s", &m.window_s);
+  read.optional("esc_telemetry/min_hover_s", &m.min_hover_s);
+  read.optional("esc_telemetry/rpm_tolerance", &m.rpm_tolerance);
+  read.optional("esc_telemetry/current_tolerance", &m.current_tolerance);
+  read.optional("esc_telemetry/supply_tolerance", &m.supply_tolerance);
+  read.optional("esc_telemetry/supply_memory_s", &m.supply_memory_s);
+  read.optional("esc_telemetry/supply_voltage_sigma_v", &m.supply_voltage_sigma_v);
+  read.optional("esc_telemetry/supply_max_rel_std", &m.supply_max_rel_std);
+  read.optional("esc_telemetry/apply_supply_resistance", &m.apply_supply_resistance);
+}
+
 // Each loaded value, logged once.
 void logNodeParams(const EstimatorNodeParams& p) {
   const EstimatorConfig& c = p.estimator;
   const CapabilityConfig& k = p.capability;
+  const ModelCheckConfig& m = p.esc_telemetry;
   std::ostringstream channels;
   for (std::size_t i = 0; i < c.motor_channels.size(); ++i) channels << (i ? ", " : "") << c.motor_channels[i];
   ROS_INFO_STREAM("propulsion_estimator parameters:"
@@ -226,7 +245,15 @@ void logNodeParams(const EstimatorNodeParams& p) {
                   << (k.ocv_table_soc.empty() ? "" : " (replaced by ocv_table, " + std::to_string(k.ocv_table_soc.size()) + " points)")
                   << ", cell_cutoff_v " << k.cell_cutoff_v << ", percentage " << percentageModeName(k.percentage)
                   << "\n  capability/motor_health: block_s " << k.motor_health.block_s << ", window_s "
-                  << k.motor_health.window_s << ", max_gap " << k.motor_health.max_gap);
+                  << k.motor_health.window_s << ", max_gap " << k.motor_health.max_gap
+                  << "\n  esc_telemetry_topic: " << (p.esc_telemetry_topic.empty() ? "(disabled)" : p.esc_telemetry_topic)
+                  << ", esc_status_topic: " << (p.esc_status_topic.empty() ? "(disabled)" : p.esc_status_topic)
+                  << "\n  esc_telemetry: stale_after_s " << m.stale_after_s << ", window_s " << m.window_s
+                  << ", min_hover_s " << m.min_hover_s << ", rpm_tolerance " << m.rpm_tolerance
+                  << ", current_tolerance " << m.current_tolerance << ", supply_tolerance " << m.supply_tolerance
+                  << ", supply_memory_s " << m.supply_memory_s << ", supply_voltage_sigma_v "
+                  << m.supply_voltage_sigma_v << ", supply_max_rel_std " << m.supply_max_rel_std
+                  << ", apply_supply_resistance " << m.apply_supply_resistance);
 
 }
 
@@ -238,6 +265,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   readFilesAndTopics(read, &p);
   readEstimatorConfig(read, &p.estimator, &p.publish_rate_hz);
   readCapabilityConfig(read, &p.capability);
+  readModelCheckConfig(read, &p.esc_telemetry);
   read.optional("diagnostic_period", &p.diagnostic_period_s);  // diagnostic_updater reads it too
   read.refuseUnknown();
   validateNodeParams(nh, &p);

@@ -110,7 +110,8 @@ class Peer:
             motors.motors.append(MotorEstimate(
                 channel=int(channel), pwm_us=pwm[k], thrust_n=out["thrust"][k], current_a=out["current"][k],
                 power_w=out["power"][k], efficiency_n_per_w=out["efficiency"][k], rpm=out["rpm"][k],
-                in_domain=bool(in_domain[k])))
+                in_domain=bool(in_domain[k]), measured_rpm=float("nan"), measured_current_a=float("nan"),
+                rpm_ratio=float("nan"), current_ratio=float("nan")))
         self.motors_pub.publish(motors)
 
         thrust_n = float(out["thrust"].sum())

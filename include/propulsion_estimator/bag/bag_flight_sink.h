@@ -43,6 +43,8 @@ class BagFlightSink : public sim::FlightSink {
   void rangefinder(const sim::RangeSample& sample) override;
   void motorTemperature(const sim::ScalarSample& sample) override;
   void truth(const sim::TruthSample& sample) override;
+  /// mavros_msgs/ESCStatus on kEscStatusTopic (PX4) or ESCTelemetry on kEscTelemetryTopic (ArduPilot).
+  void escTelemetry(const sim::EscTelemetrySample& sample) override;
   ///@}
 
   /// Finishes the bag (rosbag::BagException when it cannot be written). The destructor closes it

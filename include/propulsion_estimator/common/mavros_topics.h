@@ -13,6 +13,8 @@ constexpr const char* kVelocityTopic = "/mavros/local_position/velocity_local"; 
 constexpr const char* kStaticPressureTopic = "/mavros/imu/static_pressure";             ///< sensor_msgs/FluidPressure
 constexpr const char* kAirTemperatureTopic = "/mavros/imu/temperature_baro";            ///< sensor_msgs/Temperature
 constexpr const char* kRangefinderTopic = "/mavros/rangefinder/rangefinder";            ///< sensor_msgs/Range
+constexpr const char* kEscTelemetryTopic = "/mavros/esc_telemetry";  ///< mavros_msgs/ESCTelemetry (ArduPilot)
+constexpr const char* kEscStatusTopic = "/mavros/esc_status";        ///< mavros_msgs/ESCStatus (PX4)
 ///@}
 /// The hottest motor's temperature (sensor_msgs/Temperature): no MAVROS topic carries it, this is
 /// the package's own default.

@@ -189,6 +189,10 @@ class Estimator {
   /// holds its average, not hovering. Every input calls it; call it before reading the verdict when
   /// inputs may have stopped (services, diagnostics).
   void expireHover(double now_s);
+  /// Switches the model's effect `kind` on with `value` (its ParameterSpec unit, clamped to its
+  /// range) or off (nullopt), from the next motor output on: an effect estimated in flight (the
+  /// live model check's supply resistance). Copies the model's surfaces (allocates).
+  void setEffect(effects::Kind kind, std::optional<double> value);
   /// Sets the empty mass from elsewhere (a tare file, a parameter, the URDF).
   void setEmptyMass(double mass_kg, EmptyMassSource source);
   /// Clears the windows and the tare; the configured empty mass (parameter or URDF) applies again.

@@ -31,6 +31,9 @@ struct EffectDescription {
   Signal signal;            ///< what the correction reads besides PWM and voltage (Signal::kNone: nothing)
   /// What the effect is, for the report's "Selected" list: one sentence, no full stop.
   const char* meaning;
+  /// The flight that shows this effect's own signature, for the report when the flights cannot
+  /// tell it from another effect: one clause, no full stop.
+  const char* separating_flight;
   /// PWM view, on the inputs the ESCs see: (pulse width, voltage) corrected with parameter `value`;
   /// nullptr for an effect acting on thrust. Called only with the signal present.
   Inputs (*correct_inputs)(double value, const Inputs& inputs, const Signals& signals);

@@ -23,8 +23,10 @@
 #include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/estimation/motor_health.h"
 #include "propulsion_estimator/onboard/health_summary.h"
+#include "propulsion_estimator/onboard/model_check.h"
 #include "propulsion_estimator/onboard/rate_limiter.h"
 #include "propulsion_estimator/ros/estimator_params.h"
+#include "propulsion_estimator/ros/esc_telemetry_codec.h"
 #include "propulsion_estimator/ros/inline_callback_queue.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
@@ -51,6 +53,18 @@ class EstimatorNode {
   void onAirTemperature(const sensor_msgs::Temperature::ConstPtr& message);
   void onRange(const sensor_msgs::Range::ConstPtr& message);
   void onMotorTemperature(const sensor_msgs::Temperature::ConstPtr& message);
+  /// ESC telemetry (estimator_node_esc.cpp): mavros_msgs/ESCTelemetry or ESCStatus from `topic`.
+  void onEscTelemetry(const topic_tools::ShapeShifter::ConstPtr& message, const std::string& topic);
+  /// Subscribes to the ESC telemetry topics that are not "" and adds the "ESC telemetry" diagnostic.
+  void setUpEscTelemetry(ros::NodeHandle& input_nh, const ros::TransportHints& hints);
+  /// The live model check's diagnostic, from `report`.
+  void judgeEscTelemetry(const ModelCheckReport& report, diagnostic_updater::DiagnosticStatusWrapper* status) const;
+  /// The measured rpm and current beside the modelled ones on ~motors (NaN when absent or stale).
+  void fillMeasured(double now_s);
+  /// The model check's fields of ~capability.
+  void fillModelCheck(double now_s, Capability* msg);
+  /// Applies the estimated supply resistance as the model's effect, when enabled and estimated.
+  void applySupplyResistance();
   /// Subscribes to what the model's effects read (and refuses a needed topic set to ""); logs
   /// which effects apply with which parameters.
   void subscribeEffectSignals(ros::NodeHandle& input_nh, const ros::NodeHandle& private_nh,
@@ -75,6 +89,12 @@ class EstimatorNode {
   std::unique_ptr<Estimator> estimator_;
   std::unique_ptr<CapabilityEstimator> capability_;
   std::unique_ptr<MotorHealth> motor_health_;
+  std::unique_ptr<ModelCheck> model_check_;
+  EscTelemetryDecoder esc_decoder_;
+  EscTelemetry esc_message_;
+  std::uint64_t esc_received_ = 0, esc_undecodable_ = 0;
+  std::string esc_last_error_;
+  double supply_applied_ohm_ = kNaN;  ///< the supply resistance applied as the effect; NaN: none
   CapabilityReport last_capability_;
   MotorHealthVerdict last_health_;
 
@@ -104,6 +124,7 @@ class EstimatorNode {
   /// which uses everything above.
   ros::Subscriber rc_out_sub_, battery_sub_, imu_sub_, velocity_sub_;
   ros::Subscriber static_pressure_sub_, air_temperature_sub_, range_sub_, motor_temperature_sub_;
+  ros::Subscriber esc_telemetry_sub_, esc_status_sub_;
 };
 
 }  // namespace propulsion_estimator

@@ -8,6 +8,7 @@
 #include "propulsion_estimator/onboard/capability.h"
 #include "propulsion_estimator/estimation/estimator_config.h"
 #include "propulsion_estimator/onboard/health_summary.h"
+#include "propulsion_estimator/onboard/model_check.h"
 
 namespace propulsion_estimator {
 
@@ -27,6 +28,10 @@ struct EstimatorNodeParams {
   std::string air_temperature_topic = kAirTemperatureTopic;    ///< sensor_msgs/Temperature
   std::string rangefinder_topic = kRangefinderTopic;     ///< sensor_msgs/Range
   std::string motor_temperature_topic = kMotorTemperatureTopic;            ///< sensor_msgs/Temperature
+  /// ESC telemetry, optional: measured rpm and current per motor and the live model check. Both
+  /// are subscribed; whichever the autopilot publishes is used. "" disables one.
+  std::string esc_telemetry_topic = kEscTelemetryTopic;  ///< mavros_msgs/ESCTelemetry (ArduPilot)
+  std::string esc_status_topic = kEscStatusTopic;        ///< mavros_msgs/ESCStatus (PX4)
   /// Highest rate of ~motors, ~totals and ~payload, Hz, on the RCOut stamps; 0 publishes every
   /// accepted RCOut. Every message is still estimated and averaged. 50 Hz passes MAVROS' usual
   /// rc/out whole, and keeps a 400 Hz stream's cost near roscpp's own (BENCHMARKS.md).
@@ -37,6 +42,7 @@ struct EstimatorNodeParams {
   HealthConfig health;  ///< domain_warn_fraction; its input names are the topics
   EstimatorConfig estimator;  ///< the estimator's parameters
   CapabilityConfig capability;  ///< the capability/... parameters
+  ModelCheckConfig esc_telemetry;  ///< the esc_telemetry/... parameters (live model check)
 };
 
 /// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is

@@ -19,6 +19,9 @@ const EffectDescription& airDensityEffect() {
     d.meaning =
         "the flight's air is thinner or denser than the bench's: a propeller's thrust at a given speed follows "
         "the density";
+    d.separating_flight =
+        "fly on another day or site with static pressure and air temperature logged: an air-density loss "
+        "follows the air, not the current or the payload";
     d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
       return std::pow(signals.air_density_kg_m3 / references.bench_air_density_kg_m3, value);
     };

@@ -16,6 +16,8 @@ const EffectDescription& climbInflowEffect() {
     d.signal = Signal::kVerticalSpeed;
     d.meaning =
         "a climb adds axial inflow, lowering the blades' angle of attack and the thrust; a descent the reverse";
+    d.separating_flight =
+        "steady climbs and descents at two speeds: climb inflow grows with the vertical speed";
     // Momentum theory: a climb's axial inflow lowers the blades' angle of attack, while a slow
     // descent (into the vortex-ring region) barely changes thrust at a given rotor speed.
     d.thrust_factor = [](double value, const ModelEffects&, const Signals& signals) {

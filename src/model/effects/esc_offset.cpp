@@ -14,6 +14,9 @@ const EffectDescription& escOffsetEffect() {
     d.meaning =
         "the flying ESCs' calibrated end points differ from the bench ESC's: the same pulse width is another "
         "throttle";
+    d.separating_flight =
+        "hover with two payloads, the battery current logged: an ESC offset shifts every pulse width by the "
+        "same microseconds and the current view does not see it";
     // u' = u - offset: the pulse width the bench ESC would have needed for the same throttle.
     d.correct_inputs = [](double value, const Inputs& inputs, const Signals&) {
       return Inputs{inputs.pwm_us - value, inputs.voltage_v};

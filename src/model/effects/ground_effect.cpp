@@ -15,6 +15,9 @@ const EffectDescription& groundEffectEffect() {
     d.parameter = {"coefficient_m2", 0.0, 0.02, 0.0};
     d.signal = Signal::kHeight;
     d.meaning = "rotors near the ground push against it: more thrust for the same power within about two diameters";
+    d.separating_flight =
+        "hover at three heights below two rotor diameters and one well above: ground effect grows as the "
+        "rotors near the ground";
     d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
       const double distance = std::max(signals.height_m + references.rotor_height_m, kMinGroundDistanceM);
       return 1.0 + value / (distance * distance);

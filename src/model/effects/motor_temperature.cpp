@@ -12,6 +12,9 @@ const EffectDescription& motorTemperatureEffect() {
     d.parameter = {"per_c", -0.01, 0.01, 0.0};
     d.signal = Signal::kMotorTemperature;
     d.meaning = "a warm motor has more winding resistance and less magnet flux than on the bench";
+    d.separating_flight =
+        "a long hover from cold motors, motor temperature logged: motor heating grows with the motors' "
+        "temperature over the flight";
     d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
       return 1.0 + value * (signals.motor_temperature_c - references.motor_reference_c);
     };

@@ -14,6 +14,9 @@ const EffectDescription& supplyResistanceEffect() {
     d.meaning =
         "wiring, connectors or a power module between the voltage sensor and the ESCs: the ESCs see less voltage "
         "than is measured, more so the more current flows";
+    d.separating_flight =
+        "hover with two payloads or at two battery charges, the battery current logged: a supply resistance's"
+        " loss grows with the current drawn";
     // V' = V - R I: the ESCs see the sensed voltage less the drop across the supply.
     d.correct_inputs = [](double value, const Inputs& inputs, const Signals& signals) {
       return Inputs{inputs.pwm_us, inputs.voltage_v - value * signals.battery_current_a};

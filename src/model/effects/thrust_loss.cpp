@@ -14,6 +14,9 @@ const EffectDescription& thrustLossEffect() {
     d.meaning =
         "arms and frame under the rotors, and rotors in each other's wake, take part of the thrust; an unweighed "
         "mass looks the same";
+    d.separating_flight =
+        "hover with two payloads at one site and height: a thrust loss takes the same fraction of thrust at "
+        "every payload, current, air and height";
     d.thrust_factor = [](double value, const ModelEffects&, const Signals&) { return 1.0 - value; };
     // Blockage and interaction act on the air the rotor has already moved: same rotor state,
     // same torque and current, less net force, in both views.

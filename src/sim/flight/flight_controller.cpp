@@ -24,9 +24,15 @@ constexpr double kMaxTiltRad = 0.35;
 // may rise from idle to full over this time.
 constexpr double kTakeoffRampS = 2.0;
 // Attitude error -> body rate (1/s), body rate error -> mixer command (per rad/s) and its integral.
+// The roll and pitch integrals' zero, I/P = 1.3 rad/s as in PX4's defaults (MC_ROLLRATE_I 0.2 over
+// P 0.15), lies well below the rate loop's crossover (about 10 rad/s on the thesis quad, lower on
+// rotors that spin up more slowly or give less thrust per command). At 5 rad/s it took most of the
+// phase margin: drawn hardware with 25 % more winding resistance (a slower spin-up) made the cascade
+// ring at 1-2 Hz, growing until the vehicle flipped, mostly low and near landing, where the ground
+// effect and the payload add loop gain.
 const Eigen::Vector3d kAttitudeGain(4.0, 4.0, 2.5);
 const Eigen::Vector3d kRateGain(0.03, 0.03, 0.25);
-const Eigen::Vector3d kRateIntegralGain(0.15, 0.15, 0.2);
+const Eigen::Vector3d kRateIntegralGain(0.04, 0.04, 0.2);
 constexpr double kRateIntegralLimit = 0.3;
 // Land detector: within 5 cm of the landed height and slower than 0.2 m/s for a second.
 constexpr double kLandedMarginM = 0.05;

@@ -35,6 +35,15 @@ void FlightSensorParams::validate() const {
   requireSigma("air_temperature_sigma_c", air_temperature_sigma_c);
   requireSigma("rangefinder_sigma_m", rangefinder_sigma_m);
   requireSigma("motor_temperature_sigma_c", motor_temperature_sigma_c);
+  requireWithin("esc_telemetry_rate_hz", esc_telemetry_rate_hz, 0.0, 500.0, " Hz");
+  requireWithin("esc_pole_pairs", esc_pole_pairs, 1, 30);
+  requireSigma("esc_rpm_sigma", esc_rpm_sigma);
+  requireSigma("esc_current_sigma_a", esc_current_sigma_a);
+  requireWithin("esc_current_gain_sigma", esc_current_gain_sigma, 0.0, 0.2);
+  requireSigma("esc_current_offset_sigma_a", esc_current_offset_sigma_a);
+  requireSigma("esc_voltage_sigma_v", esc_voltage_sigma_v);
+  requireWithin("esc_voltage_gain_sigma", esc_voltage_gain_sigma, 0.0, 0.2);
+  requireWithin("esc_dropout_probability", esc_dropout_probability, 0.0, 0.9);
   if (!(rangefinder_min_m >= 0.0 && rangefinder_min_m < rangefinder_max_m)) {
     throw FieldError("rangefinder_min_m", formatNumber(rangefinder_min_m) + " is not below rangefinder_max_m " +
                                               formatNumber(rangefinder_max_m));

@@ -8,6 +8,7 @@
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/simulation_error.h"
+#include "propulsion_estimator/sim/flight/esc_telemetry_sensor.h"
 #include "propulsion_estimator/sim/flight/flight_controller.h"
 #include "propulsion_estimator/sim/physics/gaussian_noise.h"
 #include "propulsion_estimator/sim/physics/lipo_battery.h"
@@ -257,6 +258,10 @@ class FlightRun {
         air_temperature_(sensors.air_temperature_rate_hz),
         range_(sensors.rangefinder_rate_hz),
         motor_temperature_(sensors.motor_temperature_rate_hz),
+        esc_telemetry_(sensors.esc_telemetry_rate_hz > 0.0 ? sensors.esc_telemetry_rate_hz : 1.0),
+        // A stream of its own (seed mixed with a constant), so that telemetry leaves the other
+        // streams as a flight without it draws them.
+        esc_sensor_(sensors, rotors_, profile.autopilot.flavour == AutopilotFlavour::kPx4, seed ^ 0x9e3779b97f4a7c15ULL),
         thrust_(rotors_),
         torque_(rotors_),
         inflows_(rotors_),
@@ -357,7 +362,7 @@ class FlightRun {
     }
   }
 
-  // Every stream due at `t`, in a fixed order: the noise is drawn from one generator.
+  // Every stream due at `t`, in a fixed order: the noise is drawn from one generator (ESC telemetry's from its own).
   void emit(double t, const std::vector<double>& pwm, const PowerTrainState& power, const NavigationState& navigation) {
     const double height = navigation.position_m.z();
     const Eigen::Matrix3d rotation = navigation.attitude.toRotationMatrix();
@@ -400,6 +405,7 @@ class FlightRun {
       sink_->motorTemperature({t, *hottest + noise_(sensors_.motor_temperature_sigma_c),
                                sensors_.motor_temperature_sigma_c, vehicle_.rotors[k].name});
     }
+    if (sensors_.esc_telemetry_rate_hz > 0.0 && esc_telemetry_.due(t)) sink_->escTelemetry(esc_sensor_.read(t, power));
   }
 
   TruthSample truthSample(double t, const std::vector<double>& pwm, const PowerTrainState& power,
@@ -489,6 +495,8 @@ class FlightRun {
   const double avionics_a_;  // drawn from the battery beside the ESCs, A
   GaussMarkov3 position_error_, velocity_error_;
   Stream rc_out_, truth_, battery_stream_, imu_, pose_, pressure_, air_temperature_, range_, motor_temperature_;
+  Stream esc_telemetry_;
+  EscTelemetrySensor esc_sensor_;
   std::vector<double> thrust_, torque_;
   std::vector<RotorInflow> inflows_;
   const double airframe_share_;

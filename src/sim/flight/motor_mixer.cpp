@@ -39,7 +39,20 @@ MotorMixer::MotorMixer(const Vehicle& vehicle) {
 }
 
 const std::vector<double>& MotorMixer::mix(double collective, double roll, double pitch, double yaw) {
-  commands_.noalias() = matrix_ * Eigen::Vector4d(roll, pitch, yaw, collective);
+  // PX4's desaturation: roll and pitch come first, so a motor at full output lowers the collective
+  // rather than losing the differential that holds the attitude; yaw gets what room is left. Clamping
+  // alone would tilt a heavy vehicle climbing near full throttle.
+  commands_.noalias() = matrix_ * Eigen::Vector4d(roll, pitch, 0.0, collective);
+  const double top = commands_.maxCoeff();
+  if (top > 1.0) commands_.array() -= std::min(top - 1.0, collective);
+  double yaw_share = 1.0;
+  for (int k = 0; k < commands_.size(); ++k) {
+    const double base = commands_(k);
+    const double turn = matrix_(k, 2) * yaw;
+    if (base + turn > 1.0) yaw_share = std::min(yaw_share, std::max(0.0, (1.0 - base) / turn));
+    if (base + turn < 0.0) yaw_share = std::min(yaw_share, std::max(0.0, -base / turn));
+  }
+  commands_ += yaw_share * yaw * matrix_.col(2);
   for (std::size_t k = 0; k < outputs_.size(); ++k) outputs_[k] = std::clamp(commands_(k), 0.0, 1.0);
   return outputs_;
 }

@@ -25,6 +25,7 @@
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "propulsion_estimator/common/yaml_map.h"
 #include "propulsion_estimator/bag/bag_flight_sink.h"
+#include "propulsion_estimator/ros/esc_telemetry_codec.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 #include "simulate_command.h"
 #include "test_paths.h"
@@ -100,10 +101,12 @@ TEST(BagFlightSink, WritesMavrosTopicsWithTheirTypesAndRates) {
       {"/mavros/imu/temperature_baro", "sensor_msgs/Temperature"},
       {"/mavros/rangefinder/rangefinder", "sensor_msgs/Range"},
       {"/motor_temperature", "sensor_msgs/Temperature"},
+      {"/mavros/esc_status", "mavros_msgs/ESCStatus"},
       {"/sim/truth", "propulsion_estimator/SimTruth"}};
   ASSERT_EQ(types.size(), expected_types.size());
   for (const auto& [topic, type] : expected_types) EXPECT_EQ(types[topic].first, type) << topic;
   EXPECT_EQ(types["/mavros/rc/out"].second, "52cacf104bab5ae3b103cfe176590713");
+  EXPECT_EQ(types["/mavros/esc_status"].second, "145d49eaf5cfecbdfd50ae4a22fe82d4");
 
   pe::RcOutDecoder decoder;
   pe::RcOutMessage rc_out;
@@ -112,6 +115,13 @@ TEST(BagFlightSink, WritesMavrosTopicsWithTheirTypesAndRates) {
   int hover_samples = 0;
   for (const rosbag::MessageInstance& message : view) {
     ++counts[message.getTopic()];
+    if (message.getTopic() == "/mavros/esc_status") {
+      pe::EscTelemetryDecoder esc_decoder;
+      pe::EscTelemetry esc;
+      ASSERT_TRUE(esc_decoder.decode(*message.instantiate<topic_tools::ShapeShifter>(), &esc, &error)) << error;
+      ASSERT_EQ(esc.escs.size(), 4u);
+      EXPECT_EQ(esc.stamp_s, message.getTime().toSec());
+    }
     const double t = (message.getTime() - ros::Time(pe::kSimulatedBagStartSec)).toSec();
     if (message.getTopic() == "/mavros/rc/out") {
       ASSERT_TRUE(decoder.decode(*message.instantiate<topic_tools::ShapeShifter>(), &rc_out, &error)) << error;
@@ -165,6 +175,7 @@ TEST(BagFlightSink, WritesMavrosTopicsWithTheirTypesAndRates) {
   EXPECT_EQ(counts["/mavros/imu/static_pressure"], expected(sensors.pressure_rate_hz));
   EXPECT_EQ(counts["/mavros/imu/temperature_baro"], expected(sensors.air_temperature_rate_hz));
   EXPECT_EQ(counts["/mavros/rangefinder/rangefinder"], expected(sensors.rangefinder_rate_hz));
+  EXPECT_EQ(counts["/mavros/esc_status"], expected(sensors.esc_telemetry_rate_hz));
   EXPECT_EQ(counts["/motor_temperature"], expected(sensors.motor_temperature_rate_hz));
 }
 

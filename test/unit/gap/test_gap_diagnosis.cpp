@@ -2,6 +2,7 @@
 #include <cmath>
 #include <functional>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -304,5 +305,106 @@ TEST_F(SyntheticFlights, ReportYamlHoldsTheContract) {
                           "effects:", "selected: [thrust_loss]", "heldout:", "before_rmse_pct:", "after_rmse_pct:",
                           "before_payload_err_pct:", "after_payload_err_pct:"}) {
     EXPECT_NE(yaml.find(key), std::string::npos) << key;
+  }
+}
+
+// Hovers at one mass and one battery charge, no current sensor: a thrust loss and an ESC offset
+// lower the thrust alike at every block, and nothing in these flights can tell them apart.
+TEST_F(SyntheticFlights, ReportsAmbiguousWhenTheFlightsCannotSeparateTwoEffects) {
+  World world;
+  world.thrust_loss = 0.05;
+  std::vector<pe::Flight> all;
+  for (unsigned f = 1; f <= 5; ++f) {
+    all.push_back(fly("f" + std::to_string(f) + ".bag", world, {1.5, 1.5}, 12.0, f));
+    for (pe::BatteryReading& reading : all.back().streams.battery) reading.current_a = std::nan("");
+  }
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{});
+  EXPECT_TRUE(diagnosis.selected.empty()) << testing::PrintToString(diagnosis.selected);
+  ASSERT_EQ(diagnosis.ambiguous.size(), 1u);
+  const std::vector<Kind>& group = diagnosis.ambiguous[0].kinds;
+  EXPECT_EQ(std::set<Kind>(group.begin(), group.end()), (std::set<Kind>{Kind::kThrustLoss, Kind::kEscOffset}));
+  EXPECT_GT(diagnosis.ambiguous[0].swap_p_value, 0.05);
+  EXPECT_NE(diagnosis.ambiguous[0].separating_flight.find("hover with two payloads"), std::string::npos);
+  // The correction still uses the group's leader: the gap shrinks whatever the name.
+  EXPECT_TRUE(diagnosis.fitted.parameter(group[0]));
+  EXPECT_LT(diagnosis.heldout.after_rmse_pct, 0.5 * diagnosis.heldout.before_rmse_pct);
+  const std::string yaml = gap::gapReportYaml(diagnosis);
+  EXPECT_NE(yaml.find("selected: []"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("ambiguous:\n  - [" + std::string(pe::effects::kindName(group[0])) + ", " +
+                      pe::effects::kindName(group[1]) + "]"),
+            std::string::npos)
+      << yaml;
+  const std::string md = gap::gapReportMarkdown(diagnosis, model_, "cmd");
+  EXPECT_NE(md.find("**Ambiguous: one of"), std::string::npos);
+  for (const gap::EffectResult& effect : diagnosis.effects) {
+    if (group.end() != std::find(group.begin(), group.end(), effect.kind)) {
+      EXPECT_EQ(effect.reason.rfind("ambiguous: ", 0), 0u) << effect.reason;
+    }
+  }
+}
+
+TEST_F(SyntheticFlights, TheNestedHoldOutScoresEachFlightOnADiagnosisThatNeverSawIt) {
+  World world;
+  world.thrust_loss = 0.06;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  const gap::NestedHoldOut& nested = diagnosis.heldout.nested;
+  ASSERT_TRUE(nested.unavailable.empty()) << nested.unavailable;
+  ASSERT_EQ(nested.folds.size(), 3u);
+  std::multiset<std::string> scored;
+  for (const gap::NestedFold& fold : nested.folds) {
+    for (const std::string& name : fold.scored_on) {
+      scored.insert(name);
+      EXPECT_EQ(std::count(fold.fitted_on.begin(), fold.fitted_on.end(), name), 0) << name;
+    }
+    EXPECT_EQ(fold.fitted_on.size() + fold.scored_on.size(), 5u);
+    EXPECT_EQ(fold.effects, std::vector<Kind>{Kind::kThrustLoss});
+  }
+  EXPECT_EQ(scored, (std::multiset<std::string>{"f1.bag", "f2.bag", "f3.bag", "f4.bag", "f5.bag"}));
+  EXPECT_GT(nested.before_rmse_pct, 5.0);
+  EXPECT_LT(nested.after_rmse_pct, 0.3 * nested.before_rmse_pct);
+  EXPECT_NE(gap::gapReportYaml(diagnosis).find("nested:"), std::string::npos);
+}
+
+TEST_F(SyntheticFlights, TheNestedHoldOutNeedsThreeUnits) {
+  std::vector<pe::Flight> two = flights(World{});
+  two.resize(2);
+  for (pe::Flight& flight : two) flight.segments.resize(1);
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, two, gap::DiagnosisConfig{});
+  EXPECT_EQ(diagnosis.heldout.nested.unavailable, "needs three flights or more (2): the inner selection must hold one out too");
+}
+
+// Every candidate gets one line, and its verdict agrees with the numbers beside it: p tests the
+// joint held-out error, so p = 1 exactly when that error does not fall.
+TEST_F(SyntheticFlights, EachCandidateHasOneLineWhoseTestsAgreeWithItsErrors) {
+  World world;
+  world.supply_resistance = 0.08;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  const gap::DiagnosisConfig config;
+  ASSERT_EQ(diagnosis.effects.size(), pe::effects::kAllKinds.size());
+  const std::string md = gap::gapReportMarkdown(diagnosis, model_, "cmd");
+  for (const gap::EffectResult& effect : diagnosis.effects) {
+    const std::string name = pe::effects::kindName(effect.kind);
+    EXPECT_FALSE(effect.reason.empty()) << name;
+    std::size_t rows = 0;
+    for (std::size_t at = md.find("\n| " + name + " | "); at != std::string::npos;
+         at = md.find("\n| " + name + " | ", at + 1)) {
+      ++rows;
+    }
+    EXPECT_EQ(rows, 1u) << name;
+    const bool selected =
+        std::find(diagnosis.selected.begin(), diagnosis.selected.end(), effect.kind) != diagnosis.selected.end();
+    EXPECT_EQ(effect.reason.rfind("selected in round", 0) == 0, selected) << name << ": " << effect.reason;
+    if (!effect.testable || effect.base_joint_rmse_pct == 0.0) continue;
+    EXPECT_EQ(effect.p_value > 0.999, effect.joint_rmse_pct >= effect.base_joint_rmse_pct)
+        << name << ": " << effect.reason;
+    if (effect.reason.find("not significant") != std::string::npos) {
+      EXPECT_GE(effect.p_value, config.significance) << name << ": " << effect.reason;
+    }
+  }
+  for (const gap::SelectionStep& step : diagnosis.trace) {
+    EXPECT_FALSE(step.verdict.empty());
+    if (step.verdict.find("p = 1.000") != std::string::npos) {
+      EXPECT_EQ(step.verdict.find("not significant"), std::string::npos) << step.verdict;
+    }
   }
 }

@@ -75,6 +75,19 @@ TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
   EXPECT_EQ(number("capability/motor_health/block_s"), k.motor_health.block_s);
   EXPECT_EQ(number("capability/motor_health/window_s"), k.motor_health.window_s);
   EXPECT_EQ(number("capability/motor_health/max_gap"), k.motor_health.max_gap);
+  EXPECT_EQ(text("esc_telemetry_topic"), node.esc_telemetry_topic);
+  EXPECT_EQ(text("esc_status_topic"), node.esc_status_topic);
+  const pe::ModelCheckConfig& m = node.esc_telemetry;
+  EXPECT_EQ(number("esc_telemetry/stale_after_s"), m.stale_after_s);
+  EXPECT_EQ(number("esc_telemetry/window_s"), m.window_s);
+  EXPECT_EQ(number("esc_telemetry/min_hover_s"), m.min_hover_s);
+  EXPECT_EQ(number("esc_telemetry/rpm_tolerance"), m.rpm_tolerance);
+  EXPECT_EQ(number("esc_telemetry/current_tolerance"), m.current_tolerance);
+  EXPECT_EQ(number("esc_telemetry/supply_tolerance"), m.supply_tolerance);
+  EXPECT_EQ(number("esc_telemetry/supply_memory_s"), m.supply_memory_s);
+  EXPECT_EQ(number("esc_telemetry/supply_voltage_sigma_v"), m.supply_voltage_sigma_v);
+  EXPECT_EQ(number("esc_telemetry/supply_max_rel_std"), m.supply_max_rel_std);
+  EXPECT_EQ(flag("esc_telemetry/apply_supply_resistance"), m.apply_supply_resistance);
   // Commented in the template: not set.
   EXPECT_FALSE(k.pwm_max_us.has_value());
   EXPECT_FALSE(k.capacity_ah.has_value());

@@ -412,8 +412,8 @@ TEST(FlightSimulator, RefusesAFlightThatFlipsOverRatherThanCountItLanded) {
                       {pe::sim::SegmentKind::kWait, 1.0, 0.0, 0.0, 0.0}};
   EXPECT_EQ(refusal<pe::SimulationError>(profile),
             repoPath("config/sim/default_flight.yaml") +
-                ": segments[2].type: the vehicle flipped over: roll -170 deg, pitch 6 deg at t = 5.622 s, beyond 60 "
-                "deg since 5.322 s");
+                ": segments[2].type: the vehicle flipped over: roll -178 deg, pitch 1 deg at t = 5.614 s, beyond 60 "
+                "deg since 5.314 s");
 }
 
 TEST(FlightSimulator, AWeakPropellerIsMadeUpByItsMotorAndTheVehicleHoldsItsHeight) {

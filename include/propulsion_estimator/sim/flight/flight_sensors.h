@@ -54,7 +54,26 @@ struct FlightSensorParams {
   /// Thermistor or IR sensor on the motor bell (assumed).
   double motor_temperature_sigma_c = 0.2;
 
-  /// Throws FieldError naming the member for a rate outside 0..500 Hz, a negative sigma, or a
+  /// ESC telemetry (BLHeli_32 class through the autopilot's ESC_TELEMETRY / ESC_STATUS stream); a
+  /// rate of 0 flies ESCs without telemetry. The rpm is the electrical rpm in steps of 100 eRPM over
+  /// `esc_pole_pairs` (DShot telemetry's resolution) with commutation jitter; the current and
+  /// voltage are each ESC's own shunt and divider, with a gain error drawn once per ESC, noise and
+  /// MAVLink's 0.01 A / 0.01 V steps; each packet is lost with `esc_dropout_probability` (the
+  /// autopilot repeats the last one). Figures assumed from BLHeli_32 ESCs' data and flight logs.
+  ///@{
+  double esc_telemetry_rate_hz = 10.0;
+  int esc_pole_pairs = 7;
+  double esc_rpm_sigma = 15.0;  ///< rpm
+  double esc_current_sigma_a = 0.15;
+  double esc_current_gain_sigma = 0.02;  ///< relative, per ESC
+  double esc_current_offset_sigma_a = 0.05;  ///< per ESC
+  double esc_voltage_sigma_v = 0.03;
+  double esc_voltage_gain_sigma = 0.005;  ///< relative, per ESC
+  double esc_dropout_probability = 0.03;
+  ///@}
+
+  /// Throws FieldError naming the member for a rate outside 0..500 Hz (esc_telemetry_rate_hz:
+  /// 0..500), a negative sigma, pole pairs outside 1..30, a dropout probability outside 0..0.9, or a
   /// rangefinder range that is empty.
   void validate() const;
 };

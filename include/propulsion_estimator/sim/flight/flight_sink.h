@@ -75,6 +75,25 @@ struct RangeSample {
   double field_of_view_rad = 0.0;  ///< rad
 };
 
+/// One ESC's telemetry packet as the autopilot forwards it (BLHeli_32/KISS/AM32 through ArduPilot's
+/// ESC_TELEMETRY_x_TO_y or PX4's ESC_STATUS). A packet lost on the ESC's wire leaves the previous
+/// one in place: the autopilot sends its last values again, with `count` unchanged.
+struct EscReading {
+  double rpm = 0.0;  ///< mechanical rotor speed, rpm (the ESC's electrical rpm over its pole pairs)
+  double current_a = 0.0;  ///< A, the ESC's own current sensor
+  double voltage_v = 0.0;  ///< V at the ESC's input, its own divider
+  double temperature_c = 0.0;  ///< deg C, the ESC's
+  std::uint16_t count = 0;  ///< packets received from this ESC (wraps)
+};
+
+/// /mavros/esc_telemetry (ArduPilot, mavros_msgs/ESCTelemetry) or /mavros/esc_status (PX4,
+/// mavros_msgs/ESCStatus): one reading per motor, in motor order.
+struct EscTelemetrySample {
+  double time_s = 0.0;  ///< s
+  bool px4 = true;  ///< PX4's ESCStatus, else ArduPilot's ESCTelemetry
+  std::vector<EscReading> escs;  ///< one per motor
+};
+
 /// Per-motor truth.
 struct MotorTruth {
   double pwm_us = 0.0;  ///< us
@@ -127,6 +146,9 @@ class FlightSink {
   virtual void motorTemperature(const ScalarSample& sample) = 0;
   virtual void truth(const TruthSample& sample) = 0;
   ///@}
+  /// ESC telemetry (FlightSensorParams::esc_telemetry_rate_hz); a sink whose format does not
+  /// carry it ignores it.
+  virtual void escTelemetry(const EscTelemetrySample& /*sample*/) {}
 };
 
 }  // namespace sim

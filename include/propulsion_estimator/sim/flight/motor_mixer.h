@@ -11,7 +11,9 @@ namespace sim {
 /// A flight controller's mixer, built from the rotor geometry alone (like PX4's geometry files):
 /// the pseudo-inverse of the normalised allocation matrix [y/max|y|; -x/max|x|; -spin; 1/N], its
 /// roll, pitch and yaw columns scaled so that the largest motor share of each is 1 (a quad X mixes
-/// u = collective + roll y_sign - pitch x_sign - yaw spin). Outputs are clamped to 0..1. The
+/// u = collective + roll y_sign - pitch x_sign - yaw spin). Like PX4's, it desaturates: a roll and
+/// pitch demand that would push a motor above 1 lowers the collective instead, and yaw is scaled
+/// down to the room left; outputs are then clamped to 0..1. The
 /// constructor throws ConfigError for rotors without positions or a layout that cannot control
 /// roll, pitch, yaw and thrust independently.
 class MotorMixer {

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Calibrates diagnose_gap's thresholds of improvement on null flights of the randomized family.
+
+Reads the reports validate_gap.py wrote in --work for cases with nothing to name (null,
+centre-of-gravity and weak-propeller cases: only the mismatch of model family between the
+simulator and the fitted surfaces, plus a motor fault the moment balance takes) and prints, over
+every first-round candidate whose improvement is significant, the largest fall of the PWM view's
+held-out RMSE (percentage points of the truth) and of its mean square (fraction): what a mismatch
+of model family alone gives. An effect must do better to be named; the chosen values go into
+DiagnosisConfig (include/propulsion_estimator/gap/diagnosis.h) and VALIDATION.md says which seeds.
+Run it on development seeds only.
+
+Usage: calibrate_gap_thresholds.py WORK_DIR [WORK_DIR ...] [--significance P]
+"""
+import argparse
+import glob
+import os
+
+import yaml
+
+NOTHING_TO_NAME = ("null", "cg_offset", "weak_propeller")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("work", nargs="+")
+    parser.add_argument("--significance", type=float, default=0.01)
+    args = parser.parse_args()
+    rows = []
+    for work in args.work:
+        for report_path in sorted(glob.glob(os.path.join(work, "case_*", "diagnosis", "report.yaml"))):
+            case = os.path.basename(os.path.dirname(os.path.dirname(report_path)))
+            if not case.endswith(NOTHING_TO_NAME):
+                continue
+            with open(report_path) as handle:
+                report = yaml.safe_load(handle)
+            before = report["heldout"]["before_rmse_pct"]
+            for step in report.get("trace") or []:
+                if step["round"] != 1 or step["p_value"] >= args.significance:
+                    continue
+                drop = before - step["heldout_rmse_pct"]
+                ratio = (step["heldout_rmse_pct"] / before) ** 2 if before else 1.0
+                rows.append((drop, ratio, os.path.basename(work), case, step["name"]))
+    rows.sort(reverse=True)
+    print("%d significant first-round candidates on null flights" % len(rows))
+    for drop, ratio, work, case, name in rows[:15]:
+        print("  %-14s %-28s %-18s RMSE falls %.3f points, mean square to %.3f" % (work, case, name, drop, ratio))
+    if rows:
+        print("largest fall: %.3f points; lowest mean-square ratio: %.3f" % (rows[0][0], min(r[1] for r in rows)))
+
+
+if __name__ == "__main__":
+    main()

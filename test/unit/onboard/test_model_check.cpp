@@ -1,0 +1,141 @@
+// The live model check's rules on hand-made reports: repeats are not measurements, staleness, the
+// verdicts from the deviations, the supply resistance's least squares.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/onboard/model_check.h"
+
+namespace pe = propulsion_estimator;
+
+namespace {
+
+// Four motors modelled at 6000 rpm and 5 A, hovering.
+pe::EstimatorOutput hoverOutput() {
+  pe::EstimatorOutput out;
+  out.hover.hovering = true;
+  out.motors.resize(4);
+  for (int k = 0; k < 4; ++k) {
+    out.motors[k].channel = k + 1;
+    out.motors[k].estimate.rpm = 6000.0;
+    out.motors[k].estimate.current_a = 5.0;
+    out.motors[k].estimate.in_domain = true;
+  }
+  return out;
+}
+
+// `seconds` of 50 Hz RCOut and 10 Hz telemetry with motor k at rpm 6000 x rpm[k] and 5 A x current[k].
+void feed(pe::ModelCheck* check, double* t, double seconds, const double (&rpm)[4], const double (&current)[4],
+          bool counted = true) {
+  static int count = 0;
+  const pe::EstimatorOutput out = hoverOutput();
+  for (int step = 0; step < static_cast<int>(seconds * 50.0); ++step) {
+    *t += 0.02;
+    check->addEstimate(*t, out);
+    if (step % 5 != 0) continue;
+    ++count;
+    pe::EscTelemetry message;
+    message.stamp_s = *t;
+    for (int k = 0; k < 4; ++k) {
+      // A little noise, so that reports without counts differ from one to the next.
+      const double jitter = 1.0 + 1e-4 * ((count * 7 + k) % 5);
+      message.escs.push_back({*t, 6000.0 * rpm[k] * jitter, 5.0 * current[k], 16.0, 30.0, counted ? count : -1});
+    }
+    check->addTelemetry(*t, message);
+  }
+}
+
+}  // namespace
+
+TEST(ModelCheck, NamesTheFamilyOfCauseFromTheDeviations) {
+  struct Case {
+    double rpm[4];
+    double current[4];
+    pe::ModelCheckVerdict verdict;
+    int channel;
+  };
+  const Case cases[] = {
+      {{1, 1, 1, 1}, {1, 1, 1, 1}, pe::ModelCheckVerdict::kConsistent, 0},
+      // Faster, and less current than that speed needs (~ n^3): the propeller.
+      {{1, 1.02, 1, 1}, {1, 0.97, 1, 1}, pe::ModelCheckVerdict::kPropeller, 2},
+      // Slower, and more current than that speed needs: the motor or its ESC.
+      {{1, 1, 0.97, 1}, {1, 1, 1.0, 1}, pe::ModelCheckVerdict::kMotorEsc, 3},
+      // Faster with the current the speed needs: an error of the command, no cause named.
+      {{1.02, 1, 1, 1}, {1.0612, 1, 1, 1}, pe::ModelCheckVerdict::kConsistent, 0},
+      // Every motor alike, 4 % slow: the supply.
+      {{0.96, 0.96, 0.96, 0.96}, {0.9, 0.9, 0.9, 0.9}, pe::ModelCheckVerdict::kSupply, 0},
+  };
+  for (const Case& c : cases) {
+    pe::ModelCheck check({1, 2, 3, 4}, {});
+    double t = 0.0;
+    feed(&check, &t, 2.0, c.rpm, c.current);
+    EXPECT_EQ(check.report(t).verdict, pe::ModelCheckVerdict::kNotJudged);  // 2 s of hover, 3 s needed
+    feed(&check, &t, 3.0, c.rpm, c.current);
+    const pe::ModelCheckReport report = check.report(t);
+    EXPECT_EQ(report.verdict, c.verdict) << report.note;
+    EXPECT_EQ(report.flagged_channel, c.channel) << report.note;
+    EXPECT_EQ(report.fresh_motors, 4);
+    EXPECT_NEAR(report.motors[1].hover_rpm_ratio, c.rpm[1], 2e-3);
+  }
+}
+
+TEST(ModelCheck, ARepeatedReportIsNotAMeasurementAndGoesStale) {
+  pe::ModelCheck check({1, 2, 3, 4}, {});
+  EXPECT_EQ(check.report(0.0).note, "no ESC telemetry received");
+  EXPECT_TRUE(std::isnan(check.report(0.0).motors[0].measured_rpm));
+  pe::EscTelemetry message;
+  message.escs.assign(4, {0.0, 6000.0, 5.0, 16.0, 30.0, 7});
+  check.addTelemetry(1.0, message);
+  EXPECT_EQ(check.report(1.0).fresh_motors, 4);
+  EXPECT_EQ(check.report(1.0).motors[2].measured_rpm, 6000.0);
+  // The autopilot repeats the last packet (same count) for a second: stale after stale_after_s.
+  for (double t = 1.1; t < 2.0; t += 0.1) check.addTelemetry(t, message);
+  EXPECT_EQ(check.report(2.0).fresh_motors, 0);
+  EXPECT_TRUE(std::isnan(check.report(2.0).motors[2].measured_rpm));
+  EXPECT_TRUE(std::isnan(check.report(2.0).motors[2].current_ratio));
+  // ESCs beyond the rotors' channels are ignored.
+  message.escs.assign(8, {0.0, 6000.0, 5.0, 16.0, 30.0, 8});
+  check.addTelemetry(2.1, message);
+  EXPECT_EQ(check.report(2.1).fresh_motors, 4);
+}
+
+TEST(ModelCheck, WorksWithoutPacketCounts) {
+  pe::ModelCheck check({1, 2, 3, 4}, {});
+  double t = 0.0;
+  feed(&check, &t, 5.0, {1, 1.02, 1, 1}, {1, 0.97, 1, 1}, false);
+  EXPECT_EQ(check.report(t).verdict, pe::ModelCheckVerdict::kPropeller);
+}
+
+TEST(ModelCheck, RefusesABadConfig) {
+  pe::ModelCheckConfig config;
+  config.window_s = 0.0;
+  EXPECT_THROW(pe::ModelCheck({1, 2, 3, 4}, config), pe::FieldError);
+  try {
+    pe::ModelCheck({1}, config);
+  } catch (const pe::FieldError& e) {
+    EXPECT_NE(std::string(e.what()).find("esc_telemetry/window_s"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SupplyResistanceEstimator, FindsTheSlopeOfTheDropAgainstTheCurrentWithAnOffset) {
+  pe::SupplyResistanceEstimator estimator(60.0, 0.04);
+  EXPECT_TRUE(std::isnan(estimator.resistanceOhm()));
+  std::mt19937_64 random(3);
+  std::normal_distribution<double> noise(0.0, 0.04);
+  for (int k = 0; k < 120; ++k) {
+    const double current = 10.0 + 15.0 * std::sin(0.3 * k) * std::sin(0.3 * k);
+    estimator.add(k, 0.12 + 0.03 * current + noise(random), current);
+  }
+  EXPECT_NEAR(estimator.resistanceOhm(), 0.03, 0.003);
+  EXPECT_GT(estimator.resistanceStdOhm(), 0.0);
+  EXPECT_LT(estimator.resistanceStdOhm(), 0.003);
+  // A steady current identifies nothing new: the uncertainty does not shrink below what it was.
+  const double before = estimator.resistanceStdOhm();
+  for (int k = 120; k < 400; ++k) estimator.add(k, 0.12 + 0.03 * 10.0 + noise(random), 10.0);
+  EXPECT_GT(estimator.resistanceStdOhm(), before);
+  estimator.add(399.0, 1.0, 10.0);  // not after the last: ignored
+  estimator.add(400.0, std::nan(""), 10.0);
+  EXPECT_EQ(estimator.samples(), 400);
+}
