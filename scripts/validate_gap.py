@@ -14,7 +14,8 @@ Usage: validate_gap.py --bin DIR --repo DIR --work DIR [--cases N] [--quick] [--
   --bin      folder holding simulate, fit_surfaces and diagnose_gap
   --quick    one case of each kind the CI needs (null, thrust loss, supply resistance, weak propeller)
   --markdown write the table (VALIDATION.md)
-  --reuse    diagnose the cases already simulated in --work again (after a change to the diagnosis)
+  --reuse    diagnose the cases already simulated in --work again (after a change to the diagnosis);
+             cases not simulated there count as errors
 
 Prints a confusion matrix and the mean held-out shrink; exits 1 when the acceptance thresholds of
 issue 8 are missed (>= 90 % right, no null case named, weak propellers located, >= 70 % shrink).
@@ -197,10 +198,16 @@ def run_case(case, args):
     bench = os.path.join(folder, "bench.csv")
     model = os.path.join(folder, "model.yaml")
     manifest = os.path.join(folder, "flights.manifest.yaml")
-    if args.reuse and os.path.exists(manifest) and os.path.exists(model):
-        if args.simulate_only:
+    if args.reuse:
+        # Only what was simulated: a case whose simulation failed stays failed (see its log), unless
+        # --simulate-missing tries it again.
+        simulated = os.path.exists(manifest) and os.path.exists(model)
+        if not simulated and not args.simulate_missing:
+            return dict(case, error="not simulated in --work (see %s)" % log)
+        if simulated and args.simulate_only:
             return dict(case, simulated=True)
-        return score(case, diagnose(case, args, folder, model, manifest, log))
+        if simulated:
+            return score(case, diagnose(case, args, folder, model, manifest, log))
     if run([tool("simulate"), "bench", "--params", params, "--experiment", "pwm_sweep", "--seed", str(case["seed"]),
             "--output", bench], log) or run([tool("fit_surfaces"), bench, "--out", model], log):
         return dict(case, error="bench or fit failed (see %s)" % log)
@@ -316,8 +323,8 @@ def make_cases(count, seed, quick, effects):
 
 
 def outcome(row):
-    """What a case's report named: its selected effects, and each ambiguous group as (a | b)."""
-    names = list(row.get("selected") or []) + ["(%s)" % " | ".join(g) for g in row.get("ambiguous") or []]
+    """What a case's report named: its selected effects, and each ambiguous group as (a or b)."""
+    names = list(row.get("selected") or []) + ["(%s)" % " or ".join(g) for g in row.get("ambiguous") or []]
     return " + ".join(names or ["none"])
 
 
@@ -360,6 +367,8 @@ def main():
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--reuse", action="store_true", help="diagnose the flights already simulated in --work again")
     parser.add_argument("--no-figures", action="store_true", help="diagnose without drawing the report's figures")
+    parser.add_argument("--simulate-missing", action="store_true",
+                        help="with --reuse: simulate the cases whose simulation is not in --work (a failed one again)")
     parser.add_argument("--simulate-only", action="store_true",
                         help="simulate the cases and stop (diagnose them later with --reuse)")
     parser.add_argument("--only", help="comma-separated case labels to run (null,weak_propeller,...): for calibration")

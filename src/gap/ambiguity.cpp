@@ -59,7 +59,7 @@ void Diagnoser::finishReasons(std::map<Kind, EffectResult>* results) const {
     for (std::size_t k = 0; k < ambiguity.kinds.size(); ++k) {
       EffectResult& result = (*results)[ambiguity.kinds[k]];
       result.reason = "ambiguous: " + group + " (" +
-                      (k == 0 ? "leads, corrected with" : "fits nearly as well") + "; swapping the leader for " +
+                      (k == 0 ? "the leader, which the correction uses" : "fits nearly as well") + "; swapping the leader for " +
                       effects::kindName(ambiguity.kinds[1]) + " raises the joint held-out error by only " +
                       formatPrintf("%.3f", ambiguity.swap_loss_pct) + " points, p = " +
                       formatPrintf("%.3f", ambiguity.swap_p_value) + "): not named";

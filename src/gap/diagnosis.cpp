@@ -414,7 +414,7 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
     return "not taken: significant (" + joint + "), but the " + pwm + " falls by " + formatPrintf("%.3f", drop_pct) +
            " points (" + formatPrintf("%.0f", 100.0 * (1.0 - mean_square_ratio)) +
            " % of its mean square): at most what a mismatch of model family alone gives on null flights (> " +
-           formatPrintf("%.2f", config_.min_improvement_pct) + " points and " +
+           formatPrintf("%.3f", config_.min_improvement_pct) + " points and " +
            formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) + " % needed)";
   }
   return "not taken: " + joint;

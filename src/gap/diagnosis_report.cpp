@@ -169,7 +169,7 @@ std::string Diagnoser::method() const {
          ". Forward selection over " +
          std::to_string(units_) + " held-out " + unit_name_ +
          "s (each fitted on the others). An effect is added when the held-out RMSE of the PWM view falls "
-         "by more than " + formatPrintf("%.2f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
+         "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
          formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
          " % (more than a mismatch of model family alone gives on null flights), the joint error of both views "
          "falls, a sign-flip permutation "

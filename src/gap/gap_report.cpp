@@ -76,6 +76,57 @@ void emitNested(YAML::Emitter& out, const NestedHoldOut& nested) {
   out << YAML::EndSeq << YAML::EndMap;
 }
 
+// Every candidate's line, what was selected, the ambiguous groups and the selection's trace.
+void emitSelection(YAML::Emitter& out, const Diagnosis& diagnosis) {
+  out << YAML::Key << "effects" << YAML::Value << YAML::BeginSeq;
+  for (const EffectResult& effect : diagnosis.effects) {
+    const effects::ParameterSpec& spec = effects::parameterSpec(effect.kind);
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << effects::kindName(effect.kind);
+    out << YAML::Key << "testable" << YAML::Value << effect.testable;
+    if (effect.testable) {
+      out << YAML::Key << "params" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << spec.key;
+      emitNumber(out, effect.parameter);
+      out << YAML::EndMap;
+      out << YAML::Key << "ci" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << spec.key
+          << YAML::Value << YAML::Flow << YAML::BeginSeq << formatPrintf("%.4g", effect.ci_low)
+          << formatPrintf("%.4g", effect.ci_high) << YAML::EndSeq << YAML::EndMap;
+      out << YAML::Key << "plausible" << YAML::Value << effect.plausible;
+      emitField(out, "heldout_rmse_pct", effect.heldout_rmse_pct);
+      emitField(out, "joint_rmse_pct", effect.joint_rmse_pct);
+      emitField(out, "base_joint_rmse_pct", effect.base_joint_rmse_pct);
+      emitField(out, "p_value", effect.p_value);
+      emitField(out, "current_view_ratio", effect.current_view_ratio, "%.3f");
+    }
+    out << YAML::Key << "reason" << YAML::Value << effect.reason;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "selected" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (effects::Kind kind : diagnosis.selected) out << effects::kindName(kind);
+  out << YAML::EndSeq;
+  out << YAML::Key << "ambiguous" << YAML::Value << YAML::BeginSeq;
+  for (const Ambiguity& ambiguity : diagnosis.ambiguous) out << YAML::Flow << kindNames(ambiguity.kinds);
+  out << YAML::EndSeq;
+  out << YAML::Key << "ambiguity" << YAML::Value << YAML::BeginSeq;
+  for (const Ambiguity& ambiguity : diagnosis.ambiguous) {
+    out << YAML::BeginMap << YAML::Key << "effects" << YAML::Value << YAML::Flow << kindNames(ambiguity.kinds);
+    emitField(out, "swap_loss_pct", ambiguity.swap_loss_pct);
+    emitField(out, "swap_p_value", ambiguity.swap_p_value);
+    out << YAML::Key << "separating_flight" << YAML::Value << ambiguity.separating_flight << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "trace" << YAML::Value << YAML::BeginSeq;
+  for (const SelectionStep& step : diagnosis.trace) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "round" << YAML::Value << step.round << YAML::Key << "name"
+        << YAML::Value << effects::kindName(step.kind);
+    emitField(out, "heldout_rmse_pct", step.heldout_rmse_pct);
+    emitField(out, "joint_rmse_pct", step.joint_rmse_pct);
+    emitField(out, "p_value", step.p_value);
+    out << YAML::Key << "verdict" << YAML::Value << step.verdict << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+}
+
 }  // namespace
 
 namespace {
@@ -158,53 +209,7 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
   }
   out << YAML::EndMap;
 
-  out << YAML::Key << "effects" << YAML::Value << YAML::BeginSeq;
-  for (const EffectResult& effect : diagnosis.effects) {
-    const effects::ParameterSpec& spec = effects::parameterSpec(effect.kind);
-    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << effects::kindName(effect.kind);
-    out << YAML::Key << "testable" << YAML::Value << effect.testable;
-    if (effect.testable) {
-      out << YAML::Key << "params" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << spec.key;
-      emitNumber(out, effect.parameter);
-      out << YAML::EndMap;
-      out << YAML::Key << "ci" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << spec.key
-          << YAML::Value << YAML::Flow << YAML::BeginSeq << formatPrintf("%.4g", effect.ci_low)
-          << formatPrintf("%.4g", effect.ci_high) << YAML::EndSeq << YAML::EndMap;
-      out << YAML::Key << "plausible" << YAML::Value << effect.plausible;
-      emitField(out, "heldout_rmse_pct", effect.heldout_rmse_pct);
-      emitField(out, "joint_rmse_pct", effect.joint_rmse_pct);
-      emitField(out, "base_joint_rmse_pct", effect.base_joint_rmse_pct);
-      emitField(out, "p_value", effect.p_value);
-      emitField(out, "current_view_ratio", effect.current_view_ratio, "%.3f");
-    }
-    out << YAML::Key << "reason" << YAML::Value << effect.reason;
-    out << YAML::EndMap;
-  }
-  out << YAML::EndSeq;
-  out << YAML::Key << "selected" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-  for (effects::Kind kind : diagnosis.selected) out << effects::kindName(kind);
-  out << YAML::EndSeq;
-  out << YAML::Key << "ambiguous" << YAML::Value << YAML::BeginSeq;
-  for (const Ambiguity& ambiguity : diagnosis.ambiguous) out << YAML::Flow << kindNames(ambiguity.kinds);
-  out << YAML::EndSeq;
-  out << YAML::Key << "ambiguity" << YAML::Value << YAML::BeginSeq;
-  for (const Ambiguity& ambiguity : diagnosis.ambiguous) {
-    out << YAML::BeginMap << YAML::Key << "effects" << YAML::Value << YAML::Flow << kindNames(ambiguity.kinds);
-    emitField(out, "swap_loss_pct", ambiguity.swap_loss_pct);
-    emitField(out, "swap_p_value", ambiguity.swap_p_value);
-    out << YAML::Key << "separating_flight" << YAML::Value << ambiguity.separating_flight << YAML::EndMap;
-  }
-  out << YAML::EndSeq;
-  out << YAML::Key << "trace" << YAML::Value << YAML::BeginSeq;
-  for (const SelectionStep& step : diagnosis.trace) {
-    out << YAML::Flow << YAML::BeginMap << YAML::Key << "round" << YAML::Value << step.round << YAML::Key << "name"
-        << YAML::Value << effects::kindName(step.kind);
-    emitField(out, "heldout_rmse_pct", step.heldout_rmse_pct);
-    emitField(out, "joint_rmse_pct", step.joint_rmse_pct);
-    emitField(out, "p_value", step.p_value);
-    out << YAML::Key << "verdict" << YAML::Value << step.verdict << YAML::EndMap;
-  }
-  out << YAML::EndSeq;
+  emitSelection(out, diagnosis);
   out << YAML::Key << "heldout" << YAML::Value << YAML::BeginMap;
   emitField(out, "before_rmse_pct", diagnosis.heldout.before_rmse_pct);
   emitField(out, "after_rmse_pct", diagnosis.heldout.after_rmse_pct);
