@@ -1,5 +1,6 @@
 #include "fit_surfaces_command.h"
 
+#include <algorithm>
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -8,8 +9,10 @@
 
 #include "bench_log_options.h"
 #include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/fitting/rpm_thrust_fit.h"
 #include "propulsion_estimator/fitting/surface_fit.h"
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/fitting/fit_report.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/common/yaml_map.h"
@@ -73,7 +76,18 @@ int fit(const Arguments& args, fitting::FitOptions options, const BenchReadOptio
 
   if (!args.report.empty()) args.plotter.check();  // before the fit, which may take a while
   const std::vector<BenchLog> logs = readBenchLogs(args.logs, read_options);
-  const fitting::BenchFit result = fitting::fitBenchModel(logs, options);
+  fitting::BenchFit result = fitting::fitBenchModel(logs, options);
+  // Thrust against the measured rpm, for the ESC telemetry's view (when the logs have rpm).
+  if (std::any_of(logs.begin(), logs.end(), [](const BenchLog& log) { return log.has(BenchColumn::kRpm); })) {
+    try {
+      const RpmThrust rpm_thrust = fitRpmThrust(logs, result.model.metadata().benchAirDensity());
+      result.model.setRpmThrust(rpm_thrust);
+      std::printf("thrust from rpm: T = %.4g n^2 + %.4g n N (n in rpm), rms %.3g N over %d rows\n",
+                  rpm_thrust.n_per_rpm2, rpm_thrust.n_per_rpm, rpm_thrust.rms_n, rpm_thrust.rows);
+    } catch (const DataError& e) {
+      std::printf("note: %s\n", e.what());
+    }
+  }
   // What the estimator will do with the file, done before anything is written: a model the loader
   // refuses is never left on disk, nor reported as written.
   std::string yaml;

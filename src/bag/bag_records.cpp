@@ -1,21 +1,40 @@
 #include "propulsion_estimator/bag/bag_records.h"
 
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <set>
+#include <string>
 
 namespace propulsion_estimator {
 namespace {
 
-constexpr char kBagMagic[] = "#ROSBAG V2.0\n";
-constexpr std::uint8_t kBagHeaderOp = 0x03, kIndexDataOp = 0x04, kChunkOp = 0x05, kChunkInfoOp = 0x06;
+constexpr std::uint8_t kBagHeaderOp = 0x03, kIndexDataOp = 0x04, kChunkOp = 0x05, kChunkInfoOp = 0x06,
+                       kConnectionOp = 0x07;
 constexpr double kMaxCompressionRatio = 1000.0;
 constexpr std::uint64_t kMaxChunkBytes = 1ull << 30;
 
-// A record header's fields ("name=value", each after its 4-byte length); empty when malformed,
-// which rosbag itself refuses.
+// Whether a record header's fields (each a 4-byte length and "name=value") exactly fill it:
+// rosbag's header parser reads past the header when a field's length does not fit.
+bool fieldsFit(const char* header, std::uint64_t size) {
+  std::uint64_t at = 0;
+  while (at < size) {
+    std::uint32_t length = 0;
+    if (size - at < 4) return false;
+    std::memcpy(&length, header + at, 4);
+    at += 4;
+    if (length > size - at) return false;
+    at += length;
+  }
+  return true;
+}
+
+// Whether a record's header (whose fields fit) is a connection's: its data is a header too.
+bool isConnection(const std::string& header);
+
+// A record header's fields, by name (call on a header whose fields fit).
 std::map<std::string, std::string> headerFields(const std::string& header) {
   std::map<std::string, std::string> fields;
   std::size_t at = 0;
@@ -23,13 +42,18 @@ std::map<std::string, std::string> headerFields(const std::string& header) {
     std::uint32_t length = 0;
     std::memcpy(&length, header.data() + at, 4);
     at += 4;
-    if (length > header.size() - at) return {};
     const std::string field = header.substr(at, length);
     at += length;
     const std::size_t equals = field.find('=');
     if (equals != std::string::npos) fields[field.substr(0, equals)] = field.substr(equals + 1);
   }
   return fields;
+}
+
+bool isConnection(const std::string& header) {
+  const std::map<std::string, std::string> fields = headerFields(header);
+  const auto op = fields.find("op");
+  return op != fields.end() && op->second.size() == 1 && static_cast<std::uint8_t>(op->second[0]) == kConnectionOp;
 }
 
 // A little-endian integer field of 4 or 8 bytes; `fallback` when absent or of another size.
@@ -53,9 +77,15 @@ class BagWalker {
   }
 
   std::string walk() {
-    char magic[sizeof(kBagMagic) - 1] = {};
-    if (!in_.read(magic, sizeof magic) || std::memcmp(magic, kBagMagic, sizeof magic) != 0) return "";  // rosbag says
-    std::uint64_t at = sizeof magic;
+    // The version line read as rosbag reads it (sscanf, trailing bytes ignored); 2.0 is walked here.
+    std::string line;
+    std::getline(in_, line);
+    std::string name(line.size() + 1, '\0');  // room for any word of the line
+    int major = 0, minor = 0;
+    if (!in_ || std::sscanf(line.c_str(), "#ROS%s V%d.%d", &name[0], &major, &minor) != 3 || major != 2 || minor != 0) {
+      return "";  // rosbag reads or refuses it
+    }
+    std::uint64_t at = line.size() + 1;
     while (at < size_) {
       const std::uint64_t record = at;
       std::string header, problem;
@@ -65,6 +95,7 @@ class BagWalker {
         return "at byte " + std::to_string(record) + ": " + (problem.empty() ? "record truncated" : problem);
       }
       record_starts_.insert(record);
+      if (!fieldsFit(header.data(), header.size())) return "at byte " + std::to_string(record) + ": malformed header";
       problem = checkRecord(record, headerFields(header), at, data_length);
       if (!problem.empty()) return "at byte " + std::to_string(record) + ": " + problem;
       at += data_length;
@@ -117,6 +148,10 @@ class BagWalker {
         return checkChunk(fields, at, data_length);
       case kIndexDataOp:
         return checkIndex(data(at, data_length));
+      case kConnectionOp: {
+        const std::string connection = data(at, data_length);
+        return fieldsFit(connection.data(), connection.size()) ? "" : "malformed connection header";
+      }
       case kChunkInfoOp:
         return chunk_starts_.count(number(fields, "chunk_pos", 0)) ? ""
                                                                     : "chunk info pointing at no chunk's start";
@@ -144,6 +179,7 @@ class BagWalker {
     for (std::uint64_t inner = 0; inner < bytes.size();) {
       chunk_records_.insert(inner);
       std::uint64_t next = inner;
+      bool connection = false;
       for (int part = 0; part < 2; ++part) {
         std::uint32_t length = 0;
         if (bytes.size() - next < 4) return "a record inside the chunk at offset " + std::to_string(inner) + " truncated";
@@ -152,6 +188,11 @@ class BagWalker {
         if (length > bytes.size() - next) {
           return "a record inside the chunk at offset " + std::to_string(inner) + " runs past the chunk's end";
         }
+        // Both parts of a connection record are headers; a message's data is the message.
+        if ((part == 0 || connection) && !fieldsFit(bytes.data() + next, length)) {
+          return "a record inside the chunk at offset " + std::to_string(inner) + " has a malformed header";
+        }
+        if (part == 0) connection = isConnection(bytes.substr(next, length));
         next += length;
       }
       inner = next;

@@ -8,6 +8,7 @@
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/units.h"
 #include "propulsion_estimator/estimation/tare_verdict.h"
+#include "propulsion_estimator/model/effect_signals.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -201,7 +202,7 @@ Rejection Estimator::addBatteryCurrent(double receipt_s, double current_a) {
   checkClock(receipt_s);
   if (std::isnan(current_a)) return Rejection::kNone;
   if (!(std::fabs(current_a) <= kMaxBatteryCurrentA)) return reject(Rejection::kBadBatteryCurrent, 0, current_a);
-  battery_current_a_.set(receipt_s, std::fabs(current_a));
+  battery_current_a_.set(receipt_s, current_a);
   return Rejection::kNone;
 }
 
@@ -249,18 +250,16 @@ Rejection Estimator::addMotorTemperature(double receipt_s, double temperature_c)
 }
 
 effects::Signals Estimator::effectSignals(double now_s) const {
-  effects::Signals signals;
-  signals.battery_current_a = battery_current_a_.at(now_s, config_.battery_timeout_s);
-  const double pressure = static_pressure_pa_.at(now_s, config_.static_pressure_timeout_s);
-  const double temperature = air_temperature_c_.at(now_s, config_.air_temperature_timeout_s);
-  signals.air_density_kg_m3 = pressure / (kSpecificGasConstantDryAir * (temperature + kZeroCelsiusInKelvin));
-  // The rangefinder looks along the body's -z: the ground is range * cos(tilt) below it (and
-  // unseen when the vehicle is on its side).
-  const double cos_tilt = imuFresh(now_s) ? body_to_world_(2, 2) : 1.0;
-  signals.height_m = cos_tilt > 0.0 ? range_m_.at(now_s, config_.rangefinder_timeout_s) * cos_tilt : kNaN;
-  signals.motor_temperature_c = motor_temperature_c_.at(now_s, config_.motor_temperature_timeout_s);
-  signals.vertical_speed_m_s = velocityFresh(now_s) ? vertical_speed_m_s_ : kNaN;
-  return signals;
+  // The readings in force; their preparation is the diagnosis' too (effect_signals.h).
+  effects::RawSignals raw;
+  raw.battery_current_a = battery_current_a_.at(now_s, config_.battery_timeout_s);
+  raw.static_pressure_pa = static_pressure_pa_.at(now_s, config_.static_pressure_timeout_s);
+  raw.air_temperature_c = air_temperature_c_.at(now_s, config_.air_temperature_timeout_s);
+  raw.range_m = range_m_.at(now_s, config_.rangefinder_timeout_s);
+  raw.body_z_up = imuFresh(now_s) ? body_to_world_(2, 2) : 1.0;
+  raw.motor_temperature_c = motor_temperature_c_.at(now_s, config_.motor_temperature_timeout_s);
+  raw.vertical_speed_m_s = velocityFresh(now_s) ? vertical_speed_m_s_ : kNaN;
+  return effects::prepareSignals(raw);
 }
 
 bool Estimator::imuFresh(double now_s) const {

@@ -6,6 +6,8 @@
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/gap/rotor_lag.h"
+#include "propulsion_estimator/model/effect_signals.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -86,16 +88,38 @@ struct Accumulator {
   }
 };
 
-// Discharge current is positive: MAVROS on PX4 negates it, so the flight's own median decides.
-double currentSign(const std::vector<BatteryReading>& battery) {
-  std::vector<double> currents;
-  for (const BatteryReading& reading : battery) {
-    if (std::isfinite(reading.current_a)) currents.push_back(reading.current_a);
-  }
-  if (currents.empty()) return kNaN;
-  std::nth_element(currents.begin(), currents.begin() + currents.size() / 2, currents.end());
-  return currents[currents.size() / 2] < 0.0 ? -1.0 : 1.0;
+bool hasCurrent(const std::vector<BatteryReading>& battery) {
+  return std::any_of(battery.begin(), battery.end(),
+                     [](const BatteryReading& reading) { return std::isfinite(reading.current_a); });
 }
+
+// The readings of the signals the effects read, in force at each frame (Cursor's rules).
+struct SignalCursors {
+  explicit SignalCursors(const FlightStreams& streams)
+      : speed(streams.vertical_speed_m_s),
+        pressure(streams.static_pressure_pa),
+        air(streams.air_temperature_c),
+        range(streams.height_above_ground_m),
+        motor_temperature(streams.motor_temperature_c) {}
+
+  effects::RawSignals at(double time_s, double timeout_s, const BatteryReading& battery, const ImuReading* imu) {
+    const auto value = [&](Cursor<ScalarReading>& cursor) {
+      const ScalarReading* reading = cursor.at(time_s, timeout_s);
+      return reading ? reading->value : kNaN;
+    };
+    effects::RawSignals raw;
+    raw.battery_current_a = battery.current_a;
+    raw.body_z_up = imu ? (imu->orientation * Eigen::Vector3d::UnitZ()).z() : 1.0;
+    raw.range_m = value(range);
+    raw.vertical_speed_m_s = value(speed);
+    raw.static_pressure_pa = value(pressure);
+    raw.air_temperature_c = value(air);
+    raw.motor_temperature_c = value(motor_temperature);
+    return raw;
+  }
+
+  Cursor<ScalarReading> speed, pressure, air, range, motor_temperature;
+};
 
 std::string segmentName(const Flight& flight, int index) {
   const ManifestSegment& segment = flight.segments[index];
@@ -109,17 +133,12 @@ bool isQuasiSteady(const Block& block, double max_pwm_change_us, double max_acce
   return block.pwm_change_us <= max_pwm_change_us && std::abs(block.accel_up_m_s2) <= max_accel_m_s2;
 }
 
-double airDensity(double pressure_pa, double temperature_c) {
-  return pressure_pa / (kSpecificGasConstantDryAir * (temperature_c + kZeroCelsiusInKelvin));
-}
-
 FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle& vehicle, const BlockConfig& config,
                            int first_group) {
   FlightBlocks result;
   const FlightStreams& streams = flight.streams;
   result.has_imu = !streams.imu.empty();
-  const double sign = currentSign(streams.battery);
-  result.has_current = std::isfinite(sign);
+  result.has_current = hasCurrent(streams.battery);
   if (streams.rc_out.empty() || streams.battery.empty()) {
     result.problems.push_back(flight.name + ": no rc/out or battery messages");
     return result;
@@ -131,6 +150,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
   const double log_end = streams.rc_out.back().time_s;
   const double flight_start = flight.segments.empty() ? 0.0 : flight.segments.front().start_s;
   const int motors = config.motors;
+  const std::vector<RcOutFrame> commands = laggedCommands(streams.rc_out, motors, config.rotor_time_constant_s);
   int group = first_group;
 
   for (int s = 0; s < static_cast<int>(flight.segments.size()); ++s) {
@@ -142,9 +162,8 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     }
     Cursor<BatteryReading> battery(streams.battery);
     Cursor<ImuReading> imu(streams.imu);
-    Cursor<ScalarReading> altitude(streams.altitude_m), speed(streams.vertical_speed_m_s),
-        pressure(streams.static_pressure_pa), air(streams.air_temperature_c), range(streams.height_above_ground_m),
-        motor_temperature(streams.motor_temperature_c);
+    Cursor<ScalarReading> altitude(streams.altitude_m);
+    SignalCursors signals(streams);
     const double timeout = config.signal_timeout_s;
     const int blocks_per_group = std::max(1, static_cast<int>(std::lround(config.group_s / config.block_s)));
     int block_in_segment = 0;
@@ -173,7 +192,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       acc = Accumulator();
     };
 
-    for (const RcOutFrame& frame : streams.rc_out) {
+    for (const RcOutFrame& frame : commands) {
       if (frame.time_s < segment.start_s) continue;
       if (frame.time_s > segment.end_s) break;
       const int index = static_cast<int>((frame.time_s - segment.start_s) / config.block_s);
@@ -188,11 +207,13 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       acc.last_time = frame.time_s;
       acc.time += frame.time_s;
       acc.voltage += b->voltage_v;
-      if (std::isfinite(sign) && std::isfinite(b->current_a)) {
-        acc.current += sign * b->current_a;
+      const ImuReading* i = imu.at(frame.time_s, timeout);
+      // The node's preparation of the effects' signals (effect_signals.h), frame by frame.
+      const effects::Signals prepared = effects::prepareSignals(signals.at(frame.time_s, timeout, *b, i));
+      if (std::isfinite(prepared.battery_current_a)) {
+        acc.current += prepared.battery_current_a;
         ++acc.current_frames;
       }
-      const ImuReading* i = imu.at(frame.time_s, timeout);
       double collective = 0.0;
       for (int k = 0; k < motors; ++k) collective += frame.pwm_us[k] / motors;
       acc.collective_min = std::min(acc.collective_min, collective);
@@ -205,15 +226,10 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
         acc.force_up += (i->orientation * i->specific_force_m_s2).z();
         ++acc.imu_frames;
       }
-      const ScalarReading* r = range.at(frame.time_s, timeout);
-      acc.addSignal(BlockSignal::kHeight, r ? r->value : kNaN);
-      const ScalarReading* v = speed.at(frame.time_s, timeout);
-      acc.addSignal(BlockSignal::kVerticalSpeed, v ? v->value : kNaN);
-      const ScalarReading* p = pressure.at(frame.time_s, timeout);
-      const ScalarReading* a = air.at(frame.time_s, timeout);
-      acc.addSignal(BlockSignal::kAirDensity, p && a ? airDensity(p->value, a->value) : kNaN);
-      const ScalarReading* m = motor_temperature.at(frame.time_s, timeout);
-      acc.addSignal(BlockSignal::kMotorTemperature, m ? m->value : kNaN);
+      acc.addSignal(BlockSignal::kHeight, prepared.height_m);
+      acc.addSignal(BlockSignal::kVerticalSpeed, prepared.vertical_speed_m_s);
+      acc.addSignal(BlockSignal::kAirDensity, prepared.air_density_kg_m3);
+      acc.addSignal(BlockSignal::kMotorTemperature, prepared.motor_temperature_c);
       const ScalarReading* z = altitude.at(frame.time_s, timeout);
       if (z) {
         acc.altitude += z->value;

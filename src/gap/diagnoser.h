@@ -15,6 +15,7 @@
 #include "propulsion_estimator/gap/blocks.h"
 #include "propulsion_estimator/gap/effect_fit.h"
 #include "propulsion_estimator/gap/motor_balance.h"
+#include "propulsion_estimator/gap/rotor_lag.h"
 #include "propulsion_estimator/gap/sign_flip_test.h"
 #include "propulsion_estimator/gap/thrust_views.h"
 #include "propulsion_estimator/model/effect_description.h"
@@ -60,6 +61,7 @@ class Diagnoser {
   // Each candidate's one line once the selection is over: taken, ambiguous, or why not.
   void finishReasons(std::map<Kind, EffectResult>* results) const;
   int motorCount() const { return static_cast<int>(vehicle_.rotors.size()); }
+  double rotorLag();
   void cut();
   void findUnits();
   effects::ModelEffects references() const;
@@ -92,6 +94,7 @@ class Diagnoser {
   void reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected);
   void reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after);
   std::string method() const;
+  std::string dynamicBlocks() const;
   void collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view);
 
   const PropulsionModel& model_;

@@ -10,8 +10,32 @@ namespace propulsion_estimator {
 namespace gap {
 namespace detail {
 
+// The rotors' lag: given, or identified from the flights when it explains their transients.
+double Diagnoser::rotorLag() {
+  if (!std::isnan(config_.rotor_time_constant_s)) {
+    diagnosis_.rotor_lag = "rotor lag " + formatPrintf("%.3f", config_.rotor_time_constant_s) + " s, given";
+    return config_.rotor_time_constant_s;
+  }
+  const std::optional<RotorLag> lag = identifyRotorLag(flights_, motorCount(), config_.block_s);
+  if (!lag) {
+    diagnosis_.rotor_lag = "no rotor lag: too little change of command within blocks to identify one";
+    return 0.0;
+  }
+  const std::string fit = formatPrintf("%.3f", lag->time_constant_s) + " s (explains " +
+                          formatPrintf("%.0f", 100.0 * lag->fit_r2) + " % of the vertical force's change within blocks)";
+  if (lag->fit_r2 < config_.min_lag_fit_r2) {
+    diagnosis_.rotor_lag = "no rotor lag: the best, " + fit + ", explains too little";
+    return 0.0;
+  }
+  diagnosis_.rotor_lag = "rotor lag identified from the flights: " + fit;
+  return lag->time_constant_s;
+}
+
 void Diagnoser::cut() {
+  diagnosis_.rotor_time_constant_s = rotorLag();
+  const bool dynamic = diagnosis_.rotor_time_constant_s > 0.0;
   BlockConfig block_config;
+  block_config.rotor_time_constant_s = diagnosis_.rotor_time_constant_s;
   block_config.motors = motorCount();
   block_config.block_s = config_.block_s;
   block_config.group_s = config_.group_s;
@@ -24,6 +48,9 @@ void Diagnoser::cut() {
       group = std::max(group, block.group + 1);
       if (isQuasiSteady(block, config_.max_pwm_change_us, config_.max_accel_m_s2)) {
         blocks_.push_back(block);
+      } else if (dynamic && isQuasiSteady(block, config_.dynamic_max_pwm_change_us, config_.dynamic_max_accel_m_s2)) {
+        blocks_.push_back(block);
+        ++diagnosis_.dynamic_blocks;
       } else {
         ++diagnosis_.transient_blocks;
       }

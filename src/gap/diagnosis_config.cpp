@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 
@@ -9,6 +11,9 @@ void DiagnosisConfig::validate() const {
   requirePositive("signal_timeout_s", signal_timeout_s, 60.0, " s");
   requirePositive("max_pwm_change_us", max_pwm_change_us, 1000.0, " us");
   requirePositive("max_accel_m_s2", max_accel_m_s2, 50.0, " m/s^2");
+  if (!std::isnan(rotor_time_constant_s)) requireWithin("rotor_time_constant_s", rotor_time_constant_s, 0.0, 1.0, " s");
+  requirePositive("dynamic_max_pwm_change_us", dynamic_max_pwm_change_us, 1000.0, " us");
+  requirePositive("dynamic_max_accel_m_s2", dynamic_max_accel_m_s2, 50.0, " m/s^2");
   requireWithin("permutations", permutations, 20, 100000);
   requirePositive("significance", significance, 0.2);
   requireWithin("min_improvement_pct", min_improvement_pct, 0.0, 50.0, " %");

@@ -153,11 +153,20 @@ void Diagnoser::reportHeldOut(const HeldOutPrediction& before, const HeldOutPred
   diagnosis_.heldout.after_payload_err_pct = payloadErrorPct(blocks_, after.view_n);
 }
 
+// With a rotor lag modelled: the bounds transient blocks were used within, and how many were.
+std::string Diagnoser::dynamicBlocks() const {
+  if (!(diagnosis_.rotor_time_constant_s > 0.0)) return "";
+  return "; with the rotor lag modelled, also " + std::to_string(diagnosis_.dynamic_blocks) +
+         " transient blocks within " + formatNumber(config_.dynamic_max_pwm_change_us) + " us and " +
+         formatNumber(config_.dynamic_max_accel_m_s2) + " m/s^2";
+}
+
 std::string Diagnoser::method() const {
   return "Quasi-steady " + formatNumber(config_.block_s) + " s blocks only (collective PWM changing by at most " +
          formatNumber(config_.max_pwm_change_us) + " us within the block, vertical acceleration at most " +
-         formatNumber(config_.max_accel_m_s2) + " m/s^2): " + std::to_string(diagnosis_.blocks) + " used, " +
-         std::to_string(diagnosis_.transient_blocks) + " transient left out. Forward selection over " +
+         formatNumber(config_.max_accel_m_s2) + " m/s^2" + dynamicBlocks() + "): " + std::to_string(diagnosis_.blocks) +
+         " used, " + std::to_string(diagnosis_.transient_blocks) + " transient left out; " + diagnosis_.rotor_lag +
+         ". Forward selection over " +
          std::to_string(units_) + " held-out " + unit_name_ +
          "s (each fitted on the others). An effect is added when the held-out RMSE of the PWM view falls "
          "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +

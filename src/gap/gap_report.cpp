@@ -129,15 +129,19 @@ void emitSelection(YAML::Emitter& out, const Diagnosis& diagnosis) {
 
 }  // namespace
 
-std::string gapReportYaml(const Diagnosis& diagnosis) {
-  YAML::Emitter out;
-  out << YAML::BeginMap;
+namespace {
+
+// The report's gap section: overall, the blocks used and left out, per flight and per bench log.
+void emitGap(YAML::Emitter& out, const Diagnosis& diagnosis) {
   out << YAML::Key << "gap" << YAML::Value << YAML::BeginMap;
   emitField(out, "bias_pct", diagnosis.overall.bias_pct);
   emitField(out, "rmse_pct", diagnosis.overall.rmse_pct);
   emitField(out, "payload_err_pct", diagnosis.payload_err_pct);
   out << YAML::Key << "samples" << YAML::Value << diagnosis.overall.samples;
   out << YAML::Key << "transient_samples" << YAML::Value << diagnosis.transient_blocks;
+  out << YAML::Key << "dynamic_samples" << YAML::Value << diagnosis.dynamic_blocks;
+  emitField(out, "rotor_time_constant_s", diagnosis.rotor_time_constant_s);
+  out << YAML::Key << "rotor_lag" << YAML::Value << diagnosis.rotor_lag;
   out << YAML::Key << "flights" << YAML::Value << YAML::BeginSeq;
   for (const FlightGap& flight : diagnosis.flights) {
     out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << flight.name;
@@ -155,6 +159,14 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
     out << YAML::EndMap;
   }
   out << YAML::EndSeq << YAML::EndMap;
+}
+
+}  // namespace
+
+std::string gapReportYaml(const Diagnosis& diagnosis) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  emitGap(out, diagnosis);
 
   out << YAML::Key << "where" << YAML::Value << YAML::BeginMap;
   for (const Breakdown& breakdown : diagnosis.where) {
@@ -384,7 +396,9 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
         "force from the IMU), in percent of the latter: positive when the model reads high. Samples are "
         "quasi-steady blocks: "
      << diagnosis.transient_blocks << " transient blocks (the rotors spinning up or down, where thrust lags the PWM) "
-        "are left out of everything below.\n\n";
+        "are left out of everything below; "
+     << diagnosis.dynamic_blocks << " more, not steady, are used with the rotors' lag modelled (" << diagnosis.rotor_lag
+     << ").\n\n";
 
   md << "## 1. The gap\n\n";
   md << "| | samples | bias % | RMSE % | bias N |\n|---|---|---|---|---|\n";

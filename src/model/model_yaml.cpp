@@ -221,9 +221,31 @@ void writePolynomial(YAML::Emitter& out, const Polynomial2D& polynomial) {
 
 }  // namespace
 
+// thrust_from_rpm: T = (n_per_rpm2 n^2 + n_per_rpm n) rho / rho_bench, the bench's air from the metadata.
+RpmThrust readRpmThrust(const YamlMap& map, double bench_air_density_kg_m3) {
+  map.allowOnly({"n_per_rpm2", "n_per_rpm", "rms_n", "rows"});
+  RpmThrust result;
+  result.n_per_rpm2 = map.number("n_per_rpm2");
+  result.n_per_rpm = map.number("n_per_rpm");
+  if (!(result.n_per_rpm2 > 0.0)) map.fail("n_per_rpm2", formatNumber(result.n_per_rpm2) + " is not positive");
+  result.rms_n = map.number("rms_n");
+  result.rows = map.integer("rows");
+  result.bench_air_density_kg_m3 = bench_air_density_kg_m3;
+  return result;
+}
+
+void writeRpmThrust(YAML::Emitter& out, const RpmThrust& fit) {
+  out << YAML::Key << "thrust_from_rpm" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "n_per_rpm2" << YAML::Value << formatNumber(fit.n_per_rpm2);
+  out << YAML::Key << "n_per_rpm" << YAML::Value << formatNumber(fit.n_per_rpm);
+  out << YAML::Key << "rms_n" << YAML::Value << formatNumber(fit.rms_n);
+  out << YAML::Key << "rows" << YAML::Value << fit.rows;
+  out << YAML::EndMap;
+}
+
 PropulsionModel parseModelYaml(const std::string& text, const std::string& source) {
   const YamlMap root = parseYamlDocument(text, source);
-  root.allowOnly({"format_version", "metadata", "domain", "outputs", "effects"});
+  root.allowOnly({"format_version", "metadata", "domain", "outputs", "effects", "thrust_from_rpm"});
   if (root.integer("format_version") != kFormatVersion) {
     root.fail("format_version", std::to_string(root.integer("format_version")) + " is not supported (this reader knows " +
                                     std::to_string(kFormatVersion) + ")");
@@ -266,8 +288,12 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
   }
 
   try {
+    const double bench_density = metadata.benchAirDensity();
     PropulsionModel model(std::move(metadata), domain, std::move(outputs), fx);
     validateModelOnGrid(model);
+    if (const std::optional<YamlMap> section = root.optionalMap("thrust_from_rpm")) {
+      model.setRpmThrust(readRpmThrust(*section, bench_density));
+    }
     return model;
   } catch (const ConfigError& e) {
     throw ConfigError(source + ": " + e.what());
@@ -354,6 +380,7 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
   }
   out << YAML::EndMap;
   if (!model.effects().empty()) writeEffects(out, model.effects());
+  if (model.rpmThrust()) writeRpmThrust(out, *model.rpmThrust());
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

@@ -8,6 +8,7 @@
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/model/effect_signals.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -115,7 +116,7 @@ void ModelDomain::validate() const {
 
 double ModelMetadata::benchAirDensity() const {
   if (!hasBenchAir()) return kNaN;
-  return *bench_air_pressure_pa / (kSpecificGasConstantDryAir * (*bench_air_temperature_c + kZeroCelsiusInKelvin));
+  return effects::airDensityKgM3(*bench_air_pressure_pa, *bench_air_temperature_c);
 }
 
 void ModelMetadata::validate() const {

@@ -269,7 +269,7 @@ void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) 
     return;
   }
   motor_health_->add(estimator_->output());
-  model_check_->addEstimate(ros::Time::now().toSec(), estimator_->output());
+  checkModel(ros::Time::now().toSec());
   // Estimated and averaged always; published at most at publish_rate_hz (on the stamps, so that a
   // replayed bag publishes as the flight did).
   if (publish_limiter_.admit(estimator_->output().stamp_s)) publish();
@@ -391,7 +391,8 @@ void EstimatorNode::publish() {
 
 void EstimatorNode::publishCapability() {
   estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
-  last_capability_ = capability_->evaluate(estimator_->output(), estimator_->effectSignals(ros::Time::now().toSec()));
+  const double now = ros::Time::now().toSec();
+  last_capability_ = capability_->evaluate(capabilityInput(now), estimator_->effectSignals(now));
   last_health_ = motor_health_->verdict();
   const CapabilityReport& c = last_capability_;
   const MotorHealthVerdict& h = last_health_;
@@ -488,6 +489,7 @@ bool EstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   estimator_->reset();
   motor_health_->clear();
   model_check_->reset();
+  if (rpm_view_) rpm_view_->reset();
   const MassEstimate p = estimator_->output().payload;
   lock.unlock();
   std::ostringstream message;

@@ -5,6 +5,8 @@
 
 #include "propulsion_estimator/ros/estimator_node.h"
 
+#include "propulsion_estimator/common/config_error.h"
+
 namespace propulsion_estimator {
 namespace {
 
@@ -27,6 +29,12 @@ void EstimatorNode::setUpEscTelemetry(ros::NodeHandle& input_nh, const ros::Tran
   subscribe(params_.esc_status_topic, &esc_status_sub_);
   // The supply_resistance effect reads the battery current.
   if (params_.esc_telemetry.apply_supply_resistance) pass_battery_current_ = true;
+  const std::optional<RpmThrust>& rpm_thrust = estimator_->model().rpmThrust();
+  if (rpm_thrust) rpm_view_.emplace(*rpm_thrust, params_.estimator.payload.averaging_window_s);
+  if (params_.mass_view == "rpm" && !rpm_thrust) {
+    throw ConfigError(ros::NodeHandle("~").resolveName("esc_telemetry/mass_view") + ": rpm, but " + params_.model +
+                      " has no thrust_from_rpm (fit_surfaces writes it from bench logs with an rpm column)");
+  }
   diagnostics_.add("ESC telemetry", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     judgeEscTelemetry(model_check_->report(ros::Time::now().toSec()), &status);
   });
@@ -41,6 +49,28 @@ void EstimatorNode::onEscTelemetry(const topic_tools::ShapeShifter::ConstPtr& me
     return;
   }
   model_check_->addTelemetry(ros::Time::now().toSec(), esc_message_);
+}
+
+void EstimatorNode::checkModel(double now_s) {
+  const EstimatorOutput& output = estimator_->output();
+  model_check_->addEstimate(now_s, output);
+  if (rpm_view_) rpm_view_->add(now_s, output, *model_check_, estimator_->effectSignals(now_s).air_density_kg_m3);
+}
+
+bool EstimatorNode::rpmViewInUse(double now_s) const {
+  if (params_.mass_view != "rpm" || !rpm_view_ || std::isnan(rpm_view_->massKg())) return false;
+  for (std::size_t k = 0; k < motors_msg_.motors.size(); ++k) {
+    if (std::isnan(model_check_->motor(k, now_s).measured_rpm)) return false;
+  }
+  return true;
+}
+
+const EstimatorOutput& EstimatorNode::capabilityInput(double now_s) {
+  if (!rpmViewInUse(now_s)) return estimator_->output();
+  rpm_output_ = estimator_->output();
+  rpm_output_.payload.total_mass_kg = rpm_view_->massKg();
+  rpm_output_.payload.window_s = rpm_view_->hoverS();
+  return rpm_output_;
 }
 
 void EstimatorNode::fillMeasured(double now_s) {
@@ -88,6 +118,13 @@ void EstimatorNode::judgeEscTelemetry(const ModelCheckReport& report,
   status->add("supply_resistance_applied", std::isnan(supply_applied_ohm_) ? std::string("no")
                                                                           : formatted("%.4f ohm", supply_applied_ohm_));
   status->add("advice", modelCheckAdvice(report.verdict));
+  const double now = ros::Time::now().toSec();
+  status->add("mass_view", rpmViewInUse(now) ? std::string("rpm")
+                           : params_.mass_view == "rpm"
+                               ? std::string("pwm (rpm chosen: no rpm-view mass yet or telemetry stale)")
+                               : std::string("pwm"));
+  status->add("rpm_view_mass_kg", rpm_view_ ? formatted("%.3f", rpm_view_->massKg()) : std::string("no thrust_from_rpm"));
+  status->add("pwm_view_mass_kg", formatted("%.3f", estimator_->output().payload.total_mass_kg));
   if (!report.telemetry_seen) {
     status->summary(DiagnosticStatus::OK, esc_undecodable_ > 0
                                               ? "no usable ESC telemetry (" + esc_last_error_ + "): nothing measured, model check off"
@@ -120,6 +157,8 @@ void EstimatorNode::fillModelCheck(double now_s, Capability* msg) {
   msg->supply_resistance_ohm = report.supply_resistance_ohm;
   msg->supply_resistance_std_ohm = report.supply_resistance_std_ohm;
   msg->supply_resistance_applied = !std::isnan(supply_applied_ohm_);
+  msg->mass_view = rpmViewInUse(now_s) ? "rpm" : "pwm";
+  msg->rpm_view_mass_kg = rpm_view_ ? rpm_view_->massKg() : kNaN;
 }
 
 }  // namespace propulsion_estimator

@@ -170,6 +170,9 @@ void validateNodeParams(const ros::NodeHandle& nh, EstimatorNodeParams* params) 
   p.health.validate();
   p.capability.validate();
   p.esc_telemetry.validate();
+  if (p.mass_view != "pwm" && p.mass_view != "rpm") {
+    throw ConfigError(nh.resolveName("esc_telemetry/mass_view") + ": '" + p.mass_view + "' is not pwm or rpm");
+  }
   // 0 would tick the diagnostics timer without pause.
   if (!(p.diagnostic_period_s > 0.0) || !std::isfinite(p.diagnostic_period_s)) {
     throw ConfigError(nh.resolveName("diagnostic_period") + ": must be a positive number of seconds, got " +
@@ -253,7 +256,7 @@ void logNodeParams(const EstimatorNodeParams& p) {
                   << ", current_tolerance " << m.current_tolerance << ", supply_tolerance " << m.supply_tolerance
                   << ", supply_memory_s " << m.supply_memory_s << ", supply_voltage_sigma_v "
                   << m.supply_voltage_sigma_v << ", supply_max_rel_std " << m.supply_max_rel_std
-                  << ", apply_supply_resistance " << m.apply_supply_resistance);
+                  << ", apply_supply_resistance " << m.apply_supply_resistance << ", mass_view " << p.mass_view);
 
 }
 
@@ -266,6 +269,7 @@ EstimatorNodeParams readEstimatorNodeParams(const ros::NodeHandle& nh) {
   readEstimatorConfig(read, &p.estimator, &p.publish_rate_hz);
   readCapabilityConfig(read, &p.capability);
   readModelCheckConfig(read, &p.esc_telemetry);
+  read.optional("esc_telemetry/mass_view", &p.mass_view);
   read.optional("diagnostic_period", &p.diagnostic_period_s);  // diagnostic_updater reads it too
   read.refuseUnknown();
   validateNodeParams(nh, &p);

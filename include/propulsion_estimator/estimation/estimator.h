@@ -165,7 +165,8 @@ class Estimator {
   Rejection addRange(double receipt_s, double range_m, double min_range_m, double max_range_m);
   /// Motor winding or bell temperature in deg C; kBadMotorTemperature outside -40..200 deg C.
   Rejection addMotorTemperature(double receipt_s, double temperature_c);
-  /// The signals as the corrections read them at `now_s`: NaN where missing or stale.
+  /// The signals as the corrections read them at `now_s`: NaN where missing or stale. Prepared
+  /// by effects::prepareSignals, as the gap diagnosis prepares its flights' (effect_signals.h).
   effects::Signals effectSignals(double now_s) const;
 
   /// One RCOut message: PWM of all channels (0-based array of the message's channels). Returns

@@ -41,6 +41,9 @@ struct BlockConfig {
   double group_s = 10.0;  ///< s; consecutive blocks within this long form one group
   double signal_timeout_s = 1.0;  ///< s; an older reading of a signal counts as missing
   double hover_max_vertical_speed_m_s = 0.2;  ///< m/s; a block slower than this vertically is a hover
+  /// s; the rotors' first-order spin-up lag (RotorLag): each motor's pulse width is averaged
+  /// through it, so that a block's model thrust is the one the rotors gave; 0: no lag modelled.
+  double rotor_time_constant_s = 0.0;
 };
 
 /// Whether a block is quasi-steady: its collective PWM changed by at most `max_pwm_change_us`
@@ -57,14 +60,11 @@ struct FlightBlocks {
   bool has_current = false;  ///< whether the flight had a battery current
 };
 
-/// Cuts `flight` into blocks inside its weighed segments. A segment outside the log's time span,
+/// Cuts `flight` into blocks inside its weighed segments, its commands through the rotor lag. A segment outside the log's time span,
 /// or with no rc/out and battery inside it, is listed in `problems` and skipped. Without IMU the
 /// vertical specific force is taken as g (level, unaccelerated flight), and said so.
 FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle& vehicle, const BlockConfig& config,
                            int first_group);
-
-/// Air density from static pressure and air temperature (dry air), kg/m^3.
-double airDensity(double pressure_pa, double temperature_c);
 
 }  // namespace gap
 }  // namespace propulsion_estimator

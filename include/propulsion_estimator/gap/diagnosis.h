@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "propulsion_estimator/common/mavros_topics.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/gap/bench_gap.h"
 #include "propulsion_estimator/gap/residual_breakdown.h"
 #include "propulsion_estimator/logs/bench_log.h"
@@ -24,6 +25,12 @@ struct DiagnosisConfig {
   double signal_timeout_s = 1.0;     ///< an older reading of a signal counts as missing
   double max_pwm_change_us = 40.0;   ///< a block whose collective PWM changes more is transient ...
   double max_accel_m_s2 = 0.8;       ///< ... and so is one accelerating vertically faster: left out
+  /// s; the rotors' spin-up lag (a bench step response's time constant); NaN: identified from the
+  /// flights (identifyRotorLag). With a lag, transient blocks count up to the dynamic bounds below.
+  double rotor_time_constant_s = kNaN;
+  double min_lag_fit_r2 = 0.3;  ///< an identified lag explaining less of the transients is not used
+  double dynamic_max_pwm_change_us = 250.0;  ///< with a lag modelled: a block changing more is left out ...
+  double dynamic_max_accel_m_s2 = 4.0;       ///< ... and so is one accelerating faster (beyond, the rotor's inflow is not steady)
   int permutations = 200;            ///< of the permutation test on held-out improvement
   double significance = 0.01;        ///< an effect is selected when p < this ...
   /// ... and the PWM view's held-out RMSE falls by more than this many % of the truth, and its mean
@@ -185,7 +192,10 @@ struct GapSample {
 struct Diagnosis {
   ResidualStats overall;  ///< the model's residual over every block
   int blocks = 0;            ///< quasi-steady blocks diagnosed
-  int transient_blocks = 0;  ///< blocks left out as transient (DiagnosisConfig::max_pwm_change_us, max_accel_m_s2)
+  int transient_blocks = 0;  ///< blocks left out as transient (beyond the steady bounds, or the dynamic ones with a lag)
+  int dynamic_blocks = 0;  ///< blocks used although not steady, their commands through the rotor lag
+  double rotor_time_constant_s = 0.0;  ///< s, the lag the blocks were cut with (0: none)
+  std::string rotor_lag;  ///< where the lag comes from, or why none is modelled; for the report
   /// "" when the quasi-steady blocks span enough group_s stretches for the selection's test to reach
   /// its significance; else one line, "not enough steady data: ...", also among the problems.
   std::string steady_data_shortfall;

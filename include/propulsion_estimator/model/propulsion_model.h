@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "propulsion_estimator/model/model_effects.h"
+#include "propulsion_estimator/model/rpm_thrust.h"
 #include "propulsion_estimator/model/response_surface.h"
 
 namespace propulsion_estimator {
@@ -165,6 +166,11 @@ class PropulsionModel {
   /// What the surfaces leave out; evaluate() does not apply it (the Estimator does, with the
   /// signals the effects read).
   const effects::ModelEffects& effects() const { return effects_; }
+  /// Thrust against measured rpm (the model file's optional thrust_from_rpm, fitted by
+  /// fit_surfaces from the bench logs' rpm column); nullopt when the file has none.
+  const std::optional<RpmThrust>& rpmThrust() const { return rpm_thrust_; }
+  /// Sets or clears it.
+  void setRpmThrust(std::optional<RpmThrust> rpm_thrust) { rpm_thrust_ = rpm_thrust; }
 
  private:
   /// All outputs in SI, floored as evaluate() documents, in dependency order.
@@ -175,6 +181,7 @@ class PropulsionModel {
   ModelDomain domain_;
   std::array<OutputDefinition, kOutputCount> outputs_;
   effects::ModelEffects effects_;
+  std::optional<RpmThrust> rpm_thrust_;
   std::array<double, kOutputCount> to_si_{};
   std::array<Output, kOutputCount> evaluation_order_{};
 };

@@ -24,6 +24,7 @@
 #include "propulsion_estimator/estimation/motor_health.h"
 #include "propulsion_estimator/onboard/health_summary.h"
 #include "propulsion_estimator/onboard/model_check.h"
+#include "propulsion_estimator/onboard/rpm_mass_view.h"
 #include "propulsion_estimator/onboard/rate_limiter.h"
 #include "propulsion_estimator/ros/estimator_params.h"
 #include "propulsion_estimator/ros/esc_telemetry_codec.h"
@@ -65,6 +66,13 @@ class EstimatorNode {
   void fillModelCheck(double now_s, Capability* msg);
   /// Applies the estimated supply resistance as the model's effect, when enabled and estimated.
   void applySupplyResistance();
+  /// After an accepted RCOut: the model check's and the rpm view's sample.
+  void checkModel(double now_s);
+  /// Whether ~capability's mass comes from the rpm view now (esc_telemetry/mass_view rpm, a mass
+  /// from it, every motor's telemetry fresh).
+  bool rpmViewInUse(double now_s) const;
+  /// What ~capability evaluates: the estimator's output, its mass from the view in use.
+  const EstimatorOutput& capabilityInput(double now_s);
   /// Subscribes to what the model's effects read (and refuses a needed topic set to ""); logs
   /// which effects apply with which parameters.
   void subscribeEffectSignals(ros::NodeHandle& input_nh, const ros::NodeHandle& private_nh,
@@ -95,6 +103,8 @@ class EstimatorNode {
   std::uint64_t esc_received_ = 0, esc_undecodable_ = 0;
   std::string esc_last_error_;
   double supply_applied_ohm_ = kNaN;  ///< the supply resistance applied as the effect; NaN: none
+  std::optional<RpmMassView> rpm_view_;  ///< when the model has thrust_from_rpm
+  EstimatorOutput rpm_output_;  ///< the estimator's output with the rpm view's mass, for ~capability
   CapabilityReport last_capability_;
   MotorHealthVerdict last_health_;
 

@@ -43,6 +43,10 @@ struct EstimatorNodeParams {
   EstimatorConfig estimator;  ///< the estimator's parameters
   CapabilityConfig capability;  ///< the capability/... parameters
   ModelCheckConfig esc_telemetry;  ///< the esc_telemetry/... parameters (live model check)
+  /// Where ~capability's hover mass comes from (esc_telemetry/mass_view): "pwm", the surfaces at
+  /// PWM and voltage; or "rpm", the measured rotor speeds through the model's thrust_from_rpm while
+  /// every motor's telemetry is fresh (the PWM view otherwise).
+  std::string mass_view = "pwm";
 };
 
 /// Reads and validates the parameters (estimator part against `rotors` later, when the vehicle is

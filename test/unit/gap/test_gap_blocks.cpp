@@ -101,6 +101,3 @@ TEST(GapBlocks, WithoutImuTheWeightIsTheTruthAndItIsSaid) {
   EXPECT_NE(cut.problems[0].find("no IMU"), std::string::npos);
 }
 
-TEST(GapBlocks, AirDensityOfDryAir) {
-  EXPECT_NEAR(gap::airDensity(101325.0, 15.0), 1.225, 1e-3);
-}

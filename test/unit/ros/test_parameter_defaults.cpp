@@ -88,6 +88,7 @@ TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
   EXPECT_EQ(number("esc_telemetry/supply_voltage_sigma_v"), m.supply_voltage_sigma_v);
   EXPECT_EQ(number("esc_telemetry/supply_max_rel_std"), m.supply_max_rel_std);
   EXPECT_EQ(flag("esc_telemetry/apply_supply_resistance"), m.apply_supply_resistance);
+  EXPECT_EQ(text("esc_telemetry/mass_view"), node.mass_view);
   // Commented in the template: not set.
   EXPECT_FALSE(k.pwm_max_us.has_value());
   EXPECT_FALSE(k.capacity_ah.has_value());

@@ -1,0 +1,45 @@
+#pragma once
+
+#include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/model/model_effects.h"
+
+/// @file
+/// The one preparation of the effects' signals, shared by the node (estimation::Estimator) and the
+/// gap diagnosis (gap::cutIntoBlocks): a parameter fitted by the diagnosis means on the vehicle
+/// what it meant in the fit only if both turn the same readings into the same signals.
+namespace propulsion_estimator {
+namespace effects {
+
+/// The readings an effect's signal is prepared from, as received or logged, SI units; NaN where a
+/// reading is missing or stale.
+struct RawSignals {
+  double battery_current_a = kNaN;    ///< A, as the autopilot reports it: either sign
+  double static_pressure_pa = kNaN;   ///< Pa
+  double air_temperature_c = kNaN;    ///< deg C
+  double range_m = kNaN;              ///< m along the body's -z axis; +inf beyond the sensor's reach
+  double body_z_up = 1.0;             ///< vertical component of the body's z axis (cos tilt); 1 without attitude
+  double motor_temperature_c = kNaN;  ///< deg C, the hottest winding
+  double vertical_speed_m_s = kNaN;   ///< m/s, up positive
+};
+
+/// Dry air's density from static pressure and air temperature, rho = p / (R (T + 273.15)), kg/m^3:
+/// the flight's air and the bench's alike. NaN when either is NaN. Does not throw.
+double airDensityKgM3(double static_pressure_pa, double air_temperature_c);
+
+/// The battery's discharge current, A, from a reading of either sign: MAVROS passes the
+/// autopilot's sign on (PX4's arrives negative while discharging, ArduPilot's positive) and a
+/// multicopter in flight only discharges, so the magnitude is the discharge current whatever the
+/// autopilot. NaN stays NaN. Does not throw.
+double dischargeCurrentA(double reported_a);
+
+/// Height of the rangefinder above flat ground, m: the range along the body's -z axis times the
+/// cosine of the tilt (`body_z_up`). NaN when the range is NaN or the vehicle is tilted 90 deg or
+/// more (the sensor sees no ground); +inf stays +inf (no ground within reach: far). Does not throw.
+double heightAboveGroundM(double range_m, double body_z_up);
+
+/// Every signal the effects read, prepared from `raw` with the functions above; the vertical speed
+/// and the motor temperature as given. Does not throw.
+Signals prepareSignals(const RawSignals& raw);
+
+}  // namespace effects
+}  // namespace propulsion_estimator
