@@ -73,7 +73,7 @@ struct MotorCheck {
   /// shaft power ~ n^3), relative to the median of all motors'. A propeller that needs less
   /// torque draws less for its speed; a command or model error moves speed and current together.
   double current_deviation = kNaN;
-  ModelCheckVerdict verdict = ModelCheckVerdict::kNotJudged;
+  ModelCheckVerdict verdict = ModelCheckVerdict::kNotJudged;  ///< this motor's family of cause
 };
 
 /// The whole check at one instant.
@@ -123,6 +123,7 @@ class ModelCheck {
   MotorCheck motor(std::size_t k, double now_s) const;
   /// The estimated supply resistance, ohm, once within supply_max_rel_std; NaN before.
   double supplyResistanceOhm() const;
+  /// The configuration the check was made with.
   const ModelCheckConfig& config() const { return config_; }
 
  private:
