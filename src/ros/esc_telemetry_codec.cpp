@@ -120,9 +120,10 @@ bool EscTelemetryDecoder::decode(const topic_tools::ShapeShifter& message, EscTe
 bool EscTelemetryDecoder::decodePayload(const std::string& datatype, const std::uint8_t* data, std::uint32_t size,
                                         EscTelemetry* out, std::string* error) {
   const bool px4 = datatype == kEscStatusDataType;
-  const std::string what = "malformed " + datatype + ": ";
+  // Built only on an error path: the per-message path allocates nothing.
+  const auto what = [&datatype] { return "malformed " + datatype + ": "; };
   if (size == 0) {
-    *error = what + "empty message";
+    *error = what() + "empty message";
     return false;
   }
   try {
@@ -133,23 +134,23 @@ bool EscTelemetryDecoder::decodePayload(const std::string& datatype, const std::
     // Each item holds at least its header's 16 bytes and 12 of fields.
     constexpr std::uint32_t kMinItemBytes = 28;
     if (count > reader.getLength() / kMinItemBytes) {
-      *error = what + std::to_string(count) + " items announced, " + std::to_string(reader.getLength()) + " bytes left";
+      *error = what() + std::to_string(count) + " items announced, " + std::to_string(reader.getLength()) + " bytes left";
       return false;
     }
     out->escs.resize(count);
     for (std::uint32_t i = 0; i < count; ++i) {
       std::string reason;
       if (!readItem(reader, px4, &out->escs[i], &reason)) {
-        *error = what + "item " + std::to_string(i) + ": " + reason;
+        *error = what() + "item " + std::to_string(i) + ": " + reason;
         return false;
       }
     }
     if (reader.getLength() != 0) {
-      *error = what + std::to_string(reader.getLength()) + " bytes after the " + std::to_string(count) + " items";
+      *error = what() + std::to_string(reader.getLength()) + " bytes after the " + std::to_string(count) + " items";
       return false;
     }
   } catch (const ser::StreamOverrunException& e) {
-    *error = what + e.what();
+    *error = what() + e.what();
     return false;
   }
   return true;

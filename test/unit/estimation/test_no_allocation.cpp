@@ -8,6 +8,9 @@
 
 #include "estimator_fixture.h"
 #include "propulsion_estimator/estimation/motor_health.h"
+#include "propulsion_estimator/onboard/model_check.h"
+#include "propulsion_estimator/onboard/rpm_mass_view.h"
+#include "propulsion_estimator/ros/esc_telemetry_codec.h"
 #include "propulsion_estimator/sim/flight/motor_mixer.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
@@ -102,6 +105,55 @@ TEST(RcOutDecoder, DecodesWithoutHeapAllocationOnceWarm) {
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_EQ(received.header.frame_id, sent.header.frame_id);
   EXPECT_EQ(received.channels, sent.channels);
+}
+
+TEST(EscTelemetryDecoder, DecodesWithoutHeapAllocationOnceWarm) {
+  for (const bool px4 : {false, true}) {
+    pe::EscTelemetry sent;
+    sent.stamp_s = 12.5;
+    for (int k = 0; k < 8; ++k) sent.escs.push_back({12.5, 6000.0 + k, 5.0, 16.0, 30.0, 7});
+    const topic_tools::ShapeShifter shifter = pe::encodeEscTelemetry(sent, px4);
+    pe::EscTelemetryDecoder decoder;
+    pe::EscTelemetry received;
+    std::string error;
+    ASSERT_TRUE(decoder.decode(shifter, &received, &error)) << error;
+    const long before = g_allocations.load();
+    for (int k = 0; k < 1000; ++k) ASSERT_TRUE(decoder.decode(shifter, &received, &error));
+    EXPECT_EQ(g_allocations.load() - before, 0) << (px4 ? "ESCStatus" : "ESCTelemetry");
+    ASSERT_EQ(received.escs.size(), sent.escs.size());
+    EXPECT_EQ(received.escs[7].rpm, 6007.0);
+  }
+}
+
+TEST(ModelCheck, TakesTelemetryEstimatesAndBatteryWithoutHeapAllocation) {
+  EstimatorFixture f;
+  f.fly(1690.0, 20.0);
+  const std::vector<std::uint16_t> channels{1690, 1700, 1680, 1695};
+  pe::ModelCheck check({1, 2, 3, 4}, {});
+  pe::RpmMassView view(pe::RpmThrust{1.6e-7, 0.0, pe::kNaN, pe::kNaN}, 10.0);
+  pe::EscTelemetry message;
+  message.escs.assign(4, {0.0, 6000.0, 5.0, 16.0, 30.0, 0});
+  const auto step = [&](int k) {
+    ASSERT_EQ(f.estimator.addMotorOutputs(f.t, f.t, channels.data(), channels.size()), pe::Rejection::kNone);
+    check.addEstimate(f.t, f.estimator.output());
+    view.add(f.t, f.estimator.output(), check, pe::kNaN);
+    if (k % 5 == 0) {
+      message.stamp_s = f.t;
+      for (pe::EscReport& esc : message.escs) esc.count = k;
+      check.addTelemetry(f.t, message);
+    }
+    if (k % 50 == 0) {
+      f.estimator.addBattery(f.t, 11.4);
+      check.addBattery(f.t, 11.4);
+    }
+  };
+  int k = 0;
+  for (; k < 1000; ++k, f.t += 0.02) step(k);  // warm: windows full
+  const long before = g_allocations.load();
+  for (; k < 2000; ++k, f.t += 0.02) step(k);
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(check.report(f.t).fresh_motors, 4);
+  EXPECT_GT(view.hoverS(), 0.0);
 }
 
 TEST(MotorMixer, MixesWithoutHeapAllocation) {
