@@ -29,7 +29,7 @@ pe::EstimatorOutput hoverOutput() {
 // `seconds` of 50 Hz RCOut and 10 Hz telemetry with motor k at rpm 6000 x rpm[k] and 5 A x current[k].
 void feed(pe::ModelCheck* check, double* t, double seconds, const double (&rpm)[4], const double (&current)[4],
           bool counted = true) {
-  static int count = 0;
+  int count = 0;
   const pe::EstimatorOutput out = hoverOutput();
   for (int step = 0; step < static_cast<int>(seconds * 50.0); ++step) {
     *t += 0.02;
@@ -114,6 +114,7 @@ TEST(ModelCheck, RefusesABadConfig) {
   EXPECT_THROW(pe::ModelCheck({1, 2, 3, 4}, config), pe::FieldError);
   try {
     pe::ModelCheck({1}, config);
+    FAIL() << "a zero window_s was accepted";
   } catch (const pe::FieldError& e) {
     EXPECT_NE(std::string(e.what()).find("esc_telemetry/window_s"), std::string::npos) << e.what();
   }
