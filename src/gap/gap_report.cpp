@@ -362,7 +362,8 @@ void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
 // The nested hold-out's figures and what each outer fold chose.
 void writeNestedSection(std::ostream& md, const NestedHoldOut& nested) {
   md << "These figures are optimistic: the flights that score them also selected the effects. Nested hold-out, "
-        "every flight scored by a diagnosis (suspect motor, selection, fit) that never saw it: ";
+        "every flight scored by a diagnosis (suspect motor, selection, fit) that never saw it (the rotor lag and the "
+        "blocks' steady/dynamic split excepted, chosen on all flights): ";
   if (!nested.unavailable.empty()) {
     md << "not available: " << nested.unavailable << ".\n\n";
     return;

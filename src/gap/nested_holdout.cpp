@@ -1,5 +1,6 @@
 // The nested hold-out: the flights that score the correction took no part in selecting the
-// effects or fitting any parameter, the suspect motor's factor included.
+// effects or fitting any parameter, the suspect motor's factor included (the rotor lag and the
+// blocks' steady/dynamic split excepted: chosen once on all flights, and reused).
 #include "diagnoser.h"
 
 namespace propulsion_estimator {

@@ -121,7 +121,8 @@ struct NestedFold {
 };
 
 /// Held-out scores of the nested hold-out: every block predicted by a diagnosis that never saw
-/// its flight, neither to select effects nor to fit any parameter.
+/// its flight, neither to select effects nor to fit any parameter (the rotor lag and the blocks'
+/// steady/dynamic split excepted, chosen on all flights).
 struct NestedHoldOut {
   std::string unavailable;       ///< empty, or why not (fewer than three units)
   double before_rmse_pct = 0.0;  ///< the plain model (nothing fitted), % of the truth
