@@ -48,6 +48,7 @@ struct Arguments {
   std::vector<double> pwm_range_us;
   std::vector<std::string> bench;
   double rotor_diameter_m = gap::DiagnosisConfig{}.rotor_diameter_m;
+  double rotor_time_constant_s = kNaN;  // NaN: identified from the flights
   int jobs = 1;
   ReportPlotter plotter;
   std::string command;  // as given, for the report
@@ -114,10 +115,14 @@ Vehicle vehicleOf(const Arguments& args) {
 gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& options) {
   gap::DiagnosisConfig config;
   config.rotor_diameter_m = args.rotor_diameter_m;
+  config.rotor_time_constant_s = args.rotor_time_constant_s;
   try {
     config.validate();
   } catch (const FieldError& e) {
-    throw ConfigError("--rotor-diameter-m: " + e.problem());
+    // Only the settings given as options can be refused: name the option ("rotor_diameter_m" -> --rotor-diameter-m).
+    std::string option = "--" + e.field();
+    std::replace(option.begin(), option.end(), '_', '-');
+    throw ConfigError(option + ": " + e.problem());
   }
   // The report says which topic an untestable effect needs: the topics read, not the defaults.
   const auto source = [&options](const std::string& name, const char* usual) {
@@ -331,6 +336,9 @@ int runDiagnoseGap(int argc, char** argv) {
                  "its load cell is the truth (repeatable)");
   app.add_option("--rotor-diameter-m", args.rotor_diameter_m, "Rotor diameter (ground effect within two diameters)")
       ->capture_default_str();
+  app.add_option("--rotor-time-constant-s", args.rotor_time_constant_s,
+                 "The rotors' spin-up lag, s (0..1; a bench step response's time constant; 0: none); without it "
+                 "the lag is identified from the flights");
   app.add_option("--jobs", args.jobs, "Logs read in parallel")->check(CLI::Range(1, 64))->capture_default_str();
   // Before the required options are checked: a tool or test builds its list of effects from this.
   app.add_flag_callback(

@@ -172,6 +172,9 @@ TEST_F(DiagnoseGapTool, RefusesBadArgumentsWithOneLine) {
   const ToolRun diameter = diagnose("m.yaml", "--rotor-diameter-m 5");
   EXPECT_EQ(diameter.status, 1);
   EXPECT_EQ(diameter.err, "diagnose_gap: --rotor-diameter-m: 5 is outside 0..3 m (must be positive)\n");
+  const ToolRun lag = diagnose("m.yaml", "--rotor-time-constant-s 2");
+  EXPECT_EQ(lag.status, 1);
+  EXPECT_EQ(lag.err, "diagnose_gap: --rotor-time-constant-s: 2 is outside 0..1 s\n");
 
   writeManifest("empty.yaml", "flights: []\n");
   const ToolRun empty = diagnose("empty.yaml");
