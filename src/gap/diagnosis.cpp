@@ -22,7 +22,8 @@ double Diagnoser::rotorLag() {
     return 0.0;
   }
   const std::string fit = formatPrintf("%.3f", lag->time_constant_s) + " s (explains " +
-                          formatPrintf("%.0f", 100.0 * lag->fit_r2) + " % of the vertical force's change within blocks)";
+                          formatPrintf("%.0f", 100.0 * lag->fit_r2) + " % of the vertical force's change within blocks, " +
+                          std::to_string(lag->frames) + " frames)";
   if (lag->fit_r2 < config_.min_lag_fit_r2) {
     diagnosis_.rotor_lag = "no rotor lag: the best, " + fit + ", explains too little";
     return 0.0;

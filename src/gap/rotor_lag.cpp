@@ -98,12 +98,14 @@ std::optional<RotorLag> identifyRotorLag(const std::vector<Flight>& flights, int
     if (m.n < 50 || !(std::sqrt(m.xx / m.n) >= kMinWithinBlockStdUs) || !(m.yy > 0.0)) return std::nullopt;
     return RotorLag{tau, m.xy * m.xy / (m.xx * m.yy), static_cast<int>(m.n)};
   };
-  // A coarse grid, then the fine one around its best: the fit is smooth in the time constant.
-  std::optional<RotorLag> best;
-  for (double tau = 0.0; tau <= kMaxTimeConstantS + 1e-9; tau += kCoarseStepS) {
+  // A coarse grid, then the fine one around its best: the fit is smooth in the time constant. The
+  // data gate is the unlagged command's; a long lag smooths the command below it, which only
+  // rules that lag out.
+  std::optional<RotorLag> best = fitAt(0.0);
+  if (!best) return std::nullopt;
+  for (double tau = kCoarseStepS; tau <= kMaxTimeConstantS + 1e-9; tau += kCoarseStepS) {
     const std::optional<RotorLag> fit = fitAt(tau);
-    if (!fit) return std::nullopt;
-    if (!best || fit->fit_r2 > best->fit_r2) best = fit;
+    if (fit && fit->fit_r2 > best->fit_r2) best = fit;
   }
   const double centre = best->time_constant_s;
   for (double tau = std::max(0.0, centre - kCoarseStepS); tau <= centre + kCoarseStepS + 1e-9; tau += kStepS) {
