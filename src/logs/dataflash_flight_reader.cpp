@@ -7,6 +7,7 @@
 
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/logs/autopilot_frames.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -18,12 +19,10 @@ constexpr double kDownward = 25;  // RFND Orient: ROTATION_PITCH_270
 // ArduPilot's attitude (roll, pitch, yaw in degrees: body FRD to local NED) as the package's
 // (body FLU to local ENU, REP-103).
 Eigen::Quaterniond enuFromNedEuler(double roll_deg, double pitch_deg, double yaw_deg) {
-  static const Eigen::Quaterniond kEnuNed(0.0, M_SQRT1_2, M_SQRT1_2, 0.0);
-  static const Eigen::Quaterniond kFrdFlu(0.0, 1.0, 0.0, 0.0);
   const double r = roll_deg * M_PI / 180.0, p = pitch_deg * M_PI / 180.0, y = yaw_deg * M_PI / 180.0;
   const Eigen::Quaterniond ned(Eigen::AngleAxisd(y, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(p, Eigen::Vector3d::UnitY()) *
                                Eigen::AngleAxisd(r, Eigen::Vector3d::UnitX()));
-  return kEnuNed * ned * kFrdFlu;
+  return swapNedEnuFrdFlu(ned);
 }
 
 // A type's time column in microseconds: TimeUS, or TimeMS in logs before ArduPilot 3.3.
@@ -124,12 +123,11 @@ class SignalReader {
     forEach("IMU", [&](const dataflash::Message& message, double t) {
       forces.emplace_back(t, Eigen::Vector3d(value(message, *ax), -value(message, *ay), -value(message, *az)));
     });
-    std::size_t next = 0;
+    LatestSpecificForce latest(std::move(forces));
     forEach("ATT", [&](const dataflash::Message& message, double t) {
-      while (next < forces.size() && forces[next].first <= t) ++next;
-      if (next == 0 || t - forces[next - 1].first > 0.1) return;  // no fresh specific force
-      streams_->imu.push_back(
-          {t, enuFromNedEuler(value(message, *roll), value(message, *pitch), value(message, *yaw)), forces[next - 1].second});
+      const Eigen::Vector3d* force = latest.at(t);
+      if (!force) return;
+      streams_->imu.push_back({t, enuFromNedEuler(value(message, *roll), value(message, *pitch), value(message, *yaw)), *force});
     });
     note("imu: ATT Roll, Pitch, Yaw with IMU AccX..AccZ");
   }

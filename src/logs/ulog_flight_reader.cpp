@@ -8,19 +8,13 @@
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/logs/autopilot_frames.h"
 
 namespace propulsion_estimator {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kDownward = 25;  // distance_sensor.orientation: ROTATION_DOWNWARD_FACING
-
-// PX4's attitude (body FRD to local NED) as the package's (body FLU to local ENU, REP-103).
-Eigen::Quaterniond enuFromNed(const Eigen::Quaterniond& ned_frd) {
-  static const Eigen::Quaterniond kEnuNed(0.0, M_SQRT1_2, M_SQRT1_2, 0.0);
-  static const Eigen::Quaterniond kFrdFlu(0.0, 1.0, 0.0, 0.0);
-  return kEnuNed * ned_frd * kFrdFlu;
-}
 
 // One pass of one topic: the data messages of topic `name` (instance `instance`, any when -1).
 class Topics {
@@ -137,12 +131,12 @@ class SignalReader {
       for (int i = 0; i < 3; ++i, at.offset += step) frd[i] = value(message, at);
       forces.emplace_back(time(message), Eigen::Vector3d(frd.x(), -frd.y(), -frd.z()));
     });
-    std::size_t next = 0;
+    LatestSpecificForce latest(std::move(forces));
     const std::size_t q_step = ulog::sizeOf(q0->primitive);
     topics_.forEach("vehicle_attitude", 0, [&](const ulog::DataMessage& message) {
       const double t = time(message);
-      while (next < forces.size() && forces[next].first <= t) ++next;
-      if (next == 0 || t - forces[next - 1].first > 0.1) return;  // no fresh specific force
+      const Eigen::Vector3d* force = latest.at(t);
+      if (!force) return;
       ulog::Locator at = *q0;
       double q[4];
       for (double& component : q) {
@@ -151,7 +145,7 @@ class SignalReader {
       }
       const Eigen::Quaterniond ned(q[0], q[1], q[2], q[3]);
       if (!(std::abs(ned.norm() - 1.0) < 0.1)) return;
-      streams_->imu.push_back({t, enuFromNed(ned.normalized()), forces[next - 1].second});
+      streams_->imu.push_back({t, swapNedEnuFrdFlu(ned.normalized()), *force});
     });
     note("imu: vehicle_attitude[0].q with " + accel_topic + "[0]." + accel_field);
   }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "propulsion_estimator/logs/autopilot_frames.h"
+
 namespace propulsion_estimator {
 namespace sim {
 namespace {
@@ -57,9 +59,7 @@ void DataflashFlightSink::imu(const ImuSample& sample) {
                           .put(static_cast<float>(-w.y())).put(static_cast<float>(-w.z()))
                           .put(static_cast<float>(f.x())).put(static_cast<float>(-f.y())).put(static_cast<float>(-f.z())));
   // Body FLU to ENU as FRD to NED, then as ZYX Euler angles in degrees.
-  static const Eigen::Quaterniond kNedEnu(0.0, M_SQRT1_2, M_SQRT1_2, 0.0);
-  static const Eigen::Quaterniond kFluFrd(0.0, 1.0, 0.0, 0.0);
-  const Eigen::Matrix3d r = (kNedEnu * sample.orientation * kFluFrd).toRotationMatrix();
+  const Eigen::Matrix3d r = swapNedEnuFrdFlu(sample.orientation).toRotationMatrix();
   const double roll = std::atan2(r(2, 1), r(2, 2));
   const double pitch = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
   const double yaw = std::atan2(r(1, 0), r(0, 0));

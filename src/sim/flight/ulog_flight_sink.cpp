@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "propulsion_estimator/logs/autopilot_frames.h"
+
 namespace propulsion_estimator {
 namespace sim {
 namespace {
@@ -10,13 +12,6 @@ namespace {
 enum Id : std::uint16_t { kOutputs, kBattery, kAttitude, kAccel, kPosition, kAir, kRangeDown, kRangeFront, kEsc };
 
 constexpr int kEscs = 8;
-
-// The package's attitude (body FLU to local ENU) as PX4's (body FRD to local NED).
-Eigen::Quaterniond nedFromEnu(const Eigen::Quaterniond& enu_flu) {
-  static const Eigen::Quaterniond kNedEnu(0.0, M_SQRT1_2, M_SQRT1_2, 0.0);
-  static const Eigen::Quaterniond kFluFrd(0.0, 1.0, 0.0, 0.0);
-  return kNedEnu * enu_flu * kFluFrd;
-}
 
 }  // namespace
 
@@ -122,7 +117,7 @@ void UlogFlightSink::imu(const ImuSample& sample) {
     accel.put(t).put(frd.x()).put(frd.y()).put(frd.z()).zeros(4);
   }
   writer_.data(kAccel, accel);
-  const Eigen::Quaterniond q = nedFromEnu(sample.orientation);
+  const Eigen::Quaterniond q = swapNedEnuFrdFlu(sample.orientation);
   ulog::Payload attitude;
   attitude.put(t).put(t);
   for (const double c : {q.w(), q.x(), q.y(), q.z()}) attitude.put(static_cast<float>(c));
