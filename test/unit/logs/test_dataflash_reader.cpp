@@ -75,10 +75,22 @@ TEST(DataflashReader, KeepsWhatCameBeforeATruncationOrACorruptMessage) {
                                                            ": message header: expected 0xa3 0x95, found 0xa3 0x94");
   EXPECT_EQ(refusal(writer.bytes() + "\xa3\x95\x09"), "f.bin: at byte " + std::to_string(end) +
                                                            ": type 9: no FMT message defined it");
-  // An FMT whose columns do not add up to its length.
+  // Not the FMT of FMT at the start.
   std::string bad = writer.bytes();
   bad[4] = 88;
   EXPECT_EQ(refusal(bad), "throws: f.bin: not a DataFlash log (it does not start with the FMT message of FMT)");
+  // RCOU's FMT (bytes 89..177: header, FMT's type, length, name, format, labels) damaged: each
+  // format-level refusal, with nothing timed before it.
+  const auto rcouFmt = [&](std::size_t at, char byte) {
+    std::string damaged = writer.bytes();
+    damaged[at] = byte;
+    return refusal(damaged);
+  };
+  const std::string fmt_at = "throws: f.bin: no timed messages (f.bin: at byte 89: FMT: ";
+  EXPECT_EQ(rcouFmt(93, 12), fmt_at + "RCOU: its columns take 19 bytes, its length says 12)");
+  EXPECT_EQ(rcouFmt(103, 'H'), fmt_at + "RCOU: 6 format characters for 5 labels)");
+  EXPECT_EQ(rcouFmt(99, 'X'), fmt_at + "RCOU: format character 'X' unknown)");
+  EXPECT_EQ(rcouFmt(92, '\x80'), fmt_at + "FMT redefined with length 19)");
   // More motors than channels, and no battery.
   try {
     truncated.read(options(5));

@@ -134,6 +134,24 @@ TEST(UlogReader, KeepsARefusalOnOneLine) {
             "which no format defines)");
 }
 
+// Each format-level refusal of a definition or an info message, in one line.
+TEST(UlogReader, RefusesABadFormatOrInfoMessage) {
+  const auto formatRefusal = [](const std::string& definition) {
+    pe::ulog::Writer writer(0);
+    writer.format(definition);
+    return refusal(writer.bytes());
+  };
+  const std::string at16 = "throws: f.ulg: no data messages (f.ulg: at byte 16: ";
+  EXPECT_EQ(formatRefusal("battery_status"), at16 + "F message: format 'battery_status' has no 'name:')");
+  EXPECT_EQ(formatRefusal("b:float[0] x;"), at16 + "F message: b: field 'float[0] x' has a bad array length)");
+  EXPECT_EQ(formatRefusal("b:floatx;"), at16 + "F message: b: field 'floatx' is not 'type name')");
+  pe::ulog::Writer info(0);
+  info.info("char[3] abc", "xyz");
+  std::string bytes = info.bytes();
+  bytes[16 + 3] = static_cast<char>(200);  // the key's length, past the message's end
+  EXPECT_EQ(refusal(bytes), at16 + "I message: key longer than the message)");
+}
+
 TEST(UlogReader, FollowsAppendedDataAndCountsDropouts) {
   pe::ulog::Writer writer(0);
   writer.flagBits();
