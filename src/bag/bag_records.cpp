@@ -5,8 +5,10 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 
 namespace propulsion_estimator {
 namespace {
@@ -16,9 +18,11 @@ constexpr std::uint8_t kBagHeaderOp = 0x03, kIndexDataOp = 0x04, kChunkOp = 0x05
 constexpr double kMaxCompressionRatio = 1000.0;
 constexpr std::uint64_t kMaxChunkBytes = 1ull << 30;
 
-// Whether a record header's fields (each a 4-byte length and "name=value") exactly fill it:
-// rosbag's header parser reads past the header when a field's length does not fit.
-bool fieldsFit(const char* header, std::uint64_t size) {
+// Walks a record header's fields (each a 4-byte length and "name=value"), calling use(name, value)
+// for each; false when they do not exactly fill it: rosbag's header parser reads past the header
+// when a field's length does not fit.
+template <class Use>
+bool forEachField(const char* header, std::uint64_t size, Use use) {
   std::uint64_t at = 0;
   while (at < size) {
     std::uint32_t length = 0;
@@ -26,34 +30,34 @@ bool fieldsFit(const char* header, std::uint64_t size) {
     std::memcpy(&length, header + at, 4);
     at += 4;
     if (length > size - at) return false;
+    const std::string_view field(header + at, length);
+    const std::size_t equals = field.find('=');
+    if (equals != std::string_view::npos) use(field.substr(0, equals), field.substr(equals + 1));
     at += length;
   }
   return true;
 }
 
-// Whether a record's header (whose fields fit) is a connection's: its data is a header too.
-bool isConnection(const std::string& header);
+bool fieldsFit(const char* header, std::uint64_t size) {
+  return forEachField(header, size, [](std::string_view, std::string_view) {});
+}
+
+// A header's one-byte op, or -1 when it has none; nullopt when its fields do not fit.
+std::optional<int> headerOp(const char* header, std::uint64_t size) {
+  int op = -1;
+  const bool fit = forEachField(header, size, [&](std::string_view name, std::string_view value) {
+    if (name == "op") op = value.size() == 1 ? static_cast<std::uint8_t>(value[0]) : -1;
+  });
+  return fit ? std::optional<int>(op) : std::nullopt;
+}
 
 // A record header's fields, by name (call on a header whose fields fit).
 std::map<std::string, std::string> headerFields(const std::string& header) {
   std::map<std::string, std::string> fields;
-  std::size_t at = 0;
-  while (at + 4 <= header.size()) {
-    std::uint32_t length = 0;
-    std::memcpy(&length, header.data() + at, 4);
-    at += 4;
-    const std::string field = header.substr(at, length);
-    at += length;
-    const std::size_t equals = field.find('=');
-    if (equals != std::string::npos) fields[field.substr(0, equals)] = field.substr(equals + 1);
-  }
+  forEachField(header.data(), header.size(), [&](std::string_view name, std::string_view value) {
+    fields[std::string(name)] = std::string(value);
+  });
   return fields;
-}
-
-bool isConnection(const std::string& header) {
-  const std::map<std::string, std::string> fields = headerFields(header);
-  const auto op = fields.find("op");
-  return op != fields.end() && op->second.size() == 1 && static_cast<std::uint8_t>(op->second[0]) == kConnectionOp;
 }
 
 // A little-endian integer field of 4 or 8 bytes; `fallback` when absent or of another size.
@@ -189,10 +193,12 @@ class BagWalker {
           return "a record inside the chunk at offset " + std::to_string(inner) + " runs past the chunk's end";
         }
         // Both parts of a connection record are headers; a message's data is the message.
-        if ((part == 0 || connection) && !fieldsFit(bytes.data() + next, length)) {
+        const bool header = part == 0 || connection;
+        const std::optional<int> op = header ? headerOp(bytes.data() + next, length) : std::nullopt;
+        if (header && !op) {
           return "a record inside the chunk at offset " + std::to_string(inner) + " has a malformed header";
         }
-        if (part == 0) connection = isConnection(bytes.substr(next, length));
+        if (part == 0) connection = *op == kConnectionOp;
         next += length;
       }
       inner = next;

@@ -206,10 +206,11 @@ double secondsSince(const ros::Time& start, const ros::Time& time) {
 FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
-  // Declared after the lock, a bag refused here is destroyed before the lock is released.
-  const std::lock_guard<std::mutex> lock(bagLifetimeMutex());
+  // The record walk opens no rosbag object: outside the lock, readers run it in parallel.
   const std::string damaged = checkBagRecords(path);
   if (!damaged.empty()) throw DataError(path + ": not a readable bag: " + damaged);
+  // Declared after the lock, a bag refused here is destroyed before the lock is released.
+  const std::lock_guard<std::mutex> lock(bagLifetimeMutex());
   auto bag = std::make_unique<rosbag::Bag>();
   try {
     bag->open(path, rosbag::bagmode::Read);
