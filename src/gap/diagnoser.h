@@ -49,12 +49,18 @@ class Diagnoser {
   Diagnosis run();
 
  private:
-  // A diagnosis of the outer one's blocks in the units kept only, for the nested hold-out.
-  Diagnoser(const Diagnoser& outer, const std::vector<bool>& keep_unit);
+  // A diagnosis of the outer one's blocks kept only (`keep_block`, per block), seeing them through
+  // `views`: fresh ones for the nested hold-out, the outer's (with its suspect's factor) for the
+  // selection on steady blocks.
+  Diagnoser(const Diagnoser& outer, const std::vector<bool>& keep_block, const ThrustViews& views);
   // The suspect motor, the selection and the fit, on this diagnoser's blocks only: the effects the
   // correction uses (selected and ambiguous leaders), fitted; views_ carries the suspect's factor.
   effects::ModelEffects selectAndFit();
   void nestedHoldOut();
+  // The selection (selectEffects), on the steady blocks alone when transient ones are in and the
+  // steady ones suffice for the test; then the held-out prediction of what it chose on every block.
+  HeldOutPrediction select(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
+  bool selectsOnSteadyBlocks() const;
   // Whether the flights tell `leader` from the other candidates that passed every test in its
   // round (`admissible`, their held-out predictions): the group it cannot be told from, or nullopt.
   std::optional<Ambiguity> ambiguityOf(Kind leader, const std::map<Kind, HeldOutPrediction>& admissible);
@@ -95,6 +101,7 @@ class Diagnoser {
   void reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after);
   std::string method() const;
   std::string dynamicBlocks() const;
+  std::string selectionBlocks() const;
   void collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view);
 
   const PropulsionModel& model_;
@@ -104,6 +111,8 @@ class Diagnoser {
   const DiagnosisConfig& config_;
   ThrustViews views_;
   std::vector<Block> blocks_;
+  std::vector<bool> steady_;  // of each block: quasi-steady (not transient with the lag modelled)
+  int selection_blocks_ = 0;  // the blocks the selection ran on
   std::vector<const Block*> all_;
   std::vector<int> unit_of_block_;  // the held-out unit (flight or segment) of each block
   std::vector<std::string> unit_names_;  // of each unit: the flight's name, or "flight#segment"

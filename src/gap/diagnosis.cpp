@@ -49,8 +49,10 @@ void Diagnoser::cut() {
       group = std::max(group, block.group + 1);
       if (isQuasiSteady(block, config_.max_pwm_change_us, config_.max_accel_m_s2)) {
         blocks_.push_back(block);
+        steady_.push_back(true);
       } else if (dynamic && isQuasiSteady(block, config_.dynamic_max_pwm_change_us, config_.dynamic_max_accel_m_s2)) {
         blocks_.push_back(block);
+        steady_.push_back(false);
         ++diagnosis_.dynamic_blocks;
       } else {
         ++diagnosis_.transient_blocks;
@@ -103,15 +105,17 @@ void Diagnoser::findUnits() {
   units_ = static_cast<int>(index.size());
 }
 
-Diagnoser::Diagnoser(const Diagnoser& outer, const std::vector<bool>& keep_unit)
+Diagnoser::Diagnoser(const Diagnoser& outer, const std::vector<bool>& keep_block, const ThrustViews& views)
     : model_(outer.model_),
       vehicle_(outer.vehicle_),
       flights_(outer.flights_),
       bench_(outer.bench_),
       config_(outer.config_),
-      views_(outer.model_, outer.motorCount()) {
+      views_(views) {
   for (std::size_t i = 0; i < outer.blocks_.size(); ++i) {
-    if (keep_unit[outer.unit_of_block_[i]]) blocks_.push_back(outer.blocks_[i]);
+    if (!keep_block[i]) continue;
+    blocks_.push_back(outer.blocks_[i]);
+    steady_.push_back(outer.steady_[i]);
   }
   for (const Block& block : blocks_) all_.push_back(&block);
   diagnosis_.blocks = static_cast<int>(blocks_.size());
@@ -121,7 +125,7 @@ Diagnoser::Diagnoser(const Diagnoser& outer, const std::vector<bool>& keep_unit)
 effects::ModelEffects Diagnoser::selectAndFit() {
   balanceMotors();
   std::map<Kind, EffectResult> results;
-  selectEffects(predictHeldOut({}), &results);
+  select(predictHeldOut({}), &results);
   return fitEffects(views_, all_, working_, references()).effects;
 }
 
@@ -481,7 +485,7 @@ Diagnosis Diagnoser::run() {
   balanceMotors();
   const HeldOutPrediction before = predictHeldOut({});
   std::map<Kind, EffectResult> results;
-  const HeldOutPrediction after = selectEffects(before, &results);
+  const HeldOutPrediction after = select(before, &results);
   reportEffects(&results, working_);
   reportHeldOut(before, after);
   nestedHoldOut();

@@ -161,14 +161,23 @@ std::string Diagnoser::dynamicBlocks() const {
          formatNumber(config_.dynamic_max_accel_m_s2) + " m/s^2";
 }
 
+// When the selection ran on the steady blocks alone: which, and why.
+std::string Diagnoser::selectionBlocks() const {
+  if (selection_blocks_ >= diagnosis_.blocks) return "";
+  return ", on the " + std::to_string(selection_blocks_) +
+         " steady blocks alone (a transient block's error also carries what the lag model leaves over, which a "
+         "mean-shifting effect would soak up); what they chose is fitted and scored on all " +
+         std::to_string(diagnosis_.blocks);
+}
+
 std::string Diagnoser::method() const {
   return "Quasi-steady " + formatNumber(config_.block_s) + " s blocks only (collective PWM changing by at most " +
          formatNumber(config_.max_pwm_change_us) + " us within the block, vertical acceleration at most " +
          formatNumber(config_.max_accel_m_s2) + " m/s^2" + dynamicBlocks() + "): " + std::to_string(diagnosis_.blocks) +
          " used, " + std::to_string(diagnosis_.transient_blocks) + " transient left out; " + diagnosis_.rotor_lag +
          ". Forward selection over " +
-         std::to_string(units_) + " held-out " + unit_name_ +
-         "s (each fitted on the others). An effect is added when the held-out RMSE of the PWM view falls "
+         std::to_string(units_) + " held-out " + unit_name_ + "s (each fitted on the others)" + selectionBlocks() +
+         ". An effect is added when the held-out RMSE of the PWM view falls "
          "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
          formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
          " % (more than a mismatch of model family alone gives on null flights), the joint error of both views "

@@ -41,7 +41,9 @@ void Diagnoser::nestedHoldOut() {
       keep[unit] = unit % folds != fold;
       (keep[unit] ? record.fitted_on : record.scored_on).push_back(unit_names_[unit]);
     }
-    Diagnoser inner(*this, keep);
+    std::vector<bool> keep_block(blocks_.size());
+    for (std::size_t i = 0; i < blocks_.size(); ++i) keep_block[i] = keep[unit_of_block_[i]];
+    Diagnoser inner(*this, keep_block, plain_views);
     const effects::ModelEffects fitted = inner.selectAndFit();
     record.effects = inner.working_;
     record.suspect_channel = inner.diagnosis_.motors.suspect_channel;

@@ -1,0 +1,42 @@
+// The selection runs on the steady blocks alone when transient ones are in: a transient block's
+// error also carries what the lag model and the controller leave over, a share that shifts with
+// the command and that a mean-shifting effect (esc_offset, thrust_loss) soaks up, naming an effect
+// that is not there. What the steady blocks chose is then fitted, and scored, on every block.
+#include <set>
+
+#include "diagnoser.h"
+
+namespace propulsion_estimator {
+namespace gap {
+namespace detail {
+
+bool Diagnoser::selectsOnSteadyBlocks() const {
+  if (std::find(steady_.begin(), steady_.end(), false) == steady_.end()) return false;
+  // Enough steady stretches for the sign-flip test, else the transient blocks are needed too.
+  std::set<std::pair<int, int>> stretches;
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    if (steady_[i]) stretches.insert({blocks_[i].flight, blocks_[i].group});
+  }
+  return static_cast<int>(stretches.size()) >= fewestGroupsForSignificance(config_.significance);
+}
+
+HeldOutPrediction Diagnoser::select(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results) {
+  if (!selectsOnSteadyBlocks()) {
+    selection_blocks_ = static_cast<int>(blocks_.size());
+    return selectEffects(before, results);
+  }
+  Diagnoser steady(*this, steady_, views_);
+  steady.selectEffects(steady.predictHeldOut({}), results);
+  selection_blocks_ = static_cast<int>(steady.blocks_.size());
+  working_ = steady.working_;
+  grouped_ = steady.grouped_;
+  diagnosis_.selected = steady.diagnosis_.selected;
+  diagnosis_.ambiguous = steady.diagnosis_.ambiguous;
+  diagnosis_.trace = steady.diagnosis_.trace;
+  for (const std::string& problem : steady.diagnosis_.problems) addProblemOnce(problem);
+  return predictHeldOut(working_);
+}
+
+}  // namespace detail
+}  // namespace gap
+}  // namespace propulsion_estimator
