@@ -65,6 +65,14 @@ TEST(FuzzCorpus, EveryFindingIsNowAcceptedOrRefused) {
   for (const fuzz::FuzzInput& input : fuzz::fuzzInputs()) replay(input, repoPath("test/fuzz/regressions/") + input.name);
 }
 
+// The damaged bags that crashed rosbag or made it allocate gigabytes are damaged: each is refused,
+// none read as a flight.
+TEST(FuzzCorpus, EveryDamagedBagFindingIsRefused) {
+  const Outcome outcome = replay(fuzz::fuzzInput("flight_bag"), repoPath("test/fuzz/regressions/flight_bag"));
+  EXPECT_EQ(outcome.accepted, 0);
+  EXPECT_EQ(outcome.refused, 7);
+}
+
 TEST(FuzzCorpus, UnknownReaderIsNamedWithTheKnownOnes) {
   try {
     fuzz::fuzzInput("nope");
