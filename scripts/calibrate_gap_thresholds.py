@@ -34,10 +34,12 @@ def main():
                 continue
             with open(report_path) as handle:
                 report = yaml.safe_load(handle)
-            before = report["heldout"]["before_rmse_pct"]
             for step in report.get("trace") or []:
                 if step["round"] != 1 or step["p_value"] >= args.significance:
                     continue
+                # The error the candidate was compared against: on the blocks the selection ran on
+                # (the steady ones alone when transient ones are in), not the report's over all.
+                before = step.get("base_heldout_rmse_pct", report["heldout"]["before_rmse_pct"])
                 drop = before - step["heldout_rmse_pct"]
                 ratio = (step["heldout_rmse_pct"] / before) ** 2 if before else 1.0
                 rows.append((drop, ratio, os.path.basename(work), case, step["name"]))

@@ -384,8 +384,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
         best = kind;
       }
     }
-    diagnosis_.trace.push_back(
-        {round + 1, kind, result.heldout_rmse_pct, result.joint_rmse_pct, result.p_value, result.reason});
+    diagnosis_.trace.push_back({round + 1, kind, result.heldout_rmse_pct, 100.0 * std::sqrt(base_pwm),
+                                result.joint_rmse_pct, result.p_value, result.reason});
   }
   // The candidates that passed every test but lowered the joint error less than the one taken.
   for (std::size_t step : admissible_steps) {

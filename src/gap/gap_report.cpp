@@ -120,6 +120,7 @@ void emitSelection(YAML::Emitter& out, const Diagnosis& diagnosis) {
     out << YAML::Flow << YAML::BeginMap << YAML::Key << "round" << YAML::Value << step.round << YAML::Key << "name"
         << YAML::Value << effects::kindName(step.kind);
     emitField(out, "heldout_rmse_pct", step.heldout_rmse_pct);
+    emitField(out, "base_heldout_rmse_pct", step.base_heldout_rmse_pct);
     emitField(out, "joint_rmse_pct", step.joint_rmse_pct);
     emitField(out, "p_value", step.p_value);
     out << YAML::Key << "verdict" << YAML::Value << step.verdict << YAML::EndMap;

@@ -106,6 +106,7 @@ struct SelectionStep {
   int round = 0;                  ///< 1-based
   effects::Kind kind = effects::Kind::kThrustLoss;  ///< which effect
   double heldout_rmse_pct = 0.0;  ///< PWM view, with the effects selected before and this one
+  double base_heldout_rmse_pct = 0.0;  ///< PWM view, with the effects selected before only
   double joint_rmse_pct = 0.0;    ///< both views together
   double p_value = 1.0;  ///< of its improvement, permutation test
   std::string verdict;            ///< why it was or was not taken
