@@ -48,8 +48,7 @@ void BatteryEstimator::add(double time_s, double voltage_v, double current_a) {
     first_s_ = last_s_ = time_s;
     soc_ = config_.curve.stateOfCharge(voltage_v / config_.cells);
     soc_var_ = kInitialSocStd * kInitialSocStd;
-    theta_ << voltage_v, 0.0;
-    p_ = prior();
+    fit_.reset(Eigen::Vector2d(voltage_v, 0.0), Eigen::Vector2d(kInitialEStdV, kInitialRStdOhm), config_.voltage_sigma_v);
   } else {
     if (!(time_s > last_s_)) return;
     const double dt_s = time_s - last_s_;
@@ -66,7 +65,8 @@ void BatteryEstimator::add(double time_s, double voltage_v, double current_a) {
     // how far a pack may lie off the curve.
     const double curve_v = config_.cells * config_.curve_sigma_cell_v;
     const Eigen::Vector2d sag(0.0, current_a);
-    correctWithCurve(voltage_v + sag.dot(theta_), sigma2 * (1.0 + sag.dot(p_ * sag)) + curve_v * curve_v);
+    correctWithCurve(voltage_v + sag.dot(fit_.parameters()),
+                     sigma2 * (1.0 + sag.dot(fit_.covariance() * sag)) + curve_v * curve_v);
   }
   last_current_a_ = current_a;
   publish();
@@ -75,36 +75,17 @@ void BatteryEstimator::add(double time_s, double voltage_v, double current_a) {
 void BatteryEstimator::countCharge(double dt_s, double current_a) {
   const double drawn = current_a * dt_s / (kSecondsPerHour * config_.capacity_ah);
   // The resting voltage the least squares holds follows the curve as the charge is drawn.
-  theta_(0) -= config_.cells * config_.curve.slope(soc_) * drawn;
+  fit_.parameters()(0) -= config_.cells * config_.curve.slope(soc_) * drawn;
   soc_ = std::clamp(soc_ - drawn, 0.0, 1.0);
   const double bias = config_.current_bias_a / (kSecondsPerHour * config_.capacity_ah);
   soc_var_ += bias * bias * dt_s * kBiasCorrelationS;
 }
 
-Eigen::Matrix2d BatteryEstimator::prior() const {
-  const double sigma2 = config_.voltage_sigma_v * config_.voltage_sigma_v;
-  return Eigen::Vector2d(kInitialEStdV * kInitialEStdV, kInitialRStdOhm * kInitialRStdOhm).asDiagonal() * (1.0 / sigma2);
-}
-
 void BatteryEstimator::updateResistance(double dt_s, double voltage_v, double current_a) {
-  // Forgetting: the covariance grows as the old samples lose weight, each variance bounded by the
-  // prior so that a long steady hover (no excitation) does not wind it up.
-  const double forget = std::exp(-dt_s / config_.resistance_memory_s);
-  p_ /= forget;
-  const Eigen::Matrix2d bound = prior();
-  for (int k = 0; k < 2; ++k) {
-    if (p_(k, k) > bound(k, k)) {
-      const double scale = std::sqrt(bound(k, k) / p_(k, k));
-      p_.row(k) *= scale;
-      p_.col(k) *= scale;
-    }
-  }
-  const Eigen::Vector2d phi(1.0, -current_a);
-  const Eigen::Vector2d p_phi = p_ * phi;
-  const Eigen::Vector2d gain = p_phi / (1.0 + phi.dot(p_phi));
-  theta_ += gain * (voltage_v - phi.dot(theta_));
-  p_ -= gain * p_phi.transpose();
-  theta_(1) = std::max(0.0, theta_(1));
+  // V = E - R I: the line's slope against -I is R, which no pack has below zero.
+  fit_.forget(std::exp(-dt_s / config_.resistance_memory_s));
+  fit_.add(-current_a, voltage_v);
+  fit_.parameters()(1) = std::max(0.0, fit_.parameters()(1));
 }
 
 void BatteryEstimator::correctWithCurve(double open_circuit_v, double variance) {
@@ -130,9 +111,9 @@ void BatteryEstimator::publish() {
   const double curve_soc = config_.curve_sigma_cell_v / config_.curve.slope(soc_);
   estimate_.state_of_charge = soc_;
   estimate_.state_of_charge_std = std::sqrt(soc_var_ + curve_soc * curve_soc);
-  estimate_.internal_resistance_ohm = theta_(1);
-  estimate_.internal_resistance_std_ohm = std::sqrt(std::max(0.0, p_(1, 1) * sigma2));
-  estimate_.open_circuit_voltage_v = theta_(0);
+  estimate_.internal_resistance_ohm = fit_.parameters()(1);
+  estimate_.internal_resistance_std_ohm = std::sqrt(std::max(0.0, fit_.covariance()(1, 1) * sigma2));
+  estimate_.open_circuit_voltage_v = fit_.parameters()(0);
   estimate_.current_a = last_current_a_;
   estimate_.current_span_a = std::isnan(max_current_a_) ? 0.0 : max_current_a_ - min_current_a_;
   estimate_.elapsed_s = last_s_ - first_s_;

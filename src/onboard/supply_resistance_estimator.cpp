@@ -19,10 +19,7 @@ SupplyResistanceEstimator::SupplyResistanceEstimator(double memory_s, double vol
 }
 
 void SupplyResistanceEstimator::reset() {
-  theta_.setZero();
-  p_ = Eigen::Vector2d(kPriorOffsetStdV * kPriorOffsetStdV, kPriorResistanceStdOhm * kPriorResistanceStdOhm)
-           .asDiagonal() *
-       (1.0 / sigma2_);
+  fit_.reset(Eigen::Vector2d::Zero(), Eigen::Vector2d(kPriorOffsetStdV, kPriorResistanceStdOhm), std::sqrt(sigma2_));
   last_time_s_ = kNaN;
   samples_ = 0;
   residual2_sum_ = 0.0;
@@ -33,29 +30,14 @@ void SupplyResistanceEstimator::add(double time_s, double drop_v, double current
   if (!std::isfinite(time_s) || !std::isfinite(drop_v) || !std::isfinite(current_a)) return;
   if (!std::isnan(last_time_s_) && !(time_s > last_time_s_)) return;
   if (!std::isnan(last_time_s_)) {
-    const double forget = std::exp(-(time_s - last_time_s_) / memory_s_);
-    p_ /= forget;
-    // Bounded by the prior: a steady current must not wind the covariance up.
-    const Eigen::Vector2d bound(kPriorOffsetStdV * kPriorOffsetStdV / sigma2_,
-                                kPriorResistanceStdOhm * kPriorResistanceStdOhm / sigma2_);
-    for (int k = 0; k < 2; ++k) {
-      if (p_(k, k) > bound(k)) {
-        const double scale = std::sqrt(bound(k) / p_(k, k));
-        p_.row(k) *= scale;
-        p_.col(k) *= scale;
-      }
-    }
-    residual2_sum_ *= forget;
-    weight_sum_ *= forget;
+    const double keep = std::exp(-(time_s - last_time_s_) / memory_s_);
+    fit_.forget(keep);
+    residual2_sum_ *= keep;
+    weight_sum_ *= keep;
   }
   last_time_s_ = time_s;
-  const Eigen::Vector2d phi(1.0, current_a);
-  const double residual = drop_v - phi.dot(theta_);
-  const Eigen::Vector2d p_phi = p_ * phi;
-  const double innovation = 1.0 + phi.dot(p_phi);
-  const Eigen::Vector2d gain = p_phi / innovation;
-  theta_ += gain * residual;
-  p_ -= gain * p_phi.transpose();
+  double innovation = 1.0;
+  const double residual = fit_.add(current_a, drop_v, &innovation);
   // The residuals' own spread over the memory (normalised by the innovation's variance), where
   // it exceeds the assumed noise.
   residual2_sum_ += residual * residual / innovation;
@@ -63,11 +45,11 @@ void SupplyResistanceEstimator::add(double time_s, double drop_v, double current
   ++samples_;
 }
 
-double SupplyResistanceEstimator::resistanceOhm() const { return samples_ < 2 ? kNaN : theta_(1); }
+double SupplyResistanceEstimator::resistanceOhm() const { return samples_ < 2 ? kNaN : fit_.parameters()(1); }
 
 double SupplyResistanceEstimator::resistanceStdOhm() const {
   if (samples_ < 2) return kNaN;
-  return std::sqrt(std::max(0.0, p_(1, 1)) * std::max(sigma2_, residual2_sum_ / weight_sum_));
+  return std::sqrt(std::max(0.0, fit_.covariance()(1, 1)) * std::max(sigma2_, residual2_sum_ / weight_sum_));
 }
 
 }  // namespace propulsion_estimator

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/onboard/forgetting_line_fit.h"
 #include "propulsion_estimator/onboard/ocv_curve.h"
 
 namespace propulsion_estimator {
@@ -81,7 +82,6 @@ class BatteryEstimator {
  private:
   void countCharge(double dt_s, double current_a);
   void updateResistance(double dt_s, double voltage_v, double current_a);
-  Eigen::Matrix2d prior() const;
   void correctWithCurve(double open_circuit_v, double variance);
   void publish();
 
@@ -92,10 +92,8 @@ class BatteryEstimator {
   double min_current_a_ = kNaN, max_current_a_ = kNaN;
   // State of charge and its variance.
   double soc_ = 0.0, soc_var_ = 0.0;
-  // Recursive least squares of V = E - R I: theta = (E, R), its covariance p (in units of the
-  // voltage noise's variance).
-  Eigen::Vector2d theta_ = Eigen::Vector2d::Zero();
-  Eigen::Matrix2d p_ = Eigen::Matrix2d::Zero();
+  // V = E - R I: offset E (V) and slope R (ohm) against -I.
+  ForgettingLineFit fit_;
   BatteryEstimate estimate_;
 };
 

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 
 #include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/onboard/forgetting_line_fit.h"
 
 namespace propulsion_estimator {
 
@@ -36,8 +37,7 @@ class SupplyResistanceEstimator {
   int samples_ = 0;
   double residual2_sum_ = 0.0;  ///< forgetting sum of squared normalised residuals, V^2
   double weight_sum_ = 0.0;  ///< forgetting count of them
-  Eigen::Vector2d theta_ = Eigen::Vector2d::Zero();  ///< offset V, resistance ohm
-  Eigen::Matrix2d p_;
+  ForgettingLineFit fit_;  ///< drop = offset (V) + R (ohm) x current
 };
 
 }  // namespace propulsion_estimator

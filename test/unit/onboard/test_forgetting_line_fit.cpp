@@ -1,0 +1,53 @@
+// The forgetting line fit both battery estimators share: it finds a line, follows a change of it
+// with forgetting, and a stretch without excitation does not wind its covariance past the prior.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "propulsion_estimator/onboard/forgetting_line_fit.h"
+
+namespace pe = propulsion_estimator;
+
+TEST(ForgettingLineFit, FindsTheLineFromVaryingReadings) {
+  pe::ForgettingLineFit fit;
+  fit.reset(Eigen::Vector2d::Zero(), Eigen::Vector2d(10.0, 1.0), 0.01);
+  for (int k = 0; k < 200; ++k) {
+    const double x = 5.0 + 4.0 * std::sin(0.1 * k);
+    fit.add(x, 2.0 + 0.5 * x);
+  }
+  EXPECT_NEAR(fit.parameters()(0), 2.0, 1e-3);
+  EXPECT_NEAR(fit.parameters()(1), 0.5, 1e-3);
+  double innovation = 0.0;
+  EXPECT_NEAR(fit.add(3.0, 3.5, &innovation), 0.0, 1e-3);  // on the line: no residual
+  EXPECT_GE(innovation, 1.0);
+}
+
+TEST(ForgettingLineFit, FollowsAChangeOnlyWithForgetting) {
+  pe::ForgettingLineFit kept, forgetting;
+  for (pe::ForgettingLineFit* fit : {&kept, &forgetting}) fit->reset(Eigen::Vector2d::Zero(), Eigen::Vector2d(10.0, 1.0), 0.01);
+  const auto feed = [&](double slope, int from, int to) {
+    for (int k = from; k < to; ++k) {
+      const double x = 5.0 + 4.0 * std::sin(0.1 * k);
+      forgetting.forget(std::exp(-1.0 / 20.0));  // one reading a second, 20 s of memory
+      kept.add(x, 1.0 + slope * x);
+      forgetting.add(x, 1.0 + slope * x);
+    }
+  };
+  feed(0.5, 0, 400);
+  feed(0.8, 400, 600);
+  EXPECT_NEAR(forgetting.parameters()(1), 0.8, 1e-3);
+  EXPECT_LT(kept.parameters()(1), 0.75);  // without forgetting, the old line still weighs
+}
+
+TEST(ForgettingLineFit, AStretchWithoutExcitationDoesNotWindTheCovarianceUp) {
+  pe::ForgettingLineFit fit;
+  fit.reset(Eigen::Vector2d::Zero(), Eigen::Vector2d(2.0, 0.5), 0.1);
+  for (int k = 0; k < 100; ++k) fit.add(std::sin(0.3 * k), 1.0);
+  for (int k = 0; k < 10000; ++k) {
+    fit.forget(0.99);
+    fit.add(0.0, 1.0);  // the same x every time: nothing about the slope
+  }
+  EXPECT_LE(fit.covariance()(1, 1), 0.5 * 0.5 / (0.1 * 0.1) * (1.0 + 1e-12));
+  EXPECT_LE(fit.covariance()(0, 0), 2.0 * 2.0 / (0.1 * 0.1) * (1.0 + 1e-12));
+  EXPECT_GT(fit.covariance()(1, 1), 0.0);
+}
