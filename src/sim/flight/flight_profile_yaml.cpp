@@ -57,8 +57,11 @@ VehicleFaults readFaults(const YamlMap& map) {
   VehicleFaults faults;
   if (map.has("weak_propeller")) {
     const YamlMap weak = map.map("weak_propeller");
-    weak.allowOnly({"motor", "thrust_factor"});
-    faults.weak_propeller = PropellerFault{weak.integer("motor"), weak.number("thrust_factor")};
+    weak.allowOnly({"motor", "thrust_factor", "damage"});
+    faults.weak_propeller =
+        PropellerFault{weak.integer("motor"), weak.number("thrust_factor"),
+                       weak.choice("damage", {"chipped", "worn"}) == "worn" ? PropellerDamage::kWorn
+                                                                            : PropellerDamage::kChipped};
   }
   return faults;
 }

@@ -296,7 +296,10 @@ class FlightRun {
     for (int k = 0; k < rotors; ++k) {
       ChainParams chain = params.chain;
       const std::optional<PropellerFault>& weak = profile.faults.weak_propeller;
-      if (weak && weak->motor == k + 1) chain.propeller = scaledPropeller(chain.propeller, weak->thrust_factor);
+      if (weak && weak->motor == k + 1) {
+        chain.propeller = weak->damage == PropellerDamage::kWorn ? wornPropeller(chain.propeller, weak->thrust_factor)
+                                                                 : scaledPropeller(chain.propeller, weak->thrust_factor);
+      }
       chains.emplace_back(chain);
     }
     return chains;

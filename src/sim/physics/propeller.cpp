@@ -52,5 +52,11 @@ PropellerParams scaledPropeller(const PropellerParams& propeller, double thrust_
   return scaled;
 }
 
+PropellerParams wornPropeller(const PropellerParams& propeller, double thrust_factor) {
+  PropellerParams worn = propeller;
+  worn.thrust_coefficient *= thrust_factor;
+  return worn;
+}
+
 }  // namespace sim
 }  // namespace propulsion_estimator

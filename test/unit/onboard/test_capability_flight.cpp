@@ -342,7 +342,7 @@ TEST(CapabilityFlight, AWeakPropellerIsFlaggedWithin20sOfSteadyHover) {
     CapabilitySink sink(f450(), userPack());
     fly(profile(0.0, 40.0, 0.9, "[0.008, -0.005, 0.0]",
                 "faults: {weak_propeller: {motor: " + std::to_string(motor) + ", thrust_factor: " +
-                    std::to_string(factor) + "}}\n"),
+                    std::to_string(factor) + ", damage: chipped}}\n"),
         &sink);
     ASSERT_TRUE(sink.hover_start_s.has_value());
     ASSERT_TRUE(sink.first_flag_s.has_value()) << "motor " << motor;

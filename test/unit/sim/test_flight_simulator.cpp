@@ -2,6 +2,7 @@
 // weight, the payload hangs, the streams keep their rates, and impossible flights are refused.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "propulsion_estimator/common/config_error.h"
@@ -472,6 +473,33 @@ TEST(FlightSimulator, AWeakPropellerIsMadeUpByItsMotorAndTheVehicleHoldsItsHeigh
             repoPath("config/sim/default_flight.yaml") +
                 ": faults.weak_propeller.motor: 5 is not a motor of " + repoPath("config/sim/../f450_quad.urdf") +
                 " (4 rotors)");
+}
+
+TEST(FlightSimulator, AWornPropellerSpinsAsFastAsAChippedOneButDrawsMoreCurrent) {
+  // Both make 85 % of the thrust at the same speed, so both spin faster in hover (within 5 %); the
+  // chipped one (smaller) absorbs less torque than intact at that speed, the worn one (its profile
+  // drag kept) more: its motor draws more current, which moves the yaw balance the other way.
+  const auto hover = [](pe::sim::PropellerDamage damage) {
+    pe::sim::FlightProfile profile = defaultProfile();
+    profile.faults.weak_propeller = pe::sim::PropellerFault{3, 0.85, damage};
+    const Flight flight = fly(profile);
+    double rpm = 0.0, current = 0.0, others = 0.0, height = 0.0;
+    int n = 0;
+    forSegment(flight.sink.truths, flight.result.segments[0], [&](const pe::sim::TruthSample& t) {
+      rpm += t.motors[2].rpm;
+      current += t.motors[2].current_a;
+      others += (t.motors[0].current_a + t.motors[1].current_a + t.motors[3].current_a) / 3.0;
+      height += t.height_m;
+      ++n;
+    });
+    return std::array<double, 4>{rpm / n, current / n, others / n, height / n};
+  };
+  const std::array<double, 4> chipped = hover(pe::sim::PropellerDamage::kChipped);
+  const std::array<double, 4> worn = hover(pe::sim::PropellerDamage::kWorn);
+  EXPECT_NEAR(worn[0] / chipped[0], 1.0, 0.05);
+  EXPECT_GT(worn[1], 1.08 * chipped[1]);  // measured 2026-11-25: 3.79 A against 3.35 A
+  EXPECT_GT(worn[1], worn[2]);
+  EXPECT_NEAR(worn[3], 2.0, 0.02);
 }
 
 TEST(FlightSimulator, RefusesAVehicleItCannotFlyNamingItsUrdf) {

@@ -214,11 +214,12 @@ TEST(FlightProfileYaml, ManifestSpansAreHoversUnlessAirborneIsAsked) {
 
 TEST(FlightProfileYaml, ReadsAWeakPropellerFault) {
   EXPECT_FALSE(pe::sim::parseFlightProfileYaml(kProfile, "f.yaml").faults.weak_propeller);
-  const std::string faulty = replaced(kProfile, "manifest:", "faults: {weak_propeller: {motor: 3, thrust_factor: 0.85}}\nmanifest:");
+  const std::string faulty = replaced(kProfile, "manifest:", "faults: {weak_propeller: {motor: 3, thrust_factor: 0.85, damage: worn}}\nmanifest:");
   const pe::sim::FlightProfile profile = pe::sim::parseFlightProfileYaml(faulty, "f.yaml");
   ASSERT_TRUE(profile.faults.weak_propeller);
   EXPECT_EQ(profile.faults.weak_propeller->motor, 3);
   EXPECT_EQ(profile.faults.weak_propeller->thrust_factor, 0.85);
+  EXPECT_EQ(profile.faults.weak_propeller->damage, pe::sim::PropellerDamage::kWorn);
   const auto faultRefusal = [&](const std::string& from, const std::string& to) {
     const std::string text = replaced(faulty, from, to);
     return refusal([&] { pe::sim::parseFlightProfileYaml(text, "config/sim/f.yaml"); });
@@ -229,6 +230,9 @@ TEST(FlightProfileYaml, ReadsAWeakPropellerFault) {
             "config/sim/f.yaml:14: faults.weak_propeller.motor: 0 is not a motor (they count from 1)");
   EXPECT_EQ(faultRefusal("motor: 3", "motor: three"),
             "config/sim/f.yaml:14: faults.weak_propeller.motor: expected a number, got 'three'");
+  EXPECT_EQ(faultRefusal("damage: worn", "damage: bent"),
+            "config/sim/f.yaml:14: faults.weak_propeller.damage: 'bent' is not one of chipped, worn");
+  EXPECT_EQ(faultRefusal(", damage: worn", ""), "config/sim/f.yaml:14: faults.weak_propeller.damage: missing key");
   EXPECT_EQ(faultRefusal("weak_propeller:", "bent_arm:"),
             "config/sim/f.yaml:14: faults.bent_arm: unknown key (allowed: weak_propeller)");
 }

@@ -46,12 +46,21 @@ struct PayloadCable {
   double damping_n_s_per_m = 0.0;  ///< along the cable
 };
 
-/// A propeller that makes less thrust than the others at the same speed (chipped, bent, the wrong
-/// size): flown as a geometrically similar smaller propeller (scaledPropeller), so it absorbs less
-/// torque too.
+/// How a damaged propeller loses its thrust.
+enum class PropellerDamage {
+  /// Chipped or cut down (or the wrong size): flown as a geometrically similar smaller propeller
+  /// (scaledPropeller), so it absorbs less torque too, and the yaw balance moves.
+  kChipped,
+  /// A worn or bent blade: the thrust coefficient falls, the torque coefficient (the blades'
+  /// profile drag) stays (wornPropeller): at the same thrust it spins faster and absorbs more.
+  kWorn,
+};
+
+/// A propeller that makes less thrust than the others at the same speed.
 struct PropellerFault {
   int motor = 0;               ///< 1-based, in the vehicle's rotor order (its RC channel)
   double thrust_factor = 1.0;  ///< of the intact propeller's thrust at the same rotor speed
+  PropellerDamage damage = PropellerDamage::kChipped;  ///< how it lost it
 };
 
 /// Faults of the vehicle that the library of effects does not hold, for validating the gap

@@ -44,5 +44,10 @@ struct PropellerParams {
 /// is checked by the caller.
 PropellerParams scaledPropeller(const PropellerParams& propeller, double thrust_factor);
 
+/// A worn or bent propeller that makes `thrust_factor` of this one's thrust at the same rotor speed
+/// with the same torque: CT x f, CQ, diameter and inertia unchanged. The factor is checked by the
+/// caller.
+PropellerParams wornPropeller(const PropellerParams& propeller, double thrust_factor);
+
 }  // namespace sim
 }  // namespace propulsion_estimator
