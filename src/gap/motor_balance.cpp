@@ -4,6 +4,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include "propulsion_estimator/vehicle/rotor_balance.h"
 
@@ -15,6 +16,11 @@ namespace {
 constexpr double kMinPayloadSpreadKg = 0.05;
 // Segments with fewer steady-hover blocks than this give too noisy a moment.
 constexpr int kMinSegmentBlocks = 6;
+// A gap found from the moments is sought within 0..kMaxGap in steps of kGapStep, on this many
+// segments or more (the jackknife needs a few).
+constexpr double kMaxGap = 0.35;
+constexpr double kGapStep = 0.0025;
+constexpr int kMinMomentSegments = 3;
 
 // Each motor's summed model thrust and the block count over the steady-hover blocks sharing a key.
 using ThrustSums = std::map<std::pair<int, int>, std::pair<std::vector<double>, int>>;
@@ -31,6 +37,76 @@ ThrustSums sumHoverThrusts(const ThrustViews& views, const std::vector<Block>& b
   }
   return sums_by_key;
 }
+
+// The empty vehicle's mass moment per weighed segment of steady hover (payloads hang below
+// base_link's origin, so it is the same in every segment), under the hypothesis that one motor
+// gives less than its modelled thrust.
+class SegmentMoments {
+ public:
+  SegmentMoments(const Vehicle& vehicle, const ThrustSums& sums, const std::map<std::pair<int, int>, double>& mass,
+                 int motors)
+      : vehicle_(vehicle), sums_(sums), mass_(mass), motors_(motors) {
+    for (const auto& entry : sums_) segments_ += entry.second.second >= kMinSegmentBlocks ? 1 : 0;
+  }
+
+  int segments() const { return segments_; }
+
+  // The spread over the segments (but `skip`) of the moment, in kg m, if motor j gives (1 - gap)
+  // of its modelled thrust.
+  double spread(int j, double gap, int skip = -1) const {
+    std::vector<Eigen::Vector2d> moments;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    int index = -1;
+    for (const auto& [key, entry] : sums_) {
+      const auto& [sums, count] = entry;
+      if (count < kMinSegmentBlocks || ++index == skip) continue;
+      std::vector<double> corrected(motors_);
+      for (int k = 0; k < motors_; ++k) corrected[k] = sums[k] / count * (k == j ? 1.0 - gap : 1.0);
+      moments.push_back(mass_.at(key) * thrustCentre(vehicle_, corrected));
+      mean += moments.back();
+    }
+    if (moments.size() < 2) return std::numeric_limits<double>::infinity();
+    mean /= moments.size();
+    double spread = 0.0;
+    for (const Eigen::Vector2d& m : moments) spread += (m - mean).squaredNorm() / moments.size();
+    return std::sqrt(spread);
+  }
+
+  // Motor j's gap that keeps the moment most constant, within 0..kMaxGap, and its 95 % half-width
+  // by the jackknife over the segments. A propeller that lost thrust but kept its torque (worn,
+  // bent) leaves the yaw balance as it was and shows here only.
+  std::pair<double, double> gap(int j) const {
+    const double fitted = bestGap(j, -1);
+    std::vector<double> left_out;
+    double mean = 0.0;
+    for (int s = 0; s < segments_; ++s) {
+      left_out.push_back(bestGap(j, s));
+      mean += left_out.back() / segments_;
+    }
+    double variance = 0.0;
+    for (double g : left_out) variance += (g - mean) * (g - mean) * (segments_ - 1.0) / segments_;
+    return {fitted, 1.96 * std::sqrt(variance)};
+  }
+
+ private:
+  double bestGap(int j, int skip) const {
+    double best = 0.0, least = std::numeric_limits<double>::infinity();
+    for (int step = 0; step * kGapStep <= kMaxGap + 1e-12; ++step) {
+      const double value = spread(j, step * kGapStep, skip);
+      if (value < least) {
+        least = value;
+        best = step * kGapStep;
+      }
+    }
+    return best;
+  }
+
+  const Vehicle& vehicle_;
+  const ThrustSums& sums_;
+  const std::map<std::pair<int, int>, double>& mass_;
+  int motors_;
+  int segments_ = 0;
+};
 
 }  // namespace
 
@@ -90,34 +166,18 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
     heaviest = std::max(heaviest, entry.second);
   }
   const bool payloads_differ = heaviest - lightest > kMinPayloadSpreadKg;
-  // The spread over segments of the empty vehicle's mass moment, if motor j gives (1 - gap) of
-  // its modelled thrust.
-  const auto moment_spread = [&](int j, double gap) {
-    std::vector<Eigen::Vector2d> moments;
-    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-    for (const auto& [key, entry] : segment_sums) {
-      const auto& [sums, count] = entry;
-      if (count < kMinSegmentBlocks) continue;
-      std::vector<double> corrected(motors);
-      for (int k = 0; k < motors; ++k) corrected[k] = sums[k] / count * (k == j ? 1.0 - gap : 1.0);
-      moments.push_back(segment_mass.at(key) * thrustCentre(vehicle, corrected));
-      mean += moments.back();
-    }
-    if (moments.size() < 2) return std::numeric_limits<double>::infinity();
-    mean /= moments.size();
-    double spread = 0.0;
-    for (const Eigen::Vector2d& m : moments) spread += (m - mean).squaredNorm() / moments.size();
-    return std::sqrt(spread);
-  };
+  const SegmentMoments moments{vehicle, segment_sums, segment_mass, motors};
+  const bool by_moment = payloads_differ && moments.segments() >= kMinMomentSegments;
 
   double best_distance = std::numeric_limits<double>::infinity();
   int best = -1;
   for (int j = 0; j < motors; ++j) {
-    const double gap = weakMotorGap(vehicle, mean_thrust, yaw_mean, j);
-    const double ci = std::abs(gap) * (std::abs(yaw_mean) > 0.0 ? yaw_ci / std::abs(yaw_mean) : 0.0);
+    double gap = weakMotorGap(vehicle, mean_thrust, yaw_mean, j);
+    double ci = std::abs(gap) * (std::abs(yaw_mean) > 0.0 ? yaw_ci / std::abs(yaw_mean) : 0.0);
+    if (by_moment) std::tie(gap, ci) = moments.gap(j);
     balance.motors.push_back({channels[j], 100.0 * gap, 100.0 * ci});
     const double distance =
-        payloads_differ ? moment_spread(j, gap) : (impliedCentre(vehicle, mean_thrust, j, gap) - prior).norm();
+        payloads_differ ? moments.spread(j, gap) : (impliedCentre(vehicle, mean_thrust, j, gap) - prior).norm();
     // A yaw imbalance is explained as well by one motor weaker than modelled as by its
     // neighbour of the other spin direction stronger: the failures that happen (a chipped,
     // bent or wrong propeller, a worn motor or bearing) give less thrust, never more.

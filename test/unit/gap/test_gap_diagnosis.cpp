@@ -216,10 +216,12 @@ TEST_F(SyntheticFlights, WithAFrameByNameTheWeakMotorIsFound) {
 }
 
 // Steady hovers of a quad whose centre of gravity is 9 mm off the URDF's and whose motor `weak`
-// gives 87 % of its modelled thrust: the thrusts that balance weight, roll, pitch and yaw (drag
-// torque proportional to the thrust that flies), read back as the pulse widths the autopilot sent.
+// gives 87 % of its modelled thrust: the thrusts that balance weight, roll, pitch and yaw, read
+// back as the pulse widths the autopilot sent. Drag torque is proportional to the thrust that
+// flies, but for a worn propeller (`keeps_torque`), whose torque is the intact one's at its speed.
 std::vector<gap::Block> hoversWithAWeakMotor(const pe::Vehicle& vehicle, int weak,
-                                             const std::function<double(double, double)>& pwm_for) {
+                                             const std::function<double(double, double)>& pwm_for,
+                                             bool keeps_torque = false) {
   const Eigen::Vector2d empty_cg(0.008, -0.005);
   const double empty_kg = 1.3;
   std::vector<gap::Block> blocks;
@@ -231,7 +233,8 @@ std::vector<gap::Block> hoversWithAWeakMotor(const pe::Vehicle& vehicle, int wea
     Eigen::Vector4d b(mass * pe::kStandardGravity, 0.0, 0.0, 0.0);
     for (int k = 0; k < 4; ++k) {
       const Eigen::Vector2d arm = vehicle.rotors[k].position_m.head<2>() - cg;
-      a.col(k) << 1.0, arm.x(), arm.y(), static_cast<double>(vehicle.rotors[k].spin_direction);
+      const double torque_per_thrust = keeps_torque && k == weak ? 1.0 / 0.87 : 1.0;
+      a.col(k) << 1.0, arm.x(), arm.y(), vehicle.rotors[k].spin_direction * torque_per_thrust;
     }
     const Eigen::Vector4d thrust = a.colPivHouseholderQr().solve(b);
     for (int i = 0; i < 30; ++i, ++group) {
@@ -258,6 +261,19 @@ TEST_F(SyntheticFlights, TheMotorBalanceFindsTheWeakMotorWhicheverItIsDespiteAnO
         hoversWithAWeakMotor(vehicle_, weak, [&](double thrust, double voltage) { return pwmFor(thrust, voltage); });
     const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, 0.05);
     ASSERT_TRUE(balance.suspect_channel) << "weak motor " << weak + 1;
+    EXPECT_EQ(*balance.suspect_channel, weak + 1);
+    EXPECT_NEAR(balance.motors[weak].thrust_gap_pct, 13.0, 0.5);
+  }
+}
+
+TEST_F(SyntheticFlights, TheMotorBalanceFindsAWornPropellerThatLeavesTheYawBalanceAsItWas) {
+  // Its torque is what its speed gives an intact one: the model's yaw balance holds, and only the
+  // moments across the payloads show it.
+  for (int weak = 0; weak < 4; ++weak) {
+    const std::vector<gap::Block> blocks = hoversWithAWeakMotor(
+        vehicle_, weak, [&](double thrust, double voltage) { return pwmFor(thrust, voltage); }, true);
+    const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, 0.05);
+    ASSERT_TRUE(balance.suspect_channel) << "worn propeller on motor " << weak + 1;
     EXPECT_EQ(*balance.suspect_channel, weak + 1);
     EXPECT_NEAR(balance.motors[weak].thrust_gap_pct, 13.0, 0.5);
   }
