@@ -254,6 +254,8 @@ FlightStreams DataflashFlightReader::read(const FlightLogOptions& options) const
   reader.barometer();
   reader.rangefinder();
   reader.motorTemperature();
+  const std::string unused = options.unusedSourcesNote("a DataFlash log");
+  if (!unused.empty()) streams.notes.push_back(unused);
   return streams;
 }
 

@@ -35,6 +35,13 @@ void FlightLogOptions::validate(const std::string& what) const {
   }
 }
 
+std::string FlightLogOptions::unusedSourcesNote(const std::string& format) const {
+  if (sources.empty()) return "";
+  std::string names;
+  for (const auto& entry : sources) names += (names.empty() ? "" : ", ") + entry.first + "=" + entry.second;
+  return "sources given (" + names + ") not used: " + format + " is read from its own messages, named above";
+}
+
 void FlightLogFormats::add(FlightLogFormat format) {
   if (format.magic.empty()) throw std::invalid_argument("flight-log format " + format.name + ": no magic bytes");
   for (const FlightLogFormat& known : formats_) {

@@ -271,6 +271,8 @@ FlightStreams UlogFlightReader::read(const FlightLogOptions& options) const {
   reader.airData();
   reader.rangefinder();
   reader.motorTemperature();
+  const std::string unused = options.unusedSourcesNote("a ULog");
+  if (!unused.empty()) streams.notes.push_back(unused);
   if (file_->dropouts() > 0) {
     streams.notes.push_back(std::to_string(file_->dropouts()) + " logging dropouts, " +
                             std::to_string(file_->dropoutMs()) + " ms in all");

@@ -23,6 +23,10 @@ struct FlightLogOptions {
   /// not a signal, or a PWM range given by half or not within 500..2500 us with min < max; `what`
   /// names the input the options came from ("--topic", a file).
   void validate(const std::string& what) const;
+
+  /// For a format that finds its signals by its own names (`format`: "a ULog"): "" without
+  /// sources, else the line saying the sources given were not used. Throws nothing.
+  std::string unusedSourcesNote(const std::string& format) const;
 };
 
 /// One flight log opened for reading, on the manifest's clock: seconds from the log's first

@@ -44,6 +44,11 @@ TEST(DataflashReader, ReadsBackWhatTheSimulatorWrote) {
   const pe::FlightStreams read = reader.read(options());
   expectRoundTrip(read, sim, 0.0);
   EXPECT_EQ(read.notes.front(), "rc_out: RCOU C1..C4 (us)");
+  pe::FlightLogOptions with_topic = options();
+  with_topic.sources["battery"] = "/my/battery";
+  EXPECT_EQ(reader.read(with_topic).notes.back(),
+            "sources given (battery=/my/battery) not used: a DataFlash log is read from its own messages, named "
+            "above");
 }
 
 TEST(DataflashReader, RefusesWhatIsNotADataflashLogOrHasNoTime) {

@@ -51,6 +51,11 @@ TEST(UlogReader, ReadsBackAPx4v1_12LogAsTheSimulatorWroteIt) {
   expectRoundTrip(streams, sim, 0.0);
   EXPECT_EQ(streams.notes.front(), "rc_out: actuator_outputs[0].output[0..3] (us)");
   EXPECT_EQ(reader.file().infoText("ver_sw_release"), "v1.12.3");
+  // A rosbag's topic given for a signal is not silently dropped: the notes say it was not used.
+  pe::FlightLogOptions with_topic = options();
+  with_topic.sources["battery"] = "/my/battery";
+  EXPECT_EQ(reader.read(with_topic).notes.back(),
+            "sources given (battery=/my/battery) not used: a ULog is read from its own messages, named above");
 }
 
 TEST(UlogReader, ReadsTheNewerLayoutByFieldNames) {
