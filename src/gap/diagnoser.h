@@ -61,6 +61,8 @@ class Diagnoser {
   // steady ones suffice for the test; then the held-out prediction of what it chose on every block.
   HeldOutPrediction select(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
   bool selectsOnSteadyBlocks() const;
+  // The sign-flip test's units (flight, group) among the blocks, or among the steady ones.
+  int stretchCount(bool steady_only) const;
   // Whether the flights tell `leader` from the other candidates that passed every test in its
   // round (`admissible`, their held-out predictions): the group it cannot be told from, or nullopt.
   std::optional<Ambiguity> ambiguityOf(Kind leader, const std::map<Kind, HeldOutPrediction>& admissible);

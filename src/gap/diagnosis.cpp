@@ -68,14 +68,13 @@ void Diagnoser::cut() {
   }
   for (const Block& block : blocks_) all_.push_back(&block);
   // The selection's test counts stretches, not blocks: too few, and no effect can be significant.
-  std::set<std::pair<int, int>> stretches;
-  for (const Block& block : blocks_) stretches.insert({block.flight, block.group});
+  const int stretches = stretchCount(false);
   const int needed = fewestGroupsForSignificance(config_.significance);
-  if (static_cast<int>(stretches.size()) < needed) {
+  if (stretches < needed) {
     diagnosis_.steady_data_shortfall =
         "not enough steady data: " + std::to_string(diagnosis_.blocks) + " quasi-steady " + formatNumber(config_.block_s) +
         " s blocks (" + std::to_string(diagnosis_.transient_blocks) + " transient left out) in " +
-        std::to_string(stretches.size()) + (stretches.size() == 1 ? " stretch" : " stretches") + " of up to " +
+        std::to_string(stretches) + (stretches == 1 ? " stretch" : " stretches") + " of up to " +
         formatNumber(config_.group_s) +
         " s; the selection's sign-flip test needs " + std::to_string(needed) + " to reach p < " +
         formatNumber(config_.significance) + ", so no effect can be named";

@@ -4,7 +4,7 @@
 #include <functional>
 #include <limits>
 #include <map>
-#include <tuple>
+#include <utility>
 
 #include "propulsion_estimator/vehicle/rotor_balance.h"
 
@@ -171,10 +171,14 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
 
   double best_distance = std::numeric_limits<double>::infinity();
   int best = -1;
+  // Motor j's gap and its 95 % half-width: from the moments, else from the yaw residual.
+  const auto gap_of = [&](int j) -> std::pair<double, double> {
+    if (by_moment) return moments.gap(j);
+    const double gap = weakMotorGap(vehicle, mean_thrust, yaw_mean, j);
+    return {gap, std::abs(gap) * (std::abs(yaw_mean) > 0.0 ? yaw_ci / std::abs(yaw_mean) : 0.0)};
+  };
   for (int j = 0; j < motors; ++j) {
-    double gap = weakMotorGap(vehicle, mean_thrust, yaw_mean, j);
-    double ci = std::abs(gap) * (std::abs(yaw_mean) > 0.0 ? yaw_ci / std::abs(yaw_mean) : 0.0);
-    if (by_moment) std::tie(gap, ci) = moments.gap(j);
+    const auto [gap, ci] = gap_of(j);
     balance.motors.push_back({channels[j], 100.0 * gap, 100.0 * ci});
     const double distance =
         payloads_differ ? moments.spread(j, gap) : (impliedCentre(vehicle, mean_thrust, j, gap) - prior).norm();

@@ -13,11 +13,15 @@ namespace detail {
 bool Diagnoser::selectsOnSteadyBlocks() const {
   if (std::find(steady_.begin(), steady_.end(), false) == steady_.end()) return false;
   // Enough steady stretches for the sign-flip test, else the transient blocks are needed too.
+  return stretchCount(true) >= fewestGroupsForSignificance(config_.significance);
+}
+
+int Diagnoser::stretchCount(bool steady_only) const {
   std::set<std::pair<int, int>> stretches;
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
-    if (steady_[i]) stretches.insert({blocks_[i].flight, blocks_[i].group});
+    if (steady_[i] || !steady_only) stretches.insert({blocks_[i].flight, blocks_[i].group});
   }
-  return static_cast<int>(stretches.size()) >= fewestGroupsForSignificance(config_.significance);
+  return static_cast<int>(stretches.size());
 }
 
 HeldOutPrediction Diagnoser::select(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results) {
