@@ -11,6 +11,8 @@ namespace propulsion_estimator {
 namespace {
 
 constexpr int kMinRows = 10;
+// A pivot below this share of the largest: the rows do not tell the two terms apart (one speed).
+constexpr double kRelativePivot = 1e-12;
 
 }  // namespace
 
@@ -41,7 +43,12 @@ RpmThrust fitRpmThrust(const std::vector<BenchLog>& logs, double bench_air_densi
     throw DataError(source + ": " + std::to_string(rows) + " rows with rpm and thrust, fewer than " +
                     std::to_string(kMinRows) + ": thrust from rpm cannot be fitted");
   }
-  const Eigen::Vector2d scaled = normal.ldlt().solve(rhs);
+  const Eigen::LDLT<Eigen::Matrix2d> ldlt(normal);
+  const Eigen::Vector2d pivots = ldlt.vectorD().cwiseAbs();
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(pivots.minCoeff() > kRelativePivot * pivots.maxCoeff())) {
+    throw DataError(source + ": the rows with rpm and thrust are all at one speed: thrust from rpm cannot be fitted");
+  }
+  const Eigen::Vector2d scaled = ldlt.solve(rhs);
   RpmThrust result;
   result.n_per_rpm2 = scaled(0) * 1e-6;
   result.n_per_rpm = scaled(1) * 1e-3;

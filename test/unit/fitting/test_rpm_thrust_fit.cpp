@@ -39,6 +39,20 @@ TEST(RpmThrustFit, RefusesLogsWithoutRpm) {
   }
 }
 
+TEST(RpmThrustFit, RefusesRowsAllAtOneSpeed) {
+  SweepSet sweeps = syntheticSweeps();
+  for (pe::BenchLog& log : sweeps.logs) {
+    for (double& rpm : log.column(pe::BenchColumn::kRpm)) rpm = 5000.0;
+  }
+  try {
+    pe::fitRpmThrust(sweeps.logs, 1.2);
+    FAIL() << "one speed accepted";
+  } catch (const pe::DataError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "sweep_0.csv: the rows with rpm and thrust are all at one speed: thrust from rpm cannot be fitted");
+  }
+}
+
 TEST(RpmThrustFit, TheModelFileCarriesItAndReadsItBack) {
   const std::string thesis = pe::readTextFile(repoPath("config/e300_dji2212_dji9443.yaml"));
   pe::PropulsionModel model = pe::parseModelYaml(thesis, "thesis");
