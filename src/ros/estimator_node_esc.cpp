@@ -54,7 +54,11 @@ void EstimatorNode::onEscTelemetry(const topic_tools::ShapeShifter::ConstPtr& me
 void EstimatorNode::checkModel(double now_s) {
   const EstimatorOutput& output = estimator_->output();
   model_check_->addEstimate(now_s, output);
-  if (rpm_view_) rpm_view_->add(now_s, output, *model_check_, estimator_->effectSignals(now_s).air_density_kg_m3);
+  // The air density is prepared only for a hover, the one sample the view takes.
+  if (rpm_view_) {
+    rpm_view_->add(now_s, output, *model_check_,
+                   output.hover.hovering ? estimator_->effectSignals(now_s).air_density_kg_m3 : kNaN);
+  }
 }
 
 bool EstimatorNode::rpmViewInUse(double now_s) const {
