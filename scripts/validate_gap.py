@@ -340,9 +340,11 @@ def make_cases(count, seed, quick, effects):
         if label == "weak_propeller":
             case["fault"] = {"weak_propeller": {"motor": rng.randint(1, 4),
                                                 "thrust_factor": round(rng.uniform(0.8, 0.9), 3)}}
-            # Chipped (thrust and torque down) or worn (thrust down, torque kept), drawn from the
-            # case's own seed so that the other cases of a seed stay as they were drawn before.
-            case["fault"]["weak_propeller"]["damage"] = random.Random(case["seed"]).choice(["chipped", "worn"])
+            # Chipped (thrust and torque down) or worn (thrust down, torque kept), drawn from a
+            # stream of its own (the case's seed also drives its flights' draws) so that the other
+            # cases of a seed stay as they were drawn before.
+            case["fault"]["weak_propeller"]["damage"] = random.Random("damage-%d" % case["seed"]).choice(
+                ["chipped", "worn"])
         if label == "cg_offset":
             angle = rng.uniform(0, 6.283)
             case["fault"] = {"cg_offset_m": [round(0.01 * __import__("math").cos(angle), 4),

@@ -114,7 +114,6 @@ class Diagnoser {
   ThrustViews views_;
   std::vector<Block> blocks_;
   std::vector<bool> steady_;  // of each block: quasi-steady (not transient with the lag modelled)
-  int selection_blocks_ = 0;  // the blocks the selection ran on
   std::vector<const Block*> all_;
   std::vector<int> unit_of_block_;  // the held-out unit (flight or segment) of each block
   std::vector<std::string> unit_names_;  // of each unit: the flight's name, or "flight#segment"

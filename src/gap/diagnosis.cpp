@@ -327,6 +327,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
   const effects::ModelEffects round_base = fitEffects(views_, all_, selected, references()).effects;
   double base_pwm = 0.0;
   for (double r : current.pwm) base_pwm += r * r / blocks_.size();
+  const double base_pwm_rmse_pct = 100.0 * std::sqrt(base_pwm);
   std::optional<Kind> best;
   double best_ms = base_ms;
   std::vector<std::size_t> admissible_steps;
@@ -357,11 +358,11 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     result.plausible = result.parameter > spec.min + margin && result.parameter < spec.max - margin;
     result.current_view_ratio = currentViewRatio(round_base, fit.effects);
     const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
-    const double drop_pct = 100.0 * (std::sqrt(base_pwm) - std::sqrt(pwm_ms));
+    const double drop_pct = base_pwm_rmse_pct - 100.0 * std::sqrt(pwm_ms);
     const bool significant = result.p_value < config_.significance && drop_pct > config_.min_improvement_pct &&
                              pwm_ms < config_.max_mean_square_ratio * base_pwm && ms < base_ms;
     if (!significant) {
-      result.reason = notSignificant(result, 100.0 * std::sqrt(base_pwm), drop_pct, pwm_ms / base_pwm);
+      result.reason = notSignificant(result, base_pwm_rmse_pct, drop_pct, pwm_ms / base_pwm);
     } else if (!result.plausible) {
       result.reason = "fitted at the edge of its plausible range " + formatNumber(spec.min) + ".." +
                       formatNumber(spec.max) + ": the gap is not of this effect's shape";
@@ -383,7 +384,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
         best = kind;
       }
     }
-    diagnosis_.trace.push_back({round + 1, kind, result.heldout_rmse_pct, 100.0 * std::sqrt(base_pwm),
+    diagnosis_.trace.push_back({round + 1, kind, result.heldout_rmse_pct, base_pwm_rmse_pct,
                                 result.joint_rmse_pct, result.p_value, result.reason});
   }
   // The candidates that passed every test but lowered the joint error less than the one taken.

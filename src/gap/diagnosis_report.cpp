@@ -163,8 +163,9 @@ std::string Diagnoser::dynamicBlocks() const {
 
 // When the selection ran on the steady blocks alone: which, and why.
 std::string Diagnoser::selectionBlocks() const {
-  if (selection_blocks_ >= diagnosis_.blocks) return "";
-  return ", on the " + std::to_string(selection_blocks_) +
+  if (!selectsOnSteadyBlocks()) return "";
+  const auto steady = std::count(steady_.begin(), steady_.end(), true);
+  return ", on the " + std::to_string(steady) +
          " steady blocks alone (a transient block's error also carries what the lag model leaves over, which a "
          "mean-shifting effect would soak up); what they chose is fitted and scored on all " +
          std::to_string(diagnosis_.blocks);

@@ -25,13 +25,9 @@ int Diagnoser::stretchCount(bool steady_only) const {
 }
 
 HeldOutPrediction Diagnoser::select(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results) {
-  if (!selectsOnSteadyBlocks()) {
-    selection_blocks_ = static_cast<int>(blocks_.size());
-    return selectEffects(before, results);
-  }
+  if (!selectsOnSteadyBlocks()) return selectEffects(before, results);
   Diagnoser steady(*this, steady_, views_);
   steady.selectEffects(steady.predictHeldOut({}), results);
-  selection_blocks_ = static_cast<int>(steady.blocks_.size());
   working_ = steady.working_;
   grouped_ = steady.grouped_;
   diagnosis_.selected = steady.diagnosis_.selected;
