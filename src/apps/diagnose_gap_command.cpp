@@ -137,6 +137,7 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
       {Signal::kHeight, source("rangefinder", kRangefinderTopic)},
       {Signal::kMotorTemperature, source("motor_temperature", kMotorTemperatureTopic)},
       {Signal::kVerticalSpeed, source("velocity", kVelocityTopic)},
+      {Signal::kHorizontalSpeed, source("velocity", kVelocityTopic)},
   };
   return config;
 }

@@ -11,6 +11,7 @@
 #include <sensor_msgs/Range.h>
 #include <sensor_msgs/Temperature.h>
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <mutex>
@@ -99,6 +100,7 @@ class StreamBuilder {
       case Signal::kVelocity:
         ros::serialization::deserialize(stream, velocity_);
         streams_->vertical_speed_m_s.push_back({time_s, velocity_.twist.linear.z});
+        streams_->horizontal_speed_m_s.push_back({time_s, std::hypot(velocity_.twist.linear.x, velocity_.twist.linear.y)});
         return true;
       case Signal::kStaticPressure:
         ros::serialization::deserialize(stream, pressure_);
@@ -162,7 +164,9 @@ void reserve(const rosbag::Bag& bag, const Source& source, FlightStreams* stream
     case Signal::kBattery: return reserveFor(bag, topic, &streams->battery);
     case Signal::kImu: return reserveFor(bag, topic, &streams->imu);
     case Signal::kPose: return reserveFor(bag, topic, &streams->altitude_m);
-    case Signal::kVelocity: return reserveFor(bag, topic, &streams->vertical_speed_m_s);
+    case Signal::kVelocity:
+      reserveFor(bag, topic, &streams->horizontal_speed_m_s);
+      return reserveFor(bag, topic, &streams->vertical_speed_m_s);
     case Signal::kStaticPressure: return reserveFor(bag, topic, &streams->static_pressure_pa);
     case Signal::kAirTemperature: return reserveFor(bag, topic, &streams->air_temperature_c);
     case Signal::kRangefinder: return reserveFor(bag, topic, &streams->height_above_ground_m);

@@ -198,6 +198,16 @@ Rejection Estimator::addVerticalSpeed(double receipt_s, double vertical_speed_m_
   return Rejection::kNone;
 }
 
+Rejection Estimator::addHorizontalSpeed(double receipt_s, double horizontal_speed_m_s) {
+  checkClock(receipt_s);
+  if (!(horizontal_speed_m_s >= 0.0) || !std::isfinite(horizontal_speed_m_s)) {
+    return reject(Rejection::kBadVelocity, 0, horizontal_speed_m_s);
+  }
+  horizontal_speed_m_s_ = horizontal_speed_m_s;
+  horizontal_receipt_s_ = receipt_s;
+  return Rejection::kNone;
+}
+
 Rejection Estimator::addBatteryCurrent(double receipt_s, double current_a) {
   checkClock(receipt_s);
   if (std::isnan(current_a)) return Rejection::kNone;
@@ -259,6 +269,8 @@ effects::Signals Estimator::effectSignals(double now_s) const {
   raw.body_z_up = imuFresh(now_s) ? body_to_world_(2, 2) : 1.0;
   raw.motor_temperature_c = motor_temperature_c_.at(now_s, config_.motor_temperature_timeout_s);
   raw.vertical_speed_m_s = velocityFresh(now_s) ? vertical_speed_m_s_ : kNaN;
+  raw.horizontal_speed_m_s =
+      now_s - horizontal_receipt_s_ <= config_.velocity_timeout_s ? horizontal_speed_m_s_ : kNaN;
   return effects::prepareSignals(raw);
 }
 

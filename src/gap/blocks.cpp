@@ -33,7 +33,7 @@ class Cursor {
 };
 
 // The signals a block averages besides PWM, voltage, current and IMU, in Accumulator::signal.
-enum class BlockSignal { kHeight, kVerticalSpeed, kAirDensity, kMotorTemperature, kCount };
+enum class BlockSignal { kHeight, kVerticalSpeed, kHorizontalSpeed, kAirDensity, kMotorTemperature, kCount };
 constexpr int kBlockSignalCount = static_cast<int>(BlockSignal::kCount);
 
 // Sums of one block; a signal is averaged only when every frame of the block had it.
@@ -76,6 +76,7 @@ struct Accumulator {
     block.specific_force_up_m_s2 = imu_frames == frames ? force_up / frames : kStandardGravity;
     block.signals.height_m = meanSignal(BlockSignal::kHeight);
     block.signals.vertical_speed_m_s = meanSignal(BlockSignal::kVerticalSpeed);
+    block.signals.horizontal_speed_m_s = meanSignal(BlockSignal::kHorizontalSpeed);
     block.signals.air_density_kg_m3 = meanSignal(BlockSignal::kAirDensity);
     block.signals.motor_temperature_c = meanSignal(BlockSignal::kMotorTemperature);
     block.signals.battery_current_a = block.current_a;
@@ -97,6 +98,7 @@ bool hasCurrent(const std::vector<BatteryReading>& battery) {
 struct SignalCursors {
   explicit SignalCursors(const FlightStreams& streams)
       : speed(streams.vertical_speed_m_s),
+        horizontal_speed(streams.horizontal_speed_m_s),
         pressure(streams.static_pressure_pa),
         air(streams.air_temperature_c),
         range(streams.height_above_ground_m),
@@ -112,13 +114,14 @@ struct SignalCursors {
     raw.body_z_up = imu ? (imu->orientation * Eigen::Vector3d::UnitZ()).z() : 1.0;
     raw.range_m = value(range);
     raw.vertical_speed_m_s = value(speed);
+    raw.horizontal_speed_m_s = value(horizontal_speed);
     raw.static_pressure_pa = value(pressure);
     raw.air_temperature_c = value(air);
     raw.motor_temperature_c = value(motor_temperature);
     return raw;
   }
 
-  Cursor<ScalarReading> speed, pressure, air, range, motor_temperature;
+  Cursor<ScalarReading> speed, horizontal_speed, pressure, air, range, motor_temperature;
 };
 
 std::string segmentName(const Flight& flight, int index) {
@@ -228,6 +231,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       }
       acc.addSignal(BlockSignal::kHeight, prepared.height_m);
       acc.addSignal(BlockSignal::kVerticalSpeed, prepared.vertical_speed_m_s);
+      acc.addSignal(BlockSignal::kHorizontalSpeed, prepared.horizontal_speed_m_s);
       acc.addSignal(BlockSignal::kAirDensity, prepared.air_density_kg_m3);
       acc.addSignal(BlockSignal::kMotorTemperature, prepared.motor_temperature_c);
       const ScalarReading* z = altitude.at(frame.time_s, timeout);

@@ -81,6 +81,7 @@ void Diagnoser::reportWhere(const BlockView& pwm_view) {
   const auto source = [&](effects::Signal signal) { return config_.signal_sources.at(signal); };
   const auto height = [](const Block& b) { return b.signals.height_m; };
   const auto speed = [](const Block& b) { return b.signals.vertical_speed_m_s; };
+  const auto horizontal = [](const Block& b) { return b.signals.horizontal_speed_m_s; };
   const auto current = [](const Block& b) { return b.current_a; };
   const auto motor_temperature = [](const Block& b) { return b.signals.motor_temperature_c; };
   const auto density = [](const Block& b) { return b.signals.air_density_kg_m3; };
@@ -90,6 +91,8 @@ void Diagnoser::reportWhere(const BlockView& pwm_view) {
                                          "%.2f", source(effects::Signal::kHeight)));
   diagnosis_.where.push_back(breakdownBy("vertical_speed_m_s", all_, speed, {-1.0, -0.3, -0.1, 0.1, 0.3, 1.0}, pwm_view,
                                          "%.1f", source(effects::Signal::kVerticalSpeed)));
+  diagnosis_.where.push_back(breakdownBy("horizontal_speed_m_s", all_, horizontal, {0.5, 1.0, 2.0, 4.0, 8.0}, pwm_view,
+                                         "%.1f", source(effects::Signal::kHorizontalSpeed)));
   diagnosis_.where.push_back(breakdownBy("total_current_a", all_, current, quantileEdges(all_, current, 4), pwm_view,
                                          "%.1f", source(effects::Signal::kBatteryCurrent)));
   diagnosis_.where.push_back(breakdownBy("motor_temperature_c", all_, motor_temperature,

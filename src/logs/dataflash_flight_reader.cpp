@@ -136,12 +136,17 @@ class SignalReader {
     // XKF1 (EKF3, core 0), NKF1 (EKF2), EKF1 (the first EKF, in logs of ArduPilot 3.2 and 3.3).
     for (const char* ekf : {"XKF1", "NKF1", "EKF1"}) {
       const auto pd = column(ekf, "PD"), vd = column(ekf, "VD");
+      const auto vn = column(ekf, "VN"), ve = column(ekf, "VE");
       if (!pd || !vd) continue;
       forEach(ekf, [&](const dataflash::Message& message, double t) {
         streams_->altitude_m.push_back({t, -value(message, *pd)});
         streams_->vertical_speed_m_s.push_back({t, -value(message, *vd)});
+        if (vn && ve) {
+          streams_->horizontal_speed_m_s.push_back({t, std::hypot(value(message, *vn), value(message, *ve))});
+        }
       });
-      note(std::string("pose, velocity: ") + ekf + (ekf == std::string("XKF1") ? " (core 0)" : "") + " -PD, -VD");
+      note(std::string("pose, velocity: ") + ekf + (ekf == std::string("XKF1") ? " (core 0)" : "") + " -PD, -VD" +
+           (vn && ve ? ", |VN, VE|" : ""));
       return;
     }
     const auto alt = column("CTUN", "Alt"), climb = column("CTUN", "CRt");

@@ -153,6 +153,9 @@ class SignalReader {
   void localPosition() {
     const auto z = topics_.field("vehicle_local_position", {"z"});
     const auto vz = topics_.field("vehicle_local_position", {"vz"});
+    const auto vx = topics_.field("vehicle_local_position", {"vx"});
+    const auto vy = topics_.field("vehicle_local_position", {"vy"});
+    const auto vxy_valid = topics_.field("vehicle_local_position", {"v_xy_valid"});
     const auto z_valid = topics_.field("vehicle_local_position", {"z_valid"});
     const auto vz_valid = topics_.field("vehicle_local_position", {"v_z_valid"});
     if (!z || !topics_.has("vehicle_local_position")) {
@@ -165,8 +168,11 @@ class SignalReader {
       if (vz && (!vz_valid || value(message, *vz_valid) != 0.0)) {
         streams_->vertical_speed_m_s.push_back({t, -value(message, *vz)});
       }
+      if (vx && vy && (!vxy_valid || value(message, *vxy_valid) != 0.0)) {
+        streams_->horizontal_speed_m_s.push_back({t, std::hypot(value(message, *vx), value(message, *vy))});
+      }
     });
-    note("pose, velocity: vehicle_local_position[0] -z, -vz");
+    note(std::string("pose, velocity: vehicle_local_position[0] -z, -vz") + (vx && vy ? ", |vx, vy|" : ""));
   }
 
   void airData() {

@@ -25,6 +25,7 @@ Signals prepareSignals(const RawSignals& raw) {
   signals.height_m = heightAboveGroundM(raw.range_m, raw.body_z_up);
   signals.motor_temperature_c = raw.motor_temperature_c;
   signals.vertical_speed_m_s = raw.vertical_speed_m_s;
+  signals.horizontal_speed_m_s = raw.horizontal_speed_m_s;
   return signals;
 }
 

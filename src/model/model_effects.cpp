@@ -56,6 +56,7 @@ const char* signalName(Signal signal) {
     case Signal::kHeight: return "height above the ground";
     case Signal::kMotorTemperature: return "motor temperature";
     case Signal::kVerticalSpeed: return "vertical speed";
+    case Signal::kHorizontalSpeed: return "horizontal speed";
   }
   return "?";
 }
@@ -69,6 +70,7 @@ double Signals::value(Signal signal) const {
     case Signal::kHeight: return height_m;
     case Signal::kMotorTemperature: return motor_temperature_c;
     case Signal::kVerticalSpeed: return vertical_speed_m_s;
+    case Signal::kHorizontalSpeed: return horizontal_speed_m_s;
     case Signal::kNone: break;
   }
   return kNaN;

@@ -182,6 +182,7 @@ std::string signalSource(effects::Signal signal, const HealthConfig& config) {
     case effects::Signal::kHeight: return "height above the ground on " + config.rangefinder_input;
     case effects::Signal::kMotorTemperature: return "motor temperature on " + config.motor_temperature_input;
     case effects::Signal::kVerticalSpeed: return "vertical speed on " + config.velocity_input;
+    case effects::Signal::kHorizontalSpeed: return "horizontal speed on " + config.velocity_input;
     case effects::Signal::kNone: break;
   }
   return "no signal";

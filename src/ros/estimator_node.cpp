@@ -240,7 +240,8 @@ void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& input_nh, const ros:
         motor_temperature_sub_ =
             input_nh.subscribe(params_.motor_temperature_topic, 5, &EstimatorNode::onMotorTemperature, this, hints);
         break;
-      case effects::Signal::kVerticalSpeed: require(kind, "velocity_topic", params_.velocity_topic); break;
+      case effects::Signal::kVerticalSpeed:
+      case effects::Signal::kHorizontalSpeed: require(kind, "velocity_topic", params_.velocity_topic); break;
       case effects::Signal::kNone: break;
     }
     ROS_INFO_STREAM("effect applied: " << effects::kindName(kind) << " (" << effects::describeParameters(kind, fx)
@@ -308,7 +309,9 @@ void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
 void EstimatorNode::onVelocity(const geometry_msgs::TwistStamped::ConstPtr& message) {
   const std::lock_guard<std::mutex> lock(state_);
   ++inputs_.received[static_cast<int>(NodeInput::kVelocity)];
-  logRejection(estimator_->addVerticalSpeed(ros::Time::now().toSec(), message->twist.linear.z));
+  const double now_s = ros::Time::now().toSec();
+  logRejection(estimator_->addVerticalSpeed(now_s, message->twist.linear.z));
+  logRejection(estimator_->addHorizontalSpeed(now_s, std::hypot(message->twist.linear.x, message->twist.linear.y)));
 }
 
 void EstimatorNode::onStaticPressure(const sensor_msgs::FluidPressure::ConstPtr& message) {

@@ -60,6 +60,7 @@ struct DiagnosisConfig {
       {effects::Signal::kHeight, kRangefinderTopic},
       {effects::Signal::kMotorTemperature, kMotorTemperatureTopic},
       {effects::Signal::kVerticalSpeed, kVelocityTopic},
+      {effects::Signal::kHorizontalSpeed, kVelocityTopic},
   };
 
   /// Throws FieldError naming the setting.

@@ -11,4 +11,5 @@
   X(kThrustLoss, thrustLossEffect)                \
   X(kMotorTemperature, motorTemperatureEffect)    \
   X(kClimbInflow, climbInflowEffect)              \
-  X(kEscOffset, escOffsetEffect)
+  X(kEscOffset, escOffsetEffect)                  \
+  X(kTranslationalLift, translationalLiftEffect)

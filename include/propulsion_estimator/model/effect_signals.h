@@ -20,6 +20,7 @@ struct RawSignals {
   double body_z_up = 1.0;             ///< vertical component of the body's z axis (cos tilt); 1 without attitude
   double motor_temperature_c = kNaN;  ///< deg C, the hottest winding
   double vertical_speed_m_s = kNaN;   ///< m/s, up positive
+  double horizontal_speed_m_s = kNaN; ///< m/s, the local velocity's horizontal norm
 };
 
 /// Dry air's density from static pressure and air temperature, rho = p / (R (T + 273.15)), kg/m^3:
@@ -37,8 +38,8 @@ double dischargeCurrentA(double reported_a);
 /// more (the sensor sees no ground); +inf stays +inf (no ground within reach: far). Does not throw.
 double heightAboveGroundM(double range_m, double body_z_up);
 
-/// Every signal the effects read, prepared from `raw` with the functions above; the vertical speed
-/// and the motor temperature as given. Does not throw.
+/// Every signal the effects read, prepared from `raw` with the functions above; the vertical and
+/// horizontal speeds and the motor temperature as given. Does not throw.
 Signals prepareSignals(const RawSignals& raw);
 
 }  // namespace effects

@@ -38,9 +38,9 @@ constexpr std::array<Kind, kKindCount> kAllKinds = {
 static_assert(kKindCount <= 32, "a KindMask holds one bit per effect");
 
 /// What an effect reads besides the ESC pulse width and the sensed battery voltage.
-enum class Signal { kNone, kBatteryCurrent, kAirDensity, kHeight, kMotorTemperature, kVerticalSpeed };
-constexpr int kSignalCount = 6;  ///< number of Signal values, kNone included
-static_assert(static_cast<int>(Signal::kVerticalSpeed) + 1 == kSignalCount, "kSignalCount counts every Signal");
+enum class Signal { kNone, kBatteryCurrent, kAirDensity, kHeight, kMotorTemperature, kVerticalSpeed, kHorizontalSpeed };
+constexpr int kSignalCount = 7;  ///< number of Signal values, kNone included
+static_assert(static_cast<int>(Signal::kHorizontalSpeed) + 1 == kSignalCount, "kSignalCount counts every Signal");
 
 /// The fitted parameter of an effect: its key in model files and reports (with the unit in the
 /// name), the range a real vehicle can show, and the value at which the effect vanishes.
@@ -69,6 +69,7 @@ struct Signals {
   double height_m = kNaN;  ///< of the height reference above the ground
   double motor_temperature_c = kNaN;  ///< deg C
   double vertical_speed_m_s = kNaN;  ///< up positive (REP-103)
+  double horizontal_speed_m_s = kNaN;  ///< over the ground, >= 0 (no wind sensor: the air's is not known)
 
   /// The value of `signal`; NaN for Signal::kNone.
   double value(Signal signal) const;
@@ -92,6 +93,7 @@ struct Inputs {
 ///   thrust_loss        T *= 1 - fraction
 ///   motor_temperature  T *= 1 + per_c * (T_motor - reference_c)
 ///   climb_inflow       T *= 1 - per_m_s * max(vertical speed, 0)   (climbs; a slow descent barely changes thrust)
+///   translational_lift T *= 1 + per_m2_s2 * horizontal speed^2   (below the rotors' hover induced speed)
 struct ModelEffects {
   double bench_air_density_kg_m3 = kNaN;  ///< reference of air_density (the model's bench air)
   double rotor_height_m = 0.0;  ///< rotor discs above the height reference, for ground_effect

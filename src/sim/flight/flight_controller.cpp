@@ -55,7 +55,7 @@ void FlightController::arm() {
   rate_integral_.setZero();
 }
 
-const std::vector<double>& FlightController::update(const HeightSetpoint& setpoint, const NavigationState& state,
+const std::vector<double>& FlightController::update(const FlightSetpoint& setpoint, const NavigationState& state,
                                                     double dt_s) {
   if (!armed_) {
     std::fill(pwm_us_.begin(), pwm_us_.end(), autopilot_.disarmed_pwm_us);
@@ -87,9 +87,9 @@ const std::vector<double>& FlightController::update(const HeightSetpoint& setpoi
   const double collective =
       std::clamp((hover_throttle_ + kVerticalSpeedGain * speed_error) / tilt_cosine, 0.0, takeoff_ramp_);
 
-  // Horizontal: hold the take-off point, tilting towards the wanted acceleration (heading 0).
-  const Eigen::Vector2d acceleration =
-      -kPositionGain * state.position_m.head<2>() - kVelocityGain * state.velocity_m_s.head<2>();
+  // Horizontal: follow the setpoint, tilting towards the wanted acceleration (heading 0).
+  const Eigen::Vector2d acceleration = kPositionGain * (setpoint.position_m - state.position_m.head<2>()) +
+                                       kVelocityGain * (setpoint.velocity_m_s - state.velocity_m_s.head<2>());
   const double pitch = std::clamp(acceleration.x() / kStandardGravity, -kMaxTiltRad, kMaxTiltRad);
   const double roll = std::clamp(-acceleration.y() / kStandardGravity, -kMaxTiltRad, kMaxTiltRad);
   const Eigen::Quaterniond wanted = Eigen::Quaterniond(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY())) *

@@ -42,6 +42,7 @@ const char* segmentKindName(SegmentKind kind) {
     case SegmentKind::kDescend: return "descend";
     case SegmentKind::kLand: return "land";
     case SegmentKind::kPayload: return "payload";
+    case SegmentKind::kMove: return "move";
   }
   return "?";
 }
@@ -135,6 +136,13 @@ void FlightProfile::validate() const {
         height = landed;
         flying = false;
         break;
+      case SegmentKind::kMove:
+        // Up to a fast multicopter's cruise; the controller tilts at most 20 deg to hold it.
+        requireWithin(at + "speed_m_s", s.speed_m_s, 0.2, 12.0, " m/s");
+        if (!s.displacement_m.allFinite() || !(s.displacement_m.norm() >= 0.1) || s.displacement_m.norm() > 2000.0) {
+          throw FieldError(at + "east_m", "a move of " + metres(s.displacement_m.norm()) + " (0.1 to 2000 m)");
+        }
+        break;
     }
     if (s.kind == SegmentKind::kHover && payload > 0.0 && height < needed) {
       throw FieldError(at + "type", "hover at " + metres(height) + " with the " + formatNumber(payload) +
@@ -152,9 +160,10 @@ std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile) {
   double time = 0.0;
   double height = profile.vehicle.landing_gear_height_m;
   double payload = 0.0;
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
   for (std::size_t i = 0; i < profile.segments.size(); ++i) {
     const FlightSegment& s = profile.segments[i];
-    ScheduledSegment scheduled{s, static_cast<int>(i), time, time, height, height, payload};
+    ScheduledSegment scheduled{s, static_cast<int>(i), time, time, height, height, payload, position, position};
     double duration = s.duration_s;
     switch (s.kind) {
       case SegmentKind::kPayload:
@@ -172,11 +181,16 @@ std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile) {
         duration = (height - profile.vehicle.landing_gear_height_m) / s.rate_m_s + kTouchdownS;
         height = profile.vehicle.landing_gear_height_m;
         break;
+      case SegmentKind::kMove:
+        duration = s.displacement_m.norm() / s.speed_m_s;
+        position += s.displacement_m;
+        break;
       case SegmentKind::kWait:
       case SegmentKind::kHover: break;
     }
     scheduled.end_s = time + duration;
     scheduled.end_height_m = height;
+    scheduled.end_position_m = position;
     schedule.push_back(scheduled);
     time = scheduled.end_s;
   }

@@ -68,7 +68,8 @@ VehicleFaults readFaults(const YamlMap& map) {
 
 FlightSegment readSegment(const YamlMap& map) {
   FlightSegment segment;
-  const std::string type = map.choice("type", {"wait", "takeoff", "hover", "climb", "descend", "land", "payload"});
+  const std::string type =
+      map.choice("type", {"wait", "takeoff", "hover", "climb", "descend", "land", "payload", "move"});
   if (type == "wait" || type == "hover") {
     map.allowOnly({"type", "duration_s"});
     segment.kind = type == "wait" ? SegmentKind::kWait : SegmentKind::kHover;
@@ -78,6 +79,11 @@ FlightSegment readSegment(const YamlMap& map) {
     segment.kind = SegmentKind::kPayload;
     segment.payload_mass_kg = map.number("mass_kg");
     segment.duration_s = map.number("duration_s");
+  } else if (type == "move") {
+    map.allowOnly({"type", "east_m", "north_m", "speed_m_s"});
+    segment.kind = SegmentKind::kMove;
+    segment.displacement_m = Eigen::Vector2d(map.number("east_m"), map.number("north_m"));
+    segment.speed_m_s = map.number("speed_m_s");
   } else if (type == "land") {
     map.allowOnly({"type", "rate_m_s"});
     segment.kind = SegmentKind::kLand;

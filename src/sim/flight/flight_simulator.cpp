@@ -49,10 +49,10 @@ class Stream {
   long next_ = 0;
 };
 
-HeightSetpoint setpointAt(const ScheduledSegment& scheduled, double time_s) {
+FlightSetpoint setpointAt(const ScheduledSegment& scheduled, double time_s) {
   const FlightSegment& segment = scheduled.segment;
   const double elapsed = time_s - scheduled.start_s;
-  HeightSetpoint setpoint{scheduled.start_height_m, 0.0, false};
+  FlightSetpoint setpoint{scheduled.start_height_m, 0.0, false, scheduled.start_position_m, Eigen::Vector2d::Zero()};
   switch (segment.kind) {
     case SegmentKind::kTakeoff:
       if (elapsed < kTakeoffSpinUpS) break;
@@ -75,6 +75,13 @@ HeightSetpoint setpointAt(const ScheduledSegment& scheduled, double time_s) {
       setpoint.vertical_speed_m_s = -segment.rate_m_s;
       setpoint.landing = true;
       break;
+    case SegmentKind::kMove: {
+      const Eigen::Vector2d direction = segment.displacement_m.normalized();
+      const double travelled = std::min(segment.displacement_m.norm(), segment.speed_m_s * elapsed);
+      setpoint.position_m = scheduled.start_position_m + travelled * direction;
+      setpoint.velocity_m_s = segment.speed_m_s * direction;
+      break;
+    }
     case SegmentKind::kWait:
     case SegmentKind::kHover:
     case SegmentKind::kPayload: break;
@@ -326,9 +333,11 @@ class FlightRun {
   const PowerTrainState& drivePropulsion(const std::vector<double>& pwm, const NavigationState& navigation) {
     MultirotorDynamics& dynamics = setup_.dynamics;
     for (int k = 0; k < rotors_; ++k) {
-      const double axial_speed = dynamics.rotorVelocity(k).dot(navigation.attitude * vehicle_.rotors[k].thrust_axis);
+      const Eigen::Vector3d velocity = dynamics.rotorVelocity(k);
+      const Eigen::Vector3d axis = navigation.attitude * vehicle_.rotors[k].thrust_axis;
+      const double axial_speed = velocity.dot(axis);
       inflows_[k] = rotorInflow(effects_, train_.chain(k).params().propeller.radiusM(), dynamics.rotorPosition(k).z(),
-                                axial_speed);
+                                axial_speed, (velocity - axial_speed * axis).norm());
       train_.setInflow(k, inflows_[k]);
     }
     // The avionics load the battery beside the ESCs: the ESCs' supply is the battery's Thevenin
@@ -430,10 +439,11 @@ class FlightRun {
     double static_thrust = 0.0, climb_thrust = 0.0;
     for (int k = 0; k < rotors_; ++k) {
       const ChainState& motor = power.motors[k];
-      // The two inflow effects split as thrust(climb, ground) = static x climb x ground at
-      // the rotor's speed: climb without the ground, the ground on top of the climb.
+      // The inflow effects split as thrust(climb, ground) = static x climb x ground at the rotor's
+      // speed: climb (with any edgewise flow) without the ground, the ground on top of the climb.
       const RotorAerodynamics& rotor = train_.chain(k).rotor();
-      const double climb = rotor.load(motor.omega_rad_s, {inflows_[k].axial_speed_m_s, 1.0}).thrust;
+      const double climb =
+          rotor.load(motor.omega_rad_s, {inflows_[k].axial_speed_m_s, 1.0, inflows_[k].edgewise_speed_m_s}).thrust;
       const double with_ground = rotor.load(motor.omega_rad_s, inflows_[k]).thrust;
       const double isolated = train_.chain(k).params().propeller.thrustN(density_, motor.omega_rad_s / kTwoPi);
       static_thrust += isolated;

@@ -27,6 +27,16 @@ double inducedInflow(double mu, double climb, double ground) {
   return kInducedPowerFactor * ground * mu * (-0.5 * x - std::sqrt(0.25 * x * x - 1.0));
 }
 
+// Momentum theory for a disc moving edgewise at e = mu / lambda_h: its induced inflow over the
+// hover value, r with r^4 + e^2 r^2 = 1 (1 at rest, about 1 / e when fast).
+double edgewiseInducedRatio(double e) {
+  const double e2 = e * e;
+  return std::sqrt(0.5 * (std::sqrt(e2 * e2 + 4.0) - e2));
+}
+
+// Leishman's profile power in forward flight, C_P0 = sigma Cd0 / 8 (1 + 4.65 mu^2).
+constexpr double kProfileEdgewiseFactor = 4.65;
+
 }  // namespace
 
 RotorAerodynamics::RotorAerodynamics(const PropellerParams& propeller)
@@ -46,26 +56,33 @@ RotorLoad RotorAerodynamics::load(double omega_rad_s, const RotorInflow& inflow)
   if (inflow.still() || omega_rad_s <= 0.0) return {};
   const double climb = inflow.axial_speed_m_s / (omega_rad_s * radius_m_);
   const double ground = inflow.ground_inflow_ratio;
+  const double advance = inflow.edgewise_speed_m_s / (omega_rad_s * radius_m_);
+  const double theta = theta_ * (1.0 + 1.5 * advance * advance);
+  const double profile_torque = profile_torque_coefficient_ * (1.0 + kProfileEdgewiseFactor * advance * advance);
+  // The induced inflow at ideal hover inflow `mu`, edgewise flow included: it still rises with mu
+  // (mu r(advance / mu) does), so the root below stays unique.
+  const auto induced = [&](double mu) {
+    return mu > 0.0 ? inducedInflow(mu, climb, ground) * edgewiseInducedRatio(advance / mu) : 0.0;
+  };
   RotorLoad load{0.0, 0.0};
-  if (theta_ - climb > 0.0) {
+  if (theta - climb > 0.0) {
     // 2 mu^2 = C_T = k (Theta - lambda_c - lambda_i(mu)): the left side rises with mu, the right
     // falls, and at the upper bound the right side (lambda_i >= 0) is no larger than the left.
     double lo = 0.0;
-    double hi = std::sqrt(0.5 * k_ * (theta_ - climb));
+    double hi = std::sqrt(0.5 * k_ * (theta - climb));
     for (int i = 0; i < 100 && hi - lo > 1e-15 * hi; ++i) {
       const double mu = 0.5 * (lo + hi);
-      const double residual = 2.0 * mu * mu - k_ * (theta_ - climb - inducedInflow(mu, climb, ground));
+      const double residual = 2.0 * mu * mu - k_ * (theta - climb - induced(mu));
       (residual > 0.0 ? hi : lo) = mu;
     }
     const double mu = 0.5 * (lo + hi);
     const double thrust_coefficient = 2.0 * mu * mu;
-    const double inflow_ratio = climb + inducedInflow(mu, climb, ground);
+    const double inflow_ratio = climb + induced(mu);
     load.thrust = thrust_coefficient / hover_thrust_coefficient_;
-    load.torque = std::max(0.0, thrust_coefficient * inflow_ratio + profile_torque_coefficient_) /
-                  hover_torque_coefficient_;
+    load.torque = std::max(0.0, thrust_coefficient * inflow_ratio + profile_torque) / hover_torque_coefficient_;
   } else {
     // The blades meet the air at or beyond zero lift: no thrust, profile torque only.
-    load.torque = profile_torque_coefficient_ / hover_torque_coefficient_;
+    load.torque = profile_torque / hover_torque_coefficient_;
   }
   return load;
 }

@@ -27,6 +27,7 @@ void SimEffects::validate() const {
   // 3 (-14 % per m/s) still leaves the autopilot's 2 m/s climb about two thirds of the thrust.
   requireWithinIfOn(climb_inflow_strength, "climb_inflow.strength", 0.0, 3.0, "");
   requireWithinIfOn(esc_offset_us, "esc_offset.us", -200.0, 200.0, " us");
+  requireWithinIfOn(translational_lift_strength, "translational_lift.strength", 0.0, 2.0, "");
 }
 
 SimEffects SimEffects::onTheBench() const {
@@ -52,6 +53,9 @@ std::string SimEffects::summary() const {
   }
   if (climb_inflow_strength) add("climb_inflow(strength=" + formatNumber(*climb_inflow_strength) + ")");
   if (esc_offset_us) add("esc_offset(us=" + formatNumber(*esc_offset_us) + ")");
+  if (translational_lift_strength) {
+    add("translational_lift(strength=" + formatNumber(*translational_lift_strength) + ")");
+  }
   return text.empty() ? "none" : text;
 }
 
@@ -62,13 +66,16 @@ double groundEffectFactor(double rotor_radius_m, double rotor_height_m, double s
 }
 
 RotorInflow rotorInflow(const SimEffects& effects, double rotor_radius_m, double rotor_height_m,
-                        double axial_speed_m_s) {
+                        double axial_speed_m_s, double edgewise_speed_m_s) {
   RotorInflow inflow;
   if (effects.ground_effect_strength) {
     inflow.ground_inflow_ratio =
         1.0 / groundEffectFactor(rotor_radius_m, rotor_height_m, *effects.ground_effect_strength);
   }
   if (effects.climb_inflow_strength) inflow.axial_speed_m_s = *effects.climb_inflow_strength * axial_speed_m_s;
+  if (effects.translational_lift_strength) {
+    inflow.edgewise_speed_m_s = *effects.translational_lift_strength * edgewise_speed_m_s;
+  }
   return inflow;
 }
 

@@ -21,7 +21,7 @@ double parameter(const YamlMap& root, const char* effect, const char* name) {
 SimEffects parseSimEffectsYaml(const std::string& text, const std::string& source) {
   const YamlMap root = parseYamlDocument(text, source);
   root.allowOnly({"supply_resistance", "air_density", "ground_effect", "thrust_loss", "motor_temperature",
-                  "climb_inflow", "esc_offset"});
+                  "climb_inflow", "esc_offset", "translational_lift"});
   SimEffects effects;
   // Keys, not has(): an effect written without its parameter is refused, not silently off.
   for (const std::string& effect : root.keys()) {
@@ -34,6 +34,9 @@ SimEffects parseSimEffectsYaml(const std::string& text, const std::string& sourc
     }
     if (effect == "climb_inflow") effects.climb_inflow_strength = parameter(root, "climb_inflow", "strength");
     if (effect == "esc_offset") effects.esc_offset_us = parameter(root, "esc_offset", "us");
+    if (effect == "translational_lift") {
+      effects.translational_lift_strength = parameter(root, "translational_lift", "strength");
+    }
   }
   validateAt(root, effects);
   return effects;

@@ -234,7 +234,8 @@ TEST(ModelCheckFlight, TheMassFromRpmHoldsWhereThePwmViewIsOff) {
       pe::sim::SimEffects effects;
       effects.esc_offset_us = offset_us;
       if (ohm > 0.0) effects.supply_resistance_ohm = ohm;
-      const auto sink = fly(quad, hoverProfile(25.0, 0, 1.0, seed % 2 == 0), ++seed, effects, {}, rpm_thrust);
+      ++seed;
+      const auto sink = fly(quad, hoverProfile(25.0, 0, 1.0, seed % 2 == 0), seed, effects, {}, rpm_thrust);
       const double truth = sink->true_mass_kg;
       const double rpm_error = sink->view->massKg() / truth - 1.0;
       const double pwm_error = sink->view->pwmMassKg() / truth - 1.0;

@@ -438,9 +438,9 @@ TEST(MotorTemperature, HotMotorsHoverOnMorePower) {
 TEST(ClimbInflow, RotorsLoseThrustInAClimbAtFixedSpeedAndTheMotorsMakeUpForIt) {
   pe::sim::SimEffects effects;
   effects.climb_inflow_strength = 0.5;
-  EXPECT_DOUBLE_EQ(pe::sim::rotorInflow(effects, 0.12, 5.0, 2.0).axial_speed_m_s, 1.0);
-  EXPECT_DOUBLE_EQ(pe::sim::rotorInflow(effects, 0.12, 5.0, -1.0).axial_speed_m_s, -0.5);
-  EXPECT_DOUBLE_EQ(pe::sim::rotorInflow(effects, 0.12, 5.0, 2.0).ground_inflow_ratio, 1.0);
+  EXPECT_DOUBLE_EQ(pe::sim::rotorInflow(effects, 0.12, 5.0, 2.0, 0.0).axial_speed_m_s, 1.0);
+  EXPECT_DOUBLE_EQ(pe::sim::rotorInflow(effects, 0.12, 5.0, -1.0, 0.0).axial_speed_m_s, -0.5);
+  EXPECT_DOUBLE_EQ(pe::sim::rotorInflow(effects, 0.12, 5.0, 2.0, 0.0).ground_inflow_ratio, 1.0);
   effects.climb_inflow_strength = 1.0;
   const Flight flight = fly(effects);
   const Flight without = fly({});
@@ -492,6 +492,70 @@ TEST(ClimbInflow, RotorsLoseThrustInAClimbAtFixedSpeedAndTheMotorsMakeUpForIt) {
             1.03 * meanCurrent(without, climb.start_s + 1.0, climb.end_s));
 }
 
+namespace {
+
+// A flight with a straight leg: take-off, hover, 40 m east at 4 m/s, hover, back, land.
+Flight flyMoving(const pe::sim::SimEffects& effects) {
+  const std::string text =
+      "autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, rc_out_rate_hz: 50}\n"
+      "vehicle: {urdf: " + repoPath("config/f450_quad.urdf") +
+      ", centre_of_mass_offset_m: [0, 0, 0], landing_gear: {height_m: 0.12, half_width_m: 0.12}, drag_area_m2: 0.04, "
+      "battery_initial_soc: 0.95}\n"
+      "payload_cable: {length_m: 0.15, attach_point_m: [0, 0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: 10}\n"
+      "manifest: {settle_s: 2}\n"
+      "segments:\n"
+      "  - {type: wait, duration_s: 2}\n"
+      "  - {type: takeoff, height_m: 3.0, rate_m_s: 1.5}\n"
+      "  - {type: hover, duration_s: 5}\n"
+      "  - {type: move, east_m: 40, north_m: 0, speed_m_s: 4}\n"
+      "  - {type: hover, duration_s: 5}\n"
+      "  - {type: move, east_m: -40, north_m: 0, speed_m_s: 4}\n"
+      "  - {type: land, rate_m_s: 0.8}\n";
+  Flight flight;
+  flight.profile = pe::sim::parseFlightProfileYaml(text, "moving.yaml");
+  const pe::Vehicle vehicle = pe::loadVehicleUrdf(flight.profile.vehicle.urdf_path);
+  flight.result = pe::sim::simulateFlight(thesisParams(), effects, flight.profile, vehicle, 3, &flight.sink);
+  return flight;
+}
+
+}  // namespace
+
+TEST(TranslationalLift, MovingRotorsLiftMoreAtTheSameSpeedAndTheMotorsSlowDown) {
+  pe::sim::SimEffects effects;
+  effects.translational_lift_strength = 1.0;
+  const Flight lifted = flyMoving(effects);
+  const Flight plain = flyMoving({});
+  const std::vector<pe::sim::ScheduledSegment> schedule = pe::sim::scheduleFlight(lifted.profile);
+  const pe::sim::ScheduledSegment& leg = schedule.at(3);
+  ASSERT_EQ(leg.segment.kind, pe::sim::SegmentKind::kMove);
+  // The middle of the first leg, at steady speed: the same speed, less PWM with the lift.
+  const auto mean_pwm = [&](const Flight& flight) {
+    double sum = 0.0;
+    int count = 0;
+    for (const pe::sim::TruthSample& truth : flight.sink.truths) {
+      if (truth.time_s < leg.start_s + 3.0 || truth.time_s > leg.end_s - 1.0) continue;
+      for (const pe::sim::MotorTruth& motor : truth.motors) sum += motor.pwm_us / truth.motors.size();
+      ++count;
+    }
+    return sum / count;
+  };
+  double speed = 0.0;
+  int readings = 0;
+  for (const pe::sim::VelocitySample& v : lifted.sink.velocities) {
+    if (v.time_s < leg.start_s + 3.0 || v.time_s > leg.end_s - 1.0) continue;
+    speed += v.linear_m_s.head<2>().norm();
+    ++readings;
+  }
+  EXPECT_NEAR(speed / readings, 4.0, 0.3);
+  // The leg ends where the script says, and the flight lands back at its start.
+  for (const pe::sim::PoseSample& pose : lifted.sink.poses) {
+    if (std::abs(pose.time_s - (leg.end_s + 4.0)) < 0.05) EXPECT_NEAR(pose.position_m.x(), 40.0, 1.0);
+  }
+  EXPECT_LT(lifted.sink.poses.back().position_m.head<2>().norm(), 1.0);
+  EXPECT_LT(mean_pwm(lifted), mean_pwm(plain) - 5.0) << mean_pwm(lifted) << " against " << mean_pwm(plain);
+}
+
+
 TEST(EscOffset, ThrustAtXWithOffsetEqualsThrustAtXMinusOffsetWithout) {
   const pe::sim::SimParams params = thesisParams();
   pe::sim::SimEffects effects;
@@ -522,5 +586,5 @@ TEST(SimEffects, AllOffByDefaultAndSummarised) {
   effects.ground_effect_strength = 1.0;
   effects.thrust_loss_fraction = 0.05;
   EXPECT_EQ(effects.summary(), "ground_effect(strength=1) thrust_loss(fraction=0.05)");
-  EXPECT_TRUE(pe::sim::rotorInflow({}, 0.12, 0.2, 3.0).still());
+  EXPECT_TRUE(pe::sim::rotorInflow({}, 0.12, 0.2, 3.0, 0.0).still());
 }

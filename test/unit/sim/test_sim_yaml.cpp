@@ -150,7 +150,7 @@ TEST(SimEffectsYaml, ReadsEveryEffectWithItsParameter) {
 TEST(SimEffectsYaml, RefusesUnknownEffectsAndBadParameters) {
   EXPECT_EQ(effectsRefusal("thrust_loss: {fraction: 0.05}\nwind: {speed_m_s: 3}\n"),
             "e.yaml:2: wind: unknown key (allowed: supply_resistance, air_density, ground_effect, thrust_loss, "
-            "motor_temperature, climb_inflow, esc_offset)");
+            "motor_temperature, climb_inflow, esc_offset, translational_lift)");
   EXPECT_EQ(effectsRefusal("ground_effect: {height_m: 1}\n"),
             "e.yaml:1: ground_effect.height_m: unknown key (allowed: strength)");
   EXPECT_EQ(effectsRefusal("ground_effect:\n"), "e.yaml:1: ground_effect: missing key");
@@ -256,6 +256,14 @@ TEST(FlightProfileYaml, RefusesImpossibleSegments) {
                            "0.3, duration_s: 2}\n  - {type: takeoff, height_m: 1.0,"),
             "config/sim/f.yaml:22: segments[6].type: hover at 1 m with the 0.3 kg payload on a 1 m cable: the "
             "payload would rest on the ground (hover at 1.24 m or higher)");
+  EXPECT_EQ(profileRefusal("  - {type: wait, duration_s: 2}", "  - {type: move, east_m: 5, north_m: 0, speed_m_s: 2}"),
+            "config/sim/f.yaml:16: segments[0].type: move on the ground (take off first)");
+  EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
+                           "  - {type: move, east_m: 5, north_m: 0, speed_m_s: 20}\n  - {type: land"),
+            "config/sim/f.yaml:18: segments[2].speed_m_s: 20 is outside 0.2..12 m/s");
+  EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
+                           "  - {type: move, east_m: 0, north_m: 0, speed_m_s: 2}\n  - {type: land"),
+            "config/sim/f.yaml:18: segments[2].east_m: a move of 0 m (0.1 to 2000 m)");
   const std::string ends_flying = kProfile.substr(0, kProfile.rfind("  - {type: land"));
   EXPECT_EQ(refusal([&] { pe::sim::parseFlightProfileYaml(ends_flying, "config/sim/f.yaml"); }),
             "config/sim/f.yaml:16: segments: the profile ends in flight (add a land segment)");
@@ -272,7 +280,7 @@ TEST(FlightProfileYaml, RefusesBadValuesAndUnknownKeys) {
   EXPECT_EQ(
       profileRefusal("{type: wait, duration_s: 2}", "{type: loiter, duration_s: 2}"),
       "config/sim/f.yaml:16: segments[0].type: 'loiter' is not one of wait, takeoff, hover, climb, descend, land, "
-      "payload");
+      "payload, move");
   EXPECT_EQ(profileRefusal("{type: wait, duration_s: 2}", "{type: wait, duration_s: 2, height_m: 3}"),
             "config/sim/f.yaml:16: segments[0].height_m: unknown key (allowed: type, duration_s)");
   EXPECT_EQ(profileRefusal("{type: hover, duration_s: 10}", "{type: hover, duration_s: -10}"),

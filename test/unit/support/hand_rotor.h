@@ -39,5 +39,24 @@ struct HandRotor {
     const double lambda = climb + induced(ct, climb, ground);
     return {ct / ct0, (ct * lambda + profile) / cq0};
   }
+
+  // The same out of ground effect with no axial speed but an edgewise speed: Glauert's momentum
+  // theory for a disc moving edgewise at mu, lambda' sqrt(mu^2 + lambda'^2) = C_T / 2 (lambda' by
+  // Newton's method), times the induced power factor; blade element theory with Theta (1 + 3/2
+  // mu^2) and profile torque C_Q0 (1 + 4.65 mu^2).
+  propulsion_estimator::sim::RotorLoad loadEdgewise(double omega, double edgewise_m_s) const {
+    const double mu = edgewise_m_s / (omega * radius);
+    const auto glauert = [mu](double ct) {
+      double l = std::sqrt(ct / 2.0);
+      for (int i = 0; i < 50; ++i) {
+        const double root = std::sqrt(mu * mu + l * l);
+        l -= (l * root - ct / 2.0) / (root + l * l / root);
+      }
+      return 1.15 * l;
+    };
+    double ct = ct0;
+    for (int i = 0; i < 400; ++i) ct = 0.5 * ct + 0.5 * k * (theta * (1.0 + 1.5 * mu * mu) - glauert(ct));
+    return {ct / ct0, (ct * glauert(ct) + profile * (1.0 + 4.65 * mu * mu)) / cq0};
+  }
 };
 

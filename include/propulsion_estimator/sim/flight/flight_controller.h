@@ -20,17 +20,20 @@ struct NavigationState {
 };
 
 /// What the script asks of the controller at one instant: height of base_link in m, feed-forward
-/// vertical speed in m/s, and whether it is landing.
-struct HeightSetpoint {
+/// vertical speed in m/s, whether it is landing, and the horizontal position with its feed-forward
+/// velocity.
+struct FlightSetpoint {
   double height_m = 0.0;  ///< m, base_link above the ground
   double vertical_speed_m_s = 0.0;  ///< feed-forward
   bool landing = false;             ///< the land detector runs only while landing
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();  ///< east, north, m (ENU)
+  Eigen::Vector2d velocity_m_s = Eigen::Vector2d::Zero();  ///< east, north feed-forward, m/s
 };
 
 /// A cascaded PX4-style controller that, like a real one, knows the geometry but nothing of the
 /// propulsion physics: height -> vertical speed -> collective throttle, whose hover value an
-/// integrator learns (starting from PX4's MPC_THR_HOVER default of 0.5); horizontal position ->
-/// tilt; attitude -> body rates -> roll, pitch, yaw commands with integrators that take up a
+/// integrator learns (starting from PX4's MPC_THR_HOVER default of 0.5); horizontal position and
+/// velocity -> tilt; attitude -> body rates -> roll, pitch, yaw commands with integrators that take up a
 /// centre-of-gravity offset; a geometric mixer; throttle to PWM between the autopilot's end
 /// points. Armed on the ground the motors idle until a climb is commanded, then the collective
 /// ramps up (PX4's take-off ramp). A land detector (low, still, for a second) disarms. The
@@ -43,7 +46,7 @@ class FlightController {
 
   void arm();  ///< arms: the motors idle until a climb is commanded
   /// Pulse widths for the next control period.
-  const std::vector<double>& update(const HeightSetpoint& setpoint, const NavigationState& state, double dt_s);
+  const std::vector<double>& update(const FlightSetpoint& setpoint, const NavigationState& state, double dt_s);
 
   /// Whether armed (the land detector disarms).
   bool armed() const { return armed_; }

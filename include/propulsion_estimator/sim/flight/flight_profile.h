@@ -3,13 +3,15 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "propulsion_estimator/sim/flight/airframe.h"
 
 namespace propulsion_estimator {
 namespace sim {
 
 /// What a segment of the flight script does (the profile's `type`).
-enum class SegmentKind { kWait, kTakeoff, kHover, kClimb, kDescend, kLand, kPayload };
+enum class SegmentKind { kWait, kTakeoff, kHover, kClimb, kDescend, kLand, kPayload, kMove };
 /// "wait", "takeoff", ...: as the profile spells the segment's type.
 const char* segmentKindName(SegmentKind kind);
 
@@ -20,6 +22,8 @@ struct FlightSegment {
   double height_m = 0.0;         ///< takeoff, climb, descend: target height
   double rate_m_s = 0.0;         ///< takeoff, climb, descend, land: vertical speed
   double payload_mass_kg = 0.0;  ///< payload: the new payload, 0.01..5 kg (0 = none)
+  Eigen::Vector2d displacement_m = Eigen::Vector2d::Zero();  ///< move: east, north, m (ENU)
+  double speed_m_s = 0.0;        ///< move: horizontal speed, m/s
 };
 
 /// What the manifest of a flight holds (see manifestSpans): its hovers, or every stretch in the
@@ -57,6 +61,8 @@ struct ScheduledSegment {
   double start_height_m = 0.0;  ///< m, the height setpoint at the start
   double end_height_m = 0.0;  ///< m, the height setpoint at the end
   double payload_mass_kg = 0.0;  ///< attached during the segment
+  Eigen::Vector2d start_position_m = Eigen::Vector2d::Zero();  ///< east, north setpoint at the start, m
+  Eigen::Vector2d end_position_m = Eigen::Vector2d::Zero();    ///< east, north setpoint at the end, m
 };
 
 /// Spin-up on the ground before a take-off climbs, and time a landing gets after touching down to
@@ -64,8 +70,9 @@ struct ScheduledSegment {
 constexpr double kTakeoffSpinUpS = 2.0;
 constexpr double kTouchdownS = 4.0;  ///< s a landing gets after its descent to touch down and disarm
 
-/// The profile's segments in time, starting at 0 on the ground: climbs last height / rate (plus
-/// the spin-up for a take-off), landings their descent plus kTouchdownS. Validates first
+/// The profile's segments in time, starting at 0 on the ground at the origin: climbs last height /
+/// rate (plus the spin-up for a take-off), moves distance / speed, landings their descent plus
+/// kTouchdownS. Validates first
 /// (FieldError, see FlightProfile::validate).
 std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile);
 

@@ -52,8 +52,15 @@ namespace sim {
 ///     z = 2R, -0.3 % at 1 m/s of climb). The induced torque falls in ground effect at the same
 ///     THRUST (P_i ~ G): the flight controller, holding the thrust, slows the rotor and draws less
 ///     current.
-/// Left out: edgewise flow (forward flight, translational lift), the blades' drag rising with
-/// their angle of attack, windmilling (the torque is held at 0 or above, the thrust too).
+/// Edgewise flow (forward flight), mu = edgewise speed / (Omega R), blade element theory with
+/// uniform inflow and momentum theory for a disc moving edgewise (Leishman ch. 2.14, 3.3, 5):
+///   C_T = k (Theta (1 + 3/2 mu^2) - lambda)   the advancing blade meets faster air
+///   lambda_i x r(e),  r^4 + e^2 r^2 = 1, e = mu / lambda_h   the disc meets more air, needs less
+///                                                            induced inflow (translational lift)
+///   C_Q0 x (1 + 4.65 mu^2)                     the profile torque rises with the edgewise speed
+/// The axial part of the flow through a disc tilted into its motion enters as lambda_c.
+/// Left out: the blades' drag rising with their angle of attack, the inflow's fore-aft gradient,
+/// windmilling (the torque is held at 0 or above, the thrust too).
 
 /// Lift slope a of the blade sections, per radian (2 pi x 0.91, the value Leishman uses for
 /// rotor blades; thin cambered sections at propeller Reynolds numbers are near it).
@@ -63,9 +70,10 @@ constexpr double kBladeLiftSlopePerRad = 5.73;
 struct RotorInflow {
   double axial_speed_m_s = 0.0;      ///< the disc's speed along its thrust axis, climb positive
   double ground_inflow_ratio = 1.0;  ///< G: induced inflow in ground effect over that out of it, same thrust
+  double edgewise_speed_m_s = 0.0;   ///< the disc's speed across its thrust axis, >= 0
 
   /// Whether the disc sees still air out of ground effect.
-  bool still() const { return axial_speed_m_s == 0.0 && ground_inflow_ratio == 1.0; }
+  bool still() const { return axial_speed_m_s == 0.0 && ground_inflow_ratio == 1.0 && edgewise_speed_m_s == 0.0; }
 };
 
 /// Factors on the propeller's static thrust and torque (PropellerParams::thrustN, torqueNm) at the

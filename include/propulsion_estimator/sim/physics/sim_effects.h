@@ -19,6 +19,8 @@ namespace sim {
 ///                                     temperature (otherwise they stay at the reference temperature)
 ///   climb_inflow       flight         the axial inflow of a climb or descent through the rotors
 ///   esc_offset         flight         the flying ESCs' end points differ from the bench ESC's
+///   translational_lift flight         the edgewise flow through the rotors of a vehicle moving
+///                                     horizontally (more air through the disc: less induced inflow)
 struct SimEffects {
   std::optional<double> supply_resistance_ohm;  ///< ohm between the battery's terminals and the ESCs
   std::optional<AirConditions> air;  ///< the flight's air, instead of the bench's
@@ -27,6 +29,7 @@ struct SimEffects {
   std::optional<double> motor_thermal_resistance_c_per_w;  ///< the motors' cooling during the run
   std::optional<double> climb_inflow_strength;             ///< 1 = the rotor's axial speed, all of it
   std::optional<double> esc_offset_us;  ///< us, both end points of the flying ESCs moved by this
+  std::optional<double> translational_lift_strength;  ///< 1 = the rotor's edgewise speed, all of it
 
   /// Throws FieldError "<effect>.<parameter>" for a value outside its physical range.
   void validate() const;
@@ -44,14 +47,15 @@ struct SimEffects {
 /// induced inflows at equal thrust (the image rotor's upwash), which is what the rotor model takes.
 double groundEffectFactor(double rotor_radius_m, double rotor_height_m, double strength);
 
-/// What the ground_effect and climb_inflow effects make a rotor's disc see, for a rotor of
-/// `rotor_radius_m` whose hub is `rotor_height_m` above the ground and moves at `axial_speed_m_s`
-/// along its thrust axis (climb positive): ground_inflow_ratio = 1 / groundEffectFactor and
-/// axial_speed = strength x axial speed (still air where an effect is off). RotorAerodynamics
+/// What the ground_effect, climb_inflow and translational_lift effects make a rotor's disc see, for
+/// a rotor of `rotor_radius_m` whose hub is `rotor_height_m` above the ground and moves at
+/// `axial_speed_m_s` along its thrust axis (climb positive) and `edgewise_speed_m_s` across it:
+/// ground_inflow_ratio = 1 / groundEffectFactor, axial_speed = strength x axial speed and
+/// edgewise_speed = strength x edgewise speed (still air where an effect is off). RotorAerodynamics
 /// turns it into thrust and torque at the rotor's speed. thrust_loss acts on the airframe, not on
 /// the rotor: the flight applies it to the thrust alone.
 RotorInflow rotorInflow(const SimEffects& effects, double rotor_radius_m, double rotor_height_m,
-                        double axial_speed_m_s);
+                        double axial_speed_m_s, double edgewise_speed_m_s);
 
 }  // namespace sim
 }  // namespace propulsion_estimator
