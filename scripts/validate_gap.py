@@ -58,6 +58,7 @@ SIMULATED = {
     "motor_temperature": lambda rng: {"thermal_resistance_c_per_w": round(rng.uniform(4.0, 10.0), 2)},
     "climb_inflow": lambda rng: {"strength": round(rng.uniform(0.8, 1.6), 3)},
     "esc_offset": lambda rng: {"us": round(rng.choice([-1, 1]) * rng.uniform(15, 40), 1)},
+    "translational_lift": lambda rng: {"strength": round(rng.uniform(0.7, 1.3), 3)},
 }
 
 
@@ -124,9 +125,11 @@ def effects_file(effects, rng):
     return out
 
 
-def flight_profile(rng, urdf, fault, vehicle=None):
-    """A flight of two lifts: take-off, hover, climb, hover, descent to near the ground, hover, land;
-    then a new payload and again. Weighed spans cover the whole airborne time."""
+def flight_profile(rng, urdf, fault, vehicle=None, legs=None):
+    """A flight of two lifts: take-off, hover, a straight leg out and back, climb, hover, descent to
+    near the ground, hover, land; then a new payload and again. Weighed spans cover the whole
+    airborne time. The legs (2-5 m/s, 12-30 m, any heading) are drawn from `legs`, a stream of
+    their own, so that the rest of a flight is drawn as before they were flown."""
     segments = [{"type": "wait", "duration_s": 3}]
     payloads = [0.0, round(rng.uniform(0.08, 0.22), 3)]
     if rng.random() < 0.5:
@@ -143,6 +146,16 @@ def flight_profile(rng, urdf, fault, vehicle=None):
         segments += [
             {"type": "takeoff", "height_m": low, "rate_m_s": 1.0},
             {"type": "hover", "duration_s": round(rng.uniform(15, 25))},
+        ]
+        if legs:
+            heading = legs.uniform(0, 2 * math.pi)
+            distance = legs.uniform(12, 30)
+            east, north = round(distance * math.cos(heading), 2), round(distance * math.sin(heading), 2)
+            speed = round(legs.uniform(2, 5), 2)
+            segments += [{"type": "move", "east_m": east, "north_m": north, "speed_m_s": speed},
+                         {"type": "hover", "duration_s": 4},
+                         {"type": "move", "east_m": -east, "north_m": -north, "speed_m_s": speed}]
+        segments += [
             {"type": "climb", "height_m": high, "rate_m_s": round(rng.uniform(0.8, 1.5), 2)},
             {"type": "hover", "duration_s": round(rng.uniform(10, 20))},
             {"type": "descend", "height_m": near, "rate_m_s": round(rng.uniform(0.8, 1.5), 2)},
@@ -235,7 +248,9 @@ def run_case_once(case, args, attempt):
     for f in range(case["flights"]):
         stem = os.path.join(folder, "flight_%d" % (f + 1))
         with open(stem + ".profile.yaml", "w") as handle:
-            yaml.safe_dump(flight_profile(rng, urdf, case.get("fault"), vehicle), handle, default_flow_style=None)
+            legs = random.Random("legs-%d-%d" % (case["seed"], f))
+            yaml.safe_dump(flight_profile(rng, urdf, case.get("fault"), vehicle, legs), handle,
+                           default_flow_style=None)
         command = [tool("simulate"), "flight", "--params", params, "--profile", stem + ".profile.yaml",
                    "--seed", str(case["seed"] * 100 + f), "--bag", stem + ".bag", "--manifest", stem + ".manifest.yaml"]
         if case["effects"]:
@@ -334,7 +349,7 @@ def make_cases(count, seed, quick, effects):
         label, names = kinds[index % len(kinds)]
         if names is None:
             names = sorted(rng.sample(["supply_resistance", "thrust_loss", "ground_effect", "esc_offset",
-                                       "climb_inflow"], 2))
+                                       "climb_inflow", "translational_lift"], 2))
         case = {"name": "case_%02d_%s" % (index + 1, label), "label": label, "seed": rng.randrange(1, 10**6),
                 "flights": 5, "effects": {name: draw_effect(name, rng) for name in names}}
         if label == "weak_propeller":
@@ -347,8 +362,8 @@ def make_cases(count, seed, quick, effects):
                 ["chipped", "worn"])
         if label == "cg_offset":
             angle = rng.uniform(0, 6.283)
-            case["fault"] = {"cg_offset_m": [round(0.01 * __import__("math").cos(angle), 4),
-                                             round(0.01 * __import__("math").sin(angle), 4), 0.0]}
+            case["fault"] = {"cg_offset_m": [round(0.01 * math.cos(angle), 4),
+                                             round(0.01 * math.sin(angle), 4), 0.0]}
         cases.append(case)
     return cases
 

@@ -31,6 +31,13 @@ using effects::Kind;
 // motors: the current view's nuisance is sought within 0..this.
 constexpr double kMaxAvionicsCurrentA = 3.0;
 
+// What one round of the selection chose: its leader and, when the flights cannot tell it from
+// other candidates, the group.
+struct RoundOutcome {
+  Kind leader;
+  std::optional<Ambiguity> ambiguity;
+};
+
 // Held-out predictions of one set of effects: each block's relative residual in both views,
 // from the fit on the folds that left its flight (or segment) out.
 struct HeldOutPrediction {
@@ -91,6 +98,11 @@ class Diagnoser {
   Breakdown phase(const BlockView& pwm_view) const;
   void balanceMotors();
   HeldOutPrediction selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
+  // working_, grouped_ and the diagnosis' selected and ambiguous lists from the rounds' outcomes.
+  void adopt(const std::vector<RoundOutcome>& rounds);
+  // Each round chosen again with the other rounds' effects in, until nothing changes; the held-out
+  // prediction of what remains.
+  HeldOutPrediction revisitRounds(std::vector<RoundOutcome>* rounds, std::map<Kind, EffectResult>* results);
   // One round of the forward selection: every candidate tried on top of `selected`; the best one
   // that passes every test, or nullopt.
   std::optional<Kind> selectionRound(int round, const std::vector<Kind>& selected, const HeldOutPrediction& current,

@@ -9,6 +9,12 @@
 namespace propulsion_estimator {
 namespace gap {
 namespace detail {
+namespace {
+
+// Passes of revisitRounds at most: each pass stops at the first round that changed.
+constexpr int kMaxRevisitPasses = 6;
+
+}  // namespace
 
 // The rotors' lag: given, or identified from the flights when it explains their transients.
 double Diagnoser::rotorLag() {
@@ -425,8 +431,8 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
   return "not taken: " + joint;
 }
 
-// 3. Which effect: greedy forward selection on held-out flights. Returns the held-out prediction
-// with the effects selected.
+// 3. Which effect: forward selection on held-out flights, each round then revisited with the
+// later rounds' effects in. Returns the held-out prediction with the effects selected.
 HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results) {
   for (Kind kind : effects::kAllKinds) {
     EffectResult result;
@@ -436,7 +442,6 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
     (*results)[kind] = result;
   }
   bool can_hold_out = units_ >= 2;
-  HeldOutPrediction current = before;
   if (!can_hold_out) {
     diagnosis_.problems.push_back("one weighed segment only: nothing can be held out, so no effect is selected");
   }
@@ -447,27 +452,84 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
       can_hold_out = false;
     }
   }
+  std::vector<RoundOutcome> rounds;
+  HeldOutPrediction current = before;
   for (int round = 0; can_hold_out && round < config_.max_effects; ++round) {
     std::map<Kind, HeldOutPrediction> admissible;
     const std::optional<Kind> best = selectionRound(round, working_, current, results, &admissible);
     if (!best) break;
-    working_.push_back(*best);
-    EffectResult& taken = (*results)[*best];
-    const std::optional<Ambiguity> ambiguity = ambiguityOf(*best, admissible);
-    if (ambiguity) {
-      diagnosis_.ambiguous.push_back(*ambiguity);
-      grouped_.insert(ambiguity->kinds.begin(), ambiguity->kinds.end());
-    } else {
-      diagnosis_.selected.push_back(*best);
-      taken.reason = "selected in round " + std::to_string(round + 1) + ": joint held-out error " +
-                     formatPrintf("%.2f", taken.joint_rmse_pct) + " % against " +
-                     formatPrintf("%.2f", taken.base_joint_rmse_pct) + " % (p = " + formatPrintf("%.3f", taken.p_value) +
-                     ")";
-    }
+    rounds.push_back({*best, ambiguityOf(*best, admissible)});
+    adopt(rounds);
     current = admissible.at(*best);
+  }
+  if (rounds.size() >= 2) current = revisitRounds(&rounds, results);
+  for (std::size_t r = 0; r < rounds.size(); ++r) {
+    if (rounds[r].ambiguity) continue;
+    EffectResult& taken = (*results)[rounds[r].leader];
+    taken.reason = "selected in round " + std::to_string(r + 1) + ": joint held-out error " +
+                   formatPrintf("%.2f", taken.joint_rmse_pct) + " % against " +
+                   formatPrintf("%.2f", taken.base_joint_rmse_pct) + " % (p = " + formatPrintf("%.3f", taken.p_value) +
+                   ")";
   }
   finishReasons(results);
   return current;
+}
+
+// The effects the rounds chose, as the correction and the report take them.
+void Diagnoser::adopt(const std::vector<RoundOutcome>& rounds) {
+  working_.clear();
+  grouped_.clear();
+  diagnosis_.selected.clear();
+  diagnosis_.ambiguous.clear();
+  for (const RoundOutcome& outcome : rounds) {
+    working_.push_back(outcome.leader);
+    if (outcome.ambiguity) {
+      diagnosis_.ambiguous.push_back(*outcome.ambiguity);
+      grouped_.insert(outcome.ambiguity->kinds.begin(), outcome.ambiguity->kinds.end());
+    } else {
+      diagnosis_.selected.push_back(outcome.leader);
+    }
+  }
+}
+
+// A forward round chooses given only the rounds before it: when two effects act together, the
+// first round may take (or find ambiguous) a third that soaks up part of both, and the second
+// round's effect then explains what the first could not. Each round is chosen again with every
+// other round's effect in, until a pass over all of them changes nothing (at most
+// kMaxRevisitPasses passes, against cycles); a round whose candidates no longer pass is dropped. The trace keeps these rounds, their verdicts marked "revisited".
+HeldOutPrediction Diagnoser::revisitRounds(std::vector<RoundOutcome>* rounds, std::map<Kind, EffectResult>* results) {
+  for (int pass = 0; pass < kMaxRevisitPasses; ++pass) {
+    bool changed = false;
+    for (std::size_t r = 0; r < rounds->size(); ++r) {
+      std::vector<RoundOutcome> others = *rounds;
+      others.erase(others.begin() + static_cast<std::ptrdiff_t>(r));
+      adopt(others);
+      std::map<Kind, HeldOutPrediction> admissible;
+      const std::size_t first_step = diagnosis_.trace.size();
+      const std::optional<Kind> best =
+          selectionRound(static_cast<int>(r), working_, predictHeldOut(working_), results, &admissible);
+      for (std::size_t step = first_step; step < diagnosis_.trace.size(); ++step) {
+        diagnosis_.trace[step].verdict = "revisited with the other rounds' effects in: " + diagnosis_.trace[step].verdict;
+      }
+      const RoundOutcome& was = (*rounds)[r];
+      if (!best) {
+        rounds->erase(rounds->begin() + static_cast<std::ptrdiff_t>(r));
+        changed = true;
+        break;
+      }
+      RoundOutcome now{*best, ambiguityOf(*best, admissible)};
+      const bool same = now.leader == was.leader && now.ambiguity.has_value() == was.ambiguity.has_value() &&
+                        (!now.ambiguity || now.ambiguity->kinds == was.ambiguity->kinds);
+      (*rounds)[r] = now;
+      if (!same) {
+        changed = true;
+        break;
+      }
+    }
+    adopt(*rounds);
+    if (!changed) break;
+  }
+  return predictHeldOut(working_);
 }
 
 // Every candidate's line of the report, the selected ones with their parameters fitted together
