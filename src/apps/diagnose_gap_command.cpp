@@ -138,6 +138,7 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
       {Signal::kMotorTemperature, source("motor_temperature", kMotorTemperatureTopic)},
       {Signal::kVerticalSpeed, source("velocity", kVelocityTopic)},
       {Signal::kHorizontalSpeed, source("velocity", kVelocityTopic)},
+      {Signal::kAxialSpeed, source("velocity", kVelocityTopic) + " and " + source("imu", kImuTopic)},
   };
   return config;
 }

@@ -100,7 +100,7 @@ class StreamBuilder {
       case Signal::kVelocity:
         ros::serialization::deserialize(stream, velocity_);
         streams_->vertical_speed_m_s.push_back({time_s, velocity_.twist.linear.z});
-        streams_->horizontal_speed_m_s.push_back({time_s, std::hypot(velocity_.twist.linear.x, velocity_.twist.linear.y)});
+        streams_->horizontal_velocity.push_back({time_s, velocity_.twist.linear.x, velocity_.twist.linear.y});
         return true;
       case Signal::kStaticPressure:
         ros::serialization::deserialize(stream, pressure_);
@@ -165,7 +165,7 @@ void reserve(const rosbag::Bag& bag, const Source& source, FlightStreams* stream
     case Signal::kImu: return reserveFor(bag, topic, &streams->imu);
     case Signal::kPose: return reserveFor(bag, topic, &streams->altitude_m);
     case Signal::kVelocity:
-      reserveFor(bag, topic, &streams->horizontal_speed_m_s);
+      reserveFor(bag, topic, &streams->horizontal_velocity);
       return reserveFor(bag, topic, &streams->vertical_speed_m_s);
     case Signal::kStaticPressure: return reserveFor(bag, topic, &streams->static_pressure_pa);
     case Signal::kAirTemperature: return reserveFor(bag, topic, &streams->air_temperature_c);

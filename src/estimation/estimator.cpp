@@ -198,12 +198,12 @@ Rejection Estimator::addVerticalSpeed(double receipt_s, double vertical_speed_m_
   return Rejection::kNone;
 }
 
-Rejection Estimator::addHorizontalSpeed(double receipt_s, double horizontal_speed_m_s) {
+Rejection Estimator::addHorizontalVelocity(double receipt_s, double east_m_s, double north_m_s) {
   checkClock(receipt_s);
-  if (!(horizontal_speed_m_s >= 0.0) || !std::isfinite(horizontal_speed_m_s)) {
-    return reject(Rejection::kBadVelocity, 0, horizontal_speed_m_s);
-  }
-  horizontal_speed_m_s_ = horizontal_speed_m_s;
+  if (!std::isfinite(east_m_s)) return reject(Rejection::kBadVelocity, 0, east_m_s);
+  if (!std::isfinite(north_m_s)) return reject(Rejection::kBadVelocity, 0, north_m_s);
+  velocity_east_m_s_ = east_m_s;
+  velocity_north_m_s_ = north_m_s;
   horizontal_receipt_s_ = receipt_s;
   return Rejection::kNone;
 }
@@ -269,8 +269,14 @@ effects::Signals Estimator::effectSignals(double now_s) const {
   raw.body_z_up = imuFresh(now_s) ? body_to_world_(2, 2) : 1.0;
   raw.motor_temperature_c = motor_temperature_c_.at(now_s, config_.motor_temperature_timeout_s);
   raw.vertical_speed_m_s = velocityFresh(now_s) ? vertical_speed_m_s_ : kNaN;
-  raw.horizontal_speed_m_s =
-      now_s - horizontal_receipt_s_ <= config_.velocity_timeout_s ? horizontal_speed_m_s_ : kNaN;
+  if (now_s - horizontal_receipt_s_ <= config_.velocity_timeout_s) {
+    raw.velocity_east_m_s = velocity_east_m_s_;
+    raw.velocity_north_m_s = velocity_north_m_s_;
+  }
+  if (imuFresh(now_s)) {
+    raw.body_z_east = body_to_world_(0, 2);
+    raw.body_z_north = body_to_world_(1, 2);
+  }
   return effects::prepareSignals(raw);
 }
 

@@ -33,7 +33,15 @@ class Cursor {
 };
 
 // The signals a block averages besides PWM, voltage, current and IMU, in Accumulator::signal.
-enum class BlockSignal { kHeight, kVerticalSpeed, kHorizontalSpeed, kAirDensity, kMotorTemperature, kCount };
+enum class BlockSignal {
+  kHeight,
+  kVerticalSpeed,
+  kHorizontalSpeed,
+  kAxialSpeed,
+  kAirDensity,
+  kMotorTemperature,
+  kCount
+};
 constexpr int kBlockSignalCount = static_cast<int>(BlockSignal::kCount);
 
 // Sums of one block; a signal is averaged only when every frame of the block had it.
@@ -77,6 +85,7 @@ struct Accumulator {
     block.signals.height_m = meanSignal(BlockSignal::kHeight);
     block.signals.vertical_speed_m_s = meanSignal(BlockSignal::kVerticalSpeed);
     block.signals.horizontal_speed_m_s = meanSignal(BlockSignal::kHorizontalSpeed);
+    block.signals.axial_speed_m_s = meanSignal(BlockSignal::kAxialSpeed);
     block.signals.air_density_kg_m3 = meanSignal(BlockSignal::kAirDensity);
     block.signals.motor_temperature_c = meanSignal(BlockSignal::kMotorTemperature);
     block.signals.battery_current_a = block.current_a;
@@ -98,7 +107,7 @@ bool hasCurrent(const std::vector<BatteryReading>& battery) {
 struct SignalCursors {
   explicit SignalCursors(const FlightStreams& streams)
       : speed(streams.vertical_speed_m_s),
-        horizontal_speed(streams.horizontal_speed_m_s),
+        horizontal_velocity(streams.horizontal_velocity),
         pressure(streams.static_pressure_pa),
         air(streams.air_temperature_c),
         range(streams.height_above_ground_m),
@@ -111,17 +120,27 @@ struct SignalCursors {
     };
     effects::RawSignals raw;
     raw.battery_current_a = battery.current_a;
-    raw.body_z_up = imu ? (imu->orientation * Eigen::Vector3d::UnitZ()).z() : 1.0;
+    if (imu) {
+      const Eigen::Vector3d body_z = imu->orientation * Eigen::Vector3d::UnitZ();
+      raw.body_z_east = body_z.x();
+      raw.body_z_north = body_z.y();
+      raw.body_z_up = body_z.z();
+    }
     raw.range_m = value(range);
     raw.vertical_speed_m_s = value(speed);
-    raw.horizontal_speed_m_s = value(horizontal_speed);
+    const HorizontalVelocityReading* horizontal = horizontal_velocity.at(time_s, timeout_s);
+    if (horizontal) {
+      raw.velocity_east_m_s = horizontal->east_m_s;
+      raw.velocity_north_m_s = horizontal->north_m_s;
+    }
     raw.static_pressure_pa = value(pressure);
     raw.air_temperature_c = value(air);
     raw.motor_temperature_c = value(motor_temperature);
     return raw;
   }
 
-  Cursor<ScalarReading> speed, horizontal_speed, pressure, air, range, motor_temperature;
+  Cursor<ScalarReading> speed, pressure, air, range, motor_temperature;
+  Cursor<HorizontalVelocityReading> horizontal_velocity;
 };
 
 std::string segmentName(const Flight& flight, int index) {
@@ -232,6 +251,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       acc.addSignal(BlockSignal::kHeight, prepared.height_m);
       acc.addSignal(BlockSignal::kVerticalSpeed, prepared.vertical_speed_m_s);
       acc.addSignal(BlockSignal::kHorizontalSpeed, prepared.horizontal_speed_m_s);
+      acc.addSignal(BlockSignal::kAxialSpeed, prepared.axial_speed_m_s);
       acc.addSignal(BlockSignal::kAirDensity, prepared.air_density_kg_m3);
       acc.addSignal(BlockSignal::kMotorTemperature, prepared.motor_temperature_c);
       const ScalarReading* z = altitude.at(frame.time_s, timeout);

@@ -192,7 +192,9 @@ std::string Diagnoser::method() const {
          "no effect; at most " + std::to_string(config_.max_effects) +
          " effects. When another candidate also passes every test and the leader's lower held-out error over it "
          "is not significant (sign-flip p >= " + formatNumber(config_.ambiguity_p) +
-         "), the round's effects are reported ambiguous, not selected; the correction uses the leader. The nested "
+         "), the round's effects are reported ambiguous, not selected; the correction uses the leader. Once no "
+         "round adds one, each round is chosen again with the other rounds' effects in (dropped when none passes), "
+         "until nothing changes. The nested "
          "hold-out runs all of this again on the flights outside each of " +
          std::to_string(std::min(units_, config_.nested_folds)) + " outer folds and scores that fold.";
 }

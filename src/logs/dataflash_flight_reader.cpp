@@ -142,11 +142,11 @@ class SignalReader {
         streams_->altitude_m.push_back({t, -value(message, *pd)});
         streams_->vertical_speed_m_s.push_back({t, -value(message, *vd)});
         if (vn && ve) {
-          streams_->horizontal_speed_m_s.push_back({t, std::hypot(value(message, *vn), value(message, *ve))});
+          streams_->horizontal_velocity.push_back({t, value(message, *ve), value(message, *vn)});
         }
       });
       note(std::string("pose, velocity: ") + ekf + (ekf == std::string("XKF1") ? " (core 0)" : "") + " -PD, -VD" +
-           (vn && ve ? ", |VN, VE|" : ""));
+           (vn && ve ? ", VE, VN" : ""));
       return;
     }
     const auto alt = column("CTUN", "Alt"), climb = column("CTUN", "CRt");

@@ -169,10 +169,11 @@ class SignalReader {
         streams_->vertical_speed_m_s.push_back({t, -value(message, *vz)});
       }
       if (vx && vy && (!vxy_valid || value(message, *vxy_valid) != 0.0)) {
-        streams_->horizontal_speed_m_s.push_back({t, std::hypot(value(message, *vx), value(message, *vy))});
+        // NED: x north, y east.
+        streams_->horizontal_velocity.push_back({t, value(message, *vy), value(message, *vx)});
       }
     });
-    note(std::string("pose, velocity: vehicle_local_position[0] -z, -vz") + (vx && vy ? ", |vx, vy|" : ""));
+    note(std::string("pose, velocity: vehicle_local_position[0] -z, -vz") + (vx && vy ? ", vy, vx" : ""));
   }
 
   void airData() {

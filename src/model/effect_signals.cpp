@@ -25,7 +25,11 @@ Signals prepareSignals(const RawSignals& raw) {
   signals.height_m = heightAboveGroundM(raw.range_m, raw.body_z_up);
   signals.motor_temperature_c = raw.motor_temperature_c;
   signals.vertical_speed_m_s = raw.vertical_speed_m_s;
-  signals.horizontal_speed_m_s = raw.horizontal_speed_m_s;
+  signals.horizontal_speed_m_s = std::hypot(raw.velocity_east_m_s, raw.velocity_north_m_s);
+  const bool horizontal = std::isfinite(signals.horizontal_speed_m_s);
+  signals.axial_speed_m_s =
+      raw.vertical_speed_m_s * raw.body_z_up +
+      (horizontal ? raw.velocity_east_m_s * raw.body_z_east + raw.velocity_north_m_s * raw.body_z_north : 0.0);
   return signals;
 }
 

@@ -57,6 +57,7 @@ const char* signalName(Signal signal) {
     case Signal::kMotorTemperature: return "motor temperature";
     case Signal::kVerticalSpeed: return "vertical speed";
     case Signal::kHorizontalSpeed: return "horizontal speed";
+    case Signal::kAxialSpeed: return "speed along the rotors' axes (velocity and attitude)";
   }
   return "?";
 }
@@ -71,6 +72,7 @@ double Signals::value(Signal signal) const {
     case Signal::kMotorTemperature: return motor_temperature_c;
     case Signal::kVerticalSpeed: return vertical_speed_m_s;
     case Signal::kHorizontalSpeed: return horizontal_speed_m_s;
+    case Signal::kAxialSpeed: return axial_speed_m_s;
     case Signal::kNone: break;
   }
   return kNaN;

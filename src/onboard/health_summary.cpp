@@ -183,6 +183,7 @@ std::string signalSource(effects::Signal signal, const HealthConfig& config) {
     case effects::Signal::kMotorTemperature: return "motor temperature on " + config.motor_temperature_input;
     case effects::Signal::kVerticalSpeed: return "vertical speed on " + config.velocity_input;
     case effects::Signal::kHorizontalSpeed: return "horizontal speed on " + config.velocity_input;
+    case effects::Signal::kAxialSpeed: return "speed along the rotors' axes from " + config.velocity_input;
     case effects::Signal::kNone: break;
   }
   return "no signal";

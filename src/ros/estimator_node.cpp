@@ -241,7 +241,8 @@ void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& input_nh, const ros:
             input_nh.subscribe(params_.motor_temperature_topic, 5, &EstimatorNode::onMotorTemperature, this, hints);
         break;
       case effects::Signal::kVerticalSpeed:
-      case effects::Signal::kHorizontalSpeed: require(kind, "velocity_topic", params_.velocity_topic); break;
+      case effects::Signal::kHorizontalSpeed:
+      case effects::Signal::kAxialSpeed: require(kind, "velocity_topic", params_.velocity_topic); break;
       case effects::Signal::kNone: break;
     }
     ROS_INFO_STREAM("effect applied: " << effects::kindName(kind) << " (" << effects::describeParameters(kind, fx)
@@ -311,7 +312,7 @@ void EstimatorNode::onVelocity(const geometry_msgs::TwistStamped::ConstPtr& mess
   ++inputs_.received[static_cast<int>(NodeInput::kVelocity)];
   const double now_s = ros::Time::now().toSec();
   logRejection(estimator_->addVerticalSpeed(now_s, message->twist.linear.z));
-  logRejection(estimator_->addHorizontalSpeed(now_s, std::hypot(message->twist.linear.x, message->twist.linear.y)));
+  logRejection(estimator_->addHorizontalVelocity(now_s, message->twist.linear.x, message->twist.linear.y));
 }
 
 void EstimatorNode::onStaticPressure(const sensor_msgs::FluidPressure::ConstPtr& message) {

@@ -27,7 +27,7 @@ enum class Rejection {
   kNone = 0,
   kBadVoltage,      ///< battery voltage NaN, infinite, zero or negative
   kBadImu,          ///< non-finite or non-unit orientation, non-finite acceleration
-  kBadVelocity,     ///< non-finite vertical speed, or horizontal speed not finite or negative
+  kBadVelocity,     ///< non-finite vertical speed or horizontal velocity
   kNoBattery,       ///< motor outputs before any valid voltage
   kStaleBattery,    ///< newest valid voltage older than battery_timeout_s
   kDisarmed,        ///< a motor at or below disarmed_pwm_max_us (0, 900 us, ...)
@@ -147,9 +147,9 @@ class Estimator {
   Rejection addImu(double receipt_s, const Eigen::Quaterniond& orientation, const Eigen::Vector3d& specific_force);
   /// Vertical speed in m/s (ENU, up positive); kBadVelocity when not finite.
   Rejection addVerticalSpeed(double receipt_s, double vertical_speed_m_s);
-  /// Horizontal speed over the ground in m/s (the local velocity's x, y norm), for the effects
-  /// that read it; kBadVelocity when not finite or negative. Used until velocity_timeout_s.
-  Rejection addHorizontalSpeed(double receipt_s, double horizontal_speed_m_s);
+  /// Horizontal velocity over the ground in m/s (the local velocity's x east, y north, ENU), for
+  /// the effects that read it; kBadVelocity when not finite. Used until velocity_timeout_s.
+  Rejection addHorizontalVelocity(double receipt_s, double east_m_s, double north_m_s);
 
   /// Signals of the model's effects; each is used until its timeout (EstimatorConfig).
   /// Battery current as the autopilot reports it: its magnitude is the current drawn, since the
@@ -270,7 +270,8 @@ class Estimator {
   double imu_receipt_s_ = 0.0;
   bool have_imu_ = false;
   double vertical_speed_m_s_ = 0.0;
-  double horizontal_speed_m_s_ = kNaN;
+  double velocity_east_m_s_ = kNaN;
+  double velocity_north_m_s_ = kNaN;
   double horizontal_receipt_s_ = -std::numeric_limits<double>::infinity();
   double velocity_receipt_s_ = 0.0;
   bool have_velocity_ = false;

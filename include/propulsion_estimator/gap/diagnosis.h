@@ -61,6 +61,7 @@ struct DiagnosisConfig {
       {effects::Signal::kMotorTemperature, kMotorTemperatureTopic},
       {effects::Signal::kVerticalSpeed, kVelocityTopic},
       {effects::Signal::kHorizontalSpeed, kVelocityTopic},
+      {effects::Signal::kAxialSpeed, std::string(kVelocityTopic) + " and " + kImuTopic},
   };
 
   /// Throws FieldError naming the setting.

@@ -37,6 +37,13 @@ struct ImuReading {
   Eigen::Vector3d specific_force_m_s2 = Eigen::Vector3d::Zero();  ///< m/s^2, body frame, gravity included
 };
 
+/// The horizontal part of the local velocity (ENU, REP-103).
+struct HorizontalVelocityReading {
+  double time_s = 0.0;      ///< s from the log's first message
+  double east_m_s = 0.0;    ///< m/s
+  double north_m_s = 0.0;   ///< m/s
+};
+
 /// A scalar signal in time.
 struct ScalarReading {
   double time_s = 0.0;  ///< s from the log's first message
@@ -54,7 +61,7 @@ struct FlightStreams {
   std::vector<ImuReading> imu;  ///< empty without an IMU
   std::vector<ScalarReading> altitude_m;             ///< local position z (up)
   std::vector<ScalarReading> vertical_speed_m_s;     ///< local velocity z (up)
-  std::vector<ScalarReading> horizontal_speed_m_s;   ///< norm of the local velocity's x and y, >= 0
+  std::vector<HorizontalVelocityReading> horizontal_velocity;  ///< local velocity x, y (east, north)
   std::vector<ScalarReading> static_pressure_pa;  ///< Pa
   std::vector<ScalarReading> air_temperature_c;  ///< deg C
   std::vector<ScalarReading> height_above_ground_m;  ///< rangefinder range (valid readings only)
@@ -65,7 +72,7 @@ struct FlightStreams {
 };
 
 /// The signals of a flight, in FlightStreams' order: "rc_out", "battery", "imu", "pose" (altitude_m),
-/// "velocity" (vertical_speed_m_s and horizontal_speed_m_s), "static_pressure", "air_temperature", "rangefinder"
+/// "velocity" (vertical_speed_m_s and horizontal_velocity), "static_pressure", "air_temperature", "rangefinder"
 /// (height_above_ground_m), "motor_temperature". A log format names its sources by these.
 const std::vector<std::string>& flightSignalNames();
 

@@ -18,9 +18,12 @@ struct RawSignals {
   double air_temperature_c = kNaN;    ///< deg C
   double range_m = kNaN;              ///< m along the body's -z axis; +inf beyond the sensor's reach
   double body_z_up = 1.0;             ///< vertical component of the body's z axis (cos tilt); 1 without attitude
+  double body_z_east = 0.0;           ///< east component of the body's z axis; 0 without attitude
+  double body_z_north = 0.0;          ///< north component of the body's z axis; 0 without attitude
   double motor_temperature_c = kNaN;  ///< deg C, the hottest winding
   double vertical_speed_m_s = kNaN;   ///< m/s, up positive
-  double horizontal_speed_m_s = kNaN; ///< m/s, the local velocity's horizontal norm
+  double velocity_east_m_s = kNaN;    ///< m/s, local velocity x (ENU)
+  double velocity_north_m_s = kNaN;   ///< m/s, local velocity y (ENU)
 };
 
 /// Dry air's density from static pressure and air temperature, rho = p / (R (T + 273.15)), kg/m^3:
@@ -38,8 +41,10 @@ double dischargeCurrentA(double reported_a);
 /// more (the sensor sees no ground); +inf stays +inf (no ground within reach: far). Does not throw.
 double heightAboveGroundM(double range_m, double body_z_up);
 
-/// Every signal the effects read, prepared from `raw` with the functions above; the vertical and
-/// horizontal speeds and the motor temperature as given. Does not throw.
+/// Every signal the effects read, prepared from `raw` with the functions above; the vertical speed
+/// and the motor temperature as given; the horizontal speed the norm of the velocity's east and
+/// north; the axial speed the velocity along the body's z axis (its vertical part alone when the
+/// horizontal velocity is missing; NaN without the vertical speed). Does not throw.
 Signals prepareSignals(const RawSignals& raw);
 
 }  // namespace effects

@@ -38,9 +38,18 @@ constexpr std::array<Kind, kKindCount> kAllKinds = {
 static_assert(kKindCount <= 32, "a KindMask holds one bit per effect");
 
 /// What an effect reads besides the ESC pulse width and the sensed battery voltage.
-enum class Signal { kNone, kBatteryCurrent, kAirDensity, kHeight, kMotorTemperature, kVerticalSpeed, kHorizontalSpeed };
-constexpr int kSignalCount = 7;  ///< number of Signal values, kNone included
-static_assert(static_cast<int>(Signal::kHorizontalSpeed) + 1 == kSignalCount, "kSignalCount counts every Signal");
+enum class Signal {
+  kNone,
+  kBatteryCurrent,
+  kAirDensity,
+  kHeight,
+  kMotorTemperature,
+  kVerticalSpeed,
+  kHorizontalSpeed,
+  kAxialSpeed
+};
+constexpr int kSignalCount = 8;  ///< number of Signal values, kNone included
+static_assert(static_cast<int>(Signal::kAxialSpeed) + 1 == kSignalCount, "kSignalCount counts every Signal");
 
 /// The fitted parameter of an effect: its key in model files and reports (with the unit in the
 /// name), the range a real vehicle can show, and the value at which the effect vanishes.
@@ -70,6 +79,9 @@ struct Signals {
   double motor_temperature_c = kNaN;  ///< deg C
   double vertical_speed_m_s = kNaN;  ///< up positive (REP-103)
   double horizontal_speed_m_s = kNaN;  ///< over the ground, >= 0 (no wind sensor: the air's is not known)
+  /// The vehicle's speed along its body z axis (the rotors' axes), climb positive: what flows
+  /// through the discs axially, in forward flight too (a disc tilted into its motion climbs into it).
+  double axial_speed_m_s = kNaN;
 
   /// The value of `signal`; NaN for Signal::kNone.
   double value(Signal signal) const;
@@ -92,7 +104,7 @@ struct Inputs {
 ///                      (Cheeseman-Bennett's leading term: coefficient = strength * R^2 / 16)
 ///   thrust_loss        T *= 1 - fraction
 ///   motor_temperature  T *= 1 + per_c * (T_motor - reference_c)
-///   climb_inflow       T *= 1 - per_m_s * max(vertical speed, 0)   (climbs; a slow descent barely changes thrust)
+///   climb_inflow       T *= 1 - per_m_s * max(axial speed, 0)   (climbs; a slow descent barely changes thrust)
 ///   translational_lift T *= 1 + per_m2_s2 * horizontal speed^2   (below the rotors' hover induced speed)
 struct ModelEffects {
   double bench_air_density_kg_m3 = kNaN;  ///< reference of air_density (the model's bench air)

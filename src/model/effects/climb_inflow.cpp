@@ -13,7 +13,9 @@ const EffectDescription& climbInflowEffect() {
     d.name = "climb_inflow";
     // Momentum theory gives about v / (2 v_hover) per m/s, a few % per m/s.
     d.parameter = {"per_m_s", -0.1, 0.3, 0.0};
-    d.signal = Signal::kVerticalSpeed;
+    // The axial flow through the discs: a climb, and in forward flight the disc tilted into its
+    // motion, which momentum theory treats alike (lambda = mu tan(alpha) + lambda_i).
+    d.signal = Signal::kAxialSpeed;
     d.meaning =
         "a climb adds axial inflow, lowering the blades' angle of attack and the thrust; a descent the reverse";
     d.separating_flight =
@@ -21,7 +23,7 @@ const EffectDescription& climbInflowEffect() {
     // Momentum theory: a climb's axial inflow lowers the blades' angle of attack, while a slow
     // descent (into the vortex-ring region) barely changes thrust at a given rotor speed.
     d.thrust_factor = [](double value, const ModelEffects&, const Signals& signals) {
-      return 1.0 - value * std::max(signals.vertical_speed_m_s, 0.0);
+      return 1.0 - value * std::max(signals.axial_speed_m_s, 0.0);
     };
     // Momentum theory gives a climb's loss at constant power about as at constant speed.
     d.current_view_exponent = [](double) { return 1.0; };

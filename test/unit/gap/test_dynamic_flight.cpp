@@ -92,7 +92,7 @@ pe::Flight simulateDynamicFlight(std::uint64_t seed, const Script& script = {}) 
   }
   for (const auto& s : sink.velocities) {
     flight.streams.vertical_speed_m_s.push_back({s.time_s, s.linear_m_s.z()});
-    flight.streams.horizontal_speed_m_s.push_back({s.time_s, s.linear_m_s.head<2>().norm()});
+    flight.streams.horizontal_velocity.push_back({s.time_s, s.linear_m_s.x(), s.linear_m_s.y()});
   }
   for (const auto& s : sink.ranges) {
     if (std::isfinite(s.range_m)) flight.streams.height_above_ground_m.push_back({s.time_s, s.range_m});

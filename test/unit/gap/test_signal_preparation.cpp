@@ -26,6 +26,8 @@ struct Readings {
   double air_temperature_c;
   double motor_temperature_c;
   double vertical_speed_m_s;
+  double east_m_s;  // horizontal velocity (ENU)
+  double north_m_s;
   Eigen::Quaterniond attitude() const { return Eigen::Quaterniond(Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX())); }
 };
 
@@ -42,6 +44,7 @@ effects::Signals nodeSignals(const Readings& r) {
   EXPECT_EQ(estimator.addAirTemperature(t, r.air_temperature_c), pe::Rejection::kNone);
   EXPECT_EQ(estimator.addMotorTemperature(t, r.motor_temperature_c), pe::Rejection::kNone);
   EXPECT_EQ(estimator.addVerticalSpeed(t, r.vertical_speed_m_s), pe::Rejection::kNone);
+  EXPECT_EQ(estimator.addHorizontalVelocity(t, r.east_m_s, r.north_m_s), pe::Rejection::kNone);
   return estimator.effectSignals(t);
 }
 
@@ -67,6 +70,7 @@ gap::Block diagnosisBlock(const Readings& r) {
     flight.streams.air_temperature_c.push_back({t, r.air_temperature_c});
     flight.streams.motor_temperature_c.push_back({t, r.motor_temperature_c});
     flight.streams.vertical_speed_m_s.push_back({t, r.vertical_speed_m_s});
+    flight.streams.horizontal_velocity.push_back({t, r.east_m_s, r.north_m_s});
   }
   flight.segments.push_back({1.0, 2.5, 1.3});
   gap::BlockConfig config;
@@ -85,22 +89,28 @@ void expectSamePreparation(const Readings& r) {
   EXPECT_NEAR(node.air_density_kg_m3, fit.air_density_kg_m3, 1e-12);
   EXPECT_NEAR(node.motor_temperature_c, fit.motor_temperature_c, 1e-12);
   EXPECT_NEAR(node.vertical_speed_m_s, fit.vertical_speed_m_s, 1e-12);
+  EXPECT_NEAR(node.horizontal_speed_m_s, fit.horizontal_speed_m_s, 1e-12);
+  EXPECT_NEAR(node.axial_speed_m_s, fit.axial_speed_m_s, 1e-12);
   // And what they are: the tilted range's vertical, the discharge, the dry air's density.
   EXPECT_NEAR(fit.height_m, r.range_m * std::cos(r.roll_rad), 1e-9);
   EXPECT_NEAR(fit.battery_current_a, std::fabs(r.current_a), 1e-9);
   EXPECT_NEAR(fit.air_density_kg_m3, effects::airDensityKgM3(r.pressure_pa, r.air_temperature_c), 1e-12);
+  // The speed over the ground, and the velocity along the rolled body's z axis (0, -sin, cos).
+  EXPECT_NEAR(fit.horizontal_speed_m_s, std::hypot(r.east_m_s, r.north_m_s), 1e-12);
+  EXPECT_NEAR(fit.axial_speed_m_s,
+              r.vertical_speed_m_s * std::cos(r.roll_rad) - r.north_m_s * std::sin(r.roll_rad), 1e-9);
 }
 
 }  // namespace
 
 TEST(SignalPreparation, NodeAndDiagnosisAgreeOnAPx4FlightTilted) {
-  // PX4 through MAVROS: discharge negative; 20 deg of roll in a manoeuvre.
-  expectSamePreparation({-14.2, 0.35, 1.8, 88000.0, 31.0, 62.0, 0.4});
+  // PX4 through MAVROS: discharge negative; 20 deg of roll in a manoeuvre, moving south-east.
+  expectSamePreparation({-14.2, 0.35, 1.8, 88000.0, 31.0, 62.0, 0.4, 2.0, -3.0});
 }
 
 TEST(SignalPreparation, NodeAndDiagnosisAgreeOnAnArduPilotFlightLevel) {
   // ArduPilot: discharge positive; level, close to the ground, cold air.
-  expectSamePreparation({9.7, 0.0, 0.35, 101800.0, -5.0, 18.0, -0.2});
+  expectSamePreparation({9.7, 0.0, 0.35, 101800.0, -5.0, 18.0, -0.2, 0.0, 0.0});
 }
 
 TEST(SignalPreparation, TheFormulas) {
@@ -114,4 +124,14 @@ TEST(SignalPreparation, TheFormulas) {
   EXPECT_TRUE(std::isnan(effects::heightAboveGroundM(2.0, -0.3)));
   EXPECT_EQ(effects::heightAboveGroundM(std::numeric_limits<double>::infinity(), 0.9), std::numeric_limits<double>::infinity()) << "nothing within reach: far";
   EXPECT_TRUE(std::isnan(effects::heightAboveGroundM(pe::kNaN, 1.0)));
+  // Without the horizontal velocity the axial speed is the vertical speed's share along the axis.
+  effects::RawSignals raw;
+  raw.vertical_speed_m_s = 1.0;
+  raw.body_z_up = 0.8;
+  raw.body_z_east = 0.6;
+  EXPECT_NEAR(effects::prepareSignals(raw).axial_speed_m_s, 0.8, 1e-12);
+  EXPECT_TRUE(std::isnan(effects::prepareSignals(raw).horizontal_speed_m_s));
+  raw.velocity_east_m_s = 2.0;
+  raw.velocity_north_m_s = 5.0;
+  EXPECT_NEAR(effects::prepareSignals(raw).axial_speed_m_s, 0.8 + 1.2, 1e-12);
 }

@@ -109,7 +109,7 @@ TEST(RealFlightLogs, ArduCopterLogIsReadAndDiagnosed) {
   for (const std::string& note : streams.notes) std::cout << "  " << note << "\n";
   EXPECT_TRUE(hasNote(streams, "rc_out: RCOU Ch1..Ch4 (us)"));
   EXPECT_TRUE(hasNote(streams, "battery: CURR Volt, Curr (hundredths)"));
-  EXPECT_TRUE(hasNote(streams, "pose, velocity: EKF1 -PD, -VD, |VN, VE|"));
+  EXPECT_TRUE(hasNote(streams, "pose, velocity: EKF1 -PD, -VD, VE, VN"));
   EXPECT_TRUE(hasNote(streams, "rangefinder: not in this log (no RFND)"));
   EXPECT_TRUE(hasNote(streams, "motor_temperature: not in this log (no ESC)"));
   EXPECT_EQ(streams.rc_out.size(), 11916u);

@@ -21,6 +21,7 @@ fx::Signals everySignal() {
   signals.motor_temperature_c = 50.0;
   signals.vertical_speed_m_s = 1.0;
   signals.horizontal_speed_m_s = 3.0;
+  signals.axial_speed_m_s = 1.0;
   return signals;
 }
 
