@@ -2,8 +2,8 @@
 """Validates diagnose_gap on simulated flights whose effect is withheld from it.
 
 For each case: a clean bench sweep is simulated and fitted with fit_surfaces (the model), then
-several flights of random payloads, heights, climbs, descents near the ground and battery charges
-are simulated with the case's effects switched on at random magnitudes from realistic ranges (or
+several flights of random payloads, heights, climbs, straight legs out and back, descents near the
+ground and battery charges are simulated with the case's effects switched on at random magnitudes from realistic ranges (or
 with none, or with a fault the library does not hold), and diagnose_gap gets the model, the URDF
 and the flights' manifest, without being told what was switched on. The case scores right when
 the selected effects are exactly the injected ones (none for a null case and for a fault), and a

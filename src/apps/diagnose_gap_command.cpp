@@ -145,7 +145,7 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
 
 FlightRead readFlight(const std::string& manifest, std::size_t index, const ManifestEntry& entry,
                       const FlightLogOptions& options) {
-  if (!entry.refusal.empty()) return {std::nullopt, entry.refusal};
+  if (!entry.refusal.empty()) return {std::nullopt, entry.refusal, {}};
   const std::string at = manifest + ": flights[" + std::to_string(index) + "]";
   try {
     const std::unique_ptr<FlightLogReader> reader =
@@ -155,12 +155,13 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
       if (segments[s].end_s > reader->durationS()) {
         return {std::nullopt, at + ".segments[" + std::to_string(s) + "]: " + formatNumber(segments[s].start_s) +
                                   ".." + formatNumber(segments[s].end_s) + " s is outside " + reader->path() +
-                                  " (0.." + formatPrintf("%.3f", reader->durationS()) + " s)"};
+                                  " (0.." + formatPrintf("%.3f", reader->durationS()) + " s)",
+                {}};
       }
     }
     return {Flight{entry.flight.log, reader->read(options), segments}, "", reader->refusal()};
   } catch (const InputError& e) {
-    return {std::nullopt, at + ": " + e.what()};
+    return {std::nullopt, at + ": " + e.what(), {}};
   }
 }
 
