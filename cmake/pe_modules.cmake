@@ -35,7 +35,8 @@ target_include_directories(propulsion_estimator_logs PRIVATE ${CSV_INCLUDE_DIR})
 target_link_libraries(propulsion_estimator_logs PRIVATE ${CSV_LIBRARY})
 pe_module(propulsion_estimator_fitting fitting propulsion_estimator_model propulsion_estimator_logs)
 # The gap diagnosis: where the model and weighed flights part, and which effect explains it.
-pe_module(propulsion_estimator_gap gap propulsion_estimator_estimation propulsion_estimator_logs)
+pe_module(propulsion_estimator_gap gap propulsion_estimator_estimation propulsion_estimator_onboard
+  propulsion_estimator_logs)
 # The simulator: propulsion physics, the simulated thrust stand, the simulated flight.
 pe_module(propulsion_estimator_sim_physics sim/physics propulsion_estimator_common)
 pe_module(propulsion_estimator_sim_stand sim/stand propulsion_estimator_sim_physics propulsion_estimator_logs)

@@ -196,7 +196,7 @@ def run(command, log):
 # A drawn member that cannot hover its flights' payloads with a margin is refused by the simulator
 # ("... more than 80 % of the ... N each gives ..."): no user flies such a vehicle, so it is drawn again.
 OVERLOADED = "more than 80 % of"
-HARDWARE_DRAWS = 5
+HARDWARE_DRAWS = 10
 
 
 def run_case(case, args):
@@ -295,6 +295,10 @@ def diagnose(case, args, folder, model, manifest, log):
         report = yaml.safe_load(handle)
     with open(os.path.join(out, "motor_health.yaml")) as handle:
         report["motor_health"] = yaml.safe_load(handle)["flights"]
+    check = os.path.join(out, "model_check.yaml")
+    if os.path.exists(check):
+        with open(check) as handle:
+            report["model_check"] = yaml.safe_load(handle)["flights"]
     return report
 
 
@@ -330,6 +334,14 @@ def score(case, report):
     row["health_false"] = 0 if weak else sum(1 for f in flags if f)
     row["health_found"] = sum(1 for f in flags if weak and weak["motor"] in f)
     row["health_elsewhere"] = sum(1 for f in flags if weak and any(c != weak["motor"] for c in f))
+    # The live model check of ESC telemetry (issue 21) on each flight with telemetry: a motor
+    # flagged without a weak propeller, or any verdict on a case with nothing injected, is a false
+    # alarm (a supply verdict is right for an effect every motor shares, as a supply resistance).
+    checks = [flight for flight in report.get("model_check") or [] if flight["telemetry"]]
+    nothing = not case["effects"] and not case.get("fault")
+    row["check_flights"] = len(checks)
+    row["check_false"] = sum(1 for c in checks if (not weak and c["flagged"]) or (nothing and c["verdicts"]))
+    row["check_found"] = sum(1 for c in checks if weak and weak["motor"] in c["flagged"])
     return row
 
 
@@ -475,6 +487,15 @@ def main():
                  "on %d of %d flights, another channel flagged on %d."
                  % (false_alarms, sum(r["health_flights"] for r in unfaulted), sum(r["health_found"] for r in weak),
                     sum(r["health_flights"] for r in weak), sum(r["health_elsewhere"] for r in weak)))
+    checked = [r for r in done if r.get("check_flights")]
+    if checked:
+        lines.append("Live model check of ESC telemetry (issue 21): false alarms on %d of %d flights without a weak "
+                     "propeller (a motor flagged, or any verdict where nothing was injected); weak propeller flagged "
+                     "on its channel on %d of %d flights."
+                     % (sum(r["check_false"] for r in checked if r["label"] != "weak_propeller"),
+                        sum(r["check_flights"] for r in checked if r["label"] != "weak_propeller"),
+                        sum(r["check_found"] for r in checked if r["label"] == "weak_propeller"),
+                        sum(r["check_flights"] for r in checked if r["label"] == "weak_propeller")))
     lines.append("Ambiguous (counted apart, not right): %d of %d cases (%.0f %%) with the truth among the candidates, "
                  "%d without. Nested held-out shrink of the excess over the null floor (%.2f %%), scored on flights "
                  "that took no part in selecting or fitting: %.0f %% over %d cases (selection-time figure above)."

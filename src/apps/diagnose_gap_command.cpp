@@ -20,6 +20,7 @@
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/gap_report.h"
+#include "propulsion_estimator/gap/model_check_replay.h"
 #include "propulsion_estimator/gap/motor_health_replay.h"
 #include "propulsion_estimator/logs/bench_log_reader.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
@@ -261,6 +262,16 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   writeTextFile(args.out + "/motor_health.yaml", gap::motorHealthReplayYaml(names, replays));
   std::printf("onboard motor-health check: a motor flagged on %d of %zu flights; %s/motor_health.yaml\n", flagged,
               flights.size(), args.out.c_str());
+  std::vector<gap::ModelCheckReplay> checks;
+  int with_telemetry = 0, checked_flagged = 0;
+  for (const Flight& flight : flights) {
+    checks.push_back(gap::replayModelCheck(model, vehicle, flight.streams));
+    with_telemetry += checks.back().telemetry;
+    checked_flagged += !checks.back().verdicts.empty();
+  }
+  writeTextFile(args.out + "/model_check.yaml", gap::modelCheckReplayYaml(names, checks));
+  std::printf("live model check of ESC telemetry: %d of %d flights with telemetry flagged; %s/model_check.yaml\n",
+              checked_flagged, with_telemetry, args.out.c_str());
 }
 
 int diagnose(const Arguments& args) {

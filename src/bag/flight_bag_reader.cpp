@@ -11,6 +11,7 @@
 #include <sensor_msgs/Range.h>
 #include <sensor_msgs/Temperature.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/ros/esc_telemetry_codec.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
 namespace propulsion_estimator {
@@ -35,7 +37,9 @@ enum class Signal {
   kStaticPressure,
   kAirTemperature,
   kRangefinder,
-  kMotorTemperature
+  kMotorTemperature,
+  kEscTelemetry,
+  kEscStatus
 };
 
 // A signal to read: where, of which type, and whether the flight is refused without it.
@@ -62,7 +66,9 @@ std::vector<Source> sourcesOf(const FlightBagTopics& topics) {
           sourceOf<sensor_msgs::FluidPressure>(Signal::kStaticPressure, topics.static_pressure),
           sourceOf<sensor_msgs::Temperature>(Signal::kAirTemperature, topics.air_temperature),
           sourceOf<sensor_msgs::Range>(Signal::kRangefinder, topics.rangefinder),
-          sourceOf<sensor_msgs::Temperature>(Signal::kMotorTemperature, topics.motor_temperature)};
+          sourceOf<sensor_msgs::Temperature>(Signal::kMotorTemperature, topics.motor_temperature),
+          {Signal::kEscTelemetry, &topics.esc_telemetry, kEscTelemetryDataType, kEscTelemetryMd5Sum, false},
+          {Signal::kEscStatus, &topics.esc_status, kEscStatusDataType, kEscStatusMd5Sum, false}};
 }
 
 // The messages of one pass, decoded into storage reused from message to message: the streams'
@@ -121,6 +127,10 @@ class StreamBuilder {
         ros::serialization::deserialize(stream, temperature_);
         streams_->motor_temperature_c.push_back({time_s, temperature_.temperature});
         return true;
+      case Signal::kEscTelemetry:
+      case Signal::kEscStatus:
+        return addEsc(signal == Signal::kEscStatus ? kEscStatusDataType : kEscTelemetryDataType, time_s, data, size,
+                      error);
     }
     return true;
   }
@@ -139,6 +149,21 @@ class StreamBuilder {
     return true;
   }
 
+  bool addEsc(const char* datatype, double time_s, const std::uint8_t* data, std::uint32_t size, std::string* error) {
+    if (!EscTelemetryDecoder::decodePayload(datatype, data, size, &esc_, error)) return false;
+    EscTelemetryReading& reading = streams_->esc.emplace_back();
+    reading.time_s = time_s;
+    reading.escs = std::min<int>(static_cast<int>(esc_.escs.size()), kMaxMotors);
+    for (int k = 0; k < reading.escs; ++k) {
+      const EscReport& report = esc_.escs[k];
+      reading.rpm[k] = report.rpm;
+      reading.current_a[k] = report.current_a;
+      reading.voltage_v[k] = report.voltage_v;
+      reading.count[k] = report.count;
+    }
+    return true;
+  }
+
   FlightStreams* streams_;
   int motors_;
   RcOutMessage rc_out_;
@@ -149,6 +174,7 @@ class StreamBuilder {
   sensor_msgs::FluidPressure pressure_;
   sensor_msgs::Temperature temperature_;
   sensor_msgs::Range range_;
+  EscTelemetry esc_;
 };
 
 // Capacity for every message of `topic`, from the bag's index.
@@ -171,6 +197,8 @@ void reserve(const rosbag::Bag& bag, const Source& source, FlightStreams* stream
     case Signal::kAirTemperature: return reserveFor(bag, topic, &streams->air_temperature_c);
     case Signal::kRangefinder: return reserveFor(bag, topic, &streams->height_above_ground_m);
     case Signal::kMotorTemperature: return reserveFor(bag, topic, &streams->motor_temperature_c);
+    case Signal::kEscTelemetry:
+    case Signal::kEscStatus: return reserveFor(bag, topic, &streams->esc);
   }
 }
 
@@ -190,7 +218,7 @@ const std::vector<std::string>& FlightBagTopics::names() { return flightSignalNa
 std::string* FlightBagTopics::find(const std::string& name) {
   std::string* const topics[] = {&rc_out,          &battery,         &imu,         &pose,
                                  &velocity,        &static_pressure, &air_temperature, &rangefinder,
-                                 &motor_temperature};
+                                 &motor_temperature, &esc_telemetry, &esc_status};
   for (std::size_t i = 0; i < names().size(); ++i) {
     if (names()[i] == name) return topics[i];
   }

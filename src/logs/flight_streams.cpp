@@ -5,7 +5,8 @@ namespace propulsion_estimator {
 const std::vector<std::string>& flightSignalNames() {
   static const std::vector<std::string> kNames = {"rc_out",          "battery",         "imu",
                                                   "pose",            "velocity",        "static_pressure",
-                                                  "air_temperature", "rangefinder",     "motor_temperature"};
+                                                  "air_temperature", "rangefinder",     "motor_temperature",
+                                                  "esc_telemetry",   "esc_status"};
   return kNames;
 }
 
@@ -18,7 +19,9 @@ std::vector<std::size_t> signalCounts(const FlightStreams& streams) {
           streams.static_pressure_pa.size(),
           streams.air_temperature_c.size(),
           streams.height_above_ground_m.size(),
-          streams.motor_temperature_c.size()};
+          streams.motor_temperature_c.size(),
+          streams.esc.size(),
+          streams.esc.size()};
 }
 
 }  // namespace propulsion_estimator

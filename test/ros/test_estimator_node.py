@@ -264,7 +264,7 @@ class EstimatorNodeTest(unittest.TestCase):
             missing = ("air_density (static pressure on /mavros/imu/static_pressure and air temperature on "
                        "/mavros/imu/temperature_baro missing or stale), ground_effect (height above the ground on "
                        "/mavros/rangefinder/rangefinder missing or stale), motor_temperature (motor temperature on "
-                       "/motor_temperature missing or stale), climb_inflow (vertical speed on "
+                       "/motor_temperature missing or stale), climb_inflow (speed along the rotors' axes from "
                        "/mavros/local_position/velocity_local missing or stale)")
             expected = "skipped: " + missing + "; applied: supply_resistance, thrust_loss, esc_offset"
             end = rospy.Time.now() + rospy.Duration(10.0)

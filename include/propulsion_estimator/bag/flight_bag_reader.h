@@ -24,6 +24,8 @@ struct FlightBagTopics {
   std::string air_temperature = kAirTemperatureTopic;   ///< sensor_msgs/Temperature
   std::string rangefinder = kRangefinderTopic;          ///< sensor_msgs/Range
   std::string motor_temperature = kMotorTemperatureTopic;  ///< sensor_msgs/Temperature
+  std::string esc_telemetry = kEscTelemetryTopic;       ///< mavros_msgs/ESCTelemetry (ArduPilot)
+  std::string esc_status = kEscStatusTopic;             ///< mavros_msgs/ESCStatus (PX4)
 
   /// The signals' names, as above: flightSignalNames().
   static const std::vector<std::string>& names();

@@ -44,6 +44,17 @@ struct HorizontalVelocityReading {
   double north_m_s = 0.0;   ///< m/s
 };
 
+/// One ESC telemetry message (mavros_msgs/ESCTelemetry from ArduPilot, ESCStatus from PX4): each
+/// ESC's report, ESC i driving RCOut channel i + 1; the first kMaxMotors ESCs are kept.
+struct EscTelemetryReading {
+  double time_s = 0.0;  ///< s from the log's first message
+  int escs = 0;         ///< reports kept, <= kMaxMotors
+  std::array<double, kMaxMotors> rpm{};        ///< mechanical rotor speed, rpm; NaN when not reported
+  std::array<double, kMaxMotors> current_a{};  ///< the ESC's input current, A; NaN when not reported
+  std::array<double, kMaxMotors> voltage_v{};  ///< the ESC's input voltage, V; NaN when not reported
+  std::array<int, kMaxMotors> count{};         ///< packets the ESC has sent; -1 when not reported
+};
+
 /// A scalar signal in time.
 struct ScalarReading {
   double time_s = 0.0;  ///< s from the log's first message
@@ -66,6 +77,7 @@ struct FlightStreams {
   std::vector<ScalarReading> air_temperature_c;  ///< deg C
   std::vector<ScalarReading> height_above_ground_m;  ///< rangefinder range (valid readings only)
   std::vector<ScalarReading> motor_temperature_c;  ///< deg C
+  std::vector<EscTelemetryReading> esc;  ///< ESC telemetry; empty without
   /// How the reader found the signals, one line each ("rc_out: actuator_outputs[0].output[0..3]",
   /// "motor_temperature: not in this log (no esc_status)"); empty for a reader that says nothing.
   std::vector<std::string> notes;
@@ -73,7 +85,8 @@ struct FlightStreams {
 
 /// The signals of a flight, in FlightStreams' order: "rc_out", "battery", "imu", "pose" (altitude_m),
 /// "velocity" (vertical_speed_m_s and horizontal_velocity), "static_pressure", "air_temperature", "rangefinder"
-/// (height_above_ground_m), "motor_temperature". A log format names its sources by these.
+/// (height_above_ground_m), "motor_temperature", "esc_telemetry" and "esc_status" (esc: ArduPilot's
+/// and PX4's messages). A log format names its sources by these.
 const std::vector<std::string>& flightSignalNames();
 
 /// The readings of each signal of `streams`, in flightSignalNames() order.

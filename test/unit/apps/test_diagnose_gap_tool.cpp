@@ -97,10 +97,10 @@ TEST_F(DiagnoseGapTool, ReadsEveryFlightInManifestOrderWhateverTheJobs) {
   EXPECT_EQ(readLines(one.out),
             "read " + file("a.bag") +
                 ": rc_out 101, battery 11, no imu, no pose, no velocity, no static_pressure, no air_temperature, no "
-                "rangefinder, no motor_temperature\n"
+                "rangefinder, no motor_temperature, no esc_telemetry, no esc_status\n"
                 "read " + file("b.bag") +
                 ": rc_out 201, battery 21, no imu, no pose, no velocity, no static_pressure, no air_temperature, no "
-                "rangefinder, no motor_temperature\n"
+                "rangefinder, no motor_temperature, no esc_telemetry, no esc_status\n"
                 "read 2 of 2 flights, 334 readings,\n");
   EXPECT_NE(one.out.find("note: no --urdf or --frame: 4 motors on RCOut channels 1-4"), std::string::npos) << one.out;
   EXPECT_NE(one.out.find("report: " + file("report") + "/report.md, corrected model: " + file("report") +
@@ -164,7 +164,8 @@ TEST_F(DiagnoseGapTool, RefusesBadArgumentsWithOneLine) {
   EXPECT_EQ(topic.status, 1);
   EXPECT_EQ(topic.err,
             "diagnose_gap: --topic truth=/sim/truth: 'truth' is not a signal (one of rc_out, battery, imu, pose, "
-            "velocity, static_pressure, air_temperature, rangefinder, motor_temperature)\n");
+            "velocity, static_pressure, air_temperature, rangefinder, motor_temperature, esc_telemetry, "
+            "esc_status)\n");
   const ToolRun bare = diagnose("m.yaml", "--topic imu");
   EXPECT_EQ(bare.status, 1);
   EXPECT_EQ(bare.err, "diagnose_gap: --topic imu: expected NAME=TOPIC\n");

@@ -340,7 +340,7 @@ TEST(SimulateCommand, RefusesBadInputsWithOneLine) {
                      dir.file("wind.yaml"), "--bag", dir.file("f.bag")}),
             "1 simulate flight: " + dir.file("wind.yaml") +
                 ":1: wind: unknown key (allowed: supply_resistance, air_density, ground_effect, thrust_loss, "
-                "motor_temperature, climb_inflow, esc_offset)\n");
+                "motor_temperature, climb_inflow, esc_offset, translational_lift)\n");
   writeFile(dir.file("impossible.yaml"), shortProfile() + "  - {type: hover, duration_s: 5}\n");
   EXPECT_EQ(
       refusal({"flight", "--params", params, "--profile", dir.file("impossible.yaml"), "--bag", dir.file("f.bag")}),

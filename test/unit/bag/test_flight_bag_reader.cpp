@@ -100,6 +100,14 @@ TEST_F(FlightBagReader, ReadsWhatTheSimulatorWritesOnTheManifestsClock) {
     sink.rangefinder({0.8, 2.5, 0.2, 8.0, 0.5});
     sink.rangefinder({0.85, std::numeric_limits<double>::infinity(), 0.2, 8.0, 0.5});  // beyond reach
     sink.rangefinder({0.9, -std::numeric_limits<double>::infinity(), 0.2, 8.0, 0.5});  // below reach
+    pe::sim::EscTelemetrySample esc;
+    esc.time_s = 0.45;
+    esc.px4 = false;
+    for (int k = 0; k < 4; ++k) esc.escs.push_back({6000.0 + k, 4.5 + k, 12.1, 40.0, static_cast<std::uint16_t>(7 + k)});
+    sink.escTelemetry(esc);
+    esc.time_s = 0.55;
+    esc.px4 = true;
+    sink.escTelemetry(esc);
   }
   const pe::FlightBagReader reader(file("flight.bag"));
   EXPECT_NEAR(reader.durationS(), 0.9, 1e-9);
@@ -124,6 +132,20 @@ TEST_F(FlightBagReader, ReadsWhatTheSimulatorWritesOnTheManifestsClock) {
   EXPECT_DOUBLE_EQ(streams.altitude_m[0].value, 3.5);
   ASSERT_EQ(streams.vertical_speed_m_s.size(), 1u);
   EXPECT_DOUBLE_EQ(streams.vertical_speed_m_s[0].value, -0.4);
+  ASSERT_EQ(streams.horizontal_velocity.size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.horizontal_velocity[0].east_m_s, 0.1);
+  EXPECT_DOUBLE_EQ(streams.horizontal_velocity[0].north_m_s, 0.2);
+  // ArduPilot's ESCTelemetry and PX4's ESCStatus into one stream, each ESC on its channel; PX4's
+  // has no packet count.
+  ASSERT_EQ(streams.esc.size(), 2u);
+  EXPECT_NEAR(streams.esc[0].time_s, 0.45, 1e-9);
+  EXPECT_EQ(streams.esc[0].escs, 4);
+  EXPECT_NEAR(streams.esc[0].rpm[2], 6002.0, 1e-3);
+  EXPECT_NEAR(streams.esc[0].current_a[3], 7.5, 1e-6);
+  EXPECT_NEAR(streams.esc[0].voltage_v[1], 12.1, 1e-6);
+  EXPECT_EQ(streams.esc[0].count[1], 8);
+  EXPECT_NEAR(streams.esc[1].time_s, 0.55, 1e-9);
+  EXPECT_EQ(streams.esc[1].count[1], -1);
   ASSERT_EQ(streams.static_pressure_pa.size(), 1u);
   EXPECT_DOUBLE_EQ(streams.static_pressure_pa[0].value, 101000.5);
   ASSERT_EQ(streams.air_temperature_c.size(), 1u);
@@ -148,6 +170,8 @@ TEST_F(FlightBagReader, LeavesTheStreamsOfMissingOptionalTopicsEmpty) {
   EXPECT_TRUE(streams.air_temperature_c.empty());
   EXPECT_TRUE(streams.height_above_ground_m.empty());
   EXPECT_TRUE(streams.motor_temperature_c.empty());
+  EXPECT_TRUE(streams.horizontal_velocity.empty());
+  EXPECT_TRUE(streams.esc.empty());
 }
 
 TEST_F(FlightBagReader, SkipsImuMessagesWithoutOrientation) {
@@ -185,7 +209,8 @@ TEST_F(FlightBagReader, NamesItsSignals) {
   pe::FlightBagTopics topics;
   EXPECT_EQ(pe::FlightBagTopics::names(),
             (std::vector<std::string>{"rc_out", "battery", "imu", "pose", "velocity", "static_pressure",
-                                      "air_temperature", "rangefinder", "motor_temperature"}));
+                                      "air_temperature", "rangefinder", "motor_temperature", "esc_telemetry",
+                                      "esc_status"}));
   EXPECT_EQ(*topics.find("rc_out"), "/mavros/rc/out");
   EXPECT_EQ(*topics.find("velocity"), "/mavros/local_position/velocity_local");
   EXPECT_EQ(*topics.find("motor_temperature"), "/motor_temperature");

@@ -18,8 +18,8 @@ namespace {
 // ways (an include the table does not allow, an arrow the table allows that no include uses), and
 // the only links CMake may make between the modules' libraries. The picture of the package: common
 // is the leaf; model, vehicle and estimation are what runs on the vehicle and is replayed offline,
-// onboard what only the node uses; logs, fitting, gap and sim are the offline tools' core; ros and
-// bag adapt ROS; apps holds every main and command line.
+// onboard what only the node uses (gap replays its checks on logged flights); logs, fitting, gap
+// and sim are the offline tools' core; ros and bag adapt ROS; apps holds every main and command line.
 using Graph = std::map<std::string, std::set<std::string>>;
 const Graph kMayInclude = {
     {"common", {}},
@@ -29,7 +29,7 @@ const Graph kMayInclude = {
     {"onboard", {"common", "model", "estimation"}},
     {"logs", {"common"}},
     {"fitting", {"common", "model", "logs"}},
-    {"gap", {"common", "model", "vehicle", "estimation", "logs"}},
+    {"gap", {"common", "model", "vehicle", "estimation", "onboard", "logs"}},
     {"sim/physics", {"common"}},
     {"sim/stand", {"common", "logs", "sim/physics"}},
     {"sim/flight", {"common", "vehicle", "logs", "sim/physics"}},

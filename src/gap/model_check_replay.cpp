@@ -1,0 +1,84 @@
+#include "propulsion_estimator/gap/model_check_replay.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <yaml-cpp/yaml.h>
+
+#include "propulsion_estimator/common/not_a_number.h"
+#include "replay_feed.h"
+
+namespace propulsion_estimator {
+namespace gap {
+namespace {
+
+template <typename T>
+void addOnce(std::vector<T>* list, const T& value) {
+  if (std::find(list->begin(), list->end(), value) == list->end()) list->push_back(value);
+}
+
+// The logged message as MAVROS delivers it: ESC i on channel i + 1.
+EscTelemetry message(const EscTelemetryReading& reading) {
+  EscTelemetry out;
+  out.stamp_s = reading.time_s;
+  for (int k = 0; k < reading.escs; ++k) {
+    out.escs.push_back({reading.time_s, reading.rpm[k], reading.current_a[k], reading.voltage_v[k], kNaN,
+                        reading.count[k]});
+  }
+  return out;
+}
+
+}  // namespace
+
+ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
+                                  const ModelCheckConfig& config) {
+  const EstimatorConfig estimator_config = replayEstimatorConfig(vehicle);
+  Estimator estimator(model, vehicle, estimator_config);
+  ModelCheck check(estimator_config.motor_channels, config);
+  ModelCheckReplay replay;
+  replay.telemetry = !streams.esc.empty();
+  replay.first_flag_s = kNaN;
+  if (!replay.telemetry) return replay;
+  double next_report_s = 0.0;
+  for (const Arrival& a : arrivals(streams)) {
+    if (a.kind == Stream::kEsc) check.addTelemetry(a.time_s, message(streams.esc[a.index]));
+    if (a.kind == Stream::kBattery) check.addBattery(a.time_s, streams.battery[a.index].voltage_v);
+    if (!feedEstimator(streams, a, &estimator)) continue;
+    check.addEstimate(a.time_s, estimator.output());
+    if (a.time_s < next_report_s) continue;
+    next_report_s = a.time_s + 1.0;
+    const ModelCheckReport report = check.report(a.time_s);
+    if (report.verdict == ModelCheckVerdict::kNotJudged) continue;
+    ++replay.judgements;
+    if (report.verdict == ModelCheckVerdict::kConsistent) continue;
+    if (replay.verdicts.empty()) replay.first_flag_s = a.time_s;
+    addOnce(&replay.verdicts, std::string(modelCheckVerdictName(report.verdict)));
+    if (report.flagged_channel != 0) addOnce(&replay.flagged_channels, report.flagged_channel);
+  }
+  return replay;
+}
+
+std::string modelCheckReplayYaml(const std::vector<std::string>& names, const std::vector<ModelCheckReplay>& replays) {
+  YAML::Emitter out;
+  out << YAML::Comment("estimator_node's live model check of ESC telemetry (/diagnostics, ~capability) replayed on "
+                       "each flight");
+  out << YAML::BeginMap << YAML::Key << "flights" << YAML::Value << YAML::BeginSeq;
+  for (std::size_t i = 0; i < replays.size(); ++i) {
+    const ModelCheckReplay& replay = replays[i];
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "bag" << YAML::Value << names[i] << YAML::Key << "telemetry"
+        << YAML::Value << replay.telemetry << YAML::Key << "judgements" << YAML::Value << replay.judgements
+        << YAML::Key << "verdicts" << YAML::Value << YAML::Flow << replay.verdicts << YAML::Key << "flagged"
+        << YAML::Value << YAML::Flow << replay.flagged_channels << YAML::Key << "first_flag_s" << YAML::Value;
+    if (std::isnan(replay.first_flag_s)) {
+      out << YAML::Null;
+    } else {
+      out << replay.first_flag_s;
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace gap
+}  // namespace propulsion_estimator
