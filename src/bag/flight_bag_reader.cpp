@@ -129,8 +129,7 @@ class StreamBuilder {
         return true;
       case Signal::kEscTelemetry:
       case Signal::kEscStatus:
-        return addEsc(signal == Signal::kEscStatus ? kEscStatusDataType : kEscTelemetryDataType, time_s, data, size,
-                      error);
+        return addEsc(signal == Signal::kEscStatus, time_s, data, size, error);
     }
     return true;
   }
@@ -149,10 +148,14 @@ class StreamBuilder {
     return true;
   }
 
-  bool addEsc(const char* datatype, double time_s, const std::uint8_t* data, std::uint32_t size, std::string* error) {
-    if (!EscTelemetryDecoder::decodePayload(datatype, data, size, &esc_, error)) return false;
+  bool addEsc(bool status, double time_s, const std::uint8_t* data, std::uint32_t size, std::string* error) {
+    if (!EscTelemetryDecoder::decodePayload(status ? kEscStatusDataType : kEscTelemetryDataType, data, size, &esc_,
+                                            error)) {
+      return false;
+    }
     EscTelemetryReading& reading = streams_->esc.emplace_back();
     reading.time_s = time_s;
+    reading.status = status;
     reading.escs = std::min<int>(static_cast<int>(esc_.escs.size()), kMaxMotors);
     for (int k = 0; k < reading.escs; ++k) {
       const EscReport& report = esc_.escs[k];

@@ -107,11 +107,11 @@ bool hasCurrent(const std::vector<BatteryReading>& battery) {
 struct SignalCursors {
   explicit SignalCursors(const FlightStreams& streams)
       : speed(streams.vertical_speed_m_s),
-        horizontal_velocity(streams.horizontal_velocity),
         pressure(streams.static_pressure_pa),
         air(streams.air_temperature_c),
         range(streams.height_above_ground_m),
-        motor_temperature(streams.motor_temperature_c) {}
+        motor_temperature(streams.motor_temperature_c),
+        horizontal_velocity(streams.horizontal_velocity) {}
 
   effects::RawSignals at(double time_s, double timeout_s, const BatteryReading& battery, const ImuReading* imu) {
     const auto value = [&](Cursor<ScalarReading>& cursor) {

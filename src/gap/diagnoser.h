@@ -36,6 +36,7 @@ constexpr double kMaxAvionicsCurrentA = 3.0;
 struct RoundOutcome {
   Kind leader;
   std::optional<Ambiguity> ambiguity;
+  int round = 0;  // 0-based, its place in the forward selection
 };
 
 // Held-out predictions of one set of effects: each block's relative residual in both views,

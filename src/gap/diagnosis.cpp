@@ -432,7 +432,7 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
 }
 
 // 3. Which effect: forward selection on held-out flights, each round then revisited with the
-// later rounds' effects in. Returns the held-out prediction with the effects selected.
+// other rounds' effects in. Returns the held-out prediction with the effects selected.
 HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results) {
   for (Kind kind : effects::kAllKinds) {
     EffectResult result;
@@ -458,15 +458,17 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
     std::map<Kind, HeldOutPrediction> admissible;
     const std::optional<Kind> best = selectionRound(round, working_, current, results, &admissible);
     if (!best) break;
-    rounds.push_back({*best, ambiguityOf(*best, admissible)});
+    rounds.push_back({*best, ambiguityOf(*best, admissible), round});
     adopt(rounds);
     current = admissible.at(*best);
   }
-  if (rounds.size() >= 2) current = revisitRounds(&rounds, results);
-  for (std::size_t r = 0; r < rounds.size(); ++r) {
-    if (rounds[r].ambiguity) continue;
-    EffectResult& taken = (*results)[rounds[r].leader];
-    taken.reason = "selected in round " + std::to_string(r + 1) + ": joint held-out error " +
+  const bool revisited = rounds.size() >= 2;
+  if (revisited) current = revisitRounds(&rounds, results);
+  for (const RoundOutcome& outcome : rounds) {
+    if (outcome.ambiguity) continue;
+    EffectResult& taken = (*results)[outcome.leader];
+    taken.reason = "selected in round " + std::to_string(outcome.round + 1) +
+                   (revisited ? ", revisited with the other rounds' effects in" : "") + ": joint held-out error " +
                    formatPrintf("%.2f", taken.joint_rmse_pct) + " % against " +
                    formatPrintf("%.2f", taken.base_joint_rmse_pct) + " % (p = " + formatPrintf("%.3f", taken.p_value) +
                    ")";
@@ -495,40 +497,59 @@ void Diagnoser::adopt(const std::vector<RoundOutcome>& rounds) {
 // A forward round chooses given only the rounds before it: when two effects act together, the
 // first round may take (or find ambiguous) a third that soaks up part of both, and the second
 // round's effect then explains what the first could not. Each round is chosen again with every
-// other round's effect in, until a pass over all of them changes nothing (at most
-// kMaxRevisitPasses passes, against cycles); a round whose candidates no longer pass is dropped. The trace keeps these rounds, their verdicts marked "revisited".
+// other round's effect in, until a pass over all of them changes nothing; a round whose
+// candidates no longer pass is dropped. Choices that come back to an earlier state, or do not
+// settle within kMaxRevisitPasses passes, leave the forward selection's, and the report says so.
+// The trace keeps these rounds under their forward numbers, their verdicts marked "revisited".
 HeldOutPrediction Diagnoser::revisitRounds(std::vector<RoundOutcome>* rounds, std::map<Kind, EffectResult>* results) {
+  // What the rounds chose, comparable: each leader with its group as a set (the group's order
+  // after the leader follows nearly equal errors).
+  using State = std::vector<std::pair<Kind, std::set<Kind>>>;
+  const auto stateOf = [](const std::vector<RoundOutcome>& outcomes) {
+    State state;
+    for (const RoundOutcome& outcome : outcomes) {
+      std::set<Kind> group;
+      if (outcome.ambiguity) group.insert(outcome.ambiguity->kinds.begin(), outcome.ambiguity->kinds.end());
+      state.push_back({outcome.leader, group});
+    }
+    return state;
+  };
+  const std::vector<RoundOutcome> forward = *rounds;
+  std::vector<State> seen{stateOf(*rounds)};
   for (int pass = 0; pass < kMaxRevisitPasses; ++pass) {
     bool changed = false;
-    for (std::size_t r = 0; r < rounds->size(); ++r) {
+    for (std::size_t r = 0; r < rounds->size() && !changed; ++r) {
       std::vector<RoundOutcome> others = *rounds;
       others.erase(others.begin() + static_cast<std::ptrdiff_t>(r));
       adopt(others);
       std::map<Kind, HeldOutPrediction> admissible;
       const std::size_t first_step = diagnosis_.trace.size();
-      const std::optional<Kind> best =
-          selectionRound(static_cast<int>(r), working_, predictHeldOut(working_), results, &admissible);
+      const int round = (*rounds)[r].round;
+      const std::optional<Kind> best = selectionRound(round, working_, predictHeldOut(working_), results, &admissible);
       for (std::size_t step = first_step; step < diagnosis_.trace.size(); ++step) {
         diagnosis_.trace[step].verdict = "revisited with the other rounds' effects in: " + diagnosis_.trace[step].verdict;
       }
-      const RoundOutcome& was = (*rounds)[r];
       if (!best) {
         rounds->erase(rounds->begin() + static_cast<std::ptrdiff_t>(r));
         changed = true;
-        break;
+        continue;
       }
-      RoundOutcome now{*best, ambiguityOf(*best, admissible)};
-      const bool same = now.leader == was.leader && now.ambiguity.has_value() == was.ambiguity.has_value() &&
-                        (!now.ambiguity || now.ambiguity->kinds == was.ambiguity->kinds);
+      const RoundOutcome now{*best, ambiguityOf(*best, admissible), round};
+      changed = stateOf({now}) != stateOf({(*rounds)[r]});
       (*rounds)[r] = now;
-      if (!same) {
-        changed = true;
-        break;
-      }
     }
-    adopt(*rounds);
-    if (!changed) break;
+    if (!changed) {
+      adopt(*rounds);
+      return predictHeldOut(working_);
+    }
+    const State state = stateOf(*rounds);
+    if (std::find(seen.begin(), seen.end(), state) != seen.end()) break;
+    seen.push_back(state);
   }
+  *rounds = forward;
+  adopt(*rounds);
+  addProblemOnce("revisiting the selection's rounds did not settle (their choices cycle): the forward selection's "
+                 "effects are kept");
   return predictHeldOut(working_);
 }
 

@@ -12,11 +12,6 @@ namespace propulsion_estimator {
 namespace gap {
 namespace {
 
-template <typename T>
-void addOnce(std::vector<T>* list, const T& value) {
-  if (std::find(list->begin(), list->end(), value) == list->end()) list->push_back(value);
-}
-
 // The logged message as MAVROS delivers it: ESC i on channel i + 1.
 EscTelemetry message(const EscTelemetryReading& reading) {
   EscTelemetry out;
@@ -37,7 +32,6 @@ ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& v
   ModelCheck check(estimator_config.motor_channels, config);
   ModelCheckReplay replay;
   replay.telemetry = !streams.esc.empty();
-  replay.first_flag_s = kNaN;
   if (!replay.telemetry) return replay;
   double next_report_s = 0.0;
   for (const Arrival& a : arrivals(streams)) {

@@ -28,10 +28,7 @@ MotorHealthReplay replayMotorHealth(const PropulsionModel& model, const Vehicle&
     replay.judgements += verdict.judged;
     if (verdict.flagged_channel == 0) continue;
     if (replay.flagged_channels.empty()) replay.first_flag_s = a.time_s;
-    if (std::find(replay.flagged_channels.begin(), replay.flagged_channels.end(), verdict.flagged_channel) ==
-        replay.flagged_channels.end()) {
-      replay.flagged_channels.push_back(verdict.flagged_channel);
-    }
+    addOnce(&replay.flagged_channels, verdict.flagged_channel);
   }
   return replay;
 }

@@ -17,11 +17,12 @@ void add(const std::vector<Reading>& stream, Stream kind, std::vector<Arrival>* 
 
 std::vector<Arrival> arrivals(const FlightStreams& streams) {
   std::vector<Arrival> order;
-  order.reserve(streams.battery.size() + streams.imu.size() + streams.vertical_speed_m_s.size() + streams.esc.size() +
-                streams.rc_out.size());
+  order.reserve(streams.battery.size() + streams.imu.size() + streams.vertical_speed_m_s.size() +
+                streams.horizontal_velocity.size() + streams.esc.size() + streams.rc_out.size());
   add(streams.battery, Stream::kBattery, &order);
   add(streams.imu, Stream::kImu, &order);
   add(streams.vertical_speed_m_s, Stream::kVerticalSpeed, &order);
+  add(streams.horizontal_velocity, Stream::kHorizontalVelocity, &order);
   add(streams.esc, Stream::kEsc, &order);
   add(streams.rc_out, Stream::kRcOut, &order);
   std::stable_sort(order.begin(), order.end(), [](const Arrival& a, const Arrival& b) {
@@ -47,13 +48,19 @@ bool feedEstimator(const FlightStreams& streams, const Arrival& arrival, Estimat
       return false;
     }
     case Stream::kVerticalSpeed: estimator->addVerticalSpeed(t, streams.vertical_speed_m_s[arrival.index].value); return false;
+    case Stream::kHorizontalVelocity: {
+      const HorizontalVelocityReading& velocity = streams.horizontal_velocity[arrival.index];
+      estimator->addHorizontalVelocity(t, velocity.east_m_s, velocity.north_m_s);
+      return false;
+    }
     case Stream::kEsc: return false;
     case Stream::kRcOut: {
       const RcOutFrame& frame = streams.rc_out[arrival.index];
+      // The estimator's channels (the vehicle's rotors), as the flight logged them.
+      const std::size_t motors = std::min<std::size_t>(estimator->config().motor_channels.size(), kMaxMotors);
       std::array<std::uint16_t, kMaxMotors> channels{};
-      for (int k = 0; k < streams.motors; ++k) channels[k] = static_cast<std::uint16_t>(frame.pwm_us[k]);
-      return estimator->addMotorOutputs(t, t, channels.data(), static_cast<std::size_t>(streams.motors)) ==
-             Rejection::kNone;
+      for (std::size_t k = 0; k < motors; ++k) channels[k] = static_cast<std::uint16_t>(frame.pwm_us[k]);
+      return estimator->addMotorOutputs(t, t, channels.data(), motors) == Rejection::kNone;
     }
   }
   return false;

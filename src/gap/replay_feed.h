@@ -2,6 +2,7 @@
 // the replays of the node's onboard checks feed the core estimator in this order.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -13,7 +14,7 @@ namespace propulsion_estimator {
 namespace gap {
 
 // Which stream a message comes from; at equal times the inputs sort before the RCOut message they feed.
-enum class Stream { kBattery, kImu, kVerticalSpeed, kEsc, kRcOut };
+enum class Stream { kBattery, kImu, kVerticalSpeed, kHorizontalVelocity, kEsc, kRcOut };
 
 // One message: its time, stream and index in that stream.
 struct Arrival {
@@ -22,16 +23,23 @@ struct Arrival {
   std::size_t index;
 };
 
-// Every message of `streams`' battery, IMU, vertical speed, ESC telemetry and RCOut, by time.
+// Every message of `streams`' battery, IMU, vertical speed, horizontal velocity, ESC telemetry and
+// RCOut, by time.
 std::vector<Arrival> arrivals(const FlightStreams& streams);
 
 // The estimator's configuration in a replay: the defaults, the vehicle's rotors on channels 1..n.
 EstimatorConfig replayEstimatorConfig(const Vehicle& vehicle);
 
-// Gives `estimator` the battery, IMU, vertical speed or RCOut message `arrival` as the node does
+// Gives `estimator` the battery, IMU, velocity or RCOut message `arrival` as the node does
 // (received at its log time); true when it was an RCOut message the estimator accepted, whose
 // output the checks then take. ESC telemetry is left to the caller.
 bool feedEstimator(const FlightStreams& streams, const Arrival& arrival, Estimator* estimator);
+
+// Appends `value` to `list` unless it is there already (a replay's flagged channels and verdicts).
+template <typename T>
+void addOnce(std::vector<T>* list, const T& value) {
+  if (std::find(list->begin(), list->end(), value) == list->end()) list->push_back(value);
+}
 
 }  // namespace gap
 }  // namespace propulsion_estimator

@@ -1,5 +1,7 @@
 #include "propulsion_estimator/logs/flight_streams.h"
 
+#include <algorithm>
+
 namespace propulsion_estimator {
 
 const std::vector<std::string>& flightSignalNames() {
@@ -11,6 +13,8 @@ const std::vector<std::string>& flightSignalNames() {
 }
 
 std::vector<std::size_t> signalCounts(const FlightStreams& streams) {
+  const auto status = static_cast<std::size_t>(std::count_if(
+      streams.esc.begin(), streams.esc.end(), [](const EscTelemetryReading& reading) { return reading.status; }));
   return {streams.rc_out.size(),
           streams.battery.size(),
           streams.imu.size(),
@@ -20,8 +24,8 @@ std::vector<std::size_t> signalCounts(const FlightStreams& streams) {
           streams.air_temperature_c.size(),
           streams.height_above_ground_m.size(),
           streams.motor_temperature_c.size(),
-          streams.esc.size(),
-          streams.esc.size()};
+          streams.esc.size() - status,
+          status};
 }
 
 }  // namespace propulsion_estimator

@@ -27,7 +27,7 @@ struct Block {
   double current_a = 0.0;        ///< battery discharge current, >= 0; NaN without a current sensor
   double specific_force_up_m_s2 = 0.0;  ///< vertical specific force (g + vertical acceleration)
   double truth_n = 0.0;          ///< mass x specific_force_up: the vertical thrust that flew
-  effects::Signals signals;      ///< height, vertical speed, air density, motor temperature; NaN if missing
+  effects::Signals signals;      ///< height, vertical, horizontal and axial speed, air density, motor temperature; NaN if missing
   double altitude_m = 0.0;       ///< local position z; NaN if missing
   bool hover = false;            ///< steady: slow vertical speed, steady commands
   double pwm_change_us = 0.0;    ///< range of the collective (mean over motors) PWM within the block

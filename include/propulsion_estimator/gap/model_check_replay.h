@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "propulsion_estimator/onboard/model_check.h"
@@ -20,12 +21,12 @@ struct ModelCheckReplay {
   int judgements = 0;  ///< reports with every motor judged, once a second
   std::vector<std::string> verdicts;  ///< "propeller", "motor_esc", "supply": each once
   std::vector<int> flagged_channels;  ///< 1-based, each once, in the order first flagged
-  double first_flag_s = 0.0;  ///< s on the flight's clock; NaN when nothing was flagged
+  double first_flag_s = kNaN;  ///< s on the flight's clock; NaN when nothing was flagged
 };
 
 /// Replays a flight's logged streams through the core Estimator (default configuration, channels
-/// 1..motors) and the model check (`config`) as estimator_node feeds them: battery, IMU, vertical
-/// speed and ESC telemetry as they arrived, the estimate after each accepted RCOut message, the
+/// 1..motors) and the model check (`config`) as estimator_node feeds them: battery, IMU, velocity
+/// and ESC telemetry as they arrived, the estimate after each accepted RCOut message, the
 /// report taken once a second. Without ESC telemetry nothing is judged.
 ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                                   const ModelCheckConfig& config = {});

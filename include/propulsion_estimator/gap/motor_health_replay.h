@@ -22,7 +22,7 @@ struct MotorHealthReplay {
 
 /// Replays a flight's logged streams through the core Estimator (default configuration, the
 /// model's channels 1..motors) and the motor-health check as estimator_node feeds them: battery,
-/// IMU and vertical speed as they arrived, the check after each accepted RCOut message, its
+/// IMU and velocity as they arrived, the check after each accepted RCOut message, its
 /// verdict taken once a second.
 MotorHealthReplay replayMotorHealth(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                                     const MotorHealthConfig& config = {});

@@ -45,9 +45,11 @@ struct HorizontalVelocityReading {
 };
 
 /// One ESC telemetry message (mavros_msgs/ESCTelemetry from ArduPilot, ESCStatus from PX4): each
-/// ESC's report, ESC i driving RCOut channel i + 1; the first kMaxMotors ESCs are kept.
+/// ESC's report, ESC i driving RCOut channel i + 1; the first kMaxMotors ESCs are kept, entries
+/// past `escs` unused.
 struct EscTelemetryReading {
   double time_s = 0.0;  ///< s from the log's first message
+  bool status = false;  ///< from PX4's ESCStatus (else ArduPilot's ESCTelemetry)
   int escs = 0;         ///< reports kept, <= kMaxMotors
   std::array<double, kMaxMotors> rpm{};        ///< mechanical rotor speed, rpm; NaN when not reported
   std::array<double, kMaxMotors> current_a{};  ///< the ESC's input current, A; NaN when not reported

@@ -17,9 +17,10 @@ const EffectDescription& climbInflowEffect() {
     // motion, which momentum theory treats alike (lambda = mu tan(alpha) + lambda_i).
     d.signal = Signal::kAxialSpeed;
     d.meaning =
-        "a climb adds axial inflow, lowering the blades' angle of attack and the thrust; a descent the reverse";
+        "air flowing axially through the rotors (a climb, or the discs tilted into forward flight) lowers the blades' "
+        "angle of attack and the thrust; a descent the reverse";
     d.separating_flight =
-        "steady climbs and descents at two speeds: climb inflow grows with the vertical speed";
+        "steady climbs and descents at two speeds: climb inflow grows with the speed along the rotors' axes";
     // Momentum theory: a climb's axial inflow lowers the blades' angle of attack, while a slow
     // descent (into the vortex-ring region) barely changes thrust at a given rotor speed.
     d.thrust_factor = [](double value, const ModelEffects&, const Signals& signals) {
@@ -28,7 +29,9 @@ const EffectDescription& climbInflowEffect() {
     // Momentum theory gives a climb's loss at constant power about as at constant speed.
     d.current_view_exponent = [](double) { return 1.0; };
     d.informative = [](double speed_m_s, double) { return std::abs(speed_m_s) > 0.3; };
-    d.uninformative = [](double) { return std::string("no weighed climb or descent faster than 0.3 m/s"); };
+    d.uninformative = [](double) {
+      return std::string("no weighed flight faster than 0.3 m/s along the rotors' axes (a climb or descent)");
+    };
     return d;
   }();
   return description;

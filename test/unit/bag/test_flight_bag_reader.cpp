@@ -146,6 +146,11 @@ TEST_F(FlightBagReader, ReadsWhatTheSimulatorWritesOnTheManifestsClock) {
   EXPECT_EQ(streams.esc[0].count[1], 8);
   EXPECT_NEAR(streams.esc[1].time_s, 0.55, 1e-9);
   EXPECT_EQ(streams.esc[1].count[1], -1);
+  EXPECT_FALSE(streams.esc[0].status);
+  EXPECT_TRUE(streams.esc[1].status);
+  const std::vector<std::size_t> counts = pe::signalCounts(streams);
+  EXPECT_EQ(counts[counts.size() - 2], 1u);  // esc_telemetry
+  EXPECT_EQ(counts.back(), 1u);              // esc_status
   ASSERT_EQ(streams.static_pressure_pa.size(), 1u);
   EXPECT_DOUBLE_EQ(streams.static_pressure_pa[0].value, 101000.5);
   ASSERT_EQ(streams.air_temperature_c.size(), 1u);

@@ -58,7 +58,10 @@ namespace sim {
 ///   lambda_i x r(e),  r^4 + e^2 r^2 = 1, e = mu / lambda_h   the disc meets more air, needs less
 ///                                                            induced inflow (translational lift)
 ///   C_Q0 x (1 + 4.65 mu^2)                     the profile torque rises with the edgewise speed
-/// The axial part of the flow through a disc tilted into its motion enters as lambda_c.
+/// The axial part of the flow through a disc tilted into its motion enters as lambda_c. Exact
+/// (Glauert) at zero climb out of ground effect; with both, the edgewise ratio r multiplies the
+/// axial and ground inflow of above, an approximation of Glauert's coupled
+/// lambda_i sqrt(mu^2 + (lambda_c + lambda_i)^2) = C_T / 2.
 /// Left out: the blades' drag rising with their angle of attack, the inflow's fore-aft gradient,
 /// windmilling (the torque is held at 0 or above, the thrust too).
 
