@@ -202,11 +202,13 @@ HARDWARE_DRAWS = 10
 def run_case(case, args):
     """Simulates, fits and diagnoses one case; returns its row. A family member too weak for its
     payloads is drawn again (up to HARDWARE_DRAWS), and the row says how many were drawn."""
-    for attempt in range(HARDWARE_DRAWS if args.family else 1):
+    draws = HARDWARE_DRAWS if args.family else 1
+    for attempt in range(draws):
         row = run_case_once(case, args, attempt)
         if row.get("overloaded") is None:
             return row
-    return dict(row, error="no flyable member of the family in %d draws (see %s)" % (HARDWARE_DRAWS, row["overloaded"]))
+    return dict(row, error="no flyable vehicle in %d draw%s (see %s)" % (draws, "s" if draws > 1 else "",
+                                                                         row["overloaded"]))
 
 
 def run_case_once(case, args, attempt):
