@@ -179,61 +179,62 @@ TEST(DynamicFlight, WithTheLagModelledMostBlocksCountUnbiased) {
   EXPECT_LT(lagged.dynamic_rmse_pct, 0.5 * plain.dynamic_rmse_pct);
 }
 
-TEST(DynamicFlight, SelectsAsFromItsSteadyHovers) {
-  // Five flights with a thrust loss and payloads of 0-0.2 kg, diagnosed twice: weighed from
-  // take-off to landing (most blocks transient, the lag identified), and on their hovers alone.
+namespace {
+
+// Five flights with a 7 % thrust loss, `effects` besides, and payloads of 0-0.2 kg, from seed
+// `first_seed` on, diagnosed twice: weighed from take-off to landing (most blocks transient, the
+// lag identified) and on their hovers alone. The effects are selected on the steady blocks alone:
+// hovers of 10 s give them enough to tell a thrust loss from an ESC offset (of 8 s, two seed sets
+// of eight leave the two ambiguous).
+struct BothWays {
+  gap::Diagnosis airborne;
+  gap::Diagnosis hovers;
+};
+
+BothWays diagnoseBothWays(int first_seed, const pe::sim::SimEffects& effects) {
   const pe::PropulsionModel model = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
   const pe::Vehicle vehicle = pe::loadVehicleUrdf(repoPath("config/f450_quad.urdf"));
   std::vector<pe::Flight> airborne, hovers;
   for (int f = 0; f < 5; ++f) {
     Script script;
     script.payload_kg = 0.05 * f;
-    // The effects are selected on the steady blocks alone: hovers of 10 s give them enough to tell
-    // a thrust loss from an ESC offset (of 8 s, two seed sets of eight leave the two ambiguous).
     script.hover_s = 10.0;
+    script.effects = effects;
     script.effects.thrust_loss_fraction = 0.07;
-    airborne.push_back(simulateDynamicFlight(10 + f, script));
+    airborne.push_back(simulateDynamicFlight(first_seed + f, script));
     script.spans = "hovers";
-    hovers.push_back(simulateDynamicFlight(10 + f, script));
+    hovers.push_back(simulateDynamicFlight(first_seed + f, script));
   }
   const gap::DiagnosisConfig config;
-  const gap::Diagnosis dynamic = gap::diagnoseGap(model, vehicle, airborne, config);
-  const gap::Diagnosis steady = gap::diagnoseGap(model, vehicle, hovers, config);
+  return {gap::diagnoseGap(model, vehicle, airborne, config), gap::diagnoseGap(model, vehicle, hovers, config)};
+}
+
+}  // namespace
+
+TEST(DynamicFlight, SelectsAsFromItsSteadyHovers) {
+  const BothWays both = diagnoseBothWays(10, {});
+  const gap::Diagnosis& dynamic = both.airborne;
   EXPECT_GT(dynamic.rotor_time_constant_s, 0.0) << dynamic.rotor_lag;
   EXPECT_GE(2 * dynamic.blocks, dynamic.blocks + dynamic.transient_blocks) << dynamic.method;
   EXPECT_GT(dynamic.dynamic_blocks, 0);
-  EXPECT_EQ(dynamic.selected, steady.selected);
-  EXPECT_TRUE(dynamic.ambiguous.empty() && steady.ambiguous.empty());
-  EXPECT_EQ(steady.selected, std::vector<pe::effects::Kind>{pe::effects::Kind::kThrustLoss});
+  EXPECT_EQ(dynamic.selected, both.hovers.selected);
+  EXPECT_TRUE(dynamic.ambiguous.empty() && both.hovers.ambiguous.empty());
+  EXPECT_EQ(both.hovers.selected, std::vector<pe::effects::Kind>{pe::effects::Kind::kThrustLoss});
 }
 
 TEST(DynamicFlight, NamesTheTranslationalLiftItsHoversCannotSee) {
-  // The same five flights with the rotors' edgewise flow: the straight legs lift more than the
-  // surfaces say. Weighed from take-off to landing the diagnosis names the translational lift
-  // beside the thrust loss; on the hovers alone it cannot see it, and names the thrust loss only.
-  const pe::PropulsionModel model = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
-  const pe::Vehicle vehicle = pe::loadVehicleUrdf(repoPath("config/f450_quad.urdf"));
-  std::vector<pe::Flight> airborne, hovers;
-  for (int f = 0; f < 5; ++f) {
-    Script script;
-    script.payload_kg = 0.05 * f;
-    script.hover_s = 10.0;
-    script.effects.thrust_loss_fraction = 0.07;
-    script.effects.translational_lift_strength = 1.0;
-    airborne.push_back(simulateDynamicFlight(20 + f, script));
-    script.spans = "hovers";
-    hovers.push_back(simulateDynamicFlight(20 + f, script));
-  }
-  const gap::DiagnosisConfig config;
-  const gap::Diagnosis dynamic = gap::diagnoseGap(model, vehicle, airborne, config);
-  const gap::Diagnosis steady = gap::diagnoseGap(model, vehicle, hovers, config);
-  std::vector<pe::effects::Kind> selected = dynamic.selected;
+  // The same flights with the rotors' edgewise flow: the straight legs lift more than the surfaces
+  // say. Weighed from take-off to landing the diagnosis names the translational lift beside the
+  // thrust loss; on the hovers alone it cannot see it, and names the thrust loss only.
+  pe::sim::SimEffects effects;
+  effects.translational_lift_strength = 1.0;
+  const BothWays both = diagnoseBothWays(20, effects);
+  std::vector<pe::effects::Kind> selected = both.airborne.selected;
   std::sort(selected.begin(), selected.end());
   EXPECT_EQ(selected, (std::vector<pe::effects::Kind>{pe::effects::Kind::kThrustLoss,
                                                       pe::effects::Kind::kTranslationalLift}))
-      << dynamic.method;
-  EXPECT_TRUE(dynamic.ambiguous.empty());
-  EXPECT_EQ(steady.selected, std::vector<pe::effects::Kind>{pe::effects::Kind::kThrustLoss});
-  EXPECT_GE(2 * dynamic.blocks, dynamic.blocks + dynamic.transient_blocks) << dynamic.method;
+      << both.airborne.method;
+  EXPECT_TRUE(both.airborne.ambiguous.empty());
+  EXPECT_EQ(both.hovers.selected, std::vector<pe::effects::Kind>{pe::effects::Kind::kThrustLoss});
+  EXPECT_GE(2 * both.airborne.blocks, both.airborne.blocks + both.airborne.transient_blocks) << both.airborne.method;
 }
-
