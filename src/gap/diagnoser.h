@@ -83,8 +83,13 @@ class Diagnoser {
   effects::ModelEffects references() const;
   std::string testability(Kind kind) const;
   HeldOutPrediction predictHeldOut(const std::vector<Kind>& kinds) const;
-  // Sum over blocks of the joint squared error (PWM view plus current view where it exists).
+  // The current view's weight in the joint error: the PWM view's block-to-block noise variance over
+  // the current view's, from the plain model's held-out residuals (`before`); 1 without a current view.
+  double currentViewWeight(const HeldOutPrediction& before) const;
+  // Per (flight, group) stretch: the fall of the joint squared error (PWM view plus the weighted
+  // current view where it exists) from `before` to `after`.
   std::vector<double> groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const;
+  // Mean over blocks of the joint squared error (PWM view plus the weighted current view).
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
   double suspectThrustFactor(int motor, double yaw_gap) const;
   double currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const;
@@ -132,6 +137,7 @@ class Diagnoser {
   std::vector<std::string> unit_names_;  // of each unit: the flight's name, or "flight#segment"
   std::vector<Kind> working_;  // the effects the correction uses: selected and ambiguous leaders
   std::set<Kind> grouped_;     // members of an ambiguous group: not tried again
+  double current_weight_ = 1.0;  // of the current view in the joint error (currentViewWeight)
   int units_ = 0;
   std::string unit_name_;
   Diagnosis diagnosis_;

@@ -185,7 +185,8 @@ std::string Diagnoser::method() const {
          "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
          formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
          " % (more than a mismatch of model family alone gives on null flights), the joint error of both views "
-         "falls, a sign-flip permutation "
+         "(the current view weighted by the PWM view's block-to-block noise variance over its own, here " +
+         formatPrintf("%.3g", diagnosis_.current_view_weight) + ") falls, a sign-flip permutation "
          "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +
          std::to_string(config_.permutations) + " permutations) gives p < " + formatNumber(config_.significance) +
          ", and the fitted parameter lies inside its plausible range with a 95 % interval excluding "

@@ -33,6 +33,7 @@ HeldOutPrediction Diagnoser::select(const HeldOutPrediction& before, std::map<Ki
   diagnosis_.selected = steady.diagnosis_.selected;
   diagnosis_.ambiguous = steady.diagnosis_.ambiguous;
   diagnosis_.trace = steady.diagnosis_.trace;
+  diagnosis_.current_view_weight = steady.diagnosis_.current_view_weight;
   for (const std::string& problem : steady.diagnosis_.problems) addProblemOnce(problem);
   return predictHeldOut(working_);
 }

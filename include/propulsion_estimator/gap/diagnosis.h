@@ -219,6 +219,9 @@ struct Diagnosis {
   HeldOut heldout;  ///< scores on held-out flights before and after them
   std::vector<SelectionStep> trace;  ///< every candidate of every round, in order
   std::string method;  ///< how selection was decided, for the report
+  /// The current view's weight in the joint error of both views: the PWM view's block-to-block
+  /// noise variance over the current view's (1 without a current view).
+  double current_view_weight = 1.0;
   std::vector<GapSample> samples;  ///< one per block, for the figures
   std::vector<std::string> problems;  ///< what could not be done, one line each
 };
