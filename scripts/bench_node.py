@@ -20,7 +20,9 @@ CPU time over all its rounds' wall time, its latencies those of all its rounds.
 callgrind: estimator_node under valgrind --tool=callgrind, collecting only inside
 EstimatorNode::onRcOut, driven with RCOut at 100 Hz until its windows are full, then, counters
 zeroed, with --callgrind-messages more; callgrind_annotate's inclusive counts of decoding,
-estimation and publishing divided by the messages handled.
+estimation and publishing divided by the messages handled; then again with mavros_msgs/ESCTelemetry
+at 50 Hz (every ESC in each message), its callback EstimatorNode::onEscTelemetry counted apart,
+per ESCTelemetry decoded.
 
 Writes one JSON file per part. Usage:
   scripts/bench_node.py --bin DIR --repo DIR --work DIR [--duration-s 60] [--rounds 2] [--systems node floor ...]
@@ -51,6 +53,11 @@ CALLGRIND_PARTS = [
     ("publishing", "propulsion_estimator::EstimatorNode::publish"),
 ]
 CALLGRIND_TOTAL = "propulsion_estimator::EstimatorNode::onRcOut"
+# The ESC telemetry callback and its decoder (the calls counted as messages).
+CALLGRIND_ESC = "propulsion_estimator::EstimatorNode::onEscTelemetry"
+CALLGRIND_ESC_DECODE = "propulsion_estimator::EscTelemetryDecoder::decode"
+# mavros_msgs/ESCTelemetry per second, every ESC in each (ArduPilot's ESC_TELEMETRY_x at 50 Hz).
+CALLGRIND_ESC_RATE_HZ = 50.0
 # Longer than the parameter template's hover window (2 s) and payload averaging window (10 s).
 CALLGRIND_WARMUP_S = 15.0
 
@@ -139,7 +146,8 @@ def system_command(system, args, master):
     return [os.path.join(args.bin, "bench_floor_node")] + (["--inline"] if system == "floor_inline" else [])
 
 
-def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, pid, drain_s, on_load=None):
+def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, pid, drain_s, on_load=None,
+              esc_rate_hz=0.0):
     """Runs bench_probe against `system` (a Popen), which must live as long as the probe; calls
     on_load() once the load has started. Returns its JSON, with the latencies measured (ms, sorted)
     under "latencies_ms"."""
@@ -152,6 +160,8 @@ def run_probe(args, master, name, rate_hz, duration_s, estimate_topic, system, p
         command += ["--estimate-topic", estimate_topic, "--latencies-file", latencies_file]
     if pid:
         command += ["--pid", str(pid)]
+    if esc_rate_hz:
+        command += ["--esc-rate-hz", str(esc_rate_hz)]
     probe = subprocess.Popen(command, env=master.env, stdout=subprocess.PIPE, text=True)
     # The probe gives up on its own if nothing connects within its --connect-timeout-s.
     for line in probe.stdout:
@@ -271,16 +281,20 @@ def annotated_counts(annotate_output):
     return counts, calls
 
 
-def run_callgrind(args):
+def run_callgrind(args, esc_rate_hz=0.0):
+    """Instructions per RCOut message; with esc_rate_hz, ESCTelemetry comes in at that rate too and
+    its callback's instructions per message are counted apart."""
     messages = args.callgrind_messages
     rate_hz = 100.0
-    print("== callgrind: estimator_node, %d RCOut at %g Hz" % (messages, rate_hz), flush=True)
-    out_file = os.path.join(args.work, "callgrind.out")
-    with Master(args.work, "callgrind") as master:
+    name = "callgrind_esc" if esc_rate_hz else "callgrind"
+    print("== callgrind: estimator_node, %d RCOut at %g Hz%s" % (
+        messages, rate_hz, ", ESCTelemetry at %g Hz" % esc_rate_hz if esc_rate_hz else ""), flush=True)
+    out_file = os.path.join(args.work, name + ".out")
+    with Master(args.work, name) as master:
         command = ["valgrind", "--tool=callgrind", "--collect-atstart=no",
-                   "--toggle-collect=%s*" % CALLGRIND_TOTAL, "--callgrind-out-file=" + out_file
-                   ] + system_command("node", args, master)
-        log = open(os.path.join(args.work, "callgrind_node.log"), "w")
+                   "--toggle-collect=%s*" % CALLGRIND_TOTAL, "--toggle-collect=%s*" % CALLGRIND_ESC,
+                   "--callgrind-out-file=" + out_file] + system_command("node", args, master)
+        log = open(os.path.join(args.work, name + "_node.log"), "w")
         process = subprocess.Popen(command, env=master.env, stdout=log, stderr=subprocess.STDOUT,
                                    start_new_session=True)
         def zero_after_warmup():
@@ -290,14 +304,15 @@ def run_callgrind(args):
             subprocess.run(["callgrind_control", "--zero", str(process.pid)], check=True, stdout=subprocess.DEVNULL)
 
         try:
-            probe = run_probe(args, master, "callgrind", rate_hz, CALLGRIND_WARMUP_S + messages / rate_hz,
-                              ESTIMATE_TOPICS["node"], process, 0, drain_s=30.0, on_load=zero_after_warmup)
+            probe = run_probe(args, master, name, rate_hz, CALLGRIND_WARMUP_S + messages / rate_hz,
+                              ESTIMATE_TOPICS["node"], process, 0, drain_s=30.0, on_load=zero_after_warmup,
+                              esc_rate_hz=esc_rate_hz)
         finally:
             stop_group(process, signal.SIGINT, 120.0)
             log.close()
     annotate = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--tree=caller", "--threshold=100", out_file],
                               capture_output=True, text=True, check=True).stdout
-    with open(os.path.join(args.work, "callgrind_annotate.txt"), "w") as f:
+    with open(os.path.join(args.work, name + "_annotate.txt"), "w") as f:
         f.write(annotate)
     counts, calls = annotated_counts(annotate)
     decode = CALLGRIND_PARTS[0][1]
@@ -312,9 +327,19 @@ def run_callgrind(args):
         parts[part] = counts[name] / handled
     print("   %d messages decoded after the warm-up: %s instructions per message" % (
         handled, ", ".join("%s %.0f" % item for item in parts.items())), flush=True)
-    return {"rc_out_sent": probe["rc_out_sent"], "handled": handled, "rate_hz": rate_hz, "warmup_s": CALLGRIND_WARMUP_S,
-            "published": calls.get((CALLGRIND_TOTAL, CALLGRIND_PARTS[2][1]), 0), "measured_s": messages / rate_hz,
-            "instructions_per_message": parts, "command": " ".join(command)}
+    result = {"rc_out_sent": probe["rc_out_sent"], "handled": handled, "rate_hz": rate_hz,
+              "warmup_s": CALLGRIND_WARMUP_S, "published": calls.get((CALLGRIND_TOTAL, CALLGRIND_PARTS[2][1]), 0),
+              "measured_s": messages / rate_hz, "instructions_per_message": parts, "command": " ".join(command)}
+    if esc_rate_hz:
+        esc_handled = calls.get((CALLGRIND_ESC, CALLGRIND_ESC_DECODE), 0)
+        if not esc_handled or CALLGRIND_ESC not in counts:
+            sys.exit("bench_node.py: estimator_node under callgrind decoded no ESCTelemetry after the warm-up (%s)"
+                     % f.name)
+        result.update(esc_rate_hz=esc_rate_hz, escs=RC_OUT_CHANNELS, esc_sent=probe["esc_sent"], esc_handled=esc_handled,
+                      esc_instructions_per_message=counts[CALLGRIND_ESC] / esc_handled)
+        print("   %d ESCTelemetry decoded after the warm-up: %.0f instructions per message" % (
+            esc_handled, result["esc_instructions_per_message"]), flush=True)
+    return result
 
 
 def main():
@@ -340,7 +365,9 @@ def main():
             json.dump(run_e2e(args), f, indent=1)
     if args.callgrind_json:
         with open(args.callgrind_json, "w") as f:
-            json.dump(run_callgrind(args), f, indent=1)
+            result = run_callgrind(args)
+            result["with_esc_telemetry"] = run_callgrind(args, CALLGRIND_ESC_RATE_HZ)
+            json.dump(result, f, indent=1)
 
 
 if __name__ == "__main__":

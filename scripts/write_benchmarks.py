@@ -145,6 +145,16 @@ def callgrind_table(callgrind):
     for part, what in rows:
         lines.append("| %s | %s | %.0f %% | %s |" % (part, "{:,.0f}".format(parts[part]), 100.0 * parts[part] / total,
                                                     what))
+    esc = callgrind.get("with_esc_telemetry")
+    if esc:
+        esc_total = esc["instructions_per_message"]["total"]
+        lines += ["", "With ESC telemetry (`mavros_msgs/ESCTelemetry` at %g Hz, %d ESCs in each message, %d decoded "
+                  "after the warm-up; the same RCOut load):" % (esc["esc_rate_hz"], esc["escs"], esc["esc_handled"]),
+                  "", "| callback | instructions per message | against no telemetry |", "|---|---:|---:|",
+                  "| `EstimatorNode::onRcOut`, per RCOut | %s | %+.1f %% |" % (
+                      "{:,.0f}".format(esc_total), 100.0 * (esc_total / total - 1.0)),
+                  "| `EstimatorNode::onEscTelemetry`, per ESCTelemetry (decoding and the live model check) | %s | |" % (
+                      "{:,.0f}".format(esc["esc_instructions_per_message"]))]
     return "\n".join(lines)
 
 

@@ -29,6 +29,8 @@
 #include <unistd.h>
 
 #include "propulsion_estimator/PropulsionTotals.h"
+#include "propulsion_estimator/common/mavros_topics.h"
+#include "propulsion_estimator/ros/esc_telemetry_codec.h"
 #include "propulsion_estimator/ros/inline_callback_queue.h"
 #include "propulsion_estimator/ros/rcout_codec.h"
 
@@ -46,6 +48,8 @@ struct Options {
   double voltage_v = 11.5;
   std::string rc_out_topic = "/mavros/rc/out";
   std::string battery_topic = "/mavros/battery";
+  double esc_rate_hz = 0.0;  // mavros_msgs/ESCTelemetry, every ESC in each message; 0: none
+  std::string esc_topic = pe::kEscTelemetryTopic;
   std::string estimate_topic;  // "": the system under test answers nothing (the transport floor)
   int pid = 0;
   double connect_timeout_s = 120.0;
@@ -99,6 +103,11 @@ class Probe {
                                  pe::rcOutDefinition());
     rc_out_pub_ = nh_.advertise(rc_out);
     battery_pub_ = nh_.advertise<sensor_msgs::BatteryState>(options.battery_topic, 5);
+    if (options.esc_rate_hz > 0.0) {
+      ros::AdvertiseOptions esc(options.esc_topic, 100, pe::kEscTelemetryMd5Sum, pe::kEscTelemetryDataType,
+                                pe::escTelemetryDefinition());
+      esc_pub_ = nh_.advertise(esc);
+    }
     if (!options.estimate_topic.empty()) {
       latencies_s_.reserve(static_cast<std::size_t>(options.duration_s * options.rate_hz) + 1);
       ros::NodeHandle estimate_nh(nh_);
@@ -123,6 +132,8 @@ class Probe {
     const auto battery_period = std::chrono::duration<double>(1.0 / options_.battery_rate_hz);
     const long messages = std::lround(options_.duration_s * options_.rate_hz);
     auto next_battery = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(battery_period);
+    const auto esc_period = std::chrono::duration<double>(options_.esc_rate_hz > 0.0 ? 1.0 / options_.esc_rate_hz : 1e9);
+    auto next_esc = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(esc_period);
     std::mt19937 random(1);
     std::normal_distribution<double> noise(0.0, options_.pwm_noise_us);
     pe::RcOutMessage message;
@@ -132,6 +143,10 @@ class Probe {
       if (std::chrono::steady_clock::now() >= next_battery) {
         sendBattery();
         next_battery += std::chrono::duration_cast<std::chrono::steady_clock::duration>(battery_period);
+      }
+      if (options_.esc_rate_hz > 0.0 && std::chrono::steady_clock::now() >= next_esc) {
+        sendEsc(random);
+        next_esc += std::chrono::duration_cast<std::chrono::steady_clock::duration>(esc_period);
       }
       for (std::uint16_t& channel : message.channels) {
         channel = static_cast<std::uint16_t>(std::lround(options_.pwm_us + noise(random)));
@@ -158,7 +173,8 @@ class Probe {
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(options_.connect_timeout_s);
     while (ros::ok() && ros::WallTime::now() < deadline) {
       const bool answers = options_.estimate_topic.empty() || estimate_sub_.getNumPublishers() > 0;
-      if (rc_out_pub_.getNumSubscribers() > 0 && battery_pub_.getNumSubscribers() > 0 && answers) return true;
+      const bool esc = options_.esc_rate_hz <= 0.0 || esc_pub_.getNumSubscribers() > 0;
+      if (rc_out_pub_.getNumSubscribers() > 0 && battery_pub_.getNumSubscribers() > 0 && answers && esc) return true;
       ros::WallDuration(0.05).sleep();
     }
     std::cerr << "bench_probe: nothing subscribed to " << options_.rc_out_topic << " and " << options_.battery_topic
@@ -176,6 +192,24 @@ class Probe {
     battery.present = true;
     battery_pub_.publish(battery);
     ++battery_sent_;
+  }
+
+  // Every ESC at a hover's speed and current, with noise, as ArduPilot's ESC_TELEMETRY reports them.
+  void sendEsc(std::mt19937& random) {
+    std::normal_distribution<double> noise(0.0, 1.0);
+    pe::EscTelemetry telemetry;
+    telemetry.stamp_s = ros::Time::now().toSec();
+    telemetry.escs.resize(static_cast<std::size_t>(options_.channels));
+    for (pe::EscReport& esc : telemetry.escs) {
+      esc.stamp_s = telemetry.stamp_s;
+      esc.rpm = 6000.0 + 50.0 * noise(random);
+      esc.current_a = 4.0 + 0.1 * noise(random);
+      esc.voltage_v = options_.voltage_v;
+      esc.temperature_c = 35.0;
+      esc.count = static_cast<int>(esc_sent_ % 65536);
+    }
+    esc_pub_.publish(pe::encodeEscTelemetry(telemetry, false));
+    ++esc_sent_;
   }
 
   void onEstimate(const pe::PropulsionTotals::ConstPtr& totals) {
@@ -198,7 +232,7 @@ class Probe {
     std::sort(sorted.begin(), sorted.end());
     const bool timed = !options_.estimate_topic.empty();
     std::ostringstream json;
-    json << "{\"rc_out_sent\": " << sent_ << ", \"battery_sent\": " << battery_sent_
+    json << "{\"rc_out_sent\": " << sent_ << ", \"battery_sent\": " << battery_sent_ << ", \"esc_sent\": " << esc_sent_
          << ", \"rate_hz\": " << number(options_.rate_hz) << ", \"channels\": " << options_.channels
          << ", \"wall_s\": " << number(wall_s) << ", \"estimates_received\": "
          << (timed ? std::to_string(sorted.size()) : "null")
@@ -227,11 +261,11 @@ class Probe {
 
   Options options_;
   ros::NodeHandle nh_;
-  long sent_ = 0, battery_sent_ = 0;
+  long sent_ = 0, battery_sent_ = 0, esc_sent_ = 0;
   std::mutex mutex_;
   std::vector<double> latencies_s_;
   pe::InlineCallbackQueue estimate_queue_;
-  ros::Publisher rc_out_pub_, battery_pub_;
+  ros::Publisher rc_out_pub_, battery_pub_, esc_pub_;
   // Last, so destroyed first: its callback uses the members above.
   ros::Subscriber estimate_sub_;
 };
@@ -251,6 +285,9 @@ int main(int argc, char** argv) {
   app.add_option("--voltage-v", options.voltage_v, "battery voltage");
   app.add_option("--rc-out-topic", options.rc_out_topic);
   app.add_option("--battery-topic", options.battery_topic);
+  app.add_option("--esc-rate-hz", options.esc_rate_hz, "mavros_msgs/ESCTelemetry rate, every ESC in each; 0: none")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--esc-topic", options.esc_topic);
   app.add_option("--estimate-topic", options.estimate_topic, "PropulsionTotals to time; none: no latency");
   app.add_option("--pid", options.pid, "process under test (CPU time and VmRSS)");
   app.add_option("--connect-timeout-s", options.connect_timeout_s);
