@@ -36,11 +36,12 @@ struct DiagnosisConfig {
   /// ... and the PWM view's held-out RMSE falls by more than this many % of the truth, and its mean
   /// square below this fraction of what it was: more than a mismatch of model family alone gives
   /// on null flights. Calibrated on 2026-11-25 on the null, centre-of-gravity and weak-propeller
-  /// cases of development seeds 11, 156581 and 727793 flown with straight legs
-  /// (scripts/calibrate_gap_thresholds.py: the largest fall there 0.058 points, mean square to
-  /// 0.73; 25 % above it); VALIDATION.md, "Calibration of the thresholds".
+  /// cases of the 13 development seeds flown with straight legs (11, 156581, 727793 and the ten
+  /// once fresh: 823438, 415516, 444675, 285642, 544269, 888950, 566424, 925770, 679609, 675042)
+  /// (scripts/calibrate_gap_thresholds.py: the largest fall there 0.074 points, mean square to
+  /// 0.67; 25 % above it); VALIDATION.md, "Calibration of the thresholds".
   ///@{
-  double min_improvement_pct = 0.0725;
+  double min_improvement_pct = 0.0925;
   double max_mean_square_ratio = 0.9;
   ///@}
   /// The leading candidate and another that also passes every test are reported ambiguous when the
