@@ -80,13 +80,14 @@ double Signals::value(Signal signal) const {
 
 std::optional<double> ModelEffects::parameter(Kind kind) const { return parameters_[index(kind)]; }
 
-void ModelEffects::setParameter(Kind kind, std::optional<double> value) { parameters_[index(kind)] = value; }
+void ModelEffects::setParameter(Kind kind, std::optional<double> value) {
+  parameters_[index(kind)] = value;
+  on_ = value ? on_ | bit(kind) : on_ & ~bit(kind);
+}
 
 bool ModelEffects::has(Kind kind) const { return parameter(kind).has_value(); }
 
-bool ModelEffects::empty() const {
-  return std::none_of(kAllKinds.begin(), kAllKinds.end(), [this](Kind kind) { return has(kind); });
-}
+bool ModelEffects::empty() const { return on_ == 0; }
 
 void ModelEffects::validate() const {
   for (Kind kind : kAllKinds) {
@@ -125,6 +126,7 @@ std::string describeParameters(Kind kind, const ModelEffects& effects) {
 Inputs correctInputs(const ModelEffects& effects, double pwm_us, double voltage_v, const Signals& signals,
                      KindMask* skipped) {
   Inputs inputs{pwm_us, voltage_v};
+  if (effects.empty()) return inputs;
   for (Kind kind : kAllKinds) {
     const std::optional<double> value = effects.parameter(kind);
     const EffectDescription& description = describe(kind);
@@ -148,6 +150,7 @@ double singleThrustFactor(Kind kind, double value, const ModelEffects& reference
 
 double thrustFactor(const ModelEffects& effects, const Signals& signals, KindMask* skipped) {
   double factor = 1.0;
+  if (effects.empty()) return factor;
   for (Kind kind : kAllKinds) {
     const std::optional<double> value = effects.parameter(kind);
     if (!value) continue;

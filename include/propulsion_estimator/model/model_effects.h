@@ -125,6 +125,9 @@ struct ModelEffects {
 
  private:
   std::array<std::optional<double>, kKindCount> parameters_;
+  // bit(kind) of each effect on, kept with parameters_ by setParameter: the node asks empty() for
+  // every motor of every RCOut message, and without effects that must cost nothing.
+  unsigned on_ = 0;
 };
 
 /// "resistance_ohm 0.035", "coefficient_m2 0.0011, rotor_height_m 0.05", ...: the parameter of
