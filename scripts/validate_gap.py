@@ -74,7 +74,7 @@ def draw_family(seed, attempt=0):
     magnet and thermal coefficients, propeller thrust and torque coefficients drawn independently,
     battery resistances; drag, centre of gravity and the avionics' own current draw).
     Its own random stream: the cases drawn from --seed are the same with or without the family.
-    A later attempt draws again, for a member that cannot lift its own flights' payloads.
+    A later attempt draws again, for a member that cannot fly its own flights.
     The battery's sub-model family (open-circuit curve shape, RC pairs) is issue 19's, in
     sim/physics: once it is in main, it is drawn here too."""
     rng = random.Random(seed * 7919 + 17 + attempt * 104729)
@@ -199,24 +199,21 @@ def run(command, log):
 # the profile): no user flies such a vehicle through such a profile, so it is drawn again. The
 # fixed suite has one vehicle, the thesis quad: there the flights (payloads, charges) are drawn again.
 UNFLYABLE = ("more than 80 % of", "ended its hover at")
-HARDWARE_DRAWS = 10
+DRAWS = 10
 
 
 def run_case(case, args):
-    """Simulates, fits and diagnoses one case; returns its row. A family member too weak for its
-    payloads is drawn again (up to HARDWARE_DRAWS; in the fixed suite, its flights), and the row
-    says how many were drawn."""
-    draws = HARDWARE_DRAWS
-    for attempt in range(draws):
+    """Simulates, fits and diagnoses one case; returns its row. A case its vehicle cannot fly is
+    drawn again, up to DRAWS times: the family member's hardware, or in the fixed suite its flights."""
+    for attempt in range(DRAWS):
         row = run_case_once(case, args, attempt)
-        if row.get("overloaded") is None:
+        if row.get("unflyable") is None:
             return row
-    return dict(row, error="no flyable vehicle in %d draw%s (see %s)" % (draws, "s" if draws > 1 else "",
-                                                                         row["overloaded"]))
+    return dict(row, error="no flyable vehicle in %d draws (see %s)" % (DRAWS, row["unflyable"]))
 
 
 def run_case_once(case, args, attempt):
-    """run_case with the family's draw number `attempt`."""
+    """run_case's draw number `attempt` (0: the case's own hardware and flights)."""
     # The first draw's flights are the case's own; the fixed suite draws its flights again on a
     # later attempt (the family draws its hardware again and keeps them).
     rng = random.Random(case["seed"] if attempt == 0 or args.family else "%d-%d" % (case["seed"], attempt))
@@ -269,7 +266,7 @@ def run_case_once(case, args, attempt):
             with open(log) as handle:
                 last = handle.read().splitlines()[-1]
                 if any(text in last for text in UNFLYABLE):
-                    return dict(case, overloaded=log)
+                    return dict(case, unflyable=log)
             return dict(case, error="simulate flight failed (see %s)" % log)
         with open(stem + ".manifest.yaml") as handle:
             flights += yaml.safe_load(handle)["flights"]

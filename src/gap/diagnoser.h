@@ -137,7 +137,6 @@ class Diagnoser {
   std::vector<std::string> unit_names_;  // of each unit: the flight's name, or "flight#segment"
   std::vector<Kind> working_;  // the effects the correction uses: selected and ambiguous leaders
   std::set<Kind> grouped_;     // members of an ambiguous group: not tried again
-  double current_weight_ = 1.0;  // of the current view in the joint error (currentViewWeight)
   int units_ = 0;
   std::string unit_name_;
   Diagnosis diagnosis_;

@@ -411,8 +411,7 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
 // 3. Which effect: forward selection on held-out flights, each round then revisited with the
 // other rounds' effects in. Returns the held-out prediction with the effects selected.
 HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results) {
-  current_weight_ = currentViewWeight(before);
-  diagnosis_.current_view_weight = current_weight_;
+  diagnosis_.current_view_weight = currentViewWeight(before);
   for (Kind kind : effects::kAllKinds) {
     EffectResult result;
     result.kind = kind;
@@ -527,7 +526,8 @@ HeldOutPrediction Diagnoser::revisitRounds(std::vector<RoundOutcome>* rounds, st
   }
   *rounds = forward;
   adopt(*rounds);
-  addProblemOnce("revisiting the selection's rounds did not settle (their choices cycle): the forward selection's "
+  addProblemOnce("revisiting the selection's rounds did not settle (their choices came back to an earlier one, or "
+                 "kept changing for " + std::to_string(kMaxRevisitPasses) + " passes): the forward selection's "
                  "effects are kept");
   return predictHeldOut(working_);
 }

@@ -29,20 +29,22 @@ double Diagnoser::currentViewWeight(const HeldOutPrediction& before) const {
 }
 
 double Diagnoser::jointMeanSquare(const HeldOutPrediction& prediction) const {
+  const double weight = diagnosis_.current_view_weight;
   double sum = 0.0;
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     sum += prediction.pwm[i] * prediction.pwm[i];
-    if (std::isfinite(prediction.current[i])) sum += current_weight_ * prediction.current[i] * prediction.current[i];
+    if (std::isfinite(prediction.current[i])) sum += weight * prediction.current[i] * prediction.current[i];
   }
   return sum / blocks_.size();
 }
 
 std::vector<double> Diagnoser::groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const {
+  const double weight = diagnosis_.current_view_weight;
   std::map<std::pair<int, int>, double> groups;
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     double d = before.pwm[i] * before.pwm[i] - after.pwm[i] * after.pwm[i];
     if (std::isfinite(before.current[i]) && std::isfinite(after.current[i])) {
-      d += current_weight_ * (before.current[i] * before.current[i] - after.current[i] * after.current[i]);
+      d += weight * (before.current[i] * before.current[i] - after.current[i] * after.current[i]);
     }
     groups[{blocks_[i].flight, blocks_[i].group}] += d;
   }

@@ -78,11 +78,14 @@ double Signals::value(Signal signal) const {
   return kNaN;
 }
 
-std::optional<double> ModelEffects::parameter(Kind kind) const { return parameters_[index(kind)]; }
+std::optional<double> ModelEffects::parameter(Kind kind) const {
+  if (!(on_ & bit(kind))) return std::nullopt;
+  return values_[index(kind)];
+}
 
 void ModelEffects::setParameter(Kind kind, std::optional<double> value) {
-  parameters_[index(kind)] = value;
   on_ = value ? on_ | bit(kind) : on_ & ~bit(kind);
+  values_[index(kind)] = value.value_or(0.0);
 }
 
 bool ModelEffects::has(Kind kind) const { return parameter(kind).has_value(); }

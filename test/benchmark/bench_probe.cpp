@@ -1,8 +1,9 @@
 // The end-to-end benchmark's load and stopwatch (make bench, scripts/bench_node.py): publishes
 // mavros_msgs/RCOut (as a ShapeShifter with its exact definition and md5sum) at --rate-hz with
-// hover-like PWM plus noise, stamped now, and sensor_msgs/BatteryState at --battery-rate-hz, for
-// --duration-s; times every propulsion_estimator/PropulsionTotals on --estimate-topic from the
-// RCOut stamp it carries to its receipt; reads the system under test's CPU time (utime + stime of
+// hover-like PWM plus noise, stamped now, sensor_msgs/BatteryState at --battery-rate-hz and, with
+// --esc-rate-hz, mavros_msgs/ESCTelemetry (every ESC in each message), for --duration-s; times
+// every propulsion_estimator/PropulsionTotals on --estimate-topic from the RCOut stamp it carries
+// to its receipt; reads the system under test's CPU time (utime + stime of
 // /proc/<pid>/stat) and resident memory (VmRSS) before and after the load. Writes one JSON object
 // and the latencies themselves (--latencies-file): scripts/bench_node.py pools them over its rounds
 // and takes the percentiles.
@@ -145,7 +146,7 @@ class Probe {
         next_battery += std::chrono::duration_cast<std::chrono::steady_clock::duration>(battery_period);
       }
       if (options_.esc_rate_hz > 0.0 && std::chrono::steady_clock::now() >= next_esc) {
-        sendEsc(random);
+        sendEsc();
         next_esc += std::chrono::duration_cast<std::chrono::steady_clock::duration>(esc_period);
       }
       for (std::uint16_t& channel : message.channels) {
@@ -194,9 +195,11 @@ class Probe {
     ++battery_sent_;
   }
 
-  // Every ESC at a hover's speed and current, with noise, as ArduPilot's ESC_TELEMETRY reports them.
-  void sendEsc(std::mt19937& random) {
+  // Every ESC at a hover's speed and current, with noise, as ArduPilot's ESC_TELEMETRY reports them;
+  // from a random stream of its own, so that the RCOut load is the same with telemetry as without.
+  void sendEsc() {
     std::normal_distribution<double> noise(0.0, 1.0);
+    std::mt19937& random = esc_random_;
     pe::EscTelemetry telemetry;
     telemetry.stamp_s = ros::Time::now().toSec();
     telemetry.escs.resize(static_cast<std::size_t>(options_.channels));
@@ -262,6 +265,7 @@ class Probe {
   Options options_;
   ros::NodeHandle nh_;
   long sent_ = 0, battery_sent_ = 0, esc_sent_ = 0;
+  std::mt19937 esc_random_{2};
   std::mutex mutex_;
   std::vector<double> latencies_s_;
   pe::InlineCallbackQueue estimate_queue_;

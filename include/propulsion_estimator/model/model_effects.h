@@ -124,10 +124,11 @@ struct ModelEffects {
   void validate() const;
 
  private:
-  std::array<std::optional<double>, kKindCount> parameters_;
-  // bit(kind) of each effect on, kept with parameters_ by setParameter: the node asks empty() for
-  // every motor of every RCOut message, and without effects that must cost nothing.
+  // Which effects are on (bit(kind), see KindMask) and their parameters (meaningless where off):
+  // the node asks empty() for every motor of every RCOut message, and without effects that must
+  // cost nothing.
   unsigned on_ = 0;
+  std::array<double, kKindCount> values_{};
 };
 
 /// "resistance_ohm 0.035", "coefficient_m2 0.0011, rotor_height_m 0.05", ...: the parameter of
