@@ -307,10 +307,17 @@ def run_callgrind(args, esc_rate_hz=0.0):
             probe = run_probe(args, master, name, rate_hz, CALLGRIND_WARMUP_S + messages / rate_hz,
                               ESTIMATE_TOPICS["node"], process, 0, drain_s=30.0, on_load=zero_after_warmup,
                               esc_rate_hz=esc_rate_hz)
+            # The counts since the warm-up, dumped while the node runs (into out_file.1): under
+            # callgrind the node's shutdown can stall on the master for minutes, and a node killed
+            # then writes nothing.
+            subprocess.run(["callgrind_control", "--dump", str(process.pid)], check=True, stdout=subprocess.DEVNULL)
         finally:
             stop_group(process, signal.SIGINT, 120.0)
             log.close()
-    annotate = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--tree=caller", "--threshold=100", out_file],
+    dump = out_file + ".1"
+    if not os.path.exists(dump):
+        sys.exit("bench_node.py: callgrind_control --dump wrote no %s" % dump)
+    annotate = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--tree=caller", "--threshold=100", dump],
                               capture_output=True, text=True, check=True).stdout
     with open(os.path.join(args.work, name + "_annotate.txt"), "w") as f:
         f.write(annotate)
