@@ -93,7 +93,7 @@ SEED ?=
 validate-gap: build
 	$(SETUP) && nice python3 scripts/validate_gap.py --family --cases $(CASES) --jobs 2 $(if $(SEED),--seed $(SEED)) \
 		--bin $(WS)/install/propulsion_estimator/lib/propulsion_estimator --repo $(CURDIR) \
-		--work $(WS)/validate_gap_family --markdown VALIDATION.md
+		--work $(WS)/validate_gap_family --markdown VALIDATION.md --compare-rpm-view
 validate-gap-fixed: build
 	$(SETUP) && nice python3 scripts/validate_gap.py --cases $(CASES) --jobs 2 --seed 2026 \
 		--bin $(WS)/install/propulsion_estimator/lib/propulsion_estimator --repo $(CURDIR) \

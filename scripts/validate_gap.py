@@ -10,12 +10,14 @@ the selected effects are exactly the injected ones (none for a null case and for
 weak propeller's motor is the suspect.
 
 Usage: validate_gap.py --bin DIR --repo DIR --work DIR [--cases N] [--quick] [--seed S]
-                       [--markdown FILE] [--junit FILE] [--jobs N] [--reuse]
+                       [--markdown FILE] [--junit FILE] [--jobs N] [--reuse] [--compare-rpm-view]
   --bin      folder holding simulate, fit_surfaces and diagnose_gap
   --quick    one case of each kind the CI needs (null, thrust loss, supply resistance, weak propeller)
   --markdown write the table (VALIDATION.md)
   --reuse    diagnose the cases already simulated in --work again (after a change to the diagnosis);
              cases not simulated there count as errors
+  --compare-rpm-view  diagnose each case also without ESC telemetry's RPM view (--no-rpm-view) and
+             count the cases right with and without it; fewer right with it fails the run
 
 Prints a confusion matrix and the mean held-out shrink; exits 1 when the acceptance thresholds of
 issue 8 are missed (>= 90 % right, no null case named, weak propellers located, >= 70 % shrink).
@@ -239,7 +241,7 @@ def run_case_once(case, args, attempt):
         if simulated and args.simulate_only:
             return dict(case, simulated=True)
         if simulated:
-            return score(case, diagnose(case, args, folder, model, manifest, log))
+            return diagnose_and_score(case, args, folder, model, manifest, log)
     vehicle = None
     if args.family:
         hardware, vehicle = draw_family(case["seed"], attempt)
@@ -277,16 +279,28 @@ def run_case_once(case, args, attempt):
             yaml.safe_dump(case["family"], handle, default_flow_style=None)
     if args.simulate_only:
         return dict(case, simulated=True)
-    return score(case, diagnose(case, args, folder, model, manifest, log))
+    return diagnose_and_score(case, args, folder, model, manifest, log)
 
 
-def diagnose(case, args, folder, model, manifest, log):
-    """Runs diagnose_gap on a case's flights; returns its report, or an error text."""
+def diagnose_and_score(case, args, folder, model, manifest, log):
+    """The case's row (score); with --compare-rpm-view also what it names without the RPM view."""
+    row = score(case, diagnose(case, args, folder, model, manifest, log))
+    if args.compare_rpm_view and "error" not in row:
+        without = score(case, diagnose(case, args, folder, model, manifest, log, rpm_view=False))
+        if "error" in without:
+            return dict(row, error=without["error"])
+        row.update(right_without_rpm_view=without["right"], named_without_rpm_view=outcome(without))
+    return row
+
+
+def diagnose(case, args, folder, model, manifest, log, rpm_view=True):
+    """Runs diagnose_gap on a case's flights (without ESC telemetry's RPM view when `rpm_view` is
+    False, into a folder of its own); returns its report, or an error text."""
     tool = lambda name: os.path.join(args.bin, name)  # noqa: E731
     urdf = os.path.join(args.repo, "config/f450_quad.urdf")
-    out = os.path.join(folder, "diagnosis")
+    out = os.path.join(folder, "diagnosis" if rpm_view else "diagnosis_no_rpm_view")
     command = [tool("diagnose_gap"), "--model", model, "--manifest", manifest, "--urdf", urdf, "--out", out,
-               "--python", sys.executable]
+               "--python", sys.executable] + ([] if rpm_view else ["--no-rpm-view"])
     if args.no_figures:
         # A plot script that draws nothing: the figures are most of a re-diagnosis' time.
         quiet = os.path.join(args.work, "no_figures.py")
@@ -435,6 +449,9 @@ def main():
                         help="with --reuse: simulate the cases whose simulation is not in --work (a failed one again)")
     parser.add_argument("--simulate-only", action="store_true",
                         help="simulate the cases and stop (diagnose them later with --reuse)")
+    parser.add_argument("--compare-rpm-view", action="store_true",
+                        help="diagnose each case also without ESC telemetry's RPM view (diagnose_gap --no-rpm-view) "
+                             "and compare (issue 21: right on at least as many cases with it)")
     parser.add_argument("--only", help="comma-separated case labels to run (null,weak_propeller,...): for calibration")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--markdown")
@@ -507,6 +524,17 @@ def main():
                  "that took no part in selecting or fitting: %.0f %% over %d cases (selection-time figure above)."
                  % (len(ambiguous_ok), len(done), 100.0 * len(ambiguous_ok) / max(len(done), 1), len(ambiguous_bad),
                     nested_floor, mean_nested, len(nested_excess)))
+    rpm_view_worse = False
+    if args.compare_rpm_view:
+        right_without = sum(r["right_without_rpm_view"] for r in done)
+        only_with = [r["name"] for r in done if r["right"] and not r["right_without_rpm_view"]]
+        only_without = ["%s (%s with it)" % (r["name"], outcome(r)) for r in done
+                        if r["right_without_rpm_view"] and not r["right"]]
+        rpm_view_worse = right < right_without
+        lines.append("The RPM view (ESC telemetry's rotor speeds, issue 21): right on %d of %d cases with it, %d "
+                     "without it (diagnose_gap --no-rpm-view); right only with it: %s; right only without it: %s."
+                     % (right, len(done), right_without, ", ".join(only_with) or "none",
+                        ", ".join(only_without) or "none"))
     for r in errors:
         lines.append("Error in %s: %s" % (r["name"], r["error"]))
     lines.append("")
@@ -526,7 +554,7 @@ def main():
         # Issue 18's targets on the randomized family.
         passed = (not errors and right >= 0.9 * len(done) and len(wrongly_named) <= 0.02 * len(done)
                   and not nulls_named and weak_right >= 0.9 * len(weak) and len(ambiguous_ok) <= 0.1 * len(done)
-                  and not ambiguous_bad and (not nested_excess or mean_nested >= 70.0))
+                  and not ambiguous_bad and (not nested_excess or mean_nested >= 70.0) and not rpm_view_worse)
     else:
         passed = (not errors and right >= 0.9 * len(done) and not nulls_named and weak_right == len(weak)
                   and (not shrink or mean_shrink >= 70.0) and false_alarms == 0)

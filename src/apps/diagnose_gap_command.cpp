@@ -50,6 +50,7 @@ struct Arguments {
   std::vector<std::string> bench;
   double rotor_diameter_m = gap::DiagnosisConfig{}.rotor_diameter_m;
   double rotor_time_constant_s = kNaN;  // NaN: identified from the flights
+  bool no_rpm_view = false;
   int jobs = 1;
   ReportPlotter plotter;
   std::string command;  // as given, for the report
@@ -117,6 +118,7 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
   gap::DiagnosisConfig config;
   config.rotor_diameter_m = args.rotor_diameter_m;
   config.rotor_time_constant_s = args.rotor_time_constant_s;
+  config.rpm_view = !args.no_rpm_view;
   try {
     config.validate();
   } catch (const FieldError& e) {
@@ -353,6 +355,8 @@ int runDiagnoseGap(int argc, char** argv) {
   app.add_option("--rotor-time-constant-s", args.rotor_time_constant_s,
                  "The rotors' spin-up lag, s (0..1; a bench step response's time constant; 0: none); without it "
                  "the lag is identified from the flights");
+  app.add_flag("--no-rpm-view", args.no_rpm_view,
+               "Leave ESC telemetry's rotor speeds out of the diagnosis (the RPM view): the PWM and current views only");
   app.add_option("--jobs", args.jobs, "Logs read in parallel")->check(CLI::Range(1, 64))->capture_default_str();
   // Before the required options are checked: a tool or test builds its list of effects from this.
   app.add_flag_callback(

@@ -52,6 +52,8 @@ struct Accumulator {
   std::array<double, kMaxMotors> axis{};
   double voltage = 0.0, current = 0.0, force_up = 0.0, time = 0.0;
   int current_frames = 0, imu_frames = 0;
+  std::array<double, kMaxMotors> rpm{};
+  std::array<int, kMaxMotors> rpm_frames{};
   std::array<double, kBlockSignalCount> signal{};
   std::array<int, kBlockSignalCount> signal_frames{};
   double altitude = 0.0;
@@ -78,6 +80,8 @@ struct Accumulator {
     for (int k = 0; k < motors; ++k) {
       block.pwm_us[k] = pwm[k] / frames;
       block.axis_up[k] = axis[k] / frames;
+      // Telemetry drops packets: half the block's frames with a fresh speed average its noise.
+      block.rpm[k] = 2 * rpm_frames[k] >= frames ? rpm[k] / rpm_frames[k] : kNaN;
     }
     block.voltage_v = voltage / frames;
     block.current_a = current_frames == frames ? current / frames : kNaN;
@@ -101,6 +105,13 @@ struct Accumulator {
 bool hasCurrent(const std::vector<BatteryReading>& battery) {
   return std::any_of(battery.begin(), battery.end(),
                      [](const BatteryReading& reading) { return std::isfinite(reading.current_a); });
+}
+
+bool hasRpm(const std::vector<EscTelemetryReading>& esc) {
+  return std::any_of(esc.begin(), esc.end(), [](const EscTelemetryReading& reading) {
+    return std::any_of(reading.rpm.begin(), reading.rpm.begin() + reading.escs,
+                       [](double rpm) { return std::isfinite(rpm); });
+  });
 }
 
 // The readings of the signals the effects read, in force at each frame (Cursor's rules).
@@ -161,6 +172,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
   const FlightStreams& streams = flight.streams;
   result.has_imu = !streams.imu.empty();
   result.has_current = hasCurrent(streams.battery);
+  result.has_rpm = hasRpm(streams.esc);
   if (streams.rc_out.empty() || streams.battery.empty()) {
     result.problems.push_back(flight.name + ": no rc/out or battery messages");
     return result;
@@ -185,6 +197,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     Cursor<BatteryReading> battery(streams.battery);
     Cursor<ImuReading> imu(streams.imu);
     Cursor<ScalarReading> altitude(streams.altitude_m);
+    Cursor<EscTelemetryReading> esc(streams.esc);
     SignalCursors signals(streams);
     const double timeout = config.signal_timeout_s;
     const int blocks_per_group = std::max(1, static_cast<int>(std::lround(config.group_s / config.block_s)));
@@ -243,6 +256,13 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       for (int k = 0; k < motors; ++k) {
         acc.pwm[k] += frame.pwm_us[k];
         acc.axis[k] += i ? (i->orientation * vehicle.rotors[k].thrust_axis).z() : vehicle.rotors[k].thrust_axis.z();
+      }
+      // ESC i drives RCOut channel i + 1, motor i.
+      const EscTelemetryReading* telemetry = esc.at(frame.time_s, timeout);
+      for (int k = 0; telemetry && k < std::min(motors, telemetry->escs); ++k) {
+        if (!std::isfinite(telemetry->rpm[k])) continue;
+        acc.rpm[k] += telemetry->rpm[k];
+        ++acc.rpm_frames[k];
       }
       if (i) {
         acc.force_up += (i->orientation * i->specific_force_m_s2).z();

@@ -44,6 +44,7 @@ struct RoundOutcome {
 struct HeldOutPrediction {
   std::vector<double> pwm;      // per block
   std::vector<double> current;  // NaN where the current view is unavailable
+  std::vector<double> rpm;      // NaN where the RPM view is unavailable
   std::vector<double> view_n;   // PWM view, N
 };
 
@@ -83,13 +84,15 @@ class Diagnoser {
   effects::ModelEffects references() const;
   std::string testability(Kind kind) const;
   HeldOutPrediction predictHeldOut(const std::vector<Kind>& kinds) const;
-  // The current view's weight in the joint error: the PWM view's block-to-block noise variance over
-  // the current view's, from the plain model's held-out residuals (`before`); 1 without a current view.
-  double currentViewWeight(const HeldOutPrediction& before) const;
-  // Per (flight, group) stretch: the fall of the joint squared error (PWM view plus the weighted
-  // current view where it exists) from `before` to `after`.
+  // A view's weight in the joint error: the PWM view's block-to-block noise variance over the
+  // view's (`view`, from the plain model's held-out residuals `before`); 1 without the view.
+  double viewWeight(const HeldOutPrediction& before, const std::vector<double>& view) const;
+  // One block's joint squared error: the PWM view's plus the weighted current and RPM views' where
+  // they exist.
+  double jointSquare(const HeldOutPrediction& prediction, std::size_t block) const;
+  // Per (flight, group) stretch: the fall of the joint squared error from `before` to `after`.
   std::vector<double> groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const;
-  // Mean over blocks of the joint squared error (PWM view plus the weighted current view).
+  // Mean over blocks of the joint squared error.
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
   double suspectThrustFactor(int motor, double yaw_gap) const;
   double currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const;
@@ -120,6 +123,8 @@ class Diagnoser {
   void reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected);
   void reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after);
   std::string method() const;
+  // The method line's clause on the RPM view: in use with its weight, or why not.
+  std::string rpmView() const;
   std::string dynamicBlocks() const;
   std::string selectionBlocks() const;
   void collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view);

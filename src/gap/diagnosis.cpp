@@ -173,6 +173,7 @@ HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) cons
   HeldOutPrediction prediction;
   prediction.pwm.assign(blocks_.size(), kNaN);
   prediction.current.assign(blocks_.size(), kNaN);
+  prediction.rpm.assign(blocks_.size(), kNaN);
   prediction.view_n.assign(blocks_.size(), kNaN);
   const effects::ModelEffects base = references();
   for (int unit = 0; unit < units_; ++unit) {
@@ -197,6 +198,7 @@ HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) cons
       prediction.view_n[i] = view;
       prediction.pwm[i] = relative(view, blocks_[i]);
       prediction.current[i] = relative(views_.currentView(blocks_[i], fit.effects), blocks_[i]);
+      if (config_.rpm_view) prediction.rpm[i] = relative(views_.rpmView(blocks_[i], fit.effects), blocks_[i]);
       Block less = blocks_[i];
       less.current_a -= 1.0;
       slope[i] = prediction.current[i] - relative(views_.currentView(less, fit.effects), blocks_[i]);
@@ -411,7 +413,10 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
 // 3. Which effect: forward selection on held-out flights, each round then revisited with the
 // other rounds' effects in. Returns the held-out prediction with the effects selected.
 HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results) {
-  diagnosis_.current_view_weight = currentViewWeight(before);
+  diagnosis_.current_view_weight = viewWeight(before, before.current);
+  diagnosis_.rpm_view_weight = viewWeight(before, before.rpm);
+  diagnosis_.rpm_view_blocks = static_cast<int>(
+      std::count_if(before.rpm.begin(), before.rpm.end(), [](double r) { return std::isfinite(r); }));
   for (Kind kind : effects::kAllKinds) {
     EffectResult result;
     result.kind = kind;

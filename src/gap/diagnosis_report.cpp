@@ -174,6 +174,18 @@ std::string Diagnoser::selectionBlocks() const {
          std::to_string(diagnosis_.blocks);
 }
 
+std::string Diagnoser::rpmView() const {
+  if (!config_.rpm_view) return "the RPM view left out (--no-rpm-view)";
+  if (diagnosis_.rpm_view_blocks == 0) {
+    return views_.hasRpmThrust() ? "no RPM view: no block has every motor's speed from ESC telemetry"
+                                 : "no RPM view: the model has no thrust_from_rpm (fit_surfaces writes it from a bench "
+                                   "log's rpm column)";
+  }
+  return "the RPM view, each rotor's measured speed through thrust_from_rpm on " +
+         std::to_string(diagnosis_.rpm_view_blocks) + " blocks, weighted likewise, here " +
+         formatPrintf("%.3g", diagnosis_.rpm_view_weight);
+}
+
 std::string Diagnoser::method() const {
   return "Quasi-steady " + formatNumber(config_.block_s) + " s blocks only (collective PWM changing by at most " +
          formatNumber(config_.max_pwm_change_us) + " us within the block, vertical acceleration at most " +
@@ -184,9 +196,9 @@ std::string Diagnoser::method() const {
          ". An effect is added when the held-out RMSE of the PWM view falls "
          "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
          formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
-         " % (more than a mismatch of model family alone gives on null flights), the joint error of both views "
+         " % (more than a mismatch of model family alone gives on null flights), the joint error of the views "
          "(the current view weighted by the PWM view's block-to-block noise variance over its own, here " +
-         formatPrintf("%.3g", diagnosis_.current_view_weight) + ") falls, a sign-flip permutation "
+         formatPrintf("%.3g", diagnosis_.current_view_weight) + "; " + rpmView() + ") falls, a sign-flip permutation "
          "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +
          std::to_string(config_.permutations) + " permutations) gives p < " + formatNumber(config_.significance) +
          ", and the fitted parameter lies inside its plausible range with a 95 % interval excluding "

@@ -1,50 +1,58 @@
-// The joint error of both views, on which the selection's comparisons and tests run: the PWM
-// view's and the current view's held-out residuals, each weighed by what it knows.
+// The joint error of the views, on which the selection's comparisons and tests run: the PWM view's,
+// the current view's and the RPM view's held-out residuals, each weighed by what it knows.
 #include "diagnoser.h"
 
 namespace propulsion_estimator {
 namespace gap {
 namespace detail {
 
-// The two views err by noise of very different sizes: the battery current through the inverted
+// The views err by noise of very different sizes: the battery current through the inverted
 // current surface scatters several times more from block to block than the PWM view. Summed with
 // equal weights, the current view's scatter would outvote a clear verdict of the PWM view; weighed
 // by the inverse of each view's noise variance, as a likelihood weighs them, each view counts by
 // what it knows. The noise is the scatter between neighbouring blocks of one stretch (half the
 // mean squared difference), which a slowly varying gap, the thing to explain, hardly enters.
-double Diagnoser::currentViewWeight(const HeldOutPrediction& before) const {
-  double sum_pwm = 0.0, sum_current = 0.0;
+double Diagnoser::viewWeight(const HeldOutPrediction& before, const std::vector<double>& view) const {
+  double sum_pwm = 0.0, sum_view = 0.0;
   int pairs = 0;
   for (std::size_t i = 1; i < blocks_.size(); ++i) {
     if (blocks_[i].flight != blocks_[i - 1].flight || blocks_[i].group != blocks_[i - 1].group) continue;
-    const double d_current = before.current[i] - before.current[i - 1];
-    if (!std::isfinite(d_current)) continue;
+    const double d_view = view[i] - view[i - 1];
+    if (!std::isfinite(d_view)) continue;
     const double d_pwm = before.pwm[i] - before.pwm[i - 1];
     sum_pwm += d_pwm * d_pwm;
-    sum_current += d_current * d_current;
+    sum_view += d_view * d_view;
     ++pairs;
   }
-  if (pairs < 2 || !(sum_current > 0.0) || !(sum_pwm > 0.0)) return 1.0;
-  return sum_pwm / sum_current;
+  if (pairs < 2 || !(sum_view > 0.0) || !(sum_pwm > 0.0)) return 1.0;
+  return sum_pwm / sum_view;
+}
+
+double Diagnoser::jointSquare(const HeldOutPrediction& prediction, std::size_t block) const {
+  double square = prediction.pwm[block] * prediction.pwm[block];
+  const double current = prediction.current[block], rpm = prediction.rpm[block];
+  if (std::isfinite(current)) square += diagnosis_.current_view_weight * current * current;
+  if (std::isfinite(rpm)) square += diagnosis_.rpm_view_weight * rpm * rpm;
+  return square;
 }
 
 double Diagnoser::jointMeanSquare(const HeldOutPrediction& prediction) const {
-  const double weight = diagnosis_.current_view_weight;
   double sum = 0.0;
-  for (std::size_t i = 0; i < blocks_.size(); ++i) {
-    sum += prediction.pwm[i] * prediction.pwm[i];
-    if (std::isfinite(prediction.current[i])) sum += weight * prediction.current[i] * prediction.current[i];
-  }
+  for (std::size_t i = 0; i < blocks_.size(); ++i) sum += jointSquare(prediction, i);
   return sum / blocks_.size();
 }
 
+// A view missing in one prediction and not the other (an offset the current view cannot match)
+// would count as a fall; the block then compares in the views both have.
 std::vector<double> Diagnoser::groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const {
-  const double weight = diagnosis_.current_view_weight;
   std::map<std::pair<int, int>, double> groups;
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     double d = before.pwm[i] * before.pwm[i] - after.pwm[i] * after.pwm[i];
     if (std::isfinite(before.current[i]) && std::isfinite(after.current[i])) {
-      d += weight * (before.current[i] * before.current[i] - after.current[i] * after.current[i]);
+      d += diagnosis_.current_view_weight * (before.current[i] * before.current[i] - after.current[i] * after.current[i]);
+    }
+    if (std::isfinite(before.rpm[i]) && std::isfinite(after.rpm[i])) {
+      d += diagnosis_.rpm_view_weight * (before.rpm[i] * before.rpm[i] - after.rpm[i] * after.rpm[i]);
     }
     groups[{blocks_[i].flight, blocks_[i].group}] += d;
   }

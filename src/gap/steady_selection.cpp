@@ -34,6 +34,8 @@ HeldOutPrediction Diagnoser::select(const HeldOutPrediction& before, std::map<Ki
   diagnosis_.ambiguous = steady.diagnosis_.ambiguous;
   diagnosis_.trace = steady.diagnosis_.trace;
   diagnosis_.current_view_weight = steady.diagnosis_.current_view_weight;
+  diagnosis_.rpm_view_weight = steady.diagnosis_.rpm_view_weight;
+  diagnosis_.rpm_view_blocks = steady.diagnosis_.rpm_view_blocks;
   for (const std::string& problem : steady.diagnosis_.problems) addProblemOnce(problem);
   return predictHeldOut(working_);
 }

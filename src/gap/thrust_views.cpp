@@ -19,6 +19,11 @@ double currentViewExponent(effects::Kind kind, double parameter) {
   return description.current_view_exponent ? description.current_view_exponent(parameter) : 0.0;
 }
 
+double rpmViewExponent(effects::Kind kind, double parameter) {
+  const effects::EffectDescription& description = effects::describe(kind);
+  return description.rpm_view_exponent ? description.rpm_view_exponent(parameter) : 0.0;
+}
+
 ThrustViews::ThrustViews(const PropulsionModel& model, int motors)
     : model_(model),
       motors_(motors),
@@ -69,14 +74,32 @@ double ThrustViews::currentView(const Block& block, const effects::ModelEffects&
     const double middle = 0.5 * (low + high);
     (total_current(middle) < block.current_a ? low : high) = middle;
   }
+  return verticalThrust(block, 0.5 * (low + high), inputs.data()) *
+         viewFactor(effects, block.signals, currentViewExponent);
+}
+
+double ThrustViews::rpmView(const Block& block, const effects::ModelEffects& effects) const {
+  const std::optional<RpmThrust>& rpm_thrust = model_.rpmThrust();
+  if (!rpm_thrust) return kNaN;
+  double thrust = 0.0;
+  for (int k = 0; k < motors_; ++k) {
+    if (!std::isfinite(block.rpm[k])) return kNaN;
+    thrust += motor_scale_[k] * rpm_thrust->thrustN(block.rpm[k], block.signals.air_density_kg_m3) * block.axis_up[k];
+  }
+  return thrust * viewFactor(effects, block.signals, rpmViewExponent);
+}
+
+double ThrustViews::viewFactor(const effects::ModelEffects& effects, const effects::Signals& signals,
+                               double (*exponent)(effects::Kind, double)) {
+  if (effects.empty()) return 1.0;
   double factor = 1.0;
   for (effects::Kind kind : effects::kAllKinds) {
     const std::optional<double> value = effects.parameter(kind);
     if (!value) continue;
-    const double single = effects::singleThrustFactor(kind, *value, effects, block.signals);
-    if (std::isfinite(single)) factor *= std::pow(single, currentViewExponent(kind, *value));
+    const double single = effects::singleThrustFactor(kind, *value, effects, signals);
+    if (std::isfinite(single)) factor *= std::pow(single, exponent(kind, *value));
   }
-  return verticalThrust(block, 0.5 * (low + high), inputs.data()) * factor;
+  return factor;
 }
 
 }  // namespace gap

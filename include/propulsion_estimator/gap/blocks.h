@@ -25,6 +25,9 @@ struct Block {
   std::array<double, kMaxMotors> axis_up{};  ///< vertical component of each rotor's thrust axis
   double voltage_v = 0.0;  ///< mean battery voltage, V
   double current_a = 0.0;        ///< battery discharge current, >= 0; NaN without a current sensor
+  /// per motor, mean mechanical speed from ESC telemetry, rpm; NaN without telemetry of it over at
+  /// least half the block
+  std::array<double, kMaxMotors> rpm{};
   double specific_force_up_m_s2 = 0.0;  ///< vertical specific force (g + vertical acceleration)
   double truth_n = 0.0;          ///< mass x specific_force_up: the vertical thrust that flew
   effects::Signals signals;      ///< height, vertical, horizontal and axial speed, air density, motor temperature; NaN if missing
@@ -58,6 +61,7 @@ struct FlightBlocks {
   std::vector<std::string> problems;  ///< one line for each thing that could not be used
   bool has_imu = false;  ///< whether the flight had an IMU
   bool has_current = false;  ///< whether the flight had a battery current
+  bool has_rpm = false;  ///< whether the flight had ESC telemetry with rotor speeds
 };
 
 /// Cuts `flight` into blocks inside its weighed segments, its commands through the rotor lag. A segment outside the log's time span,

@@ -54,6 +54,9 @@ struct DiagnosisConfig {
   int max_effects = 3;               ///< selected at the most
   double motor_min_gap = 0.05;       ///< a motor is suspect when its model is off by more than this fraction
   std::vector<int> channels;         ///< RCOut channel of each motor, 1-based; empty: 1..motors
+  /// Whether ESC telemetry's rotor speeds join the joint error as the RPM view (where the flights
+  /// have them and the model a thrust_from_rpm); false: the PWM and current views only.
+  bool rpm_view = true;
   /// Where each signal comes from, for "not testable: needs ..." lines.
   std::map<effects::Signal, std::string> signal_sources = {
       {effects::Signal::kBatteryCurrent, std::string(kBatteryTopic) + " (current)"},
@@ -223,6 +226,9 @@ struct Diagnosis {
   /// The current view's weight in the joint error of both views: the PWM view's block-to-block
   /// noise variance over the current view's (1 without a current view).
   double current_view_weight = 1.0;
+  /// The RPM view's weight in the joint error, likewise (1 without an RPM view).
+  double rpm_view_weight = 1.0;
+  int rpm_view_blocks = 0;  ///< blocks with every motor's speed, read through the RPM view
   std::vector<GapSample> samples;  ///< one per block, for the figures
   std::vector<std::string> problems;  ///< what could not be done, one line each
 };

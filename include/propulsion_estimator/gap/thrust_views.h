@@ -9,14 +9,17 @@
 namespace propulsion_estimator {
 namespace gap {
 
-/// Two views of the vertical thrust a block flew with, through the same surfaces:
+/// Three views of the vertical thrust a block flew with:
 ///  - the PWM view: each motor's thrust at its pulse width and the sensed voltage (what the node
 ///    estimates);
 ///  - the current view: the pulse widths shifted by one common offset until the current surface
-///    gives the measured battery current, and the thrust surface read there.
-/// Causes err differently in the two: an ESC end-point offset leaves the current view untouched,
-/// an electrical or air-density cause moves it several times less than the PWM view, a thrust
-/// loss or a hidden mass moves both equally, motor heating moves them in opposite directions.
+///    gives the measured battery current, and the thrust surface read there;
+///  - the RPM view: each motor's thrust at its measured speed (ESC telemetry) through the model's
+///    thrust_from_rpm, at the flight's air density.
+/// Causes err differently in them: an ESC end-point offset leaves the current and RPM views
+/// untouched, an electrical or air-density cause moves the current view several times less than the
+/// PWM view and the RPM view not at all, a thrust loss or a hidden mass moves all three equally,
+/// motor heating moves the first two in opposite directions and not the third.
 class ThrustViews {
  public:
   /// `model` must outlive the views; `motors` <= kMaxMotors.
@@ -27,6 +30,9 @@ class ThrustViews {
   /// Vertical thrust of the current view with `effects` applied, N; NaN without a measured
   /// current or a current surface, or when no offset within +-400 us matches the current.
   double currentView(const Block& block, const effects::ModelEffects& effects) const;
+  /// Vertical thrust of the RPM view with `effects` applied, N; NaN without a thrust_from_rpm in
+  /// the model or without every motor's speed in the block.
+  double rpmView(const Block& block, const effects::ModelEffects& effects) const;
   /// One motor's thrust from the surfaces, N (not clamped to the domain; floored at 0).
   double motorThrust(double pwm_us, double voltage_v) const;
 
@@ -34,12 +40,17 @@ class ThrustViews {
   void setMotorScale(int motor, double scale) { motor_scale_[motor] = scale; }
   /// Whether the model has a current surface (else the current view is NaN).
   bool hasCurrentSurface() const { return has_current_; }
+  /// Whether the model has a thrust_from_rpm (else the RPM view is NaN).
+  bool hasRpmThrust() const { return model_.rpmThrust().has_value(); }
   /// As given.
   int motors() const { return motors_; }
 
  private:
   double motorCurrent(double pwm_us, double voltage_v) const;
   double verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs) const;
+  // The product of the thrust-acting effects' factors, each raised to the view's exponent.
+  static double viewFactor(const effects::ModelEffects& effects, const effects::Signals& signals,
+                           double (*exponent)(effects::Kind, double));
 
   const PropulsionModel& model_;
   int motors_;
@@ -47,6 +58,10 @@ class ThrustViews {
   bool has_current_;
   std::array<double, kMaxMotors> motor_scale_;
 };
+
+/// How much of an effect's thrust factor the RPM view sees, as an exponent on it (1: as much as the
+/// PWM view; 0: none), given the effect's fitted `parameter`. Only for effects acting on thrust.
+double rpmViewExponent(effects::Kind kind, double parameter);
 
 /// How much of an effect's thrust factor the current view sees, as an exponent on it (1: as much
 /// as the PWM view; 0: none; negative: the other way), given the effect's fitted `parameter`.

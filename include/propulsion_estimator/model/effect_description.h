@@ -23,7 +23,7 @@ struct ReferenceSpec {
 
 /// Everything about one effect, in one place (src/model/effects/NAME.cpp): its name, its
 /// parameter with unit and plausible range, the signal it reads, its correction of the PWM view
-/// (on the inputs or as a factor on thrust) and of the current view, and its report line. Model
+/// (on the inputs or as a factor on thrust), of the current view and of the RPM view, and its report line. Model
 /// files, the node, the gap diagnosis and its report read effects only through this.
 struct EffectDescription {
   const char* name;         ///< "supply_resistance": model files, reports, the command line
@@ -45,6 +45,11 @@ struct EffectDescription {
   /// other way). Unused for effects acting on the inputs (the current view takes them through the
   /// surfaces).
   double (*current_view_exponent)(double value);
+  /// RPM view: the exponent on the thrust factor with which the thrust read through each rotor's
+  /// measured speed (ESC telemetry, at the flight's air density) sees the effect (1: the air acts on
+  /// a rotor at a given speed; 0: the effect only changes the speed, or the view already holds it).
+  /// Unused for effects acting on the inputs (the view reads the speed, not the pulse width).
+  double (*rpm_view_exponent)(double value);
   ReferenceSpec reference;  ///< the reference it reads beside the parameter, if any
   /// For the gap diagnosis: whether a block with signal `value` tells about the effect (nullptr:
   /// every block with the signal does), given the rotor diameter in m.

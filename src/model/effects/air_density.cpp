@@ -29,6 +29,9 @@ const EffectDescription& airDensityEffect() {
     // momentum theory gives T proportional to (rho P^2)^(1/3): the current view sees
     // (rho / rho_bench)^(1/3) whatever exponent the PWM view was fitted with.
     d.current_view_exponent = [](double value) { return value > 0.0 ? (1.0 / 3.0) / value : 0.0; };
+    // The RPM view reads thrust at the flight's density (thrust at a given speed follows it): it
+    // already holds what this effect corrects.
+    d.rpm_view_exponent = [](double) { return 0.0; };
     // The reference is the model's bench air (metadata), not a key of the effect's entry.
     d.reference = {nullptr, &ModelEffects::bench_air_density_kg_m3, 0.3, 1.6,
                    "the model has no bench air (metadata bench_air_temperature_c, bench_air_pressure_pa)"};

@@ -28,6 +28,8 @@ const EffectDescription& climbInflowEffect() {
     };
     // Momentum theory gives a climb's loss at constant power about as at constant speed.
     d.current_view_exponent = [](double) { return 1.0; };
+    // The inflow lowers the blades' angle of attack at a given speed: the RPM view sees the loss.
+    d.rpm_view_exponent = [](double) { return 1.0; };
     d.informative = [](double speed_m_s, double) { return std::abs(speed_m_s) > 0.3; };
     d.uninformative = [](double) {
       return std::string("no weighed flight faster than 0.3 m/s along the rotors' axes (a climb or descent)");

@@ -24,6 +24,8 @@ const EffectDescription& groundEffectEffect() {
     };
     // Cheeseman-Bennett's ratio is at constant power: the current view sees it as the PWM view does.
     d.current_view_exponent = [](double) { return 1.0; };
+    // The ground slows the inflow through a rotor at a given speed: more thrust at that speed.
+    d.rpm_view_exponent = [](double) { return 1.0; };
     d.reference = {"rotor_height_m", &ModelEffects::rotor_height_m, -1.0, 1.0, nullptr};
     // Only blocks within two rotor diameters of the ground tell about it.
     d.informative = [](double height_m, double rotor_diameter_m) { return height_m < 2.0 * rotor_diameter_m; };

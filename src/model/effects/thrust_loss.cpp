@@ -19,8 +19,9 @@ const EffectDescription& thrustLossEffect() {
         "every payload, current, air and height";
     d.thrust_factor = [](double value, const ModelEffects&, const Signals&) { return 1.0 - value; };
     // Blockage and interaction act on the air the rotor has already moved: same rotor state,
-    // same torque and current, less net force, in both views.
+    // same torque, current and speed, less net force, in every view.
     d.current_view_exponent = [](double) { return 1.0; };
+    d.rpm_view_exponent = [](double) { return 1.0; };
     return d;
   }();
   return description;

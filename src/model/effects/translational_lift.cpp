@@ -28,6 +28,8 @@ const EffectDescription& translationalLiftEffect() {
     // At the rotor's speed the thrust rises while the induced torque (thrust x inflow) hardly
     // moves: the same current lifts more, and the current view errs as the PWM view does.
     d.current_view_exponent = [](double) { return 1.0; };
+    // Fresh air through the disc lifts more at a given speed: the RPM view sees the gain.
+    d.rpm_view_exponent = [](double) { return 1.0; };
     d.informative = [](double speed_m_s, double) { return speed_m_s > 1.0; };
     d.uninformative = [](double) { return std::string("no weighed flight moving faster than 1 m/s horizontally"); };
     return d;

@@ -101,3 +101,29 @@ TEST(GapBlocks, WithoutImuTheWeightIsTheTruthAndItIsSaid) {
   EXPECT_NE(cut.problems[0].find("no IMU"), std::string::npos);
 }
 
+
+// ESC telemetry at 5 Hz: ESC k reports 6000 + 100 k rpm, ESC 3 only in the first 4.4 s (then its
+// packets drop), so its blocks from 4 s on hold too few fresh readings to average.
+TEST(GapBlocks, AveragesEachRotorsSpeedWhereTelemetryCoversHalfTheBlock) {
+  pe::Flight flight = levelFlight();
+  for (int i = 0; i <= 100; ++i) {
+    pe::EscTelemetryReading reading;
+    reading.time_s = 0.2 * i;
+    reading.escs = 4;
+    for (int k = 0; k < 4; ++k) reading.rpm[k] = 6000.0 + 100.0 * k;
+    if (reading.time_s > 4.4) reading.rpm[3] = pe::kNaN;
+    flight.streams.esc.push_back(reading);
+  }
+  gap::BlockConfig short_timeout = config();
+  short_timeout.signal_timeout_s = 0.3;
+  const gap::FlightBlocks cut = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), short_timeout, 0);
+  EXPECT_TRUE(cut.has_rpm);
+  ASSERT_EQ(cut.blocks.size(), 10u);
+  EXPECT_NEAR(cut.blocks[0].rpm[2], 6200.0, 1e-9);
+  EXPECT_NEAR(cut.blocks[0].rpm[3], 6300.0, 1e-9);   // 2-3 s
+  EXPECT_NEAR(cut.blocks[2].rpm[3], 6300.0, 1e-9);   // 4-5 s: 6 of 10 frames before the drop at 4.6 s
+  EXPECT_TRUE(std::isnan(cut.blocks[3].rpm[3]));     // 5-6 s: none fresh
+  EXPECT_NEAR(cut.blocks[3].rpm[0], 6000.0, 1e-9);
+  EXPECT_FALSE(gap::cutIntoBlocks(levelFlight(), 0, pe::Vehicle::quadX(0.225), config(), 0).has_rpm);
+  EXPECT_TRUE(std::isnan(gap::cutIntoBlocks(levelFlight(), 0, pe::Vehicle::quadX(0.225), config(), 0).blocks[0].rpm[0]));
+}

@@ -1,5 +1,6 @@
-// The two views of thrust on one block: the PWM view through the surfaces, the current view
-// through the measured current, and how each effect's correction moves them.
+// The three views of thrust on one block: the PWM view through the surfaces, the current view
+// through the measured current, the RPM view through the measured rotor speeds, and how each
+// effect's correction moves them.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -25,6 +26,12 @@ class ThrustViewsTest : public ::testing::Test {
     block_.current_a = 4.0 * model_.evaluateRaw(pe::Output::kCurrent, 1550.0, 11.5);
     block_.signals.battery_current_a = block_.current_a;
     block_.truth_n = 4.0 * views_.motorThrust(1550.0, 11.5);
+    // T = a n^2 at the bench's air: each rotor's speed gives a quarter of the truth.
+    pe::RpmThrust rpm_thrust;
+    rpm_thrust.n_per_rpm2 = 8e-8;
+    rpm_thrust.bench_air_density_kg_m3 = 1.2;
+    model_.setRpmThrust(rpm_thrust);
+    block_.rpm.fill(std::sqrt(block_.truth_n / 4.0 / rpm_thrust.n_per_rpm2));
   }
 
   pe::PropulsionModel model_;
@@ -66,6 +73,55 @@ TEST_F(ThrustViewsTest, NoCurrentViewWithoutACurrentOrOutOfReach) {
   gap::Block huge = block_;
   huge.current_a = 1e4;
   EXPECT_TRUE(std::isnan(views_.currentView(huge, fx::ModelEffects())));
+}
+
+TEST_F(ThrustViewsTest, TheRpmViewReadsTheMeasuredSpeedsAtTheFlightsAir) {
+  EXPECT_NEAR(views_.rpmView(block_, fx::ModelEffects()), block_.truth_n, 1e-9 * block_.truth_n);
+  gap::Block thin = block_;
+  thin.signals.air_density_kg_m3 = 1.08;
+  EXPECT_NEAR(views_.rpmView(thin, fx::ModelEffects()), 0.9 * block_.truth_n, 1e-9 * block_.truth_n);
+  views_.setMotorScale(2, 0.8);
+  EXPECT_NEAR(views_.rpmView(block_, fx::ModelEffects()), 3.8 / 4.0 * block_.truth_n, 1e-9 * block_.truth_n);
+}
+
+// Between the pulse width and the shaft (ESC end points, supply, a warm motor) the RPM view sees
+// nothing, nor air density, which it reads; the air on a spinning rotor it sees as the PWM view.
+TEST_F(ThrustViewsTest, TheRpmViewSeesTheAirOnTheRotorAndNothingBeforeTheShaft) {
+  fx::ModelEffects offset;
+  offset.setParameter(fx::Kind::kEscOffset, 30.0);
+  EXPECT_NEAR(views_.rpmView(block_, offset), block_.truth_n, 1e-9 * block_.truth_n);
+  fx::ModelEffects supply;
+  supply.setParameter(fx::Kind::kSupplyResistance, 0.05);
+  EXPECT_NEAR(views_.rpmView(block_, supply), block_.truth_n, 1e-9 * block_.truth_n);
+  gap::Block warm = block_;
+  warm.signals.motor_temperature_c = 60.0;
+  fx::ModelEffects heating;
+  heating.setParameter(fx::Kind::kMotorTemperature, -0.002);
+  heating.motor_reference_c = 20.0;
+  EXPECT_LT(views_.pwmView(warm, heating), 0.95 * block_.truth_n);
+  EXPECT_NEAR(views_.rpmView(warm, heating), block_.truth_n, 1e-9 * block_.truth_n);
+  fx::ModelEffects loss;
+  loss.setParameter(fx::Kind::kThrustLoss, 0.05);
+  EXPECT_NEAR(views_.rpmView(block_, loss), 0.95 * block_.truth_n, 1e-9 * block_.truth_n);
+}
+
+TEST_F(ThrustViewsTest, NoRpmViewWithoutEverySpeedOrAThrustFromRpm) {
+  gap::Block missing = block_;
+  missing.rpm[3] = pe::kNaN;
+  EXPECT_TRUE(std::isnan(views_.rpmView(missing, fx::ModelEffects())));
+  model_.setRpmThrust(std::nullopt);
+  EXPECT_FALSE(views_.hasRpmThrust());
+  EXPECT_TRUE(std::isnan(views_.rpmView(block_, fx::ModelEffects())));
+}
+
+TEST(ThrustViewExponent, EachEffectOnThrustSaysHowTheRpmViewSeesIt) {
+  EXPECT_DOUBLE_EQ(gap::rpmViewExponent(fx::Kind::kThrustLoss, 0.05), 1.0);
+  EXPECT_DOUBLE_EQ(gap::rpmViewExponent(fx::Kind::kGroundEffect, 0.01), 1.0);
+  EXPECT_DOUBLE_EQ(gap::rpmViewExponent(fx::Kind::kClimbInflow, 0.01), 1.0);
+  EXPECT_DOUBLE_EQ(gap::rpmViewExponent(fx::Kind::kTranslationalLift, 0.01), 1.0);
+  EXPECT_DOUBLE_EQ(gap::rpmViewExponent(fx::Kind::kAirDensity, 0.5), 0.0);
+  EXPECT_DOUBLE_EQ(gap::rpmViewExponent(fx::Kind::kMotorTemperature, 0.001), 0.0);
+  EXPECT_DOUBLE_EQ(gap::rpmViewExponent(fx::Kind::kEscOffset, 10.0), 0.0);
 }
 
 TEST(ThrustViewExponent, EachEffectOnThrustSaysHowTheCurrentViewSeesIt) {

@@ -57,6 +57,7 @@ TEST(EffectDescriptions, EachIsCompleteAndActsOnceEitherOnInputsOrOnThrust) {
     EXPECT_GT(std::string(d.meaning).size(), 20u);
     EXPECT_NE(d.correct_inputs == nullptr, d.thrust_factor == nullptr) << "one correction of the PWM view";
     EXPECT_TRUE(!d.thrust_factor || d.current_view_exponent) << "a thrust factor needs its current view";
+    EXPECT_TRUE(!d.thrust_factor || d.rpm_view_exponent) << "a thrust factor needs its RPM view";
     EXPECT_EQ(d.informative == nullptr, d.uninformative == nullptr);
     EXPECT_TRUE(!d.reference.key || d.reference.member) << "a reference key needs its place";
     EXPECT_TRUE(!d.informative || d.signal != fx::Signal::kNone) << "informative blocks need a signal";
