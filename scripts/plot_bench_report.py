@@ -267,27 +267,37 @@ def plot_gap(directory):
     axes[0].legend(fontsize=8, loc="best")
     save(figure, directory, "gap_signals.png")
 
-    figure, axis = plt.subplots(figsize=(6.4, 5.6))
-    finite = np.isfinite(current)
-    if finite.any():
-        axis.scatter(model[finite], current[finite], s=5, alpha=0.4)
-        span = np.nanmax(np.abs(model[finite])) * 1.1 + 0.5
-        line = np.array([-span, span])
-        for slope, name in ((1.0, "thrust loss, hidden mass, ground effect, climb"),
-                            (1.0 / 3.0, "supply resistance, air density (about three to one)"),
-                            (0.0, "ESC offset"), (-1.0, "motor temperature (opposite)")):
-            axis.plot(line, slope * line, linewidth=1.0, label=name)
-        axis.set_ylim(-span * 1.5, span * 1.5)
-        axis.legend(fontsize=8, loc="best")
-    else:
-        axis.text(0.5, 0.5, "no measured battery current or no current surface", ha="center",
-                  transform=axis.transAxes)
-    axis.axhline(0.0, color="black", linewidth=0.6)
-    axis.axvline(0.0, color="black", linewidth=0.6)
-    axis.set_xlabel("PWM-view residual (% of truth)")
-    axis.set_ylabel("Current-view residual (% of truth)")
-    axis.set_title("Two views of the thrust")
-    axis.grid(alpha=0.3)
+    rpm = 100.0 * (column(rows, "rpm_view_n") / truth - 1.0) if "rpm_view_n" in rows[0] else np.full_like(model, np.nan)
+    has_rpm = np.isfinite(rpm).any()
+    figure, axes = plt.subplots(1, 2 if has_rpm else 1, figsize=(12.8 if has_rpm else 6.4, 5.6), squeeze=False)
+    views = [(current, "Current-view residual (% of truth)", "Two views of the thrust" if not has_rpm else
+              "PWM view against the current view",
+              ((1.0, "thrust loss, hidden mass, ground effect, climb"),
+               (1.0 / 3.0, "supply resistance, air density (about three to one)"),
+               (0.0, "ESC offset"), (-1.0, "motor temperature (opposite)")),
+              "no measured battery current or no current surface")]
+    if has_rpm:
+        views.append((rpm, "RPM-view residual (% of truth)", "PWM view against the RPM view (ESC telemetry)",
+                      ((1.0, "thrust loss, hidden mass, ground effect, climb, translational lift"),
+                       (0.0, "ESC offset, supply resistance, air density, motor temperature")), ""))
+    for axis, (view, label, title, lines, missing) in zip(axes[0], views):
+        finite = np.isfinite(view)
+        if finite.any():
+            axis.scatter(model[finite], view[finite], s=5, alpha=0.4)
+            span = np.nanmax(np.abs(model[finite])) * 1.1 + 0.5
+            line = np.array([-span, span])
+            for slope, name in lines:
+                axis.plot(line, slope * line, linewidth=1.0, label=name)
+            axis.set_ylim(-span * 1.5, span * 1.5)
+            axis.legend(fontsize=8, loc="best")
+        else:
+            axis.text(0.5, 0.5, missing, ha="center", transform=axis.transAxes)
+        axis.axhline(0.0, color="black", linewidth=0.6)
+        axis.axvline(0.0, color="black", linewidth=0.6)
+        axis.set_xlabel("PWM-view residual (% of truth)")
+        axis.set_ylabel(label)
+        axis.set_title(title)
+        axis.grid(alpha=0.3)
     save(figure, directory, "gap_two_views.png")
 
     flights = column(rows, "flight").astype(int)

@@ -180,6 +180,7 @@ struct GapSample {
   double truth_n = 0.0;           ///< mass x vertical specific force
   double model_n = 0.0;           ///< vertical thrust from PWM and voltage
   double current_view_n = 0.0;    ///< vertical thrust from the measured current (NaN without)
+  double rpm_view_n = 0.0;        ///< vertical thrust from the measured rotor speeds (NaN without)
   double corrected_n = 0.0;       ///< with the selected effects
   double pwm_us = 0.0;            ///< mean over the motors
   /// The signals at the sample, SI units (V, A, m, m/s, kg/m^3, deg C, s since the first weighed
