@@ -5,7 +5,8 @@ Reads the reports validate_gap.py wrote in --work for cases with nothing to name
 centre-of-gravity and weak-propeller cases: only the mismatch of model family between the
 simulator and the fitted surfaces, plus a motor fault the moment balance takes) and prints, over
 every first-round candidate whose improvement is significant, the largest fall of the PWM view's
-held-out RMSE (percentage points of the truth) and of its mean square (fraction): what a mismatch
+held-out RMSE (percentage points of the truth) and of its mean square (fraction), and of the RPM
+view's where the flights had ESC telemetry (the same thresholds apply to it): what a mismatch
 of model family alone gives. An effect must do better to be named; the chosen values go into
 DiagnosisConfig (include/propulsion_estimator/gap/diagnosis.h) and VALIDATION.md says which seeds.
 Run it on development seeds only.
@@ -26,7 +27,7 @@ def main():
     parser.add_argument("work", nargs="+")
     parser.add_argument("--significance", type=float, default=0.01)
     args = parser.parse_args()
-    rows = []
+    rows, rpm_rows = [], []
     for work in args.work:
         for report_path in sorted(glob.glob(os.path.join(work, "case_*", "diagnosis", "report.yaml"))):
             case = os.path.basename(os.path.dirname(os.path.dirname(report_path)))
@@ -43,12 +44,21 @@ def main():
                 drop = before - step["heldout_rmse_pct"]
                 ratio = (step["heldout_rmse_pct"] / before) ** 2 if before else 1.0
                 rows.append((drop, ratio, os.path.basename(work), case, step["name"]))
+                # The RPM view's fall, where the flights had one: its test uses the same thresholds.
+                if step.get("rpm_rmse_pct") is not None and step.get("base_rpm_rmse_pct"):
+                    before = step["base_rpm_rmse_pct"]
+                    rpm_rows.append((before - step["rpm_rmse_pct"], (step["rpm_rmse_pct"] / before) ** 2,
+                                     os.path.basename(work), case, step["name"]))
     rows.sort(reverse=True)
     print("%d significant first-round candidates on null flights" % len(rows))
     for drop, ratio, work, case, name in rows[:15]:
         print("  %-14s %-28s %-18s RMSE falls %.3f points, mean square to %.3f" % (work, case, name, drop, ratio))
     if rows:
         print("largest fall: %.3f points; lowest mean-square ratio: %.3f" % (rows[0][0], min(r[1] for r in rows)))
+    rpm_rows.sort(reverse=True)
+    print("RPM view: %d of them with ESC telemetry" % len(rpm_rows))
+    for drop, ratio, work, case, name in rpm_rows[:5]:
+        print("  %-14s %-28s %-18s RMSE falls %.3f points, mean square to %.3f" % (work, case, name, drop, ratio))
 
 
 if __name__ == "__main__":

@@ -39,6 +39,18 @@ struct RoundOutcome {
   int round = 0;  // 0-based, its place in the forward selection
 };
 
+// Mean of the finite squares of `view` (per block); NaN when none is finite (no such view).
+inline double finiteMeanSquare(const std::vector<double>& view) {
+  double sum = 0.0;
+  int count = 0;
+  for (double r : view) {
+    if (!std::isfinite(r)) continue;
+    sum += r * r;
+    ++count;
+  }
+  return count > 0 ? sum / count : kNaN;
+}
+
 // Held-out predictions of one set of effects: each block's relative residual in both views,
 // from the fit on the folds that left its flight (or segment) out.
 struct HeldOutPrediction {
@@ -92,6 +104,10 @@ class Diagnoser {
   double jointSquare(const HeldOutPrediction& prediction, std::size_t block) const;
   // Per (flight, group) stretch: the fall of the joint squared error from `before` to `after`.
   std::vector<double> groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const;
+  // Whether a view's held-out RMSE (% of the truth) falls from `before_pct` to `after_pct` by more
+  // than min_improvement_pct points and below max_mean_square_ratio of its mean square; false
+  // when either is NaN (no such view).
+  bool fallsEnough(double before_pct, double after_pct) const;
   // Mean over blocks of the joint squared error.
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
   double suspectThrustFactor(int motor, double yaw_gap) const;

@@ -313,6 +313,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
   double base_pwm = 0.0;
   for (double r : current.pwm) base_pwm += r * r / blocks_.size();
   const double base_pwm_rmse_pct = 100.0 * std::sqrt(base_pwm);
+  const double base_rpm = finiteMeanSquare(current.rpm);
   std::optional<Kind> best;
   double best_ms = base_ms;
   std::vector<std::size_t> admissible_steps;
@@ -329,6 +330,9 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     double pwm_ms = 0.0;
     for (double r : prediction.pwm) pwm_ms += r * r / blocks_.size();
     result.heldout_rmse_pct = 100.0 * std::sqrt(pwm_ms);
+    const double rpm_ms = finiteMeanSquare(prediction.rpm);
+    result.rpm_rmse_pct = 100.0 * std::sqrt(rpm_ms);
+    result.base_rpm_rmse_pct = 100.0 * std::sqrt(base_rpm);
     result.joint_rmse_pct = 100.0 * std::sqrt(ms);
     result.base_joint_rmse_pct = 100.0 * std::sqrt(base_ms);
     result.p_value = signFlipPValue(groupImprovements(current, prediction), config_.permutations,
@@ -344,8 +348,9 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     result.current_view_ratio = currentViewRatio(round_base, fit.effects);
     const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
     const double drop_pct = base_pwm_rmse_pct - 100.0 * std::sqrt(pwm_ms);
-    const bool significant = result.p_value < config_.significance && drop_pct > config_.min_improvement_pct &&
-                             pwm_ms < config_.max_mean_square_ratio * base_pwm && ms < base_ms;
+    const bool significant = result.p_value < config_.significance && ms < base_ms &&
+                             (fallsEnough(base_pwm_rmse_pct, result.heldout_rmse_pct) ||
+                              fallsEnough(result.base_rpm_rmse_pct, result.rpm_rmse_pct));
     if (!significant) {
       result.reason = notSignificant(result, base_pwm_rmse_pct, drop_pct, pwm_ms / base_pwm);
     } else if (!result.plausible) {
@@ -369,8 +374,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
         best = kind;
       }
     }
-    diagnosis_.trace.push_back({round + 1, kind, result.heldout_rmse_pct, base_pwm_rmse_pct,
-                                result.joint_rmse_pct, result.p_value, result.reason});
+    diagnosis_.trace.push_back({round + 1, kind, result.heldout_rmse_pct, base_pwm_rmse_pct, result.rpm_rmse_pct,
+                                result.base_rpm_rmse_pct, result.joint_rmse_pct, result.p_value, result.reason});
   }
   // The candidates that passed every test but lowered the joint error less than the one taken.
   for (std::size_t step : admissible_steps) {
@@ -384,26 +389,42 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
   return best;
 }
 
+// Whether a view's held-out RMSE (% of the truth) falls from `before` to `after` by more than a
+// mismatch of model family alone gives on null flights: in points and as a share of its square.
+bool Diagnoser::fallsEnough(double before_pct, double after_pct) const {
+  return std::isfinite(before_pct) && std::isfinite(after_pct) && before_pct - after_pct > config_.min_improvement_pct &&
+         after_pct * after_pct < config_.max_mean_square_ratio * before_pct * before_pct;
+}
+
 // The verdict of a candidate that failed the test of improvement, naming the test that failed in
-// the very numbers it used: p tests the joint error of both views, the thresholds the PWM view's.
+// the very numbers it used: p tests the joint error of the views, the thresholds the PWM view's
+// (or the RPM view's).
 std::string Diagnoser::notSignificant(const EffectResult& result, double base_pwm_rmse_pct, double drop_pct,
                                       double mean_square_ratio) const {
   const std::string pwm = "PWM-view held-out error " + formatPrintf("%.2f", result.heldout_rmse_pct) + " % against " +
                           formatPrintf("%.2f", base_pwm_rmse_pct) + " %";
-  const std::string joint = "joint error of both views " + formatPrintf("%.2f", result.joint_rmse_pct) +
+  const std::string joint = "joint error of the views " + formatPrintf("%.2f", result.joint_rmse_pct) +
                             " % against " + formatPrintf("%.2f", result.base_joint_rmse_pct) + " % (p = " +
                             formatPrintf("%.3f", result.p_value) + ")";
   if (result.joint_rmse_pct >= result.base_joint_rmse_pct) {
-    return drop_pct > 0.0 ? "not taken: lowers the " + pwm + ", but the current view disagrees: " + joint
+    const std::string others = std::isfinite(result.rpm_rmse_pct) ? "the current and RPM views disagree"
+                                                                  : "the current view disagrees";
+    return drop_pct > 0.0 ? "not taken: lowers the " + pwm + ", but " + others + ": " + joint
                           : "not taken: no lower held-out error: " + pwm + ", " + joint;
   }
   if (result.p_value >= config_.significance) {
     return "not taken: " + joint + ", not significant (p must be below " + formatNumber(config_.significance) + ")";
   }
-  if (drop_pct <= config_.min_improvement_pct || mean_square_ratio >= config_.max_mean_square_ratio) {
+  if (!fallsEnough(base_pwm_rmse_pct, result.heldout_rmse_pct) &&
+      !fallsEnough(result.base_rpm_rmse_pct, result.rpm_rmse_pct)) {
+    const std::string rpm =
+        std::isfinite(result.rpm_rmse_pct)
+            ? ", nor the RPM-view held-out error (" + formatPrintf("%.2f", result.rpm_rmse_pct) + " % against " +
+                  formatPrintf("%.2f", result.base_rpm_rmse_pct) + " %)"
+            : std::string();
     return "not taken: significant (" + joint + "), but the " + pwm + " falls by " + formatPrintf("%.3f", drop_pct) +
-           " points (" + formatPrintf("%.0f", 100.0 * (1.0 - mean_square_ratio)) +
-           " % of its mean square): at most what a mismatch of model family alone gives on null flights (> " +
+           " points (" + formatPrintf("%.0f", 100.0 * (1.0 - mean_square_ratio)) + " % of its mean square)" + rpm +
+           ": at most what a mismatch of model family alone gives on null flights (> " +
            formatPrintf("%.3f", config_.min_improvement_pct) + " points and " +
            formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) + " % needed)";
   }

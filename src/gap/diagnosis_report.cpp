@@ -193,7 +193,7 @@ std::string Diagnoser::method() const {
          " used, " + std::to_string(diagnosis_.transient_blocks) + " transient left out; " + diagnosis_.rotor_lag +
          ". Forward selection over " +
          std::to_string(units_) + " held-out " + unit_name_ + "s (each fitted on the others)" + selectionBlocks() +
-         ". An effect is added when the held-out RMSE of the PWM view falls "
+         ". An effect is added when the held-out RMSE of the PWM view (or of the RPM view, where there is one) falls "
          "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
          formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
          " % (more than a mismatch of model family alone gives on null flights), the joint error of the views "
@@ -212,7 +212,7 @@ std::string Diagnoser::method() const {
          std::to_string(std::min(units_, config_.nested_folds)) + " outer folds and scores that fold.";
 }
 
-// Every block with its signals and both views, for the figures.
+// Every block with its signals and the views, for the figures.
 void Diagnoser::collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view) {
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     const Block& block = blocks_[i];

@@ -121,6 +121,10 @@ void emitSelection(YAML::Emitter& out, const Diagnosis& diagnosis) {
         << YAML::Value << effects::kindName(step.kind);
     emitField(out, "heldout_rmse_pct", step.heldout_rmse_pct);
     emitField(out, "base_heldout_rmse_pct", step.base_heldout_rmse_pct);
+    if (std::isfinite(step.rpm_rmse_pct)) {
+      emitField(out, "rpm_rmse_pct", step.rpm_rmse_pct);
+      emitField(out, "base_rpm_rmse_pct", step.base_rpm_rmse_pct);
+    }
     emitField(out, "joint_rmse_pct", step.joint_rmse_pct);
     emitField(out, "p_value", step.p_value);
     out << YAML::Key << "verdict" << YAML::Value << step.verdict << YAML::EndMap;
@@ -345,7 +349,7 @@ void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
        << "separate them: " << ambiguity.separating_flight << ".\n\n";
   }
   if (!diagnosis.trace.empty()) {
-    md << "Selection, round by round (held-out RMSE of the PWM view, and of both views together):\n\n"
+    md << "Selection, round by round (held-out RMSE of the PWM view, and of the views together):\n\n"
           "| round | candidate | held-out RMSE % | joint RMSE % | p | verdict |\n|---|---|---|---|---|---|\n";
     for (const SelectionStep& step : diagnosis.trace) {
       md << "| " << step.round << " | " << effects::kindName(step.kind) << " | " << formatPrintf("%.2f", step.heldout_rmse_pct, "n/a") << " | "

@@ -34,8 +34,9 @@ struct DiagnosisConfig {
   int permutations = 200;            ///< of the permutation test on held-out improvement
   double significance = 0.01;        ///< an effect is selected when p < this ...
   /// ... and the PWM view's held-out RMSE falls by more than this many % of the truth, and its mean
-  /// square below this fraction of what it was: more than a mismatch of model family alone gives
-  /// on null flights. Calibrated on 2026-11-25 on the null, centre-of-gravity and weak-propeller
+  /// square below this fraction of what it was (or the RPM view's, where there is one: its thrust
+  /// is read past the ESC and motor surfaces, whose mismatch it does not share): more than a
+  /// mismatch of model family alone gives on null flights. Calibrated on 2026-11-25 on the null, centre-of-gravity and weak-propeller
   /// cases of the 13 development seeds flown with straight legs (11, 156581, 727793 and the ten
   /// once fresh: 823438, 415516, 444675, 285642, 544269, 888950, 566424, 925770, 679609, 675042)
   /// (scripts/calibrate_gap_thresholds.py: the largest fall there 0.074 points, mean square to
@@ -101,6 +102,10 @@ struct EffectResult {
   double ci_high = 0.0;  ///< see ci_low
   bool plausible = false;            ///< inside the effect's ParameterSpec range
   double heldout_rmse_pct = 0.0;     ///< with this effect added to those selected before it
+  /// The RPM view's held-out RMSE with this effect added, and before it, % of the truth; NaN
+  /// without an RPM view.
+  double rpm_rmse_pct = kNaN;
+  double base_rpm_rmse_pct = kNaN;  ///< see rpm_rmse_pct
   double joint_rmse_pct = 0.0;       ///< both views together, with this effect added; what p tests
   double base_joint_rmse_pct = 0.0;  ///< both views together, before it (the effects selected before)
   double p_value = 1.0;              ///< of the held-out improvement of the joint error, permutation test
@@ -113,6 +118,8 @@ struct SelectionStep {
   effects::Kind kind = effects::Kind::kThrustLoss;  ///< which effect
   double heldout_rmse_pct = 0.0;  ///< PWM view, with the effects selected before and this one
   double base_heldout_rmse_pct = 0.0;  ///< PWM view, with the effects selected before only
+  double rpm_rmse_pct = kNaN;       ///< RPM view, with this one; NaN without an RPM view
+  double base_rpm_rmse_pct = kNaN;  ///< RPM view, with the effects selected before only
   double joint_rmse_pct = 0.0;    ///< both views together
   double p_value = 1.0;  ///< of its improvement, permutation test
   std::string verdict;            ///< why it was or was not taken
