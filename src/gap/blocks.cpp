@@ -107,13 +107,6 @@ bool hasCurrent(const std::vector<BatteryReading>& battery) {
                      [](const BatteryReading& reading) { return std::isfinite(reading.current_a); });
 }
 
-bool hasRpm(const std::vector<EscTelemetryReading>& esc) {
-  return std::any_of(esc.begin(), esc.end(), [](const EscTelemetryReading& reading) {
-    return std::any_of(reading.rpm.begin(), reading.rpm.begin() + reading.escs,
-                       [](double rpm) { return std::isfinite(rpm); });
-  });
-}
-
 // The readings of the signals the effects read, in force at each frame (Cursor's rules).
 struct SignalCursors {
   explicit SignalCursors(const FlightStreams& streams)
@@ -172,7 +165,6 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
   const FlightStreams& streams = flight.streams;
   result.has_imu = !streams.imu.empty();
   result.has_current = hasCurrent(streams.battery);
-  result.has_rpm = hasRpm(streams.esc);
   if (streams.rc_out.empty() || streams.battery.empty()) {
     result.problems.push_back(flight.name + ": no rc/out or battery messages");
     return result;

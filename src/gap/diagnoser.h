@@ -39,7 +39,8 @@ struct RoundOutcome {
   int round = 0;  // 0-based, its place in the forward selection
 };
 
-// Mean of the finite squares of `view` (per block); NaN when none is finite (no such view).
+// Mean of the finite squares of `view` (per block; the PWM view's are all finite); NaN when none
+// is finite (no such view).
 inline double finiteMeanSquare(const std::vector<double>& view) {
   double sum = 0.0;
   int count = 0;
@@ -65,7 +66,8 @@ class Diagnoser {
  public:
   Diagnoser(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
             const DiagnosisConfig& config, const std::vector<BenchLog>& bench)
-      : model_(model), vehicle_(vehicle), flights_(flights), bench_(bench), config_(config), views_(model, motorCount()) {}
+      : model_(model), vehicle_(vehicle), flights_(flights), bench_(bench), config_(config),
+        views_(model, motorCount(), config.rpm_view) {}
 
   Diagnosis run();
 

@@ -198,7 +198,7 @@ HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) cons
       prediction.view_n[i] = view;
       prediction.pwm[i] = relative(view, blocks_[i]);
       prediction.current[i] = relative(views_.currentView(blocks_[i], fit.effects), blocks_[i]);
-      if (config_.rpm_view) prediction.rpm[i] = relative(views_.rpmView(blocks_[i], fit.effects), blocks_[i]);
+      prediction.rpm[i] = relative(views_.rpmView(blocks_[i], fit.effects), blocks_[i]);
       Block less = blocks_[i];
       less.current_a -= 1.0;
       slope[i] = prediction.current[i] - relative(views_.currentView(less, fit.effects), blocks_[i]);
@@ -310,8 +310,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
                                               std::map<Kind, HeldOutPrediction>* admissible) {
   const double base_ms = jointMeanSquare(current);
   const effects::ModelEffects round_base = fitEffects(views_, all_, selected, references()).effects;
-  double base_pwm = 0.0;
-  for (double r : current.pwm) base_pwm += r * r / blocks_.size();
+  const double base_pwm = finiteMeanSquare(current.pwm);
   const double base_pwm_rmse_pct = 100.0 * std::sqrt(base_pwm);
   const double base_rpm = finiteMeanSquare(current.rpm);
   std::optional<Kind> best;
@@ -327,8 +326,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     kinds.push_back(kind);
     const HeldOutPrediction prediction = predictHeldOut(kinds);
     const double ms = jointMeanSquare(prediction);
-    double pwm_ms = 0.0;
-    for (double r : prediction.pwm) pwm_ms += r * r / blocks_.size();
+    const double pwm_ms = finiteMeanSquare(prediction.pwm);
     result.heldout_rmse_pct = 100.0 * std::sqrt(pwm_ms);
     const double rpm_ms = finiteMeanSquare(prediction.rpm);
     result.rpm_rmse_pct = 100.0 * std::sqrt(rpm_ms);

@@ -222,7 +222,7 @@ void Diagnoser::collectSamples(const effects::ModelEffects& plain, const std::ve
     sample.truth_n = block.truth_n;
     sample.model_n = plain_view[i];
     sample.current_view_n = views_.currentView(block, plain);
-    sample.rpm_view_n = config_.rpm_view ? views_.rpmView(block, plain) : kNaN;
+    sample.rpm_view_n = views_.rpmView(block, plain);
     sample.corrected_n = views_.pwmView(block, diagnosis_.fitted);
     sample.pwm_us = meanPwm(block);
     sample.voltage_v = block.voltage_v;

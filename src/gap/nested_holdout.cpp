@@ -31,7 +31,7 @@ void Diagnoser::nestedHoldOut() {
   }
   const int folds = std::min(units_, config_.nested_folds);
   const effects::ModelEffects plain = references();
-  const ThrustViews plain_views(model_, motorCount());
+  const ThrustViews plain_views(model_, motorCount(), config_.rpm_view);
   std::vector<double> before(blocks_.size()), after(blocks_.size(), kNaN);
   for (std::size_t i = 0; i < blocks_.size(); ++i) before[i] = relative(plain_views.pwmView(blocks_[i], plain), blocks_[i]);
   for (int fold = 0; fold < folds; ++fold) {

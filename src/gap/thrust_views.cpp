@@ -24,11 +24,12 @@ double rpmViewExponent(effects::Kind kind, double parameter) {
   return description.rpm_view_exponent ? description.rpm_view_exponent(parameter) : 0.0;
 }
 
-ThrustViews::ThrustViews(const PropulsionModel& model, int motors)
+ThrustViews::ThrustViews(const PropulsionModel& model, int motors, bool rpm_view)
     : model_(model),
       motors_(motors),
       thrust_to_si_(*unitToSi(Output::kThrust, model.output(Output::kThrust).unit)),
-      has_current_(model.output(Output::kCurrent).source != OutputSource::kNone) {
+      has_current_(model.output(Output::kCurrent).source != OutputSource::kNone),
+      rpm_view_(rpm_view) {
   motor_scale_.fill(1.0);
 }
 
@@ -80,7 +81,7 @@ double ThrustViews::currentView(const Block& block, const effects::ModelEffects&
 
 double ThrustViews::rpmView(const Block& block, const effects::ModelEffects& effects) const {
   const std::optional<RpmThrust>& rpm_thrust = model_.rpmThrust();
-  if (!rpm_thrust) return kNaN;
+  if (!rpm_view_ || !rpm_thrust) return kNaN;
   double thrust = 0.0;
   for (int k = 0; k < motors_; ++k) {
     if (!std::isfinite(block.rpm[k])) return kNaN;

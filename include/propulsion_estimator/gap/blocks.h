@@ -61,7 +61,6 @@ struct FlightBlocks {
   std::vector<std::string> problems;  ///< one line for each thing that could not be used
   bool has_imu = false;  ///< whether the flight had an IMU
   bool has_current = false;  ///< whether the flight had a battery current
-  bool has_rpm = false;  ///< whether the flight had ESC telemetry with rotor speeds
 };
 
 /// Cuts `flight` into blocks inside its weighed segments, its commands through the rotor lag. A segment outside the log's time span,

@@ -35,10 +35,12 @@ struct DiagnosisConfig {
   double significance = 0.01;        ///< an effect is selected when p < this ...
   /// ... and the PWM view's held-out RMSE falls by more than this many % of the truth, and its mean
   /// square below this fraction of what it was (or the RPM view's, where there is one: its thrust
-  /// is read past the ESC and motor surfaces, whose mismatch it does not share): more than a
-  /// mismatch of model family alone gives on null flights. Calibrated on 2026-11-25 on the null, centre-of-gravity and weak-propeller
-  /// cases of the 13 development seeds flown with straight legs (11, 156581, 727793 and the ten
-  /// once fresh: 823438, 415516, 444675, 285642, 544269, 888950, 566424, 925770, 679609, 675042)
+  /// is read past the ESC and motor surfaces, whose mismatch it does not share; its largest fall on
+  /// such cases of six development seeds was 0.018 points): more than a mismatch of model family
+  /// alone gives on null flights. Calibrated on 2026-11-25 on the null, centre-of-gravity and
+  /// weak-propeller cases of the 13 development seeds flown with straight legs (11, 156581, 727793
+  /// and the ten once fresh: 823438, 415516, 444675, 285642, 544269, 888950, 566424, 925770,
+  /// 679609, 675042)
   /// (scripts/calibrate_gap_thresholds.py: the largest fall there 0.074 points, mean square to
   /// 0.67; 25 % above it); VALIDATION.md, "Calibration of the thresholds".
   ///@{

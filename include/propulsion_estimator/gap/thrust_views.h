@@ -22,16 +22,17 @@ namespace gap {
 /// motor heating moves the first two in opposite directions and not the third.
 class ThrustViews {
  public:
-  /// `model` must outlive the views; `motors` <= kMaxMotors.
-  ThrustViews(const PropulsionModel& model, int motors);
+  /// `model` must outlive the views; `motors` <= kMaxMotors; `rpm_view` false: the RPM view is
+  /// left out (NaN) whatever the model and the blocks hold.
+  ThrustViews(const PropulsionModel& model, int motors, bool rpm_view = true);
 
   /// Vertical thrust of the PWM view with `effects` applied, N.
   double pwmView(const Block& block, const effects::ModelEffects& effects) const;
   /// Vertical thrust of the current view with `effects` applied, N; NaN without a measured
   /// current or a current surface, or when no offset within +-400 us matches the current.
   double currentView(const Block& block, const effects::ModelEffects& effects) const;
-  /// Vertical thrust of the RPM view with `effects` applied, N; NaN without a thrust_from_rpm in
-  /// the model or without every motor's speed in the block.
+  /// Vertical thrust of the RPM view with `effects` applied, N; NaN when left out, without a
+  /// thrust_from_rpm in the model or without every motor's speed in the block.
   double rpmView(const Block& block, const effects::ModelEffects& effects) const;
   /// One motor's thrust from the surfaces, N (not clamped to the domain; floored at 0).
   double motorThrust(double pwm_us, double voltage_v) const;
@@ -56,6 +57,7 @@ class ThrustViews {
   int motors_;
   double thrust_to_si_;
   bool has_current_;
+  bool rpm_view_;
   std::array<double, kMaxMotors> motor_scale_;
 };
 

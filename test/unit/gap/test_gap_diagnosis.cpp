@@ -246,7 +246,9 @@ TEST_F(SyntheticFlights, TheRpmViewTellsAnEscOffsetFromAThrustLossWhereTheCurren
   EXPECT_NE(with.method.find("the RPM view, each rotor's measured speed through thrust_from_rpm on"), std::string::npos);
 }
 
-TEST_F(SyntheticFlights, TheRpmViewKeepsAThrustLossAndASupplyResistanceApart) {
+// A regression guard, not the view's own merit: the other views already tell these two apart,
+// and the RPM view (which sees the loss and not the resistance) must not blur them.
+TEST_F(SyntheticFlights, WithTheRpmViewAThrustLossAndASupplyResistanceStayApart) {
   for (const bool loss : {true, false}) {
     World world;
     (loss ? world.thrust_loss : world.supply_resistance) = loss ? 0.03 : 0.06;

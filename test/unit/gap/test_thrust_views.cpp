@@ -105,10 +105,11 @@ TEST_F(ThrustViewsTest, TheRpmViewSeesTheAirOnTheRotorAndNothingBeforeTheShaft) 
   EXPECT_NEAR(views_.rpmView(block_, loss), 0.95 * block_.truth_n, 1e-9 * block_.truth_n);
 }
 
-TEST_F(ThrustViewsTest, NoRpmViewWithoutEverySpeedOrAThrustFromRpm) {
+TEST_F(ThrustViewsTest, NoRpmViewWithoutEverySpeedOrAThrustFromRpmOrWhenLeftOut) {
   gap::Block missing = block_;
   missing.rpm[3] = pe::kNaN;
   EXPECT_TRUE(std::isnan(views_.rpmView(missing, fx::ModelEffects())));
+  EXPECT_TRUE(std::isnan(gap::ThrustViews(model_, 4, false).rpmView(block_, fx::ModelEffects())));
   model_.setRpmThrust(std::nullopt);
   EXPECT_FALSE(views_.hasRpmThrust());
   EXPECT_TRUE(std::isnan(views_.rpmView(block_, fx::ModelEffects())));
