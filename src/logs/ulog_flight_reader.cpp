@@ -4,7 +4,10 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/data_error.h"
@@ -233,6 +236,56 @@ class SignalReader {
     note("motor_temperature: the hottest esc_status[0].esc[k].motor_temperature");
   }
 
+  // ESC k drives motor k, unless the log says which motor (esc_report.actuator_function, PX4 1.14:
+  // 101 is Motor1); an ESC not set in esc_online_flags reports nothing.
+  void escTelemetry() {
+    const auto count = topics_.field("esc_status", {"esc_count"});
+    if (!count || !file_.locate("esc_status", "esc[0].esc_rpm")) {
+      note(topics_.has("esc_status") ? "esc_status: not in this log (esc_status has no esc_rpm)"
+                                     : "esc_status: not in this log (no esc_status)");
+      return;
+    }
+    const auto online = topics_.field("esc_status", {"esc_online_flags"});
+    struct Esc {
+      ulog::Locator rpm, voltage, current;
+      std::optional<ulog::Locator> function;
+    };
+    std::vector<Esc> escs;
+    for (int k = 0; k < kMaxMotors; ++k) {
+      const std::string at = "esc[" + std::to_string(k) + "].";
+      const auto rpm = file_.locate("esc_status", at + "esc_rpm");
+      const auto voltage = file_.locate("esc_status", at + "esc_voltage");
+      const auto current = file_.locate("esc_status", at + "esc_current");
+      if (!rpm || !voltage || !current) break;
+      escs.push_back({*rpm, *voltage, *current, file_.locate("esc_status", at + "actuator_function")});
+    }
+    constexpr int kMotor1 = 101;
+    topics_.forEach("esc_status", 0, [&](const ulog::DataMessage& message) {
+      const int n = std::min<int>(static_cast<int>(value(message, *count)), static_cast<int>(escs.size()));
+      const auto flags = online ? static_cast<unsigned>(value(message, *online)) : ~0u;
+      EscTelemetryReading reading;
+      reading.time_s = time(message);
+      reading.status = true;
+      reading.rpm.fill(kNaN);
+      reading.current_a.fill(kNaN);
+      reading.voltage_v.fill(kNaN);
+      reading.count.fill(-1);
+      for (int k = 0; k < n; ++k) {
+        if (!(flags & (1u << k))) continue;
+        const int motor = escs[k].function ? static_cast<int>(value(message, *escs[k].function)) - kMotor1 : k;
+        if (motor < 0 || motor >= kMaxMotors) continue;
+        reading.rpm[motor] = value(message, escs[k].rpm);
+        reading.voltage_v[motor] = value(message, escs[k].voltage);
+        reading.current_a[motor] = value(message, escs[k].current);
+        reading.escs = std::max(reading.escs, motor + 1);
+      }
+      if (reading.escs > 0) streams_->esc.push_back(reading);
+    });
+    note(std::string("esc_status: esc_status[0].esc[k].esc_rpm, esc_voltage, esc_current (") +
+         (escs.empty() || !escs[0].function ? "ESC k on motor k" : "on the motor of its actuator_function") +
+         (online ? ", online ESCs only)" : ")"));
+  }
+
  private:
   const ulog::File& file_;
   Topics topics_;
@@ -278,6 +331,7 @@ FlightStreams UlogFlightReader::read(const FlightLogOptions& options) const {
   reader.airData();
   reader.rangefinder();
   reader.motorTemperature();
+  reader.escTelemetry();
   const std::string unused = options.unusedSourcesNote("a ULog");
   if (!unused.empty()) streams.notes.push_back(unused);
   if (file_->dropouts() > 0) {

@@ -1,6 +1,8 @@
 #include "propulsion_estimator/sim/flight/ulog_flight_sink.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "propulsion_estimator/logs/autopilot_frames.h"
 
@@ -12,6 +14,7 @@ namespace {
 enum Id : std::uint16_t { kOutputs, kBattery, kAttitude, kAccel, kPosition, kAir, kRangeDown, kRangeFront, kEsc };
 
 constexpr int kEscs = 8;
+constexpr int kMotor1 = 101;  // esc_report.actuator_function of the first motor
 
 }  // namespace
 
@@ -50,10 +53,11 @@ UlogFlightSink::UlogFlightSink(UlogLayout layout, double pwm_min_us, double pwm_
                  "uint8_t _padding0;");
   // The nested type after its user, as a format may come in any order.
   writer_.format("esc_status:uint64_t timestamp;uint16_t counter;uint8_t esc_count;uint8_t esc_connectiontype;"
-                 "uint8_t[4] _padding0;esc_report[8] esc;");
+                 "uint8_t esc_online_flags;uint8_t esc_armed_flags;uint8_t[2] _padding0;esc_report[8] esc;");
   writer_.format(std::string("esc_report:uint64_t timestamp;uint32_t esc_errorcount;int32_t esc_rpm;float esc_voltage;"
                              "float esc_current;") +
-                 (old ? "float esc_temperature;float motor_temperature;" : "float motor_temperature;float esc_temperature;"));
+                 (old ? "float esc_temperature;float motor_temperature;"
+                      : "float motor_temperature;float esc_temperature;uint8_t actuator_function;uint8_t[3] _padding0;"));
   writer_.subscribe(kOutputs, old ? "actuator_outputs" : "actuator_motors");
   writer_.subscribe(kBattery, "battery_status");
   writer_.subscribe(kAttitude, "vehicle_attitude");
@@ -159,22 +163,38 @@ void UlogFlightSink::rangefinder(const RangeSample& sample) {
   if (layout_ == UlogLayout::kPx4v1_14) writer_.data(kRangeFront, range(0, 3.0f));
 }
 
-void UlogFlightSink::motorTemperature(const ScalarSample& sample) {
+void UlogFlightSink::escStatus(double time_s, const std::vector<EscReading>& escs, double motor_temperature_c) {
+  const bool old = layout_ == UlogLayout::kPx4v1_12;
   ulog::Payload payload;
-  const std::uint64_t t = stamp(sample.time_s);
-  payload.put(t).put<std::uint16_t>(0).put<std::uint8_t>(1).put<std::uint8_t>(0).zeros(4);
-  for (int k = 0; k < kEscs; ++k) {
-    const float hottest = k == 0 ? static_cast<float>(sample.value) : 0.0f;
-    payload.put(t).put<std::uint32_t>(0).put<std::int32_t>(0).put(0.0f).put(0.0f);
+  const std::uint64_t t = stamp(time_s);
+  const int count = std::max(1, static_cast<int>(std::min<std::size_t>(escs.size(), kEscs)));
+  // Online: the ESCs whose telemetry this message carries (none in a temperature-only message).
+  const auto online = static_cast<std::uint8_t>((1u << std::min<std::size_t>(escs.size(), kEscs)) - 1u);
+  payload.put(t).put<std::uint16_t>(0).put(static_cast<std::uint8_t>(count)).put<std::uint8_t>(0);
+  payload.put(online).put(online).zeros(2);
+  for (int slot = 0; slot < kEscs; ++slot) {
+    // The newer layout says which motor each ESC drives: written in reverse, as a wiring may be.
+    const int k = old || slot >= static_cast<int>(escs.size()) ? slot : static_cast<int>(escs.size()) - 1 - slot;
+    const bool reported = k < static_cast<int>(escs.size());
+    const float hottest = k == 0 || std::isnan(motor_temperature_c) ? static_cast<float>(motor_temperature_c) : 0.0f;
+    payload.put(t).put<std::uint32_t>(0);
+    payload.put<std::int32_t>(reported ? static_cast<std::int32_t>(std::lround(escs[k].rpm)) : 0);
+    payload.put(reported ? static_cast<float>(escs[k].voltage_v) : 0.0f);
+    payload.put(reported ? static_cast<float>(escs[k].current_a) : 0.0f);
     // esc_temperature, the ESC's own, is a few degrees off the motor's, and is not read.
-    if (layout_ == UlogLayout::kPx4v1_12) {
+    if (old) {
       payload.put(hottest - 5.0f).put(hottest);
     } else {
-      payload.put(hottest).put(hottest - 5.0f);
+      payload.put(hottest).put(hottest - 5.0f).put(static_cast<std::uint8_t>(kMotor1 + k)).zeros(3);
     }
   }
   writer_.data(kEsc, payload);
 }
+
+void UlogFlightSink::motorTemperature(const ScalarSample& sample) { escStatus(sample.time_s, {}, sample.value); }
+
+// The telemetry's messages carry no motor temperature (NaN): the temperature stream keeps its own rate.
+void UlogFlightSink::escTelemetry(const EscTelemetrySample& sample) { escStatus(sample.time_s, sample.escs, NAN); }
 
 }  // namespace sim
 }  // namespace propulsion_estimator

@@ -1,7 +1,8 @@
 // One simulated flight written as a rosbag, a PX4 ULog in PX4 1.12's and in the newer layout and an
 // ArduPilot DataFlash log at once (one simulation, four writers), each read through the flight-log
 // registry as diagnose_gap reads it: the four diagnoses select the same effects with the same
-// parameters.
+// parameters; the bag's and the ULogs' ESC telemetry give the RPM view the same blocks (the
+// DataFlash reader does not read ESC rotor speeds).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -55,7 +56,11 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
   formats.add(pe::flightBagFormat());
   formats.add(pe::ulogFormat());
   formats.add(pe::dataflashFormat());
-  const pe::PropulsionModel model = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
+  pe::PropulsionModel model = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
+  // The thesis hardware's rotor (695 g at 8844 rpm on the simulated bench), for the RPM view.
+  pe::RpmThrust rpm_thrust;
+  rpm_thrust.n_per_rpm2 = 8.72e-8;
+  model.setRpmThrust(rpm_thrust);
   pe::FlightLogOptions options;
   options.motors = 4;
   std::vector<pe::gap::Diagnosis> diagnoses;
@@ -80,6 +85,10 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
     return groups;
   };
   const pe::gap::Diagnosis& bag = diagnoses[0];
+  EXPECT_GT(bag.rpm_view_blocks, 0);
+  EXPECT_EQ(diagnoses[1].rpm_view_blocks, bag.rpm_view_blocks);
+  EXPECT_EQ(diagnoses[3].rpm_view_blocks, bag.rpm_view_blocks);
+  EXPECT_EQ(diagnoses[2].rpm_view_blocks, 0);
   ASSERT_EQ(named(bag).size(), 1u);
   ASSERT_EQ(named(bag)[0].front(), pe::effects::Kind::kThrustLoss);
   const double fraction = *bag.fitted.parameter(pe::effects::Kind::kThrustLoss);

@@ -1,5 +1,6 @@
 // The PX4 ULog reader: a simulated flight written by the ULog writer in PX4 1.12's and newer
-// layouts comes back as the simulator emitted it (the round trip), and each damaged file keeps
+// layouts comes back as the simulator emitted it (the round trip; the ESC telemetry on each motor,
+// in the newer layout through esc_report.actuator_function), and each damaged file keeps
 // what came before and says where it broke, in one line.
 #include <gtest/gtest.h>
 
@@ -49,6 +50,7 @@ TEST(UlogReader, ReadsBackAPx4v1_12LogAsTheSimulatorWroteIt) {
   EXPECT_NEAR(reader.durationS(), sim.rc_out.back().time_s - sim.rc_out.front().time_s, 0.05);
   const pe::FlightStreams streams = reader.read(options());
   expectRoundTrip(streams, sim, 0.0);
+  expectEscRoundTrip(streams, sim);
   EXPECT_EQ(streams.notes.front(), "rc_out: actuator_outputs[0].output[0..3] (us)");
   EXPECT_EQ(reader.file().infoText("ver_sw_release"), "v1.12.3");
   // A rosbag's topic given for a signal is not silently dropped: the notes say it was not used.
@@ -73,6 +75,7 @@ TEST(UlogReader, ReadsTheNewerLayoutByFieldNames) {
   o.pwm_max_us = 1950.0;
   const pe::FlightStreams streams = reader.read(o);
   expectRoundTrip(streams, sim, 1e-3);
+  expectEscRoundTrip(streams, sim);
   EXPECT_EQ(streams.notes.front(), "rc_out: actuator_motors[0].control[0..3] (0..1 mapped onto the PWM range given)");
   // Up to its twelve controls are read.
   o.motors = 8;

@@ -16,6 +16,7 @@ struct RecordingFlightSink : propulsion_estimator::sim::FlightSink {
   std::vector<propulsion_estimator::sim::RangeSample> ranges;
   std::vector<propulsion_estimator::sim::ScalarSample> motor_temperatures;
   std::vector<propulsion_estimator::sim::TruthSample> truths;
+  std::vector<propulsion_estimator::sim::EscTelemetrySample> escs;
 
   void rcOut(const propulsion_estimator::sim::RcOutSample& s) override { rc_out.push_back(s); }
   void battery(const propulsion_estimator::sim::BatterySample& s) override { batteries.push_back(s); }
@@ -27,4 +28,5 @@ struct RecordingFlightSink : propulsion_estimator::sim::FlightSink {
   void rangefinder(const propulsion_estimator::sim::RangeSample& s) override { ranges.push_back(s); }
   void motorTemperature(const propulsion_estimator::sim::ScalarSample& s) override { motor_temperatures.push_back(s); }
   void truth(const propulsion_estimator::sim::TruthSample& s) override { truths.push_back(s); }
+  void escTelemetry(const propulsion_estimator::sim::EscTelemetrySample& s) override { escs.push_back(s); }
 };

@@ -35,6 +35,9 @@ struct TeeFlightSink : propulsion_estimator::sim::FlightSink {
     a_->motorTemperature(s), b_->motorTemperature(s);
   }
   void truth(const propulsion_estimator::sim::TruthSample& s) override { a_->truth(s), b_->truth(s); }
+  void escTelemetry(const propulsion_estimator::sim::EscTelemetrySample& s) override {
+    a_->escTelemetry(s), b_->escTelemetry(s);
+  }
   Sink* a_;
   Sink* b_;
 };
@@ -91,4 +94,20 @@ inline void expectRoundTrip(const propulsion_estimator::FlightStreams& read, con
   EXPECT_EQ(read.height_above_ground_m.size(), in_range);
   ASSERT_EQ(read.motor_temperature_c.size(), sim.motor_temperatures.size());
   EXPECT_NEAR(read.motor_temperature_c.back().value, sim.motor_temperatures.back().value, 1e-4);
+}
+
+// The ESC telemetry a log reader read back against what the simulator emitted: one reading per
+// packet, each motor's rotor speed (whole rpm in a ULog), voltage and current (floats).
+inline void expectEscRoundTrip(const propulsion_estimator::FlightStreams& read, const RecordingFlightSink& sim) {
+  ASSERT_FALSE(sim.escs.empty());
+  ASSERT_EQ(read.esc.size(), sim.escs.size());
+  for (std::size_t i = 0; i < sim.escs.size(); i += 5) {
+    EXPECT_NEAR(read.esc[i].time_s, sim.escs[i].time_s, 1e-6) << i;
+    ASSERT_EQ(read.esc[i].escs, static_cast<int>(sim.escs[i].escs.size())) << i;
+    for (int k = 0; k < read.esc[i].escs; ++k) {
+      EXPECT_NEAR(read.esc[i].rpm[k], sim.escs[i].escs[k].rpm, 0.5) << i;
+      EXPECT_NEAR(read.esc[i].voltage_v[k], sim.escs[i].escs[k].voltage_v, 1e-5) << i;
+      EXPECT_NEAR(read.esc[i].current_a[k], sim.escs[i].escs[k].current_a, 1e-5) << i;
+    }
+  }
 }

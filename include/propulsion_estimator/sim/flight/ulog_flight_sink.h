@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "propulsion_estimator/logs/ulog_writer.h"
 #include "propulsion_estimator/sim/flight/flight_sink.h"
@@ -18,7 +19,9 @@ enum class UlogLayout {
 /// Writes a simulated flight as PX4 logs it (docs.px4.io, ULog File Format): actuator outputs,
 /// battery_status, vehicle_attitude with the accelerometer's specific force, vehicle_local_position,
 /// vehicle_air_data, a downward distance_sensor (and a forward one, instance 0, in the newer layout)
-/// and esc_status with the hottest motor's temperature; frames turned to PX4's NED/FRD. Times are
+/// and esc_status: the hottest motor's temperature, and each ESC's rotor speed, voltage and current
+/// (online in esc_online_flags; in the newer layout in reverse order, each with the motor it drives
+/// in actuator_function; else ESC k on motor k) when the flight has ESC telemetry; frames turned to PX4's NED/FRD. Times are
 /// `boot_s` + the sample's time, in us. The truth is not written (a ULog has no place for it).
 class UlogFlightSink : public FlightSink {
  public:
@@ -34,6 +37,7 @@ class UlogFlightSink : public FlightSink {
   void airTemperature(const ScalarSample& sample) override;
   void rangefinder(const RangeSample& sample) override;
   void motorTemperature(const ScalarSample& sample) override;
+  void escTelemetry(const EscTelemetrySample& sample) override;
   void truth(const TruthSample&) override {}
 
   /// The log so far.
@@ -43,6 +47,9 @@ class UlogFlightSink : public FlightSink {
 
  private:
   std::uint64_t stamp(double time_s) const;
+  // One esc_status message: `escs` online (none: a temperature-only message), the first motor at
+  // `motor_temperature_c` (NaN: not reported).
+  void escStatus(double time_s, const std::vector<EscReading>& escs, double motor_temperature_c);
 
   UlogLayout layout_;
   double pwm_min_us_;
