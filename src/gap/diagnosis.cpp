@@ -312,7 +312,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
   const effects::ModelEffects round_base = fitEffects(views_, all_, selected, references()).effects;
   const double base_pwm = finiteMeanSquare(current.pwm);
   const double base_pwm_rmse_pct = 100.0 * std::sqrt(base_pwm);
-  const double base_rpm = finiteMeanSquare(current.rpm);
+  const double base_rpm_rmse_pct = 100.0 * std::sqrt(finiteMeanSquare(current.rpm));
   std::optional<Kind> best;
   double best_ms = base_ms;
   std::vector<std::size_t> admissible_steps;
@@ -330,7 +330,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     result.heldout_rmse_pct = 100.0 * std::sqrt(pwm_ms);
     const double rpm_ms = finiteMeanSquare(prediction.rpm);
     result.rpm_rmse_pct = 100.0 * std::sqrt(rpm_ms);
-    result.base_rpm_rmse_pct = 100.0 * std::sqrt(base_rpm);
+    result.base_rpm_rmse_pct = base_rpm_rmse_pct;
     result.joint_rmse_pct = 100.0 * std::sqrt(ms);
     result.base_joint_rmse_pct = 100.0 * std::sqrt(base_ms);
     result.p_value = signFlipPValue(groupImprovements(current, prediction), config_.permutations,

@@ -45,15 +45,14 @@ double Diagnoser::jointMeanSquare(const HeldOutPrediction& prediction) const {
 // A view missing in one prediction and not the other (an offset the current view cannot match)
 // would count as a fall; the block then compares in the views both have.
 std::vector<double> Diagnoser::groupImprovements(const HeldOutPrediction& before, const HeldOutPrediction& after) const {
+  const auto fall = [](double from, double to) {
+    return std::isfinite(from) && std::isfinite(to) ? from * from - to * to : 0.0;
+  };
   std::map<std::pair<int, int>, double> groups;
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
-    double d = before.pwm[i] * before.pwm[i] - after.pwm[i] * after.pwm[i];
-    if (std::isfinite(before.current[i]) && std::isfinite(after.current[i])) {
-      d += diagnosis_.current_view_weight * (before.current[i] * before.current[i] - after.current[i] * after.current[i]);
-    }
-    if (std::isfinite(before.rpm[i]) && std::isfinite(after.rpm[i])) {
-      d += diagnosis_.rpm_view_weight * (before.rpm[i] * before.rpm[i] - after.rpm[i] * after.rpm[i]);
-    }
+    const double d = fall(before.pwm[i], after.pwm[i]) +
+                     diagnosis_.current_view_weight * fall(before.current[i], after.current[i]) +
+                     diagnosis_.rpm_view_weight * fall(before.rpm[i], after.rpm[i]);
     groups[{blocks_[i].flight, blocks_[i].group}] += d;
   }
   std::vector<double> improvements;

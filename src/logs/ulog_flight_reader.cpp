@@ -214,13 +214,19 @@ class SignalReader {
     note("rangefinder: distance_sensor.current_distance (downward, within its range)");
   }
 
-  void motorTemperature() {
+  // esc_status' esc_count, when its ESC reports have `field`; else nullopt, and a note says why
+  // `signal` is not in this log.
+  std::optional<ulog::Locator> escCount(const std::string& signal, const std::string& field) {
     const auto count = topics_.field("esc_status", {"esc_count"});
-    if (!count || !file_.locate("esc_status", "esc[0].motor_temperature")) {
-      note(topics_.has("esc_status") ? "motor_temperature: not in this log (esc_status has no motor_temperature)"
-                                     : "motor_temperature: not in this log (no esc_status)");
-      return;
-    }
+    if (count && file_.locate("esc_status", "esc[0]." + field)) return count;
+    note(signal + ": not in this log (" + (topics_.has("esc_status") ? "esc_status has no " + field : "no esc_status") +
+         ")");
+    return std::nullopt;
+  }
+
+  void motorTemperature() {
+    const auto count = escCount("motor_temperature", "motor_temperature");
+    if (!count) return;
     std::vector<ulog::Locator> temperatures;
     for (int k = 0;; ++k) {
       const auto at = file_.locate("esc_status", "esc[" + std::to_string(k) + "].motor_temperature");
@@ -239,12 +245,8 @@ class SignalReader {
   // ESC k drives motor k, unless the log says which motor (esc_report.actuator_function, PX4 1.14:
   // 101 is Motor1); an ESC not set in esc_online_flags reports nothing.
   void escTelemetry() {
-    const auto count = topics_.field("esc_status", {"esc_count"});
-    if (!count || !file_.locate("esc_status", "esc[0].esc_rpm")) {
-      note(topics_.has("esc_status") ? "esc_status: not in this log (esc_status has no esc_rpm)"
-                                     : "esc_status: not in this log (no esc_status)");
-      return;
-    }
+    const auto count = escCount("esc_status", "esc_rpm");
+    if (!count) return;
     const auto online = topics_.field("esc_status", {"esc_online_flags"});
     struct Esc {
       ulog::Locator rpm, voltage, current;

@@ -167,15 +167,15 @@ void UlogFlightSink::escStatus(double time_s, const std::vector<EscReading>& esc
   const bool old = layout_ == UlogLayout::kPx4v1_12;
   ulog::Payload payload;
   const std::uint64_t t = stamp(time_s);
-  const int count = std::max(1, static_cast<int>(std::min<std::size_t>(escs.size(), kEscs)));
+  const int n = std::min(static_cast<int>(escs.size()), kEscs);
   // Online: the ESCs whose telemetry this message carries (none in a temperature-only message).
-  const auto online = static_cast<std::uint8_t>((1u << std::min<std::size_t>(escs.size(), kEscs)) - 1u);
-  payload.put(t).put<std::uint16_t>(0).put(static_cast<std::uint8_t>(count)).put<std::uint8_t>(0);
+  const auto online = static_cast<std::uint8_t>((1u << n) - 1u);
+  payload.put(t).put<std::uint16_t>(0).put(static_cast<std::uint8_t>(std::max(1, n))).put<std::uint8_t>(0);
   payload.put(online).put(online).zeros(2);
   for (int slot = 0; slot < kEscs; ++slot) {
     // The newer layout says which motor each ESC drives: written in reverse, as a wiring may be.
-    const int k = old || slot >= static_cast<int>(escs.size()) ? slot : static_cast<int>(escs.size()) - 1 - slot;
-    const bool reported = k < static_cast<int>(escs.size());
+    const int k = old || slot >= n ? slot : n - 1 - slot;
+    const bool reported = k < n;
     const float hottest = k == 0 || std::isnan(motor_temperature_c) ? static_cast<float>(motor_temperature_c) : 0.0f;
     payload.put(t).put<std::uint32_t>(0);
     payload.put<std::int32_t>(reported ? static_cast<std::int32_t>(std::lround(escs[k].rpm)) : 0);
