@@ -1,8 +1,8 @@
 // One simulated flight written as a rosbag, a PX4 ULog in PX4 1.12's and in the newer layout and an
 // ArduPilot DataFlash log at once (one simulation, four writers), each read through the flight-log
 // registry as diagnose_gap reads it: the four diagnoses select the same effects with the same
-// parameters; the bag's and the ULogs' ESC telemetry give the RPM view the same blocks (the
-// DataFlash reader does not read ESC rotor speeds).
+// parameters; the bag's and the ULogs' ESC telemetry give the RPM view the same blocks and the
+// replayed live model check the same judgements (the DataFlash reader does not read ESC telemetry).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,6 +11,7 @@
 #include "propulsion_estimator/bag/flight_bag_reader.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/gap/diagnosis.h"
+#include "propulsion_estimator/gap/model_check_replay.h"
 #include "propulsion_estimator/logs/dataflash_flight_reader.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
 #include "propulsion_estimator/logs/ulog_flight_reader.h"
@@ -64,6 +65,7 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
   pe::FlightLogOptions options;
   options.motors = 4;
   std::vector<pe::gap::Diagnosis> diagnoses;
+  std::vector<pe::gap::ModelCheckReplay> replays;
   for (const char* name : {"flight.bag", "flight.ulg", "flight.bin", "flight_newer.ulg"}) {
     const auto reader = formats.open((dir / name).string());
     // The newer layout logs actuator_motors only: the user gives the PWM range it maps onto.
@@ -74,6 +76,7 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
     }
     const std::vector<pe::Flight> flights = {{name, reader->read(read_options), result.segments}};
     diagnoses.push_back(pe::gap::diagnoseGap(model, vehicle, flights, pe::gap::DiagnosisConfig{}, {}));
+    replays.push_back(pe::gap::replayModelCheck(model, vehicle, flights.front().streams));
   }
   fs::remove_all(dir);
   // What the diagnosis names: the selected effects and each ambiguous group (one flight at one
@@ -89,6 +92,15 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
   EXPECT_EQ(diagnoses[1].rpm_view_blocks, bag.rpm_view_blocks);
   EXPECT_EQ(diagnoses[3].rpm_view_blocks, bag.rpm_view_blocks);
   EXPECT_EQ(diagnoses[2].rpm_view_blocks, 0);
+  // The live model check replayed from each log: the ULogs' telemetry judged as the bag's.
+  EXPECT_GT(replays[0].judgements, 0);
+  EXPECT_EQ(replays[1].judgements, replays[0].judgements);
+  EXPECT_EQ(replays[1].verdicts, replays[0].verdicts);
+  // The newer layout logs stopped motors as NaN, read as the bottom of the PWM range: the check
+  // also judges the idle on the ground, and names nothing there either.
+  EXPECT_GE(replays[3].judgements, replays[0].judgements);
+  EXPECT_EQ(replays[3].verdicts, replays[0].verdicts);
+  EXPECT_FALSE(replays[2].telemetry);
   ASSERT_EQ(named(bag).size(), 1u);
   ASSERT_EQ(named(bag)[0].front(), pe::effects::Kind::kThrustLoss);
   const double fraction = *bag.fitted.parameter(pe::effects::Kind::kThrustLoss);
