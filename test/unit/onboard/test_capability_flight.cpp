@@ -198,16 +198,24 @@ pe::Vehicle f450() { return pe::loadVehicleUrdf(repoPath("config/f450_quad.urdf"
 // (each seed a pack of its own: shape, resistances, temperature, age), empty and with 0.3 kg: the
 // hover time left predicted 20 s and 60 s after take-off against the time the vehicle took.
 // Development seeds 1-6 chose the estimator's settings; seeds 101-106 were first run after.
-void expectEnduranceOnFamilyPacks(const std::vector<std::uint32_t>& seeds) {
+// With `own_curve` the user also gives the pack's own open-circuit curve (capability/battery/
+// ocv_table, as a discharge at a tenth of C would measure it); `family` is the battery family.
+void expectEnduranceOnFamilyPacks(const std::vector<std::uint32_t>& seeds, double median_bound = 0.35,
+                                  bool own_curve = false, const pe::sim::BatteryFamily& family = {}) {
   std::array<int, 2> cases{}, within_bar{}, within_sigma{}, within_2sigma{};
   std::array<std::vector<double>, 2> errors;
   for (std::uint32_t seed : seeds) {
-    const pe::sim::DrawnBattery drawn = pe::sim::drawBattery(pe::sim::BatteryFamily{}, seed);
+    const pe::sim::DrawnBattery drawn = pe::sim::drawBattery(family, seed);
     pe::sim::SimParams params = thesisParams();
     params.battery = drawn.params;
     for (double initial_soc : {1.0, 0.6, 0.3}) {
       const double payload_kg = seed % 2 ? 0.0 : 0.3;
-      CapabilitySink sink(f450(), userPack(), thesisModel(), {20.0, 60.0});
+      pe::CapabilityConfig user = userPack();
+      if (own_curve) {
+        user.ocv_table_soc = drawn.params.ocv_soc;
+        user.ocv_table_cell_v = drawn.params.ocv_cell_v;
+      }
+      CapabilitySink sink(f450(), user, thesisModel(), {20.0, 60.0});
       fly(profile(payload_kg, 3000.0, initial_soc), &sink, {}, params);
       ASSERT_TRUE(sink.cutoff_s.has_value()) << drawn.describe();
       if (*sink.cutoff_s < *sink.takeoff_s + 90.0) {
@@ -246,7 +254,49 @@ void expectEnduranceOnFamilyPacks(const std::vector<std::uint32_t>& seeds) {
   // and a cold pack's lost capacity). What is asserted is a regression guard on the median error
   // after 60 s, the measured figures printed above.
   std::nth_element(errors[1].begin(), errors[1].begin() + errors[1].size() / 2, errors[1].end());
-  EXPECT_LT(errors[1][errors[1].size() / 2], 0.35);
+  EXPECT_LT(errors[1][errors[1].size() / 2], median_bound);
+}
+
+// Why issue 19's bar (every case within 10 % after 60 s) cannot be met from cells, capacity and the
+// cut-off alone. Two packs: one of the family (seed 19: two plateaus, 14 C, 40 mOhm in all, which
+// sags it to the cut-off where its curve still bends) and the same pack with its curve lowered
+// below 22 % charge, to 5 mV above the family's lowest resting voltage at 10 % (the spread of
+// published LiPo charts), a quadratic dip that keeps the curve rising. Hovering from 30 %, the
+// first minute never goes below 22 %: every message the node gets is the same, so is any
+// estimator's prediction, but the packs reach the loaded cut-off at different times. When the
+// longer is more than 1.1 / 0.9 of the shorter, no prediction lies within 10 % of both.
+TEST(CapabilityFlight, TwoPacksAlikeAboveTheirKneeGetOnePredictionButNotOneHoverTime) {
+  const pe::sim::BatteryFamily family;
+  pe::sim::SimParams alike = thesisParams();
+  alike.battery = pe::sim::drawBattery(family, 19).params;
+  pe::sim::SimParams lower_knee = alike;
+  pe::sim::LipoBatteryParams& lowered = lower_knee.battery;
+  constexpr double kAboveSoc = 0.22;
+  const auto dip = [&](double soc) { return std::pow(std::max(0.0, kAboveSoc - soc) / kAboveSoc, 2); };
+  const double depth_v =
+      (alike.battery.openCircuitVoltage(0.1) / family.cells - (family.cell_v_at[0].lo + 0.005)) / dip(0.1);
+  ASSERT_GT(depth_v, 0.0);
+  for (std::size_t k = 0; k < lowered.ocv_soc.size(); ++k) lowered.ocv_cell_v[k] -= depth_v * dip(lowered.ocv_soc[k]);
+  lowered.validate();
+  // Still a pack of the family's spread at empty and at 10 %.
+  EXPECT_GE(lowered.ocv_cell_v.front(), family.cell_empty_v.lo);
+  EXPECT_GE(lowered.openCircuitVoltage(0.1) / family.cells, family.cell_v_at[0].lo);
+
+  std::array<double, 2> predicted_s{}, flown_s{};
+  for (std::size_t k = 0; k < 2; ++k) {
+    CapabilitySink sink(f450(), userPack(), thesisModel(), {60.0});
+    fly(profile(0.0, 3000.0, 0.3), &sink, {}, k == 0 ? alike : lower_knee);
+    ASSERT_TRUE(sink.cutoff_s.has_value());
+    ASSERT_TRUE(sink.predictions[0].has_value());
+    predicted_s[k] = sink.predictions[0]->hover_endurance_s;
+    flown_s[k] = *sink.cutoff_s - sink.predictions[0]->voltage_v;
+  }
+  std::printf("the curve lowered below %.0f %% by up to %.3f V a cell: predicted %.1f and %.1f s after 60 s, flew %.0f and "
+              "%.0f s (ratio %.2f; within 10 %% of both needs at most %.2f)\n",
+              100.0 * kAboveSoc, depth_v, predicted_s[0], predicted_s[1], flown_s[0], flown_s[1],
+              flown_s[0] / flown_s[1], 1.1 / 0.9);
+  EXPECT_EQ(predicted_s[0], predicted_s[1]);
+  EXPECT_GT(flown_s[0], 1.1 / 0.9 * flown_s[1]);
 }
 
 // The payload limit predicted at the first hover against the simulated vehicle's at full throttle:
@@ -322,6 +372,33 @@ TEST(CapabilityFlight, HoverEnduranceOnFamilyPacksDevelopmentSeeds) { expectEndu
 
 TEST(CapabilityFlight, HoverEnduranceOnFamilyPacksHeldOutSeeds) {
   expectEnduranceOnFamilyPacks({101, 102, 103, 104, 105, 106});
+}
+
+// Fresh seeds, drawn on 2026-11-25 after the estimator's settings were fixed and first run then.
+const std::vector<std::uint32_t> kFreshSeeds = {1551, 2927, 4567, 5106, 6016, 9449};
+
+TEST(CapabilityFlight, HoverEnduranceOnFamilyPacksFreshSeeds) { expectEnduranceOnFamilyPacks(kFreshSeeds); }
+
+// The same packs, the user also giving the pack's own open-circuit curve (capability/battery/
+// ocv_table, as a slow discharge measures it): what is left is the polarisation a minute shows only
+// in part and a cold or aged pack's lost capacity.
+TEST(CapabilityFlight, HoverEnduranceWithThePacksOwnCurve) {
+  std::vector<std::uint32_t> seeds = {1, 2, 3, 4, 5, 6, 101, 102, 103, 104, 105, 106};
+  seeds.insert(seeds.end(), kFreshSeeds.begin(), kFreshSeeds.end());
+  expectEnduranceOnFamilyPacks(seeds, 0.15, true);
+}
+
+// Packs of the family at 25 C, new (no fade, no resistance growth), with the fast RC pair only,
+// given their own curve: what is left is the polarisation the least squares sees within its memory.
+TEST(CapabilityFlight, HoverEnduranceWithTheOwnCurveOfWarmNewPacks) {
+  pe::sim::BatteryFamily warm_new;
+  warm_new.temperature_c = {25.0, 25.0};
+  warm_new.capacity_fade = {0.0, 0.0};
+  warm_new.resistance_growth = {0.0, 0.0};
+  warm_new.second_rc_probability = 0.0;
+  std::vector<std::uint32_t> seeds = {1, 2, 3, 4, 5, 6, 101, 102, 103, 104, 105, 106};
+  seeds.insert(seeds.end(), kFreshSeeds.begin(), kFreshSeeds.end());
+  expectEnduranceOnFamilyPacks(seeds, 0.06, true, warm_new);
 }
 
 // With the thesis surfaces, whose thrust at full throttle is 1.8-3.6 % above the simulator's
