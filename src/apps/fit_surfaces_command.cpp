@@ -35,7 +35,7 @@ struct Arguments {
 };
 
 void printSummary(const fitting::BenchFit& fit) {
-  std::printf("%-10s %-8s %-8s %6s %9s %10s %10s %10s\n", "output", "model", "degrees", "points", "R^2", "RMSE",
+  std::printf("%-10s %-8s %-10s %6s %9s %10s %10s %10s\n", "output", "model", "degrees", "points", "R^2", "RMSE",
               "max error", "held-out");
   for (Output output : kAllOutputs) {
     const OutputDefinition& def = fit.model.output(output);
@@ -46,10 +46,12 @@ void printSummary(const fitting::BenchFit& fit) {
     }
     const std::string degrees =
         !def.fit                           ? ""
-        : def.fit->basis == "drive_curve" ? "drive " + std::to_string(def.fit->pwm_degree)
+        : def.fit->basis == "drive_curve"
+            ? "drive " + std::to_string(def.fit->pwm_degree) +
+                  (std::isfinite(def.surface->driveCurve()->pwmFullUs()) ? "+ft" : "")
                                            : "(" + std::to_string(def.fit->pwm_degree) + "," +
                                                  std::to_string(def.fit->voltage_degree) + ")";
-    std::printf("%-10s %-8s %-8s %6d %9.5f %10.4g %10.4g", outputName(output),
+    std::printf("%-10s %-8s %-10s %6d %9.5f %10.4g %10.4g", outputName(output),
                 def.source == OutputSource::kSurface ? "surface" : "derived", degrees.c_str(), report.points, report.r2,
                 report.rmse, report.max_error);
     if (def.fit) std::printf(" %10.4g", def.fit->held_out_rmse);

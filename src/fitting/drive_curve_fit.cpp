@@ -16,6 +16,18 @@ constexpr std::size_t kSearchRows = 20000;
 constexpr int kCoarseSteps = 25;
 constexpr int kFineSteps = 9;
 constexpr int kMaxTerms = DriveCurve::kMaxDegree + 1;
+// The full-throttle end point is looked for between these shares of the PWM span below its top.
+constexpr double kFullThrottleNearest = 0.125;
+constexpr double kFullThrottleFarthest = 0.5;
+constexpr int kFullThrottleCoarseSteps = 7;
+constexpr int kFullThrottleFineSteps = 9;
+// An end point is taken only when it cuts the cubic drive curve's squared error by a third or more
+// and its F statistic (one parameter added) passes a threshold far beyond chance for the 16 end
+// points tried (F(1, inf) exceeds 20 with probability 8e-6).
+constexpr double kFullThrottleErrorRatio = 1.5;
+constexpr double kFullThrottleF = 20.0;
+// A plateau is a gross feature: a smaller subsample finds it (and keeps a million-row fit under 1 s).
+constexpr std::size_t kFullThrottleSearchRows = 4000;
 
 using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
@@ -85,11 +97,11 @@ std::optional<Vector> nonNegativeSolve(const Moments& m) {
 // moments are their leading block.
 class CellMoments {
  public:
-  CellMoments(const FitRows& rows, const std::vector<std::size_t>& picked, double x0, double scale)
+  CellMoments(const FitRows& rows, const std::vector<std::size_t>& picked, double x0, double x1, double scale)
       : groups_(rows.groups), cells_(rows.groups * kVoltageBandCount) {
     const double factor = 1e-3 / scale;
     for (std::size_t r : picked) {
-      const double t = std::max(0.0, rows.pwm_us[r] - x0) * factor * rows.voltage_v[r];
+      const double t = std::clamp(rows.pwm_us[r] - x0, 0.0, x1 - x0) * factor * rows.voltage_v[r];
       const double y = rows.y[r];
       const double t2 = t * t, t3 = t2 * t;
       Raw& cell = cells_[rows.group[r] * kVoltageBandCount + static_cast<int>(rows.band[r])];
@@ -148,9 +160,10 @@ class CellMoments {
   std::vector<Raw> cells_;
 };
 
-// One x0 of the grid: its scale and moments.
+// One (x0, x1) of the grid: its scale and moments.
 struct Trial {
   double x0;
+  double x1;
   double scale;
   CellMoments cells;
 };
@@ -193,21 +206,51 @@ double heldOutRmse(const std::vector<Trial>& trials, Held held, int terms) {
 }
 
 // The curve of coefficients fitted on t = u / scale.
-DriveCurve toCurve(double x0, double scale, const Vector& beta) {
+DriveCurve toCurve(double x0, double x1, double scale, const Vector& beta) {
   std::vector<double> coefficients(beta.size());
   for (int k = 0; k < beta.size(); ++k) coefficients[k] = beta(k) / std::pow(scale, k);
-  return DriveCurve(x0, std::move(coefficients));
+  return DriveCurve(x0, std::move(coefficients), x1);
 }
 
+// A grid of x0 from `from` to `to` for each end point in `ends` (below x0: none taken).
 std::vector<Trial> trialsOnGrid(const FitRows& rows, const std::vector<std::size_t>& picked, double from, double to,
-                                int steps, double v_max, double pwm_max) {
+                                int steps, const std::vector<double>& ends, double v_max, double pwm_max) {
   std::vector<Trial> trials;
-  for (int s = 0; s < steps; ++s) {
-    const double x0 = from + (to - from) * s / (steps - 1);
-    const double scale = std::max(1e-9, (pwm_max - x0) * 1e-3 * v_max);
-    trials.push_back({x0, scale, CellMoments(rows, picked, x0, scale)});
+  for (double x1 : ends) {
+    for (int s = 0; s < steps; ++s) {
+      const double x0 = from + (to - from) * s / (steps - 1);
+      if (!(x1 > x0)) continue;
+      const double scale = std::max(1e-9, (std::min(pwm_max, x1) - x0) * 1e-3 * v_max);
+      trials.push_back({x0, x1, scale, CellMoments(rows, picked, x0, x1, scale)});
+    }
   }
   return trials;
+}
+
+// Full-throttle end points worth trying: from an eighth to half of the PWM span below its top, each
+// with rows at two PWM values or more above it (a plateau the bench logged, not one point).
+std::vector<double> fullThrottleGrid(const FitRows& rows, const std::vector<std::size_t>& picked, double pwm_lo,
+                                     double pwm_hi, int steps) {
+  const double span = pwm_hi - pwm_lo;
+  std::vector<double> ends;
+  for (int s = 0; s < steps; ++s) {
+    const double x1 = pwm_hi - span * (kFullThrottleNearest + (kFullThrottleFarthest - kFullThrottleNearest) * s /
+                                                                   (steps - 1));
+    double first_above = kNaN;
+    bool two_above = false;
+    for (std::size_t r : picked) {
+      const double x = rows.pwm_us[r];
+      if (!(x > x1)) continue;
+      if (std::isnan(first_above)) {
+        first_above = x;
+      } else if (x != first_above) {
+        two_above = true;
+        break;
+      }
+    }
+    if (two_above) ends.push_back(x1);
+  }
+  return ends;
 }
 
 // Held-out RMSE pooled over the groups, as GroupedLeastSquares::heldOutRmse pools them.
@@ -225,16 +268,16 @@ double pooledHeldOutRmse(const std::vector<Trial>& trials, int groups, int terms
   return n > 0 ? std::sqrt(sse / static_cast<double>(n)) : kNaN;
 }
 
-// One degree's fit: x0 refined around the coarse grid's best, scores, and the final coefficients
-// on `all` rows.
+// One degree's fit: x0 refined around the coarse grid's best (x1 as in `coarse`), scores, and the
+// final coefficients on the subsample.
 std::optional<DriveCurveFit> fitDegree(const FitRows& rows, const std::vector<std::size_t>& picked,
                                        const std::vector<Trial>& coarse, double step, double v_max, double pwm_max,
                                        int degree) {
   const int terms = degree + 1;
   const auto [coarse_best, unused] = bestTrial(coarse, [terms](const Trial& t) { return t.cells.total(terms); }, terms);
   if (!coarse_best) return std::nullopt;
-  const std::vector<Trial> trials =
-      trialsOnGrid(rows, picked, coarse_best->x0 - step, coarse_best->x0 + step, kFineSteps, v_max, pwm_max);
+  const std::vector<Trial> trials = trialsOnGrid(rows, picked, coarse_best->x0 - step, coarse_best->x0 + step,
+                                                 kFineSteps, {coarse_best->x1}, v_max, pwm_max);
   DriveCurveFit fit;
   fit.held_out_rmse = pooledHeldOutRmse(trials, rows.groups, terms);
   fit.low_band_rmse =
@@ -245,29 +288,86 @@ std::optional<DriveCurveFit> fitDegree(const FitRows& rows, const std::vector<st
   const auto [chosen, sampled_beta] =
       bestTrial(trials, [terms](const Trial& t) { return t.cells.total(terms); }, terms);
   if (!chosen) return std::nullopt;
-  fit.curve = toCurve(chosen->x0, chosen->scale, sampled_beta);
+  fit.curve = toCurve(chosen->x0, chosen->x1, chosen->scale, sampled_beta);
   fit.scale = chosen->scale;
   return fit;
 }
 
+// An even subsample of at most `max_rows` rows, and the PWM and voltage range of all rows.
+struct Subsample {
+  std::vector<std::size_t> picked;
+  double pwm_lo = 0.0, pwm_hi = 0.0, v_max = 0.0;
+
+  Subsample(const FitRows& rows, std::size_t max_rows) {
+    const std::size_t stride = std::max<std::size_t>(1, rows.size() / max_rows);
+    for (std::size_t r = 0; r < rows.size(); r += stride) picked.push_back(r);
+    const auto [lo, hi] = std::minmax_element(rows.pwm_us.begin(), rows.pwm_us.end());
+    pwm_lo = *lo;
+    pwm_hi = *hi;
+    v_max = *std::max_element(rows.voltage_v.begin(), rows.voltage_v.end());
+  }
+  double span() const { return pwm_hi - pwm_lo; }
+  double step() const { return span() / (kCoarseSteps - 1); }
+  // x0 from half a span below the bench's lowest PWM to its middle, for each end point in `ends`.
+  std::vector<Trial> coarse(const FitRows& rows, const std::vector<double>& ends) const {
+    return trialsOnGrid(rows, picked, pwm_lo - 0.5 * span(), pwm_lo + 0.5 * span(), kCoarseSteps, ends, v_max, pwm_hi);
+  }
+};
+
+// The least squared error of a cubic drive curve over `trials`, and the trial that reaches it.
+std::pair<const Trial*, double> leastCubicError(const std::vector<Trial>& trials) {
+  const auto [trial, beta] = bestTrial(trials, [](const Trial& t) { return t.cells.total(kMaxTerms); }, kMaxTerms);
+  if (!trial) return {nullptr, kNaN};
+  return {trial, trial->cells.total(kMaxTerms).sse(beta)};
+}
+
 }  // namespace
 
-std::vector<std::optional<DriveCurveFit>> fitDriveCurves(const FitRows& rows) {
+double findFullThrottle(const FitRows& rows) {
+  if (rows.size() < static_cast<std::size_t>(kMaxTerms + 3)) return DriveCurve::kNoFullThrottle;
+  const Subsample sample(rows, kFullThrottleSearchRows);
+  const std::vector<double> ends = fullThrottleGrid(rows, sample.picked, sample.pwm_lo, sample.pwm_hi,
+                                                    kFullThrottleCoarseSteps);
+  if (ends.empty()) return DriveCurve::kNoFullThrottle;
+  // The cubic without an end point, x0 refined as fitDegree refines it: the fairest rival.
+  const std::vector<Trial> open_coarse = sample.coarse(rows, {DriveCurve::kNoFullThrottle});
+  const Trial* open_best = leastCubicError(open_coarse).first;
+  if (!open_best) return DriveCurve::kNoFullThrottle;
+  const double open_sse =
+      leastCubicError(trialsOnGrid(rows, sample.picked, open_best->x0 - sample.step(), open_best->x0 + sample.step(),
+                                   kFineSteps, {DriveCurve::kNoFullThrottle}, sample.v_max, sample.pwm_hi))
+          .second;
+  const std::vector<Trial> ended_coarse = sample.coarse(rows, ends);
+  const Trial* ended_best = leastCubicError(ended_coarse).first;
+  if (!ended_best) return DriveCurve::kNoFullThrottle;
+  const double end_step = sample.span() * (kFullThrottleFarthest - kFullThrottleNearest) / (kFullThrottleCoarseSteps - 1);
+  std::vector<double> fine_ends;
+  for (int s = 0; s < kFullThrottleFineSteps; ++s) {
+    const double x1 = ended_best->x1 + end_step * (2.0 * s / (kFullThrottleFineSteps - 1) - 1.0);
+    if (x1 <= ends.front()) fine_ends.push_back(x1);
+  }
+  const std::vector<Trial> ended_fine =
+      trialsOnGrid(rows, sample.picked, ended_best->x0 - sample.step(), ended_best->x0 + sample.step(), kFineSteps,
+                   fine_ends, sample.v_max, sample.pwm_hi);
+  const auto [ended, ended_sse] = leastCubicError(ended_fine);
+  if (!ended || !(open_sse >= kFullThrottleErrorRatio * ended_sse)) return DriveCurve::kNoFullThrottle;
+  // F statistic of the one parameter x1 added, against a threshold far beyond chance for the grid's tries.
+  const double residual_dof = static_cast<double>(sample.picked.size()) - (kMaxTerms + 2);
+  if (residual_dof < 1.0 || !((open_sse - ended_sse) * residual_dof >= kFullThrottleF * ended_sse)) {
+    return DriveCurve::kNoFullThrottle;
+  }
+  return ended->x1;
+}
+
+std::vector<std::optional<DriveCurveFit>> fitDriveCurves(const FitRows& rows, double pwm_full_us) {
   std::vector<std::optional<DriveCurveFit>> fits(DriveCurve::kMaxDegree);
   if (rows.size() < 4) return fits;
-  const std::size_t stride = std::max<std::size_t>(1, rows.size() / kSearchRows);
-  std::vector<std::size_t> picked;
-  for (std::size_t r = 0; r < rows.size(); r += stride) picked.push_back(r);
-  const auto [pwm_lo, pwm_hi] = std::minmax_element(rows.pwm_us.begin(), rows.pwm_us.end());
-  const double v_max = *std::max_element(rows.voltage_v.begin(), rows.voltage_v.end());
-  const double span = *pwm_hi - *pwm_lo;
-  // x0 from half a span below the bench's lowest PWM to its middle; then finer around each degree's best.
-  const std::vector<Trial> coarse =
-      trialsOnGrid(rows, picked, *pwm_lo - 0.5 * span, *pwm_lo + 0.5 * span, kCoarseSteps, v_max, *pwm_hi);
-  const double step = span / (kCoarseSteps - 1);
+  const Subsample sample(rows, kSearchRows);
+  const std::vector<Trial> coarse = sample.coarse(rows, {pwm_full_us});
+  const int fewest_rows = std::isfinite(pwm_full_us) ? 4 : 3;  // coefficients + 2, x1 counted
   for (int degree = 1; degree <= DriveCurve::kMaxDegree; ++degree) {
-    if (rows.size() < static_cast<std::size_t>(degree + 3)) continue;
-    fits[degree - 1] = fitDegree(rows, picked, coarse, step, v_max, *pwm_hi, degree);
+    if (rows.size() < static_cast<std::size_t>(degree + fewest_rows)) continue;
+    fits[degree - 1] = fitDegree(rows, sample.picked, coarse, sample.step(), sample.v_max, sample.pwm_hi, degree);
   }
   return fits;
 }
@@ -275,10 +375,10 @@ std::vector<std::optional<DriveCurveFit>> fitDriveCurves(const FitRows& rows) {
 DriveCurve refitOnAllRows(const FitRows& rows, const DriveCurveFit& fit) {
   std::vector<std::size_t> all(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) all[r] = r;
-  const double x0 = fit.curve.pwmZeroUs();
+  const double x0 = fit.curve.pwmZeroUs(), x1 = fit.curve.pwmFullUs();
   const std::optional<Vector> beta =
-      nonNegativeSolve(CellMoments(rows, all, x0, fit.scale).total(fit.curve.degree() + 1));
-  return beta ? toCurve(x0, fit.scale, *beta) : fit.curve;
+      nonNegativeSolve(CellMoments(rows, all, x0, x1, fit.scale).total(fit.curve.degree() + 1));
+  return beta ? toCurve(x0, x1, fit.scale, *beta) : fit.curve;
 }
 
 }  // namespace fitting

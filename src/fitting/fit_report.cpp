@@ -232,7 +232,8 @@ void writeDataSection(const BenchFit& fit, std::ostringstream& md) {
   md << "- Cross-validation: " << fit.grouping_description
      << ". Whole groups are held out, never random rows. Candidates are the MATLAB polyXY degrees up to (5, 3) and "
         "drive curves y = sum c_k u^k, u = max(0, PWM - x0) / 1000 us * V, of degree 1 to 3 with c_k >= 0 (they "
-        "rise with PWM and voltage everywhere); each is also fitted above the lowest voltage band and judged on it, "
+        "rise with PWM and voltage everywhere), also with the ESC's full-throttle end point x1 fitted (u stops "
+        "rising at x1, tried only where the bench logged two PWM values or more above it); each is also fitted above the lowest voltage band and judged on it, "
         "and below the highest. A polynomial that falls with PWM or voltage anywhere in the covered domain is not "
         "chosen; of the rest, the one with the fewest terms within "
      << formatPrintf("%g", 100.0 * fit.parsimony, "")
@@ -245,9 +246,20 @@ void writeDataSection(const BenchFit& fit, std::ostringstream& md) {
   }
 }
 
-std::string degrees(const FitQuality& fit) {
-  if (fit.basis == "drive_curve") return "drive curve, degree " + std::to_string(fit.pwm_degree);
-  return "(" + std::to_string(fit.pwm_degree) + ", " + std::to_string(fit.voltage_degree) + ")";
+// The ESC's full-throttle end point of a drive curve, us; infinite for any other surface.
+double fullThrottleUs(const OutputDefinition& def) {
+  return def.surface && def.surface->driveCurve() ? def.surface->driveCurve()->pwmFullUs()
+                                                  : DriveCurve::kNoFullThrottle;
+}
+
+std::string degrees(const OutputDefinition& def) {
+  const FitQuality& fit = *def.fit;
+  if (fit.basis != "drive_curve") {
+    return "(" + std::to_string(fit.pwm_degree) + ", " + std::to_string(fit.voltage_degree) + ")";
+  }
+  const double x1 = fullThrottleUs(def);
+  return "drive curve, degree " + std::to_string(fit.pwm_degree) +
+         (std::isfinite(x1) ? formatPrintf(", full throttle at %.0f us", x1, "") : "");
 }
 
 std::string optionalNumber(const std::optional<double>& value) {
@@ -269,7 +281,7 @@ void writeQualitySection(const BenchFit& fit, std::ostringstream& md) {
       continue;
     }
     if (def.source == OutputSource::kDerived) md << " (" << def.note << ")";
-    md << " | " << (def.fit ? degrees(*def.fit) : "") << " | " << report.points << " | "
+    md << " | " << (def.fit ? degrees(def) : "") << " | " << report.points << " | "
        << formatPrintf("%.5f", report.r2, "") << " | " << formatPrintf("%.4g", report.rmse, "") << " | "
        << formatPrintf("%.4g", report.max_error, "") << " | "
        << (def.fit ? formatPrintf("%.4g", def.fit->held_out_rmse, "") : "") << " | "
@@ -295,7 +307,7 @@ void writeExtrapolationSection(const BenchFit& fit, std::ostringstream& md) {
      << formatPrintf("%.2f", bands.high_max_v, "") << " V.\n\n";
   const double depth_v = bands.rest_min_v - bands.low_min_v;
   if (!thrust.low_band_rmse) {
-    md << "The chosen thrust surface (" << degrees(thrust)
+    md << "The chosen thrust surface (" << degrees(fit.model.output(Output::kThrust))
        << ") cannot be fitted without the low band, so its extrapolation is unchecked: **it is not trusted below "
        << formatPrintf("%.2f", bands.low_min_v, "") << " V**, the bench's lowest voltage.\n\n";
   } else if (*thrust.low_band_rmse <= 2.0 * thrust.held_out_rmse) {
@@ -324,10 +336,12 @@ void writeCandidatesSection(const BenchFit& fit, std::ostringstream& md) {
        << "band |\n|---|---:|---:|---:|\n";
     for (const CandidateScore& c : report.candidates) {
       const bool drive = c.basis == "drive_curve";
-      const std::string name = drive ? "drive curve " + std::to_string(c.pwm_degree)
-                                     : "(" + std::to_string(c.pwm_degree) + ", " + std::to_string(c.voltage_degree) + ")";
+      const std::string name =
+          drive ? "drive curve " + std::to_string(c.pwm_degree) + (c.full_throttle ? " + full throttle" : "")
+                : "(" + std::to_string(c.pwm_degree) + ", " + std::to_string(c.voltage_degree) + ")";
       const bool is_chosen = chosen && chosen->basis == c.basis && chosen->pwm_degree == c.pwm_degree &&
-                             chosen->voltage_degree == c.voltage_degree;
+                             chosen->voltage_degree == c.voltage_degree &&
+                             (!drive || c.full_throttle == std::isfinite(fullThrottleUs(fit.model.output(output))));
       md << "| " << (is_chosen ? "**" + name + "**" : name) << (c.physical ? "" : " x") << " | "
          << score(c.held_out_rmse) << " | " << score(c.low_band_rmse) << " | " << score(c.high_band_rmse) << " |\n";
     }

@@ -95,12 +95,15 @@ int unphysicalCells(const ResponseSurface& surface, const ModelDomain& domain, d
 
 std::vector<SurfaceCandidate> driveCurveCandidates(const FitRows& rows) {
   std::vector<SurfaceCandidate> candidates;
-  const std::vector<std::optional<DriveCurveFit>> fits = fitDriveCurves(rows);
+  const double pwm_full_us = findFullThrottle(rows);
+  const bool full_throttle = std::isfinite(pwm_full_us);
+  const std::vector<std::optional<DriveCurveFit>> fits = fitDriveCurves(rows, pwm_full_us);
   for (int degree = 1; degree <= DriveCurve::kMaxDegree; ++degree) {
     SurfaceCandidate candidate;
     candidate.score.basis = "drive_curve";
+    candidate.score.full_throttle = full_throttle;
     candidate.score.pwm_degree = candidate.score.voltage_degree = degree;
-    candidate.score.terms = degree + 2;
+    candidate.score.terms = degree + (full_throttle ? 3 : 2);
     candidate.score.held_out_rmse = candidate.score.low_band_rmse = candidate.score.high_band_rmse = kNaN;
     if (const std::optional<DriveCurveFit>& fit = fits[degree - 1]) {
       candidate.score.held_out_rmse = fit->held_out_rmse;

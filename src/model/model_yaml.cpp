@@ -44,15 +44,16 @@ Polynomial2D readPolynomial(const YamlMap& map) {
   return Polynomial2D(std::move(terms));
 }
 
-// drive_curve: {pwm_zero_us: x0, c0: .., c1: .., ...}: y = sum c_k u^k, u = max(0, PWM - x0) / 1000 * V.
+// drive_curve: {pwm_zero_us: x0, pwm_full_us: x1, c0: .., c1: .., ...}: y = sum c_k u^k,
+// u = min(max(0, PWM - x0), x1 - x0) / 1000 * V; without pwm_full_us the bench never reached full throttle.
 DriveCurve readDriveCurve(const YamlMap& map) {
   static const std::regex kCoefficientKey("c([0-9])");
   std::vector<double> coefficients;
   for (const std::string& key : map.keys()) {
     std::smatch match;
-    if (key == "pwm_zero_us") continue;
+    if (key == "pwm_zero_us" || key == "pwm_full_us") continue;
     if (!std::regex_match(key, match, kCoefficientKey) || std::stoi(match[1]) > DriveCurve::kMaxDegree) {
-      map.fail(key, "unknown key (a drive curve has pwm_zero_us and coefficients c0 to c" +
+      map.fail(key, "unknown key (a drive curve has pwm_zero_us, pwm_full_us and coefficients c0 to c" +
                         std::to_string(DriveCurve::kMaxDegree) + ")");
     }
     const auto k = static_cast<std::size_t>(std::stoi(match[1]));
@@ -60,7 +61,13 @@ DriveCurve readDriveCurve(const YamlMap& map) {
     coefficients[k] = map.number(key);
   }
   if (coefficients.empty()) map.fail("c0", "missing: a drive curve needs coefficients c0..");
-  return DriveCurve(map.number("pwm_zero_us"), std::move(coefficients));
+  const double x0 = map.number("pwm_zero_us");
+  double x1 = DriveCurve::kNoFullThrottle;
+  if (map.has("pwm_full_us")) {
+    x1 = map.number("pwm_full_us");
+    if (!(x1 > x0)) map.fail("pwm_full_us", formatNumber(x1) + " us is not above pwm_zero_us " + formatNumber(x0) + " us");
+  }
+  return DriveCurve(x0, std::move(coefficients), x1);
 }
 
 // covered: {pwm_us: [...], voltage_min_v: [...], voltage_max_v: [...]}, one entry per PWM level.
@@ -92,6 +99,7 @@ void writeCovered(YAML::Emitter& out, const std::vector<CoveredLevel>& covered) 
 void writeDriveCurve(YAML::Emitter& out, const DriveCurve& curve) {
   out << YAML::Key << "drive_curve" << YAML::Value << YAML::Flow << YAML::BeginMap;
   out << YAML::Key << "pwm_zero_us" << YAML::Value << formatNumber(curve.pwmZeroUs());
+  if (std::isfinite(curve.pwmFullUs())) out << YAML::Key << "pwm_full_us" << YAML::Value << formatNumber(curve.pwmFullUs());
   for (std::size_t k = 0; k < curve.coefficients().size(); ++k) {
     out << YAML::Key << "c" + std::to_string(k) << YAML::Value << formatNumber(curve.coefficients()[k]);
   }

@@ -41,15 +41,23 @@ struct DriveCurveFit {
   double scale = 1.0;  ///< of u in the fit's basis t = u / scale (keeps the normal equations sane)
 };
 
-/// Fits y = sum_k c_k u^k for each degree 1..DriveCurve::kMaxDegree (element degree - 1), c_k >= 0,
-/// u = max(0, PWM - x0) / 1000 * V, with x0 the PWM at which the rotor starts, chosen on each fold's
-/// training rows by least squares over a grid, on an even subsample of at most 20000 rows (refit
-/// the chosen one with refitOnAllRows). nullopt for a degree the rows cannot determine (fewer rows
-/// than coefficients + 2).
-std::vector<std::optional<DriveCurveFit>> fitDriveCurves(const FitRows& rows);
+/// The ESC's full-throttle end point x1 in `rows`, us: the PWM above which the output stops rising,
+/// so that u = min(max(0, PWM - x0), x1 - x0) / 1000 * V. Looked for between an eighth and half of
+/// the PWM span below its top, only where rows at two PWM values or more lie above it (a plateau the
+/// bench logged), and taken only when it cuts a cubic drive curve's squared error by a third and is
+/// significant (F statistic 20 or more); else DriveCurve::kNoFullThrottle. Throws nothing.
+double findFullThrottle(const FitRows& rows);
 
-/// `fit`'s curve with its x0 and the coefficients refitted (c_k >= 0) on every row; `fit`'s own
-/// curve when that fit is singular. Throws nothing.
+/// Fits y = sum_k c_k u^k for each degree 1..DriveCurve::kMaxDegree (element degree - 1), c_k >= 0,
+/// u = min(max(0, PWM - x0), pwm_full_us - x0) / 1000 * V, with x0 the PWM at which the rotor
+/// starts, chosen on each fold's training rows by least squares over a grid, on an even subsample of
+/// at most 20000 rows (refit the chosen one with refitOnAllRows); pwm_full_us as findFullThrottle
+/// found it on all rows, or DriveCurve::kNoFullThrottle. nullopt for a degree the rows cannot
+/// determine (fewer rows than coefficients + 2, x1 counted).
+std::vector<std::optional<DriveCurveFit>> fitDriveCurves(const FitRows& rows, double pwm_full_us);
+
+/// `fit`'s curve with its x0 and x1 and the coefficients refitted (c_k >= 0) on every row; `fit`'s
+/// own curve when that fit is singular. Throws nothing.
 DriveCurve refitOnAllRows(const FitRows& rows, const DriveCurveFit& fit);
 
 }  // namespace fitting

@@ -29,7 +29,8 @@ bool isNonDecreasing(const ResponseSurface& surface, const ModelDomain& domain, 
 /// or voltage rises by more than `tolerance`, or is negative: the report's count of unphysical cells.
 int unphysicalCells(const ResponseSurface& surface, const ModelDomain& domain, double tolerance);
 
-/// Drive curves of degree 1 to DriveCurve::kMaxDegree fitted on `rows`.
+/// Drive curves of degree 1 to DriveCurve::kMaxDegree fitted on `rows`, with the ESC's full-throttle
+/// end point when the rows show one (findFullThrottle).
 std::vector<SurfaceCandidate> driveCurveCandidates(const FitRows& rows);
 
 /// The candidate chosen: among the physical ones with a held-out error, the least worst of its

@@ -29,6 +29,7 @@ struct CandidateScore {
   /// Non-decreasing in PWM and in voltage over the covered domain (always for a drive curve;
   /// efficiency, which need not be, counts as physical).
   bool physical = true;
+  bool full_throttle = false;  ///< a drive curve with the ESC's full-throttle end point fitted
 };
 
 /// The voltage bands of the extrapolation scores: fitted above the lowest, judged on it (and the

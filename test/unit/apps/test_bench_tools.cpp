@@ -59,7 +59,7 @@ TEST_F(BenchTools, FitSurfacesTurnsADirectoryOfLogsIntoAModelAndAReport) {
                                " --python /usr/bin/python3 " + metadata("Cyclone T5040C") + " " + logs.string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err, "");
-  EXPECT_NE(r.out.find("thrust     surface  (3,1)        22"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("thrust     surface  (3,1)          22"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("model: " + model), std::string::npos) << r.out;
   // The estimator's loader takes the file as written.
   const pe::PropulsionModel loaded = pe::loadModelFile(model);
@@ -124,7 +124,7 @@ TEST_F(BenchTools, FitSurfacesReadsALogNamedTwiceOnce) {
             std::string::npos)
       << r.out;
   // 11 rows per sweep, each counted once.
-  EXPECT_NE(r.out.find("thrust     surface  (3,1)        22"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("thrust     surface  (3,1)          22"), std::string::npos) << r.out;
 }
 
 TEST_F(BenchTools, FitSurfacesRefusesAThrustThatFallsAsPwmRises) {

@@ -125,6 +125,62 @@ TEST(DriveCurve, IsZeroBelowItsStartAndRisesWithPwmAndVoltage) {
   EXPECT_THROW(pe::DriveCurve(1100.0, {1, 2, 3, 4, 5}), std::invalid_argument);
 }
 
+TEST(DriveCurve, StopsRisingWithPwmAtTheEscsFullThrottleEndPointButNotWithVoltage) {
+  const pe::DriveCurve curve(1100.0, {0.0, 2.0, 0.5}, 1850.0);
+  EXPECT_DOUBLE_EQ(curve.pwmFullUs(), 1850.0);
+  EXPECT_DOUBLE_EQ(curve.drive(1600.0, 12.0), 6.0);
+  EXPECT_DOUBLE_EQ(curve.drive(1850.0, 12.0), 9.0);
+  EXPECT_DOUBLE_EQ(curve.drive(1990.0, 12.0), 9.0);  // duty 100 %: the ESC gives no more
+  EXPECT_GT(curve.evaluate(1990.0, 12.5), curve.evaluate(1990.0, 12.0));
+  EXPECT_EQ(pe::DriveCurve(1100.0, {1.0}).pwmFullUs(), pe::DriveCurve::kNoFullThrottle);
+  EXPECT_THROW(pe::DriveCurve(1100.0, {1.0}, 1100.0), std::invalid_argument);
+  EXPECT_THROW(pe::DriveCurve(1100.0, {1.0}, std::nan("")), std::invalid_argument);
+}
+
+namespace {
+
+// Sweeps 1100-2000 us in 30 us steps at three voltages of a chain whose thrust is 30 u^2 + 5 u g
+// (u = duty x voltage, rotor start 1080 us) up to an ESC end point `end_us` (infinite: none), with
+// a deterministic +-0.3 g scatter.
+pe::fitting::FitRows sweepRows(double end_us) {
+  pe::fitting::FitRows rows;
+  rows.groups = 3;
+  int k = 0;
+  for (double v : {11.1, 11.7, 12.3}) {
+    for (double x = 1100.0; x <= 2000.0; x += 30.0, ++k) {
+      const double u = (std::min(x, end_us) - 1080.0) * 1e-3 * v;
+      rows.pwm_us.push_back(x);
+      rows.voltage_v.push_back(v);
+      rows.y.push_back(30.0 * u * u + 5.0 * u + 0.3 * std::sin(1.7 * k));
+      rows.group.push_back(static_cast<int>(rows.group.size() / 31));
+      rows.band.push_back(v < 11.5 ? pe::fitting::VoltageBand::kLow
+                                   : v > 12.0 ? pe::fitting::VoltageBand::kHigh : pe::fitting::VoltageBand::kMiddle);
+    }
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(DriveCurveFit, FindsTheEscsFullThrottleEndPointOnlyWhereTheBenchLoggedAPlateau) {
+  // A plateau from 1850 us on: found within the fine grid's step (about 14 us here).
+  EXPECT_NEAR(pe::fitting::findFullThrottle(sweepRows(1850.0)), 1850.0, 15.0);
+  // None: the curve rises to the top.
+  EXPECT_EQ(pe::fitting::findFullThrottle(sweepRows(pe::DriveCurve::kNoFullThrottle)),
+            pe::DriveCurve::kNoFullThrottle);
+  // Only the top level flat (1990 us, beyond the nearest end point tried, 1887.5 us): one point is no
+  // plateau, and the curve is left to rise.
+  EXPECT_EQ(pe::fitting::findFullThrottle(sweepRows(1975.0)), pe::DriveCurve::kNoFullThrottle);
+  // The drive curves then fitted with it predict the plateau's thrust.
+  const pe::fitting::FitRows rows = sweepRows(1850.0);
+  const double end_us = pe::fitting::findFullThrottle(rows);
+  const auto fits = pe::fitting::fitDriveCurves(rows, end_us);
+  ASSERT_TRUE(fits[1].has_value());
+  const double u = (1850.0 - 1080.0) * 1e-3 * 11.4;
+  EXPECT_NEAR(fits[1]->curve.evaluate(1990.0, 11.4), 30.0 * u * u + 5.0 * u, 0.01 * (30.0 * u * u + 5.0 * u));
+  EXPECT_EQ(fits[1]->curve.pwmFullUs(), end_us);
+}
+
 TEST(ModelDomain, CoveredRegionIsInterpolatedBetweenPwmLevelsAndClampsIntoIt) {
   pe::ModelDomain domain;
   domain.pwm_min_us = 1000.0;
@@ -214,6 +270,8 @@ TEST(DriveCurveFit, HoldsOnTheLowestVoltageBandOfASimulatedBench) {
 struct RealDischarge {
   const char* name;
   std::vector<std::string> files;
+  bool plateau;  ///< whether the rows fitted on show the ESC's full-throttle plateau (read off the log)
+  bool bias_within_half_rmse;  ///< issue 22's bias bar holds (see the 3S log below)
 };
 
 TEST(DriveCurveFit, HoldsOnTheLowestVoltageBandOfRealDischargeLogs) {
@@ -224,10 +282,14 @@ TEST(DriveCurveFit, HoldsOnTheLowestVoltageBandOfRealDischargeLogs) {
   const std::vector<RealDischarge> series = {
       {"EMAX RS1108 5200KV, 3S 650 mAh",
        {"StepsTest_2020-06-16_220158.csv", "StepsTest_2020-06-16_220231.csv", "StepsTest_2020-06-16_220340.csv",
-        "StepsTest_2020-06-16_220513.csv"}},
+        "StepsTest_2020-06-16_220513.csv"},
+       false, false},
+      // The first 2S sweep's thrust and current stay flat from about 1850 us to 2000 us.
       {"EMAX RS1108 5200KV, 2S 650 mAh",
-       {"StepsTest_2020-06-16_212137.csv", "StepsTest_2020-06-16_212732.csv", "StepsTest_2020-06-16_213055.csv"}},
-      {"BETAFPV 0802SE 23000KV, 1S 750 mAh", {"StepsTest202306052008_2023-06-05_200852.csv"}},
+       {"StepsTest_2020-06-16_212137.csv", "StepsTest_2020-06-16_212732.csv", "StepsTest_2020-06-16_213055.csv"},
+       true, true},
+      // Its plateau (2000-2200 us) lies in the judged band only.
+      {"BETAFPV 0802SE 23000KV, 1S 750 mAh", {"StepsTest202306052008_2023-06-05_200852.csv"}, false, true},
   };
   for (const RealDischarge& s : series) {
     std::vector<pe::BenchLog> logs;
@@ -272,10 +334,19 @@ TEST(DriveCurveFit, HoldsOnTheLowestVoltageBandOfRealDischargeLogs) {
                 s.name, v_min, v_max, train.pwm.size(), split_v, test.pwm.size(), ours.rmse, ours.bias,
                 thrust.driveCurve() ? "drive curve" : "polynomial", three.rmse, three.bias);
     EXPECT_LE(ours.rmse, three.rmse) << s.name;
-    // Issue 22 asks for a bias within half the RMSE: it holds on the 1S log only; on the EMAX logs
-    // the reference curve is as biased (3S) or more (2S). What is asserted: never more biased than
-    // the reference beyond half of its RMSE.
-    EXPECT_LE(std::abs(ours.bias), std::max(std::abs(three.bias), 0.5 * three.rmse)) << s.name;
+    EXPECT_EQ(std::isfinite(thrust.driveCurve() ? thrust.driveCurve()->pwmFullUs() : pe::DriveCurve::kNoFullThrottle),
+              s.plateau)
+        << s.name;
+    if (s.plateau) EXPECT_NEAR(thrust.driveCurve()->pwmFullUs(), 1840.0, 40.0) << s.name;
+    // Issue 22 asks for a bias within half the RMSE. On the 3S log it is not: its judged band is the
+    // top of the PWM range (1762-1960 us, none fitted on above 1828 us), where thrust rises more
+    // slowly than below, and the reference curve is as biased. There what is asserted is no more
+    // bias than the reference beyond half of its RMSE.
+    if (s.bias_within_half_rmse) {
+      EXPECT_LE(std::abs(ours.bias), 0.5 * ours.rmse) << s.name;
+    } else {
+      EXPECT_LE(std::abs(ours.bias), std::max(std::abs(three.bias), 0.5 * three.rmse)) << s.name;
+    }
     EXPECT_EQ(pe::fitting::unphysicalCells(thrust, fit.model.domain(), 1e-9), 0) << s.name;
   }
 }
@@ -320,6 +391,23 @@ TEST(DriveCurveFit, ModelWithDriveCurvesAndCoveredDomainRoundTripsThroughTheMode
   EXPECT_DOUBLE_EQ(hand.evaluateRaw(pe::Output::kThrust, 1500.0, 12.0), 20.0 * u + 6.0 * u * u);
   EXPECT_FALSE(hand.domain().contains(1900.0, 10.5));
   EXPECT_EQ(pe::parseModelYaml(pe::modelToYaml(hand), "again.yaml").domain().covered.size(), 2u);
+  // With the ESC's full-throttle end point: flat in PWM above it, written back as read.
+  std::string ended = drive;
+  ended.replace(ended.find("pwm_zero_us: 1080,"), 18, "pwm_zero_us: 1080, pwm_full_us: 1850,");
+  const pe::PropulsionModel ended_model = pe::parseModelYaml(ended, "ended.yaml");
+  EXPECT_EQ(ended_model.evaluateRaw(pe::Output::kThrust, 1900.0, 12.0),
+            ended_model.evaluateRaw(pe::Output::kThrust, 1850.0, 12.0));
+  EXPECT_EQ(ended_model.output(pe::Output::kThrust).surface->driveCurve()->pwmFullUs(), 1850.0);
+  EXPECT_EQ(pe::modelToYaml(pe::parseModelYaml(pe::modelToYaml(ended_model), "again.yaml")),
+            pe::modelToYaml(ended_model));
+  std::string wrong = drive;
+  wrong.replace(wrong.find("pwm_zero_us: 1080,"), 18, "pwm_zero_us: 1080, pwm_full_us: 1000,");
+  try {
+    pe::parseModelYaml(wrong, "wrong.yaml");
+    ADD_FAILURE() << "accepted";
+  } catch (const pe::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "wrong.yaml:6: outputs.thrust.drive_curve.pwm_full_us: 1000 us is not above pwm_zero_us 1080 us");
+  }
 }
 
 TEST(DriveCurveFit, OldModelFilesWithoutACoveredRegionKeepTheBoxAsTheirDomain) {
