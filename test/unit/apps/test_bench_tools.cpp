@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/model/drive_curve.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "test_paths.h"
@@ -73,6 +74,32 @@ TEST_F(BenchTools, FitSurfacesTurnsADirectoryOfLogsIntoAModelAndAReport) {
     EXPECT_NE(report.find(std::string("](") + figure + ")"), std::string::npos) << figure;
     EXPECT_GT(fs::file_size(dir_ / "report" / figure), 20000u) << figure;
   }
+}
+
+TEST_F(BenchTools, FitSurfacesFindsTheEscsFullThrottleEndPointOnARealDischargeAndSaysSo) {
+  // The EMAX RS1108 on 2S: the first sweep's thrust and current stay flat from about 1850 us on.
+  std::string logs;
+  for (const char* file : {"StepsTest_2020-06-16_212137.csv", "StepsTest_2020-06-16_212732.csv",
+                           "StepsTest_2020-06-16_213055.csv"}) {
+    logs += " " + repoPath(std::string("test/data/diegosdantonio_thruststand/") + file);
+  }
+  const std::string model = (dir_ / "emax2s.yaml").string();
+  const ToolRun r = run(PE_FIT_SURFACES, "--out " + model + " --report " + (dir_ / "report").string() +
+                                             " --python /usr/bin/python3 --supply battery --steady-voltage-mad 0.001 "
+                                             "--voltage-bin 0.07 --air-temperature-c 20 --air-pressure-pa 101325" +
+                                             logs);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("thrust     surface  drive 2+ft     62"), std::string::npos) << r.out;
+  const pe::PropulsionModel loaded = pe::loadModelFile(model);
+  const pe::DriveCurve& thrust = *loaded.output(pe::Output::kThrust).surface->driveCurve();
+  EXPECT_NEAR(thrust.pwmFullUs(), 1840.0, 40.0);
+  // Full throttle: the logged 77-78 g at 7.2 V whatever the command above the end point.
+  EXPECT_NEAR(loaded.evaluateRaw(pe::Output::kThrust, 1980.0, 7.2), 77.5, 2.0);
+  EXPECT_EQ(loaded.evaluateRaw(pe::Output::kThrust, 1980.0, 7.2), loaded.evaluateRaw(pe::Output::kThrust, 1900.0, 7.2));
+  const std::string report = slurp(dir_ / "report" / "fit_report.md");
+  EXPECT_TRUE(std::regex_search(report, std::regex(R"(\| thrust \| g \| surface \| drive curve, degree 2, full throttle at 18[0-9][0-9] us \|)")))
+      << report;
+  EXPECT_NE(report.find("| **drive curve 2 + full throttle** |"), std::string::npos) << report;
 }
 
 TEST_F(BenchTools, FitSurfacesRefusesOneVoltageLevelWithTheCoreMessage) {
