@@ -206,6 +206,23 @@ TEST(ModelDomain, CoveredRegionIsInterpolatedBetweenPwmLevelsAndClampsIntoIt) {
   }
 }
 
+TEST(DriveCurveFit, FindsTheEndPointOfASimulatedEscFromItsBenchAlone) {
+  // The simulated 430 Lite chain (its own ESC, motor and propeller physics, not the fit's basis):
+  // its ESC reaches full duty at 1800 us (the parameter file's esc.pwm_full_us); swept to 2000 us.
+  const pe::sim::SimParams params = pe::sim::loadSimParamsFile(repoPath("config/sim/430lite_dji2312e_dji9450.yaml"));
+  pe::sim::BenchExperiment sweep = pe::sim::thesisBenchExperiment(pe::sim::BenchExperimentKind::kPwmSweep, params);
+  sweep.pwm_start_us = 1100.0;
+  sweep.pwm_end_us = 2000.0;
+  sweep.pwm_step_us = 20.0;
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel({pe::sim::simulateBench(params, {}, sweep, 5)}, simOptions());
+  ASSERT_TRUE(fit.validation_error.empty()) << fit.validation_error;
+  for (pe::Output output : {pe::Output::kThrust, pe::Output::kCurrent, pe::Output::kPower}) {
+    const pe::ResponseSurface& surface = *fit.model.output(output).surface;
+    ASSERT_TRUE(surface.driveCurve()) << pe::outputName(output);
+    EXPECT_NEAR(surface.driveCurve()->pwmFullUs(), params.chain.esc.pwm_full_us, 25.0) << pe::outputName(output);
+  }
+}
+
 TEST(DriveCurveFit, LeavesOutAnRpmColumnThatDoesNotFitWithOneLineSayingHowToMapAnother) {
   // Electrical speed with dropouts: every sixth row reads zero, as a tachometer losing the signal.
   std::vector<pe::BenchLog> logs;
