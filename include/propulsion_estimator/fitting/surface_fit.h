@@ -20,7 +20,7 @@ namespace fitting {
 struct CandidateScore {
   int pwm_degree = 0;      ///< PWM degree (a drive curve's degree in u)
   int voltage_degree = 0;  ///< voltage degree (a drive curve's degree in u)
-  int terms = 0;           ///< coefficients; a drive curve's x0 counts as one
+  int terms = 0;           ///< coefficients; a drive curve's x0, and x1 when fitted, count as one each
   /// RMSE predicting each held-out group, in the output's file unit; NaN when not determined
   double held_out_rmse = 0.0;
   std::string basis = "polynomial";  ///< or "drive_curve"
