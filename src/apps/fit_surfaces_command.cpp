@@ -44,13 +44,13 @@ void printSummary(const fitting::BenchFit& fit) {
       std::printf("%-10s none: %s\n", outputName(output), def.note.c_str());
       continue;
     }
-    const std::string degrees =
-        !def.fit                           ? ""
-        : def.fit->basis == "drive_curve"
-            ? "drive " + std::to_string(def.fit->pwm_degree) +
-                  (std::isfinite(def.surface->driveCurve()->pwmFullUs()) ? "+ft" : "")
-                                           : "(" + std::to_string(def.fit->pwm_degree) + "," +
-                                                 std::to_string(def.fit->voltage_degree) + ")";
+    std::string degrees;
+    if (def.fit && def.fit->basis == "drive_curve") {
+      degrees = "drive " + std::to_string(def.fit->pwm_degree) +
+                (std::isfinite(def.surface->driveCurve()->pwmFullUs()) ? "+ft" : "");
+    } else if (def.fit) {
+      degrees = "(" + std::to_string(def.fit->pwm_degree) + "," + std::to_string(def.fit->voltage_degree) + ")";
+    }
     std::printf("%-10s %-8s %-10s %6d %9.5f %10.4g %10.4g", outputName(output),
                 def.source == OutputSource::kSurface ? "surface" : "derived", degrees.c_str(), report.points, report.r2,
                 report.rmse, report.max_error);

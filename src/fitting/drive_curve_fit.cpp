@@ -268,31 +268,6 @@ double pooledHeldOutRmse(const std::vector<Trial>& trials, int groups, int terms
   return n > 0 ? std::sqrt(sse / static_cast<double>(n)) : kNaN;
 }
 
-// One degree's fit: x0 refined around the coarse grid's best (x1 as in `coarse`), scores, and the
-// final coefficients on the subsample.
-std::optional<DriveCurveFit> fitDegree(const FitRows& rows, const std::vector<std::size_t>& picked,
-                                       const std::vector<Trial>& coarse, double step, double v_max, double pwm_max,
-                                       int degree) {
-  const int terms = degree + 1;
-  const auto [coarse_best, unused] = bestTrial(coarse, [terms](const Trial& t) { return t.cells.total(terms); }, terms);
-  if (!coarse_best) return std::nullopt;
-  const std::vector<Trial> trials = trialsOnGrid(rows, picked, coarse_best->x0 - step, coarse_best->x0 + step,
-                                                 kFineSteps, {coarse_best->x1}, v_max, pwm_max);
-  DriveCurveFit fit;
-  fit.held_out_rmse = pooledHeldOutRmse(trials, rows.groups, terms);
-  fit.low_band_rmse =
-      heldOutRmse(trials, [terms](const Trial& t) { return t.cells.band(terms, VoltageBand::kLow); }, terms);
-  fit.high_band_rmse =
-      heldOutRmse(trials, [terms](const Trial& t) { return t.cells.band(terms, VoltageBand::kHigh); }, terms);
-  // The final curve: x0 chosen on all (sampled) rows, coefficients on all rows.
-  const auto [chosen, sampled_beta] =
-      bestTrial(trials, [terms](const Trial& t) { return t.cells.total(terms); }, terms);
-  if (!chosen) return std::nullopt;
-  fit.curve = toCurve(chosen->x0, chosen->x1, chosen->scale, sampled_beta);
-  fit.scale = chosen->scale;
-  return fit;
-}
-
 // An even subsample of at most `max_rows` rows, and the PWM and voltage range of all rows.
 struct Subsample {
   std::vector<std::size_t> picked;
@@ -312,7 +287,36 @@ struct Subsample {
   std::vector<Trial> coarse(const FitRows& rows, const std::vector<double>& ends) const {
     return trialsOnGrid(rows, picked, pwm_lo - 0.5 * span(), pwm_lo + 0.5 * span(), kCoarseSteps, ends, v_max, pwm_hi);
   }
+  // x0 within a coarse step of `x0`, finer, for each end point in `ends`.
+  std::vector<Trial> around(const FitRows& rows, double x0, const std::vector<double>& ends) const {
+    return trialsOnGrid(rows, picked, x0 - step(), x0 + step(), kFineSteps, ends, v_max, pwm_hi);
+  }
 };
+
+
+
+// One degree's fit: x0 refined around the coarse grid's best (x1 as in `coarse`), scores, and the
+// final coefficients on the subsample.
+std::optional<DriveCurveFit> fitDegree(const FitRows& rows, const Subsample& sample, const std::vector<Trial>& coarse,
+                                       int degree) {
+  const int terms = degree + 1;
+  const auto [coarse_best, unused] = bestTrial(coarse, [terms](const Trial& t) { return t.cells.total(terms); }, terms);
+  if (!coarse_best) return std::nullopt;
+  const std::vector<Trial> trials = sample.around(rows, coarse_best->x0, {coarse_best->x1});
+  DriveCurveFit fit;
+  fit.held_out_rmse = pooledHeldOutRmse(trials, rows.groups, terms);
+  fit.low_band_rmse =
+      heldOutRmse(trials, [terms](const Trial& t) { return t.cells.band(terms, VoltageBand::kLow); }, terms);
+  fit.high_band_rmse =
+      heldOutRmse(trials, [terms](const Trial& t) { return t.cells.band(terms, VoltageBand::kHigh); }, terms);
+  // The final curve: x0 chosen on all (sampled) rows, coefficients on all rows.
+  const auto [chosen, sampled_beta] =
+      bestTrial(trials, [terms](const Trial& t) { return t.cells.total(terms); }, terms);
+  if (!chosen) return std::nullopt;
+  fit.curve = toCurve(chosen->x0, chosen->x1, chosen->scale, sampled_beta);
+  fit.scale = chosen->scale;
+  return fit;
+}
 
 // The least squared error of a cubic drive curve over `trials`, and the trial that reaches it.
 std::pair<const Trial*, double> leastCubicError(const std::vector<Trial>& trials) {
@@ -333,10 +337,7 @@ double findFullThrottle(const FitRows& rows) {
   const std::vector<Trial> open_coarse = sample.coarse(rows, {DriveCurve::kNoFullThrottle});
   const Trial* open_best = leastCubicError(open_coarse).first;
   if (!open_best) return DriveCurve::kNoFullThrottle;
-  const double open_sse =
-      leastCubicError(trialsOnGrid(rows, sample.picked, open_best->x0 - sample.step(), open_best->x0 + sample.step(),
-                                   kFineSteps, {DriveCurve::kNoFullThrottle}, sample.v_max, sample.pwm_hi))
-          .second;
+  const double open_sse = leastCubicError(sample.around(rows, open_best->x0, {DriveCurve::kNoFullThrottle})).second;
   const std::vector<Trial> ended_coarse = sample.coarse(rows, ends);
   const Trial* ended_best = leastCubicError(ended_coarse).first;
   if (!ended_best) return DriveCurve::kNoFullThrottle;
@@ -346,9 +347,7 @@ double findFullThrottle(const FitRows& rows) {
     const double x1 = ended_best->x1 + end_step * (2.0 * s / (kFullThrottleFineSteps - 1) - 1.0);
     if (x1 <= ends.front()) fine_ends.push_back(x1);
   }
-  const std::vector<Trial> ended_fine =
-      trialsOnGrid(rows, sample.picked, ended_best->x0 - sample.step(), ended_best->x0 + sample.step(), kFineSteps,
-                   fine_ends, sample.v_max, sample.pwm_hi);
+  const std::vector<Trial> ended_fine = sample.around(rows, ended_best->x0, fine_ends);
   const auto [ended, ended_sse] = leastCubicError(ended_fine);
   if (!ended || !(open_sse >= kFullThrottleErrorRatio * ended_sse)) return DriveCurve::kNoFullThrottle;
   // F statistic of the one parameter x1 added, against a threshold far beyond chance for the grid's tries.
@@ -367,7 +366,7 @@ std::vector<std::optional<DriveCurveFit>> fitDriveCurves(const FitRows& rows, do
   const int fewest_rows = std::isfinite(pwm_full_us) ? 4 : 3;  // coefficients + 2, x1 counted
   for (int degree = 1; degree <= DriveCurve::kMaxDegree; ++degree) {
     if (rows.size() < static_cast<std::size_t>(degree + fewest_rows)) continue;
-    fits[degree - 1] = fitDegree(rows, sample.picked, coarse, sample.step(), sample.v_max, sample.pwm_hi, degree);
+    fits[degree - 1] = fitDegree(rows, sample, coarse, degree);
   }
   return fits;
 }

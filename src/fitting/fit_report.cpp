@@ -232,9 +232,10 @@ void writeDataSection(const BenchFit& fit, std::ostringstream& md) {
   md << "- Cross-validation: " << fit.grouping_description
      << ". Whole groups are held out, never random rows. Candidates are the MATLAB polyXY degrees up to (5, 3) and "
         "drive curves y = sum c_k u^k, u = max(0, PWM - x0) / 1000 us * V, of degree 1 to 3 with c_k >= 0 (they "
-        "rise with PWM and voltage everywhere), also with the ESC's full-throttle end point x1 fitted (u stops "
-        "rising at x1, tried only where the bench logged two PWM values or more above it); each is also fitted above the lowest voltage band and judged on it, "
-        "and below the highest. A polynomial that falls with PWM or voltage anywhere in the covered domain is not "
+        "rise with PWM and voltage everywhere), with the ESC's full-throttle end point x1 where the bench logged a "
+        "plateau (u stops rising at x1; taken when rows at two PWM values or more lie above it and it cuts the "
+        "squared error by a third with F >= 20); each is also fitted above the lowest voltage band and judged on "
+        "it, and below the highest. A polynomial that falls with PWM or voltage anywhere in the covered domain is not "
         "chosen; of the rest, the one with the fewest terms within "
      << formatPrintf("%g", 100.0 * fit.parsimony, "")
      << "% of the lowest worst score (the largest of its determined held-out, low-band and high-band RMSE) is "

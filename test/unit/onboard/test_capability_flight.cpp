@@ -115,9 +115,8 @@ class CapabilitySink : public pe::sim::FlightSink {
     }
     for (std::size_t k = 0; k < predict_after_s_.size(); ++k) {
       if (predictions[k] || s.time_s < *takeoff_s + predict_after_s_[k]) continue;
-      predictions[k] = capability_.evaluate(out, estimator_.effectSignals(s.time_s));
-      predictions[k]->voltage_v = s.time_s;  // when it was made (the report's voltage is not needed)
-      predicted_truth_current_a[k] = truth_.battery_current_a;
+      predictions[k] = Prediction{capability_.evaluate(out, estimator_.effectSignals(s.time_s)), s.time_s,
+                                  truth_.battery_current_a};
     }
   }
   void battery(const pe::sim::BatterySample& s) override {
@@ -165,9 +164,13 @@ class CapabilitySink : public pe::sim::FlightSink {
   double filtered_v_ = pe::kNaN;
 
  public:
-  // The capability at each of predict_after_s (its voltage_v field holds the time it was made).
-  std::vector<std::optional<pe::CapabilityReport>> predictions;
-  std::array<double, 2> predicted_truth_current_a{};
+  // The capability at one of predict_after_s, when it was made and the battery current then.
+  struct Prediction {
+    pe::CapabilityReport report;
+    double made_s;
+    double truth_current_a;
+  };
+  std::vector<std::optional<Prediction>> predictions;
 };
 
 // What the user of the thesis quad's pack gives: cells, rated capacity, the cut-off.
@@ -227,15 +230,15 @@ void expectEnduranceOnFamilyPacks(const std::vector<std::uint32_t>& seeds, doubl
       for (std::size_t k = 0; k < 2; ++k) {
         const double after_s = k == 0 ? 20.0 : 60.0, bound = k == 0 ? 0.15 : 0.10;
         ASSERT_TRUE(sink.predictions[k].has_value());
-        const pe::CapabilityReport& c = *sink.predictions[k];
-        const double flown_s = *sink.cutoff_s - c.voltage_v;
+        const pe::CapabilityReport& c = sink.predictions[k]->report;
+        const double flown_s = *sink.cutoff_s - sink.predictions[k]->made_s;
         const double error = (c.hover_endurance_s - flown_s) / flown_s;
         std::printf("seed %3u %s, payload %.1f kg, from %3.0f %%, after %2.0f s: predicted %4.0f +- %3.0f s, "
                     "flew %4.0f s, error %+5.1f %% (soc %.2f +- %.2f, R %.1f +- %.1f mOhm, hover %.1f A, drawn %.1f A)\n",
                     seed, drawn.describe().c_str(), payload_kg, 100.0 * initial_soc, after_s, c.hover_endurance_s,
                     c.hover_endurance_std_s, flown_s, 100.0 * error, c.state_of_charge, c.state_of_charge_std,
                     1000.0 * c.internal_resistance_ohm, 1000.0 * c.internal_resistance_std_ohm, c.hover_current_a,
-                    sink.predicted_truth_current_a[k]);
+                    sink.predictions[k]->truth_current_a);
         EXPECT_FALSE(std::isnan(c.hover_endurance_s)) << "seed " << seed << ": " << c.endurance_basis;
         ++cases[k];
         within_bar[k] += std::abs(error) < bound;
@@ -289,8 +292,8 @@ TEST(CapabilityFlight, TwoPacksAlikeAboveTheirKneeGetOnePredictionButNotOneHover
     fly(profile(0.0, 3000.0, 0.3), &sink, {}, k == 0 ? alike : lower_knee);
     ASSERT_TRUE(sink.cutoff_s.has_value());
     ASSERT_TRUE(sink.predictions[0].has_value());
-    predicted_s[k] = sink.predictions[0]->hover_endurance_s;
-    flown_s[k] = *sink.cutoff_s - sink.predictions[0]->voltage_v;
+    predicted_s[k] = sink.predictions[0]->report.hover_endurance_s;
+    flown_s[k] = *sink.cutoff_s - sink.predictions[0]->made_s;
   }
   std::printf("the curve lowered below %.0f %% by up to %.3f V a cell: predicted %.1f and %.1f s after 60 s, flew %.0f and "
               "%.0f s (ratio %.2f; within 10 %% of both needs at most %.2f)\n",
