@@ -1,6 +1,7 @@
 #include "flight_log_formats.h"
 
 #include "propulsion_estimator/bag/flight_bag_reader.h"
+#include "propulsion_estimator/logs/crazyflie_flight_reader.h"
 #include "propulsion_estimator/logs/dataflash_flight_reader.h"
 #include "propulsion_estimator/logs/ulog_flight_reader.h"
 
@@ -13,6 +14,7 @@ const FlightLogFormats& flightLogFormats() {
     formats.add(flightBagFormat());
     formats.add(ulogFormat());
     formats.add(dataflashFormat());
+    formats.add(crazyflieUsdFormat());
     return formats;
   }();
   return kFormats;
