@@ -13,7 +13,7 @@ SETUP := source $(WS)/install/setup.sh
 COLCON_BUILD := colcon build --event-handlers console_direct+ \
 	--cmake-args -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps build demo demo-bag test docs sizes check test-sanitizers fuzz bench validate-gap validate-gap-fixed arm64 arm64-build bench-arm64 clean
+.PHONY: deps build demo demo-bag test docs sizes check test-sanitizers fuzz bench validate-gap validate-gap-fixed ros-free arm64 arm64-build bench-arm64 clean
 
 deps:
 	@scripts/install_deps.sh
@@ -36,8 +36,8 @@ demo-bag: build
 
 # All tests: the API reference without a warning, the size rules, the colcon tests (unit, rostests
 # with the soak and the kill-during-tare tests, bag replays), then the unit tests again under the
-# sanitizers.
-test: docs sizes check test-sanitizers
+# sanitizers, then the Raspberry Pi's ROS-free tree built and tested natively (ros-free).
+test: docs sizes check test-sanitizers ros-free
 
 # The API reference of the public headers (docs/Doxyfile), HTML in .ws/docs/html/index.html. Any
 # warning fails it: an undocumented public declaration, a broken reference.
@@ -109,6 +109,16 @@ validate-gap-fixed: build
 QUICK ?= 0
 bench: build
 	$(SETUP) && QUICK=$(QUICK) scripts/run_benchmarks.sh
+
+# The ROS-free tree that make arm64 cross-builds for the Raspberry Pi (cmake/ros_free.cmake: the
+# modules that compute, their unit tests, the core benchmark; no catkin), built natively with plain
+# cmake in .ws/ros_free/ and its tests run with ctest; fails when it does not build or any test
+# fails, so that make test (and CI) catches a change that breaks the Pi's build.
+ROS_FREE := $(WS)/ros_free
+ros-free: deps
+	cmake -S . -B $(ROS_FREE) -DPE_ROS_FREE=ON -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(ROS_FREE) -j 2
+	cd $(ROS_FREE) && ctest -j 2 --output-on-failure --no-tests=error
 
 # Raspberry Pi: the ROS-free modules, their unit tests and the core benchmark cross-compiled for
 # arm64 in .ws/arm64/ (no catkin, no ROS for arm64), the tests run under qemu-user; fails when any
