@@ -21,6 +21,7 @@
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/gap_report.h"
 #include "propulsion_estimator/gap/model_check_replay.h"
+#include "propulsion_estimator/gap/motor_balance.h"
 #include "propulsion_estimator/gap/motor_health_replay.h"
 #include "propulsion_estimator/logs/bench_log_reader.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
@@ -41,6 +42,7 @@ constexpr int kDefaultMotors = 4;
 struct Arguments {
   std::string model;
   std::string manifest;
+  std::string reference;
   std::string out;
   std::string urdf;
   std::string frame;
@@ -226,7 +228,11 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
     selected_names += (selected_names.empty() ? "" : ", ") + std::string(effects::kindName(ambiguity.kinds[0])) +
                       " (ambiguous, the best fit of its group)";
   }
-  saveModelFile(model.withEffects(diagnosis.fitted), args.out + "/corrected_model.yaml",
+  // The fingerprint the motors were judged against goes with it: the node's live check and later
+  // diagnoses judge change from the same reference.
+  PropulsionModel corrected = model.withEffects(diagnosis.fitted);
+  corrected.setMotorReference(config.motor_reference);
+  saveModelFile(corrected, args.out + "/corrected_model.yaml",
                 args.model + " with the effects diagnose_gap selected (" +
                     (selected_names.empty() ? std::string("none") : selected_names) + "); see report.md");
 
@@ -276,12 +282,37 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
               checked_flagged, with_telemetry, args.out.c_str());
 }
 
+// The vehicle's healthy fingerprint from the --reference manifest's flights; every flight must read.
+MotorReference learnReference(const Arguments& args, const PropulsionModel& model, const Vehicle& vehicle,
+                              const FlightLogOptions& options, const gap::DiagnosisConfig& config) {
+  std::vector<Flight> flights;
+  for (FlightRead& read : readFlights(args.reference, loadFlightManifestEntries(args.reference), options, args.jobs)) {
+    if (!read.flight) throw ConfigError("--reference: " + read.refusal);
+    flights.push_back(std::move(*read.flight));
+  }
+  const MotorReference reference = gap::learnReference(model, vehicle, flights, config);
+  std::string shares;
+  for (std::size_t k = 0; k < reference.shares.size(); ++k) {
+    shares += (k == 0 ? "" : ", ") + formatPrintf("%.1f", 100.0 * reference.shares[k]) + " +- " +
+              formatPrintf("%.1f", 100.0 * reference.share_std[k]);
+  }
+  std::printf("reference: %d healthy flights; each motor's share of the thrust in steady hover, %%: %s\n",
+              reference.flights, shares.c_str());
+  return reference;
+}
+
 int diagnose(const Arguments& args) {
   const PropulsionModel model = loadModelFile(args.model);
   const Vehicle vehicle = vehicleOf(args);
   const FlightLogOptions options =
       optionsOf(args.topics, args.pwm_range_us, static_cast<int>(vehicle.rotors.size()));
-  const gap::DiagnosisConfig config = configOf(args, options);
+  gap::DiagnosisConfig config = configOf(args, options);
+  if (!args.reference.empty()) {
+    config.motor_reference = learnReference(args, model, vehicle, options, config);
+  } else if (model.motorReference()) {
+    config.motor_reference = model.motorReference();
+    std::printf("reference: the model file's, from %d healthy flights\n", model.motorReference()->flights);
+  }
   const std::vector<ManifestEntry> entries = loadFlightManifestEntries(args.manifest);
   std::vector<BenchLog> bench;
   for (const std::string& path : args.bench) bench.push_back(readBenchLog(path));
@@ -335,6 +366,9 @@ int runDiagnoseGap(int argc, char** argv) {
   app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
   app.add_option("--manifest", args.manifest, "Flight manifest: logs and their weighed segments (YAML)")->required();
   app.add_option("--out", args.out, "Directory for the report")->required();
+  app.add_option("--reference", args.reference,
+                 "Flight manifest of the same vehicle's flights known to be healthy (e.g. after maintenance): each "
+                 "motor is judged by its change from them (needs --urdf or --frame)");
   app.add_option("--urdf", args.urdf,
                  "Vehicle URDF: rotors (rotor_<k>_joint, in motor-channel order) and geometry (default: a quadcopter "
                  "on channels 1-4, geometry unknown)");

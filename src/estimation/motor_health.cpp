@@ -6,20 +6,15 @@
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/estimation/motor_change.h"
 #include "propulsion_estimator/vehicle/rotor_balance.h"
 
 namespace propulsion_estimator {
-namespace {
-
-// Three standard errors: a flagged gap stands out of the window's block-to-block noise.
-constexpr double kFlagSigmas = 3.0;
-
-}  // namespace
-
 void MotorHealthConfig::validate() const {
   requirePositive("capability/motor_health/block_s", block_s);
   requirePositive("capability/motor_health/window_s", window_s);
   requireWithin("capability/motor_health/max_gap", max_gap, 0.0, 1.0);
+  requireWithin("capability/motor_health/healthy_gap_std", healthy_gap_std, 0.0, 1.0);
   const double blocks = window_s / block_s;
   if (std::abs(blocks - std::round(blocks)) > 1e-9 || std::round(blocks) < 3.0) {
     throw FieldError("capability/motor_health/window_s",
@@ -28,9 +23,17 @@ void MotorHealthConfig::validate() const {
   }
 }
 
-MotorHealth::MotorHealth(Vehicle vehicle, std::vector<int> channels, MotorHealthConfig config)
-    : vehicle_(std::move(vehicle)), channels_(std::move(channels)), config_(config) {
+MotorHealth::MotorHealth(Vehicle vehicle, std::vector<int> channels, MotorHealthConfig config,
+                         std::optional<MotorReference> reference)
+    : vehicle_(std::move(vehicle)), channels_(std::move(channels)), config_(config), reference_(std::move(reference)) {
   config_.validate();
+  if (reference_) {
+    reference_->validate();
+    if (reference_->shares.size() != vehicle_.rotors.size()) {
+      throw FieldError("motor_reference.shares", std::to_string(reference_->shares.size()) + " shares for " +
+                                                     std::to_string(vehicle_.rotors.size()) + " rotors");
+    }
+  }
   window_blocks_ = static_cast<std::size_t>(std::round(config_.window_s / config_.block_s));
   block_sums_.assign(vehicle_.rotors.size(), 0.0);
   blocks_.assign(window_blocks_, std::vector<double>(vehicle_.rotors.size(), 0.0));
@@ -97,28 +100,16 @@ MotorHealthVerdict MotorHealth::verdict() const {
 
   const Eigen::Vector2d prior = vehicle_.empty_mass ? Eigen::Vector2d(vehicle_.empty_mass->centre_of_mass_m.head<2>())
                                                     : Eigen::Vector2d::Zero();
-  Eigen::Vector2d centre = thrustCentre(vehicle_, mean);
-  double best_distance = std::numeric_limits<double>::infinity();
-  int best = -1;
-  for (int j = 0; j < motors; ++j) {
-    const double gap = weakMotorGap(vehicle_, mean, yaw_mean, j);
-    const double gap_std = std::abs(yaw_mean) > 0.0 ? std::abs(gap) * yaw_std / std::abs(yaw_mean) : 0.0;
-    verdict.motors.push_back({channels_[j], gap, gap_std});
-    // A yaw imbalance is explained as well by one motor weaker than modelled as by its neighbour
-    // of the other spin direction stronger: the failures that happen give less thrust, never more.
-    const double distance = (impliedCentre(vehicle_, mean, j, gap) - prior).norm();
-    if (gap > 0.0 && distance < best_distance) {
-      best_distance = distance;
-      best = j;
-    }
+  const Eigen::Vector2d centre = thrustCentre(vehicle_, mean);
+  MotorChangeRule rule;
+  rule.min_gap = config_.max_gap;
+  rule.healthy_gap_std = config_.healthy_gap_std;
+  const MotorChangeVerdict change =
+      reference_ ? judgeAgainstReference(vehicle_, *reference_, {mean}, rule) : judgeAgainstIdeal(vehicle_, {mean}, rule);
+  for (int j = 0; j < motors && j < static_cast<int>(change.motors.size()); ++j) {
+    verdict.motors.push_back({channels_[j], change.motors[j].gap, change.motors[j].gap_std});
   }
-  if (best >= 0) {
-    const MotorBalanceGap& candidate = verdict.motors[best];
-    if (candidate.thrust_gap > config_.max_gap && candidate.thrust_gap > kFlagSigmas * candidate.thrust_gap_std) {
-      verdict.flagged_channel = candidate.channel;
-      centre = impliedCentre(vehicle_, mean, best, candidate.thrust_gap);
-    }
-  }
+  if (change.suspect >= 0) verdict.flagged_channel = channels_[change.suspect];
   verdict.cg_offset_x_m = centre.x() - prior.x();
   verdict.cg_offset_y_m = centre.y() - prior.y();
   return verdict;

@@ -294,12 +294,18 @@ void Diagnoser::balanceMotors() {
   if (channels.empty()) {
     for (int k = 0; k < motorCount(); ++k) channels.push_back(k + 1);
   }
-  diagnosis_.motors = gap::balanceMotors(views_, vehicle_, blocks_, channels, config_.motor_min_gap);
+  diagnosis_.motors = gap::balanceMotors(views_, vehicle_, blocks_, channels, config_);
   if (!diagnosis_.motors.suspect_channel) return;
   for (std::size_t k = 0; k < diagnosis_.motors.motors.size(); ++k) {
     const MotorGap& motor = diagnosis_.motors.motors[k];
     if (motor.channel == *diagnosis_.motors.suspect_channel) {
-      diagnosis_.motors.suspect_thrust_factor = suspectThrustFactor(static_cast<int>(k), motor.thrust_gap_pct / 100.0);
+      // The payloads' moments give the gap as the share of thrust the motor lacks, refined against
+      // the weighed thrust; the shares give it as the model's excess over the motor's thrust,
+      // whatever the weighed mass (a mass off by a few per cent would pull a fitted factor along).
+      const double gap = motor.thrust_gap_pct / 100.0;
+      diagnosis_.motors.suspect_thrust_factor = diagnosis_.motors.basis == "payloads"
+                                                    ? suspectThrustFactor(static_cast<int>(k), gap)
+                                                    : 1.0 / (1.0 + gap);
       views_.setMotorScale(static_cast<int>(k), diagnosis_.motors.suspect_thrust_factor);
     }
   }

@@ -20,6 +20,9 @@ void DiagnosisConfig::validate() const {
   requireWithin("max_mean_square_ratio", max_mean_square_ratio, 0.0, 1.0);
   requireWithin("ambiguity_p", ambiguity_p, 0.0, 1.0);
   requireWithin("nested_folds", nested_folds, 2, 100);
+  requireWithin("motor_min_gap", motor_min_gap, 0.0, 1.0);
+  requireWithin("motor_healthy_gap_std", motor_healthy_gap_std, 0.0, 1.0);
+  if (motor_reference) motor_reference->validate();
 }
 
 }  // namespace gap

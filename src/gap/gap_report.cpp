@@ -191,6 +191,7 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
     }
     out << YAML::EndSeq;
   }
+  out << YAML::Key << "motor_basis" << YAML::Value << diagnosis.motors.basis;
   out << YAML::Key << "motors" << YAML::Value << YAML::BeginSeq;
   for (const MotorGap& motor : diagnosis.motors.motors) {
     out << YAML::Flow << YAML::BeginMap << YAML::Key << "channel" << YAML::Value << motor.channel;
@@ -254,6 +255,24 @@ const std::vector<std::string>& gapReportFigures() {
 
 namespace {
 
+// What the motors were judged against, for the report.
+std::string basisText(const MotorBalance& balance) {
+  if (balance.basis == "reference") {
+    return "Each motor against this vehicle's own healthy flights (--reference): the fraction of its modelled thrust "
+           "it lacks now that it did not then (negative: more), the yaw balance's change fitted beside it (a damaged "
+           "propeller's drag torque changes too). A suspect lacks more than the motor gap threshold and three "
+           "standard errors of the reference's flight-to-flight spread.";
+  }
+  if (balance.basis == "payloads") {
+    return "Each motor's gap that keeps the empty vehicle's mass moment the same with every payload (the payloads "
+           "hang below base_link's origin). A gap resting on its search bound or without an interval names no motor.";
+  }
+  return "Each motor against the ideal balance of identical rotors. Healthy vehicles are never there: their parts "
+         "differ and propellers of the two spin directions are not mirror images, so a gap is a suspect only beyond "
+         "three times the spread healthy vehicles show (+-" + formatPrintf("%.1f", balance.healthy_gap_std_pct) +
+         " %, one standard deviation). A reference of this vehicle's healthy flights (--reference) would sharpen it.";
+}
+
 // Section 2 of the Markdown report: the residual's breakdowns and the motors' balance.
 void writeWhereSection(std::ostream& md, const Diagnosis& diagnosis) {
   md << "## 2. Where it lies\n\n";
@@ -283,8 +302,7 @@ void writeWhereSection(std::ostream& md, const Diagnosis& diagnosis) {
   if (!diagnosis.motors.unavailable.empty()) {
     md << "Not available: " << diagnosis.motors.unavailable << ".\n\n";
   } else {
-    md << "If this motor alone were off, its model would read high by (negative: low):\n\n"
-          "| channel | thrust gap % | 95 % interval +- |\n|---|---|---|\n";
+    md << basisText(diagnosis.motors) << "\n\n| channel | thrust gap % | 95 % interval +- |\n|---|---|---|\n";
     for (const MotorGap& motor : diagnosis.motors.motors) {
       md << "| " << motor.channel << " | " << formatPrintf("%.2f", motor.thrust_gap_pct, "n/a") << " | "
          << formatPrintf("%.2f", motor.ci_pct, "n/a") << " |\n";
@@ -292,14 +310,13 @@ void writeWhereSection(std::ostream& md, const Diagnosis& diagnosis) {
     md << "\nCentre of thrust: x " << formatPrintf("%.1f", 1000.0 * diagnosis.motors.cg_offset_x_m, "n/a") << " mm, y "
        << formatPrintf("%.1f", 1000.0 * diagnosis.motors.cg_offset_y_m, "n/a") << " mm from base_link. ";
     if (diagnosis.motors.suspect_channel) {
-      md << "**Suspect motor: channel " << *diagnosis.motors.suspect_channel
-         << "** (the yaw balance breaks; of the motors weaker than modelled that could explain it, this one keeps "
-            "the empty vehicle's centre of gravity the same with every payload, or, with one payload, nearest the "
-            "URDF's). It gives " << formatPrintf("%.1f", 100.0 * diagnosis.motors.suspect_thrust_factor, "n/a")
-         << " % of its modelled thrust (fitted to the weighed thrust); that is applied before effects are sought.\n\n";
+      md << "**Suspect motor: channel " << *diagnosis.motors.suspect_channel << "**. It gives "
+         << formatPrintf("%.1f", 100.0 * diagnosis.motors.suspect_thrust_factor, "n/a")
+         << " % of its modelled thrust ("
+         << (diagnosis.motors.basis == "payloads" ? "fitted to the weighed thrust" : "from its share of the thrust")
+         << "); that is applied before effects are sought.\n\n";
     } else {
-      md << "No motor stands out: the rotors' drag torques balance, so any offset of the centre of thrust is the "
-            "centre of gravity's, not a motor's.\n\n";
+      md << "No motor stands out.\n\n";
     }
   }
 

@@ -4,8 +4,10 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <set>
 #include <utility>
 
+#include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/vehicle/rotor_balance.h"
 
 namespace propulsion_estimator {
@@ -89,16 +91,27 @@ class SegmentMoments {
   }
 
  private:
+  // The grid's best step, refined by the parabola through it and its neighbours: a gap quantised
+  // to the grid would give every jackknife replicate the same step and a zero interval. A best
+  // step on either end of the grid stays there (a fit resting on its bound).
   double bestGap(int j, int skip) const {
-    double best = 0.0, least = std::numeric_limits<double>::infinity();
-    for (int step = 0; step * kGapStep <= kMaxGap + 1e-12; ++step) {
+    const int steps = static_cast<int>(std::round(kMaxGap / kGapStep));
+    int best = 0;
+    double least = std::numeric_limits<double>::infinity();
+    for (int step = 0; step <= steps; ++step) {
       const double value = spread(j, step * kGapStep, skip);
       if (value < least) {
         least = value;
-        best = step * kGapStep;
+        best = step;
       }
     }
-    return best;
+    if (best == 0 || best == steps) return best * kGapStep;
+    // The moments are linear in the gap, so their variance (the spread squared) is a parabola.
+    const double below = std::pow(spread(j, (best - 1) * kGapStep, skip), 2);
+    const double above = std::pow(spread(j, (best + 1) * kGapStep, skip), 2);
+    const double curvature = below - 2.0 * least * least + above;
+    const double shift = curvature > 0.0 ? 0.5 * (below - above) / curvature : 0.0;
+    return (best + shift) * kGapStep;
   }
 
   const Vehicle& vehicle_;
@@ -108,10 +121,66 @@ class SegmentMoments {
   int segments_ = 0;
 };
 
+// Each unit's mean model thrust per motor over its steady hover: each flight when there are two
+// or more, else each stretch (group) of the one flight.
+std::vector<HoverThrusts> hoverUnits(const ThrustViews& views, const std::vector<Block>& blocks) {
+  std::set<int> flights;
+  for (const Block& block : blocks) {
+    if (block.hover) flights.insert(block.flight);
+  }
+  const bool by_flight = flights.size() >= 2;
+  const ThrustSums sums = sumHoverThrusts(views, blocks, [by_flight](const Block& block) {
+    return std::make_pair(block.flight, by_flight ? 0 : block.group);
+  });
+  std::vector<HoverThrusts> units;
+  for (const auto& entry : sums) {
+    const auto& [thrust, count] = entry.second;
+    units.emplace_back();
+    for (double t : thrust) units.back().push_back(t / count);
+  }
+  return units;
+}
+
+// The judgement of the shares, as the report's table holds it (%, 95 % half-widths).
+void takeVerdict(const MotorChangeVerdict& verdict, const std::vector<int>& channels, MotorBalance* balance) {
+  for (std::size_t j = 0; j < verdict.motors.size(); ++j) {
+    balance->motors.push_back(
+        {channels[j], 100.0 * verdict.motors[j].gap, 100.0 * 1.96 * verdict.motors[j].gap_std});
+  }
+  if (verdict.suspect >= 0) balance->suspect_channel = channels[verdict.suspect];
+  if (!verdict.unavailable.empty()) balance->unavailable = verdict.unavailable;
+}
+
+// The moments across weighed payloads: motor j's gap that keeps the empty vehicle's mass moment
+// the same in every segment. The one whose gap does so best is the candidate; a gap resting on
+// the search's bounds or without an interval says nothing about which motor it is.
+void balanceByMoments(const SegmentMoments& moments, const std::vector<int>& channels, double min_gap,
+                      MotorBalance* balance) {
+  double best_spread = std::numeric_limits<double>::infinity();
+  int best = -1;
+  for (int j = 0; j < static_cast<int>(channels.size()); ++j) {
+    const auto [gap, ci] = moments.gap(j);
+    balance->motors.push_back({channels[j], 100.0 * gap, 100.0 * ci});
+    const double spread = moments.spread(j, gap);
+    if (gap > 0.0 && spread < best_spread) {
+      best_spread = spread;
+      best = j;
+    }
+  }
+  if (best < 0) return;
+  const MotorGap& candidate = balance->motors[best];
+  const double gap = candidate.thrust_gap_pct / 100.0;
+  const bool on_bound = gap < kGapStep / 2 || gap > kMaxGap - kGapStep / 2;
+  // ci_pct is a 95 % half-width, about two standard errors: three standard errors are 1.5 of it.
+  if (!on_bound && candidate.ci_pct > 0.0 && gap > min_gap && candidate.thrust_gap_pct > 1.5 * candidate.ci_pct) {
+    balance->suspect_channel = candidate.channel;
+  }
+}
+
 }  // namespace
 
 MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, const std::vector<Block>& blocks,
-                           const std::vector<int>& channels, double min_gap) {
+                           const std::vector<int>& channels, const DiagnosisConfig& config) {
   MotorBalance balance;
   const int motors = views.motors();
   if (!vehicle.hasGeometry()) {
@@ -122,34 +191,30 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
     balance.unavailable = "fewer than four motors";
     return balance;
   }
-  // Mean model thrust of each motor, and the yaw residual, per independent group of hover blocks.
   const ThrustSums groups =
       sumHoverThrusts(views, blocks, [](const Block& block) { return std::make_pair(block.flight, block.group); });
   if (groups.size() < 3) {
     balance.unavailable = "fewer than three stretches of steady hover";
     return balance;
   }
-  std::vector<double> mean_thrust(motors, 0.0), yaw, thrust(motors);
+  std::vector<double> mean_thrust(motors, 0.0);
   for (const auto& entry : groups) {
     const auto& [sums, count] = entry.second;
-    for (int k = 0; k < motors; ++k) {
-      thrust[k] = sums[k] / count;
-      mean_thrust[k] += thrust[k] / groups.size();
-    }
-    yaw.push_back(yawImbalance(vehicle, thrust));
+    for (int k = 0; k < motors; ++k) mean_thrust[k] += sums[k] / count / groups.size();
   }
-  double yaw_mean = 0.0;
-  for (double y : yaw) yaw_mean += y / yaw.size();
-  double yaw_var = 0.0;
-  for (double y : yaw) yaw_var += (y - yaw_mean) * (y - yaw_mean) / (yaw.size() - 1);
-  const double yaw_ci = 1.96 * std::sqrt(yaw_var / yaw.size());
-
   const Eigen::Vector2d centre = thrustCentre(vehicle, mean_thrust);
   balance.cg_offset_x_m = centre.x();
   balance.cg_offset_y_m = centre.y();
-  const Eigen::Vector2d prior =
-      vehicle.empty_mass ? Eigen::Vector2d(vehicle.empty_mass->centre_of_mass_m.head<2>()) : Eigen::Vector2d::Zero();
 
+  MotorChangeRule rule;
+  rule.min_gap = config.motor_min_gap;
+  rule.healthy_gap_std = config.motor_healthy_gap_std;
+  if (config.motor_reference) {
+    balance.basis = "reference";
+    takeVerdict(judgeAgainstReference(vehicle, *config.motor_reference, hoverUnits(views, blocks), rule), channels,
+                &balance);
+    return balance;
+  }
   // Per weighed segment of steady hover: its mass and each motor's mean model thrust. A payload
   // hangs below base_link's origin, so the empty vehicle's mass moment about that origin,
   // mass x centre of gravity, is the same in every segment: the hypothesis that keeps it
@@ -165,38 +230,43 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
     lightest = std::min(lightest, entry.second);
     heaviest = std::max(heaviest, entry.second);
   }
-  const bool payloads_differ = heaviest - lightest > kMinPayloadSpreadKg;
   const SegmentMoments moments{vehicle, segment_sums, segment_mass, motors};
-  const bool by_moment = payloads_differ && moments.segments() >= kMinMomentSegments;
+  if (heaviest - lightest > kMinPayloadSpreadKg && moments.segments() >= kMinMomentSegments) {
+    balance.basis = "payloads";
+    balanceByMoments(moments, channels, config.motor_min_gap, &balance);
+    return balance;
+  }
+  balance.basis = "ideal";
+  balance.healthy_gap_std_pct = 100.0 * config.motor_healthy_gap_std;
+  takeVerdict(judgeAgainstIdeal(vehicle, hoverUnits(views, blocks), rule), channels, &balance);
+  return balance;
+}
 
-  double best_distance = std::numeric_limits<double>::infinity();
-  int best = -1;
-  // Motor j's gap and its 95 % half-width: from the moments, else from the yaw residual.
-  const auto gap_of = [&](int j) -> std::pair<double, double> {
-    if (by_moment) return moments.gap(j);
-    const double gap = weakMotorGap(vehicle, mean_thrust, yaw_mean, j);
-    return {gap, std::abs(gap) * (std::abs(yaw_mean) > 0.0 ? yaw_ci / std::abs(yaw_mean) : 0.0)};
-  };
-  for (int j = 0; j < motors; ++j) {
-    const auto [gap, ci] = gap_of(j);
-    balance.motors.push_back({channels[j], 100.0 * gap, 100.0 * ci});
-    const double distance =
-        payloads_differ ? moments.spread(j, gap) : (impliedCentre(vehicle, mean_thrust, j, gap) - prior).norm();
-    // A yaw imbalance is explained as well by one motor weaker than modelled as by its
-    // neighbour of the other spin direction stronger: the failures that happen (a chipped,
-    // bent or wrong propeller, a worn motor or bearing) give less thrust, never more.
-    if (gap > 0.0 && distance < best_distance) {
-      best_distance = distance;
-      best = j;
+MotorReference learnReference(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
+                              const DiagnosisConfig& config) {
+  if (!vehicle.hasGeometry()) throw ConfigError("--reference: needs the rotor geometry (give --urdf or --frame)");
+  const int motors = static_cast<int>(vehicle.rotors.size());
+  const ThrustViews views(model, motors, false);
+  BlockConfig block_config;
+  block_config.motors = motors;
+  block_config.block_s = config.block_s;
+  block_config.group_s = config.group_s;
+  block_config.signal_timeout_s = config.signal_timeout_s;
+  std::vector<Block> blocks;
+  for (int f = 0; f < static_cast<int>(flights.size()); ++f) {
+    for (const Block& block : cutIntoBlocks(flights[f], f, vehicle, block_config, 0).blocks) {
+      if (isQuasiSteady(block, config.max_pwm_change_us, config.max_accel_m_s2)) blocks.push_back(block);
     }
   }
-  if (best < 0) return balance;
-  const MotorGap& candidate = balance.motors[best];
-  // ci_pct is a 95 % half-width, about two standard errors: three standard errors are 1.5 of it.
-  if (std::abs(candidate.thrust_gap_pct) > 100.0 * min_gap && std::abs(candidate.thrust_gap_pct) > 1.5 * candidate.ci_pct) {
-    balance.suspect_channel = candidate.channel;
+  std::set<int> with_hover;
+  for (const Block& block : blocks) {
+    if (block.hover) with_hover.insert(block.flight);
   }
-  return balance;
+  if (with_hover.size() < 3) {
+    throw ConfigError("--reference: steady hover on " + std::to_string(with_hover.size()) + " of " +
+                      std::to_string(flights.size()) + " flights; a reference needs at least 3");
+  }
+  return learnMotorReference(vehicle, hoverUnits(views, blocks));
 }
 
 }  // namespace gap

@@ -15,7 +15,7 @@ MotorHealthReplay replayMotorHealth(const PropulsionModel& model, const Vehicle&
                                     const MotorHealthConfig& config) {
   const EstimatorConfig estimator_config = replayEstimatorConfig(vehicle);
   Estimator estimator(model, vehicle, estimator_config);
-  MotorHealth health(vehicle, estimator_config.motor_channels, config);
+  MotorHealth health(vehicle, estimator_config.motor_channels, config, model.motorReference());
   MotorHealthReplay replay;
   replay.first_flag_s = kNaN;
   double next_verdict_s = 0.0;

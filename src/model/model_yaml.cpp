@@ -251,9 +251,33 @@ void writeRpmThrust(YAML::Emitter& out, const RpmThrust& fit) {
   out << YAML::EndMap;
 }
 
+// motor_reference: {flights, shares: [...], share_std: [...], gap_std: [...]}, one entry per motor.
+MotorReference readMotorReference(const YamlMap& map) {
+  map.allowOnly({"flights", "shares", "share_std", "gap_std"});
+  MotorReference reference;
+  reference.flights = map.integer("flights");
+  reference.shares = map.numbers("shares");
+  reference.share_std = map.numbers("share_std");
+  reference.gap_std = map.numbers("gap_std");
+  return reference;
+}
+
+void writeMotorReference(YAML::Emitter& out, const MotorReference& reference) {
+  out << YAML::Key << "motor_reference" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "flights" << YAML::Value << reference.flights;
+  for (const auto& [key, values] : {std::make_pair("shares", &reference.shares),
+                                    std::make_pair("share_std", &reference.share_std),
+                                    std::make_pair("gap_std", &reference.gap_std)}) {
+    out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (double v : *values) out << formatNumber(v);
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
+}
+
 PropulsionModel parseModelYaml(const std::string& text, const std::string& source) {
   const YamlMap root = parseYamlDocument(text, source);
-  root.allowOnly({"format_version", "metadata", "domain", "outputs", "effects", "thrust_from_rpm"});
+  root.allowOnly({"format_version", "metadata", "domain", "outputs", "effects", "thrust_from_rpm", "motor_reference"});
   if (root.integer("format_version") != kFormatVersion) {
     root.fail("format_version", std::to_string(root.integer("format_version")) + " is not supported (this reader knows " +
                                     std::to_string(kFormatVersion) + ")");
@@ -295,6 +319,12 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
     validateAt(root, fx);
   }
 
+  std::optional<MotorReference> reference;
+  if (const std::optional<YamlMap> section = root.optionalMap("motor_reference")) {
+    reference = readMotorReference(*section);
+    validateAt(root, *reference);
+  }
+
   try {
     const double bench_density = metadata.benchAirDensity();
     PropulsionModel model(std::move(metadata), domain, std::move(outputs), fx);
@@ -302,6 +332,7 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
     if (const std::optional<YamlMap> section = root.optionalMap("thrust_from_rpm")) {
       model.setRpmThrust(readRpmThrust(*section, bench_density));
     }
+    model.setMotorReference(reference);
     return model;
   } catch (const ConfigError& e) {
     throw ConfigError(source + ": " + e.what());
@@ -389,6 +420,7 @@ std::string modelToYaml(const PropulsionModel& model, const std::string& comment
   out << YAML::EndMap;
   if (!model.effects().empty()) writeEffects(out, model.effects());
   if (model.rpmThrust()) writeRpmThrust(out, *model.rpmThrust());
+  if (model.motorReference()) writeMotorReference(out, *model.motorReference());
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

@@ -181,6 +181,11 @@ PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,
   }
 }
 
+void PropulsionModel::setMotorReference(std::optional<MotorReference> reference) {
+  if (reference) reference->validate();
+  motor_reference_ = std::move(reference);
+}
+
 PropulsionModel PropulsionModel::withEffects(effects::ModelEffects effects) const {
   PropulsionModel copy = *this;
   effects.bench_air_density_kg_m3 = metadata_.benchAirDensity();

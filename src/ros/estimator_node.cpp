@@ -67,7 +67,13 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
                                                       static_cast<int>(estimator_->vehicle().rotors.size()),
                                                       params_.capability);
   motor_health_ = std::make_unique<MotorHealth>(estimator_->vehicle(), params_.estimator.motor_channels,
-                                                params_.capability.motor_health);
+                                                params_.capability.motor_health, estimator_->model().motorReference());
+  ROS_INFO_STREAM("motor health: " << (estimator_->model().motorReference()
+                                           ? "each motor against the model's reference of " +
+                                                 std::to_string(estimator_->model().motorReference()->flights) +
+                                                 " healthy flights"
+                                           : std::string("against the ideal balance, beyond the spread healthy "
+                                                         "vehicles show (no motor_reference in the model)")));
   model_check_ = std::make_unique<ModelCheck>(params_.estimator.motor_channels, params_.esc_telemetry);
   loadTare();
   const MassEstimate& payload = estimator_->output().payload;

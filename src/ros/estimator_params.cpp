@@ -155,6 +155,7 @@ void readCapabilityConfig(ParamReader& read, CapabilityConfig* config) {
   read.optional("capability/motor_health/block_s", &k.motor_health.block_s);
   read.optional("capability/motor_health/window_s", &k.motor_health.window_s);
   read.optional("capability/motor_health/max_gap", &k.motor_health.max_gap);
+  read.optional("capability/motor_health/healthy_gap_std", &k.motor_health.healthy_gap_std);
 }
 
 // What depends on several parameters, checked once all are read.
@@ -249,6 +250,7 @@ void logNodeParams(const EstimatorNodeParams& p) {
                   << ", cell_cutoff_v " << k.cell_cutoff_v << ", percentage " << percentageModeName(k.percentage)
                   << "\n  capability/motor_health: block_s " << k.motor_health.block_s << ", window_s "
                   << k.motor_health.window_s << ", max_gap " << k.motor_health.max_gap
+                  << ", healthy_gap_std " << k.motor_health.healthy_gap_std
                   << "\n  esc_telemetry_topic: " << (p.esc_telemetry_topic.empty() ? "(disabled)" : p.esc_telemetry_topic)
                   << ", esc_status_topic: " << (p.esc_status_topic.empty() ? "(disabled)" : p.esc_status_topic)
                   << "\n  esc_telemetry: stale_after_s " << m.stale_after_s << ", window_s " << m.window_s

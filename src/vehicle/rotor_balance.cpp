@@ -23,14 +23,4 @@ Eigen::Vector2d thrustCentre(const Vehicle& vehicle, const std::vector<double>& 
   return moment / sum(thrust_n);
 }
 
-double weakMotorGap(const Vehicle& vehicle, const std::vector<double>& thrust_n, double yaw, int j) {
-  return yaw * sum(thrust_n) / (vehicle.rotors[j].spin_direction * thrust_n[j]);
-}
-
-Eigen::Vector2d impliedCentre(const Vehicle& vehicle, const std::vector<double>& thrust_n, int j, double gap) {
-  const double total = sum(thrust_n);
-  return (thrustCentre(vehicle, thrust_n) * total - gap * thrust_n[j] * vehicle.rotors[j].position_m.head<2>()) /
-         (total - gap * thrust_n[j]);
-}
-
 }  // namespace propulsion_estimator

@@ -7,6 +7,7 @@
 
 #include "propulsion_estimator/common/mavros_topics.h"
 #include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/estimation/motor_change.h"
 #include "propulsion_estimator/gap/bench_gap.h"
 #include "propulsion_estimator/gap/residual_breakdown.h"
 #include "propulsion_estimator/logs/bench_log.h"
@@ -56,6 +57,17 @@ struct DiagnosisConfig {
   double group_s = 10.0;             ///< blocks within this long err together: the test's unit
   int max_effects = 3;               ///< selected at the most
   double motor_min_gap = 0.05;       ///< a motor is suspect when its model is off by more than this fraction
+  /// The vehicle's healthy fingerprint (diagnose_gap --reference): each motor is judged by its
+  /// change from it. None: against the ideal balance, a suspect only beyond the spread healthy
+  /// vehicles show (motor_healthy_gap_std).
+  std::optional<MotorReference> motor_reference;
+  /// Without a reference: the standard deviation of the weak-rotor gap that healthy vehicles show
+  /// against the ideal balance (parts that differ, propellers of the two spin directions that are
+  /// not mirror images, a centre of gravity known to a few mm); a suspect exceeds three of it.
+  /// 0.067: the root mean square of every motor's gap on the 7 healthy flights of CrazyPAD's vehicle
+  /// E8 (test/data/crazypad; E9's 5 held out, largest 0.103); our simulated family, whose healthy
+  /// motors are identical, cannot say it.
+  double motor_healthy_gap_std = 0.067;
   std::vector<int> channels;         ///< RCOut channel of each motor, 1-based; empty: 1..motors
   /// Whether ESC telemetry's rotor speeds join the joint error as the RPM view (where the flights
   /// have them and the model a thrust_from_rpm); false: the PWM and current views only.
@@ -87,6 +99,11 @@ struct MotorGap {
 /// centre of thrust it implies (m, body frame).
 struct MotorBalance {
   std::vector<MotorGap> motors;        ///< one per motor, in rotor order
+  /// What each motor was judged against: "reference" (the vehicle's healthy flights), "payloads"
+  /// (the moments across weighed payloads) or "ideal" (the balance of identical rotors).
+  std::string basis;
+  /// Without a reference: the spread of the gap healthy vehicles show, % (one standard deviation).
+  double healthy_gap_std_pct = 0.0;
   std::optional<int> suspect_channel;  ///< a motor whose model is off alone
   double suspect_thrust_factor = 1.0;  ///< its thrust over the model's, fitted; the effects are sought with it applied
   double cg_offset_x_m = 0.0;          ///< centre of thrust against base_link, body frame

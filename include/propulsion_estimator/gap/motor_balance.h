@@ -10,24 +10,31 @@
 namespace propulsion_estimator {
 namespace gap {
 
-/// Which motor's model is off, from the moment balance of steady hover.
-///
-/// In steady hover the rotors' drag torques cancel (yaw) and the thrusts balance about the
-/// centre of gravity (roll, pitch). A centre of gravity away from the URDF's only moves the roll
-/// and pitch balance, so the model's thrusts still cancel in yaw, sum(s_k T_k) = 0 (s_k the spin
-/// direction, torque proportional to thrust for identical propellers). A motor whose model reads
-/// high by a fraction e_j breaks the yaw balance by s_j T_j e_j. On a quad the yaw residual fixes
-/// e_j up to which motor of that spin direction (or which of the other, reading low) it is. Only
-/// motors reading high (weaker than modelled: a damaged propeller, a worn motor) are candidates.
-/// With payloads of different masses (hanging below base_link's origin) each motor's gap is the
-/// one that keeps the empty vehicle's mass moment the same in every segment (its uncertainty by
-/// the jackknife over segments), and the motor whose gap does so best is taken: a worn or bent
-/// propeller, which keeps its torque, leaves the yaw balance as it was and shows only there. With
-/// one mass the gap is the yaw's, and the motor the one whose implied centre of gravity lies
-/// nearest the URDF's. A motor is a suspect only when its gap exceeds `min_gap` and three times
-/// its uncertainty.
+/// Which motor's model is off, from the moment balance of steady hover
+/// (estimation/motor_change.h), judged against the best basis the flights give:
+/// - `config.motor_reference` given: each motor's change of its share of the summed model thrust
+///   from the vehicle's own healthy flights, the yaw pattern fitted beside it as a nuisance (a
+///   damaged propeller changes its drag torque too), its uncertainty from the reference's
+///   flight-to-flight spread and the flights' own;
+/// - else, with payloads of different masses (hanging below base_link's origin) on three weighed
+///   segments or more: the gap that keeps the empty vehicle's mass moment the same in every
+///   segment, its 95 % interval by the jackknife over segments; a gap resting on its search bound
+///   or with a zero interval names no motor;
+/// - else: against the ideal balance of identical rotors, a suspect only beyond three of
+///   `config.motor_healthy_gap_std` (the spread healthy vehicles show).
+/// A change common to all rotors leaves the shares as they were, and the diagonal partner of a weak
+/// rotor moves roll and pitch the other way: neither is ever the suspect. A motor is a suspect only
+/// when its gap exceeds `config.motor_min_gap` too. Units: each flight when there are two or more,
+/// else each stretch of steady hover.
 MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, const std::vector<Block>& blocks,
-                           const std::vector<int>& channels, double min_gap);
+                           const std::vector<int>& channels, const DiagnosisConfig& config);
+
+/// The vehicle's healthy fingerprint from `flights` known to be healthy (their weighed segments),
+/// cut into blocks as the diagnosis cuts them (no rotor lag) and read in steady hover through
+/// `model`'s surfaces. ConfigError when fewer than three flights have steady hover, or for a
+/// vehicle without rotor geometry.
+MotorReference learnReference(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
+                              const DiagnosisConfig& config);
 
 }  // namespace gap
 }  // namespace propulsion_estimator

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "propulsion_estimator/model/model_effects.h"
+#include "propulsion_estimator/model/motor_reference.h"
 #include "propulsion_estimator/model/rpm_thrust.h"
 #include "propulsion_estimator/model/response_surface.h"
 
@@ -171,6 +172,12 @@ class PropulsionModel {
   const std::optional<RpmThrust>& rpmThrust() const { return rpm_thrust_; }
   /// Sets or clears it.
   void setRpmThrust(std::optional<RpmThrust> rpm_thrust) { rpm_thrust_ = rpm_thrust; }
+  /// The vehicle's healthy per-motor fingerprint (the model file's optional motor_reference,
+  /// written by diagnose_gap --reference): the node's motor-health check and later diagnoses judge
+  /// each motor's change from it; nullopt when the file has none.
+  const std::optional<MotorReference>& motorReference() const { return motor_reference_; }
+  /// Sets or clears it; throws FieldError as MotorReference::validate() does.
+  void setMotorReference(std::optional<MotorReference> reference);
 
  private:
   /// All outputs in SI, floored as evaluate() documents, in dependency order.
@@ -182,6 +189,7 @@ class PropulsionModel {
   std::array<OutputDefinition, kOutputCount> outputs_;
   effects::ModelEffects effects_;
   std::optional<RpmThrust> rpm_thrust_;
+  std::optional<MotorReference> motor_reference_;
   std::array<double, kOutputCount> to_si_{};
   std::array<Output, kOutputCount> evaluation_order_{};
 };

@@ -394,3 +394,28 @@ TEST(ModelYaml, RefusesHalfTheBenchAir) {
             "m.yaml:3: metadata.bench_air_temperature_c: missing: bench air is given as temperature and pressure "
             "together, or not at all");
 }
+
+TEST(ModelYaml, RoundTripsTheMotorReference) {
+  pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
+  model.setMotorReference(pe::MotorReference{{0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7,
+                                             {0.037, 0.053, 0.035, 0.051}});
+  const pe::PropulsionModel back = pe::parseModelYaml(pe::modelToYaml(model), "back.yaml");
+  ASSERT_TRUE(back.motorReference());
+  EXPECT_EQ(back.motorReference()->flights, 7);
+  EXPECT_EQ(back.motorReference()->shares, model.motorReference()->shares);
+  EXPECT_EQ(back.motorReference()->share_std, model.motorReference()->share_std);
+  EXPECT_EQ(back.motorReference()->gap_std, model.motorReference()->gap_std);
+  EXPECT_FALSE(pe::parseModelYaml(kValid, "m.yaml").motorReference());
+}
+
+TEST(ModelYaml, RefusesAMotorReferenceThatIsNotOne) {
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 7, shares: [0.3, 0.3, 0.3, 0.3], share_std: [0, 0, 0, 0], "
+                             "gap_std: [0, 0, 0, 0]}\n"),
+            "m.yaml:31: motor_reference.shares: they sum to 1.2000, not 1");
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 2, shares: [0.25, 0.25, 0.25, 0.25], share_std: [0, 0, 0, 0], "
+                             "gap_std: [0, 0, 0, 0]}\n"),
+            "m.yaml:31: motor_reference.flights: 2 is fewer than the 3 needed");
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, shares: [0.25, 0.25, 0.25, 0.25], share_std: [0, 0], "
+                             "gap_std: [0, 0, 0, 0]}\n"),
+            "m.yaml:31: motor_reference.share_std: 2 and gap_std 4 values for 4 shares");
+}

@@ -363,16 +363,37 @@ pe::MotorHealthVerdict hover(pe::MotorHealth* health, const std::vector<double>&
 
 }  // namespace
 
-TEST(MotorHealth, FlagsTheMotorWhoseModelThrustBreaksTheYawBalance) {
+TEST(MotorHealth, FlagsAMotorWeakerThanTheVehiclesReference) {
   // Motor 3 gives 15 % less than modelled: the autopilot drives it until its real thrust balances,
-  // so its model thrust reads T / 0.85.
-  pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
+  // so its model thrust reads T / 0.85. Against a reference of equal shares (1 % flight-to-flight
+  // spread of the gap) it is flagged.
+  const pe::MotorReference reference{{0.25, 0.25, 0.25, 0.25}, {0.003, 0.003, 0.003, 0.003}, 5,
+                                     {0.01, 0.01, 0.01, 0.01}};
+  pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {}, reference);
   const pe::MotorHealthVerdict verdict = hover(&health, {3.3, 3.3, 3.3 / 0.85, 3.3});
   ASSERT_TRUE(verdict.judged);
   EXPECT_EQ(verdict.flagged_channel, 3);
-  EXPECT_NEAR(verdict.motors[2].thrust_gap, 0.15, 0.01);
-  EXPECT_LT(verdict.motors[2].thrust_gap_std, 0.01);
-  EXPECT_NEAR(std::hypot(verdict.cg_offset_x_m, verdict.cg_offset_y_m), 0.0, 0.002);
+  EXPECT_NEAR(verdict.motors[2].thrust_gap, 1.0 / 0.85 - 1.0, 0.015);
+  EXPECT_LT(verdict.motors[2].thrust_gap_std, 0.02);
+}
+
+TEST(MotorHealth, WithoutAReferenceOnlyAMotorBeyondTheHealthySpreadIsFlagged) {
+  // 15 % is within three times the 6.7 % healthy vehicles show against the ideal balance; 30 % is not.
+  pe::MotorHealth within(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
+  EXPECT_EQ(hover(&within, {3.3, 3.3, 3.3 / 0.85, 3.3}).flagged_channel, 0);
+  pe::MotorHealth beyond(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
+  EXPECT_EQ(hover(&beyond, {3.3, 3.3, 3.3 / 0.7, 3.3}).flagged_channel, 3);
+}
+
+TEST(MotorHealth, RefusesAReferenceOfAnotherMotorCount) {
+  const pe::MotorReference six{{1 / 6.0, 1 / 6.0, 1 / 6.0, 1 / 6.0, 1 / 6.0, 1 / 6.0}, std::vector<double>(6, 0.0), 3,
+                               std::vector<double>(6, 0.01)};
+  try {
+    pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {}, six);
+    FAIL() << "a six-motor reference was taken for a quad";
+  } catch (const pe::FieldError& e) {
+    EXPECT_STREQ(e.what(), "motor_reference.shares: 6 shares for 4 rotors");
+  }
 }
 
 TEST(MotorHealth, ACentreOfGravityOffsetIsReportedNotFlagged) {

@@ -75,6 +75,7 @@ TEST(ParameterDefaults, TemplateHoldsTheNodesDefaults) {
   EXPECT_EQ(number("capability/motor_health/block_s"), k.motor_health.block_s);
   EXPECT_EQ(number("capability/motor_health/window_s"), k.motor_health.window_s);
   EXPECT_EQ(number("capability/motor_health/max_gap"), k.motor_health.max_gap);
+  EXPECT_EQ(number("capability/motor_health/healthy_gap_std"), k.motor_health.healthy_gap_std);
   EXPECT_EQ(text("esc_telemetry_topic"), node.esc_telemetry_topic);
   EXPECT_EQ(text("esc_status_topic"), node.esc_status_topic);
   const pe::ModelCheckConfig& m = node.esc_telemetry;

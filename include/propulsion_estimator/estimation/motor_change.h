@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "propulsion_estimator/model/motor_reference.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 
 namespace propulsion_estimator {
@@ -20,21 +21,6 @@ namespace propulsion_estimator {
 /// w_k = s_k (sigma_k - sum_i s_i sigma_i) is taken as a nuisance and fitted beside e. A change common
 /// to all rotors leaves the shares as they were and is never put on one; the diagonal partner of a
 /// weak rotor moves the roll and pitch balance the other way (e < 0) and is never a suspect.
-
-/// A vehicle's healthy fingerprint: each motor's mean share of the summed model thrust in steady
-/// hover over flights known to be healthy, and each share's flight-to-flight spread.
-struct MotorReference {
-  std::vector<double> shares;      ///< per motor in rotor order, summing to 1
-  std::vector<double> share_std;   ///< per motor, the standard deviation from flight to flight
-  int flights = 0;                 ///< healthy flights it was learned from (at least 3)
-  /// The weak-rotor gaps each healthy flight shows against the others' mean, per motor: how far a
-  /// single flight's gap scatters on a healthy vehicle (its standard deviation, a share of thrust).
-  std::vector<double> gap_std;
-
-  /// FieldError naming `motor_reference.<field>`: shares that do not sum to 1 or are not positive,
-  /// lists of different lengths, a negative spread, fewer than 3 flights.
-  void validate() const;
-};
 
 /// Each motor's mean model thrust over one unit of steady hover (a flight, a stretch), N, in rotor
 /// order.

@@ -6,7 +6,7 @@
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/field_error.h"
-#include "propulsion_estimator/estimation/motor_reference.h"
+#include "propulsion_estimator/estimation/motor_change.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 
 namespace pe = propulsion_estimator;
@@ -66,14 +66,14 @@ Quad damaged(Quad quad, int weak, double factor, double torque = 1.0) {
 
 }  // namespace
 
-TEST(MotorReference, SharesSumToOneAndTheIdealOfASymmetricQuadIsAQuarterEach) {
+TEST(MotorChange, SharesSumToOneAndTheIdealOfASymmetricQuadIsAQuarterEach) {
   const std::vector<double> shares = pe::thrustShares({1.0, 2.0, 3.0, 4.0});
   EXPECT_DOUBLE_EQ(shares[3], 0.4);
   EXPECT_TRUE(pe::thrustShares({0.0, 0.0, 0.0, 0.0}).empty());
   for (double share : pe::idealShares(pe::Vehicle::quadX(0.2))) EXPECT_NEAR(share, 0.25, 1e-12);
 }
 
-TEST(MotorReference, ARotorWeakAloneIsPutOnItsOwnMotorAgainstTheVehiclesReference) {
+TEST(MotorChange, ARotorWeakAloneIsPutOnItsOwnMotorAgainstTheVehiclesReference) {
   // A propeller at 92 % of its thrust, on each motor of five vehicles whose parts differ: six
   // healthy flights teach the reference, three damaged flights are judged.
   for (unsigned seed = 1; seed <= 5; ++seed) {
@@ -91,7 +91,7 @@ TEST(MotorReference, ARotorWeakAloneIsPutOnItsOwnMotorAgainstTheVehiclesReferenc
   }
 }
 
-TEST(MotorReference, NoHealthyFlightAndNoChangeCommonToAllRotorsNamesAMotor) {
+TEST(MotorChange, NoHealthyFlightAndNoChangeCommonToAllRotorsNamesAMotor) {
   for (unsigned seed = 1; seed <= 5; ++seed) {
     const Quad quad(seed);
     std::mt19937 random(200 + seed);
@@ -106,7 +106,7 @@ TEST(MotorReference, NoHealthyFlightAndNoChangeCommonToAllRotorsNamesAMotor) {
   }
 }
 
-TEST(MotorReference, TheDiagonalPartnerOfAWeakRotorReadsStrongerNotWeaker) {
+TEST(MotorChange, TheDiagonalPartnerOfAWeakRotorReadsStrongerNotWeaker) {
   const Quad quad(7);
   std::mt19937 random(7);
   const pe::MotorReference reference = pe::learnMotorReference(quad.vehicle, quad.flights(6, random));
@@ -117,7 +117,7 @@ TEST(MotorReference, TheDiagonalPartnerOfAWeakRotorReadsStrongerNotWeaker) {
   EXPECT_LT(verdict.motors[1].gap, 0.0);
 }
 
-TEST(MotorReference, WithoutAReferenceAHealthyVehicleIsNeverASuspectButAGrossFaultIs) {
+TEST(MotorChange, WithoutAReferenceAHealthyVehicleIsNeverASuspectButAGrossFaultIs) {
   pe::MotorChangeRule rule;
   rule.healthy_gap_std = 0.067;
   for (unsigned seed = 1; seed <= 20; ++seed) {
@@ -129,7 +129,7 @@ TEST(MotorReference, WithoutAReferenceAHealthyVehicleIsNeverASuspectButAGrossFau
   }
 }
 
-TEST(MotorReference, TheMotorGapThresholdHalvedOrDoubledChangesTheVerdicts) {
+TEST(MotorChange, TheMotorGapThresholdHalvedOrDoubledChangesTheVerdicts) {
   // Near the threshold: a rotor at 93 % (gap 7.5 %, above min_gap 5 %, below 10 %) is found at
   // the default rule and lost when min_gap doubles; healthy vehicles (1 mm of centre-of-gravity
   // wander from flight to flight) raise at most one alarm in 40 at the default rule and three or
@@ -162,7 +162,7 @@ TEST(MotorReference, TheMotorGapThresholdHalvedOrDoubledChangesTheVerdicts) {
   EXPECT_GE(alarms(half_gap), 3);
 }
 
-TEST(MotorReference, WithoutGeometryOrWithTooFewFlightsItSaysWhy) {
+TEST(MotorChange, WithoutGeometryOrWithTooFewFlightsItSaysWhy) {
   const Quad quad(1);
   std::mt19937 random(1);
   const pe::MotorReference reference = pe::learnMotorReference(quad.vehicle, quad.flights(3, random));

@@ -1,0 +1,25 @@
+#pragma once
+
+#include <vector>
+
+namespace propulsion_estimator {
+
+/// Healthy flights a MotorReference needs at the least.
+constexpr int kMinReferenceFlights = 3;
+
+/// A vehicle's healthy fingerprint: each motor's mean share of the summed model thrust in steady
+/// hover over flights known to be healthy, and each share's flight-to-flight spread.
+struct MotorReference {
+  std::vector<double> shares;      ///< per motor in rotor order, summing to 1
+  std::vector<double> share_std;   ///< per motor, the standard deviation from flight to flight
+  int flights = 0;                 ///< healthy flights it was learned from (at least 3)
+  /// The weak-rotor gaps each healthy flight shows against the others' mean, per motor: how far a
+  /// single flight's gap scatters on a healthy vehicle (its standard deviation, a share of thrust).
+  std::vector<double> gap_std;
+
+  /// FieldError naming `motor_reference.<field>`: shares that do not sum to 1 or are not positive,
+  /// lists of different lengths, a negative spread, fewer than 3 flights.
+  void validate() const;
+};
+
+}  // namespace propulsion_estimator

@@ -1,0 +1,32 @@
+#include "propulsion_estimator/model/motor_reference.h"
+
+#include <cmath>
+#include <string>
+
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
+
+namespace propulsion_estimator {
+void MotorReference::validate() const {
+  if (flights < kMinReferenceFlights) {
+    throw FieldError("motor_reference.flights",
+                     std::to_string(flights) + " is fewer than the " + std::to_string(kMinReferenceFlights) + " needed");
+  }
+  if (share_std.size() != shares.size() || gap_std.size() != shares.size()) {
+    throw FieldError("motor_reference.share_std", std::to_string(share_std.size()) + " and gap_std " +
+                                                      std::to_string(gap_std.size()) + " values for " +
+                                                      std::to_string(shares.size()) + " shares");
+  }
+  double sum = 0.0;
+  for (std::size_t k = 0; k < shares.size(); ++k) {
+    requireWithin("motor_reference.shares[" + std::to_string(k) + "]", shares[k], 1e-6, 1.0);
+    requireWithin("motor_reference.share_std[" + std::to_string(k) + "]", share_std[k], 0.0, 1.0);
+    requireWithin("motor_reference.gap_std[" + std::to_string(k) + "]", gap_std[k], 0.0, 1.0);
+    sum += shares[k];
+  }
+  if (std::abs(sum - 1.0) > 1e-3) {
+    throw FieldError("motor_reference.shares", "they sum to " + formatPrintf("%.4f", sum) + ", not 1");
+  }
+}
+
+}  // namespace propulsion_estimator

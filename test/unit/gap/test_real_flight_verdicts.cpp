@@ -1,0 +1,127 @@
+// The motor verdicts on real flights: two Crazyflie 2.1 of the public CrazyPAD dataset
+// (test/data/crazypad/README.md), healthy and with motor 3's propeller shortened, judged with the
+// model fit_surfaces made from Bitcraze's public PWM-to-thrust measurement of the same build
+// (test/data/bitcraze_pwm_to_thrust). Real rotors differ: on every healthy flight the diagonal
+// pair M1 + M3 carries 3 to 6 points more of the thrust than M2 + M4. The healthy flights' spread
+// without a reference (motor_healthy_gap_std) was set on vehicle E8; E9's flights took no part in
+// choosing anything.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "propulsion_estimator/gap/diagnosis.h"
+#include "propulsion_estimator/gap/motor_balance.h"
+#include "propulsion_estimator/gap/motor_health_replay.h"
+#include "propulsion_estimator/logs/crazyflie_flight_reader.h"
+#include "propulsion_estimator/logs/flight_manifest.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/vehicle/vehicle_urdf.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+namespace gap = propulsion_estimator::gap;
+
+namespace {
+
+std::string crazypad(const std::string& file) { return repoPath("test/data/crazypad/" + file); }
+
+// The flights of a manifest in test/data/crazypad, read as diagnose_gap reads them.
+std::vector<pe::Flight> flightsOf(const std::string& manifest_name) {
+  const std::string manifest = crazypad(manifest_name);
+  std::vector<pe::Flight> flights;
+  pe::FlightLogOptions options;
+  options.motors = 4;
+  for (const pe::ManifestEntry& entry : pe::loadFlightManifestEntries(manifest)) {
+    EXPECT_TRUE(entry.refusal.empty()) << entry.refusal;
+    const pe::CrazyflieFlightReader reader(pe::resolveLogPath(manifest, entry.flight.log));
+    flights.push_back({entry.flight.log, reader.read(options), entry.flight.segments});
+  }
+  return flights;
+}
+
+std::vector<pe::Flight> subset(const std::vector<pe::Flight>& flights, std::size_t first, std::size_t last) {
+  return std::vector<pe::Flight>(flights.begin() + first, flights.begin() + last);
+}
+
+class CrazyPadFlights : public ::testing::Test {
+ protected:
+  CrazyPadFlights()
+      : model_(pe::loadModelFile(crazypad("crazyflie21_model.yaml"))),
+        vehicle_(pe::loadVehicleUrdf(crazypad("crazyflie21.urdf"))) {}
+
+  gap::Diagnosis diagnose(const std::vector<pe::Flight>& flights, const std::vector<pe::Flight>& reference = {}) const {
+    gap::DiagnosisConfig config;
+    config.rotor_diameter_m = 0.045;
+    if (!reference.empty()) config.motor_reference = gap::learnReference(model_, vehicle_, reference, config);
+    return gap::diagnoseGap(model_, vehicle_, flights, config);
+  }
+
+  // The onboard motor-health check replayed on each flight, with the reference in the model or
+  // without: the channels it flagged on any flight, and whether it ever judged.
+  std::pair<std::vector<int>, int> onboard(const std::vector<pe::Flight>& flights,
+                                           const std::vector<pe::Flight>& reference = {}) const {
+    pe::PropulsionModel model = model_;
+    if (!reference.empty()) model.setMotorReference(gap::learnReference(model_, vehicle_, reference, {}));
+    std::vector<int> flagged;
+    int judgements = 0;
+    for (const pe::Flight& flight : flights) {
+      const gap::MotorHealthReplay replay = gap::replayMotorHealth(model, vehicle_, flight.streams);
+      judgements += replay.judgements;
+      for (int channel : replay.flagged_channels) flagged.push_back(channel);
+    }
+    return {flagged, judgements};
+  }
+
+  pe::PropulsionModel model_;
+  pe::Vehicle vehicle_;
+};
+
+}  // namespace
+
+TEST_F(CrazyPadFlights, HealthyFlightsOfEachVehicleGetNoSuspectWithoutAReference) {
+  for (const char* manifest : {"healthy_E8.manifest.yaml", "healthy_E9.manifest.yaml"}) {
+    const gap::Diagnosis diagnosis = diagnose(flightsOf(manifest));
+    EXPECT_EQ(diagnosis.motors.basis, "ideal") << manifest;
+    EXPECT_FALSE(diagnosis.motors.suspect_channel) << manifest << ": channel " << *diagnosis.motors.suspect_channel;
+  }
+}
+
+TEST_F(CrazyPadFlights, HealthyFlightsGetNoSuspectAgainstTheVehiclesOwnEarlierFlights) {
+  // The first healthy flights teach the reference; the later ones are judged against it.
+  const std::vector<pe::Flight> e8 = flightsOf("healthy_E8.manifest.yaml");
+  const std::vector<pe::Flight> e9 = flightsOf("healthy_E9.manifest.yaml");
+  for (const auto& [reference, judged] : {std::make_pair(subset(e8, 0, 4), subset(e8, 4, 7)),
+                                          std::make_pair(subset(e9, 0, 3), subset(e9, 3, 5))}) {
+    const gap::Diagnosis diagnosis = diagnose(judged, reference);
+    EXPECT_EQ(diagnosis.motors.basis, "reference");
+    EXPECT_FALSE(diagnosis.motors.suspect_channel) << judged.front().name << ": channel "
+                                                   << *diagnosis.motors.suspect_channel;
+  }
+}
+
+TEST_F(CrazyPadFlights, AShortenedPropellerIsPutOnItsOwnMotorAgainstTheVehiclesHealthyFlights) {
+  for (const auto& [healthy, cut] : {std::make_pair("healthy_E8.manifest.yaml", "cut_M3_3mm_E8.manifest.yaml"),
+                                     std::make_pair("healthy_E9.manifest.yaml", "cut_M3_3mm_E9.manifest.yaml")}) {
+    const std::vector<pe::Flight> damaged = flightsOf(cut);
+    const gap::Diagnosis against = diagnose(damaged, flightsOf(healthy));
+    ASSERT_TRUE(against.motors.suspect_channel) << cut;
+    EXPECT_EQ(*against.motors.suspect_channel, 3) << cut;
+    // Without the reference, the same change lies within the spread healthy vehicles show.
+    EXPECT_FALSE(diagnose(damaged).motors.suspect_channel) << cut;
+  }
+}
+
+TEST_F(CrazyPadFlights, TheOnboardCheckNeverJudgesTheseShortHoversAndFlagsNothing) {
+  // The node judges windows of 10 s of steady hover (capability/motor_health/window_s); these
+  // flights hover 3 to 5 s at a time between a take-off and a transit, so it never judges them and
+  // flags nothing, with or without the reference: the offline diagnosis pools the flights instead.
+  const std::vector<pe::Flight> healthy = flightsOf("healthy_E9.manifest.yaml");
+  for (const char* manifest : {"healthy_E8.manifest.yaml", "cut_M3_3mm_E9.manifest.yaml"}) {
+    const std::vector<pe::Flight> flights = flightsOf(manifest);
+    for (const auto& [flagged, judgements] : {onboard(flights), onboard(flights, healthy)}) {
+      EXPECT_TRUE(flagged.empty()) << manifest;
+      EXPECT_EQ(judgements, 0) << manifest;
+    }
+  }
+}
