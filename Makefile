@@ -86,22 +86,22 @@ fuzz:
 # The gap diagnosis validated on simulated flights whose effect is withheld from it: 44 random
 # cases, each drawing its hardware and vehicle from the randomized family, on a fresh seed each run
 # (printed; SEED=N repeats one); about seven minutes on 2 cores; writes the seed's section of
-# VALIDATION.md. validate-gap-fixed runs the old suite (seed 2026, the thesis hardware). CASES=N for
+# docs/VALIDATION.md. validate-gap-fixed runs the old suite (seed 2026, the thesis hardware). CASES=N for
 # another count.
 CASES ?= 44
 SEED ?=
 validate-gap: build
 	$(SETUP) && nice python3 scripts/validate_gap.py --family --cases $(CASES) --jobs 2 $(if $(SEED),--seed $(SEED)) \
 		--bin $(WS)/install/propulsion_estimator/lib/propulsion_estimator --repo $(CURDIR) \
-		--work $(WS)/validate_gap_family --markdown VALIDATION.md --compare-rpm-view
+		--work $(WS)/validate_gap_family --markdown docs/VALIDATION.md --compare-rpm-view
 validate-gap-fixed: build
 	$(SETUP) && nice python3 scripts/validate_gap.py --cases $(CASES) --jobs 2 --seed 2026 \
 		--bin $(WS)/install/propulsion_estimator/lib/propulsion_estimator --repo $(CURDIR) \
-		--work $(WS)/validate_gap --markdown VALIDATION.md
+		--work $(WS)/validate_gap --markdown docs/VALIDATION.md
 
 # Every benchmark (google benchmark, the node end to end against two transport floors and a rospy
 # peer, callgrind's instructions per message, diagnose_gap on an hour of flight), then rewrites
-# BENCHMARKS.md with the figures, the machine, the date and the commands: 12.5 minutes after the
+# docs/BENCHMARKS.md with the figures, the machine, the date and the commands: 12.5 minutes after the
 # build (measured 2026-11-23 on the quiet 2-core VM). QUICK=1 tries it in about 3 minutes (one round
 # of 10 s per system, 500 messages under callgrind, no diagnose_gap) and writes
 # .ws/bench/BENCHMARKS.md instead; BENCH_DURATION_S=N sets the end-to-end load per system and round
@@ -134,12 +134,12 @@ arm64-build:
 arm64: arm64-build
 	cd $(ARM64) && ctest -j 2 --output-on-failure
 
-# The core per-message benchmark, arm64 emulated: rewrites BENCHMARKS.arm64.md, which make bench
-# pastes into BENCHMARKS.md.
+# The core per-message benchmark, arm64 emulated: rewrites docs/BENCHMARKS.arm64.md, which make bench
+# pastes into docs/BENCHMARKS.md.
 bench-arm64: arm64-build
 	$(QEMU_ARM64) $(ARM64)/bench_estimator --benchmark_out=$(ARM64)/bench_estimator.json \
 		--benchmark_out_format=json
-	python3 scripts/write_arm64_benchmarks.py --json $(ARM64)/bench_estimator.json --out BENCHMARKS.arm64.md \
+	python3 scripts/write_arm64_benchmarks.py --json $(ARM64)/bench_estimator.json --out docs/BENCHMARKS.arm64.md \
 		--command "make bench-arm64"
 
 clean:

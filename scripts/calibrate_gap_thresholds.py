@@ -8,7 +8,7 @@ every first-round candidate whose improvement is significant, the largest fall o
 held-out RMSE (percentage points of the truth) and of its mean square (fraction), and of the RPM
 view's where the flights had ESC telemetry (the same thresholds apply to it): what a mismatch
 of model family alone gives. An effect must do better to be named; the chosen values go into
-DiagnosisConfig (include/propulsion_estimator/gap/diagnosis.h) and VALIDATION.md says which seeds.
+DiagnosisConfig (include/propulsion_estimator/gap/diagnosis.h) and docs/VALIDATION.md says which seeds.
 Run it on development seeds only.
 
 Usage: calibrate_gap_thresholds.py WORK_DIR [WORK_DIR ...] [--significance P]

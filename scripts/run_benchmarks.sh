@@ -1,5 +1,5 @@
 #!/bin/bash
-# make bench: runs every benchmark and rewrites BENCHMARKS.md from their figures
+# make bench: runs every benchmark and rewrites docs/BENCHMARKS.md from their figures
 # (scripts/write_benchmarks.py), with the machine, the date and the command of each section.
 #   1. google benchmark: bench_estimator, bench_rcout_decode, bench_fit, bench_simulate (JSON);
 #   2. end to end (scripts/bench_node.py): RCOut at 400 Hz and the battery at 1 Hz for
@@ -11,7 +11,7 @@
 #   4. scripts/bench_diagnose_gap.sh: diagnose_gap on an hour of flight (simulated once, cached).
 #   5. scripts/bench_diagnose_ulog.sh: diagnose_gap on an hour of PX4 ULog (simulated once, cached).
 # QUICK=1 (make bench QUICK=1) tries the pipeline: one round of 10 s per system, 500 messages under callgrind, no
-# diagnose_gap, and the document goes to the work directory instead of BENCHMARKS.md.
+# diagnose_gap, and the document goes to the work directory instead of docs/BENCHMARKS.md.
 # Usage, after `make build` and `source .ws/install/setup.sh`: scripts/run_benchmarks.sh [WORK_DIR]
 set -euo pipefail
 export PATH=/usr/bin:$PATH
@@ -30,7 +30,7 @@ else
   duration_s="${BENCH_DURATION_S:-60}"
   rounds="${BENCH_ROUNDS:-2}"
   callgrind_messages="${BENCH_CALLGRIND_MESSAGES:-2000}"
-  document=BENCHMARKS.md
+  document=docs/BENCHMARKS.md
 fi
 for program in bench_estimator bench_rcout_decode bench_fit bench_simulate bench_probe bench_floor_node estimator_node; do
   if [ ! -x "$bin/$program" ]; then
@@ -52,10 +52,10 @@ run() {
 }
 date -u +%Y-%m-%dT%H:%M:%SZ >"$work/started_utc.txt"
 cut -d' ' -f1-3 /proc/loadavg >"$work/load_start.txt"
-# The commit measured (BENCHMARKS.md itself, rewritten at the end, does not count as a change).
+# The commit measured (docs/BENCHMARKS.md itself, rewritten at the end, does not count as a change).
 {
   git rev-parse --short HEAD 2>/dev/null || printf unknown
-  if git status --porcelain -- . ':!BENCHMARKS.md' 2>/dev/null | grep -q .; then printf ' with uncommitted changes'; fi
+  if git status --porcelain -- . ':!docs/BENCHMARKS.md' 2>/dev/null | grep -q .; then printf ' with uncommitted changes'; fi
 } | tr -d '\n' >"$work/commit.txt"
 
 for bench in bench_estimator bench_rcout_decode bench_fit bench_simulate; do
@@ -84,5 +84,5 @@ for setting in BENCH_DURATION_S BENCH_ROUNDS BENCH_CALLGRIND_MESSAGES; do
   [ -n "${!setting:-}" ] && make_command="$make_command $setting=${!setting}"
 done
 python3 scripts/write_benchmarks.py --results "$work" --template scripts/benchmarks_template.md \
-  --arm64 BENCHMARKS.arm64.md --out "$document" --make-command "$make_command"
+  --arm64 docs/BENCHMARKS.arm64.md --out "$document" --make-command "$make_command"
 echo "make bench: $(cat "$work/runtime_s.txt") s; wrote $document"

@@ -13,7 +13,7 @@ Usage: validate_gap.py --bin DIR --repo DIR --work DIR [--cases N] [--quick] [--
                        [--markdown FILE] [--junit FILE] [--jobs N] [--reuse] [--compare-rpm-view]
   --bin      folder holding simulate, fit_surfaces and diagnose_gap
   --quick    one case of each kind the CI needs (null, thrust loss, supply resistance, weak propeller)
-  --markdown write the table (VALIDATION.md)
+  --markdown write the table (docs/VALIDATION.md)
   --reuse    diagnose the cases already simulated in --work again (after a change to the diagnosis);
              cases not simulated there count as errors
   --compare-rpm-view  diagnose each case also without ESC telemetry's RPM view (--no-rpm-view) and

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""make bench-arm64: writes BENCHMARKS.arm64.md, the fragment `make bench` pastes into BENCHMARKS.md
+"""make bench-arm64: writes docs/BENCHMARKS.arm64.md, the fragment `make bench` pastes into docs/BENCHMARKS.md
 under "arm64, emulated", from the google-benchmark JSON of bench_estimator cross-built for arm64
 and run under qemu-user.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes BENCHMARKS.md (make bench) from the template and the figures scripts/run_benchmarks.sh left
+"""Writes docs/BENCHMARKS.md (make bench) from the template and the figures scripts/run_benchmarks.sh left
 in its results directory: the google benchmark JSON files (bench_<name>.json), the end-to-end and
 callgrind JSON of scripts/bench_node.py (e2e.json, callgrind.json), scripts/bench_diagnose_gap.sh's
 diagnose_gap.json and scripts/bench_diagnose_ulog.sh's diagnose_ulog.json, the commands run (commands.tsv: section, tab, command), the start date, the load
@@ -8,7 +8,7 @@ commit.txt, runtime_s.txt).
 
 The template's placeholders are {{key}}; an unknown key is an error, a part that was not run
 (make bench QUICK=1 skips diagnose_gap) is written as not measured. The arm64 section is the
-fragment --arm64 (BENCHMARKS.arm64.md) when that file exists.
+fragment --arm64 (docs/BENCHMARKS.arm64.md) when that file exists.
 
 Usage: scripts/write_benchmarks.py --results DIR --template FILE --arm64 FILE --out FILE [--make-command TEXT]
 """
