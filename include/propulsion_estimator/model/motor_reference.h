@@ -17,7 +17,7 @@ struct MotorReference {
   /// single flight's gap scatters on a healthy vehicle (its standard deviation, a share of thrust).
   std::vector<double> gap_std;
 
-  /// FieldError naming `motor_reference.<field>`: shares that do not sum to 1 or are not positive,
+  /// FieldError naming the field under motor_reference: shares that do not sum to 1 or are not positive,
   /// lists of different lengths, a negative spread, fewer than 3 flights.
   void validate() const;
 };
