@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 
@@ -71,6 +72,36 @@ std::vector<Source> sourcesOf(const FlightBagTopics& topics) {
           {Signal::kEscStatus, &topics.esc_status, kEscStatusDataType, kEscStatusMd5Sum, false}};
 }
 
+// Whether a serialized sensor_msgs/BatteryState's float32[] arrays (cell_voltage,
+// cell_temperature) hold no more elements than the record's bytes: roscpp's deserializer resizes an
+// array to its declared length before it reads a byte of it, so a damaged length of a few billion
+// would allocate gigabytes. "" when they fit or the record ends before them (the deserializer then
+// refuses it); else the one line naming the field, the count and the bytes left.
+std::string batteryArraysProblem(const std::uint8_t* data, std::uint32_t size) {
+  std::uint64_t at = 0;
+  const auto next = [&](std::uint64_t bytes) { return (at += bytes) <= size; };
+  const auto count = [&](std::uint32_t* value) {
+    if (at + 4 > size) return false;
+    std::memcpy(value, data + at, 4);
+    at += 4;
+    return true;
+  };
+  std::uint32_t frame_id_bytes = 0;
+  // Header: seq, stamp (two uint32), frame_id; then seven float32 and four uint8 or bool.
+  if (!next(12) || !count(&frame_id_bytes) || !next(frame_id_bytes) || !next(7 * 4 + 4)) return "";
+  for (const char* field : {"cell_voltage", "cell_temperature"}) {
+    std::uint32_t elements = 0;
+    if (!count(&elements)) return "";
+    const std::uint64_t left = size - at;
+    if (std::uint64_t{elements} * 4 > left) {
+      return std::string("malformed sensor_msgs/BatteryState: ") + field + " declares " + std::to_string(elements) +
+             " elements, the " + std::to_string(left) + " bytes left hold " + std::to_string(left / 4);
+    }
+    next(std::uint64_t{elements} * 4);
+  }
+  return "";
+}
+
 // The messages of one pass, decoded into storage reused from message to message: the streams'
 // vectors grow, nothing else is allocated per message (a frame_id longer than the small-string
 // buffer aside).
@@ -86,6 +117,8 @@ class StreamBuilder {
       case Signal::kRcOut:
         return addRcOut(time_s, data, size, error);
       case Signal::kBattery:
+        *error = batteryArraysProblem(data, size);
+        if (!error->empty()) return false;
         ros::serialization::deserialize(stream, battery_);
         streams_->battery.push_back({time_s, battery_.voltage, battery_.current});
         return true;

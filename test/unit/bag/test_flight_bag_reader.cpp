@@ -8,6 +8,7 @@
 #include <std_msgs/Float64.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -359,4 +360,29 @@ TEST_F(FlightBagReader, RefusesAMalformedMessage) {
   }
   EXPECT_EQ(refusal(file("short_battery.bag")),
             file("short_battery.bag") + ": /mavros/battery: at 1.500 s: malformed sensor_msgs/BatteryState: Buffer Overrun");
+}
+
+TEST_F(FlightBagReader, RefusesABatteryArrayLongerThanItsRecordBeforeAllocatingIt) {
+  // A damaged cell_voltage length of 2^29: roscpp would resize the array to 2 GB before reading it.
+  sensor_msgs::BatteryState battery;
+  battery.header.frame_id = "bat";
+  battery.voltage = 12.0f;
+  std::vector<std::uint8_t> bytes(ros::serialization::serializationLength(battery));
+  ros::serialization::OStream out(bytes.data(), bytes.size());
+  ros::serialization::serialize(out, battery);
+  const std::uint32_t huge = 1u << 29;
+  std::memcpy(bytes.data() + 12 + 4 + 3 + 7 * 4 + 4, &huge, 4);
+  {
+    rosbag::Bag bag(file("huge_cells.bag"), rosbag::bagmode::Write);
+    bag.write(pe::kRcOutTopic, kStart, pe::encodeRcOut(rcOutMessage({1500, 1500, 1500, 1500})));
+    topic_tools::ShapeShifter shifter;
+    shifter.morph(ros::message_traits::MD5Sum<sensor_msgs::BatteryState>::value(), "sensor_msgs/BatteryState",
+                  ros::message_traits::Definition<sensor_msgs::BatteryState>::value(), "0");
+    ros::serialization::IStream stream(bytes.data(), bytes.size());
+    shifter.read(stream);
+    bag.write(pe::kBatteryTopic, kStart + ros::Duration(0.5), shifter);
+  }
+  EXPECT_EQ(refusal(file("huge_cells.bag")),
+            file("huge_cells.bag") + ": /mavros/battery: at 0.500 s: malformed sensor_msgs/BatteryState: cell_voltage "
+                                     "declares 536870912 elements, the 12 bytes left hold 3");
 }
