@@ -156,8 +156,11 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
     const std::unique_ptr<FlightLogReader> reader =
         flightLogFormats().open(resolveLogPath(manifest, entry.flight.log));
     const std::vector<ManifestSegment>& segments = entry.flight.segments;
+    // The log's end as printed (to the millisecond): a segment that ends there is the log's span
+    // as its user reads it.
+    const double printed_end_s = reader->durationS() + 0.0005;
     for (std::size_t s = 0; s < segments.size(); ++s) {
-      if (segments[s].end_s > reader->durationS()) {
+      if (segments[s].end_s > printed_end_s) {
         return {std::nullopt, at + ".segments[" + std::to_string(s) + "]: " + formatNumber(segments[s].start_s) +
                                   ".." + formatNumber(segments[s].end_s) + " s is outside " + reader->path() +
                                   " (0.." + formatPrintf("%.3f", reader->durationS()) + " s)",

@@ -118,6 +118,26 @@ TEST_F(DiagnoseGapTool, ReadsEveryFlightInManifestOrderWhateverTheJobs) {
   EXPECT_EQ(two.out.find("note:"), std::string::npos) << two.out;
 }
 
+TEST_F(DiagnoseGapTool, AcceptsASegmentThatEndsWhereTheLogEndsAsPrinted) {
+  // The log ends at 9.9996 s, printed 10.000 s: a segment to 10 s is the log's span as the user
+  // reads it; one to 10.002 s is not.
+  writeFlightBag(file("a.bag"), 9.9);
+  {
+    rosbag::Bag bag(file("a.bag"), rosbag::bagmode::Append);
+    pe::RcOutMessage rc_out;
+    rc_out.channels = {1600, 1610, 1620, 1630, 900, 900, 0, 0};
+    bag.write(pe::kRcOutTopic, ros::Time(1600000000) + ros::Duration(9.9996), pe::encodeRcOut(rc_out));
+  }
+  writeManifest("m.yaml", "flights:\n  - bag: a.bag\n    segments:\n      - {start: 0, end: 10, mass_kg: 1.315}\n");
+  const ToolRun whole = diagnose("m.yaml");
+  EXPECT_EQ(whole.err.find("is outside"), std::string::npos) << whole.err;
+  writeManifest("m.yaml", "flights:\n  - bag: a.bag\n    segments:\n      - {start: 0, end: 10.002, mass_kg: 1.315}\n");
+  const ToolRun beyond = diagnose("m.yaml");
+  EXPECT_EQ(beyond.err, "diagnose_gap: " + file("m.yaml") + ": flights[0].segments[0]: 0..10.002 s is outside " +
+                            file("a.bag") + " (0..10.000 s)\n"
+                            "diagnose_gap: 1 of 1 flights refused\n");
+}
+
 TEST_F(DiagnoseGapTool, GoesOnWithTheFlightsItCanUse) {
   writeFlightBag(file("a.bag"), 10.0);
   writeFlightBag(file("no_battery.bag"), 10.0, "/power");
