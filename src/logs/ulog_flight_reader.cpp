@@ -91,14 +91,17 @@ class SignalReader {
       frame.time_s = time(message);
       for (int k = 0; k < motors; ++k) {
         const double output = value(message, outputs[k]);
-        frame.pwm_us[k] = pwm ? output
-                              : options.pwm_min_us + (std::isnan(output) ? 0.0 : std::clamp(output, 0.0, 1.0)) *
-                                                         (options.pwm_max_us - options.pwm_min_us);
+        // PX4 logs a stopped motor's control as NaN: read as 0 us, an RCOut channel not driven
+        // (the estimator takes it as disarmed), not as the range's bottom (idling).
+        frame.pwm_us[k] = pwm                  ? output
+                          : std::isnan(output) ? 0.0
+                                               : options.pwm_min_us + std::clamp(output, 0.0, 1.0) *
+                                                                          (options.pwm_max_us - options.pwm_min_us);
       }
     });
     if (streams_->rc_out.empty()) throw DataError(path_ + ": rc_out: no " + topic + " messages (a required signal)");
     note("rc_out: " + topic + "[0]." + (pwm ? "output" : "control") + "[0.." + std::to_string(motors - 1) + "]" +
-         (pwm ? " (us)" : " (0..1 mapped onto the PWM range given)"));
+         (pwm ? " (us)" : " (0..1 mapped onto the PWM range given; NaN, a stopped motor, as 0 us)"));
   }
 
   void battery() {

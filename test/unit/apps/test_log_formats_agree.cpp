@@ -96,9 +96,9 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
   EXPECT_GT(replays[0].judgements, 0);
   EXPECT_EQ(replays[1].judgements, replays[0].judgements);
   EXPECT_EQ(replays[1].verdicts, replays[0].verdicts);
-  // The newer layout logs stopped motors as NaN, read as the bottom of the PWM range: the check
-  // also judges the idle on the ground, and names nothing there either.
-  EXPECT_GE(replays[3].judgements, replays[0].judgements);
+  // The newer layout logs stopped motors as NaN, read as not driven (0 us) as the bag's disarmed
+  // outputs are: the check judges what it judges on the bag.
+  EXPECT_EQ(replays[3].judgements, replays[0].judgements);
   EXPECT_EQ(replays[3].verdicts, replays[0].verdicts);
   EXPECT_FALSE(replays[2].telemetry);
   ASSERT_EQ(named(bag).size(), 1u);

@@ -76,7 +76,10 @@ TEST(UlogReader, ReadsTheNewerLayoutByFieldNames) {
   const pe::FlightStreams streams = reader.read(o);
   expectRoundTrip(streams, sim, 1e-3);
   expectEscRoundTrip(streams, sim);
-  EXPECT_EQ(streams.notes.front(), "rc_out: actuator_motors[0].control[0..3] (0..1 mapped onto the PWM range given)");
+  EXPECT_EQ(streams.notes.front(), "rc_out: actuator_motors[0].control[0..3] (0..1 mapped onto the PWM range given; "
+                                   "NaN, a stopped motor, as 0 us)");
+  // The simulated vehicle stands disarmed before take-off: PX4 logs its motors NaN, read as not driven.
+  EXPECT_EQ(streams.rc_out.front().pwm_us[0], 0.0);
   // Up to its twelve controls are read.
   o.motors = 8;
   EXPECT_NO_THROW(reader.read(o));

@@ -70,8 +70,9 @@ inline void expectRoundTrip(const propulsion_estimator::FlightStreams& read, con
   for (std::size_t i = 0; i < sim.rc_out.size(); i += 7) {
     EXPECT_NEAR(read.rc_out[i].time_s, sim.rc_out[i].time_s, 1e-6);
     for (int k = 0; k < 4; ++k) {
-      // Stopped motors (below the range) read as its bottom when logged normalised.
-      const double pwm = std::max<double>(sim.rc_out[i].channels[k], pwm_tolerance_us > 0 ? 1100.0 : 0.0);
+      // Stopped motors (below the range, logged NaN when normalised) read as 0 us, not driven.
+      const double sent = sim.rc_out[i].channels[k];
+      const double pwm = pwm_tolerance_us > 0 && sent < 1100.0 ? 0.0 : sent;
       EXPECT_NEAR(read.rc_out[i].pwm_us[k], pwm, pwm_tolerance_us + 1e-3) << i;
     }
   }
