@@ -142,7 +142,7 @@ void readCapabilityConfig(ParamReader& read, CapabilityConfig* config) {
   read.optional("capability/battery/cells", &k.cells);
   read.removed("capability/battery/usable_fraction",
                "removed: the usable charge follows from the open-circuit curve, the internal resistance and the "
-               "hover current (README, Capability); give the loaded cut-off as capability/battery/cell_cutoff_v");
+               "hover current (docs/capability.md); give the loaded cut-off as capability/battery/cell_cutoff_v");
   read.removed("capability/battery/cell_full_v",
                "removed: the full voltage is the open-circuit curve's (capability/battery/chemistry or ocv_table)");
   read.optional("capability/battery/chemistry", &k.chemistry);

@@ -10,7 +10,7 @@
 namespace propulsion_estimator {
 
 /// Everything the estimator needs besides the model and the vehicle. Read from rosparam by the
-/// node (ros/estimator_params.h); defaults are the documented ones (README, "Parameters").
+/// node (ros/estimator_params.h); defaults are the documented ones (docs/node.md, "Parameters").
 struct EstimatorConfig {
   std::vector<int> motor_channels{1, 2, 3, 4};  ///< RCOut channels of the motors, 1-based, in rotor order
   /// PWM at or below this means a disarmed or stopped motor (PX4 sends 900, ArduPilot 1000 or 0;

@@ -7,7 +7,7 @@
 namespace propulsion_estimator {
 
 /// @file
-/// Reader and writer of the model file (one ESC-motor-propeller combination; schema in README).
+/// Reader and writer of the model file (one ESC-motor-propeller combination; schema in docs/model_files.md).
 /// Both throw ConfigError with one line naming the file, the line, the key and the value.
 
 /// Parses and validates a model: structure, types, units, finiteness, the values of every output

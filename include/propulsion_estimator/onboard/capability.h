@@ -25,8 +25,8 @@ const char* percentageModeName(PercentageMode mode);
 /// The mode named `name`; throws FieldError("capability/battery/percentage") for another name.
 PercentageMode percentageModeFromName(const std::string& name);
 
-/// What the capability answers are computed with (node parameters capability/...; README,
-/// "Capability"). The battery is optional as a whole: without capacity and cells the endurance
+/// What the capability answers are computed with (node parameters capability/...;
+/// docs/capability.md). The battery is optional as a whole: without capacity and cells the endurance
 /// and the cut-off figures are NaN with the reason. The user gives what is printed on the pack
 /// (cells, capacity) and the loaded cut-off; the rest is estimated in flight.
 struct CapabilityConfig {

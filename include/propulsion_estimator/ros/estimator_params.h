@@ -12,7 +12,7 @@
 
 namespace propulsion_estimator {
 
-/// Everything estimator_node reads from its private namespace (documented in the README).
+/// Everything estimator_node reads from its private namespace (documented in docs/node.md).
 struct EstimatorNodeParams {
   std::string model;       ///< required: path of the model YAML
   std::string urdf_file;   ///< optional: vehicle description; else robot_description, else no geometry

@@ -260,7 +260,7 @@ void expectEnduranceOnFamilyPacks(const std::vector<std::uint32_t>& seeds, doubl
   std::printf("the truth within the stated 1 / 2 standard deviations: after 20 s %d / %d, after 60 s %d / %d of %d\n",
               within_sigma[0], within_2sigma[0], within_sigma[1], within_2sigma[1], cases[1]);
   // Issue 19's bar (within 15 % after 20 s and 10 % after 60 s, every case) does NOT hold on this
-  // family (README, Capability: the knee of a pack's curve that is not ours, its slow polarisation
+  // family (docs/capability.md: the knee of a pack's curve that is not ours, its slow polarisation
   // and a cold pack's lost capacity). What is asserted is a regression guard on the median error
   // after 60 s, the measured figures printed above.
   std::nth_element(errors[1].begin(), errors[1].begin() + errors[1].size() / 2, errors[1].end());
@@ -416,7 +416,7 @@ TEST(CapabilityFlight, HoverEnduranceWithTheOwnCurveOfWarmNewPacks) {
 
 // With the thesis surfaces, whose thrust at full throttle is 1.8-3.6 % above the simulator's
 // physics: the limit within 5 % of the all-up mass at the limit, not within 10 % of the limit
-// itself (a difference of two masses, so the surfaces' excess is multiplied; README, Capability).
+// itself (a difference of two masses, so the surfaces' excess is multiplied; docs/capability.md).
 TEST(CapabilityFlight, PayloadLimitAgainstTheSimulatedFullThrottleWithSag) {
   expectPayloadLimitAgainstFullThrottleWithSag([](const std::string& effects) { return thesisModel(effects); }, 0.05, true);
 }

@@ -7,7 +7,7 @@
 namespace propulsion_estimator {
 namespace sim {
 
-/// Reader of the simulator's parameter files (config/sim/*.yaml; schema in the README and in
+/// Reader of the simulator's parameter files (config/sim/*.yaml; schema in docs/simulator.md and in
 /// config/sim/e300_dji2212_dji9443.yaml). Every value is required; unknown keys, wrong types and
 /// values outside their physical range are refused with ConfigError "<file>:<line>: <key>: <problem>".
 SimParams parseSimParamsYaml(const std::string& text, const std::string& source);
