@@ -65,7 +65,6 @@ void File::parseHeader() {
   if (bytes_.size() < kHeaderSize || bytes_.compare(0, 7, kMagic, 7) != 0) {
     throw DataError(source_ + ": not a ULog (it does not start with the 16-byte ULog header)");
   }
-  start_us_ = load<std::uint64_t>(bytes_, 8);
   // The flag bits, when present, come first: an incompatible flag this reader does not know
   // refuses the file, as the format asks.
   if (bytes_.size() >= kHeaderSize + kMessageHeaderSize && bytes_[kHeaderSize + 2] == 'B') {

@@ -45,7 +45,7 @@ void BatteryEstimator::add(double time_s, double voltage_v, double current_a) {
   const double sigma2 = config_.voltage_sigma_v * config_.voltage_sigma_v;
   if (!started_) {
     started_ = true;
-    first_s_ = last_s_ = time_s;
+    last_s_ = time_s;
     soc_ = config_.curve.stateOfCharge(voltage_v / config_.cells);
     soc_var_ = kInitialSocStd * kInitialSocStd;
     fit_.reset(Eigen::Vector2d(voltage_v, 0.0), Eigen::Vector2d(kInitialEStdV, kInitialRStdOhm), config_.voltage_sigma_v);
@@ -116,7 +116,6 @@ void BatteryEstimator::publish() {
   estimate_.open_circuit_voltage_v = fit_.parameters()(0);
   estimate_.current_a = last_current_a_;
   estimate_.current_span_a = std::isnan(max_current_a_) ? 0.0 : max_current_a_ - min_current_a_;
-  estimate_.elapsed_s = last_s_ - first_s_;
 }
 
 std::string BatteryEstimator::withheldReason() const {

@@ -49,7 +49,6 @@ class ParamReader {
   std::string resolveName(const std::string& name) const { return nh_.resolveName(name); }
 
   // A parameter another component reads from the same namespace: known, not read here.
-  void readElsewhere(const std::string& name) { known_.insert(name); }
 
   // A misspelt parameter would otherwise leave its default silently in force.
   void refuseUnknown() const {

@@ -39,8 +39,6 @@ class ThrustViews {
 
   /// A per-motor factor on thrust (1 = as modelled), for a motor the balance shows to be off.
   void setMotorScale(int motor, double scale) { motor_scale_[motor] = scale; }
-  /// Whether the model has a current surface (else the current view is NaN).
-  bool hasCurrentSurface() const { return has_current_; }
   /// Whether the model has a thrust_from_rpm (else the RPM view is NaN).
   bool hasRpmThrust() const { return model_.rpmThrust().has_value(); }
   /// As given.

@@ -71,8 +71,6 @@ class File {
   const std::string& source() const { return source_; }  ///< the file, for messages
   /// "" for a file read to its end; else "<source>: at byte <offset>: <message>: <problem>".
   const std::string& refusal() const { return refusal_; }
-  /// The header's timestamp, microseconds since boot.
-  std::uint64_t startUs() const { return start_us_; }
   /// The logger's dropouts ("O"): how many, and their total in ms.
   int dropouts() const { return dropouts_; }
   int dropoutMs() const { return dropout_ms_; }  ///< total time lost to dropouts, ms
@@ -105,7 +103,6 @@ class File {
   std::string bytes_;
   std::string source_;
   std::string refusal_;
-  std::uint64_t start_us_ = 0;
   std::uint64_t appended_offset_ = 0;
   int dropouts_ = 0;
   int dropout_ms_ = 0;

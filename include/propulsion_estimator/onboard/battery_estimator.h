@@ -49,7 +49,6 @@ struct BatteryEstimate {
   double open_circuit_voltage_v = kNaN;  ///< pack; the terminal voltage plus resistance x current
   double current_a = kNaN;               ///< the last current used (measured or given)
   double current_span_a = 0.0;           ///< A; largest minus smallest current seen
-  double elapsed_s = 0.0;                ///< s since the first reading
 };
 
 /// The pack's state of charge and internal resistance from its terminal voltage and current, O(1)
@@ -87,7 +86,7 @@ class BatteryEstimator {
 
   BatteryEstimatorConfig config_;
   bool started_ = false;
-  double first_s_ = 0.0, last_s_ = 0.0;
+  double last_s_ = 0.0;
   double last_current_a_ = kNaN;
   double min_current_a_ = kNaN, max_current_a_ = kNaN;
   // State of charge and its variance.

@@ -22,7 +22,7 @@ std::string readRepoFile(const std::string& relative) {
 // Every name the node's parameter reader knows (src/ros/estimator_params.cpp).
 std::set<std::string> readerParameters() {
   const std::string source = readRepoFile("src/ros/estimator_params.cpp");
-  const std::regex call(R"re(read\.(required|optional|readElsewhere)\("([^"]+)")re");
+  const std::regex call(R"re(read\.(required|optional)\("([^"]+)")re");
   std::set<std::string> names;
   for (auto it = std::sregex_iterator(source.begin(), source.end(), call); it != std::sregex_iterator(); ++it) {
     names.insert((*it)[2].str());
