@@ -63,6 +63,7 @@ void FlightProfile::validate() const {
   requireWithin("vehicle.drag_area_m2", vehicle.drag_area_m2, 0.0, 1.0, " m^2");
   requirePositive("vehicle.battery_initial_soc", vehicle.battery_initial_soc, 1.0, "");
   requireWithin("vehicle.avionics_current_a", vehicle.avionics_current_a, 0.0, 5.0, " A");
+  if (vehicle.parts) vehicle.parts->validate();
   requireWithin("payload_cable.length_m", cable.length_m, 0.1, 10.0, " m");
   if (!cable.attach_point_m.allFinite() || cable.attach_point_m.norm() > 1.0) {
     throw FieldError("payload_cable.attach_point_m", "must be a finite point within 1 m of base_link");

@@ -28,9 +28,25 @@ AutopilotParams readAutopilot(const YamlMap& map) {
   return autopilot;
 }
 
+// Every key is required: a vehicle's parts are its calibration, not a default.
+VehicleParts readParts(const YamlMap& map) {
+  map.allowOnly({"seed", "thrust_coefficient_spread", "torque_coefficient_spread", "kv_spread",
+                 "esc_end_point_spread_us", "spin_torque_ratio"});
+  const int seed = map.integer("seed");
+  if (seed < 0) map.fail("seed", std::to_string(seed) + " is outside 0..1000000000");
+  VehicleParts parts;
+  parts.seed = static_cast<std::uint64_t>(seed);
+  parts.thrust_coefficient_spread = map.number("thrust_coefficient_spread");
+  parts.torque_coefficient_spread = map.number("torque_coefficient_spread");
+  parts.kv_spread = map.number("kv_spread");
+  parts.esc_end_point_spread_us = map.number("esc_end_point_spread_us");
+  parts.spin_torque_ratio = map.number("spin_torque_ratio");
+  return parts;
+}
+
 VehicleSetup readVehicle(const YamlMap& map, const std::string& folder) {
   map.allowOnly({"urdf", "centre_of_mass_offset_m", "landing_gear", "drag_area_m2", "battery_initial_soc",
-                 "avionics_current_a"});
+                 "avionics_current_a", "parts"});
   VehicleSetup vehicle;
   const std::string urdf = map.text("urdf");
   vehicle.urdf_path =
@@ -43,6 +59,7 @@ VehicleSetup readVehicle(const YamlMap& map, const std::string& folder) {
   vehicle.drag_area_m2 = map.number("drag_area_m2");
   vehicle.battery_initial_soc = map.number("battery_initial_soc");
   if (map.has("avionics_current_a")) vehicle.avionics_current_a = map.number("avionics_current_a");
+  if (map.has("parts")) vehicle.parts = readParts(map.map("parts"));
   return vehicle;
 }
 

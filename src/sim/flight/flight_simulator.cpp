@@ -7,12 +7,14 @@
 #include <random>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/simulation_error.h"
 #include "propulsion_estimator/sim/flight/esc_telemetry_sensor.h"
 #include "propulsion_estimator/sim/flight/flight_controller.h"
 #include "propulsion_estimator/sim/physics/gaussian_noise.h"
 #include "propulsion_estimator/sim/physics/lipo_battery.h"
 #include "propulsion_estimator/sim/flight/multirotor_dynamics.h"
+#include "propulsion_estimator/sim/flight/vehicle_parts.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/sim/physics/power_train.h"
 #include "propulsion_estimator/common/units.h"
@@ -170,7 +172,35 @@ struct FlightSetup {
   std::vector<ScheduledSegment> schedule;
   MultirotorDynamics dynamics;
   FlightController controller;
+  std::vector<PropulsionChain> chains;  // one per rotor, in motor order
 };
+
+// Each rotor's chain: the parameter file's, built with the vehicle's own parts when the profile
+// draws them, then the weak propeller's fault. A drawn part the chain refuses names vehicle.parts.
+std::vector<PropulsionChain> makeChains(const SimParams& params, const FlightProfile& profile, const Vehicle& vehicle) {
+  std::vector<MotorParts> parts;
+  if (profile.vehicle.parts) {
+    std::vector<int> spins;
+    for (const Rotor& rotor : vehicle.rotors) spins.push_back(rotor.spin_direction);
+    parts = drawMotorParts(*profile.vehicle.parts, spins);
+  }
+  std::vector<PropulsionChain> chains;
+  for (std::size_t k = 0; k < vehicle.rotors.size(); ++k) {
+    ChainParams chain = parts.empty() ? params.chain : withParts(params.chain, parts[k]);
+    const std::optional<PropellerFault>& weak = profile.faults.weak_propeller;
+    if (weak && weak->motor == static_cast<int>(k) + 1) {
+      chain.propeller = weak->damage == PropellerDamage::kWorn ? wornPropeller(chain.propeller, weak->thrust_factor)
+                                                               : scaledPropeller(chain.propeller, weak->thrust_factor);
+    }
+    try {
+      chains.emplace_back(chain);
+    } catch (const FieldError& e) {
+      if (parts.empty()) throw;
+      throw ConfigError(profile.source + ": vehicle.parts: motor " + std::to_string(k + 1) + "'s drawn " + e.what());
+    }
+  }
+  return chains;
+}
 
 FlightSetup setUpFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
                         const Vehicle& vehicle, const FlightSensorParams& sensors) {
@@ -197,6 +227,7 @@ FlightSetup setUpFlight(const SimParams& params, const SimEffects& effects, cons
   // The reserve is the intact propellers': a weak one the others cannot balance shows as a flip.
   checkThrustReserve(params, effects, profile, setup.schedule, setup.dynamics.vehicleMassKg(),
                      rotors, effects.air.value_or(params.bench.air).densityKgM3());
+  setup.chains = makeChains(params, profile, vehicle);
   return setup;
 }
 
@@ -246,7 +277,7 @@ class FlightRun {
         rotors_(static_cast<int>(vehicle.rotors.size())),
         air_(effects.air.value_or(params.bench.air)),
         density_(air_.densityKgM3()),
-        train_(makeChains(params, profile, rotors_), effects, air_.temperature_c),
+        train_(setup_.chains, effects, air_.temperature_c),
         battery_(params.battery, profile.vehicle.battery_initial_soc),
         noise_(seed),
         origin_(setup_.dynamics.basePosition()),
@@ -298,20 +329,6 @@ class FlightRun {
   }
 
  private:
-  static std::vector<PropulsionChain> makeChains(const SimParams& params, const FlightProfile& profile, int rotors) {
-    std::vector<PropulsionChain> chains;
-    for (int k = 0; k < rotors; ++k) {
-      ChainParams chain = params.chain;
-      const std::optional<PropellerFault>& weak = profile.faults.weak_propeller;
-      if (weak && weak->motor == k + 1) {
-        chain.propeller = weak->damage == PropellerDamage::kWorn ? wornPropeller(chain.propeller, weak->thrust_factor)
-                                                                 : scaledPropeller(chain.propeller, weak->thrust_factor);
-      }
-      chains.emplace_back(chain);
-    }
-    return chains;
-  }
-
   // The segment at `t`: the ones that ended are checked and left, a new one's action taken.
   const ScheduledSegment& enterSegment(double t) {
     const std::vector<ScheduledSegment>& schedule = setup_.schedule;

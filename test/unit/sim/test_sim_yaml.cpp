@@ -237,6 +237,43 @@ TEST(FlightProfileYaml, ReadsAWeakPropellerFault) {
             "config/sim/f.yaml:14: faults.bent_arm: unknown key (allowed: weak_propeller)");
 }
 
+TEST(FlightProfileYaml, ReadsTheVehiclesParts) {
+  EXPECT_FALSE(pe::sim::parseFlightProfileYaml(kProfile, "f.yaml").vehicle.parts);
+  const std::string parted = replaced(kProfile, "  battery_initial_soc: 0.9\n",
+                                      "  battery_initial_soc: 0.9\n  parts: {seed: 7, thrust_coefficient_spread: 0.03, "
+                                      "torque_coefficient_spread: 0.025, kv_spread: 0.02, esc_end_point_spread_us: 8, "
+                                      "spin_torque_ratio: 1.06}\n");
+  const pe::sim::FlightProfile profile = pe::sim::parseFlightProfileYaml(parted, "f.yaml");
+  ASSERT_TRUE(profile.vehicle.parts);
+  EXPECT_EQ(profile.vehicle.parts->seed, 7u);
+  EXPECT_EQ(profile.vehicle.parts->thrust_coefficient_spread, 0.03);
+  EXPECT_EQ(profile.vehicle.parts->torque_coefficient_spread, 0.025);
+  EXPECT_EQ(profile.vehicle.parts->kv_spread, 0.02);
+  EXPECT_EQ(profile.vehicle.parts->esc_end_point_spread_us, 8.0);
+  EXPECT_EQ(profile.vehicle.parts->spin_torque_ratio, 1.06);
+  const auto partsRefusal = [&](const std::string& from, const std::string& to) {
+    const std::string text = replaced(parted, from, to);
+    return refusal([&] { pe::sim::parseFlightProfileYaml(text, "config/sim/f.yaml"); });
+  };
+  EXPECT_EQ(partsRefusal("kv_spread: 0.02", "kv_spread: 0.5"),
+            "config/sim/f.yaml:13: vehicle.parts.kv_spread: 0.5 is outside 0..0.1");
+  EXPECT_EQ(partsRefusal("thrust_coefficient_spread: 0.03", "thrust_coefficient_spread: -0.03"),
+            "config/sim/f.yaml:13: vehicle.parts.thrust_coefficient_spread: -0.03 is outside 0..0.1");
+  EXPECT_EQ(partsRefusal("torque_coefficient_spread: 0.025", "torque_coefficient_spread: .nan"),
+            "config/sim/f.yaml:13: vehicle.parts.torque_coefficient_spread: expected a finite number, got '.nan'");
+  EXPECT_EQ(partsRefusal("esc_end_point_spread_us: 8", "esc_end_point_spread_us: 80"),
+            "config/sim/f.yaml:13: vehicle.parts.esc_end_point_spread_us: 80 is outside 0..30 us");
+  EXPECT_EQ(partsRefusal("spin_torque_ratio: 1.06", "spin_torque_ratio: 1.5"),
+            "config/sim/f.yaml:13: vehicle.parts.spin_torque_ratio: 1.5 is outside 0.8..1.25");
+  EXPECT_EQ(partsRefusal("seed: 7", "seed: -7"), "config/sim/f.yaml:13: vehicle.parts.seed: -7 is outside 0..1000000000");
+  EXPECT_EQ(partsRefusal("seed: 7", "seed: 7.5"), "config/sim/f.yaml:13: vehicle.parts.seed: expected an integer, got '7.5'");
+  // A vehicle's parts are its calibration: every key is required.
+  EXPECT_EQ(partsRefusal(", spin_torque_ratio: 1.06", ""), "config/sim/f.yaml:13: vehicle.parts.spin_torque_ratio: missing key");
+  EXPECT_EQ(partsRefusal("kv_spread:", "kv_sigma:"),
+            "config/sim/f.yaml:13: vehicle.parts.kv_sigma: unknown key (allowed: seed, thrust_coefficient_spread, "
+            "torque_coefficient_spread, kv_spread, esc_end_point_spread_us, spin_torque_ratio)");
+}
+
 TEST(FlightProfileYaml, RefusesImpossibleSegments) {
   EXPECT_EQ(profileRefusal("  - {type: hover, duration_s: 10}\n  - {type: land",
                            "  - {type: takeoff, height_m: 3, rate_m_s: 1}\n  - {type: land"),

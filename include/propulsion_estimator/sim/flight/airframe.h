@@ -4,6 +4,8 @@
 #include <optional>
 #include <string>
 
+#include "propulsion_estimator/sim/flight/vehicle_parts.h"
+
 /// @file
 /// The simulated vehicle as the flight physics and the autopilot see it: what a flight profile
 /// sets besides its script of segments.
@@ -25,7 +27,7 @@ struct AutopilotParams {
 };
 
 /// What a profile sets of the vehicle besides its URDF's content: centre-of-mass offset, landing
-/// gear, drag area and the battery's initial state of charge (SI units).
+/// gear, drag area, the battery's initial state of charge and its own parts (SI units).
 struct VehicleSetup {
   std::string urdf_path;                                              ///< resolved against the profile's folder
   Eigen::Vector3d centre_of_mass_offset_m = Eigen::Vector3d::Zero();  ///< added to the URDF's centre of mass
@@ -36,6 +38,9 @@ struct VehicleSetup {
   /// Flight controller, companion computer, radios and camera: drawn from the battery beside the
   /// ESCs and seen by the current sensor, never by the ESCs (0 A unless the profile says).
   double avionics_current_a = 0.0;
+  /// Each motor's own parts, drawn from the vehicle's seed (vehicle_parts.h); none: every motor
+  /// flies the parameter file's chain.
+  std::optional<VehicleParts> parts;
 };
 
 /// A payload hangs on a cable from a point of the airframe; it is attached and changed while landed.

@@ -35,14 +35,17 @@ struct FlightResult {
 /// parameters, effects, sensors or profile; "<urdf>: ..." for a vehicle the simulator cannot fly
 /// (no mass properties, a rotor layout the mixer cannot control); "<profile>: segments[i].mass_kg:
 /// ..." when a payload makes the vehicle too heavy to hover on less than 80 % of its maximum thrust
-/// (with intact propellers), "<profile>: faults.weak_propeller.motor: ..." for a motor the vehicle
-/// does not have.
+/// (with intact propellers of the parameter file's chain), "<profile>: faults.weak_propeller.motor:
+/// ..." for a motor the vehicle does not have, and "<profile>: vehicle.parts: motor k's drawn
+/// propeller.torque_coefficient: ..." for a motor whose drawn parts make a chain the simulator
+/// refuses.
 void checkFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
                  const Vehicle& vehicle, const FlightSensorParams& sensors = {});
 
 /// Flies `profile` with the vehicle `vehicle` (rotors in motor order with positions, and empty mass
-/// properties), every rotor driven by the chain of `params` (the profile's weak propeller, if
-/// any, scaled down: scaledPropeller) and all fed by its battery, in the bench's air unless the
+/// properties), every rotor driven by the chain of `params` (with the vehicle's own parts when the
+/// profile draws them, drawMotorParts; then the profile's weak propeller, if any, scaled down:
+/// scaledPropeller or wornPropeller) and all fed by its battery, in the bench's air unless the
 /// air_density effect sets another. Emits every reading to `sink` at its
 /// rate, all streams starting at t = 0. The same inputs and seed give the same flight. Before it
 /// flies it refuses what checkFlight refuses. While flying it throws SimulationError
