@@ -261,13 +261,16 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   }
   std::printf("report: %s/report.md, corrected model: %s/corrected_model.yaml\n", args.out.c_str(), args.out.c_str());
 
-  // What the node's onboard check would have said of the same flights, with the same model.
+  // What the node's onboard check would have said of the same flights, with the same model and the
+  // reference the motors were judged against (as the node would with corrected_model.yaml).
+  PropulsionModel onboard_model = model;
+  onboard_model.setMotorReference(config.motor_reference);
   std::vector<std::string> names;
   std::vector<gap::MotorHealthReplay> replays;
   int flagged = 0;
   for (const Flight& flight : flights) {
     names.push_back(flight.name);
-    replays.push_back(gap::replayMotorHealth(model, vehicle, flight.streams));
+    replays.push_back(gap::replayMotorHealth(onboard_model, vehicle, flight.streams));
     flagged += !replays.back().flagged_channels.empty();
   }
   writeTextFile(args.out + "/motor_health.yaml", gap::motorHealthReplayYaml(names, replays));

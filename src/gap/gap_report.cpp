@@ -265,7 +265,11 @@ std::string basisText(const MotorBalance& balance) {
   }
   if (balance.basis == "payloads") {
     return "Each motor's gap that keeps the empty vehicle's mass moment the same with every payload (the payloads "
-           "hang below base_link's origin). A gap resting on its search bound or without an interval names no motor.";
+           "hang below base_link's origin). A gap resting on its search bound or without an interval names no motor, "
+           "nor one within three times the spread healthy vehicles show (+-" +
+           formatPrintf("%.1f", balance.healthy_gap_std_pct) +
+           " %): their parts differ, and a payload hung a millimetre off moves a gap by a few per cent. A reference of "
+           "this vehicle's healthy flights (--reference) would sharpen it.";
   }
   return "Each motor against the ideal balance of identical rotors. Healthy vehicles are never there: their parts "
          "differ and propellers of the two spin directions are not mirror images, so a gap is a suspect only beyond "

@@ -153,9 +153,12 @@ void takeVerdict(const MotorChangeVerdict& verdict, const std::vector<int>& chan
 
 // The moments across weighed payloads: motor j's gap that keeps the empty vehicle's mass moment
 // the same in every segment. The one whose gap does so best is the candidate; a gap resting on
-// the search's bounds or without an interval says nothing about which motor it is.
+// the search's bounds or without an interval says nothing about which motor it is. Healthy parts
+// differ by a few per cent and a payload hung a millimetre off the hook moves a motor's gap by
+// about as much, so without a reference the candidate must also stand beyond the healthy spread
+// (`healthy_gap_std`, three of it), as on the ideal balance.
 void balanceByMoments(const SegmentMoments& moments, const std::vector<int>& channels, double min_gap,
-                      MotorBalance* balance) {
+                      double healthy_gap_std, MotorBalance* balance) {
   double best_spread = std::numeric_limits<double>::infinity();
   int best = -1;
   for (int j = 0; j < static_cast<int>(channels.size()); ++j) {
@@ -172,7 +175,8 @@ void balanceByMoments(const SegmentMoments& moments, const std::vector<int>& cha
   const double gap = candidate.thrust_gap_pct / 100.0;
   const bool on_bound = gap < kGapStep / 2 || gap > kMaxGap - kGapStep / 2;
   // ci_pct is a 95 % half-width, about two standard errors: three standard errors are 1.5 of it.
-  if (!on_bound && candidate.ci_pct > 0.0 && gap > min_gap && candidate.thrust_gap_pct > 1.5 * candidate.ci_pct) {
+  if (!on_bound && candidate.ci_pct > 0.0 && gap > min_gap && gap > 3.0 * healthy_gap_std &&
+      candidate.thrust_gap_pct > 1.5 * candidate.ci_pct) {
     balance->suspect_channel = candidate.channel;
   }
 }
@@ -233,7 +237,8 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   const SegmentMoments moments{vehicle, segment_sums, segment_mass, motors};
   if (heaviest - lightest > kMinPayloadSpreadKg && moments.segments() >= kMinMomentSegments) {
     balance.basis = "payloads";
-    balanceByMoments(moments, channels, config.motor_min_gap, &balance);
+    balance.healthy_gap_std_pct = 100.0 * config.motor_healthy_gap_std;
+    balanceByMoments(moments, channels, config.motor_min_gap, config.motor_healthy_gap_std, &balance);
     return balance;
   }
   balance.basis = "ideal";

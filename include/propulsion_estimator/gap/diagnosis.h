@@ -102,7 +102,8 @@ struct MotorBalance {
   /// What each motor was judged against: "reference" (the vehicle's healthy flights), "payloads"
   /// (the moments across weighed payloads) or "ideal" (the balance of identical rotors).
   std::string basis;
-  /// Without a reference: the spread of the gap healthy vehicles show, % (one standard deviation).
+  /// Without a reference: the spread of the gap healthy vehicles show, % (one standard deviation);
+  /// a suspect stands beyond three of it.
   double healthy_gap_std_pct = 0.0;
   std::optional<int> suspect_channel;  ///< a motor whose model is off alone
   double suspect_thrust_factor = 1.0;  ///< its thrust over the model's, fitted; the effects are sought with it applied

@@ -19,7 +19,7 @@ namespace gap {
 /// - else, with payloads of different masses (hanging below base_link's origin) on three weighed
 ///   segments or more: the gap that keeps the empty vehicle's mass moment the same in every
 ///   segment, its 95 % interval by the jackknife over segments; a gap resting on its search bound
-///   or with a zero interval names no motor;
+///   or with a zero interval names no motor, nor one within three of `config.motor_healthy_gap_std`;
 /// - else: against the ideal balance of identical rotors, a suspect only beyond three of
 ///   `config.motor_healthy_gap_std` (the spread healthy vehicles show).
 /// A change common to all rotors leaves the shares as they were, and the diagonal partner of a weak

@@ -268,10 +268,12 @@ TEST_F(SyntheticFlights, WithTelemetryNamesNothingWhenTheModelIsTheTruth) {
 }
 
 TEST_F(SyntheticFlights, PointsAtAWeakPropellerAndNamesNoEffect) {
+  gap::DiagnosisConfig config;
+  config.motor_reference = gap::learnReference(model_, vehicle_, flights(World{}), config);
   World world;
   world.weak_motor = 2;
   world.weak_factor = 0.85;
-  const gap::Diagnosis diagnosis = diagnose(world);
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, flights(world), config);
   ASSERT_TRUE(diagnosis.motors.suspect_channel);
   EXPECT_EQ(*diagnosis.motors.suspect_channel, 3);
   EXPECT_TRUE(diagnosis.selected.empty());
@@ -316,14 +318,24 @@ TEST_F(SyntheticFlights, WithOnePayloadAPropellerAt92PercentIsLocatedAgainstTheV
 }
 
 TEST_F(SyntheticFlights, WithAFrameByNameTheWeakMotorIsFound) {
+  const pe::Vehicle frame = pe::Vehicle::frame("quad_x", 0.225);
+  gap::DiagnosisConfig config;
+  config.motor_reference = gap::learnReference(model_, frame, flights(World{}), config);
   World world;
   world.weak_motor = 2;
   world.weak_factor = 0.85;
-  const gap::Diagnosis diagnosis =
-      gap::diagnoseGap(model_, pe::Vehicle::frame("quad_x", 0.225), flights(world), gap::DiagnosisConfig());
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, frame, flights(world), config);
   ASSERT_TRUE(diagnosis.motors.suspect_channel);
   EXPECT_EQ(*diagnosis.motors.suspect_channel, 3);
   EXPECT_TRUE(diagnosis.selected.empty());
+}
+
+// The diagnosis' settings for a vehicle whose parts are known to be alike (no healthy spread): the
+// payloads' moments then name any motor beyond min_gap, which these tests exercise.
+gap::DiagnosisConfig partsAlike() {
+  gap::DiagnosisConfig config;
+  config.motor_healthy_gap_std = 0.0;
+  return config;
 }
 
 // Steady hovers of a quad whose centre of gravity is 9 mm off the URDF's and whose motor `weak`
@@ -374,8 +386,10 @@ TEST_F(SyntheticFlights, TheMotorBalanceFindsTheWeakMotorWhicheverItIsDespiteAnO
   for (int weak = 0; weak < 4; ++weak) {
     const std::vector<gap::Block> blocks =
         hoversWithAWeakMotor(vehicle_, weak, [&](double thrust, double voltage) { return pwmFor(thrust, voltage); });
-    const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, gap::DiagnosisConfig());
+    const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, partsAlike());
     ASSERT_TRUE(balance.suspect_channel) << "weak motor " << weak + 1;
+    // A vehicle whose parts spread as healthy ones do: 13 % is within three times that spread.
+    EXPECT_FALSE(gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, gap::DiagnosisConfig()).suspect_channel);
     EXPECT_EQ(*balance.suspect_channel, weak + 1);
     EXPECT_NEAR(balance.motors[weak].thrust_gap_pct, 13.0, 0.5);
   }
@@ -387,7 +401,7 @@ TEST_F(SyntheticFlights, TheMotorBalanceFindsAWornPropellerThatLeavesTheYawBalan
   for (int weak = 0; weak < 4; ++weak) {
     const std::vector<gap::Block> blocks = hoversWithAWeakMotor(
         vehicle_, weak, [&](double thrust, double voltage) { return pwmFor(thrust, voltage); }, true);
-    const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, gap::DiagnosisConfig());
+    const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, partsAlike());
     ASSERT_TRUE(balance.suspect_channel) << "worn propeller on motor " << weak + 1;
     EXPECT_EQ(*balance.suspect_channel, weak + 1);
     EXPECT_NEAR(balance.motors[weak].thrust_gap_pct, 13.0, 0.5);
@@ -398,7 +412,7 @@ TEST_F(SyntheticFlights, AMomentFitRestingOnItsBoundNamesNoMotor) {
   // A propeller at 60 % needs a gap of 67 %, beyond the search's 35 %: the fit rests on its bound.
   const std::vector<gap::Block> blocks = hoversWithAWeakMotor(
       vehicle_, 1, [&](double thrust, double voltage) { return pwmFor(thrust, voltage); }, false, 0.6);
-  const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, gap::DiagnosisConfig());
+  const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, partsAlike());
   EXPECT_EQ(balance.basis, "payloads");
   EXPECT_FALSE(balance.suspect_channel) << "channel " << *balance.suspect_channel;
 }
