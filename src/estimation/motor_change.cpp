@@ -197,6 +197,11 @@ MotorChangeVerdict judgeAgainstReference(const Vehicle& vehicle, const MotorRefe
   verdict.unavailable = geometryProblem(vehicle);
   if (!verdict.unavailable.empty()) return verdict;
   const int motors = static_cast<int>(reference.shares.size());
+  if (motors != static_cast<int>(vehicle.rotors.size())) {
+    verdict.unavailable = "the reference has " + std::to_string(motors) + " motors, the vehicle " +
+                          std::to_string(vehicle.rotors.size());
+    return verdict;
+  }
   const std::vector<std::vector<double>> gaps =
       unitGaps(ChangeFit(vehicle, reference.shares), units, motors, &verdict.unavailable);
   if (!verdict.unavailable.empty()) return verdict;

@@ -66,7 +66,8 @@ struct MotorChangeRule {
 /// Judges the units of steady hover `units` (HoverThrusts each, of one vehicle) against
 /// `reference`: each motor's gap, the standard error from the reference's flight-to-flight spread
 /// and the units' own, and the one motor weaker alone, if any (its gap beyond min_gap and `sigmas`
-/// standard errors, the largest such). Needs rotor geometry and at least four motors.
+/// standard errors, the largest such). Needs rotor geometry, at least four motors and a reference of
+/// as many motors as the vehicle (else `unavailable` says which).
 MotorChangeVerdict judgeAgainstReference(const Vehicle& vehicle, const MotorReference& reference,
                                          const std::vector<HoverThrusts>& units, const MotorChangeRule& rule);
 

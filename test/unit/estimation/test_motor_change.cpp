@@ -170,6 +170,10 @@ TEST(MotorChange, WithoutGeometryOrWithTooFewFlightsItSaysWhy) {
                                       pe::MotorChangeRule())
                 .unavailable,
             "no rotor geometry (give --urdf or --frame)");
+  EXPECT_EQ(pe::judgeAgainstReference(pe::Vehicle::frame("hexa_x", 0.3), reference, quad.flights(2, random),
+                                      pe::MotorChangeRule())
+                .unavailable,
+            "the reference has 4 motors, the vehicle 6");
   try {
     pe::learnMotorReference(quad.vehicle, quad.flights(2, random));
     FAIL() << "two flights taught a reference";
