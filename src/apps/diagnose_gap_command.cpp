@@ -317,6 +317,10 @@ int diagnose(const Arguments& args) {
     config.motor_reference = learnReference(args, model, vehicle, options, config);
   } else if (model.motorReference()) {
     config.motor_reference = model.motorReference();
+    if (config.motor_reference->shares.size() != vehicle.rotors.size()) {
+      throw ConfigError(args.model + ": motor_reference: " + std::to_string(config.motor_reference->shares.size()) +
+                        " shares for the vehicle's " + std::to_string(vehicle.rotors.size()) + " rotors");
+    }
     std::printf("reference: the model file's, from %d healthy flights\n", model.motorReference()->flights);
   }
   const std::vector<ManifestEntry> entries = loadFlightManifestEntries(args.manifest);

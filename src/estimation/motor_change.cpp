@@ -1,6 +1,7 @@
 #include "propulsion_estimator/estimation/motor_change.h"
 
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
 
@@ -111,14 +112,15 @@ std::vector<std::vector<double>> unitGaps(const ChangeFit& fit, const std::vecto
   return gaps;
 }
 
-// The largest gap beyond min_gap and rule.sigmas standard errors, or -1.
+// The largest gap beyond min_gap and rule.sigmas standard errors (min_gap alone where the standard
+// error is zero: parts known alike, a reference without spread), or -1.
 int pickSuspect(const std::vector<RotorChange>& motors, const MotorChangeRule& rule) {
   int suspect = -1;
   double best_z = 0.0;
   for (std::size_t j = 0; j < motors.size(); ++j) {
     const RotorChange& m = motors[j];
-    if (!(m.gap_std > 0.0) || m.gap <= rule.min_gap || m.gap <= rule.sigmas * m.gap_std) continue;
-    const double z = m.gap / m.gap_std;
+    if (!(m.gap > rule.min_gap) || m.gap <= rule.sigmas * m.gap_std) continue;
+    const double z = m.gap_std > 0.0 ? m.gap / m.gap_std : std::numeric_limits<double>::infinity();
     if (z > best_z) {
       best_z = z;
       suspect = static_cast<int>(j);
@@ -155,12 +157,17 @@ MotorReference learnMotorReference(const Vehicle& vehicle, const std::vector<Hov
                       " healthy flights, got " + std::to_string(flights.size()));
   }
   const std::size_t motors = flights.front().size();
+  if (vehicle.hasGeometry() && motors != vehicle.rotors.size()) {
+    throw ConfigError("a motor reference's flights have " + std::to_string(motors) + " motors, the vehicle " +
+                      std::to_string(vehicle.rotors.size()));
+  }
   std::vector<std::vector<double>> shares;
-  for (const HoverThrusts& flight : flights) {
-    shares.push_back(thrustShares(flight));
-    if (shares.back().size() != motors) {
-      throw ConfigError("a motor reference's flights must have the same motors with thrust: " +
-                        std::to_string(shares.back().size()) + " against " + std::to_string(motors));
+  for (std::size_t i = 0; i < flights.size(); ++i) {
+    shares.push_back(thrustShares(flights[i]));
+    if (flights[i].size() != motors || shares.back().size() != motors) {
+      throw ConfigError("a motor reference's flight " + std::to_string(i + 1) + " has " +
+                        std::to_string(flights[i].size()) + " motors against " + std::to_string(motors) +
+                        " or no positive model thrust in steady hover");
     }
   }
   const std::size_t n = shares.size();
@@ -184,7 +191,11 @@ MotorReference learnMotorReference(const Vehicle& vehicle, const std::vector<Hov
     const ChangeFit fit(vehicle, others);
     for (std::size_t j = 0; j < motors; ++j) {
       const double gap = fit.gap(shares[left], static_cast<int>(j));
-      if (std::isfinite(gap)) reference.gap_std[j] += gap * gap / n * (n - 1.0) / n;
+      if (!std::isfinite(gap)) {
+        throw ConfigError("a motor reference: rotor " + std::to_string(j + 1) +
+                          "'s place cannot be told from the yaw balance");
+      }
+      reference.gap_std[j] += gap * gap / n * (n - 1.0) / n;
     }
   }
   for (double& g : reference.gap_std) g = std::sqrt(g);

@@ -106,6 +106,11 @@ MotorHealthVerdict MotorHealth::verdict() const {
   rule.healthy_gap_std = config_.healthy_gap_std;
   const MotorChangeVerdict change =
       reference_ ? judgeAgainstReference(vehicle_, *reference_, {mean}, rule) : judgeAgainstIdeal(vehicle_, {mean}, rule);
+  if (!change.unavailable.empty()) {
+    verdict.judged = false;
+    verdict.unavailable = change.unavailable;
+    return verdict;
+  }
   for (int j = 0; j < motors && j < static_cast<int>(change.motors.size()); ++j) {
     verdict.motors.push_back({channels_[j], change.motors[j].gap, change.motors[j].gap_std});
   }

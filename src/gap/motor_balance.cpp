@@ -121,14 +121,16 @@ class SegmentMoments {
   int segments_ = 0;
 };
 
-// Each unit's mean model thrust per motor over its steady hover: each flight when there are two
-// or more, else each stretch (group) of the one flight.
-std::vector<HoverThrusts> hoverUnits(const ThrustViews& views, const std::vector<Block>& blocks) {
+// Each unit's mean model thrust per motor over its steady hover: each flight; with `stretches`
+// and a single flight, each stretch (group) of it. Against a reference the units must be flights:
+// the stretches of one flight share its offset, which only the reference's flight-to-flight
+// spread measures.
+std::vector<HoverThrusts> hoverUnits(const ThrustViews& views, const std::vector<Block>& blocks, bool stretches) {
   std::set<int> flights;
   for (const Block& block : blocks) {
     if (block.hover) flights.insert(block.flight);
   }
-  const bool by_flight = flights.size() >= 2;
+  const bool by_flight = flights.size() >= 2 || !stretches;
   const ThrustSums sums = sumHoverThrusts(views, blocks, [by_flight](const Block& block) {
     return std::make_pair(block.flight, by_flight ? 0 : block.group);
   });
@@ -215,7 +217,7 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   rule.healthy_gap_std = config.motor_healthy_gap_std;
   if (config.motor_reference) {
     balance.basis = "reference";
-    takeVerdict(judgeAgainstReference(vehicle, *config.motor_reference, hoverUnits(views, blocks), rule), channels,
+    takeVerdict(judgeAgainstReference(vehicle, *config.motor_reference, hoverUnits(views, blocks, false), rule), channels,
                 &balance);
     return balance;
   }
@@ -243,7 +245,7 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   }
   balance.basis = "ideal";
   balance.healthy_gap_std_pct = 100.0 * config.motor_healthy_gap_std;
-  takeVerdict(judgeAgainstIdeal(vehicle, hoverUnits(views, blocks), rule), channels, &balance);
+  takeVerdict(judgeAgainstIdeal(vehicle, hoverUnits(views, blocks, true), rule), channels, &balance);
   return balance;
 }
 
@@ -271,7 +273,7 @@ MotorReference learnReference(const PropulsionModel& model, const Vehicle& vehic
     throw ConfigError("--reference: steady hover on " + std::to_string(with_hover.size()) + " of " +
                       std::to_string(flights.size()) + " flights; a reference needs at least 3");
   }
-  return learnMotorReference(vehicle, hoverUnits(views, blocks));
+  return learnMotorReference(vehicle, hoverUnits(views, blocks, false));
 }
 
 }  // namespace gap

@@ -17,8 +17,10 @@ namespace propulsion_estimator {
 /// autopilot raise its command until the moments balance again, so its share grows by a fraction
 /// e of itself and every share moves by s_k (delta_jk - s_j) e. The thrusts' moments about the
 /// centre of gravity (roll, pitch) say which rotor that is, from where it sits; the yaw balance only
-/// which spin direction, and a damaged propeller's drag torque changes it too: the yaw pattern
-/// w_k = s_k (sigma_k - sum_i s_i sigma_i) is taken as a nuisance and fitted beside e. A change common
+/// which spin direction, and a damaged propeller's drag torque changes it too: the yaw pattern (the
+/// spin directions less their part along total thrust, roll and pitch, relative to each share) is
+/// taken as a nuisance and fitted beside e. The gap fitted is e / (1 + s_j e), the model's excess
+/// over the motor's thrust after the shares are renormalised (0.17 for e = 0.18 on a quad). A change common
 /// to all rotors leaves the shares as they were and is never put on one; the diagonal partner of a
 /// weak rotor moves the roll and pitch balance the other way (e < 0) and is never a suspect.
 
@@ -30,15 +32,16 @@ using HoverThrusts = std::vector<double>;
 std::vector<double> thrustShares(const HoverThrusts& thrust_n);
 
 /// The fingerprint of healthy `flights` (one HoverThrusts each). ConfigError when fewer than 3,
-/// or when their motor counts differ.
+/// when their motor counts differ from each other or from the vehicle's, when one has no positive
+/// thrust, or when a rotor's place cannot be told from the yaw balance.
 MotorReference learnMotorReference(const Vehicle& vehicle, const std::vector<HoverThrusts>& flights);
 
 /// The shares a vehicle with identical rotors and its centre of gravity at the URDF's (the origin
 /// without one) carries: the least change from equal shares that balances roll, pitch and yaw.
 std::vector<double> idealShares(const Vehicle& vehicle);
 
-/// One motor's weak-rotor gap: the fraction e of its modelled thrust it lacks against the
-/// reference, fitted with the yaw pattern beside it, and e's standard error.
+/// One motor's weak-rotor gap against the reference: e / (1 + s_j e), e the model's thrust over the
+/// motor's less 1 (see above), fitted with the yaw pattern beside it, and its standard error.
 struct RotorChange {
   double gap = 0.0;      ///< e: positive when weaker than the reference
   double gap_std = 0.0;  ///< its standard error (0 when it cannot be said)
