@@ -30,6 +30,10 @@ double ForgettingLineFit::add(double x, double y, double* innovation) {
   const Eigen::Vector2d gain = p_phi / variance;
   theta_ += gain * residual;
   p_ -= gain * p_phi.transpose();
+  // Kept exactly symmetric: the update's two triangles round apart, and the error grows until the
+  // covariance is no longer positive and the fit diverges (it did on arm64, where Eigen's products
+  // round differently from x86-64's; FollowsAChangeOnlyWithForgetting failed there).
+  p_ = (0.5 * (p_ + p_.transpose())).eval();
   if (innovation) *innovation = variance;
   return residual;
 }

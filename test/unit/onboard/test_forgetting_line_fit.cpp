@@ -39,6 +39,23 @@ TEST(ForgettingLineFit, FollowsAChangeOnlyWithForgetting) {
   EXPECT_LT(kept.parameters()(1), 0.75);  // without forgetting, the old line still weighs
 }
 
+// Noise-free readings and forgetting shrink the covariance each step: its two triangles, rounded
+// apart, once drifted until it was no longer positive and the fit diverged (on arm64 first).
+TEST(ForgettingLineFit, TheCovarianceStaysSymmetricAndPositive) {
+  pe::ForgettingLineFit fit;
+  fit.reset(Eigen::Vector2d::Zero(), Eigen::Vector2d(10.0, 1.0), 0.01);
+  for (int k = 0; k < 2000; ++k) {
+    const double x = 5.0 + 4.0 * std::sin(0.1 * k);
+    fit.forget(std::exp(-1.0 / 20.0));
+    fit.add(x, 1.0 + (k < 400 ? 0.5 : 0.8) * x);
+    const Eigen::Matrix2d& p = fit.covariance();
+    ASSERT_EQ(p(0, 1), p(1, 0)) << "reading " << k;
+    ASSERT_GT(p(0, 0), 0.0) << "reading " << k;
+    ASSERT_GT(p(0, 0) * p(1, 1) - p(0, 1) * p(1, 0), 0.0) << "reading " << k;
+  }
+  EXPECT_NEAR(fit.parameters()(1), 0.8, 1e-6);
+}
+
 TEST(ForgettingLineFit, AStretchWithoutExcitationDoesNotWindTheCovarianceUp) {
   pe::ForgettingLineFit fit;
   fit.reset(Eigen::Vector2d::Zero(), Eigen::Vector2d(2.0, 0.5), 0.1);
