@@ -52,6 +52,7 @@ struct Arguments {
   std::vector<std::string> bench;
   double rotor_diameter_m = gap::DiagnosisConfig{}.rotor_diameter_m;
   double rotor_time_constant_s = kNaN;  // NaN: identified from the flights
+  gap::PartsSpread parts_spread;
   bool no_rpm_view = false;
   int jobs = 1;
   ReportPlotter plotter;
@@ -121,6 +122,7 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
   config.rotor_diameter_m = args.rotor_diameter_m;
   config.rotor_time_constant_s = args.rotor_time_constant_s;
   config.rpm_view = !args.no_rpm_view;
+  config.parts_spread = args.parts_spread;
   try {
     config.validate();
   } catch (const FieldError& e) {
@@ -399,6 +401,13 @@ int runDiagnoseGap(int argc, char** argv) {
   app.add_option("--rotor-time-constant-s", args.rotor_time_constant_s,
                  "The rotors' spin-up lag, s (0..1; a bench step response's time constant; 0: none); without it "
                  "the lag is identified from the flights");
+  app.add_option("--parts-thrust-spread", args.parts_spread.thrust_fraction,
+                 "How far a healthy vehicle's rotors' mean thrust may differ from the bench unit's (fraction, 0..0.5): "
+                 "an effect must change the thrust by more to be named")
+      ->capture_default_str();
+  app.add_option("--parts-esc-spread-us", args.parts_spread.esc_end_point_us,
+                 "How far a healthy vehicle's ESC end points may differ from the bench ESC's, us (0..100); likewise")
+      ->capture_default_str();
   app.add_flag("--no-rpm-view", args.no_rpm_view,
                "Leave ESC telemetry's rotor speeds out of the diagnosis (the RPM view): the PWM and current views only");
   app.add_option("--jobs", args.jobs, "Logs read in parallel")->check(CLI::Range(1, 64))->capture_default_str();

@@ -30,6 +30,8 @@ using effects::Kind;
 // A, the most the avionics (flight controller, companion computer, radios, camera) draw beside the
 // motors: the current view's nuisance is sought within 0..this.
 constexpr double kMaxAvionicsCurrentA = 3.0;
+// Passes of revisitRounds at most: each pass stops at the first round that changed.
+constexpr int kMaxRevisitPasses = 6;
 
 // What one round of the selection chose: its leader and, when the flights cannot tell it from
 // other candidates, the group.

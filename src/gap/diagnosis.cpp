@@ -9,12 +9,6 @@
 namespace propulsion_estimator {
 namespace gap {
 namespace detail {
-namespace {
-
-// Passes of revisitRounds at most: each pass stops at the first round that changed.
-constexpr int kMaxRevisitPasses = 6;
-
-}  // namespace
 
 // The rotors' lag: given, or identified from the flights when it explains their transients.
 double Diagnoser::rotorLag() {
@@ -350,6 +344,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     const double margin = 1e-3 * (spec.max - spec.min);
     result.plausible = result.parameter > spec.min + margin && result.parameter < spec.max - margin;
     result.current_view_ratio = currentViewRatio(round_base, fit.effects);
+    result.size = effectSizeAgainstParts(views_, all_, fit.effects, kind, config_.parts_spread);
+    const std::string within_parts = withinPartsSpread(kind, result.parameter, result.size, config_.parts_spread);
     const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
     const double drop_pct = base_pwm_rmse_pct - 100.0 * std::sqrt(pwm_ms);
     const bool significant = result.p_value < config_.significance && ms < base_ms &&
@@ -362,6 +358,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
                       formatNumber(spec.max) + ": the gap is not of this effect's shape";
     } else if (!excludes_neutral) {
       result.reason = "its 95 % interval includes no effect";
+    } else if (!within_parts.empty()) {
+      result.reason = within_parts;
     } else if (!vehicle_.hasGeometry() && effects::requiredSignal(kind) == effects::Signal::kNone) {
       // A correction that reads no signal moves every block alike, and so does one weak motor:
       // without the rotors' positions the moment balance cannot tell them apart.

@@ -22,6 +22,7 @@ void DiagnosisConfig::validate() const {
   requireWithin("nested_folds", nested_folds, 2, 100);
   requireWithin("motor_min_gap", motor_min_gap, 0.0, 1.0);
   requireWithin("motor_healthy_gap_std", motor_healthy_gap_std, 0.0, 1.0);
+  parts_spread.validate();
   if (motor_reference) motor_reference->validate();
 }
 

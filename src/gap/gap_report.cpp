@@ -96,6 +96,9 @@ void emitSelection(YAML::Emitter& out, const Diagnosis& diagnosis) {
       emitField(out, "base_joint_rmse_pct", effect.base_joint_rmse_pct);
       emitField(out, "p_value", effect.p_value);
       emitField(out, "current_view_ratio", effect.current_view_ratio, "%.3f");
+      emitField(out, "largest_change_pct", effect.size.largest_change_pct);
+      emitField(out, "parts_change_pct", effect.size.parts_change_pct);
+      out << YAML::Key << "blocks_beyond_parts" << YAML::Value << effect.size.blocks_beyond;
     }
     out << YAML::Key << "reason" << YAML::Value << effect.reason;
     out << YAML::EndMap;

@@ -9,6 +9,7 @@
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/estimation/motor_change.h"
 #include "propulsion_estimator/gap/bench_gap.h"
+#include "propulsion_estimator/gap/parts_spread.h"
 #include "propulsion_estimator/gap/residual_breakdown.h"
 #include "propulsion_estimator/logs/bench_log.h"
 #include "propulsion_estimator/logs/flight_streams.h"
@@ -68,6 +69,10 @@ struct DiagnosisConfig {
   /// E8 (test/data/crazypad; E9's 5 held out, largest 0.103); our simulated family, whose healthy
   /// motors are identical, cannot say it.
   double motor_healthy_gap_std = 0.067;
+  /// What healthy rotors and ESCs differ from the bench's unit by: an effect is named only where
+  /// it changes the thrust by more than these could on at least kMinBlocksBeyondParts blocks,
+  /// and a thrust loss below -thrust_fraction (a gain) is not named.
+  PartsSpread parts_spread;
   std::vector<int> channels;         ///< RCOut channel of each motor, 1-based; empty: 1..motors
   /// Whether ESC telemetry's rotor speeds join the joint error as the RPM view (where the flights
   /// have them and the model a thrust_from_rpm); false: the PWM and current views only.
@@ -130,6 +135,7 @@ struct EffectResult {
   double base_joint_rmse_pct = 0.0;  ///< both views together, before it (the effects selected before)
   double p_value = 1.0;              ///< of the held-out improvement of the joint error, permutation test
   double current_view_ratio = 0.0;   ///< its predicted PWM-view change over current-view change
+  EffectSize size;                   ///< as fitted, against the parts' spread (DiagnosisConfig::parts_spread)
 };
 
 /// One candidate tried in one round of the forward selection, for the report's trace.
