@@ -281,7 +281,7 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   std::vector<gap::ModelCheckReplay> checks;
   int with_telemetry = 0, checked_flagged = 0;
   for (const Flight& flight : flights) {
-    checks.push_back(gap::replayModelCheck(model, vehicle, flight.streams));
+    checks.push_back(gap::replayModelCheck(onboard_model, vehicle, flight.streams));
     with_telemetry += checks.back().telemetry;
     checked_flagged += !checks.back().verdicts.empty();
   }

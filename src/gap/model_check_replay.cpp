@@ -30,9 +30,14 @@ ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& v
   const EstimatorConfig estimator_config = replayEstimatorConfig(vehicle);
   Estimator estimator(model, vehicle, estimator_config);
   ModelCheck check(estimator_config.motor_channels, config);
+  if (model.motorReference()) {
+    check.setBaseline(model.motorReference()->esc_rpm_deviation, model.motorReference()->esc_current_deviation);
+  }
   ModelCheckReplay replay;
   replay.telemetry = !streams.esc.empty();
   if (!replay.telemetry) return replay;
+  const std::size_t motors = estimator_config.motor_channels.size();
+  std::vector<double> rpm_sum(motors, 0.0), current_sum(motors, 0.0);
   double next_report_s = 0.0;
   for (const Arrival& a : arrivals(streams)) {
     if (a.kind == Stream::kEsc) check.addTelemetry(a.time_s, message(streams.esc[a.index]));
@@ -44,10 +49,18 @@ ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& v
     const ModelCheckReport report = check.report(a.time_s);
     if (report.verdict == ModelCheckVerdict::kNotJudged) continue;
     ++replay.judgements;
+    for (std::size_t k = 0; k < motors; ++k) {
+      rpm_sum[k] += report.motors[k].rpm_deviation;
+      current_sum[k] += report.motors[k].current_deviation;
+    }
     if (report.verdict == ModelCheckVerdict::kConsistent) continue;
     if (replay.verdicts.empty()) replay.first_flag_s = a.time_s;
     addOnce(&replay.verdicts, std::string(modelCheckVerdictName(report.verdict)));
     if (report.flagged_channel != 0) addOnce(&replay.flagged_channels, report.flagged_channel);
+  }
+  for (std::size_t k = 0; replay.judgements > 0 && k < motors; ++k) {
+    replay.rpm_deviation.push_back(rpm_sum[k] / replay.judgements);
+    replay.current_deviation.push_back(current_sum[k] / replay.judgements);
   }
   return replay;
 }

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/gap/model_check_replay.h"
 #include "propulsion_estimator/vehicle/rotor_balance.h"
 
 namespace propulsion_estimator {
@@ -249,6 +250,31 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   return balance;
 }
 
+namespace {
+
+// What the live ESC check sees of each healthy motor: the mean over the flights of each flight's
+// mean deviations, judged against the other motors alone. Left empty unless every flight was
+// judged: a baseline from some flights would judge the others' motors against too little.
+void learnEscBaseline(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
+                      MotorReference* reference) {
+  PropulsionModel plain = model;
+  plain.setMotorReference(std::nullopt);
+  const std::size_t motors = vehicle.rotors.size();
+  std::vector<double> rpm(motors, 0.0), current(motors, 0.0);
+  for (const Flight& flight : flights) {
+    const ModelCheckReplay replay = replayModelCheck(plain, vehicle, flight.streams);
+    if (replay.rpm_deviation.size() != motors) return;
+    for (std::size_t k = 0; k < motors; ++k) {
+      rpm[k] += replay.rpm_deviation[k] / static_cast<double>(flights.size());
+      current[k] += replay.current_deviation[k] / static_cast<double>(flights.size());
+    }
+  }
+  reference->esc_rpm_deviation = rpm;
+  reference->esc_current_deviation = current;
+}
+
+}  // namespace
+
 MotorReference learnReference(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
                               const DiagnosisConfig& config) {
   if (!vehicle.hasGeometry()) throw ConfigError("--reference: needs the rotor geometry (give --urdf or --frame)");
@@ -273,7 +299,9 @@ MotorReference learnReference(const PropulsionModel& model, const Vehicle& vehic
     throw ConfigError("--reference: steady hover on " + std::to_string(with_hover.size()) + " of " +
                       std::to_string(flights.size()) + " flights; a reference needs at least 3");
   }
-  return learnMotorReference(vehicle, hoverUnits(views, blocks, false));
+  MotorReference reference = learnMotorReference(vehicle, hoverUnits(views, blocks, false));
+  learnEscBaseline(model, vehicle, flights, &reference);
+  return reference;
 }
 
 }  // namespace gap

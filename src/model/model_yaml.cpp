@@ -251,23 +251,32 @@ void writeRpmThrust(YAML::Emitter& out, const RpmThrust& fit) {
   out << YAML::EndMap;
 }
 
-// motor_reference: {flights, shares: [...], share_std: [...], gap_std: [...]}, one entry per motor.
+// motor_reference: {flights, shares: [...], share_std: [...], gap_std: [...]}, one entry per motor;
+// with ESC telemetry also esc_rpm_deviation and esc_current_deviation.
 MotorReference readMotorReference(const YamlMap& map) {
-  map.allowOnly({"flights", "shares", "share_std", "gap_std"});
+  map.allowOnly({"flights", "shares", "share_std", "gap_std", "esc_rpm_deviation", "esc_current_deviation"});
   MotorReference reference;
   reference.flights = map.integer("flights");
   reference.shares = map.numbers("shares");
   reference.share_std = map.numbers("share_std");
   reference.gap_std = map.numbers("gap_std");
+  if (map.has("esc_rpm_deviation") || map.has("esc_current_deviation")) {
+    reference.esc_rpm_deviation = map.numbers("esc_rpm_deviation");
+    reference.esc_current_deviation = map.numbers("esc_current_deviation");
+  }
   return reference;
 }
 
 void writeMotorReference(YAML::Emitter& out, const MotorReference& reference) {
   out << YAML::Key << "motor_reference" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "flights" << YAML::Value << reference.flights;
-  for (const auto& [key, values] : {std::make_pair("shares", &reference.shares),
-                                    std::make_pair("share_std", &reference.share_std),
-                                    std::make_pair("gap_std", &reference.gap_std)}) {
+  std::vector<std::pair<const char*, const std::vector<double>*>> lists = {
+      {"shares", &reference.shares}, {"share_std", &reference.share_std}, {"gap_std", &reference.gap_std}};
+  if (!reference.esc_rpm_deviation.empty()) {
+    lists.push_back({"esc_rpm_deviation", &reference.esc_rpm_deviation});
+    lists.push_back({"esc_current_deviation", &reference.esc_current_deviation});
+  }
+  for (const auto& [key, values] : lists) {
     out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
     for (double v : *values) out << formatNumber(v);
     out << YAML::EndSeq;

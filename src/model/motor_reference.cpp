@@ -24,6 +24,18 @@ void MotorReference::validate() const {
     requireWithin("motor_reference.gap_std[" + std::to_string(k) + "]", gap_std[k], 0.0, 1.0);
     sum += shares[k];
   }
+  if (esc_rpm_deviation.size() != esc_current_deviation.size() ||
+      (!esc_rpm_deviation.empty() && esc_rpm_deviation.size() != shares.size())) {
+    throw FieldError("motor_reference.esc_rpm_deviation",
+                     std::to_string(esc_rpm_deviation.size()) + " and esc_current_deviation " +
+                         std::to_string(esc_current_deviation.size()) + " values for " + std::to_string(shares.size()) +
+                         " shares (none or one per motor, both)");
+  }
+  for (std::size_t k = 0; k < esc_rpm_deviation.size(); ++k) {
+    requireWithin("motor_reference.esc_rpm_deviation[" + std::to_string(k) + "]", esc_rpm_deviation[k], -0.5, 0.5);
+    requireWithin("motor_reference.esc_current_deviation[" + std::to_string(k) + "]", esc_current_deviation[k], -0.5,
+                  0.5);
+  }
   if (std::abs(sum - 1.0) > 1e-3) {
     throw FieldError("motor_reference.shares", "they sum to " + formatPrintf("%.4f", sum) + ", not 1");
   }

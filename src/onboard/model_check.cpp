@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 
 #include "propulsion_estimator/common/field_error.h"
 
@@ -87,6 +89,21 @@ ModelCheck::ModelCheck(std::vector<int> channels, ModelCheckConfig config)
   for (std::size_t k = 0; k < channels.size(); ++k) {
     motors_[k].channel = channels[k];
     if (channels[k] >= 1) esc_to_motor_[static_cast<std::size_t>(channels[k] - 1)] = static_cast<int>(k);
+  }
+}
+
+void ModelCheck::setBaseline(std::vector<double> rpm_deviation, std::vector<double> current_deviation) {
+  if (rpm_deviation.size() != current_deviation.size() ||
+      (!rpm_deviation.empty() && rpm_deviation.size() != motors_.size())) {
+    throw std::invalid_argument("ESC baseline: " + std::to_string(rpm_deviation.size()) + " rpm and " +
+                                std::to_string(current_deviation.size()) + " current deviations for " +
+                                std::to_string(motors_.size()) + " rotors");
+  }
+  baseline_log_rpm_.clear();
+  baseline_log_current_.clear();
+  for (std::size_t k = 0; k < rpm_deviation.size(); ++k) {
+    baseline_log_rpm_.push_back(std::log1p(rpm_deviation[k]));
+    baseline_log_current_.push_back(std::log1p(current_deviation[k]));
   }
 }
 
@@ -206,8 +223,8 @@ ModelCheckReport ModelCheck::report(double now_s) const {
     const MotorCheck check = this->motor(k, now_s);
     if (!std::isnan(check.measured_rpm)) ++out.fresh_motors;
     least_hover_s = std::min(least_hover_s, motor.hover_s);
-    log_rpm.push_back(motor.log_rpm);
-    log_current.push_back(motor.log_current_at_speed);
+    log_rpm.push_back(motor.log_rpm - (baseline_log_rpm_.empty() ? 0.0 : baseline_log_rpm_[k]));
+    log_current.push_back(motor.log_current_at_speed - (baseline_log_current_.empty() ? 0.0 : baseline_log_current_[k]));
     out.motors.push_back(check);
   }
   if (!telemetry_seen_) {
@@ -248,7 +265,7 @@ ModelCheckReport ModelCheck::report(double now_s) const {
     const MotorCheck& motor = out.motors[flagged];
     out.note = std::string(modelCheckVerdictName(out.verdict)) + " on channel " + std::to_string(out.flagged_channel) +
                ": rpm " + percent(1.0 + motor.rpm_deviation) + ", current " + percent(1.0 + motor.current_deviation) +
-               " against the other motors";
+               (baseline_log_rpm_.empty() ? " against the other motors" : " against the other motors and its healthy flights");
   } else if (std::fabs(out.median_rpm_ratio - 1.0) > config_.supply_tolerance) {
     out.verdict = ModelCheckVerdict::kSupply;
     out.note = "every motor alike off the model: rpm " + percent(out.median_rpm_ratio) + ", current " +

@@ -75,6 +75,11 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
                                            : std::string("against the ideal balance, beyond the spread healthy "
                                                          "vehicles show (no motor_reference in the model)")));
   model_check_ = std::make_unique<ModelCheck>(params_.estimator.motor_channels, params_.esc_telemetry);
+  if (const auto& reference = estimator_->model().motorReference(); reference && !reference->esc_rpm_deviation.empty()) {
+    model_check_->setBaseline(reference->esc_rpm_deviation, reference->esc_current_deviation);
+    ROS_INFO_STREAM("live ESC check: each motor against the model's reference of " << reference->flights
+                                                                                   << " healthy flights");
+  }
   loadTare();
   const MassEstimate& payload = estimator_->output().payload;
   ROS_INFO_STREAM("empty mass: " << (std::isnan(payload.empty_mass_kg) ? std::string("unknown until ~tare")

@@ -22,12 +22,18 @@ struct ModelCheckReplay {
   std::vector<std::string> verdicts;  ///< "propeller", "motor_esc", "supply": each once
   std::vector<int> flagged_channels;  ///< 1-based, each once, in the order first flagged
   double first_flag_s = kNaN;  ///< s on the flight's clock; NaN when nothing was flagged
+  /// Per rotor, the mean over the judgements of MotorCheck::rpm_deviation and current_deviation
+  /// (against the baseline, where the model's reference holds one); empty when never judged.
+  std::vector<double> rpm_deviation;
+  std::vector<double> current_deviation;  ///< see rpm_deviation
 };
 
 /// Replays a flight's logged streams through the core Estimator (default configuration, channels
 /// 1..motors) and the model check (`config`) as estimator_node feeds them: battery, IMU, velocity
 /// and ESC telemetry as they arrived, the estimate after each accepted RCOut message, the
-/// report taken once a second. Without ESC telemetry nothing is judged.
+/// report taken once a second. Without ESC telemetry nothing is judged. Where the model's
+/// motor_reference holds ESC deviations, the motors are judged by their change from them, as the
+/// node does.
 ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                                   const ModelCheckConfig& config = {});
 

@@ -16,9 +16,16 @@ struct MotorReference {
   /// The weak-rotor gaps each healthy flight shows against the others' mean, per motor: how far a
   /// single flight's gap scatters on a healthy vehicle (its standard deviation, a share of thrust).
   std::vector<double> gap_std;
+  /// What the live ESC check (onboard/model_check.h) saw of each motor on those flights: its hover
+  /// rpm against the model, relative to the motors' median (0 = like the others), and its current
+  /// for its speed likewise, averaged over the flights. Healthy motors differ by their parts; the
+  /// check judges each motor's change from these. Empty when the flights had no ESC telemetry.
+  std::vector<double> esc_rpm_deviation;
+  std::vector<double> esc_current_deviation;  ///< see esc_rpm_deviation
 
   /// FieldError naming the field under motor_reference: shares that do not sum to 1 or are not positive,
-  /// lists of different lengths, a negative spread, fewer than 3 flights.
+  /// lists of different lengths (the ESC deviations: none or one per motor, both or neither), a
+  /// negative spread, an ESC deviation beyond +-50 %, fewer than 3 flights.
   void validate() const;
 };
 

@@ -67,7 +67,8 @@ struct MotorCheck {
   double hover_rpm_ratio = kNaN;  ///< hover average of rpm_ratio
   double hover_current_ratio = kNaN;  ///< hover average of current_ratio
   double hover_s = 0.0;  ///< s of hover the averages hold
-  /// The rpm average relative to the median of all motors' (0 = like the others).
+  /// The rpm average relative to the median of all motors' (0 = like the others), and against
+  /// the baseline's where one is set (0 = as on the healthy flights).
   double rpm_deviation = kNaN;
   /// The current for the speed the motor turns at (the current ratio over the rpm ratio cubed:
   /// shaft power ~ n^3), relative to the median of all motors'. A propeller that needs less
@@ -113,6 +114,11 @@ class ModelCheck {
   /// The battery's terminal voltage (V) at `receipt_s`: with every motor's fresh ESC voltage and
   /// current, one sample of the supply resistance.
   void addBattery(double receipt_s, double voltage_v);
+  /// Judges each motor by its change from a healthy baseline (MotorReference's esc_rpm_deviation
+  /// and esc_current_deviation, one per rotor): healthy motors differ by their parts, as much as
+  /// the tolerances. Empty lists: against the other motors alone. Throws std::invalid_argument
+  /// when the lists are not both empty or both one per rotor. Survives reset().
+  void setBaseline(std::vector<double> rpm_deviation, std::vector<double> current_deviation);
   /// Forgets every average and the supply resistance.
   void reset();
 
@@ -145,6 +151,7 @@ class ModelCheck {
   ModelCheckConfig config_;
   std::vector<Motor> motors_;
   std::vector<int> esc_to_motor_;  ///< rotor index of ESC i, -1 for none
+  std::vector<double> baseline_log_rpm_, baseline_log_current_;  ///< per rotor; empty: no baseline
   double estimate_receipt_s_ = kNaN;
   bool hovering_ = false;
   bool telemetry_seen_ = false;

@@ -406,6 +406,19 @@ TEST(ModelYaml, RoundTripsTheMotorReference) {
   EXPECT_EQ(back.motorReference()->share_std, model.motorReference()->share_std);
   EXPECT_EQ(back.motorReference()->gap_std, model.motorReference()->gap_std);
   EXPECT_FALSE(pe::parseModelYaml(kValid, "m.yaml").motorReference());
+  EXPECT_TRUE(back.motorReference()->esc_rpm_deviation.empty());
+}
+
+TEST(ModelYaml, RoundTripsTheMotorReferencesEscDeviations) {
+  pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
+  pe::MotorReference reference{{0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}};
+  reference.esc_rpm_deviation = {0.012, -0.008, 0.011, -0.009};
+  reference.esc_current_deviation = {-0.03, 0.025, -0.028, 0.027};
+  model.setMotorReference(reference);
+  const pe::PropulsionModel back = pe::parseModelYaml(pe::modelToYaml(model), "back.yaml");
+  ASSERT_TRUE(back.motorReference());
+  EXPECT_EQ(back.motorReference()->esc_rpm_deviation, reference.esc_rpm_deviation);
+  EXPECT_EQ(back.motorReference()->esc_current_deviation, reference.esc_current_deviation);
 }
 
 TEST(ModelYaml, RefusesAMotorReferenceThatIsNotOne) {
@@ -418,4 +431,15 @@ TEST(ModelYaml, RefusesAMotorReferenceThatIsNotOne) {
   EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, shares: [0.25, 0.25, 0.25, 0.25], share_std: [0, 0], "
                              "gap_std: [0, 0, 0, 0]}\n"),
             "m.yaml:31: motor_reference.share_std: 2 and gap_std 4 values for 4 shares");
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, shares: [0.25, 0.25, 0.25, 0.25], share_std: [0, 0, 0, 0], "
+                             "gap_std: [0, 0, 0, 0], esc_rpm_deviation: [0, 0, 0, 0]}\n"),
+            "m.yaml:31: motor_reference.esc_current_deviation: missing key");
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, shares: [0.25, 0.25, 0.25, 0.25], share_std: [0, 0, 0, 0], "
+                             "gap_std: [0, 0, 0, 0], esc_rpm_deviation: [0, 0], esc_current_deviation: [0, 0]}\n"),
+            "m.yaml:31: motor_reference.esc_rpm_deviation: 2 and esc_current_deviation 2 values for 4 shares (none or "
+            "one per motor, both)");
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, shares: [0.25, 0.25, 0.25, 0.25], share_std: [0, 0, 0, 0], "
+                             "gap_std: [0, 0, 0, 0], esc_rpm_deviation: [0, 0.7, 0, 0], esc_current_deviation: [0, 0, "
+                             "0, 0]}\n"),
+            "m.yaml:31: motor_reference.esc_rpm_deviation[1]: 0.7 is outside -0.5..0.5");
 }

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/onboard/model_check.h"
@@ -79,6 +81,50 @@ TEST(ModelCheck, NamesTheFamilyOfCauseFromTheDeviations) {
     EXPECT_EQ(report.fresh_motors, 4);
     EXPECT_NEAR(report.motors[1].hover_rpm_ratio, c.rpm[1], 2e-3);
   }
+}
+
+// Healthy motors differ by their parts: a propeller that turns a little more torque per thrust
+// than the others shows the damaged propeller's signature on every flight. Against a baseline of
+// the same vehicle's healthy flights only a change from it counts.
+TEST(ModelCheck, JudgesEachMotorByItsChangeFromTheBaseline) {
+  const double healthy_rpm[4] = {1, 1.02, 1, 1}, healthy_current[4] = {1, 0.97, 1, 1};
+  pe::ModelCheck plain({1, 2, 3, 4}, {});
+  double t = 0.0;
+  feed(&plain, &t, 5.0, healthy_rpm, healthy_current);
+  const pe::ModelCheckReport alone = plain.report(t);
+  EXPECT_EQ(alone.verdict, pe::ModelCheckVerdict::kPropeller) << alone.note;
+
+  pe::ModelCheck check({1, 2, 3, 4}, {});
+  check.setBaseline({alone.motors[0].rpm_deviation, alone.motors[1].rpm_deviation, alone.motors[2].rpm_deviation,
+                     alone.motors[3].rpm_deviation},
+                    {alone.motors[0].current_deviation, alone.motors[1].current_deviation,
+                     alone.motors[2].current_deviation, alone.motors[3].current_deviation});
+  t = 0.0;
+  feed(&check, &t, 5.0, healthy_rpm, healthy_current);
+  EXPECT_EQ(check.report(t).verdict, pe::ModelCheckVerdict::kConsistent) << check.report(t).note;
+  EXPECT_NEAR(check.report(t).motors[1].rpm_deviation, 0.0, 1e-3);
+
+  // Motor 3's propeller damaged since: found, and named against its healthy flights.
+  check.reset();
+  const double damaged_rpm[4] = {1, 1.02, 1.02, 1}, damaged_current[4] = {1, 0.97, 0.97, 1};
+  t = 0.0;
+  feed(&check, &t, 5.0, damaged_rpm, damaged_current);
+  const pe::ModelCheckReport report = check.report(t);
+  EXPECT_EQ(report.verdict, pe::ModelCheckVerdict::kPropeller) << report.note;
+  EXPECT_EQ(report.flagged_channel, 3) << report.note;
+  EXPECT_NE(report.note.find("against the other motors and its healthy flights"), std::string::npos) << report.note;
+}
+
+TEST(ModelCheck, RefusesABaselineOfAnotherMotorCount) {
+  pe::ModelCheck check({1, 2, 3, 4}, {});
+  try {
+    check.setBaseline({0.0, 0.0}, {0.0, 0.0});
+    FAIL() << "a baseline of 2 motors was accepted for 4";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "ESC baseline: 2 rpm and 2 current deviations for 4 rotors");
+  }
+  EXPECT_THROW(check.setBaseline({0, 0, 0, 0}, {}), std::invalid_argument);
+  EXPECT_NO_THROW(check.setBaseline({}, {}));
 }
 
 TEST(ModelCheck, ARepeatedReportIsNotAMeasurementAndGoesStale) {
