@@ -209,10 +209,15 @@ def flight_profile(rng, urdf, fault, vehicle=None, legs=None):
 # How far (m, in x and in y) the family's payload is hung from the attach point it is weighed at:
 # a hook is never quite where the drawing puts it, and differs from flight to flight.
 ATTACH_SCATTER_M = 0.004
-# Healthy flights of the same vehicle flown for diagnose_gap --reference in the null and
-# weak-propeller cases (the null cases to count the reference's false alarms).
+# Healthy flights of the same vehicle flown for diagnose_gap --reference: in the family every case
+# has them (a user diagnoses a change from the same vehicle's healthy flights: its parts differ from
+# the bench unit's as much as the smaller effects do), flown as the vehicle was built (its centre of
+# gravity offset too) without the case's effect or weak propeller; in the fixed suite the null and
+# weak-propeller cases. The null, centre-of-gravity and weak-propeller cases are also diagnosed
+# without them, for the motor verdicts a user without a reference gets.
 REFERENCE_FLIGHTS = 3
 REFERENCE_LABELS = ("null", "weak_propeller")
+NO_REFERENCE_LABELS = ("null", "cg_offset", "weak_propeller")
 
 
 def scatter_attach_point(profile, rng):
@@ -226,7 +231,7 @@ def scatter_attach_point(profile, rng):
 def wants_reference(case, args):
     """Whether the case is diagnosed against healthy flights of its vehicle (--reference): without
     one, a weak propeller is named only beyond the spread healthy vehicles show, in every mode."""
-    return case["label"] in REFERENCE_LABELS
+    return args.family or case["label"] in REFERENCE_LABELS
 
 
 def run(command, log):
@@ -304,8 +309,9 @@ def run_case_once(case, args, attempt):
     plan = [("flight_%d" % (f + 1), rng, random.Random("legs-%d-%d" % (case["seed"], f)), case.get("fault"),
              case["effects"], case["seed"] * 100 + f, manifest) for f in range(case["flights"])]
     if wants_reference(case, args):
+        built = case["fault"] if case["label"] == "cg_offset" else None
         plan += [("reference_%d" % (i + 1), random.Random("reference-%d-%d" % (case["seed"], i)),
-                  random.Random("reference-legs-%d-%d" % (case["seed"], i)), None, {}, case["seed"] * 100 + 50 + i,
+                  random.Random("reference-legs-%d-%d" % (case["seed"], i)), built, {}, case["seed"] * 100 + 50 + i,
                   reference) for i in range(REFERENCE_FLIGHTS)]
     manifests = {manifest: []}
     for name, flight_rng, legs, fault, effects, flight_seed, into in plan:
@@ -343,6 +349,11 @@ def run_case_once(case, args, attempt):
 def diagnose_and_score(case, args, folder, model, manifest, log):
     """The case's row (score); with --compare-rpm-view also what it names without the RPM view."""
     row = score(case, diagnose(case, args, folder, model, manifest, log))
+    if args.family and case["label"] in NO_REFERENCE_LABELS and "error" not in row:
+        alone = diagnose(case, args, folder, model, manifest, log, reference=False)
+        if isinstance(alone, str):
+            return dict(row, error=alone)
+        row["suspect_without_reference"] = alone["where"].get("suspect_motor")
     if args.compare_rpm_view and "error" not in row:
         without = score(case, diagnose(case, args, folder, model, manifest, log, rpm_view=False))
         if "error" in without:
@@ -351,15 +362,16 @@ def diagnose_and_score(case, args, folder, model, manifest, log):
     return row
 
 
-def diagnose(case, args, folder, model, manifest, log, rpm_view=True):
+def diagnose(case, args, folder, model, manifest, log, rpm_view=True, reference=True):
     """Runs diagnose_gap on a case's flights (without ESC telemetry's RPM view when `rpm_view` is
     False, into a folder of its own); returns its report, or an error text."""
     tool = lambda name: os.path.join(args.bin, name)  # noqa: E731
     urdf = os.path.join(args.repo, "config/f450_quad.urdf")
-    out = os.path.join(folder, "diagnosis" if rpm_view else "diagnosis_no_rpm_view")
+    out = os.path.join(folder, "diagnosis" if rpm_view and reference else
+                       "diagnosis_no_rpm_view" if reference else "diagnosis_no_reference")
     command = [tool("diagnose_gap"), "--model", model, "--manifest", manifest, "--urdf", urdf, "--out", out,
                "--python", sys.executable] + ([] if rpm_view else ["--no-rpm-view"])
-    if wants_reference(case, args):
+    if reference and wants_reference(case, args):
         command += ["--reference", os.path.join(folder, "reference.manifest.yaml")]
     if args.no_figures:
         # A plot script that draws nothing: the figures are most of a re-diagnosis' time.
@@ -570,6 +582,15 @@ def main():
                  "on %d of %d flights, another channel flagged on %d."
                  % (false_alarms, sum(r["health_flights"] for r in unfaulted), sum(r["health_found"] for r in weak),
                     sum(r["health_flights"] for r in weak), sum(r["health_elsewhere"] for r in weak)))
+    alone = [r for r in done if "suspect_without_reference" in r]
+    if alone:
+        healthy = [r for r in alone if r["label"] != "weak_propeller"]
+        weak_alone = [r for r in alone if r["label"] == "weak_propeller"]
+        lines.append("Without a reference (the same cases diagnosed without --reference): no suspect motor on %d of %d "
+                     "healthy vehicles (null and centre-of-gravity cases); weak propeller on its own motor on %d of %d."
+                     % (sum(1 for r in healthy if r["suspect_without_reference"] is None), len(healthy),
+                        sum(1 for r in weak_alone if r["suspect_without_reference"] == r["fault"]["weak_propeller"]["motor"]),
+                        len(weak_alone)))
     checked = [r for r in done if r.get("check_flights")]
     if checked:
         lines.append("Live model check of ESC telemetry (issue 21): false alarms on %d of %d flights without a weak "

@@ -235,8 +235,12 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   }
   // The fingerprint the motors were judged against goes with it: the node's live check and later
   // diagnoses judge change from the same reference.
-  PropulsionModel corrected = model.withEffects(diagnosis.fitted);
-  corrected.setMotorReference(config.motor_reference);
+  // The healthy level is folded into the corrected model's thrust_loss: its reference keeps the
+  // fingerprint but not the level, which was measured against the uncorrected model.
+  PropulsionModel corrected = model.withEffects(gap::correctedEffects(diagnosis));
+  std::optional<MotorReference> reference = config.motor_reference;
+  if (reference) reference->thrust_factor = reference->current_thrust_factor = reference->rpm_thrust_factor = kNaN;
+  corrected.setMotorReference(reference);
   saveModelFile(corrected, args.out + "/corrected_model.yaml",
                 args.model + " with the effects diagnose_gap selected (" +
                     (selected_names.empty() ? std::string("none") : selected_names) + "); see report.md");

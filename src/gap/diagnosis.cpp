@@ -289,6 +289,11 @@ void Diagnoser::balanceMotors() {
     for (int k = 0; k < motorCount(); ++k) channels.push_back(k + 1);
   }
   diagnosis_.motors = gap::balanceMotors(views_, vehicle_, blocks_, channels, config_);
+  // Against a reference of healthy flights, effects are changes from that vehicle.
+  if (const std::optional<MotorReference>& reference = config_.motor_reference) {
+    views_.setLevels(reference->thrust_factor, reference->current_thrust_factor, reference->rpm_thrust_factor);
+    if (!std::isnan(reference->thrust_factor)) diagnosis_.motors.reference_thrust_factor = reference->thrust_factor;
+  }
   if (!diagnosis_.motors.suspect_channel) return;
   for (std::size_t k = 0; k < diagnosis_.motors.motors.size(); ++k) {
     const MotorGap& motor = diagnosis_.motors.motors[k];

@@ -195,6 +195,7 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
     out << YAML::EndSeq;
   }
   out << YAML::Key << "motor_basis" << YAML::Value << diagnosis.motors.basis;
+  emitField(out, "reference_thrust_factor", diagnosis.motors.reference_thrust_factor);
   out << YAML::Key << "motors" << YAML::Value << YAML::BeginSeq;
   for (const MotorGap& motor : diagnosis.motors.motors) {
     out << YAML::Flow << YAML::BeginMap << YAML::Key << "channel" << YAML::Value << motor.channel;
@@ -264,7 +265,9 @@ std::string basisText(const MotorBalance& balance) {
     return "Each motor against this vehicle's own healthy flights (--reference): the fraction of its modelled thrust "
            "it lacks now that it did not then (negative: more), the yaw balance's change fitted beside it (a damaged "
            "propeller's drag torque changes too). A suspect lacks more than the motor gap threshold and three "
-           "standard errors of the reference's flight-to-flight spread.";
+           "standard errors of the reference's flight-to-flight spread. The effects are sought as changes from that "
+           "vehicle: its thrust on those flights was " +
+           formatPrintf("%.3f", balance.reference_thrust_factor) + " of the model's (1: not weighed there).";
   }
   if (balance.basis == "payloads") {
     return "Each motor's gap that keeps the empty vehicle's mass moment the same with every payload (the payloads "

@@ -252,6 +252,25 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
 
 namespace {
 
+// The healthy vehicle's weighed vertical thrust over each view's, summed over its steady blocks
+// (NaN for a view no block has).
+void learnThrustFactors(const ThrustViews& views, const std::vector<Block>& blocks, MotorReference* reference) {
+  const effects::ModelEffects none;
+  const auto factor = [&blocks](const std::function<double(const Block&)>& view) {
+    double truth = 0.0, modelled = 0.0;
+    for (const Block& block : blocks) {
+      const double thrust = view(block);
+      if (!std::isfinite(thrust) || !(block.truth_n > 0.0)) continue;
+      truth += block.truth_n;
+      modelled += thrust;
+    }
+    return modelled > 0.0 ? truth / modelled : std::numeric_limits<double>::quiet_NaN();
+  };
+  reference->thrust_factor = factor([&](const Block& block) { return views.pwmView(block, none); });
+  reference->current_thrust_factor = factor([&](const Block& block) { return views.currentView(block, none); });
+  reference->rpm_thrust_factor = factor([&](const Block& block) { return views.rpmView(block, none); });
+}
+
 // What the live ESC check sees of each healthy motor: the mean over the flights of each flight's
 // mean deviations, judged against the other motors alone. Left empty unless every flight was
 // judged: a baseline from some flights would judge the others' motors against too little.
@@ -300,6 +319,7 @@ MotorReference learnReference(const PropulsionModel& model, const Vehicle& vehic
                       std::to_string(flights.size()) + " flights; a reference needs at least 3");
   }
   MotorReference reference = learnMotorReference(vehicle, hoverUnits(views, blocks, false));
+  learnThrustFactors(ThrustViews(model, motors, true), blocks, &reference);
   learnEscBaseline(model, vehicle, flights, &reference);
   return reference;
 }

@@ -33,6 +33,12 @@ ThrustViews::ThrustViews(const PropulsionModel& model, int motors, bool rpm_view
   motor_scale_.fill(1.0);
 }
 
+void ThrustViews::setLevels(double pwm, double current, double rpm) {
+  pwm_level_ = std::isnan(pwm) ? 1.0 : pwm;
+  current_level_ = std::isnan(current) ? 1.0 : current;
+  rpm_level_ = std::isnan(rpm) ? 1.0 : rpm;
+}
+
 double ThrustViews::motorThrust(double pwm_us, double voltage_v) const {
   return std::max(0.0, model_.evaluateRaw(Output::kThrust, pwm_us, voltage_v) * thrust_to_si_);
 }
@@ -54,7 +60,7 @@ double ThrustViews::pwmView(const Block& block, const effects::ModelEffects& eff
   for (int k = 0; k < motors_; ++k) {
     inputs[k] = effects::correctInputs(effects, block.pwm_us[k], block.voltage_v, block.signals);
   }
-  return verticalThrust(block, 0.0, inputs.data()) * effects::thrustFactor(effects, block.signals);
+  return pwm_level_ * verticalThrust(block, 0.0, inputs.data()) * effects::thrustFactor(effects, block.signals);
 }
 
 double ThrustViews::currentView(const Block& block, const effects::ModelEffects& effects) const {
@@ -75,7 +81,7 @@ double ThrustViews::currentView(const Block& block, const effects::ModelEffects&
     const double middle = 0.5 * (low + high);
     (total_current(middle) < block.current_a ? low : high) = middle;
   }
-  return verticalThrust(block, 0.5 * (low + high), inputs.data()) *
+  return current_level_ * verticalThrust(block, 0.5 * (low + high), inputs.data()) *
          viewFactor(effects, block.signals, currentViewExponent);
 }
 
@@ -87,7 +93,7 @@ double ThrustViews::rpmView(const Block& block, const effects::ModelEffects& eff
     if (!std::isfinite(block.rpm[k])) return kNaN;
     thrust += motor_scale_[k] * rpm_thrust->thrustN(block.rpm[k], block.signals.air_density_kg_m3) * block.axis_up[k];
   }
-  return thrust * viewFactor(effects, block.signals, rpmViewExponent);
+  return rpm_level_ * thrust * viewFactor(effects, block.signals, rpmViewExponent);
 }
 
 double ThrustViews::viewFactor(const effects::ModelEffects& effects, const effects::Signals& signals,

@@ -1,5 +1,6 @@
 #include "propulsion_estimator/model/model_yaml.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <regex>
@@ -252,14 +253,21 @@ void writeRpmThrust(YAML::Emitter& out, const RpmThrust& fit) {
 }
 
 // motor_reference: {flights, shares: [...], share_std: [...], gap_std: [...]}, one entry per motor;
-// with ESC telemetry also esc_rpm_deviation and esc_current_deviation.
+// with ESC telemetry also esc_rpm_deviation and esc_current_deviation; with weighed steady flight
+// thrust_factor, current_thrust_factor and rpm_thrust_factor (each where the view exists).
 MotorReference readMotorReference(const YamlMap& map) {
-  map.allowOnly({"flights", "shares", "share_std", "gap_std", "esc_rpm_deviation", "esc_current_deviation"});
+  map.allowOnly({"flights", "shares", "share_std", "gap_std", "esc_rpm_deviation", "esc_current_deviation",
+                 "thrust_factor", "current_thrust_factor", "rpm_thrust_factor"});
   MotorReference reference;
   reference.flights = map.integer("flights");
   reference.shares = map.numbers("shares");
   reference.share_std = map.numbers("share_std");
   reference.gap_std = map.numbers("gap_std");
+  for (const auto& [key, value] : {std::make_pair("thrust_factor", &reference.thrust_factor),
+                                   std::make_pair("current_thrust_factor", &reference.current_thrust_factor),
+                                   std::make_pair("rpm_thrust_factor", &reference.rpm_thrust_factor)}) {
+    if (map.has(key)) *value = map.number(key);
+  }
   if (map.has("esc_rpm_deviation") || map.has("esc_current_deviation")) {
     reference.esc_rpm_deviation = map.numbers("esc_rpm_deviation");
     reference.esc_current_deviation = map.numbers("esc_current_deviation");
@@ -270,6 +278,11 @@ MotorReference readMotorReference(const YamlMap& map) {
 void writeMotorReference(YAML::Emitter& out, const MotorReference& reference) {
   out << YAML::Key << "motor_reference" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "flights" << YAML::Value << reference.flights;
+  for (const auto& [key, value] : {std::make_pair("thrust_factor", reference.thrust_factor),
+                                   std::make_pair("current_thrust_factor", reference.current_thrust_factor),
+                                   std::make_pair("rpm_thrust_factor", reference.rpm_thrust_factor)}) {
+    if (!std::isnan(value)) out << YAML::Key << key << YAML::Value << formatNumber(value);
+  }
   std::vector<std::pair<const char*, const std::vector<double>*>> lists = {
       {"shares", &reference.shares}, {"share_std", &reference.share_std}, {"gap_std", &reference.gap_std}};
   if (!reference.esc_rpm_deviation.empty()) {

@@ -36,6 +36,11 @@ void MotorReference::validate() const {
     requireWithin("motor_reference.esc_current_deviation[" + std::to_string(k) + "]", esc_current_deviation[k], -0.5,
                   0.5);
   }
+  for (const auto& [key, value] : {std::make_pair("thrust_factor", thrust_factor),
+                                   std::make_pair("current_thrust_factor", current_thrust_factor),
+                                   std::make_pair("rpm_thrust_factor", rpm_thrust_factor)}) {
+    if (!std::isnan(value)) requireWithin(std::string("motor_reference.") + key, value, 0.5, 1.5);
+  }
   if (std::abs(sum - 1.0) > 1e-3) {
     throw FieldError("motor_reference.shares", "they sum to " + formatPrintf("%.4f", sum) + ", not 1");
   }

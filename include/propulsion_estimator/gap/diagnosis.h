@@ -112,6 +112,10 @@ struct MotorBalance {
   double healthy_gap_std_pct = 0.0;
   std::optional<int> suspect_channel;  ///< a motor whose model is off alone
   double suspect_thrust_factor = 1.0;  ///< its thrust over the model's, fitted; the effects are sought with it applied
+  /// The vehicle's thrust on its healthy flights over the model's (MotorReference::thrust_factor),
+  /// applied to every motor: the effects are sought as changes from the healthy vehicle; 1
+  /// without a reference that holds one.
+  double reference_thrust_factor = 1.0;
   double cg_offset_x_m = 0.0;          ///< centre of thrust against base_link, body frame
   double cg_offset_y_m = 0.0;  ///< see cg_offset_x_m
   std::string unavailable;  ///< empty, or why (no geometry, no hover, fewer than 4 motors)
@@ -252,7 +256,7 @@ struct Diagnosis {
   /// apart; none of them is in `selected`.
   std::vector<Ambiguity> ambiguous;
   /// The selected effects and each ambiguous group's leader, fitted on all flights: the best
-  /// prediction, whatever the name (what corrected_model.yaml carries).
+  /// prediction, whatever the name, on top of the reference's thrust factor (correctedEffects).
   effects::ModelEffects fitted;
   HeldOut heldout;  ///< scores on held-out flights before and after them
   std::vector<SelectionStep> trace;  ///< every candidate of every round, in order
@@ -266,6 +270,12 @@ struct Diagnosis {
   std::vector<GapSample> samples;  ///< one per block, for the figures
   std::vector<std::string> problems;  ///< what could not be done, one line each
 };
+
+/// What corrected_model.yaml carries: `diagnosis`'s fitted effects with the healthy vehicle's
+/// thrust factor (MotorBalance::reference_thrust_factor), which they were sought on top of, folded
+/// into thrust_loss: 1 - factor x (1 - fitted fraction). The model then predicts what the
+/// diagnosis scored.
+effects::ModelEffects correctedEffects(const Diagnosis& diagnosis);
 
 /// Diagnoses the gap between `model` and the weighed flights, and the extra bench logs' gap.
 /// Flights or segments that cannot be used are listed in Diagnosis::problems and the rest is

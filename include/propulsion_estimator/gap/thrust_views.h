@@ -39,6 +39,9 @@ class ThrustViews {
 
   /// A per-motor factor on thrust (1 = as modelled), for a motor the balance shows to be off.
   void setMotorScale(int motor, double scale) { motor_scale_[motor] = scale; }
+  /// Factors on each view's thrust (1 = as modelled): a healthy vehicle's own level against the
+  /// model in each view (MotorReference), so that effects are sought as changes from it. NaN: 1.
+  void setLevels(double pwm, double current, double rpm);
   /// Whether the model has a thrust_from_rpm (else the RPM view is NaN).
   bool hasRpmThrust() const { return model_.rpmThrust().has_value(); }
   /// As given.
@@ -57,6 +60,7 @@ class ThrustViews {
   bool has_current_;
   bool rpm_view_;
   std::array<double, kMaxMotors> motor_scale_;
+  double pwm_level_ = 1.0, current_level_ = 1.0, rpm_level_ = 1.0;
 };
 
 /// How much of an effect's thrust factor the RPM view sees, as an exponent on it (1: as much as the

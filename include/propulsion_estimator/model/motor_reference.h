@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <vector>
 
 namespace propulsion_estimator {
@@ -22,10 +23,19 @@ struct MotorReference {
   /// check judges each motor's change from these. Empty when the flights had no ESC telemetry.
   std::vector<double> esc_rpm_deviation;
   std::vector<double> esc_current_deviation;  ///< see esc_rpm_deviation
+  /// The vehicle's vertical thrust in steady flight on those flights (weighed mass times specific
+  /// force) over the model's from the pulse widths: its parts, frame and propellers against the
+  /// bench's. Effects are then judged as changes from it. NaN when unknown.
+  double thrust_factor = std::numeric_limits<double>::quiet_NaN();
+  /// Likewise over the model's thrust from the battery current (the diagnosis' current view) and
+  /// from ESC telemetry's rotor speeds (its RPM view); NaN without them.
+  double current_thrust_factor = std::numeric_limits<double>::quiet_NaN();
+  double rpm_thrust_factor = std::numeric_limits<double>::quiet_NaN();  ///< see current_thrust_factor
 
   /// FieldError naming the field under motor_reference: shares that do not sum to 1 or are not positive,
   /// lists of different lengths (the ESC deviations: none or one per motor, both or neither), a
-  /// negative spread, an ESC deviation beyond +-50 %, fewer than 3 flights.
+  /// negative spread, an ESC deviation beyond +-50 %, a thrust factor outside 0.5..1.5, fewer than
+  /// 3 flights.
   void validate() const;
 };
 
