@@ -130,10 +130,13 @@ class SyntheticFlights : public ::testing::Test {
     return flight;
   }
 
-  std::vector<pe::Flight> flights(const World& world) const {
-    return {fly("f1.bag", world, {1.3, 1.6, 1.75}, 12.4, 1), fly("f2.bag", world, {1.35, 1.5, 1.8}, 11.8, 2),
-            fly("f3.bag", world, {1.3, 1.7, 1.55}, 11.3, 3), fly("f4.bag", world, {1.45, 1.65, 1.4}, 12.2, 4),
-            fly("f5.bag", world, {1.6, 1.35, 1.8}, 11.6, 5)};
+  // Five flights; `seed` 0: the same noise as every other call's, else their own.
+  std::vector<pe::Flight> flights(const World& world, unsigned seed = 0) const {
+    return {fly("f1.bag", world, {1.3, 1.6, 1.75}, 12.4, 1 + 10 * seed),
+            fly("f2.bag", world, {1.35, 1.5, 1.8}, 11.8, 2 + 10 * seed),
+            fly("f3.bag", world, {1.3, 1.7, 1.55}, 11.3, 3 + 10 * seed),
+            fly("f4.bag", world, {1.45, 1.65, 1.4}, 12.2, 4 + 10 * seed),
+            fly("f5.bag", world, {1.6, 1.35, 1.8}, 11.6, 5 + 10 * seed)};
   }
 
   gap::Diagnosis diagnose(const World& world, bool rpm_view = true) const {
@@ -277,6 +280,35 @@ TEST_F(SyntheticFlights, PointsAtAWeakPropellerAndNamesNoEffect) {
   ASSERT_TRUE(diagnosis.motors.suspect_channel);
   EXPECT_EQ(*diagnosis.motors.suspect_channel, 3);
   EXPECT_TRUE(diagnosis.selected.empty());
+}
+
+// A vehicle whose rotors give 4 % less than the bench unit's (its parts, its frame): without a
+// reference that is a thrust loss; against its own healthy flights nothing changed, and a loss
+// since is named at its own size, the corrected model carrying both.
+TEST_F(SyntheticFlights, AgainstItsHealthyFlightsAVehicleIsJudgedByWhatChanged) {
+  World built;
+  built.thrust_loss = 0.04;
+  built.telemetry = true;
+  const gap::Diagnosis alone = gap::diagnoseGap(model_, vehicle_, flights(built), gap::DiagnosisConfig());
+  EXPECT_EQ(alone.selected, std::vector<Kind>{Kind::kThrustLoss});
+
+  gap::DiagnosisConfig config;
+  config.motor_reference = gap::learnReference(model_, vehicle_, flights(built, 1), config);
+  EXPECT_NEAR(config.motor_reference->thrust_factor, 0.96, 0.005);
+  EXPECT_NEAR(config.motor_reference->current_thrust_factor, 0.96, 0.02);
+  EXPECT_NEAR(config.motor_reference->rpm_thrust_factor, 0.96, 0.005);
+  const gap::Diagnosis healthy = gap::diagnoseGap(model_, vehicle_, flights(built), config);
+  EXPECT_TRUE(healthy.selected.empty()) << testing::PrintToString(healthy.problems);
+  EXPECT_NEAR(healthy.motors.reference_thrust_factor, 0.96, 0.005);
+  EXPECT_NEAR(*gap::correctedEffects(healthy).parameter(Kind::kThrustLoss), 0.04, 0.005);
+
+  World worn = built;
+  worn.thrust_loss = 1.0 - 0.96 * 0.94;  // 6 % lost since
+  const gap::Diagnosis since = gap::diagnoseGap(model_, vehicle_, flights(worn), config);
+  EXPECT_EQ(since.selected, std::vector<Kind>{Kind::kThrustLoss});
+  EXPECT_NEAR(*since.fitted.parameter(Kind::kThrustLoss), 0.06, 0.005);
+  EXPECT_NEAR(*gap::correctedEffects(since).parameter(Kind::kThrustLoss), worn.thrust_loss, 0.005);
+  EXPECT_FALSE(since.motors.suspect_channel);
 }
 
 TEST_F(SyntheticFlights, WithoutGeometryAWeakMotorIsNotNamedAsAnEffect) {

@@ -409,16 +409,24 @@ TEST(ModelYaml, RoundTripsTheMotorReference) {
   EXPECT_TRUE(back.motorReference()->esc_rpm_deviation.empty());
 }
 
-TEST(ModelYaml, RoundTripsTheMotorReferencesEscDeviations) {
+TEST(ModelYaml, RoundTripsTheMotorReferencesEscDeviationsAndThrustFactors) {
   pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
   pe::MotorReference reference{{0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}};
   reference.esc_rpm_deviation = {0.012, -0.008, 0.011, -0.009};
   reference.esc_current_deviation = {-0.03, 0.025, -0.028, 0.027};
+  reference.thrust_factor = 0.962;
+  reference.rpm_thrust_factor = 0.981;
   model.setMotorReference(reference);
   const pe::PropulsionModel back = pe::parseModelYaml(pe::modelToYaml(model), "back.yaml");
   ASSERT_TRUE(back.motorReference());
   EXPECT_EQ(back.motorReference()->esc_rpm_deviation, reference.esc_rpm_deviation);
   EXPECT_EQ(back.motorReference()->esc_current_deviation, reference.esc_current_deviation);
+  EXPECT_EQ(back.motorReference()->thrust_factor, 0.962);
+  EXPECT_TRUE(std::isnan(back.motorReference()->current_thrust_factor));
+  EXPECT_EQ(back.motorReference()->rpm_thrust_factor, 0.981);
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, thrust_factor: 0.2, shares: [0.25, 0.25, 0.25, 0.25], "
+                             "share_std: [0, 0, 0, 0], gap_std: [0, 0, 0, 0]}\n"),
+            "m.yaml:31: motor_reference.thrust_factor: 0.2 is outside 0.5..1.5");
 }
 
 TEST(ModelYaml, RefusesAMotorReferenceThatIsNotOne) {
