@@ -194,7 +194,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     const double timeout = config.signal_timeout_s;
     const int blocks_per_group = std::max(1, static_cast<int>(std::lround(config.group_s / config.block_s)));
     int block_in_segment = 0;
-    int usable = 0;
+    int usable = 0, without_attitude = 0, frames = 0, without_battery = 0;
 
     Accumulator acc;
     int current_block = 0;
@@ -214,6 +214,9 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       if (acc.imu_frames == acc.frames || !result.has_imu) {
         result.blocks.push_back(block);
         ++usable;
+      } else {
+        ++result.blocks_without_attitude;
+        ++without_attitude;
       }
       ++block_in_segment;
       acc = Accumulator();
@@ -227,8 +230,12 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
         flush();
         current_block = index;
       }
+      ++frames;
       const BatteryReading* b = battery.at(frame.time_s, timeout);
-      if (!b || !(b->voltage_v > 0.0)) continue;
+      if (!b || !(b->voltage_v > 0.0)) {
+        ++without_battery;
+        continue;
+      }
       ++acc.frames;
       if (acc.frames == 1) acc.first_time = frame.time_s;
       acc.last_time = frame.time_s;
@@ -274,7 +281,20 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     }
     flush();
     group += (block_in_segment + blocks_per_group - 1) / blocks_per_group;
-    if (usable == 0) result.problems.push_back(segmentName(flight, s) + " has no rc/out with a fresh battery voltage; skipped");
+    result.frames_without_battery += without_battery;
+    if (usable > 0) continue;
+    if (without_attitude > 0) {
+      result.problems.push_back(segmentName(flight, s) + ": none of its " + std::to_string(without_attitude) +
+                                " blocks has the attitude on every frame (no IMU orientation within " +
+                                formatNumber(timeout) + " s); skipped");
+    } else if (frames == 0) {
+      result.problems.push_back(segmentName(flight, s) + " holds no rc/out frame; skipped");
+    } else {
+      result.problems.push_back(segmentName(flight, s) + " has no rc/out with a fresh battery voltage (" +
+                                std::to_string(without_battery) + " of its " + std::to_string(frames) +
+                                " rc/out frames without a battery voltage within " + formatNumber(timeout) +
+                                " s); skipped");
+    }
   }
   return result;
 }

@@ -30,6 +30,19 @@ using effects::Kind;
 // A, the most the avionics (flight controller, companion computer, radios, camera) draw beside the
 // motors: the current view's nuisance is sought within 0..this.
 constexpr double kMaxAvionicsCurrentA = 3.0;
+// What the cut into blocks left out, for the one line that says why nothing could be used.
+struct UnusedData {
+  int transient = 0;               // blocks changing or accelerating beyond the steadiness bounds
+  int without_attitude = 0;        // blocks with a frame lacking the attitude
+  int frames_without_battery = 0;  // rc/out frames without a fresh battery voltage
+};
+// "no usable sample in any weighed segment of any flight: ..." with each reason's count and
+// bound (usable_data.cpp).
+std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config);
+// A line when most blocks lie outside the model's domain, naming the flights' ranges beside the
+// model's: is this the right model? nullopt otherwise (usable_data.cpp).
+std::optional<std::string> outsideTheDomain(const std::vector<Block>& blocks, const ModelDomain& domain, int motors);
+
 // Passes of revisitRounds at most: each pass stops at the first round that changed.
 constexpr int kMaxRevisitPasses = 6;
 

@@ -42,9 +42,12 @@ void Diagnoser::cut() {
   block_config.group_s = config_.group_s;
   block_config.signal_timeout_s = config_.signal_timeout_s;
   int group = 0;
+  UnusedData unused;
   for (int f = 0; f < static_cast<int>(flights_.size()); ++f) {
     FlightBlocks cut = cutIntoBlocks(flights_[f], f, vehicle_, block_config, group);
     for (const std::string& problem : cut.problems) diagnosis_.problems.push_back(problem);
+    unused.without_attitude += cut.blocks_without_attitude;
+    unused.frames_without_battery += cut.frames_without_battery;
     for (const Block& block : cut.blocks) {
       group = std::max(group, block.group + 1);
       if (isQuasiSteady(block, config_.max_pwm_change_us, config_.max_accel_m_s2)) {
@@ -60,11 +63,10 @@ void Diagnoser::cut() {
     }
   }
   diagnosis_.blocks = static_cast<int>(blocks_.size());
-  if (blocks_.empty()) {
-    throw DataError("no usable sample in any weighed segment of any flight" +
-                      (diagnosis_.transient_blocks > 0
-                           ? " (all " + std::to_string(diagnosis_.transient_blocks) + " blocks transient)"
-                           : std::string()));
+  unused.transient = diagnosis_.transient_blocks;
+  if (blocks_.empty()) throw DataError(nothingUsable(unused, config_));
+  if (const std::optional<std::string> outside = outsideTheDomain(blocks_, model_.domain(), motorCount())) {
+    diagnosis_.problems.push_back(*outside);
   }
   for (const Block& block : blocks_) all_.push_back(&block);
   // The selection's test counts stretches, not blocks: too few, and no effect can be significant.
@@ -212,25 +214,6 @@ HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) cons
   return prediction;
 }
 
-// The yaw balance gives the suspect's gap assuming its propeller turns thrust into drag torque
-// as the bench propeller did; a damaged or smaller one does not quite. Its thrust factor is fitted
-// to the weighed thrust instead (least squares on the PWM view), within [1 - 2 gap, 1]: weaker
-// than modelled, by at most twice what the balance says.
-double Diagnoser::suspectThrustFactor(int motor, double yaw_gap) const {
-  const effects::ModelEffects plain = references();
-  double sum_xy = 0.0, sum_xx = 0.0;
-  for (const Block& block : blocks_) {
-    // No effect is selected yet: the PWM view is the surfaces' thrust along each rotor's axis.
-    const double mine = views_.motorThrust(block.pwm_us[motor], block.voltage_v) * block.axis_up[motor];
-    const double others = views_.pwmView(block, plain) - mine;
-    const double weight = 1.0 / (block.truth_n * block.truth_n);
-    sum_xy += weight * (block.truth_n - others) * mine;
-    sum_xx += weight * mine * mine;
-  }
-  const double fitted = sum_xx > 0.0 ? sum_xy / sum_xx : 1.0 - yaw_gap;
-  return std::clamp(fitted, 1.0 - 2.0 * std::abs(yaw_gap), 1.0);
-}
-
 // How the current view's residual follows an effect's correction of the PWM view (from `without`
 // to `with`): 1 when both views err alike, 0 when the current view does not see the effect.
 double Diagnoser::currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const {
@@ -280,34 +263,6 @@ double Diagnoser::meanPwm(const Block& block) const {
   double sum = 0.0;
   for (int k = 0; k < motorCount(); ++k) sum += block.pwm_us[k];
   return sum / motorCount();
-}
-
-// 1. The gap: over all flights, per flight, and on the extra bench logs.
-void Diagnoser::balanceMotors() {
-  std::vector<int> channels = config_.channels;
-  if (channels.empty()) {
-    for (int k = 0; k < motorCount(); ++k) channels.push_back(k + 1);
-  }
-  diagnosis_.motors = gap::balanceMotors(views_, vehicle_, blocks_, channels, config_);
-  // Against a reference of healthy flights, effects are changes from that vehicle.
-  if (const std::optional<MotorReference>& reference = config_.motor_reference) {
-    views_.setLevels(reference->thrust_factor, reference->current_thrust_factor, reference->rpm_thrust_factor);
-    if (!std::isnan(reference->thrust_factor)) diagnosis_.motors.reference_thrust_factor = reference->thrust_factor;
-  }
-  if (!diagnosis_.motors.suspect_channel) return;
-  for (std::size_t k = 0; k < diagnosis_.motors.motors.size(); ++k) {
-    const MotorGap& motor = diagnosis_.motors.motors[k];
-    if (motor.channel == *diagnosis_.motors.suspect_channel) {
-      // The payloads' moments give the gap as the share of thrust the motor lacks, refined against
-      // the weighed thrust; the shares give it as the model's excess over the motor's thrust,
-      // whatever the weighed mass (a mass off by a few per cent would pull a fitted factor along).
-      const double gap = motor.thrust_gap_pct / 100.0;
-      diagnosis_.motors.suspect_thrust_factor = diagnosis_.motors.basis == "payloads"
-                                                    ? suspectThrustFactor(static_cast<int>(k), gap)
-                                                    : 1.0 / (1.0 + gap);
-      views_.setMotorScale(static_cast<int>(k), diagnosis_.motors.suspect_thrust_factor);
-    }
-  }
 }
 
 std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>& selected,

@@ -61,6 +61,8 @@ struct FlightBlocks {
   std::vector<std::string> problems;  ///< one line for each thing that could not be used
   bool has_imu = false;  ///< whether the flight had an IMU
   bool has_current = false;  ///< whether the flight had a battery current
+  int frames_without_battery = 0;  ///< rc/out frames in segments with no battery voltage within the timeout
+  int blocks_without_attitude = 0;  ///< blocks left out: some frame had no attitude within the timeout
 };
 
 /// Cuts `flight` into blocks inside its weighed segments, its commands through the rotor lag. A segment outside the log's time span,

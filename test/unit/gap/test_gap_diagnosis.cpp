@@ -480,7 +480,42 @@ TEST_F(SyntheticFlights, ReportsWhatItCannotUseAndDiagnosesTheRest) {
 TEST_F(SyntheticFlights, RefusesWhenNothingIsUsable) {
   std::vector<pe::Flight> all = flights(World{});
   for (pe::Flight& flight : all) flight.segments = {{5000.0, 5010.0, 1.4}};
-  EXPECT_THROW(gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{}), pe::DataError);
+  try {
+    gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{});
+    FAIL() << "diagnosed flights with nothing usable";
+  } catch (const pe::DataError& e) {
+    EXPECT_STREQ(e.what(), "no usable sample in any weighed segment of any flight (see the lines above for each segment)");
+  }
+}
+
+TEST_F(SyntheticFlights, SaysWhyNothingIsUsableWithTheNumbers) {
+  World world;
+  world.kicks = true;
+  gap::DiagnosisConfig config;
+  config.max_pwm_change_us = 1.0;  // nothing this flight does is that steady
+  config.rotor_time_constant_s = 0.0;
+  try {
+    gap::diagnoseGap(model_, vehicle_, flights(world), config);
+    FAIL() << "diagnosed flights with nothing steady";
+  } catch (const pe::DataError& e) {
+    EXPECT_STREQ(e.what(), "no usable sample in any weighed segment of any flight: 585 blocks transient (collective "
+                           "PWM changing by more than 1 us or accelerating faster than 0.8 m/s^2 vertically within 1 s)");
+  }
+}
+
+// A model of another battery than the vehicle's (a 4-cell vehicle against a 3-cell model): said,
+// with both ranges.
+TEST_F(SyntheticFlights, SaysWhenTheFlightsLieOutsideTheModelsDomain) {
+  std::vector<pe::Flight> all = flights(World{});
+  for (pe::Flight& flight : all) {
+    for (pe::BatteryReading& reading : flight.streams.battery) reading.voltage_v += 4.0;
+  }
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{});
+  ASSERT_FALSE(diagnosis.problems.empty());
+  EXPECT_EQ(diagnosis.problems.back(),
+            "585 of 585 blocks lie outside the model's domain: the flights' battery reads 15.03-16.40 V and their pulse "
+            "widths 1621-1788 us, the model covers 10.50-12.60 V and 1200-1900 us (outside: clamp): is this the right "
+            "model for this vehicle and battery?");
 }
 
 TEST_F(SyntheticFlights, ReportYamlHoldsTheContract) {

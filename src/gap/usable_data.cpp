@@ -1,0 +1,58 @@
+// Why nothing, or little, of the flights could be used: one line each, with the numbers.
+#include <algorithm>
+#include <limits>
+
+#include "diagnoser.h"
+
+namespace propulsion_estimator {
+namespace gap {
+namespace detail {
+
+std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config) {
+  std::string reasons;
+  const auto add = [&reasons](const std::string& reason) { reasons += (reasons.empty() ? "" : "; ") + reason; };
+  if (unused.transient > 0) {
+    add(std::to_string(unused.transient) + " blocks transient (collective PWM changing by more than " +
+        formatNumber(config.max_pwm_change_us) + " us or accelerating faster than " +
+        formatNumber(config.max_accel_m_s2) + " m/s^2 vertically within " + formatNumber(config.block_s) + " s)");
+  }
+  if (unused.without_attitude > 0) {
+    add(std::to_string(unused.without_attitude) + " blocks without the attitude on every frame (no IMU orientation within " +
+        formatNumber(config.signal_timeout_s) + " s)");
+  }
+  if (unused.frames_without_battery > 0) {
+    add(std::to_string(unused.frames_without_battery) + " rc/out frames without a battery voltage within " +
+        formatNumber(config.signal_timeout_s) + " s");
+  }
+  return "no usable sample in any weighed segment of any flight" +
+         (reasons.empty() ? std::string(" (see the lines above for each segment)") : ": " + reasons);
+}
+
+std::optional<std::string> outsideTheDomain(const std::vector<Block>& blocks, const ModelDomain& domain, int motors) {
+  int outside = 0;
+  double pwm_low = std::numeric_limits<double>::infinity(), pwm_high = -pwm_low;
+  double volt_low = pwm_low, volt_high = -pwm_low;
+  for (const Block& block : blocks) {
+    bool out = false;
+    for (int k = 0; k < motors; ++k) {
+      out |= !domain.contains(block.pwm_us[k], block.voltage_v);
+      pwm_low = std::min(pwm_low, block.pwm_us[k]);
+      pwm_high = std::max(pwm_high, block.pwm_us[k]);
+    }
+    volt_low = std::min(volt_low, block.voltage_v);
+    volt_high = std::max(volt_high, block.voltage_v);
+    outside += out;
+  }
+  if (blocks.empty() || 2 * outside <= static_cast<int>(blocks.size())) return std::nullopt;
+  return std::to_string(outside) + " of " + std::to_string(blocks.size()) +
+         " blocks lie outside the model's domain: the flights' battery reads " + formatPrintf("%.2f", volt_low) + "-" +
+         formatPrintf("%.2f", volt_high) + " V and their pulse widths " + formatPrintf("%.0f", pwm_low) + "-" +
+         formatPrintf("%.0f", pwm_high) + " us, the model covers " + formatPrintf("%.2f", domain.voltage_min_v) + "-" +
+         formatPrintf("%.2f", domain.voltage_max_v) + " V and " + formatPrintf("%.0f", domain.pwm_min_us) + "-" +
+         formatPrintf("%.0f", domain.pwm_max_us) + " us (outside: " + outsideDomainName(domain.outside) +
+         "): is this the right model for this vehicle and battery?";
+}
+
+}  // namespace detail
+}  // namespace gap
+}  // namespace propulsion_estimator
