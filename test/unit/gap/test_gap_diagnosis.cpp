@@ -349,6 +349,22 @@ TEST_F(SyntheticFlights, WithOnePayloadAPropellerAt92PercentIsLocatedAgainstTheV
   EXPECT_FALSE(without.motors.suspect_channel);
 }
 
+// motor_healthy_gap_std (0.067, set on real healthy Crazyflies) holds from both sides: halved, the
+// healthy real flights of test_real_flight_verdicts get a suspect (their largest gap is 0.103);
+// raised by half (a suspect beyond 30 %), a propeller giving 75 % of its thrust (25 % short, the
+// payloads' moments say) goes unnamed without a reference.
+TEST_F(SyntheticFlights, WithoutAReferenceAPropellerAt75PercentIsNamed) {
+  World world;
+  world.weak_motor = 2;
+  world.weak_factor = 0.75;
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, flights(world), gap::DiagnosisConfig());
+  EXPECT_NE(diagnosis.motors.basis, "reference");
+  std::string gaps = diagnosis.motors.basis + ":";
+  for (const gap::MotorGap& motor : diagnosis.motors.motors) gaps += " " + std::to_string(motor.thrust_gap_pct) + "+-" + std::to_string(motor.ci_pct);
+  ASSERT_TRUE(diagnosis.motors.suspect_channel) << gaps;
+  EXPECT_EQ(*diagnosis.motors.suspect_channel, 3);
+}
+
 TEST_F(SyntheticFlights, WithAFrameByNameTheWeakMotorIsFound) {
   const pe::Vehicle frame = pe::Vehicle::frame("quad_x", 0.225);
   gap::DiagnosisConfig config;
