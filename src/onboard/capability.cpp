@@ -136,6 +136,7 @@ void CapabilityEstimator::evaluatePayload(const Correction& correction, Capabili
         voltage = b.open_circuit_voltage_v - b.internal_resistance_ohm * top.current_a;
         top = fullThrottle(voltage, correction);
       }
+      c->payload_sagged = true;
     } else {
       c->payload_note = "at the voltage measured now, not sagged to full throttle: " +
                         (withheld.empty() ? std::string("the model has no current") : withheld);
@@ -151,7 +152,8 @@ void CapabilityEstimator::evaluatePayload(const Correction& correction, Capabili
       c->payload_note = "the model rejects the cut-off " + formatPrintf("%.2f V", c->cutoff_voltage_v);
     }
   } else if (c->payload_note.empty()) {
-    c->payload_note = "no cut-off figures: no battery configured (capability/battery/capacity_ah, cells)";
+    c->payload_note = "at the present voltage, no sag, and no cut-off figures: no battery configured "
+                      "(capability/battery/capacity_ah, cells)";
   }
 }
 
@@ -347,7 +349,8 @@ HealthStatus judgeCapability(const CapabilityReport& c, const MotorHealthVerdict
   }
   status.message = "max additional payload " +
                    (std::isnan(c.max_additional_payload_kg) ? "unknown (" + c.payload_note + ")"
-                                                            : formatPrintf("%.3f kg", c.max_additional_payload_kg)) +
+                    : formatPrintf("%.3f kg", c.max_additional_payload_kg) +
+                          (c.payload_sagged ? "" : " at the present voltage, no sag")) +
                    ", hover endurance " +
                    (std::isnan(c.hover_endurance_s) ? "unknown (" + c.endurance_basis + ")"
                                                     : formatPrintf("%.0f s", c.hover_endurance_s));

@@ -83,6 +83,10 @@ struct CapabilityReport {
   double max_additional_payload_kg = kNaN;  ///< keeping min_thrust_to_weight; negative: over the limit
   double full_throttle_voltage_v = kNaN;  ///< V; the terminals at full throttle
   double full_throttle_current_a = kNaN;  ///< A; all motors at full throttle
+  /// Whether full_throttle_voltage_v is the voltage the pack sags to (a converged battery
+  /// estimate); false: the voltage measured now, an optimistic limit, and the diagnostic's status
+  /// says "at the present voltage, no sag".
+  bool payload_sagged = false;
   /// The same with the pack's terminals at the cut-off voltage.
   ///@{
   double cutoff_voltage_v = kNaN;

@@ -269,12 +269,14 @@ TEST(Capability, NaNWithTheReasonWhenAFigureCannotBeComputed) {
   EXPECT_FALSE(std::isnan(no_battery.max_additional_payload_kg));
   EXPECT_EQ(no_battery.endurance_basis, "no battery capacity configured (capability/battery/capacity_ah, cells)");
   EXPECT_EQ(no_battery.payload_note,
-            "no cut-off figures: no battery configured (capability/battery/capacity_ah, cells)");
+            "at the present voltage, no sag, and no cut-off figures: no battery configured "
+            "(capability/battery/capacity_ah, cells)");
+  EXPECT_FALSE(no_battery.payload_sagged);
   const pe::HealthStatus status = pe::judgeCapability(no_battery, {}, {});
   EXPECT_EQ(status.level, pe::HealthLevel::kOk);
   EXPECT_EQ(status.message,
-            "max additional payload 1.000 kg, hover endurance unknown (no battery capacity configured "
-            "(capability/battery/capacity_ah, cells))");
+            "max additional payload 1.000 kg at the present voltage, no sag, hover endurance unknown (no battery "
+            "capacity configured (capability/battery/capacity_ah, cells))");
   EXPECT_EQ(pe::judgeCapability(waiting, {}, {}).message,
             "max additional payload unknown (no hover yet), hover endurance unknown (no hover yet)");
 }
