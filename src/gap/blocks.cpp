@@ -61,6 +61,25 @@ struct Accumulator {
   double collective_min = std::numeric_limits<double>::infinity();
   double collective_max = -std::numeric_limits<double>::infinity();
 
+  // One frame's pulse widths, the rotors' vertical axes (level without attitude) and the ESCs'
+  // speeds where telemetry is fresh (ESC i drives RCOut channel i + 1, motor i).
+  void addMotors(const RcOutFrame& frame, int motors, const Vehicle& vehicle, const ImuReading* imu,
+                 const EscTelemetryReading* telemetry) {
+    double collective = 0.0;
+    for (int k = 0; k < motors; ++k) collective += frame.pwm_us[k] / motors;
+    collective_min = std::min(collective_min, collective);
+    collective_max = std::max(collective_max, collective);
+    for (int k = 0; k < motors; ++k) {
+      pwm[k] += frame.pwm_us[k];
+      axis[k] += imu ? (imu->orientation * vehicle.rotors[k].thrust_axis).z() : vehicle.rotors[k].thrust_axis.z();
+    }
+    for (int k = 0; telemetry && k < std::min(motors, telemetry->escs); ++k) {
+      if (!std::isfinite(telemetry->rpm[k])) continue;
+      rpm[k] += telemetry->rpm[k];
+      ++rpm_frames[k];
+    }
+  }
+
   void addSignal(BlockSignal which, double value) {
     const int k = static_cast<int>(which);
     if (std::isfinite(value)) {
@@ -151,6 +170,20 @@ std::string segmentName(const Flight& flight, int index) {
   const ManifestSegment& segment = flight.segments[index];
   return flight.name + ": segment " + std::to_string(index + 1) + " (" + formatNumber(segment.start_s) + "-" +
          formatNumber(segment.end_s) + " s)";
+}
+
+// Why a segment gave no block, with the counts.
+std::string nothingInSegment(const std::string& name, int without_attitude, int frames, int without_battery,
+                             double timeout_s) {
+  if (without_attitude > 0) {
+    return name + ": none of its " + std::to_string(without_attitude) +
+           " blocks has the attitude on every frame (no IMU orientation within " + formatNumber(timeout_s) +
+           " s); skipped";
+  }
+  if (frames == 0) return name + " holds no rc/out frame; skipped";
+  return name + " has no rc/out with a fresh battery voltage (" + std::to_string(without_battery) + " of its " +
+         std::to_string(frames) + " rc/out frames without a battery voltage within " + formatNumber(timeout_s) +
+         " s); skipped";
 }
 
 }  // namespace
@@ -248,21 +281,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
         acc.current += prepared.battery_current_a;
         ++acc.current_frames;
       }
-      double collective = 0.0;
-      for (int k = 0; k < motors; ++k) collective += frame.pwm_us[k] / motors;
-      acc.collective_min = std::min(acc.collective_min, collective);
-      acc.collective_max = std::max(acc.collective_max, collective);
-      for (int k = 0; k < motors; ++k) {
-        acc.pwm[k] += frame.pwm_us[k];
-        acc.axis[k] += i ? (i->orientation * vehicle.rotors[k].thrust_axis).z() : vehicle.rotors[k].thrust_axis.z();
-      }
-      // ESC i drives RCOut channel i + 1, motor i.
-      const EscTelemetryReading* telemetry = esc.at(frame.time_s, timeout);
-      for (int k = 0; telemetry && k < std::min(motors, telemetry->escs); ++k) {
-        if (!std::isfinite(telemetry->rpm[k])) continue;
-        acc.rpm[k] += telemetry->rpm[k];
-        ++acc.rpm_frames[k];
-      }
+      acc.addMotors(frame, motors, vehicle, i, esc.at(frame.time_s, timeout));
       if (i) {
         acc.force_up += (i->orientation * i->specific_force_m_s2).z();
         ++acc.imu_frames;
@@ -282,18 +301,9 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     flush();
     group += (block_in_segment + blocks_per_group - 1) / blocks_per_group;
     result.frames_without_battery += without_battery;
-    if (usable > 0) continue;
-    if (without_attitude > 0) {
-      result.problems.push_back(segmentName(flight, s) + ": none of its " + std::to_string(without_attitude) +
-                                " blocks has the attitude on every frame (no IMU orientation within " +
-                                formatNumber(timeout) + " s); skipped");
-    } else if (frames == 0) {
-      result.problems.push_back(segmentName(flight, s) + " holds no rc/out frame; skipped");
-    } else {
-      result.problems.push_back(segmentName(flight, s) + " has no rc/out with a fresh battery voltage (" +
-                                std::to_string(without_battery) + " of its " + std::to_string(frames) +
-                                " rc/out frames without a battery voltage within " + formatNumber(timeout) +
-                                " s); skipped");
+    if (usable == 0) {
+      result.problems.push_back(nothingInSegment(segmentName(flight, s), without_attitude, frames, without_battery,
+                                                 timeout));
     }
   }
   return result;

@@ -66,20 +66,7 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   capability_ = std::make_unique<CapabilityEstimator>(estimator_->model(),
                                                       static_cast<int>(estimator_->vehicle().rotors.size()),
                                                       params_.capability);
-  motor_health_ = std::make_unique<MotorHealth>(estimator_->vehicle(), params_.estimator.motor_channels,
-                                                params_.capability.motor_health, estimator_->model().motorReference());
-  ROS_INFO_STREAM("motor health: " << (estimator_->model().motorReference()
-                                           ? "each motor against the model's reference of " +
-                                                 std::to_string(estimator_->model().motorReference()->flights) +
-                                                 " healthy flights"
-                                           : std::string("against the ideal balance, beyond the spread healthy "
-                                                         "vehicles show (no motor_reference in the model)")));
-  model_check_ = std::make_unique<ModelCheck>(params_.estimator.motor_channels, params_.esc_telemetry);
-  if (const auto& reference = estimator_->model().motorReference(); reference && !reference->esc_rpm_deviation.empty()) {
-    model_check_->setBaseline(reference->esc_rpm_deviation, reference->esc_current_deviation);
-    ROS_INFO_STREAM("live ESC check: each motor against the model's reference of " << reference->flights
-                                                                                   << " healthy flights");
-  }
+  makeMotorChecks();
   loadTare();
   const MassEstimate& payload = estimator_->output().payload;
   ROS_INFO_STREAM("empty mass: " << (std::isnan(payload.empty_mass_kg) ? std::string("unknown until ~tare")
@@ -168,6 +155,25 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (!params_.static_pressure_topic.empty()) {
     static_pressure_sub_ =
         input_nh.subscribe(params_.static_pressure_topic, 20, &EstimatorNode::onStaticPressure, this, hints);
+  }
+}
+
+// The onboard motor-health check and the live ESC check, each against the model's reference of
+// healthy flights where it has one.
+void EstimatorNode::makeMotorChecks() {
+  motor_health_ = std::make_unique<MotorHealth>(estimator_->vehicle(), params_.estimator.motor_channels,
+                                                params_.capability.motor_health, estimator_->model().motorReference());
+  ROS_INFO_STREAM("motor health: " << (estimator_->model().motorReference()
+                                           ? "each motor against the model's reference of " +
+                                                 std::to_string(estimator_->model().motorReference()->flights) +
+                                                 " healthy flights"
+                                           : std::string("against the ideal balance, beyond the spread healthy "
+                                                         "vehicles show (no motor_reference in the model)")));
+  model_check_ = std::make_unique<ModelCheck>(params_.estimator.motor_channels, params_.esc_telemetry);
+  if (const auto& reference = estimator_->model().motorReference(); reference && !reference->esc_rpm_deviation.empty()) {
+    model_check_->setBaseline(reference->esc_rpm_deviation, reference->esc_current_deviation);
+    ROS_INFO_STREAM("live ESC check: each motor against the model's reference of " << reference->flights
+                                                                                   << " healthy flights");
   }
 }
 

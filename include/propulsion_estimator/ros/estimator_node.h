@@ -64,6 +64,9 @@ class EstimatorNode {
   void fillMeasured(double now_s);
   /// The model check's fields of ~capability.
   void fillModelCheck(double now_s, Capability* msg);
+  /// The motor-health check and the live ESC check, each against the model's motor_reference
+  /// where it has one.
+  void makeMotorChecks();
   /// Applies the estimated supply resistance as the model's effect, when enabled and estimated.
   void applySupplyResistance();
   /// After an accepted RCOut: the model check's and the rpm view's sample.
