@@ -62,6 +62,11 @@ check: build
 # -O2 -g under the sanitizers (src/gap/diagnosis.cpp: 20 s against 61 s on the 2-core VM), and
 # the sanitizer build was most of CI's time.
 SAN := --build-base $(WS)/sanitizers/build --install-base $(WS)/sanitizers/install
+# Left out under the sanitizers: the two tests that fly every family pack again with its own curve
+# (417 s and 404 s there, 14 minutes of CI, against 23 s and 26 s in the Release run of make check);
+# the same code runs sanitized in HoverEnduranceOnFamilyPacks* and in the battery estimator's unit
+# test on its own curve.
+SAN_LEFT_OUT := CapabilityFlight.HoverEnduranceWithThePacksOwnCurve:CapabilityFlight.HoverEnduranceWithTheOwnCurveOfWarmNewPacks
 test-sanitizers: deps
 	@mkdir -p $(WS)/src
 	@ln -sfn $(CURDIR) $(WS)/src/propulsion_estimator
@@ -69,6 +74,7 @@ test-sanitizers: deps
 		--cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
 		-DPE_SANITIZE=ON
 	cd $(WS) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+		GTEST_FILTER=-$(SAN_LEFT_OUT) \
 		colcon test $(SAN) --event-handlers console_direct+ --ctest-args -R _gtest_ \
 		&& colcon test-result --test-result-base $(WS)/sanitizers/build --verbose
 
