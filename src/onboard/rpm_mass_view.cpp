@@ -35,12 +35,13 @@ void RpmMassView::add(double now_s, const EstimatorOutput& output, const ModelCh
   hover_s_ += step;
   last_s_ = now_s;
   ++samples_;
+  if (std::isnan(air_density_kg_m3)) ++bench_air_samples_;
 }
 
 void RpmMassView::reset() {
   mass_kg_ = pwm_mass_kg_ = hover_s_ = 0.0;
   last_s_ = kNaN;
-  samples_ = 0;
+  samples_ = bench_air_samples_ = 0;
 }
 
 }  // namespace propulsion_estimator

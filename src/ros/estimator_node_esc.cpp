@@ -128,6 +128,10 @@ void EstimatorNode::judgeEscTelemetry(const ModelCheckReport& report,
                                ? std::string("pwm (rpm chosen: no rpm-view mass yet or telemetry stale)")
                                : std::string("pwm"));
   status->add("rpm_view_mass_kg", rpm_view_ ? formatted("%.3f", rpm_view_->massKg()) : std::string("no thrust_from_rpm"));
+  if (rpm_view_ && rpm_view_->atBenchAir()) {
+    status->add("rpm_view_air", "the bench's air density (no static pressure and air temperature): off by the "
+                                "density ratio on another day's air");
+  }
   status->add("pwm_view_mass_kg", formatted("%.3f", estimator_->output().payload.total_mass_kg));
   if (!report.telemetry_seen) {
     status->summary(DiagnosticStatus::OK, esc_undecodable_ > 0

@@ -27,12 +27,16 @@ class RpmMassView {
   double hoverS() const { return hover_s_; }  ///< s of hover in the average
   /// The PWM view's mass over the same samples, kg (NaN before any), for comparison.
   double pwmMassKg() const { return samples_ > 0 ? pwm_mass_kg_ : kNaN; }
+  /// Whether a sample of the average took the bench's air density for the flight's (no static
+  /// pressure and air temperature): on another day's air the mass is off by the density ratio.
+  bool atBenchAir() const { return bench_air_samples_ > 0; }
 
  private:
   RpmThrust thrust_;
   double window_s_;
   double mass_kg_ = 0.0, pwm_mass_kg_ = 0.0, hover_s_ = 0.0, last_s_ = kNaN;
   long samples_ = 0;
+  long bench_air_samples_ = 0;
 };
 
 }  // namespace propulsion_estimator

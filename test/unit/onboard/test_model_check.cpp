@@ -9,6 +9,7 @@
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/onboard/model_check.h"
+#include "propulsion_estimator/onboard/rpm_mass_view.h"
 
 namespace pe = propulsion_estimator;
 
@@ -113,6 +114,27 @@ TEST(ModelCheck, JudgesEachMotorByItsChangeFromTheBaseline) {
   EXPECT_EQ(report.verdict, pe::ModelCheckVerdict::kPropeller) << report.note;
   EXPECT_EQ(report.flagged_channel, 3) << report.note;
   EXPECT_NE(report.note.find("against the other motors and its healthy flights"), std::string::npos) << report.note;
+}
+
+TEST(RpmMassView, SaysWhenTheBenchsAirStoodInForTheFlights) {
+  pe::ModelCheck check({1, 2, 3, 4}, {});
+  double t = 0.0;
+  const double alike[4] = {1, 1, 1, 1};
+  feed(&check, &t, 5.0, alike, alike);
+  pe::EstimatorOutput out = hoverOutput();
+  out.totals.thrust_n = 4 * 6.0;
+  out.totals.mass_kg = 4 * 6.0 / 9.81;
+  pe::RpmThrust thrust;
+  thrust.n_per_rpm2 = 6.0 / (6000.0 * 6000.0);
+  thrust.bench_air_density_kg_m3 = 1.2;
+  pe::RpmMassView view(thrust, 3.0);
+  view.add(t, out, check, 1.1);
+  EXPECT_FALSE(view.atBenchAir());
+  EXPECT_NEAR(view.massKg(), out.totals.mass_kg * 1.1 / 1.2, 0.01);
+  view.add(t + 0.02, out, check, pe::kNaN);
+  EXPECT_TRUE(view.atBenchAir());
+  view.reset();
+  EXPECT_FALSE(view.atBenchAir());
 }
 
 TEST(ModelCheck, RefusesABaselineOfAnotherMotorCount) {

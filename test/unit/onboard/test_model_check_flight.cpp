@@ -242,6 +242,7 @@ TEST(ModelCheckFlight, TheMassFromRpmHoldsWhereThePwmViewIsOff) {
       std::printf("offset %+.0f us, supply %.2f ohm: PWM view %+.1f %%, rpm view %+.1f %% (%.1f s of hover)\n",
                   offset_us, ohm, 100.0 * pwm_error, 100.0 * rpm_error, sink->view->hoverS());
       EXPECT_LT(std::fabs(rpm_error), 0.02) << offset_us << " us, " << ohm << " ohm";
+      EXPECT_TRUE(sink->view->atBenchAir()) << "no air density was given: the bench's stood in, and it says so";
       if (std::fabs(pwm_error) > 0.05) ++checked;
     }
   }
