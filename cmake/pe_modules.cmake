@@ -34,9 +34,10 @@ pe_module(propulsion_estimator_logs logs propulsion_estimator_common)
 target_include_directories(propulsion_estimator_logs PRIVATE ${CSV_INCLUDE_DIR})
 target_link_libraries(propulsion_estimator_logs PRIVATE ${CSV_LIBRARY})
 pe_module(propulsion_estimator_fitting fitting propulsion_estimator_model propulsion_estimator_logs)
+# The node's onboard session on a logged flight (estimate, and the gap diagnosis' replays).
+pe_module(propulsion_estimator_offline offline propulsion_estimator_onboard propulsion_estimator_logs)
 # The gap diagnosis: where the model and weighed flights part, and which effect explains it.
-pe_module(propulsion_estimator_gap gap propulsion_estimator_estimation propulsion_estimator_onboard
-  propulsion_estimator_logs)
+pe_module(propulsion_estimator_gap gap propulsion_estimator_offline)
 # The simulator: propulsion physics, the simulated thrust stand, the simulated flight.
 pe_module(propulsion_estimator_sim_physics sim/physics propulsion_estimator_common)
 pe_module(propulsion_estimator_sim_stand sim/stand propulsion_estimator_sim_physics propulsion_estimator_logs)
@@ -48,5 +49,5 @@ add_library(propulsion_estimator_core INTERFACE)
 target_link_libraries(propulsion_estimator_core INTERFACE
   propulsion_estimator_common propulsion_estimator_model propulsion_estimator_vehicle
   propulsion_estimator_estimation propulsion_estimator_onboard propulsion_estimator_logs
-  propulsion_estimator_fitting propulsion_estimator_gap propulsion_estimator_sim_physics propulsion_estimator_sim_stand
+  propulsion_estimator_offline propulsion_estimator_fitting propulsion_estimator_gap propulsion_estimator_sim_physics propulsion_estimator_sim_stand
   propulsion_estimator_sim_flight)

@@ -4,6 +4,7 @@
 Usage: plot_bench_report.py fit DIR       (fit_*.csv -> fit_*.png)
        plot_bench_report.py compare DIR   (compare_*.csv -> compare_*.png)
        plot_bench_report.py gap DIR       (gap_samples.csv -> gap_*.png, diagnose_gap)
+       plot_bench_report.py estimate DIR  (estimates.csv -> mass.png, estimate)
 
 The C++ tools compute every number; this script only draws. Needs matplotlib and numpy (Debian's
 python3-matplotlib).
@@ -324,8 +325,69 @@ def plot_gap(directory):
     save(figure, directory, "gap_before_after.png")
 
 
+# ---- estimate -------------------------------------------------------------------------------------
+
+def hover_spans(time, hovering):
+    """The stretches of consecutive hovering rows, as (start, end) times."""
+    spans, start = [], None
+    for t, h in zip(time, hovering):
+        if h and start is None:
+            start = t
+        if not h and start is not None:
+            spans.append((start, previous))
+            start = None
+        previous = t
+    if start is not None:
+        spans.append((start, time[-1]))
+    return spans
+
+
+def plot_estimate(directory):
+    rows = read_rows(directory, "estimates.csv")
+    figure, (top, bottom) = plt.subplots(2, 1, figsize=(11, 7), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+    if not rows:
+        top.text(0.5, 0.5, "no RCOut message was estimated (see summary.md)", ha="center", transform=top.transAxes)
+        save(figure, directory, "mass.png")
+        return
+    # A pause longer than a second (disarmed on the ground) breaks the lines instead of bridging it.
+    rows = [dict(r) for r in rows]
+    broken = []
+    for previous, row in zip([None] + rows[:-1], rows):
+        if previous is not None and float(row["time_s"]) - float(previous["time_s"]) > 1.0:
+            broken.append({key: ("" if key not in ("time_s", "hovering") else value) for key, value in previous.items()})
+            broken[-1]["hovering"] = "0"
+        broken.append(row)
+    rows = broken
+    time = column(rows, "time_s")
+    hovering = column(rows, "hovering") == 1.0
+    for k, (start, end) in enumerate(hover_spans(time, hovering)):
+        for axis in (top, bottom):
+            axis.axvspan(start, end, color="tab:green", alpha=0.12, label="hover" if k == 0 and axis is top else None)
+    top.plot(time, column(rows, "lifted_mass_kg"), color="0.6", linewidth=0.6, label="mass the thrust holds (each message)")
+    top.plot(time, column(rows, "total_mass_kg"), color="tab:blue", linewidth=1.8, label="hover average (total mass)")
+    payload = column(rows, "payload_kg")
+    if np.isfinite(payload).any():
+        top.plot(time, payload, color="tab:orange", linewidth=1.8, label="payload")
+    averaged = column(rows, "total_mass_kg")[hovering]
+    if np.isfinite(averaged).any():
+        span = np.nanmax(averaged) - min(np.nanmin(averaged), np.nanmin(payload) if np.isfinite(payload).any() else 0)
+        top.set_ylim(min(0.0, np.nanmin(payload) - 0.1) if np.isfinite(payload).any() else 0.0,
+                     np.nanmax(averaged) + max(0.3 * span, 0.2))
+    top.set_ylabel("Mass (kg)")
+    top.grid(alpha=0.3)
+    top.legend(fontsize=8, loc="upper left")
+    top.set_title("Mass and payload over the flight; hover windows shaded")
+    bottom.plot(time, column(rows, "voltage_v"), color="tab:red", linewidth=1.2)
+    bottom.set_ylabel("Battery (V)")
+    bottom.set_xlabel("Time from the log's start (s)")
+    bottom.grid(alpha=0.3)
+    figure.tight_layout()
+    figure.savefig(os.path.join(directory, "mass.png"), dpi=DPI)
+    plt.close(figure)
+
+
 def main(argv):
-    modes = {"fit": plot_fit, "compare": plot_compare, "gap": plot_gap}
+    modes = {"fit": plot_fit, "compare": plot_compare, "gap": plot_gap, "estimate": plot_estimate}
     if len(argv) != 3 or argv[1] not in modes:
         sys.stderr.write(__doc__)
         return 2

@@ -29,6 +29,7 @@
 #include "propulsion_estimator/model/effect_description.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
+#include "flight_input_options.h"
 #include "flight_log_formats.h"
 #include "report_plotter.h"
 #include "tool_command.h"
@@ -36,19 +37,12 @@
 namespace propulsion_estimator {
 namespace {
 
-// Without a URDF: the thesis' quadcopter, its rotors at unknown positions.
-constexpr int kDefaultMotors = 4;
-
 struct Arguments {
   std::string model;
   std::string manifest;
   std::string reference;
   std::string out;
-  std::string urdf;
-  std::string frame;
-  double arm_m = kNaN;
-  std::vector<std::string> topics;
-  std::vector<double> pwm_range_us;
+  FlightInputOptions input;
   std::vector<std::string> bench;
   double rotor_diameter_m = gap::DiagnosisConfig{}.rotor_diameter_m;
   double rotor_time_constant_s = kNaN;  // NaN: identified from the flights
@@ -65,57 +59,6 @@ struct FlightRead {
   std::string refusal;
   std::string damage;  // a log read up to where it broke: the reader's one line
 };
-
-std::string signalNames() {
-  std::string names;
-  for (const std::string& name : flightSignalNames()) names += (names.empty() ? "" : ", ") + name;
-  return names;
-}
-
-// The options every flight is read with: the motors and the --topic sources.
-FlightLogOptions optionsOf(const std::vector<std::string>& arguments, const std::vector<double>& pwm_range_us,
-                           int motors) {
-  FlightLogOptions options;
-  options.motors = motors;
-  if (!pwm_range_us.empty()) {
-    options.pwm_min_us = pwm_range_us[0];
-    options.pwm_max_us = pwm_range_us[1];
-    options.validate("--pwm-range-us");
-  }
-  for (const std::string& argument : arguments) {
-    const std::size_t equals = argument.find('=');
-    if (equals == std::string::npos || equals + 1 == argument.size()) {
-      throw ConfigError("--topic " + argument + ": expected NAME=TOPIC");
-    }
-    const std::string name = argument.substr(0, equals);
-    options.sources[name] = argument.substr(equals + 1);
-    options.validate("--topic " + argument);
-  }
-  return options;
-}
-
-Vehicle vehicleOf(const Arguments& args) {
-  const std::string& urdf = args.urdf;
-  if (!args.frame.empty()) {
-    if (!urdf.empty()) throw ConfigError("--frame: give the frame or --urdf, not both");
-    if (std::isnan(args.arm_m)) throw ConfigError("--frame " + args.frame + ": needs --arm-m, the arm length in m");
-    return Vehicle::frame(args.frame, args.arm_m);
-  }
-  if (!std::isnan(args.arm_m)) throw ConfigError("--arm-m: needs --frame");
-  if (urdf.empty()) {
-    std::printf("note: no --urdf or --frame: %d motors on RCOut channels 1-%d, thrusting up at unknown positions "
-                "(the motor balance needs the geometry; a single weak motor cannot be told from an effect)\n",
-                kDefaultMotors, kDefaultMotors);
-    return Vehicle::upwardRotors(kDefaultMotors);
-  }
-  Vehicle vehicle = loadVehicleUrdf(urdf);
-  const int rotors = static_cast<int>(vehicle.rotors.size());
-  if (rotors > kMaxMotors) {
-    throw ConfigError(urdf + ": " + std::to_string(rotors) + " rotors, more than the " +
-                      std::to_string(kMaxMotors) + " diagnose_gap reads");
-  }
-  return vehicle;
-}
 
 gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& options) {
   gap::DiagnosisConfig config;
@@ -315,9 +258,9 @@ MotorReference learnReference(const Arguments& args, const PropulsionModel& mode
 
 int diagnose(const Arguments& args) {
   const PropulsionModel model = loadModelFile(args.model);
-  const Vehicle vehicle = vehicleOf(args);
+  const Vehicle vehicle = args.input.vehicle("diagnose_gap");
   const FlightLogOptions options =
-      optionsOf(args.topics, args.pwm_range_us, static_cast<int>(vehicle.rotors.size()));
+      args.input.logOptions(static_cast<int>(vehicle.rotors.size()));
   gap::DiagnosisConfig config = configOf(args, options);
   if (!args.reference.empty()) {
     config.motor_reference = learnReference(args, model, vehicle, options, config);
@@ -385,18 +328,7 @@ int runDiagnoseGap(int argc, char** argv) {
   app.add_option("--reference", args.reference,
                  "Flight manifest of the same vehicle's flights known to be healthy (e.g. after maintenance): each "
                  "motor is judged by its change from them (needs --urdf or --frame)");
-  app.add_option("--urdf", args.urdf,
-                 "Vehicle URDF: rotors (rotor_<k>_joint, in motor-channel order) and geometry (default: a quadcopter "
-                 "on channels 1-4, geometry unknown)");
-  app.add_option("--frame", args.frame,
-                 "Instead of --urdf, a common frame in ArduPilot's motor order: quad_x, hexa_x, octo_x (needs --arm-m)");
-  app.add_option("--arm-m", args.arm_m, "Arm length of --frame: centre to rotor hub, m");
-  app.add_option("--topic", args.topics,
-                 "NAME=TOPIC: in a rosbag, read signal NAME from TOPIC instead of MAVROS' (repeatable); names: " + signalNames());
-  app.add_option("--pwm-range-us", args.pwm_range_us,
-                 "MIN MAX: the PWM range a ULog's normalised motor outputs (actuator_motors) map onto, when it "
-                 "logs no actuator_outputs (PX4's PWM_MAIN_MIN/MAX)")
-      ->expected(2);
+  args.input.addTo(app);
   app.add_option("--bench", args.bench,
                  "Bench log measured under other conditions than the model's (another day, a battery, a warm motor): "
                  "its load cell is the truth (repeatable)");

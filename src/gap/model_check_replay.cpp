@@ -6,7 +6,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "propulsion_estimator/common/not_a_number.h"
-#include "replay_feed.h"
+#include "propulsion_estimator/offline/flight_feed.h"
+#include "add_once.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -27,7 +28,7 @@ EscTelemetry message(const EscTelemetryReading& reading) {
 
 ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                                   const ModelCheckConfig& config) {
-  const EstimatorConfig estimator_config = replayEstimatorConfig(vehicle);
+  const EstimatorConfig estimator_config = offline::replayEstimatorConfig(vehicle);
   Estimator estimator(model, vehicle, estimator_config);
   ModelCheck check(estimator_config.motor_channels, config);
   if (model.motorReference()) {
@@ -39,10 +40,11 @@ ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& v
   const std::size_t motors = estimator_config.motor_channels.size();
   std::vector<double> rpm_sum(motors, 0.0), current_sum(motors, 0.0);
   double next_report_s = 0.0;
-  for (const Arrival& a : arrivals(streams)) {
-    if (a.kind == Stream::kEsc) check.addTelemetry(a.time_s, message(streams.esc[a.index]));
-    if (a.kind == Stream::kBattery) check.addBattery(a.time_s, streams.battery[a.index].voltage_v);
-    if (!feedEstimator(streams, a, &estimator)) continue;
+  const offline::FlightFeed feed(streams, model);
+  for (const offline::Arrival& a : feed.arrivals()) {
+    if (a.kind == offline::Stream::kEsc) check.addTelemetry(a.time_s, message(streams.esc[a.index]));
+    if (a.kind == offline::Stream::kBattery) check.addBattery(a.time_s, streams.battery[a.index].voltage_v);
+    if (!feed.feed(a, &estimator)) continue;
     check.addEstimate(a.time_s, estimator.output());
     if (a.time_s < next_report_s) continue;
     next_report_s = a.time_s + 1.0;

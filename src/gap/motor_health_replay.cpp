@@ -6,21 +6,23 @@
 #include <yaml-cpp/yaml.h>
 
 #include "propulsion_estimator/common/not_a_number.h"
-#include "replay_feed.h"
+#include "propulsion_estimator/offline/flight_feed.h"
+#include "add_once.h"
 
 namespace propulsion_estimator {
 namespace gap {
 
 MotorHealthReplay replayMotorHealth(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                                     const MotorHealthConfig& config) {
-  const EstimatorConfig estimator_config = replayEstimatorConfig(vehicle);
+  const EstimatorConfig estimator_config = offline::replayEstimatorConfig(vehicle);
   Estimator estimator(model, vehicle, estimator_config);
   MotorHealth health(vehicle, estimator_config.motor_channels, config, model.motorReference());
   MotorHealthReplay replay;
   replay.first_flag_s = kNaN;
   double next_verdict_s = 0.0;
-  for (const Arrival& a : arrivals(streams)) {
-    if (!feedEstimator(streams, a, &estimator)) continue;
+  const offline::FlightFeed feed(streams, model);
+  for (const offline::Arrival& a : feed.arrivals()) {
+    if (!feed.feed(a, &estimator)) continue;
     health.add(estimator.output());
     if (a.time_s < next_verdict_s) continue;
     next_verdict_s = a.time_s + 1.0;

@@ -2,7 +2,9 @@
 """Bag replay test: the simulator flies a profile into a bag at test time (physics, independent of
 the response surfaces), the bag plays on simulated time through the running estimator_node, and
 the estimates are checked against the manifest's true masses and the bag's /sim/truth, with
-tolerances given as test parameters."""
+tolerances given as test parameters. Then `estimate` runs on the same bag and on the same flight
+logged as a PX4 ULog and an ArduPilot DataFlash log: every hover's mass as the node said it."""
+import csv
 import os
 import subprocess
 import tempfile
@@ -75,6 +77,35 @@ class ReplayPayloadTest(unittest.TestCase):
             self.assertGreater(truth_sum[i], 0.0)
             self.assertAlmostEqual(estimate_sum[i] / truth_sum[i], 1.0, delta=thrust_tolerance,
                                    msg="segment %d: estimated over true thrust" % i)
+
+        # estimate, offline, on the bag the node heard and on the same flight in the autopilots' logs.
+        logs = {"bag": bag_path}
+        for log_format, extension in (("ulog", "ulg"), ("dataflash", "bin")):
+            logs[log_format] = os.path.join(work, "flight." + extension)
+            subprocess.run(command[:command.index("--bag")] + ["--log", logs[log_format], "--log-format", log_format],
+                           check=True, stdout=subprocess.DEVNULL)
+        estimate = roslib.packages.find_node("propulsion_estimator", "estimate")[0]
+        package = roslib.packages.get_pkg_dir("propulsion_estimator")
+        for log_format, log in logs.items():
+            out = os.path.join(work, "estimate_" + log_format)
+            subprocess.run([estimate, "--model", os.path.join(package, "config/e300_dji2212_dji9443.yaml"),
+                            "--urdf", os.path.join(package, "config/f450_quad.urdf"), "--sample-rate-hz", "0",
+                            "--no-figures", "--out", out, log], check=True, stdout=subprocess.DEVNULL)
+            name = os.path.splitext(os.path.basename(log))[0]
+            with open(os.path.join(out, name, "estimates.csv"), newline="") as handle:
+                rows = list(csv.DictReader(handle))
+            # The node publishes at most 50 Hz: its last hover message in a segment may be a few
+            # messages before the offline estimate's, and the autopilots' logs hold floats.
+            tolerance = 0.002 if log_format == "bag" else 0.005
+            for row in report.rows():
+                segment = segments[row["segment"]]
+                offline = [float(r["total_mass_kg"]) for r in rows
+                           if r["hovering"] == "1" and segment["start"] <= float(r["time_s"]) <= segment["end"]]
+                print("%s, segment %d: the node %.4f kg, estimate %s" % (log_format, row["segment"], row["total_kg"],
+                                                                   "%.4f kg" % offline[-1] if offline else "no hover"))
+                self.assertTrue(offline, "%s: estimate found no hover in segment %d" % (log_format, row["segment"]))
+                self.assertAlmostEqual(offline[-1], row["total_kg"], delta=tolerance * row["total_kg"],
+                                       msg="%s: segment %d, estimate against the node" % (log_format, row["segment"]))
 
 
 if __name__ == "__main__":

@@ -1,0 +1,243 @@
+#include "propulsion_estimator/offline/flight_estimate.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/offline/flight_feed.h"
+#include "propulsion_estimator/onboard/rate_limiter.h"
+
+namespace propulsion_estimator {
+namespace offline {
+namespace {
+
+// printf into a string, for the warnings' numbers.
+template <typename... Args>
+std::string format(const char* pattern, Args... args) {
+  char text[256];
+  std::snprintf(text, sizeof text, pattern, args...);
+  return text;
+}
+
+constexpr int kBlockerCount = static_cast<int>(HoverBlocker::kExpired) + 1;
+
+// Why the hover detector said no, as a user reads it.
+const char* blockerText(HoverBlocker blocker) {
+  switch (blocker) {
+    case HoverBlocker::kNone: return "hovering";
+    case HoverBlocker::kWindowFilling: return "too few messages in the hover window (a low RCOut rate or gaps)";
+    case HoverBlocker::kLowThrust: return "thrust below hover/min_mass_kg (on the ground or idling)";
+    case HoverBlocker::kThrustUnsteady: return "thrust unsteady beyond hover/max_thrust_rel_std";
+    case HoverBlocker::kTilted: return "tilted beyond hover/max_tilt_deg";
+    case HoverBlocker::kClimbingOrSinking: return "climbing or sinking beyond hover/max_vertical_speed_m_s";
+    case HoverBlocker::kAccelerating: return "accelerating beyond hover/max_vertical_accel_m_s2";
+    case HoverBlocker::kSignalGap: return "the IMU or velocity went stale within the window";
+    case HoverBlocker::kExpired: return "no message within the hover window";
+  }
+  return "unknown";
+}
+
+EstimateSample sampleOf(const EstimatorOutput& out) {
+  EstimateSample s;
+  s.time_s = out.stamp_s;
+  s.voltage_v = out.totals.voltage_v;
+  s.thrust_n = out.totals.thrust_n;
+  s.current_a = out.totals.current_a;
+  s.power_w = out.totals.power_w;
+  s.lifted_mass_kg = out.totals.mass_kg;
+  s.hovering = out.payload.hovering;
+  s.total_mass_kg = out.payload.total_mass_kg;
+  s.mass_std_kg = out.payload.mass_std_kg;
+  s.payload_kg = out.payload.payload_mass_kg;
+  s.motors_out_of_domain = out.totals.motors_out_of_domain;
+  s.motor_thrust_n.reserve(out.motors.size());
+  for (const MotorOutput& m : out.motors) s.motor_thrust_n.push_back(m.estimate.thrust_n);
+  return s;
+}
+
+// The log's battery voltage and armed PWM ranges, for the domain warning.
+struct LogRanges {
+  double voltage_min_v = std::numeric_limits<double>::infinity();
+  double voltage_max_v = -std::numeric_limits<double>::infinity();
+  double pwm_min_us = std::numeric_limits<double>::infinity();
+  double pwm_max_us = -std::numeric_limits<double>::infinity();
+};
+
+LogRanges rangesOf(const FlightStreams& streams, std::size_t motors, double disarmed_pwm_max_us) {
+  LogRanges r;
+  for (const BatteryReading& b : streams.battery) {
+    if (!(b.voltage_v > 0.0) || !std::isfinite(b.voltage_v)) continue;
+    r.voltage_min_v = std::min(r.voltage_min_v, b.voltage_v);
+    r.voltage_max_v = std::max(r.voltage_max_v, b.voltage_v);
+  }
+  for (const RcOutFrame& f : streams.rc_out) {
+    const auto first = f.pwm_us.begin();
+    const auto last = first + static_cast<std::ptrdiff_t>(std::min<std::size_t>(motors, kMaxMotors));
+    if (*std::min_element(first, last) <= disarmed_pwm_max_us) continue;
+    r.pwm_min_us = std::min(r.pwm_min_us, *std::min_element(first, last));
+    r.pwm_max_us = std::max(r.pwm_max_us, *std::max_element(first, last));
+  }
+  return r;
+}
+
+// Hover episodes as they are found, message by message.
+class EpisodeTracker {
+ public:
+  EpisodeTracker(const CapabilityEstimator& capability, double gap_s) : capability_(capability), gap_s_(gap_s) {}
+
+  void add(const EstimatorOutput& out) {
+    if (!out.payload.hovering) return;
+    if (open_ && out.stamp_s - last_.end_s > gap_s_) close();
+    if (!open_) {
+      last_ = HoverEpisode{};
+      last_.start_s = out.stamp_s;
+      open_ = true;
+    }
+    last_.end_s = out.stamp_s;
+    last_output_ = out;
+  }
+  // The open episode, judged at its last hover sample.
+  void close() {
+    if (!open_) return;
+    open_ = false;
+    const MassEstimate& p = last_output_.payload;
+    last_.total_mass_kg = p.total_mass_kg;
+    last_.mass_std_kg = p.mass_std_kg;
+    last_.payload_kg = p.payload_mass_kg;
+    last_.window_s = p.window_s;
+    last_.voltage_v = last_output_.totals.voltage_v;
+    const CapabilityReport c = capability_.evaluate(last_output_);
+    last_.thrust_to_weight = c.thrust_to_weight;
+    last_.max_additional_payload_kg = c.max_additional_payload_kg;
+    episodes_.push_back(last_);
+  }
+  std::vector<HoverEpisode> take() {
+    close();
+    return std::move(episodes_);
+  }
+
+ private:
+  const CapabilityEstimator& capability_;
+  double gap_s_;
+  bool open_ = false;
+  HoverEpisode last_;
+  EstimatorOutput last_output_;
+  std::vector<HoverEpisode> episodes_;
+};
+
+void warnRefusals(const EstimatorCounters& counters, const Estimator& estimator, std::vector<std::string>* warnings) {
+  std::string refused;
+  for (int r = 1; r < kRejectionCount; ++r) {
+    const auto reason = static_cast<Rejection>(r);
+    if (reason == Rejection::kDisarmed || counters.rejected[r] == 0) continue;
+    refused += (refused.empty() ? "" : ", ") + std::to_string(counters.rejected[r]) + " " + rejectionName(reason);
+  }
+  if (refused.empty()) return;
+  // The last refusal is worth quoting only when it is one of those counted (not a disarmed motor).
+  const RejectionDetail& last = estimator.lastRejection();
+  warnings->push_back("inputs refused: " + refused +
+                      (last.reason == Rejection::kDisarmed ? "" : " (the last: " + describe(last) + ")"));
+}
+
+void warnDomain(const EstimatorCounters& counters, const ModelDomain& domain, const LogRanges& log,
+                std::vector<std::string>* warnings) {
+  if (counters.motor_samples_outside_domain == 0) return;
+  const double share = 100.0 * static_cast<double>(counters.motor_samples_outside_domain) /
+                       static_cast<double>(std::max<std::uint64_t>(counters.motor_samples, 1));
+  std::string line = format("%.1f %% of the motor samples lie outside the model's domain", share) +
+                     format(" (the model covers %.0f-%.0f us at %.2f-%.2f V", domain.pwm_min_us,
+                                  domain.pwm_max_us, domain.voltage_min_v, domain.voltage_max_v);
+  if (log.voltage_min_v <= log.voltage_max_v) {
+    line += format("; the log's battery reads %.2f-%.2f V", log.voltage_min_v, log.voltage_max_v);
+  }
+  if (log.pwm_min_us <= log.pwm_max_us) {
+    line += format(", its motors %.0f-%.0f us while armed", log.pwm_min_us, log.pwm_max_us);
+  }
+  line += std::string("); outside: ") + outsideDomainName(domain.outside);
+  if (share > 50.0) line += ": is this the right model for this vehicle?";
+  warnings->push_back(line);
+}
+
+void warnNoHover(const std::array<std::uint64_t, kBlockerCount>& blockers, std::uint64_t accepted,
+                 std::vector<std::string>* warnings) {
+  if (accepted == 0) {
+    warnings->push_back("no RCOut message accepted: nothing estimated (see the refusals; disarmed messages are "
+                        "not estimated)");
+    return;
+  }
+  int most = 1;
+  for (int b = 1; b < kBlockerCount; ++b) most = blockers[b] > blockers[most] ? b : most;
+  warnings->push_back(format("no hover found in %llu accepted messages: most often ",
+                                   static_cast<unsigned long long>(accepted)) +
+                      blockerText(static_cast<HoverBlocker>(most)) +
+                      format(" (%.0f %% of them)", 100.0 * static_cast<double>(blockers[most]) /
+                                                            static_cast<double>(accepted)));
+}
+
+}  // namespace
+
+void EstimateOptions::validate(std::size_t rotors) const {
+  estimator.validate(rotors);
+  capability.validate();
+  requireWithin("sample_rate_hz", sample_rate_hz, 0.0, 1000.0, " Hz");
+}
+
+FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
+                              const EstimateOptions& options) {
+  options.validate(vehicle.rotors.size());
+  Estimator estimator(model, vehicle, options.estimator);
+  MotorHealth health(vehicle, options.estimator.motor_channels, options.capability.motor_health,
+                     model.motorReference());
+  CapabilityEstimator capability(model, static_cast<int>(vehicle.rotors.size()), options.capability);
+  RateLimiter limiter(options.sample_rate_hz);
+  EpisodeTracker episodes(capability, options.estimator.payload.episode_gap_s);
+  std::array<std::uint64_t, kBlockerCount> blockers{};
+  const bool modelled_current = model.output(Output::kCurrent).source != OutputSource::kNone;
+
+  FlightEstimate result;
+  result.source = streams.source;
+  const FlightFeed feed(streams, model);
+  for (const Arrival& a : feed.arrivals()) {
+    const bool accepted = feed.feed(a, &estimator);
+    if (a.kind == Stream::kBattery) {
+      const BatteryReading& b = streams.battery[a.index];
+      capability.addBattery(a.time_s, b.voltage_v, BatteryReport{kNaN, b.current_a},
+                            modelled_current ? estimator.output().totals.current_a : kNaN);
+    }
+    if (!accepted) continue;
+    const EstimatorOutput& out = estimator.output();
+    ++blockers[static_cast<int>(out.hover.blocker)];
+    health.add(out);
+    episodes.add(out);
+    if (limiter.admit(out.stamp_s)) result.samples.push_back(sampleOf(out));
+    const MotorHealthVerdict verdict = health.verdict();
+    if (verdict.judged) result.motor_health = verdict;
+    if (verdict.flagged_channel != 0 &&
+        std::find(result.flagged_channels.begin(), result.flagged_channels.end(), verdict.flagged_channel) ==
+            result.flagged_channels.end()) {
+      result.flagged_channels.push_back(verdict.flagged_channel);
+    }
+  }
+  result.hovers = episodes.take();
+  result.counters = estimator.counters();
+  result.empty_mass_kg = estimator.output().payload.empty_mass_kg;
+  result.empty_mass_source = emptyMassSourceName(estimator.output().payload.empty_mass_source);
+  if (!result.motor_health.judged) result.motor_health = health.verdict();
+
+  warnRefusals(result.counters, estimator, &result.warnings);
+  warnDomain(result.counters, model.domain(),
+             rangesOf(streams, vehicle.rotors.size(), options.estimator.disarmed_pwm_max_us), &result.warnings);
+  if (result.hovers.empty()) warnNoHover(blockers, result.counters.accepted, &result.warnings);
+  for (int channel : result.flagged_channels) {
+    result.warnings.push_back("the motor-health check flagged channel " + std::to_string(channel) +
+                              " (its share of the thrust beyond the healthy spread; diagnose_gap locates it)");
+  }
+  return result;
+}
+
+}  // namespace offline
+}  // namespace propulsion_estimator

@@ -1,0 +1,97 @@
+#include "propulsion_estimator/offline/flight_feed.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+
+namespace propulsion_estimator {
+namespace offline {
+namespace {
+
+template <typename Reading>
+void add(const std::vector<Reading>& stream, Stream kind, std::vector<Arrival>* order) {
+  for (std::size_t i = 0; i < stream.size(); ++i) order->push_back({stream[i].time_s, kind, i});
+}
+
+Rejection feedRcOut(const RcOutFrame& frame, double t, Estimator* estimator) {
+  // The estimator's channels (the vehicle's rotors), as the flight logged them.
+  const std::size_t motors = std::min<std::size_t>(estimator->config().motor_channels.size(), kMaxMotors);
+  std::array<std::uint16_t, kMaxMotors> channels{};
+  for (std::size_t k = 0; k < motors; ++k) channels[k] = static_cast<std::uint16_t>(frame.pwm_us[k]);
+  return estimator->addMotorOutputs(t, t, channels.data(), motors);
+}
+
+}  // namespace
+
+EstimatorConfig replayEstimatorConfig(const Vehicle& vehicle) {
+  EstimatorConfig config;
+  config.motor_channels.resize(vehicle.rotors.size());
+  std::iota(config.motor_channels.begin(), config.motor_channels.end(), 1);
+  return config;
+}
+
+FlightFeed::FlightFeed(const FlightStreams& streams, const PropulsionModel& model) : streams_(streams) {
+  const effects::ModelEffects& fx = model.effects();
+  for (effects::Kind kind : effects::kAllKinds) {
+    if (!fx.has(kind)) continue;
+    switch (effects::requiredSignal(kind)) {
+      case effects::Signal::kBatteryCurrent: battery_current_ = true; break;
+      case effects::Signal::kAirDensity: air_temperature_ = true; break;
+      case effects::Signal::kHeight: range_ = true; break;
+      case effects::Signal::kMotorTemperature: motor_temperature_ = true; break;
+      default: break;
+    }
+  }
+  arrivals_.reserve(streams.battery.size() + streams.imu.size() + streams.vertical_speed_m_s.size() +
+                    streams.horizontal_velocity.size() + streams.static_pressure_pa.size() +
+                    streams.air_temperature_c.size() + streams.height_above_ground_m.size() +
+                    streams.motor_temperature_c.size() + streams.esc.size() + streams.rc_out.size());
+  add(streams.battery, Stream::kBattery, &arrivals_);
+  add(streams.imu, Stream::kImu, &arrivals_);
+  add(streams.vertical_speed_m_s, Stream::kVerticalSpeed, &arrivals_);
+  add(streams.horizontal_velocity, Stream::kHorizontalVelocity, &arrivals_);
+  add(streams.static_pressure_pa, Stream::kStaticPressure, &arrivals_);
+  if (air_temperature_) add(streams.air_temperature_c, Stream::kAirTemperature, &arrivals_);
+  if (range_) add(streams.height_above_ground_m, Stream::kRange, &arrivals_);
+  if (motor_temperature_) add(streams.motor_temperature_c, Stream::kMotorTemperature, &arrivals_);
+  add(streams.esc, Stream::kEsc, &arrivals_);
+  add(streams.rc_out, Stream::kRcOut, &arrivals_);
+  std::stable_sort(arrivals_.begin(), arrivals_.end(), [](const Arrival& a, const Arrival& b) {
+    return a.time_s < b.time_s || (a.time_s == b.time_s && a.kind < b.kind);
+  });
+}
+
+bool FlightFeed::feed(const Arrival& arrival, Estimator* estimator) const {
+  const double t = arrival.time_s;
+  const std::size_t i = arrival.index;
+  switch (arrival.kind) {
+    case Stream::kBattery:
+      estimator->addBattery(t, streams_.battery[i].voltage_v);
+      if (battery_current_) estimator->addBatteryCurrent(t, streams_.battery[i].current_a);
+      return false;
+    case Stream::kImu:
+      estimator->addImu(t, streams_.imu[i].orientation, streams_.imu[i].specific_force_m_s2);
+      return false;
+    case Stream::kVerticalSpeed: estimator->addVerticalSpeed(t, streams_.vertical_speed_m_s[i].value); return false;
+    case Stream::kHorizontalVelocity:
+      estimator->addHorizontalVelocity(t, streams_.horizontal_velocity[i].east_m_s,
+                                       streams_.horizontal_velocity[i].north_m_s);
+      return false;
+    case Stream::kStaticPressure: estimator->addStaticPressure(t, streams_.static_pressure_pa[i].value); return false;
+    case Stream::kAirTemperature: estimator->addAirTemperature(t, streams_.air_temperature_c[i].value); return false;
+    case Stream::kRange:
+      estimator->addRange(t, streams_.height_above_ground_m[i].value, 0.0, std::numeric_limits<double>::infinity());
+      return false;
+    case Stream::kMotorTemperature:
+      estimator->addMotorTemperature(t, streams_.motor_temperature_c[i].value);
+      return false;
+    case Stream::kEsc: return false;
+    case Stream::kRcOut: return feedRcOut(streams_.rc_out[i], t, estimator) == Rejection::kNone;
+  }
+  return false;
+}
+
+}  // namespace offline
+}  // namespace propulsion_estimator
