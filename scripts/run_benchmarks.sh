@@ -9,7 +9,7 @@
 #   3. callgrind: estimator_node's instructions per RCOut message, over BENCH_CALLGRIND_MESSAGES
 #      (default 2000) at 100 Hz after a 15 s warm-up;
 #   4. scripts/bench_diagnose_gap.sh: diagnose_gap on an hour of flight (simulated once, cached).
-#   5. scripts/bench_diagnose_ulog.sh: diagnose_gap on an hour of PX4 ULog (simulated once, cached).
+#   5. scripts/bench_diagnose_ulog.sh: diagnose_gap and estimate on an hour of PX4 ULog (simulated once, cached).
 # QUICK=1 (make bench QUICK=1) tries the pipeline: one round of 10 s per system, 500 messages under callgrind, no
 # diagnose_gap, and the document goes to the work directory instead of docs/BENCHMARKS.md.
 # Usage, after `make build` and `source .ws/install/setup.sh`: scripts/run_benchmarks.sh [WORK_DIR]
@@ -71,7 +71,7 @@ run callgrind scripts/bench_node.py --bin "$bin" --repo . --work "$work/node" \
 if [ "$quick" != 1 ]; then
   echo "== diagnose_gap on an hour of flight"
   run diagnose_gap scripts/bench_diagnose_gap.sh "${BENCH_GAP_CACHE:-.ws/bench_diagnose_gap}" "$work/diagnose_gap.json"
-  echo "== diagnose_gap on an hour of PX4 ULog"
+  echo "== diagnose_gap and estimate on an hour of PX4 ULog"
   run diagnose_ulog scripts/bench_diagnose_ulog.sh "$bin" "${BENCH_ULOG_CACHE:-.ws/bench_diagnose_ulog}" \
     "$work/diagnose_ulog.json"
 fi

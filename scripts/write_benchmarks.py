@@ -173,10 +173,14 @@ def diagnose_gap_table(gap):
 def diagnose_ulog_table(ulog):
     if ulog is None:
         return NOT_MEASURED + " (make bench QUICK=1 skips it)."
-    return "\n".join(["%d MB of ULog." % ulog["ulogs_mb"], "",
-                      "| reading the logs | whole run | CPU time | peak memory |", "|---:|---:|---:|---:|",
-                      "| %.2f s | %.2f s | %.2f s | %.0f MB |" % (ulog["reading_s"], ulog["whole_s"], ulog["cpu_s"],
-                                                            ulog["peak_kb"] / 1024.0)])
+    lines = ["%d MB of ULog." % ulog["ulogs_mb"], "",
+             "| tool | reading the logs | whole run | CPU time | peak memory |", "|---|---:|---:|---:|---:|",
+             "| diagnose_gap | %.2f s | %.2f s | %.2f s | %.0f MB |" % (ulog["reading_s"], ulog["whole_s"], ulog["cpu_s"],
+                                                                      ulog["peak_kb"] / 1024.0)]
+    if "estimate_s" in ulog:
+        lines.append("| estimate, one core | | %.2f s | %.2f s | %.0f MB |" % (
+            ulog["estimate_s"], ulog["estimate_cpu_s"], ulog["estimate_peak_kb"] / 1024.0))
+    return "\n".join(lines)
 
 
 def machine():

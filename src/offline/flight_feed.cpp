@@ -10,9 +10,18 @@ namespace propulsion_estimator {
 namespace offline {
 namespace {
 
+bool before(const Arrival& a, const Arrival& b) { return a.time_s < b.time_s || (a.time_s == b.time_s && a.kind < b.kind); }
+
+// Appends a stream's messages and merges them with those before: each stream comes in time order
+// (sorted first where a log's is not), so a merge per stream orders a long log in a fraction of a sort.
 template <typename Reading>
 void add(const std::vector<Reading>& stream, Stream kind, std::vector<Arrival>* order) {
+  const std::ptrdiff_t middle = static_cast<std::ptrdiff_t>(order->size());
   for (std::size_t i = 0; i < stream.size(); ++i) order->push_back({stream[i].time_s, kind, i});
+  if (!std::is_sorted(order->begin() + middle, order->end(), before)) {
+    std::stable_sort(order->begin() + middle, order->end(), before);
+  }
+  std::inplace_merge(order->begin(), order->begin() + middle, order->end(), before);
 }
 
 Rejection feedRcOut(const RcOutFrame& frame, double t, Estimator* estimator) {
@@ -58,9 +67,6 @@ FlightFeed::FlightFeed(const FlightStreams& streams, const PropulsionModel& mode
   if (motor_temperature_) add(streams.motor_temperature_c, Stream::kMotorTemperature, &arrivals_);
   add(streams.esc, Stream::kEsc, &arrivals_);
   add(streams.rc_out, Stream::kRcOut, &arrivals_);
-  std::stable_sort(arrivals_.begin(), arrivals_.end(), [](const Arrival& a, const Arrival& b) {
-    return a.time_s < b.time_s || (a.time_s == b.time_s && a.kind < b.kind);
-  });
 }
 
 bool FlightFeed::feed(const Arrival& arrival, Estimator* estimator) const {
