@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <thread>
@@ -23,6 +25,8 @@
 #include "propulsion_estimator/offline/estimate_summary.h"
 #include "propulsion_estimator/offline/flight_estimate.h"
 #include "propulsion_estimator/offline/flight_feed.h"
+#include "propulsion_estimator/offline/yaml_parameter_source.h"
+#include "propulsion_estimator/onboard/node_parameters.h"
 #include "flight_input_options.h"
 #include "flight_log_formats.h"
 #include "report_plotter.h"
@@ -35,9 +39,10 @@ struct Arguments {
   std::string model;
   std::vector<std::string> logs;
   std::string out;
+  std::string params;
   double empty_mass_kg = kNaN;
   double sample_rate_hz = offline::EstimateOptions{}.sample_rate_hz;
-  double disarmed_pwm_max_us = EstimatorConfig{}.disarmed_pwm_max_us;
+  std::optional<double> disarmed_pwm_max_us;
   int jobs = 1;
   bool no_figures = false;
   FlightInputOptions input;
@@ -90,16 +95,32 @@ std::vector<std::string> outputDirectories(const std::string& out, const std::ve
   return directories;
 }
 
+// The node's parameters, from --params as a launch file would load them (else the node's
+// defaults), read and validated by the node's own reader; the options on top.
 offline::EstimateOptions optionsOf(const Arguments& args, const Vehicle& vehicle) {
+  const std::map<std::string, std::string> model{{"model", args.model}};
+  const std::unique_ptr<offline::YamlParameterSource> source =
+      args.params.empty() ? std::make_unique<offline::YamlParameterSource>(model)
+                          : std::make_unique<offline::YamlParameterSource>(args.params, model);
+  const EstimatorNodeParams params = readNodeParameters(*source);
+  if (!args.params.empty()) std::printf("%s\n", describeNodeParameters(params).c_str());
   offline::EstimateOptions options;
-  options.estimator = offline::replayEstimatorConfig(vehicle);
-  options.estimator.disarmed_pwm_max_us = args.disarmed_pwm_max_us;
+  options.estimator = params.estimator;
+  options.capability = params.capability;
+  // A log's motor k is its output k: channels 1..n, whatever the vehicle's RCOut channels were.
+  const EstimatorConfig numbered = offline::replayEstimatorConfig(vehicle);
+  if (source->has("motor_channels") && params.estimator.motor_channels != numbered.motor_channels) {
+    throw ConfigError(source->where("motor_channels") + ": estimate reads motor k from the log's output k (1.." +
+                      std::to_string(numbered.motor_channels.size()) + "); leave it out");
+  }
+  options.estimator.motor_channels = numbered.motor_channels;
+  if (args.disarmed_pwm_max_us) options.estimator.disarmed_pwm_max_us = *args.disarmed_pwm_max_us;
   if (!std::isnan(args.empty_mass_kg)) options.estimator.empty_mass_kg = args.empty_mass_kg;
   options.sample_rate_hz = args.sample_rate_hz;
   try {
     options.validate(vehicle.rotors.size());
   } catch (const FieldError& e) {
-    // Only the settings given as options can be refused: name the option.
+    // The settings given as options are named as options; the file's were validated as it was read.
     std::string option = "--" + e.field();
     std::replace(option.begin(), option.end(), '_', '-');
     throw ConfigError(option + ": " + e.problem());
@@ -230,9 +251,11 @@ int runEstimate(int argc, char** argv) {
                  "Rows of estimates.csv per second of flight (0: every RCOut message); hovers are judged on every "
                  "message")
       ->capture_default_str();
+  app.add_option("--params", args.params,
+                 "estimator_node's parameters as a launch file loads them (config/estimator_params.yaml's keys: "
+                 "hover/..., payload/..., capability/...); default: the node's defaults");
   app.add_option("--disarmed-pwm-max-us", args.disarmed_pwm_max_us,
-                 "PWM at or below this is a disarmed or stopped motor (ArduPilot: 1000)")
-      ->capture_default_str();
+                 "PWM at or below this is a disarmed or stopped motor (default the node's, 950 us; ArduPilot: 1000)");
   app.add_option("--jobs", args.jobs, "Logs estimated in parallel")->check(CLI::Range(1, 64))->capture_default_str();
   app.add_flag("--no-figures", args.no_figures, "Write no mass.png (no matplotlib needed)");
   args.input.addTo(app);

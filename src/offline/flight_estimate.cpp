@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/not_a_number.h"
@@ -65,6 +66,7 @@ struct LogRanges {
   double voltage_max_v = -std::numeric_limits<double>::infinity();
   double pwm_min_us = std::numeric_limits<double>::infinity();
   double pwm_max_us = -std::numeric_limits<double>::infinity();
+  double pwm_median_us = kNaN;  ///< of the motors' mean command while armed
 };
 
 LogRanges rangesOf(const FlightStreams& streams, std::size_t motors, double disarmed_pwm_max_us) {
@@ -74,12 +76,19 @@ LogRanges rangesOf(const FlightStreams& streams, std::size_t motors, double disa
     r.voltage_min_v = std::min(r.voltage_min_v, b.voltage_v);
     r.voltage_max_v = std::max(r.voltage_max_v, b.voltage_v);
   }
+  std::vector<double> means;
   for (const RcOutFrame& f : streams.rc_out) {
     const auto first = f.pwm_us.begin();
-    const auto last = first + static_cast<std::ptrdiff_t>(std::min<std::size_t>(motors, kMaxMotors));
+    const std::size_t n = std::min<std::size_t>(motors, kMaxMotors);
+    const auto last = first + static_cast<std::ptrdiff_t>(n);
     if (*std::min_element(first, last) <= disarmed_pwm_max_us) continue;
     r.pwm_min_us = std::min(r.pwm_min_us, *std::min_element(first, last));
     r.pwm_max_us = std::max(r.pwm_max_us, *std::max_element(first, last));
+    means.push_back(std::accumulate(first, last, 0.0) / static_cast<double>(n));
+  }
+  if (!means.empty()) {
+    std::nth_element(means.begin(), means.begin() + static_cast<std::ptrdiff_t>(means.size() / 2), means.end());
+    r.pwm_median_us = means[means.size() / 2];
   }
   return r;
 }
@@ -157,8 +166,18 @@ void warnDomain(const EstimatorCounters& counters, const ModelDomain& domain, co
   if (log.pwm_min_us <= log.pwm_max_us) {
     line += format(", its motors %.0f-%.0f us while armed", log.pwm_min_us, log.pwm_max_us);
   }
+  // A bench logged along one discharge diagonal covers a narrow band of that box at each command.
+  if (!domain.covered.empty() && !std::isnan(log.pwm_median_us)) {
+    const auto [low_v, high_v] = domain.voltageRange(log.pwm_median_us);
+    line += format("; at the log's median command, %.0f us, the bench covered only %.2f-%.2f V", log.pwm_median_us,
+                   low_v, high_v);
+  }
   line += std::string("); outside: ") + outsideDomainName(domain.outside);
-  if (share > 50.0) line += ": is this the right model for this vehicle?";
+  const bool in_box = log.voltage_min_v >= domain.voltage_min_v && log.voltage_max_v <= domain.voltage_max_v;
+  if (share > 50.0 && !in_box) line += ": is this the right model for this vehicle?";
+  if (share > 50.0 && in_box && !domain.covered.empty()) {
+    line += ": the surfaces are held to the bench's band (a bench run at several voltages would cover the flight)";
+  }
   warnings->push_back(line);
 }
 

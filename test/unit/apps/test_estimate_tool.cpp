@@ -1,6 +1,7 @@
 // estimate as a user runs it: on the public PX4 and ArduPilot logs in test/data, with a log that
 // does not exist among them, and with options it refuses.
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -67,4 +68,33 @@ TEST(EstimateTool, RefusesAFrameWithoutItsArmLength) {
                               dir);
   EXPECT_EQ(run.status, 1);
   EXPECT_EQ(run.err, "estimate: --frame hexa_x: needs --arm-m, the arm length in m\n");
+}
+
+TEST(EstimateTool, TakesTheNodesParametersFromAFileAsALaunchFileLoadsThem) {
+  // A Crazyflie (about 30 g) never holds the node's default hover/min_mass_kg of 0.3 kg; with the
+  // parameter set for it, each of its two airborne stretches is a hover.
+  const std::filesystem::path dir = freshDirectory("params");
+  const std::string log = repoPath("test/data/crazypad/normal_flight/E8_log00");
+  const std::string vehicle = " --model " + quoted(repoPath("test/data/crazypad/crazyflie21_model.yaml")) +
+                              " --urdf " + quoted(repoPath("test/data/crazypad/crazyflie21.urdf")) + " --no-figures";
+  const ToolRun defaults = runTool(PE_ESTIMATE, vehicle + " --out " + quoted((dir / "a").string()) + " " + quoted(log), dir);
+  EXPECT_EQ(defaults.status, 0) << defaults.err;
+  EXPECT_NE(defaults.out.find("0 hovers"), std::string::npos) << defaults.out;
+  EXPECT_NE(defaults.out.find("most often thrust below hover/min_mass_kg"), std::string::npos) << defaults.out;
+  std::ofstream(dir / "params.yaml") << "hover:\n  min_mass_kg: 0.01\n";
+  const ToolRun tuned = runTool(PE_ESTIMATE,
+                                vehicle + " --params " + quoted((dir / "params.yaml").string()) + " --out " +
+                                    quoted((dir / "b").string()) + " " + quoted(log),
+                                dir);
+  EXPECT_EQ(tuned.status, 0) << tuned.err;
+  EXPECT_NE(tuned.out.find("2 hovers"), std::string::npos) << tuned.out;
+  EXPECT_NE(tuned.out.find("min_mass_kg 0.01"), std::string::npos) << tuned.out;  // each loaded value, once
+  std::ofstream(dir / "channels.yaml") << "motor_channels: [5, 6, 7, 8]\n";
+  const ToolRun channels = runTool(PE_ESTIMATE,
+                                   vehicle + " --params " + quoted((dir / "channels.yaml").string()) + " --out " +
+                                       quoted((dir / "c").string()) + " " + quoted(log),
+                                   dir);
+  EXPECT_EQ(channels.status, 1);
+  EXPECT_EQ(channels.err, "estimate: " + (dir / "channels.yaml").string() +
+                              ": motor_channels: estimate reads motor k from the log's output k (1..4); leave it out\n");
 }

@@ -1,5 +1,8 @@
 // The estimator's onboard session on a logged flight (offline/): what estimate runs on every log.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -11,6 +14,8 @@
 #include "propulsion_estimator/offline/estimate_summary.h"
 #include "propulsion_estimator/offline/flight_estimate.h"
 #include "propulsion_estimator/offline/flight_feed.h"
+#include "propulsion_estimator/offline/yaml_parameter_source.h"
+#include "propulsion_estimator/onboard/node_parameters.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "simulated_flight_logs.h"
 #include "test_paths.h"
@@ -251,4 +256,56 @@ TEST(EstimateSummary, ListsTheHoversAndTheWarnings) {
   EXPECT_NE(text.find("| 1 | "), std::string::npos);
   EXPECT_NE(text.find("- 100.0 % of the motor samples lie outside"), std::string::npos);
   EXPECT_NE(text.find("Empty mass: n/a (none)"), std::string::npos);
+}
+
+namespace {
+
+std::string writeParams(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace
+
+TEST(YamlParameterSource, TheNodesTemplateReadsAsTheNodesDefaults) {
+  const pe::offline::YamlParameterSource source(repoPath("config/estimator_params.yaml"), {{"model", "m.yaml"}});
+  const pe::EstimatorNodeParams read = pe::readNodeParameters(source);
+  const pe::EstimatorNodeParams defaults;
+  EXPECT_EQ(read.model, "m.yaml");
+  EXPECT_EQ(read.estimator.motor_channels, defaults.estimator.motor_channels);
+  EXPECT_EQ(read.estimator.hover.window_s, defaults.estimator.hover.window_s);
+  EXPECT_EQ(read.estimator.hover.min_mass_kg, defaults.estimator.hover.min_mass_kg);
+  EXPECT_EQ(read.estimator.payload.min_samples, defaults.estimator.payload.min_samples);
+  EXPECT_EQ(read.estimator.compensate_tilt, defaults.estimator.compensate_tilt);
+  EXPECT_EQ(read.capability.min_thrust_to_weight, defaults.capability.min_thrust_to_weight);
+  EXPECT_EQ(read.capability.motor_health.window_s, defaults.capability.motor_health.window_s);
+  EXPECT_EQ(read.esc_telemetry.rpm_tolerance, defaults.esc_telemetry.rpm_tolerance);
+  EXPECT_EQ(read.publish_rate_hz, defaults.publish_rate_hz);
+}
+
+TEST(YamlParameterSource, ReadsNestedKeysAsTheLaunchFileLoadsThem) {
+  const std::string path = writeParams("pe_params_nested.yaml", "hover:\n  min_mass_kg: 0.01\npayload: {min_samples: 10}\n");
+  const pe::EstimatorNodeParams read =
+      pe::readNodeParameters(pe::offline::YamlParameterSource(path, {{"model", "m.yaml"}}));
+  EXPECT_EQ(read.estimator.hover.min_mass_kg, 0.01);
+  EXPECT_EQ(read.estimator.payload.min_samples, 10u);
+}
+
+TEST(YamlParameterSource, RefusesAWrongTypeAnUnknownNameAndAMissingModelNamingFileAndKey) {
+  const auto refusal = [](const std::string& text, const std::map<std::string, std::string>& set) {
+    const std::string path = writeParams("pe_params_bad.yaml", text);
+    try {
+      pe::readNodeParameters(pe::offline::YamlParameterSource(path, set));
+    } catch (const pe::ConfigError& e) {
+      return std::string(e.what()).substr(path.size());
+    }
+    return std::string("accepted");
+  };
+  const std::map<std::string, std::string> model{{"model", "m.yaml"}};
+  EXPECT_EQ(refusal("hover: {window_s: two}\n", model), ": hover/window_s: wrong type, expected a number");
+  EXPECT_EQ(refusal("hover: {windw_s: 2}\n", model),
+            ": hover/windw_s: unknown parameter (see the README's parameter table)");
+  EXPECT_EQ(refusal("hover: {window_s: 2}\n", {}), ": model: required parameter is not set");
+  EXPECT_EQ(refusal("[1, 2]\n", model), ": expected a mapping of parameters");
 }

@@ -36,7 +36,7 @@ const Graph kMayInclude = {
     {"sim/flight", {"common", "vehicle", "logs", "sim/physics"}},
     {"ros", {"common", "model", "vehicle", "estimation", "onboard"}},
     {"bag", {"common", "logs", "ros", "sim/flight"}},
-    {"apps", {"common", "model", "vehicle", "logs", "offline", "fitting", "gap", "sim/physics", "sim/stand", "sim/flight", "ros",
+    {"apps", {"common", "model", "vehicle", "onboard", "logs", "offline", "fitting", "gap", "sim/physics", "sim/stand", "sim/flight", "ros",
               "bag"}},
 };
 // Modules that may include ROS headers.

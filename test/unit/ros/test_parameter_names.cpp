@@ -19,9 +19,9 @@ std::string readRepoFile(const std::string& relative) {
   return text.str();
 }
 
-// Every name the node's parameter reader knows (src/ros/estimator_params.cpp).
+// Every name the node's parameter reader knows (src/onboard/node_parameters.cpp).
 std::set<std::string> readerParameters() {
-  const std::string source = readRepoFile("src/ros/estimator_params.cpp");
+  const std::string source = readRepoFile("src/onboard/node_parameters.cpp");
   const std::regex call(R"re(read\.(required|optional)\("([^"]+)")re");
   std::set<std::string> names;
   for (auto it = std::sregex_iterator(source.begin(), source.end(), call); it != std::sregex_iterator(); ++it) {
