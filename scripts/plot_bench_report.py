@@ -370,9 +370,11 @@ def plot_estimate(directory):
         top.plot(time, payload, color="tab:orange", linewidth=1.8, label="payload")
     averaged = column(rows, "total_mass_kg")[hovering]
     if np.isfinite(averaged).any():
-        span = np.nanmax(averaged) - min(np.nanmin(averaged), np.nanmin(payload) if np.isfinite(payload).any() else 0)
-        top.set_ylim(min(0.0, np.nanmin(payload) - 0.1) if np.isfinite(payload).any() else 0.0,
-                     np.nanmax(averaged) + max(0.3 * span, 0.2))
+        # The hover masses and payloads fill the axis; the transients of take-off and landing may leave it.
+        low = min(0.0, np.nanmin(payload)) if np.isfinite(payload).any() else 0.0
+        high = np.nanmax(averaged)
+        pad = 0.15 * (high - low)
+        top.set_ylim(low - pad, high + 2.0 * pad)
     top.set_ylabel("Mass (kg)")
     top.grid(alpha=0.3)
     top.legend(fontsize=8, loc="upper left")

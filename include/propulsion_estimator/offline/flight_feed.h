@@ -28,9 +28,9 @@ enum class Stream {
 
 /// One logged message: its time (s on the log's clock), stream and index in that stream.
 struct Arrival {
-  double time_s;
-  Stream kind;
-  std::size_t index;
+  double time_s;      ///< s on the log's clock
+  Stream kind;        ///< the stream
+  std::size_t index;  ///< in that stream
 };
 
 /// The estimator's configuration for a logged flight: the node's defaults

@@ -23,6 +23,8 @@ class YamlParameterSource : public ParameterSource {
   /// No file: only `set`, every other parameter at the node's default.
   explicit YamlParameterSource(const std::map<std::string, std::string>& set);
 
+  /// ParameterSource's, over the file's leaves (yaml-cpp's conversions: "2" reads as a number).
+  ///@{
   bool has(const std::string& name) const override;
   bool get(const std::string& name, std::string* value) const override;
   bool get(const std::string& name, double* value) const override;
@@ -32,6 +34,7 @@ class YamlParameterSource : public ParameterSource {
   bool get(const std::string& name, std::vector<double>* value) const override;
   std::vector<std::string> names() const override;
   std::string where(const std::string& name) const override;
+  ///@}
 
  private:
   template <typename T>

@@ -13,13 +13,13 @@ class ParameterSource {
  public:
   virtual ~ParameterSource() = default;
 
-  virtual bool has(const std::string& name) const = 0;
-  virtual bool get(const std::string& name, std::string* value) const = 0;
-  virtual bool get(const std::string& name, double* value) const = 0;  ///< an integer reads as a number
-  virtual bool get(const std::string& name, bool* value) const = 0;
-  virtual bool get(const std::string& name, int* value) const = 0;
-  virtual bool get(const std::string& name, std::vector<int>* value) const = 0;
-  virtual bool get(const std::string& name, std::vector<double>* value) const = 0;
+  virtual bool has(const std::string& name) const = 0;  ///< whether `name` is set
+  virtual bool get(const std::string& name, std::string* value) const = 0;  ///< a string
+  virtual bool get(const std::string& name, double* value) const = 0;  ///< a number; an integer reads as one
+  virtual bool get(const std::string& name, bool* value) const = 0;  ///< true or false
+  virtual bool get(const std::string& name, int* value) const = 0;  ///< an integer
+  virtual bool get(const std::string& name, std::vector<int>* value) const = 0;  ///< a list of integers
+  virtual bool get(const std::string& name, std::vector<double>* value) const = 0;  ///< a list of numbers
   /// Every parameter set, by its relative name, for refusing a misspelt one.
   virtual std::vector<std::string> names() const = 0;
   /// `name` as a message names it: "/propulsion_estimator/hover/window_s", "params.yaml: hover/window_s".
