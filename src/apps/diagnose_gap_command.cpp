@@ -18,6 +18,7 @@
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/gap/airborne_stretch.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/gap_report.h"
 #include "propulsion_estimator/gap/model_check_replay.h"
@@ -58,7 +59,21 @@ struct FlightRead {
   std::optional<Flight> flight;
   std::string refusal;
   std::string damage;  // a log read up to where it broke: the reader's one line
+  std::string stretches;  // a flight weighed as a whole: the airborne stretches found
 };
+
+// A flight given `mass_kg:` for its airborne stretches: its segments, found in its log.
+std::string weighAirborne(const PropulsionModel& model, const ManifestFlight& entry, Flight* flight) {
+  std::vector<gap::AirborneStretch> found;
+  flight->segments = gap::airborneSegments(flight->streams, model, entry.airborne_mass_kg, {}, &found);
+  std::string text;
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    text += (k ? "; " : "") + formatPrintf("lift-off %.1f s", found[k].lift_off_s) +
+            formatPrintf(", touchdown %.1f s", found[k].touchdown_s) + formatPrintf(", weighed %.1f", found[k].start_s) +
+            formatPrintf("-%.1f s", found[k].end_s) + formatPrintf(" at %.3f kg", flight->segments[k].mass_kg);
+  }
+  return "airborne stretches found: " + text;
+}
 
 gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& options) {
   gap::DiagnosisConfig config;
@@ -94,7 +109,7 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
 }
 
 FlightRead readFlight(const std::string& manifest, std::size_t index, const ManifestEntry& entry,
-                      const FlightLogOptions& options) {
+                      const FlightLogOptions& options, const PropulsionModel& model) {
   if (!entry.refusal.empty()) return {std::nullopt, entry.refusal, {}};
   const std::string at = manifest + ": flights[" + std::to_string(index) + "]";
   try {
@@ -112,7 +127,10 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
                 {}};
       }
     }
-    return {Flight{entry.flight.log, reader->read(options), segments}, "", reader->refusal()};
+    Flight flight{entry.flight.log, reader->read(options), segments};
+    const std::string stretches =
+        entry.flight.airborne_mass_kg.empty() ? "" : weighAirborne(model, entry.flight, &flight);
+    return {std::move(flight), "", reader->refusal(), stretches};
   } catch (const InputError& e) {
     return {std::nullopt, at + ": " + e.what(), {}};
   }
@@ -120,14 +138,14 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
 
 // Reads the flights on `jobs` threads; the results in manifest order.
 std::vector<FlightRead> readFlights(const std::string& manifest, const std::vector<ManifestEntry>& entries,
-                                    const FlightLogOptions& options, int jobs) {
+                                    const FlightLogOptions& options, const PropulsionModel& model, int jobs) {
   std::vector<FlightRead> reads(entries.size());
   std::vector<std::exception_ptr> failures(entries.size());
   std::atomic<std::size_t> next{0};
   const auto work = [&] {
     for (std::size_t i = next++; i < entries.size(); i = next++) {
       try {
-        reads[i] = readFlight(manifest, i, entries[i], options);
+        reads[i] = readFlight(manifest, i, entries[i], options, model);
       } catch (...) {
         failures[i] = std::current_exception();
       }
@@ -241,7 +259,7 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
 MotorReference learnReference(const Arguments& args, const PropulsionModel& model, const Vehicle& vehicle,
                               const FlightLogOptions& options, const gap::DiagnosisConfig& config) {
   std::vector<Flight> flights;
-  for (FlightRead& read : readFlights(args.reference, loadFlightManifestEntries(args.reference), options, args.jobs)) {
+  for (FlightRead& read : readFlights(args.reference, loadFlightManifestEntries(args.reference), options, model, args.jobs)) {
     if (!read.flight) throw ConfigError("--reference: " + read.refusal);
     flights.push_back(std::move(*read.flight));
   }
@@ -281,7 +299,7 @@ int diagnose(const Arguments& args) {
 
   const auto started = std::chrono::steady_clock::now();
   std::vector<FlightRead> reads =
-      readFlights(args.manifest, entries, options, args.jobs);
+      readFlights(args.manifest, entries, options, model, args.jobs);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   std::vector<Flight> flights;
@@ -302,6 +320,7 @@ int diagnose(const Arguments& args) {
     std::printf("read %s: %s\n", read.flight->streams.source.c_str(),
                 streamSummary(read.flight->streams, &readings).c_str());
     for (const std::string& note : read.flight->streams.notes) std::printf("  %s\n", note.c_str());
+    if (!read.stretches.empty()) std::printf("  %s\n", read.stretches.c_str());
     flights.push_back(std::move(*read.flight));
   }
   std::printf("read %zu of %zu flights, %zu readings, in %s s with %d jobs\n", flights.size(), reads.size(), readings,

@@ -154,6 +154,8 @@ void YamlMap::allowOnly(const std::vector<std::string>& allowed) const {
 
 bool YamlMap::has(const std::string& key) const { return node_[key].IsDefined() && !node_[key].IsNull(); }
 
+bool YamlMap::isSequence(const std::string& key) const { return has(key) && node_[key].IsSequence(); }
+
 std::vector<std::string> YamlMap::keys() const {
   std::vector<std::string> result;
   for (const auto& entry : node_) result.push_back(entry.first.as<std::string>());

@@ -15,7 +15,8 @@ void Diagnoser::reportGap(const BlockView& pwm_view, const std::vector<double>& 
       mine.push_back(block);
       mass += block->mass_kg;
     }
-    FlightGap flight{flights_[f].name, statsOf(mine, pwm_view), mine.empty() ? kNaN : mass / mine.size(), {}};
+    FlightGap flight{flights_[f].name, statsOf(mine, pwm_view), mine.empty() ? kNaN : mass / mine.size(), {},
+                     flights_[f].segments};
     for (const std::string& problem : diagnosis_.problems) {
       if (problem.rfind(flights_[f].name + ":", 0) == 0) flight.problems.push_back(problem);
     }

@@ -156,7 +156,14 @@ void emitGap(YAML::Emitter& out, const Diagnosis& diagnosis) {
     emitField(out, "mean_mass_kg", flight.mean_mass_kg);
     out << YAML::Key << "stats" << YAML::Value;
     emitStats(out, flight.stats);
-    out << YAML::Key << "problems" << YAML::Value << YAML::Flow << flight.problems << YAML::EndMap;
+    out << YAML::Key << "problems" << YAML::Value << YAML::Flow << flight.problems;
+    out << YAML::Key << "segments" << YAML::Value << YAML::BeginSeq;
+    for (const ManifestSegment& segment : flight.segments) {
+      out << YAML::Flow << YAML::BeginMap << YAML::Key << "start" << YAML::Value << segment.start_s << YAML::Key
+          << "end" << YAML::Value << segment.end_s << YAML::Key << "mass_kg" << YAML::Value << segment.mass_kg
+          << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::EndMap;
   }
   out << YAML::EndSeq;
   out << YAML::Key << "bench" << YAML::Value << YAML::BeginSeq;
@@ -438,6 +445,16 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
   md << statsRow("all flights", diagnosis.overall);
   for (const FlightGap& flight : diagnosis.flights) md << statsRow(flight.name, flight.stats);
   for (const BenchGap& bench : diagnosis.bench) md << statsRow("bench: " + bench.source, bench.stats);
+  md << "\nWeighed segments used (s on each log's clock, kg; a flight given one mass for the whole flight: the "
+        "airborne stretches found in its log):\n\n";
+  for (const FlightGap& flight : diagnosis.flights) {
+    std::string spans;
+    for (const ManifestSegment& segment : flight.segments) {
+      spans += (spans.empty() ? "" : ", ") + formatPrintf("%.1f", segment.start_s) + "-" +
+               formatPrintf("%.1f", segment.end_s) + " s at " + formatPrintf("%.3f", segment.mass_kg) + " kg";
+    }
+    md << "- " << flight.name << ": " << spans << "\n";
+  }
   md << "\nPayload error of the node, tare on the lightest weighed segment: "
      << formatPrintf("%.2f", diagnosis.payload_err_pct, "n/a") << " % (RMS over the heavier segments).\n\n";
   if (!diagnosis.problems.empty()) {

@@ -1,5 +1,7 @@
 #include "propulsion_estimator/logs/flight_manifest.h"
 
+#include <glob.h>
+
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
@@ -14,7 +16,16 @@ namespace propulsion_estimator {
 
 void ManifestFlight::validate(const std::string& at) const {
   if (log.empty()) throw FieldError(at + ".log", "is empty");
-  if (segments.empty()) throw FieldError(at + ".segments", "no segments");
+  if (!segments.empty() && !airborne_mass_kg.empty()) {
+    throw FieldError(at + ".mass_kg", "give segments or the flight's mass_kg, not both");
+  }
+  if (segments.empty() && airborne_mass_kg.empty()) {
+    throw FieldError(at + ".segments", "no segments (or mass_kg for the whole airborne stretch)");
+  }
+  for (std::size_t m = 0; m < airborne_mass_kg.size(); ++m) {
+    const std::string field = at + ".mass_kg" + (airborne_mass_kg.size() > 1 ? "[" + std::to_string(m) + "]" : "");
+    requirePositive(field, airborne_mass_kg[m], 100.0, " kg");
+  }
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const ManifestSegment& segment = segments[s];
     const std::string field = at + ".segments[" + std::to_string(s) + "].";
@@ -43,11 +54,19 @@ std::vector<ManifestFlight> readFlights(const YamlMap& root) {
   root.allowOnly({"flights"});
   std::vector<ManifestFlight> flights;
   for (const YamlMap& flight : root.maps("flights")) {
-    flight.allowOnly({"log", "bag", "segments"});
+    flight.allowOnly({"log", "bag", "segments", "mass_kg"});
     ManifestFlight entry;
     // `bag:`, the field's name before logs of other formats were read, is still read.
     if (flight.has("log") && flight.has("bag")) flight.fail("bag", "give log or bag (its old name), not both");
     entry.log = flight.text(flight.has("bag") ? "bag" : "log");
+    if (flight.has("mass_kg")) {
+      entry.airborne_mass_kg =
+          flight.isSequence("mass_kg") ? flight.numbers("mass_kg") : std::vector<double>{flight.number("mass_kg")};
+    }
+    if (!flight.has("segments")) {
+      flights.push_back(entry);
+      continue;
+    }
     for (const YamlMap& segment : flight.maps("segments")) {
       segment.allowOnly({"start", "end", "mass_kg"});
       entry.segments.push_back({segment.number("start"), segment.number("end"), segment.number("mass_kg")});
@@ -55,6 +74,40 @@ std::vector<ManifestFlight> readFlights(const YamlMap& root) {
     flights.push_back(entry);
   }
   return flights;
+}
+
+// `error` with the line of its field, as loadFlightManifest would throw it.
+std::string located(const YamlMap& root, const FieldError& error) {
+  try {
+    throwAtField(root, error);
+  } catch (const ConfigError& refusal) {
+    return refusal.what();
+  }
+}
+
+// A flight ManifestFlight::validate refuses, located; "" when it is usable.
+std::string locatedRefusal(const YamlMap& root, const ManifestFlight& flight, const std::string& at) {
+  try {
+    flight.validate(at);
+  } catch (const FieldError& error) {
+    return located(root, error);
+  }
+  return "";
+}
+
+bool isPattern(const std::string& log) { return log.find_first_of("*?[") != std::string::npos; }
+
+// The files a shell pattern matches, in name order, as absolute paths.
+std::vector<std::string> matchingFiles(const std::string& pattern) {
+  std::vector<std::string> files;
+  glob_t found{};
+  if (glob(pattern.c_str(), 0, nullptr, &found) == 0) {
+    for (std::size_t i = 0; i < found.gl_pathc; ++i) {
+      files.push_back(std::filesystem::absolute(found.gl_pathv[i]).lexically_normal().string());
+    }
+  }
+  globfree(&found);
+  return files;
 }
 
 }  // namespace
@@ -70,18 +123,23 @@ FlightManifest loadFlightManifest(const std::string& path) { return parseFlightM
 
 std::vector<ManifestEntry> loadFlightManifestEntries(const std::string& path) {
   const YamlMap root = parseYamlDocument(readTextFile(path), path);
+  const std::vector<ManifestFlight> flights = readFlights(root);
+  if (flights.empty()) throwAtField(root, FieldError("flights", "no flights"));
   std::vector<ManifestEntry> entries;
-  for (ManifestFlight& flight : readFlights(root)) entries.push_back({std::move(flight), ""});
-  if (entries.empty()) throwAtField(root, FieldError("flights", "no flights"));
-  for (std::size_t f = 0; f < entries.size(); ++f) {
-    try {
-      entries[f].flight.validate("flights[" + std::to_string(f) + "]");
-    } catch (const FieldError& error) {
-      try {
-        throwAtField(root, error);
-      } catch (const ConfigError& located) {
-        entries[f].refusal = located.what();
-      }
+  for (std::size_t f = 0; f < flights.size(); ++f) {
+    const std::string at = "flights[" + std::to_string(f) + "]";
+    ManifestEntry entry{flights[f], locatedRefusal(root, flights[f], at)};
+    if (!entry.refusal.empty() || !isPattern(flights[f].log)) {
+      entries.push_back(std::move(entry));
+      continue;
+    }
+    const std::vector<std::string> matches = matchingFiles(resolveLogPath(path, flights[f].log));
+    if (matches.empty()) {
+      entries.push_back({flights[f], located(root, FieldError(at + ".log", flights[f].log + " matches no file"))});
+    }
+    for (const std::string& match : matches) {
+      entries.push_back({flights[f], ""});
+      entries.back().flight.log = match;
     }
   }
   return entries;
@@ -94,6 +152,18 @@ std::string flightManifestToYaml(const FlightManifest& manifest, const std::stri
   out << YAML::BeginMap << YAML::Key << "flights" << YAML::Value << YAML::BeginSeq;
   for (const ManifestFlight& flight : manifest.flights) {
     out << YAML::BeginMap << YAML::Key << "log" << YAML::Value << flight.log;
+    if (!flight.airborne_mass_kg.empty()) {
+      out << YAML::Key << "mass_kg" << YAML::Value;
+      if (flight.airborne_mass_kg.size() == 1) {
+        out << formatNumber(flight.airborne_mass_kg[0]);
+      } else {
+        out << YAML::Flow << YAML::BeginSeq;
+        for (double mass : flight.airborne_mass_kg) out << formatNumber(mass);
+        out << YAML::EndSeq;
+      }
+      out << YAML::EndMap;
+      continue;
+    }
     out << YAML::Key << "segments" << YAML::Value << YAML::BeginSeq;
     for (const ManifestSegment& segment : flight.segments) {
       out << YAML::Flow << YAML::BeginMap;

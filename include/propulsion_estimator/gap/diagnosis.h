@@ -208,6 +208,8 @@ struct FlightGap {
   ResidualStats stats;  ///< the model's residual over its blocks
   double mean_mass_kg = 0.0;  ///< kg, mean weighed mass
   std::vector<std::string> problems;  ///< one line each: a segment outside the log, a missing signal
+  /// The weighed segments used: the manifest's, or the airborne stretches found in the log.
+  std::vector<ManifestSegment> segments;
 };
 
 /// One sample inside a weighed segment, with the signals and both views; for the figures.

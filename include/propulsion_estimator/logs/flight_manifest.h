@@ -13,15 +13,19 @@ struct ManifestSegment {
   double mass_kg = 0.0;  ///< vehicle plus hanging payload
 };
 
-/// One flight of a manifest: its log (a rosbag or any format flight_log_formats.h knows) and the
-/// segments whose mass is known.
+/// One flight of a manifest: its log (a rosbag or any format flight_log_formats.h knows) and
+/// either the segments whose mass is known, or the mass of its airborne stretches (take-off to
+/// landing, found in the log by the tool that reads it).
 struct ManifestFlight {
   std::string log;  ///< as written in the manifest (`log:`, or `bag:`): relative to its folder, or absolute
   std::vector<ManifestSegment> segments;  ///< in time order, not overlapping
+  /// Instead of segments (`mass_kg:` of the flight), kg: one value for every airborne stretch of
+  /// the log, or one per stretch in time order.
+  std::vector<double> airborne_mass_kg;
 
   /// Throws FieldError named from `at` ("flights[1]" gives "flights[1].segments[2].end") for a
-  /// flight without log or segments, a segment with start < 0, end <= start, mass outside
-  /// 0..100 kg, or segments out of order or overlapping.
+  /// flight without log, with neither or both of segments and mass_kg, a segment with start < 0,
+  /// end <= start, a mass outside 0..100 kg, or segments out of order or overlapping.
   void validate(const std::string& at) const;
 };
 
@@ -30,6 +34,8 @@ struct ManifestFlight {
 ///     - log: flight_01.bag
 ///       segments:
 ///         - {start: 5.0, end: 178.0, mass_kg: 1.315}
+///     - log: flight_02.ulg
+///       mass_kg: 1.315            # the whole airborne stretch; [1.315, 1.52]: each stretch's
 struct FlightManifest {
   std::vector<ManifestFlight> flights;  ///< at least one
 
@@ -56,7 +62,10 @@ struct ManifestEntry {
   ManifestFlight flight;  ///< the flight as read
   std::string refusal;  ///< empty for a usable flight
 };
-/// Reads the manifest file `path` flight by flight (see ManifestEntry); InputError when it cannot
+/// Reads the manifest file `path` flight by flight (see ManifestEntry); a `log:` with a pattern
+/// (`logs/*.ulg`) is one flight per matching file, in name order, each with the same segments or
+/// masses (its log then the file's absolute path), and a refusal when nothing matches
+/// ("<file>:<line>: flights[2].log: logs/*.ulg matches no file"). InputError when the file cannot
 /// be read, ConfigError for a refusal of the file as a whole.
 std::vector<ManifestEntry> loadFlightManifestEntries(const std::string& path);
 

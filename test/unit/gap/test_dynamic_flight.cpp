@@ -11,10 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "propulsion_estimator/gap/airborne_stretch.h"
 #include "propulsion_estimator/gap/blocks.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/rotor_lag.h"
 #include "propulsion_estimator/gap/thrust_views.h"
+#include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_simulator.h"
@@ -191,7 +193,24 @@ struct BothWays {
   gap::Diagnosis hovers;
 };
 
-BothWays diagnoseBothWays(int first_seed, const pe::sim::SimEffects& effects) {
+// The flights as a user without hand-cut segments gives them: one mass per flight (a manifest's
+// `mass_kg:`), the airborne stretch found in the log; each found stretch beside the simulator's.
+std::vector<pe::Flight> weighedAsAWhole(std::vector<pe::Flight> flights, const pe::PropulsionModel& model) {
+  for (pe::Flight& flight : flights) {
+    std::vector<gap::AirborneStretch> found;
+    const std::vector<pe::ManifestSegment> truth = flight.segments;
+    flight.segments = gap::airborneSegments(flight.streams, model, {truth.front().mass_kg}, {}, &found);
+    EXPECT_EQ(found.size(), 1u) << flight.name;
+    // The simulator's span starts 2 s after the true lift-off (the profile's settle_s), the found
+    // one settle_s (4 s) after the thrust first holds the vehicle; both end near touchdown.
+    EXPECT_GE(flight.segments.front().start_s, truth.front().start_s) << flight.name;
+    EXPECT_LE(flight.segments.front().start_s, truth.front().start_s + 4.0) << flight.name;
+    EXPECT_NEAR(flight.segments.back().end_s, truth.back().end_s, 2.0) << flight.name;
+  }
+  return flights;
+}
+
+BothWays diagnoseBothWays(int first_seed, const pe::sim::SimEffects& effects, bool as_a_whole = false) {
   const pe::PropulsionModel model = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
   const pe::Vehicle vehicle = pe::loadVehicleUrdf(repoPath("config/f450_quad.urdf"));
   std::vector<pe::Flight> airborne, hovers;
@@ -206,6 +225,8 @@ BothWays diagnoseBothWays(int first_seed, const pe::sim::SimEffects& effects) {
     hovers.push_back(simulateDynamicFlight(first_seed + f, script));
   }
   const gap::DiagnosisConfig config;
+  // As a whole: the simulator's airborne spans against the stretches found in the logs.
+  if (as_a_whole) hovers = weighedAsAWhole(airborne, model);
   return {gap::diagnoseGap(model, vehicle, airborne, config), gap::diagnoseGap(model, vehicle, hovers, config)};
 }
 
@@ -237,4 +258,65 @@ TEST(DynamicFlight, NamesTheTranslationalLiftItsHoversCannotSee) {
   EXPECT_TRUE(both.airborne.ambiguous.empty());
   EXPECT_EQ(both.hovers.selected, std::vector<pe::effects::Kind>{pe::effects::Kind::kThrustLoss});
   EXPECT_GE(2 * both.airborne.blocks, both.airborne.blocks + both.airborne.transient_blocks) << both.airborne.method;
+}
+
+TEST(DynamicFlight, WeighedAsAWholeTheAirborneStretchFoundSelectsAsTheHandCutSpans) {
+  // issue 35: a manifest giving one mass per flight and no segments. The same five flights (a
+  // thrust loss, the straight legs' translational lift) weighed over the simulator's airborne spans
+  // and over the stretches found in their logs select the same effects.
+  pe::sim::SimEffects effects;
+  effects.translational_lift_strength = 1.0;
+  const BothWays both = diagnoseBothWays(20, effects, true);
+  EXPECT_EQ(both.hovers.selected, both.airborne.selected) << both.hovers.method;
+  EXPECT_FALSE(both.airborne.selected.empty());
+  EXPECT_EQ(both.hovers.ambiguous.empty(), both.airborne.ambiguous.empty());
+}
+
+TEST(AirborneStretch, SaysWhyAFlightHasNone) {
+  const pe::PropulsionModel model = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
+  pe::FlightStreams streams;
+  streams.source = "ground.ulg";
+  streams.motors = 4;
+  streams.battery.push_back({0.0, 12.0, -1.0});
+  for (int i = 0; i < 500; ++i) {
+    pe::RcOutFrame frame;
+    frame.time_s = 0.02 * i;
+    frame.pwm_us.fill(900.0);
+    for (int k = 4; k < pe::kMaxMotors; ++k) frame.pwm_us[k] = 0.0;
+    streams.rc_out.push_back(frame);
+  }
+  try {
+    gap::airborneSegments(streams, model, {1.3}, {});
+    FAIL() << "found a stretch";
+  } catch (const pe::DataError& e) {
+    EXPECT_STREQ(e.what(), "ground.ulg: no airborne stretch: no motor output above disarmed_pwm_max_us 950 us on every "
+                           "motor (never armed)");
+  }
+  // Armed 6 s at a hover command: shorter than settling, margin and the shortest weighed stretch.
+  for (int i = 100; i < 400; ++i) streams.rc_out[i].pwm_us = {1500, 1500, 1500, 1500, 0, 0, 0, 0};
+  try {
+    gap::airborneSegments(streams, model, {1.3}, {});
+    FAIL() << "found a stretch";
+  } catch (const pe::DataError& e) {
+    EXPECT_STREQ(e.what(), "ground.ulg: no airborne stretch: armed for 6.0 s in all, the longest stretch holding its "
+                           "mass 6.0 s: less than the 10.0 s a weighed stretch needs with its settling");
+  }
+  for (int i = 400; i < 500; ++i) streams.rc_out[i].pwm_us = {1500, 1500, 1500, 1500, 0, 0, 0, 0};
+  streams.rc_out.resize(500);
+  for (int i = 500; i < 1500; ++i) {
+    pe::RcOutFrame frame;
+    frame.time_s = 0.02 * i;
+    frame.pwm_us = {1500, 1500, 1500, 1500, 0, 0, 0, 0};
+    streams.rc_out.push_back(frame);
+  }
+  const std::vector<pe::ManifestSegment> one = gap::airborneSegments(streams, model, {1.3}, {});
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_NEAR(one[0].start_s, 2.0 + 4.0, 1e-9);
+  EXPECT_NEAR(one[0].end_s, 29.98 - 1.0, 1e-9);
+  try {
+    gap::airborneSegments(streams, model, {1.3, 1.5}, {});
+    FAIL() << "two masses for one stretch";
+  } catch (const pe::DataError& e) {
+    EXPECT_STREQ(e.what(), "ground.ulg: 2 masses for 1 airborne stretches (2.0 s to 30.0 s)");
+  }
 }

@@ -401,7 +401,7 @@ TEST(FlightManifest, RefusesBadSegments) {
   EXPECT_EQ(manifestRefusal("mass_kg: 1.315}", "mass_kg: 1.315, weight_g: 1315}"),
             "m.yaml:4: flights[0].segments[0].weight_g: unknown key (allowed: start, end, mass_kg)");
   EXPECT_EQ(manifestRefusal("  - bag: a.bag\n", "  - file: a.bag\n"),
-            "m.yaml:2: flights[0].file: unknown key (allowed: log, bag, segments)");
+            "m.yaml:2: flights[0].file: unknown key (allowed: log, bag, segments, mass_kg)");
   EXPECT_EQ(refusal([] { pe::parseFlightManifest("flights: []\n", "m.yaml"); }), "m.yaml:1: flights: no flights");
 }
 
@@ -423,6 +423,46 @@ TEST(FlightManifest, EntriesKeepAFlightsRefusalAndTheOtherFlights) {
   EXPECT_EQ(refusal([&] { pe::loadFlightManifestEntries(path); }), path + ":1: flights: no flights");
   pe::writeTextFile(path, replaced(kManifest, "  - bag: a.bag\n", "  - file: a.bag\n"));
   EXPECT_EQ(refusal([&] { pe::loadFlightManifestEntries(path); }),
-            path + ":2: flights[0].file: unknown key (allowed: log, bag, segments)");
+            path + ":2: flights[0].file: unknown key (allowed: log, bag, segments, mass_kg)");
   std::filesystem::remove(path);
+}
+
+// A flight weighed as a whole: `mass_kg:` for its airborne stretches instead of segments.
+TEST(FlightManifest, ReadsAndWritesAWholeFlightsMass) {
+  const pe::FlightManifest read = pe::parseFlightManifest(
+      "flights:\n  - log: a.ulg\n    mass_kg: 1.315\n  - log: b.ulg\n    mass_kg: [1.315, 1.52]\n", "m.yaml");
+  ASSERT_EQ(read.flights.size(), 2u);
+  EXPECT_TRUE(read.flights[0].segments.empty());
+  EXPECT_EQ(read.flights[0].airborne_mass_kg, std::vector<double>{1.315});
+  EXPECT_EQ(read.flights[1].airborne_mass_kg, (std::vector<double>{1.315, 1.52}));
+  const std::string text = pe::flightManifestToYaml(read);
+  EXPECT_NE(text.find("mass_kg: 1.315\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("mass_kg: [1.315, 1.52]"), std::string::npos) << text;
+  EXPECT_EQ(pe::parseFlightManifest(text, "again.yaml").flights[1].airborne_mass_kg, read.flights[1].airborne_mass_kg);
+  EXPECT_EQ(refusal([] {
+              pe::parseFlightManifest("flights:\n  - log: a.ulg\n    mass_kg: 1.3\n    segments:\n"
+                                      "      - {start: 1, end: 2, mass_kg: 1.3}\n", "m.yaml");
+            }),
+            "m.yaml:3: flights[0].mass_kg: give segments or the flight's mass_kg, not both");
+  EXPECT_EQ(refusal([] { pe::parseFlightManifest("flights:\n  - log: a.ulg\n", "m.yaml"); }),
+            "m.yaml:2: flights[0].segments: no segments (or mass_kg for the whole airborne stretch)");
+  EXPECT_EQ(refusal([] { pe::parseFlightManifest("flights:\n  - log: a.ulg\n    mass_kg: [1.3, 0]\n", "m.yaml"); }),
+            "m.yaml:3: flights[0].mass_kg[1]: 0 is outside 0..100 kg (must be positive)");
+}
+
+// A log given as a pattern is a flight per matching file; a pattern matching nothing is refused.
+TEST(FlightManifest, EntriesExpandALogPattern) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "pe_manifest_glob";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "logs");
+  for (const char* name : {"b.ulg", "a.ulg", "c.bin"}) pe::writeTextFile((dir / "logs" / name).string(), "x");
+  const std::string path = (dir / "m.yaml").string();
+  pe::writeTextFile(path, "flights:\n  - log: logs/*.ulg\n    mass_kg: 1.3\n  - log: none/*.ulg\n    mass_kg: 1.3\n");
+  const std::vector<pe::ManifestEntry> entries = pe::loadFlightManifestEntries(path);
+  ASSERT_EQ(entries.size(), 3u);
+  EXPECT_EQ(entries[0].flight.log, (dir / "logs/a.ulg").string());
+  EXPECT_EQ(entries[1].flight.log, (dir / "logs/b.ulg").string());
+  EXPECT_EQ(entries[1].flight.airborne_mass_kg, std::vector<double>{1.3});
+  EXPECT_EQ(entries[2].refusal, path + ":4: flights[1].log: none/*.ulg matches no file");
+  std::filesystem::remove_all(dir);
 }
