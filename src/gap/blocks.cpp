@@ -44,6 +44,47 @@ enum class BlockSignal {
 };
 constexpr int kBlockSignalCount = static_cast<int>(BlockSignal::kCount);
 
+// How much a block's collective command moved, whatever the log's rate: the change of its
+// least-squares trend across the block plus the spread of its noise about the trend. A frame-by-frame
+// range grows with the frames a noisy command has (10 us of noise spans about 37 us in 20 frames, 60
+// us in 400); the trend and the noise's standard deviation do not. The noise counts as the
+// range 20 frames of it span on average (3.7 standard deviations): the rate max_pwm_change_us was
+// calibrated at.
+struct CommandSteadiness {
+  static constexpr double kNoiseRange = 3.7;
+  int n = 0;
+  double t0 = 0.0, st = 0.0, stt = 0.0, sc = 0.0, stc = 0.0, scc = 0.0, last_t = 0.0, c0 = 0.0;
+
+  void add(double time_s, double collective_us) {
+    if (n == 0) {
+      t0 = time_s;
+      c0 = collective_us;
+    }
+    // Relative to the first frame: sums of absolute times and pulse widths would cancel.
+    const double t = time_s - t0, c = collective_us - c0;
+    ++n;
+    st += t;
+    stt += t * t;
+    sc += c;
+    stc += t * c;
+    scc += c * c;
+    last_t = t;
+  }
+  double changeUs() const {
+    if (n < 3) return 0.0;
+    const double var_t = stt - st * st / n;
+    const double cov = stc - st * sc / n;
+    const double var_c = scc - sc * sc / n;
+    const double slope = var_t > 0.0 ? cov / var_t : 0.0;
+    const double residual = std::max(0.0, var_c - slope * cov) / n;
+    // The trend counts beyond what the noise alone tilts a line by (two standard errors of the
+    // slope): a noisy steady command would otherwise read a change that shrinks with its frames.
+    const double slope_error = var_t > 0.0 ? std::sqrt(residual / var_t) : 0.0;
+    const double trend = std::max(0.0, std::abs(slope) - 2.0 * slope_error) * last_t;
+    return trend + kNoiseRange * std::sqrt(residual);
+  }
+};
+
 // Sums of one block; a signal is averaged only when every frame of the block had it.
 struct Accumulator {
   int frames = 0;
@@ -58,8 +99,7 @@ struct Accumulator {
   std::array<int, kBlockSignalCount> signal_frames{};
   double altitude = 0.0;
   int altitude_frames = 0;
-  double collective_min = std::numeric_limits<double>::infinity();
-  double collective_max = -std::numeric_limits<double>::infinity();
+  CommandSteadiness steadiness;
 
   // One frame's pulse widths, the rotors' vertical axes (level without attitude) and the ESCs'
   // speeds where telemetry is fresh (ESC i drives RCOut channel i + 1, motor i).
@@ -67,8 +107,7 @@ struct Accumulator {
                  const EscTelemetryReading* telemetry) {
     double collective = 0.0;
     for (int k = 0; k < motors; ++k) collective += frame.pwm_us[k] / motors;
-    collective_min = std::min(collective_min, collective);
-    collective_max = std::max(collective_max, collective);
+    steadiness.add(frame.time_s, collective);
     for (int k = 0; k < motors; ++k) {
       pwm[k] += frame.pwm_us[k];
       axis[k] += imu ? (imu->orientation * vehicle.rotors[k].thrust_axis).z() : vehicle.rotors[k].thrust_axis.z();
@@ -115,7 +154,7 @@ struct Accumulator {
     block.altitude_m = altitude_frames == frames ? altitude / frames : kNaN;
     const double vertical_speed = block.signals.vertical_speed_m_s;
     block.hover = !std::isfinite(vertical_speed) || std::abs(vertical_speed) < hover_max_vertical_speed_m_s;
-    block.pwm_change_us = collective_max - collective_min;
+    block.pwm_change_us = steadiness.changeUs();
     block.accel_up_m_s2 = block.specific_force_up_m_s2 - kStandardGravity;
     return block;
   }

@@ -33,7 +33,11 @@ struct Block {
   effects::Signals signals;      ///< height, vertical, horizontal and axial speed, air density, motor temperature; NaN if missing
   double altitude_m = 0.0;       ///< local position z; NaN if missing
   bool hover = false;            ///< steady: slow vertical speed, steady commands
-  double pwm_change_us = 0.0;    ///< range of the collective (mean over motors) PWM within the block
+  /// How far the collective (mean over motors) PWM moved within the block, us, whatever the log's
+  /// rate: its least-squares trend's change across the block (beyond two standard errors of the
+  /// slope) plus 3.7 standard deviations of its noise about the trend (the range 20 frames of noise
+  /// span on average)
+  double pwm_change_us = 0.0;
   double accel_up_m_s2 = 0.0;    ///< vertical acceleration, specific_force_up minus g
 };
 

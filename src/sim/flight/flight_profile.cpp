@@ -53,7 +53,8 @@ void FlightProfile::validate() const {
   if (autopilot.disarmed_pwm_us != 0.0) {
     requireWithin("autopilot.disarmed_pwm_us", autopilot.disarmed_pwm_us, 500.0, autopilot.pwm_min_us, " us (or 0)");
   }
-  requireWithin("autopilot.rc_out_rate_hz", autopilot.rc_out_rate_hz, 10.0, 50.0, " Hz");
+  // At most every physics step (kFlightStepS, 500 Hz): PX4 logs actuator outputs at up to 400 Hz.
+  requireWithin("autopilot.rc_out_rate_hz", autopilot.rc_out_rate_hz, 10.0, 500.0, " Hz");
   if (vehicle.urdf_path.empty()) throw FieldError("vehicle.urdf", "is empty");
   if (!vehicle.centre_of_mass_offset_m.allFinite() || vehicle.centre_of_mass_offset_m.norm() > 0.1) {
     throw FieldError("vehicle.centre_of_mass_offset_m", "must be a finite offset within 0.1 m");

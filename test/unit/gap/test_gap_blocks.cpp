@@ -2,6 +2,8 @@
 #include <cmath>
 #include <string>
 
+#include <random>
+
 #include <gtest/gtest.h>
 
 #include "propulsion_estimator/common/units.h"
@@ -52,7 +54,7 @@ TEST(GapBlocks, AveragesEachBlockOfASegment) {
   ASSERT_EQ(cut.blocks.size(), 10u);  // 2-12 s in 1 s blocks (the frame at 12 s alone is dropped)
   const gap::Block& block = cut.blocks.front();
   EXPECT_NEAR(block.pwm_us[0], 1509.0, 1e-9);
-  EXPECT_NEAR(block.pwm_change_us, 18.0, 1e-9);
+  EXPECT_NEAR(block.pwm_change_us, 18.0, 1e-6);  // a ramp in each block: its trend's change, no noise
   EXPECT_NEAR(block.voltage_v, 12.0, 1e-12);
   EXPECT_NEAR(block.current_a, 8.0, 1e-12) << "discharge counts positive whatever the autopilot's sign";
   EXPECT_NEAR(block.truth_n, 1.2 * pe::kStandardGravity, 1e-9);
@@ -156,4 +158,36 @@ TEST(GapBlocks, AveragesEachRotorsSpeedWhereTelemetryCoversHalfTheBlock) {
   EXPECT_TRUE(std::isnan(cut.blocks[3].rpm[3]));     // 5-6 s: none fresh
   EXPECT_NEAR(cut.blocks[3].rpm[0], 6000.0, 1e-9);
   EXPECT_TRUE(std::isnan(gap::cutIntoBlocks(levelFlight(), 0, pe::Vehicle::quadX(0.225), config(), 0).blocks[0].rpm[0]));
+}
+
+// A block's change of command is its trend's plus its noise's, whatever the rate it is logged at.
+TEST(GapBlocks, TheChangeOfCommandIsTheTrendPlusTheNoiseWhateverTheRate) {
+  const auto change = [](int rate_hz, double slope_us_per_s, bool noisy) {
+    std::mt19937 draw(static_cast<unsigned>(rate_hz));
+    std::normal_distribution<double> noise(0.0, 10.0);
+    pe::Flight flight;
+    flight.name = "rate.bag";
+    flight.streams.motors = 4;
+    for (int i = 0; i <= 12 * rate_hz; ++i) {
+      const double t = static_cast<double>(i) / rate_hz;
+      pe::RcOutFrame frame;
+      frame.time_s = t;
+      // The same noise of 10 us standard deviation on every motor (the collective's is 10 us).
+      const double jitter = noisy ? noise(draw) : 0.0;
+      for (int k = 0; k < 4; ++k) frame.pwm_us[k] = 1500.0 + slope_us_per_s * t + jitter;
+      flight.streams.rc_out.push_back(frame);
+      flight.streams.battery.push_back({t, 12.0, -8.0});
+    }
+    flight.segments.push_back({2.0, 12.0, 1.2});
+    gap::BlockConfig config;
+    config.motors = 4;
+    return gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config, 0).blocks.front().pwm_change_us;
+  };
+  for (int rate : {20, 50, 100, 400}) {
+    // A ramp of 30 us/s: its change across the block's frames (the last at 1 s less a frame).
+    EXPECT_NEAR(change(rate, 30.0, false), 30.0 * (1.0 - 1.0 / rate), 1e-5) << rate;
+    // Noise alone: about 3.7 standard deviations (its range over 20 frames on average) at every
+    // rate, where the frames' range is 37 us at 20 Hz and about 60 us at 400 Hz.
+    EXPECT_NEAR(change(rate, 0.0, true), 37.0, 0.15 * 37.0) << rate;
+  }
 }

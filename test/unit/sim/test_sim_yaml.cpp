@@ -307,8 +307,8 @@ TEST(FlightProfileYaml, RefusesImpossibleSegments) {
 }
 
 TEST(FlightProfileYaml, RefusesBadValuesAndUnknownKeys) {
-  EXPECT_EQ(profileRefusal("  rc_out_rate_hz: 50", "  rc_out_rate_hz: 60"),
-            "config/sim/f.yaml:6: autopilot.rc_out_rate_hz: 60 is outside 10..50 Hz");
+  EXPECT_EQ(profileRefusal("  rc_out_rate_hz: 50", "  rc_out_rate_hz: 600"),
+            "config/sim/f.yaml:6: autopilot.rc_out_rate_hz: 600 is outside 10..500 Hz");
   EXPECT_EQ(profileRefusal("  rc_out_rate_hz: 50\n", ""), "config/sim/f.yaml:2: autopilot.rc_out_rate_hz: missing key");
   EXPECT_EQ(profileRefusal("  disarmed_pwm_us: 900", "  disarmed_pwm_us: 1200"),
             "config/sim/f.yaml:5: autopilot.disarmed_pwm_us: 1200 is outside 500..1100 us (or 0)");
