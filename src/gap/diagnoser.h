@@ -160,7 +160,13 @@ class Diagnoser {
   std::string rpmView() const;
   std::string dynamicBlocks() const;
   std::string selectionBlocks() const;
-  void collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view);
+  // The samples' three views are the plain model's, taken before the motor balance sets its
+  // factors, so that the file's columns stand on one footing (the corrected one has them).
+  struct PlainViews {
+    std::vector<double> pwm, current, rpm;
+  };
+  PlainViews plainViews(const effects::ModelEffects& plain) const;
+  void collectSamples(const PlainViews& plain);
 
   const PropulsionModel& model_;
   const Vehicle& vehicle_;

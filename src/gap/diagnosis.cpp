@@ -528,9 +528,8 @@ Diagnosis Diagnoser::run() {
   findUnits();
   const effects::ModelEffects plain = references();
   const BlockView pwm_view = [&](const Block& block) { return views_.pwmView(block, plain); };
-  std::vector<double> plain_view(blocks_.size());
-  for (std::size_t i = 0; i < blocks_.size(); ++i) plain_view[i] = pwm_view(blocks_[i]);
-  reportGap(pwm_view, plain_view);
+  const PlainViews plain_views = plainViews(plain);
+  reportGap(pwm_view, plain_views.pwm);
   reportWhere(pwm_view);
   balanceMotors();
   const HeldOutPrediction before = predictHeldOut({});
@@ -540,7 +539,7 @@ Diagnosis Diagnoser::run() {
   reportHeldOut(before, after);
   nestedHoldOut();
   diagnosis_.method = method();
-  collectSamples(plain, plain_view);
+  collectSamples(plain_views);
   return diagnosis_;
 }
 

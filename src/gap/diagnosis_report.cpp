@@ -213,17 +213,27 @@ std::string Diagnoser::method() const {
          std::to_string(std::min(units_, config_.nested_folds)) + " outer folds and scores that fold.";
 }
 
+Diagnoser::PlainViews Diagnoser::plainViews(const effects::ModelEffects& plain) const {
+  PlainViews views;
+  for (const Block& block : blocks_) {
+    views.pwm.push_back(views_.pwmView(block, plain));
+    views.current.push_back(views_.currentView(block, plain));
+    views.rpm.push_back(views_.rpmView(block, plain));
+  }
+  return views;
+}
+
 // Every block with its signals and the views, for the figures.
-void Diagnoser::collectSamples(const effects::ModelEffects& plain, const std::vector<double>& plain_view) {
+void Diagnoser::collectSamples(const PlainViews& plain) {
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     const Block& block = blocks_[i];
     GapSample sample;
     sample.flight = block.flight;
     sample.time_s = block.time_s;
     sample.truth_n = block.truth_n;
-    sample.model_n = plain_view[i];
-    sample.current_view_n = views_.currentView(block, plain);
-    sample.rpm_view_n = views_.rpmView(block, plain);
+    sample.model_n = plain.pwm[i];
+    sample.current_view_n = plain.current[i];
+    sample.rpm_view_n = plain.rpm[i];
     sample.corrected_n = views_.pwmView(block, diagnosis_.fitted);
     sample.pwm_us = meanPwm(block);
     sample.voltage_v = block.voltage_v;

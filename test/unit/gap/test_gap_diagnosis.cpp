@@ -645,3 +645,29 @@ TEST_F(SyntheticFlights, EachCandidateHasOneLineWhoseTestsAgreeWithItsErrors) {
     }
   }
 }
+
+// issue 35: gap_samples.csv's views stand on one footing, the plain model's: the weak motor's
+// factor the balance finds is in the corrected column only. A weak propeller turns at the speed
+// its command asks and lifts less: both views read high by its missing share, alike.
+TEST_F(SyntheticFlights, TheSamplesViewsAreThePlainModelsEvenWithASuspectMotor) {
+  World healthy;
+  healthy.telemetry = true;
+  gap::DiagnosisConfig config;
+  config.motor_reference = gap::learnReference(model_, vehicle_, flights(healthy), config);
+  World world = healthy;
+  world.weak_motor = 2;
+  world.weak_factor = 0.85;
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, flights(world), config);
+  ASSERT_TRUE(diagnosis.motors.suspect_channel);
+  double rpm = 0.0, pwm = 0.0;
+  int n = 0;
+  for (const gap::GapSample& s : diagnosis.samples) {
+    if (!std::isfinite(s.rpm_view_n)) continue;
+    rpm += s.rpm_view_n / s.truth_n;
+    pwm += s.model_n / s.truth_n;
+    ++n;
+  }
+  ASSERT_GT(n, 50);
+  EXPECT_GT(pwm / n, 1.02);
+  EXPECT_NEAR(rpm / n, pwm / n, 0.005);
+}
