@@ -193,9 +193,9 @@ std::vector<LogResult> estimateLogs(const Arguments& args, const std::vector<std
         continue;
       }
       const LogResult& r = results[i];
-      const std::string what = r.estimate ? hoverList(*r.estimate) + ", " +
-                                                std::to_string(r.estimate->warnings.size()) + " warnings -> " +
-                                                r.directory
+      const std::size_t warnings = r.estimate ? r.estimate->warnings.size() : 0;
+      const std::string what = r.estimate ? hoverList(*r.estimate) + ", " + std::to_string(warnings) +
+                                                (warnings == 1 ? " warning -> " : " warnings -> ") + r.directory
                                           : "refused: " + r.refusal;
       std::printf("[%zu/%zu] %s: %s (%.2f s)\n", ++done, logs.size(), r.path.c_str(), what.c_str(), r.seconds);
       std::fflush(stdout);
