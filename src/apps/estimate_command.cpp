@@ -1,7 +1,5 @@
 #include "estimate_command.h"
 
-#include <glob.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -20,6 +18,7 @@
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/logs/file_pattern.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/offline/estimate_csv.h"
 #include "propulsion_estimator/offline/estimate_summary.h"
@@ -63,13 +62,9 @@ struct LogResult {
 std::vector<std::string> expandLogs(const std::vector<std::string>& arguments) {
   std::vector<std::string> paths;
   for (const std::string& argument : arguments) {
-    glob_t found{};
-    if (glob(argument.c_str(), 0, nullptr, &found) == 0) {
-      for (std::size_t i = 0; i < found.gl_pathc; ++i) paths.emplace_back(found.gl_pathv[i]);
-    } else {
-      paths.push_back(argument);
-    }
-    globfree(&found);
+    const std::vector<std::string> matches = isFilePattern(argument) ? matchingFiles(argument) : std::vector<std::string>{};
+    if (matches.empty()) paths.push_back(argument);
+    paths.insert(paths.end(), matches.begin(), matches.end());
   }
   return paths;
 }
@@ -120,10 +115,13 @@ offline::EstimateOptions optionsOf(const Arguments& args, const Vehicle& vehicle
   try {
     options.validate(vehicle.rotors.size());
   } catch (const FieldError& e) {
-    // The settings given as options are named as options; the file's were validated as it was read.
-    std::string option = "--" + e.field();
-    std::replace(option.begin(), option.end(), '_', '-');
-    throw ConfigError(option + ": " + e.problem());
+    // A setting given as an option is named as the option, one from the parameters as its key.
+    const bool option = e.field() == "sample_rate_hz" || (e.field() == "empty_mass_kg" && !std::isnan(args.empty_mass_kg)) ||
+                        (e.field() == "disarmed_pwm_max_us" && args.disarmed_pwm_max_us);
+    if (!option) throw ConfigError(source->where(e.field()) + ": " + e.problem());
+    std::string name = "--" + e.field();
+    std::replace(name.begin(), name.end(), '_', '-');
+    throw ConfigError(name + ": " + e.problem());
   }
   return options;
 }

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/units.h"
 
 namespace propulsion_estimator {
@@ -47,11 +47,7 @@ double percentile75(std::vector<double> values) {
   return *at;
 }
 
-std::string seconds(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f s", value);
-  return text;
-}
+std::string seconds(double value) { return formatPrintf("%.1f s", value); }
 
 }  // namespace
 

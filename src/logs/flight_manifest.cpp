@@ -1,7 +1,5 @@
 #include "propulsion_estimator/logs/flight_manifest.h"
 
-#include <glob.h>
-
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
@@ -11,6 +9,7 @@
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/yaml_map.h"
+#include "propulsion_estimator/logs/file_pattern.h"
 
 namespace propulsion_estimator {
 
@@ -95,21 +94,6 @@ std::string locatedRefusal(const YamlMap& root, const ManifestFlight& flight, co
   return "";
 }
 
-bool isPattern(const std::string& log) { return log.find_first_of("*?[") != std::string::npos; }
-
-// The files a shell pattern matches, in name order, as absolute paths.
-std::vector<std::string> matchingFiles(const std::string& pattern) {
-  std::vector<std::string> files;
-  glob_t found{};
-  if (glob(pattern.c_str(), 0, nullptr, &found) == 0) {
-    for (std::size_t i = 0; i < found.gl_pathc; ++i) {
-      files.push_back(std::filesystem::absolute(found.gl_pathv[i]).lexically_normal().string());
-    }
-  }
-  globfree(&found);
-  return files;
-}
-
 }  // namespace
 
 FlightManifest parseFlightManifest(const std::string& text, const std::string& source) {
@@ -129,7 +113,7 @@ std::vector<ManifestEntry> loadFlightManifestEntries(const std::string& path) {
   for (std::size_t f = 0; f < flights.size(); ++f) {
     const std::string at = "flights[" + std::to_string(f) + "]";
     ManifestEntry entry{flights[f], locatedRefusal(root, flights[f], at)};
-    if (!entry.refusal.empty() || !isPattern(flights[f].log)) {
+    if (!entry.refusal.empty() || !isFilePattern(flights[f].log)) {
       entries.push_back(std::move(entry));
       continue;
     }
@@ -139,7 +123,8 @@ std::vector<ManifestEntry> loadFlightManifestEntries(const std::string& path) {
     }
     for (const std::string& match : matches) {
       entries.push_back({flights[f], ""});
-      entries.back().flight.log = match;
+      // Absolute: a match spelt from the manifest's folder would be resolved from it again.
+      entries.back().flight.log = std::filesystem::absolute(match).lexically_normal().string();
     }
   }
   return entries;

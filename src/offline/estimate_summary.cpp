@@ -1,18 +1,12 @@
 #include "propulsion_estimator/offline/estimate_summary.h"
 
-#include <cmath>
-#include <cstdio>
+#include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
 namespace offline {
 namespace {
 
-std::string number(double value, const char* pattern) {
-  if (!std::isfinite(value)) return "n/a";
-  char text[48];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
+std::string number(double value, const char* pattern) { return formatPrintf(pattern, value, "n/a"); }
 
 std::string hoverTable(const FlightEstimate& e) {
   if (e.hovers.empty()) return "No hover was found (see the warnings).\n";

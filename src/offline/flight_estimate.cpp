@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numeric>
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/offline/flight_feed.h"
 #include "propulsion_estimator/onboard/rate_limiter.h"
 
@@ -16,12 +16,9 @@ namespace propulsion_estimator {
 namespace offline {
 namespace {
 
-// printf into a string, for the warnings' numbers.
-template <typename... Args>
-std::string format(const char* pattern, Args... args) {
-  char text[256];
-  std::snprintf(text, sizeof text, pattern, args...);
-  return text;
+// "10.50-12.60 V": a range with each end in `pattern`.
+std::string range(double low, double high, const char* pattern, const char* unit) {
+  return formatPrintf(pattern, low) + "-" + formatPrintf(pattern, high) + unit;
 }
 
 constexpr int kBlockerCount = static_cast<int>(HoverBlocker::kExpired) + 1;
@@ -157,20 +154,20 @@ void warnDomain(const EstimatorCounters& counters, const ModelDomain& domain, co
   if (counters.motor_samples_outside_domain == 0) return;
   const double share = 100.0 * static_cast<double>(counters.motor_samples_outside_domain) /
                        static_cast<double>(std::max<std::uint64_t>(counters.motor_samples, 1));
-  std::string line = format("%.1f %% of the motor samples lie outside the model's domain", share) +
-                     format(" (the model covers %.0f-%.0f us at %.2f-%.2f V", domain.pwm_min_us,
-                                  domain.pwm_max_us, domain.voltage_min_v, domain.voltage_max_v);
+  std::string line = formatPrintf("%.1f", share) + " % of the motor samples lie outside the model's domain" +
+                     " (the model covers " + range(domain.pwm_min_us, domain.pwm_max_us, "%.0f", " us") + " at " +
+                     range(domain.voltage_min_v, domain.voltage_max_v, "%.2f", " V");
   if (log.voltage_min_v <= log.voltage_max_v) {
-    line += format("; the log's battery reads %.2f-%.2f V", log.voltage_min_v, log.voltage_max_v);
+    line += "; the log's battery reads " + range(log.voltage_min_v, log.voltage_max_v, "%.2f", " V");
   }
   if (log.pwm_min_us <= log.pwm_max_us) {
-    line += format(", its motors %.0f-%.0f us while armed", log.pwm_min_us, log.pwm_max_us);
+    line += ", its motors " + range(log.pwm_min_us, log.pwm_max_us, "%.0f", " us") + " while armed";
   }
   // A bench logged along one discharge diagonal covers a narrow band of that box at each command.
   if (!domain.covered.empty() && !std::isnan(log.pwm_median_us)) {
     const auto [low_v, high_v] = domain.voltageRange(log.pwm_median_us);
-    line += format("; at the log's median command, %.0f us, the bench covered only %.2f-%.2f V", log.pwm_median_us,
-                   low_v, high_v);
+    line += "; at the log's median command, " + formatPrintf("%.0f us", log.pwm_median_us) +
+            ", the bench covered only " + range(low_v, high_v, "%.2f", " V");
   }
   line += std::string("); outside: ") + outsideDomainName(domain.outside);
   const bool in_box = log.voltage_min_v >= domain.voltage_min_v && log.voltage_max_v <= domain.voltage_max_v;
@@ -190,11 +187,10 @@ void warnNoHover(const std::array<std::uint64_t, kBlockerCount>& blockers, std::
   }
   int most = 1;
   for (int b = 1; b < kBlockerCount; ++b) most = blockers[b] > blockers[most] ? b : most;
-  warnings->push_back(format("no hover found in %llu accepted messages: most often ",
-                                   static_cast<unsigned long long>(accepted)) +
-                      blockerText(static_cast<HoverBlocker>(most)) +
-                      format(" (%.0f %% of them)", 100.0 * static_cast<double>(blockers[most]) /
-                                                            static_cast<double>(accepted)));
+  const double share = 100.0 * static_cast<double>(blockers[most]) / static_cast<double>(accepted);
+  warnings->push_back("no hover found in " + std::to_string(accepted) + " accepted messages: most often " +
+                      blockerText(static_cast<HoverBlocker>(most)) + " (" + formatPrintf("%.0f", share) +
+                      " % of them)");
 }
 
 }  // namespace

@@ -97,4 +97,13 @@ TEST(EstimateTool, TakesTheNodesParametersFromAFileAsALaunchFileLoadsThem) {
   EXPECT_EQ(channels.status, 1);
   EXPECT_EQ(channels.err, "estimate: " + (dir / "channels.yaml").string() +
                               ": motor_channels: estimate reads motor k from the log's output k (1..4); leave it out\n");
+  // A value the estimator refuses is named by the file and its key, not as an option.
+  std::ofstream(dir / "window.yaml") << "hover:\n  window_s: -1\n";
+  const ToolRun window = runTool(PE_ESTIMATE,
+                                 vehicle + " --params " + quoted((dir / "window.yaml").string()) + " --out " +
+                                     quoted((dir / "d").string()) + " " + quoted(log),
+                                 dir);
+  EXPECT_EQ(window.status, 1);
+  EXPECT_EQ(window.err, "estimate: " + (dir / "window.yaml").string() +
+                            ": hover/window_s: must be a positive number, got -1\n");
 }

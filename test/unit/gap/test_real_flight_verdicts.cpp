@@ -131,8 +131,8 @@ TEST_F(CrazyPadFlights, TheirRealCommandsKeepTheSameSteadyBlocksWhateverTheRateT
   // issue 35: the healthy flights' real motor commands (about 100 Hz, a real attitude controller's
   // jitter), and the same flights keeping every second and every fourth RCOut message (50 and
   // 25 Hz): a block's steadiness is judged on its command's trend and noise, so each rate keeps
-  // about as many steady blocks (a frame-by-frame range of the lag-averaged command kept 59, 59 and
-  // 58 here: these commands are smooth enough at 100 Hz; the test guards that they stay kept).
+  // about as many steady blocks (a frame-by-frame range kept 59, 59 and 58 here: these commands
+  // are smooth enough at 100 Hz that the range did not tell; the test guards that they stay kept).
   const std::vector<pe::Flight> flights = flightsOf("healthy_E8.manifest.yaml");
   std::vector<int> steady;
   for (std::size_t every : {1, 2, 4}) {
