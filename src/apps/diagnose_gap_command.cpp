@@ -48,6 +48,7 @@ struct Arguments {
   double rotor_diameter_m = gap::DiagnosisConfig{}.rotor_diameter_m;
   double rotor_time_constant_s = kNaN;  // NaN: identified from the flights
   gap::PartsSpread parts_spread;
+  gap::AirborneSettings airborne;  // for flights weighed as a whole (manifest mass_kg)
   bool no_rpm_view = false;
   int jobs = 1;
   ReportPlotter plotter;
@@ -63,9 +64,10 @@ struct FlightRead {
 };
 
 // A flight given `mass_kg:` for its airborne stretches: its segments, found in its log.
-std::string weighAirborne(const PropulsionModel& model, const ManifestFlight& entry, Flight* flight) {
+std::string weighAirborne(const PropulsionModel& model, const ManifestFlight& entry,
+                          const gap::AirborneSettings& settings, Flight* flight) {
   std::vector<gap::AirborneStretch> found;
-  flight->segments = gap::airborneSegments(flight->streams, model, entry.airborne_mass_kg, {}, &found);
+  flight->segments = gap::airborneSegments(flight->streams, model, entry.airborne_mass_kg, settings, &found);
   std::string text;
   for (std::size_t k = 0; k < found.size(); ++k) {
     text += (k ? "; " : "") + formatPrintf("lift-off %.1f s", found[k].lift_off_s) +
@@ -109,7 +111,8 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
 }
 
 FlightRead readFlight(const std::string& manifest, std::size_t index, const ManifestEntry& entry,
-                      const FlightLogOptions& options, const PropulsionModel& model) {
+                      const FlightLogOptions& options, const PropulsionModel& model,
+                      const gap::AirborneSettings& airborne) {
   if (!entry.refusal.empty()) return {std::nullopt, entry.refusal, {}};
   const std::string at = manifest + ": flights[" + std::to_string(index) + "]";
   try {
@@ -129,7 +132,7 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
     }
     Flight flight{entry.flight.log, reader->read(options), segments};
     const std::string stretches =
-        entry.flight.airborne_mass_kg.empty() ? "" : weighAirborne(model, entry.flight, &flight);
+        entry.flight.airborne_mass_kg.empty() ? "" : weighAirborne(model, entry.flight, airborne, &flight);
     return {std::move(flight), "", reader->refusal(), stretches};
   } catch (const InputError& e) {
     return {std::nullopt, at + ": " + e.what(), {}};
@@ -138,14 +141,15 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
 
 // Reads the flights on `jobs` threads; the results in manifest order.
 std::vector<FlightRead> readFlights(const std::string& manifest, const std::vector<ManifestEntry>& entries,
-                                    const FlightLogOptions& options, const PropulsionModel& model, int jobs) {
+                                    const FlightLogOptions& options, const PropulsionModel& model,
+                                    const gap::AirborneSettings& airborne, int jobs) {
   std::vector<FlightRead> reads(entries.size());
   std::vector<std::exception_ptr> failures(entries.size());
   std::atomic<std::size_t> next{0};
   const auto work = [&] {
     for (std::size_t i = next++; i < entries.size(); i = next++) {
       try {
-        reads[i] = readFlight(manifest, i, entries[i], options, model);
+        reads[i] = readFlight(manifest, i, entries[i], options, model, airborne);
       } catch (...) {
         failures[i] = std::current_exception();
       }
@@ -259,7 +263,7 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
 MotorReference learnReference(const Arguments& args, const PropulsionModel& model, const Vehicle& vehicle,
                               const FlightLogOptions& options, const gap::DiagnosisConfig& config) {
   std::vector<Flight> flights;
-  for (FlightRead& read : readFlights(args.reference, loadFlightManifestEntries(args.reference), options, model, args.jobs)) {
+  for (FlightRead& read : readFlights(args.reference, loadFlightManifestEntries(args.reference), options, model, args.airborne, args.jobs)) {
     if (!read.flight) throw ConfigError("--reference: " + read.refusal);
     flights.push_back(std::move(*read.flight));
   }
@@ -299,7 +303,7 @@ int diagnose(const Arguments& args) {
 
   const auto started = std::chrono::steady_clock::now();
   std::vector<FlightRead> reads =
-      readFlights(args.manifest, entries, options, model, args.jobs);
+      readFlights(args.manifest, entries, options, model, args.airborne, args.jobs);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   std::vector<Flight> flights;
@@ -362,6 +366,14 @@ int runDiagnoseGap(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--parts-esc-spread-us", args.parts_spread.esc_end_point_us,
                  "How far a healthy vehicle's ESC end points may differ from the bench ESC's, us (0..100); likewise")
+      ->capture_default_str();
+  app.add_option("--airborne-settle-s", args.airborne.settle_s,
+                 "A flight weighed as a whole (manifest mass_kg): seconds after lift-off left out of its weighed stretch")
+      ->check(CLI::Range(0.0, 60.0))
+      ->capture_default_str();
+  app.add_option("--airborne-min-s", args.airborne.min_weighed_s,
+                 "A flight weighed as a whole: its shortest weighed stretch, s (shorter airborne stretches are hops)")
+      ->check(CLI::Range(0.5, 3600.0))
       ->capture_default_str();
   app.add_flag("--no-rpm-view", args.no_rpm_view,
                "Leave ESC telemetry's rotor speeds out of the diagnosis (the RPM view): the PWM and current views only");

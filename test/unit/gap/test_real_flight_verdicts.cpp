@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/gap/airborne_stretch.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/motor_balance.h"
 #include "propulsion_estimator/gap/motor_health_replay.h"
@@ -149,4 +151,22 @@ TEST_F(CrazyPadFlights, TheirRealCommandsKeepTheSameSteadyBlocksWhateverTheRateT
   }
   EXPECT_NEAR(steady[1], steady[0], 0.1 * steady[0]);
   EXPECT_NEAR(steady[2], steady[0], 0.1 * steady[0]);
+}
+
+TEST_F(CrazyPadFlights, WeighedAsAWholeTheirHopsAreFoundWithANanoQuadsSettlingAndSelectAlike) {
+  // The Crazyflie's hops last 6-9 s: with the default settling (4 s) and shortest stretch (5 s) no
+  // stretch is weighed, and the flight is refused saying so; with 1 s and 2 s (--airborne-settle-s,
+  // --airborne-min-s) each log's two hops are found and select what the hand-cut segments select.
+  std::vector<pe::Flight> flights = flightsOf("healthy_E8.manifest.yaml");
+  EXPECT_THROW(gap::airborneSegments(flights[0].streams, model_, {0.03}, {}), pe::DataError);
+  gap::AirborneSettings nano;
+  nano.settle_s = 1.0;
+  nano.min_weighed_s = 2.0;
+  const std::vector<pe::effects::Kind> hand_cut = diagnose(flights).selected;
+  for (pe::Flight& flight : flights) {
+    flight.segments = gap::airborneSegments(flight.streams, model_, {0.03}, nano);
+    EXPECT_EQ(flight.segments.size(), 2u) << flight.name;
+  }
+  EXPECT_EQ(diagnose(flights).selected, hand_cut);
+  EXPECT_FALSE(hand_cut.empty());
 }
