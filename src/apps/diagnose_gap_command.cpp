@@ -367,6 +367,10 @@ int runDiagnoseGap(int argc, char** argv) {
   app.add_option("--parts-esc-spread-us", args.parts_spread.esc_end_point_us,
                  "How far a healthy vehicle's ESC end points may differ from the bench ESC's, us (0..100); likewise")
       ->capture_default_str();
+  app.add_option("--parts-max-imitated-share", args.parts_spread.max_imitated_share,
+                 "An effect reading a signal is named, however small, when those two spreads could imitate at most "
+                 "this share of its change over the blocks (0..1): a shape no part gives")
+      ->capture_default_str();
   app.add_option("--airborne-settle-s", args.airborne.settle_s,
                  "A flight weighed as a whole (manifest mass_kg): seconds after lift-off left out of its weighed stretch")
       ->check(CLI::Range(0.0, 60.0))

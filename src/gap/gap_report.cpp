@@ -99,6 +99,7 @@ void emitSelection(YAML::Emitter& out, const Diagnosis& diagnosis) {
       emitField(out, "largest_change_pct", effect.size.largest_change_pct);
       emitField(out, "parts_change_pct", effect.size.parts_change_pct);
       out << YAML::Key << "blocks_beyond_parts" << YAML::Value << effect.size.blocks_beyond;
+      emitField(out, "parts_imitated_share", effect.size.imitated_share, "%.3f");
     }
     out << YAML::Key << "reason" << YAML::Value << effect.reason;
     out << YAML::EndMap;

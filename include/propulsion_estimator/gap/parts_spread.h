@@ -27,9 +27,19 @@ struct PartsSpread {
   /// Calibrated likewise: ESC offsets of up to 8.1 us fitted there; the family's real ones start
   /// at 15 us.
   double esc_end_point_us = 10.0;
+  /// Fraction: an effect reading a signal whose change the parts' best imitation (a thrust
+  /// factor within thrust_fraction plus an ESC shift within esc_end_point_us, one for the whole
+  /// vehicle) takes up at most this share of (mean square over the blocks) has a shape no part
+  /// gives, and is named however small it is: a ground effect lifts only the blocks near the
+  /// ground. Calibrated 2026-11-28 on development seed 421940 of the family with each motor's own
+  /// parts: the parts could imitate 0.18-0.23 of the true ground effects' change there and at
+  /// least 0.40 of the near-constant effects' (air density, supply resistance, motor heating). It
+  /// tells a shape from a constant; what guards against a wrong shaped effect is significance.
+  double max_imitated_share = 0.35;
 
-  /// Throws FieldError "parts_thrust_spread" (0..0.5) or "parts_esc_spread_us" (0..100 us) for a
-  /// value outside its range or non-finite (diagnose_gap's --parts-thrust-spread, --parts-esc-spread-us).
+  /// Throws FieldError "parts_thrust_spread" (0..0.5), "parts_esc_spread_us" (0..100 us) or
+  /// "parts_max_imitated_share" (0..1) for a value outside its range or non-finite (diagnose_gap's
+  /// --parts-thrust-spread, --parts-esc-spread-us, --parts-max-imitated-share).
   void validate() const;
 };
 
@@ -41,6 +51,11 @@ struct EffectSize {
   /// same laws as the propellers' and the ESCs' spreads), for any other effect the larger.
   double parts_change_pct = 0.0;
   int blocks_beyond = 0;  ///< blocks where the effect's change exceeds the parts' there
+  /// Share of the effect's change (mean square over the blocks) that the parts' best imitation
+  /// takes up: a thrust factor within PartsSpread::thrust_fraction plus an ESC shift within
+  /// esc_end_point_us, fitted by least squares. 1 for a thrust loss or an ESC offset (the laws
+  /// of the parts' spreads) and for an effect that changes nothing.
+  double imitated_share = 1.0;
 };
 
 /// At least this many blocks beyond the parts' spread: one odd block does not carry a name.
@@ -48,15 +63,17 @@ constexpr int kMinBlocksBeyondParts = 3;
 
 /// The size of effect `kind` in `fitted` (the effects fitted with it) over `blocks`: on each block
 /// the PWM view's thrust with `fitted` against `fitted` without `kind`, and against what `spread`
-/// could do there on top of the others. Blocks where the view gives no positive thrust are skipped.
+/// could do there on top of the others; and the share of that change over the blocks the parts
+/// could imitate. Blocks where the view gives no positive thrust are skipped.
 EffectSize effectSizeAgainstParts(const ThrustViews& views, const std::vector<const Block*>& blocks,
                                   const effects::ModelEffects& fitted, effects::Kind kind,
                                   const PartsSpread& spread);
 
 /// Why effect `kind` fitted at `parameter` (its ParameterSpec unit), of `size`, is not named
-/// against `spread`: "" when it is beyond the parts' spread; else one line with the numbers (a
-/// change within the parts' on too many blocks; a thrust loss below -thrust_fraction, a gain,
-/// which blockage and rotor interaction cannot give).
+/// against `spread`: "" when it is beyond the parts' spread (on kMinBlocksBeyondParts blocks, or
+/// by a shape the parts cannot imitate); else one line with the numbers (a change the parts could
+/// give on too many blocks; a thrust loss below -thrust_fraction, a gain, which blockage and rotor
+/// interaction cannot give).
 std::string withinPartsSpread(effects::Kind kind, double parameter, const EffectSize& size, const PartsSpread& spread);
 
 }  // namespace gap
