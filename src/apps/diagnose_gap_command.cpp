@@ -259,15 +259,20 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
               checked_flagged, with_telemetry, args.out.c_str());
 }
 
-// The vehicle's healthy fingerprint from the --reference manifest's flights; every flight must read.
+// The vehicle's healthy fingerprint from the --reference manifest's flights, and the effects they
+// show (the diagnosis names only what changed from them); every flight must read.
 MotorReference learnReference(const Arguments& args, const PropulsionModel& model, const Vehicle& vehicle,
-                              const FlightLogOptions& options, const gap::DiagnosisConfig& config) {
+                              const FlightLogOptions& options, const gap::DiagnosisConfig& config,
+                              gap::ReferenceEffects* reference_effects) {
   std::vector<Flight> flights;
   for (FlightRead& read : readFlights(args.reference, loadFlightManifestEntries(args.reference), options, model, args.airborne, args.jobs)) {
     if (!read.flight) throw ConfigError("--reference: " + read.refusal);
     flights.push_back(std::move(*read.flight));
   }
-  const MotorReference reference = gap::learnReference(model, vehicle, flights, config);
+  MotorReference reference = gap::learnReference(model, vehicle, flights, config);
+  gap::DiagnosisConfig own = config;
+  own.motor_reference = reference;
+  *reference_effects = gap::fitReferenceEffects(model, vehicle, flights, own);
   std::string shares;
   for (std::size_t k = 0; k < reference.shares.size(); ++k) {
     shares += (k == 0 ? "" : ", ") + formatPrintf("%.1f", 100.0 * reference.shares[k]) + " +- " +
@@ -275,6 +280,16 @@ MotorReference learnReference(const Arguments& args, const PropulsionModel& mode
   }
   std::printf("reference: %d healthy flights; each motor's share of the thrust in steady hover, %%: %s\n",
               reference.flights, shares.c_str());
+  std::string shown;
+  for (const auto& [kind, effect] : *reference_effects) {
+    shown += (shown.empty() ? "" : ", ") + std::string(effects::describe(kind).name) + " " +
+             formatPrintf("%.4g", effect.value) + " +- " + formatPrintf("%.2g", effect.ci_half) +
+             (std::isfinite(effect.signal_low)
+                  ? " (" + formatPrintf("%.4g", effect.signal_low) + ".." + formatPrintf("%.4g", effect.signal_high) + ")"
+                  : std::string());
+  }
+  std::printf("reference: each effect fitted alone on them (an effect as large here is not named): %s\n",
+              shown.c_str());
   return reference;
 }
 
@@ -285,7 +300,7 @@ int diagnose(const Arguments& args) {
       args.input.logOptions(static_cast<int>(vehicle.rotors.size()));
   gap::DiagnosisConfig config = configOf(args, options);
   if (!args.reference.empty()) {
-    config.motor_reference = learnReference(args, model, vehicle, options, config);
+    config.motor_reference = learnReference(args, model, vehicle, options, config, &config.reference_effects);
   } else if (model.motorReference()) {
     config.motor_reference = model.motorReference();
     if (config.motor_reference->shares.size() != vehicle.rotors.size()) {

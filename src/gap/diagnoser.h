@@ -85,6 +85,9 @@ class Diagnoser {
         views_(model, motorCount(), config.rpm_view) {}
 
   Diagnosis run();
+  // Each effect fitted alone on these flights (a vehicle's healthy ones, with their own levels
+  // from config.motor_reference) and the range of the signal it reads (fitReferenceEffects).
+  ReferenceEffects fitEachAlone();
 
  private:
   // A diagnosis of the outer one's blocks kept only (`keep_block`, per block), seeing them through

@@ -9,6 +9,22 @@
 namespace propulsion_estimator {
 namespace gap {
 namespace detail {
+namespace {
+
+// The median of `signal` over the blocks that read it; NaN for Signal::kNone or none read.
+double signalMedian(const std::vector<const Block*>& blocks, effects::Signal signal) {
+  if (signal == effects::Signal::kNone) return kNaN;
+  std::vector<double> values;
+  for (const Block* block : blocks) {
+    const double value = block->signals.value(signal);
+    if (std::isfinite(value)) values.push_back(value);
+  }
+  if (values.empty()) return kNaN;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+}  // namespace
 
 // The rotors' lag: given, or identified from the flights when it explains their transients.
 double Diagnoser::rotorLag() {
@@ -320,6 +336,11 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
       result.reason = "its 95 % interval includes no effect";
     } else if (!within_parts.empty()) {
       result.reason = within_parts;
+    } else if (const std::string same = notAChange(kind, result.parameter, half,
+                                                   signalMedian(all_, effects::requiredSignal(kind)),
+                                                   config_.reference_effects);
+               !same.empty()) {
+      result.reason = same;
     } else if (!vehicle_.hasGeometry() && effects::requiredSignal(kind) == effects::Signal::kNone) {
       // A correction that reads no signal moves every block alike, and so does one weak motor:
       // without the rotors' positions the moment balance cannot tell them apart.

@@ -10,6 +10,7 @@
 #include "propulsion_estimator/estimation/motor_change.h"
 #include "propulsion_estimator/gap/bench_gap.h"
 #include "propulsion_estimator/gap/parts_spread.h"
+#include "propulsion_estimator/gap/reference_effects.h"
 #include "propulsion_estimator/gap/residual_breakdown.h"
 #include "propulsion_estimator/logs/bench_log.h"
 #include "propulsion_estimator/logs/flight_streams.h"
@@ -62,6 +63,9 @@ struct DiagnosisConfig {
   /// change from it. None: against the ideal balance, a suspect only beyond the spread healthy
   /// vehicles show (motor_healthy_gap_std).
   std::optional<MotorReference> motor_reference;
+  /// The effects of the same healthy flights (fitReferenceEffects): an effect they show alike is
+  /// not named (notAChange). Empty: every effect is judged against the bench model alone.
+  ReferenceEffects reference_effects;
   /// Without a reference: the standard deviation of the weak-rotor gap that healthy vehicles show
   /// against the ideal balance (parts that differ, propellers of the two spin directions that are
   /// not mirror images, a centre of gravity known to a few mm); a suspect exceeds three of it.
@@ -284,6 +288,13 @@ effects::ModelEffects correctedEffects(const Diagnosis& diagnosis);
 /// diagnosed; throws DataError only when nothing at all can be (no usable flight sample).
 Diagnosis diagnoseGap(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
                       const DiagnosisConfig& config, const std::vector<BenchLog>& bench = {});
+
+/// Each effect the diagnosis knows, fitted alone on a vehicle's healthy `flights` at their own
+/// thrust level (`config.motor_reference`, learned from them), with the range of the signal it
+/// reads there; effects the flights cannot test are left out. Throws DataError when no block of
+/// the flights can be used.
+ReferenceEffects fitReferenceEffects(const PropulsionModel& model, const Vehicle& vehicle,
+                                     const std::vector<Flight>& flights, const DiagnosisConfig& config);
 
 }  // namespace gap
 }  // namespace propulsion_estimator

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <random>
 
@@ -100,11 +101,11 @@ void checkThrustReserve(const SimParams& params, const SimEffects& effects, cons
                         double air_density) {
   const PropulsionChain chain(params.chain);
   const double source_v = params.battery.openCircuitVoltage(profile.vehicle.battery_initial_soc);
-  const ChainInput input{params.chain.esc.duty(profile.autopilot.pwm_max_us, effects.esc_offset_us.value_or(0.0)), 0.0,
+  const ChainInput input{escDuty(effects, params.chain.esc, 0, profile.autopilot.pwm_max_us), 0.0,
                          air_density, params.chain.motor.reference_temperature_c};
   const double series_ohm = params.battery.series_resistance_ohm + effects.supply_resistance_ohm.value_or(0.0);
-  const double max_thrust = chain.steadyFromSource(input, source_v, series_ohm, rotors, nullptr).thrust_n *
-                            (1.0 - effects.thrust_loss_fraction.value_or(0.0));
+  const double rotor_max_thrust = chain.steadyFromSource(input, source_v, series_ohm, rotors, nullptr).thrust_n;
+  const double max_thrust = rotor_max_thrust * airframeThrustShare(effects, rotor_max_thrust);
   int payload_segment = -1;
   for (const ScheduledSegment& scheduled : schedule) {
     if (scheduled.segment.kind == SegmentKind::kPayload) payload_segment = scheduled.index;
@@ -303,7 +304,7 @@ class FlightRun {
         thrust_(rotors_),
         torque_(rotors_),
         inflows_(rotors_),
-        airframe_share_(1.0 - effects.thrust_loss_fraction.value_or(0.0)) {}
+        airframe_share_(rotors_, 1.0) {}
 
   FlightResult fly() {
     const std::vector<ScheduledSegment>& schedule = setup_.schedule;
@@ -363,7 +364,8 @@ class FlightRun {
         pwm, Supply{battery_.sourceVoltage() - battery_.seriesResistanceOhm() * avionics_a_, battery_.seriesResistanceOhm()},
         air_, kFlightStepS);
     for (int k = 0; k < rotors_; ++k) {
-      thrust_[k] = power.motors[k].thrust_n * airframe_share_;
+      airframe_share_[k] = airframeThrustShare(effects_, power.motors[k].thrust_n);
+      thrust_[k] = power.motors[k].thrust_n * airframe_share_[k];
       torque_[k] = power.motors[k].torque_nm;
     }
     return power;
@@ -452,7 +454,7 @@ class FlightRun {
     sample.battery_voltage_v = power.terminal_voltage_v;
     sample.esc_voltage_v = power.esc_voltage_v;
     sample.battery_current_a = power.current_a + avionics_a_;
-    sample.thrust_loss_factor = airframe_share_;
+    sample.thrust_loss_factor = std::accumulate(airframe_share_.begin(), airframe_share_.end(), 0.0) / rotors_;
     double static_thrust = 0.0, climb_thrust = 0.0;
     for (int k = 0; k < rotors_; ++k) {
       const ChainState& motor = power.motors[k];
@@ -529,7 +531,7 @@ class FlightRun {
   EscTelemetrySensor esc_sensor_;
   std::vector<double> thrust_, torque_;
   std::vector<RotorInflow> inflows_;
-  const double airframe_share_;
+  std::vector<double> airframe_share_;  ///< each rotor's thrust share the airframe leaves (thrust_loss)
   std::size_t current_ = 0;
   bool entered_ = false;
   std::optional<double> flipping_since_;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "propulsion_estimator/common/field_error.h"
 
 namespace propulsion_estimator {
 namespace sim {
@@ -12,8 +15,8 @@ PowerTrain::PowerTrain(PropulsionChain chain, int motors, const SimEffects& effe
 PowerTrain::PowerTrain(std::vector<PropulsionChain> chains, const SimEffects& effects, double initial_temperature_c)
     : chains_(std::move(chains)),
       inflow_(chains_.size()),
+      effects_(effects),
       path_resistance_ohm_(effects.supply_resistance_ohm.value_or(0.0)),
-      esc_offset_us_(effects.esc_offset_us.value_or(0.0)),
       temperature_coupled_(effects.motor_thermal_resistance_c_per_w.has_value()),
       thermal_resistance_c_per_w_(effects.motor_thermal_resistance_c_per_w.value_or(
           chains_.front().params().motor.thermal_resistance_c_per_w)),
@@ -21,6 +24,11 @@ PowerTrain::PowerTrain(std::vector<PropulsionChain> chains, const SimEffects& ef
       temperature_c_(chains_.size(), initial_temperature_c),
       inputs_(chains_.size()),
       loads_(chains_.size()) {
+  if (effects.esc_offset_us && !effects.esc_offset_per_esc_us.empty() &&
+      effects.esc_offset_per_esc_us.size() != chains_.size()) {
+    throw FieldError("esc_offset.per_esc_us", "has " + std::to_string(effects.esc_offset_per_esc_us.size()) +
+                                                  " entries for " + std::to_string(chains_.size()) + " ESCs");
+  }
   state_.duty.assign(chains_.size(), 0.0);
   state_.motors.assign(chains_.size(), ChainState{});
   state_.winding_temperature_c = temperature_c_;
@@ -34,13 +42,15 @@ const PowerTrainState& PowerTrain::step(const std::vector<double>& pwm_us, const
                                         const AirConditions& air, double dt_s) {
   const int n = motors();
   const double density = air.densityKgM3();
-  const double series_ohm = supply.internal_resistance_ohm + path_resistance_ohm_;
+  // The path's resistance at the last step's current: its wire and connectors warm with it.
+  const double series_ohm = supply.internal_resistance_ohm +
+                            path_resistance_ohm_ * (1.0 + effects_.supply_current_coefficient_per_a * state_.current_a);
   // Input current of ESC k: d (d V - Kt w) / R, so V = source - R_s sum(I) is linear in V.
   double numerator = supply.source_voltage_v;
   double denominator = 1.0;
   for (int k = 0; k < n; ++k) {
     const ChainParams& params = chains_[k].params();
-    state_.duty[k] = params.esc.duty(pwm_us[k], esc_offset_us_);
+    state_.duty[k] = escDuty(effects_, params.esc, k, pwm_us[k]);
     if (state_.duty[k] <= 0.0) continue;
     const MotorConstants constants = motorConstantsAt(params.motor, electricalTemperatureC(k));
     const double resistance = constants.resistance_ohm + params.esc.resistance_ohm;

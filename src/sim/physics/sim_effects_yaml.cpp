@@ -25,15 +25,36 @@ SimEffects parseSimEffectsYaml(const std::string& text, const std::string& sourc
   SimEffects effects;
   // Keys, not has(): an effect written without its parameter is refused, not silently off.
   for (const std::string& effect : root.keys()) {
-    if (effect == "supply_resistance") effects.supply_resistance_ohm = parameter(root, "supply_resistance", "ohm");
+    if (effect == "supply_resistance") {
+      const YamlMap map = root.map("supply_resistance");
+      map.allowOnly({"ohm", "current_coefficient_per_a"});
+      effects.supply_resistance_ohm = map.number("ohm");
+      effects.supply_current_coefficient_per_a = map.optionalNumber("current_coefficient_per_a").value_or(0.0);
+    }
     if (effect == "air_density") effects.air = readAirConditions(root.map("air_density"));
     if (effect == "ground_effect") effects.ground_effect_strength = parameter(root, "ground_effect", "strength");
-    if (effect == "thrust_loss") effects.thrust_loss_fraction = parameter(root, "thrust_loss", "fraction");
+    if (effect == "thrust_loss") {
+      const YamlMap map = root.map("thrust_loss");
+      map.allowOnly({"fraction", "load_exponent", "reference_thrust_n"});
+      effects.thrust_loss_fraction = map.number("fraction");
+      // A loss that follows the loading needs the loading it is `fraction` at: both or neither.
+      if (map.has("load_exponent") || map.has("reference_thrust_n")) {
+        effects.thrust_loss_load_exponent = map.number("load_exponent");
+        effects.thrust_loss_reference_thrust_n = map.number("reference_thrust_n");
+      }
+    }
     if (effect == "motor_temperature") {
       effects.motor_thermal_resistance_c_per_w = parameter(root, "motor_temperature", "thermal_resistance_c_per_w");
     }
     if (effect == "climb_inflow") effects.climb_inflow_strength = parameter(root, "climb_inflow", "strength");
-    if (effect == "esc_offset") effects.esc_offset_us = parameter(root, "esc_offset", "us");
+    if (effect == "esc_offset") {
+      const YamlMap map = root.map("esc_offset");
+      map.allowOnly({"us", "per_esc_us", "gain", "dead_band_us"});
+      effects.esc_offset_us = map.number("us");
+      if (map.has("per_esc_us")) effects.esc_offset_per_esc_us = map.numbers("per_esc_us");
+      effects.esc_gain = map.optionalNumber("gain").value_or(1.0);
+      effects.esc_dead_band_us = map.optionalNumber("dead_band_us").value_or(0.0);
+    }
     if (effect == "translational_lift") {
       effects.translational_lift_strength = parameter(root, "translational_lift", "strength");
     }

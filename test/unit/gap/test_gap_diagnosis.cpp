@@ -311,6 +311,34 @@ TEST_F(SyntheticFlights, AgainstItsHealthyFlightsAVehicleIsJudgedByWhatChanged) 
   EXPECT_FALSE(since.motors.suspect_channel);
 }
 
+// Real vehicles fly their healthy flights with the same wiring, motors warming and air as any
+// other: an effect those flights show alike is the vehicle's own and not named against them; a
+// larger one since is. (The healthy flights' level is left out here: on these flights it would
+// take up the wiring's drop before any effect is sought.)
+TEST_F(SyntheticFlights, AnEffectTheHealthyFlightsShowAlikeIsNotNamed) {
+  World wired;
+  wired.supply_resistance = 0.04;
+  const gap::Diagnosis alone = gap::diagnoseGap(model_, vehicle_, flights(wired), gap::DiagnosisConfig());
+  EXPECT_EQ(alone.selected, std::vector<Kind>{Kind::kSupplyResistance});
+
+  gap::DiagnosisConfig config;
+  config.reference_effects = gap::fitReferenceEffects(model_, vehicle_, flights(wired, 1), config);
+  ASSERT_EQ(config.reference_effects.count(Kind::kSupplyResistance), 1u);
+  const gap::ReferenceEffect& healthy = config.reference_effects.at(Kind::kSupplyResistance);
+  EXPECT_NEAR(healthy.value, 0.04, 0.01);
+  EXPECT_GT(healthy.ci_half, 0.0);
+  EXPECT_LT(healthy.signal_low, healthy.signal_high);  // the battery current it read there
+  const gap::Diagnosis same = gap::diagnoseGap(model_, vehicle_, flights(wired), config);
+  EXPECT_TRUE(same.selected.empty());
+  const gap::EffectResult& wiring = same.effects.at(static_cast<std::size_t>(Kind::kSupplyResistance));
+  EXPECT_NE(wiring.reason.find("no change from the vehicle's healthy flights"), std::string::npos) << wiring.reason;
+
+  World worse = wired;
+  worse.supply_resistance = 0.12;
+  const gap::Diagnosis since = gap::diagnoseGap(model_, vehicle_, flights(worse), config);
+  EXPECT_EQ(since.selected, std::vector<Kind>{Kind::kSupplyResistance});
+}
+
 TEST_F(SyntheticFlights, WithoutGeometryAWeakMotorIsNotNamedAsAnEffect) {
   World world;
   world.weak_motor = 2;

@@ -11,6 +11,7 @@
 #include "propulsion_estimator/sim/flight/flight_simulator.h"
 #include "propulsion_estimator/sim/physics/power_train.h"
 #include "propulsion_estimator/sim/physics/sim_params_yaml.h"
+#include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/units.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "hand_rotor.h"
@@ -582,6 +583,67 @@ TEST(EscOffset, TheAutopilotHoversTheOffsetHigher) {
   for (std::size_t i = 0; i < with.result.segments.size(); ++i) {
     EXPECT_NEAR(meanHoverPwm(with, i) - meanHoverPwm(without, i), 20.0, 2.0) << "segment " << i;
   }
+}
+
+// Each ESC's own offset, its gain and its dead band: the duty is the bench ESC's at the pulse
+// width moved by the ESC's offset, scaled by the gain, and none within the dead band.
+TEST(EscOffset, EachEscItsOwnOffsetGainAndDeadBand) {
+  const pe::sim::EscParams esc = thesisParams().chain.esc;
+  pe::sim::SimEffects effects;
+  effects.esc_offset_us = 10.0;
+  effects.esc_offset_per_esc_us = {5.0, -5.0};
+  EXPECT_DOUBLE_EQ(pe::sim::escDuty(effects, esc, 0, 1600.0), esc.duty(1600.0, 15.0));
+  EXPECT_DOUBLE_EQ(pe::sim::escDuty(effects, esc, 1, 1600.0), esc.duty(1600.0, 5.0));
+  effects.esc_gain = 1.05;
+  effects.esc_dead_band_us = 8.0;
+  const double range = esc.pwm_full_us - esc.pwm_zero_us;
+  EXPECT_DOUBLE_EQ(pe::sim::escDuty(effects, esc, 0, 1600.0), 1.05 * (1600.0 - esc.pwm_zero_us - 15.0) / range);
+  EXPECT_EQ(pe::sim::escDuty(effects, esc, 0, esc.pwm_zero_us + 15.0 + 7.0), 0.0);
+  EXPECT_GT(pe::sim::escDuty(effects, esc, 0, esc.pwm_zero_us + 15.0 + 9.0), 0.0);
+  try {
+    pe::sim::escDuty(effects, esc, 2, 1600.0);
+    FAIL() << "an ESC without an entry was given a duty";
+  } catch (const pe::FieldError& e) {
+    EXPECT_EQ(e.field(), "esc_offset.per_esc_us");
+  }
+  const pe::sim::SimParams params = thesisParams();
+  EXPECT_THROW(pe::sim::PowerTrain(pe::sim::PropulsionChain(params.chain), 4, effects, 22.0), pe::FieldError);
+}
+
+// A loss that follows each rotor's loading: `fraction` at the reference thrust, more above it
+// with a positive exponent; the plain law without one.
+TEST(ThrustLoss, ALossThatFollowsTheLoading) {
+  pe::sim::SimEffects effects;
+  EXPECT_EQ(pe::sim::airframeThrustShare(effects, 3.0), 1.0);
+  effects.thrust_loss_fraction = 0.05;
+  EXPECT_DOUBLE_EQ(pe::sim::airframeThrustShare(effects, 3.0), 0.95);
+  effects.thrust_loss_load_exponent = 1.0;
+  effects.thrust_loss_reference_thrust_n = 2.0;
+  EXPECT_DOUBLE_EQ(pe::sim::airframeThrustShare(effects, 2.0), 0.95);
+  EXPECT_DOUBLE_EQ(pe::sim::airframeThrustShare(effects, 4.0), 0.90);
+}
+
+// The path's resistance rises with the current drawn through it: at the same pulse width the ESCs
+// see less voltage than with the plain law once current flows.
+TEST(SupplyResistance, APathThatWarmsWithTheCurrent) {
+  const pe::sim::SimParams params = thesisParams();
+  pe::sim::SimEffects plain;
+  plain.supply_resistance_ohm = 0.05;
+  pe::sim::SimEffects warming = plain;
+  warming.supply_current_coefficient_per_a = 0.02;
+  pe::sim::PowerTrain a(pe::sim::PropulsionChain(params.chain), 4, plain, 22.0);
+  pe::sim::PowerTrain b(pe::sim::PropulsionChain(params.chain), 4, warming, 22.0);
+  const pe::sim::Supply supply{12.0, 0.015};
+  double current = 0.0, esc_a = 0.0, esc_b = 0.0;
+  for (int i = 0; i < 300; ++i) {
+    const pe::sim::PowerTrainState& sa = a.step({1600.0, 1600.0, 1600.0, 1600.0}, supply, params.bench.air, 0.01);
+    esc_a = sa.esc_voltage_v;
+    current = sa.current_a;
+    esc_b = b.step({1600.0, 1600.0, 1600.0, 1600.0}, supply, params.bench.air, 0.01).esc_voltage_v;
+  }
+  ASSERT_GT(current, 5.0);
+  // The extra drop is about 0.05 ohm x 0.02/A x I^2: tens of millivolts at these currents.
+  EXPECT_LT(esc_b, esc_a - 0.5 * 0.05 * 0.02 * current * current);
 }
 
 TEST(SimEffects, AllOffByDefaultAndSummarised) {

@@ -147,6 +147,28 @@ TEST(SimEffectsYaml, ReadsEveryEffectWithItsParameter) {
   EXPECT_EQ(pe::sim::parseSimEffectsYaml("{}", "e.yaml").summary(), "none");
 }
 
+// The forms of three effects' laws, so that no correction fits its truth exactly.
+TEST(SimEffectsYaml, ReadsTheLawsForms) {
+  const pe::sim::SimEffects effects = pe::sim::parseSimEffectsYaml(
+      "supply_resistance: {ohm: 0.05, current_coefficient_per_a: 0.01}\n"
+      "thrust_loss: {fraction: 0.05, load_exponent: 0.5, reference_thrust_n: 3.2}\n"
+      "esc_offset: {us: -15, per_esc_us: [2, -3, 1, 0], gain: 1.02, dead_band_us: 4}\n",
+      "e.yaml");
+  EXPECT_EQ(effects.summary(),
+            "supply_resistance(ohm=0.05,current_coefficient_per_a=0.01) "
+            "thrust_loss(fraction=0.05,load_exponent=0.5,reference_thrust_n=3.2) "
+            "esc_offset(us=-15,per_esc_us=[2;-3;1;0],gain=1.02,dead_band_us=4)");
+  EXPECT_EQ(effectsRefusal("thrust_loss: {fraction: 0.05, load_exponent: 0.5}\n"),
+            "e.yaml:1: thrust_loss.reference_thrust_n: missing key");
+  EXPECT_EQ(effectsRefusal("esc_offset: {us: 20, gain: 1.5}\n"), "e.yaml:1: esc_offset.gain: 1.5 is outside 0.8..1.2");
+  EXPECT_EQ(effectsRefusal("esc_offset: {us: 20, dead_band_us: -1}\n"),
+            "e.yaml:1: esc_offset.dead_band_us: -1 is outside 0..50 us");
+  EXPECT_EQ(effectsRefusal("supply_resistance: {ohm: 0.05, current_coefficient_per_a: 0.5}\n"),
+            "e.yaml:1: supply_resistance.current_coefficient_per_a: 0.5 is outside 0..0.1 1/A");
+  EXPECT_EQ(effectsRefusal("esc_offset: {us: 20, per_esc_us: [1, x]}\n"),
+            "e.yaml:1: esc_offset.per_esc_us: expected a number, got 'x'");
+}
+
 TEST(SimEffectsYaml, RefusesUnknownEffectsAndBadParameters) {
   EXPECT_EQ(effectsRefusal("thrust_loss: {fraction: 0.05}\nwind: {speed_m_s: 3}\n"),
             "e.yaml:2: wind: unknown key (allowed: supply_resistance, air_density, ground_effect, thrust_loss, "

@@ -62,8 +62,8 @@ class PowerTrain {
  private:
   std::vector<PropulsionChain> chains_;
   std::vector<RotorInflow> inflow_;
+  SimEffects effects_;  ///< the ESCs' offset law and the path resistance's current coefficient
   double path_resistance_ohm_;
-  double esc_offset_us_;
   bool temperature_coupled_;
   double thermal_resistance_c_per_w_;
   std::vector<double> omega_rad_s_;

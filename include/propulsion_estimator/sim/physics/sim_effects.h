@@ -2,8 +2,10 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "propulsion_estimator/sim/physics/atmosphere.h"
+#include "propulsion_estimator/sim/physics/esc.h"
 #include "propulsion_estimator/sim/physics/rotor_inflow.h"
 
 namespace propulsion_estimator {
@@ -21,8 +23,25 @@ namespace sim {
 ///   esc_offset         flight         the flying ESCs' end points differ from the bench ESC's
 ///   translational_lift flight         the edgewise flow through the rotors of a vehicle moving
 ///                                     horizontally (more air through the disc: less induced inflow)
+///
+/// Three effects take an optional form beside their parameter, so that the law a flight obeys is
+/// never exactly the one a diagnosis corrects with (each form's default is the plain law):
+///   supply_resistance  current_coefficient_per_a: in flight the path's wire and connectors warm
+///                      with the current, R = ohm (1 + c I) with I the battery current of the
+///                      last step (the bench keeps ohm)
+///   thrust_loss        load_exponent, reference_thrust_n: the airframe's loss follows each
+///                      rotor's loading, fraction (T / reference_thrust_n)^load_exponent
+///   esc_offset         per_esc_us, gain, dead_band_us: each flying ESC's end points moved by
+///                      us + per_esc_us[k], its duty's slope scaled by gain, and its first
+///                      dead_band_us above the low end point giving no duty
 struct SimEffects {
   std::optional<double> supply_resistance_ohm;  ///< ohm between the battery's terminals and the ESCs
+  double supply_current_coefficient_per_a = 0.0;  ///< 1/A; supply_resistance's rise per amp
+  double thrust_loss_load_exponent = 0.0;  ///< thrust_loss's dependence on each rotor's loading
+  double thrust_loss_reference_thrust_n = 1.0;  ///< N; the rotor thrust at which the loss is `fraction`
+  std::vector<double> esc_offset_per_esc_us;  ///< us, per ESC in rotor order, on top of esc_offset_us; empty: none
+  double esc_gain = 1.0;  ///< the flying ESCs' duty per us against the bench ESC's
+  double esc_dead_band_us = 0.0;  ///< us above the low end point that give no duty
   std::optional<AirConditions> air;  ///< the flight's air, instead of the bench's
   std::optional<double> ground_effect_strength;  ///< 1 = Cheeseman-Bennett's image rotor
   std::optional<double> thrust_loss_fraction;  ///< share of the rotors' thrust the airframe loses, 0..1
@@ -40,6 +59,16 @@ struct SimEffects {
   /// "ground_effect(strength=1) thrust_loss(fraction=0.05)"; for logs and bag metadata.
   std::string summary() const;
 };
+
+/// The share of rotor thrust `rotor_thrust_n` (N) the airframe leaves: 1 - thrust_loss's loss at
+/// that thrust (its form included; 1 when thrust_loss is off), no lower than 0.
+double airframeThrustShare(const SimEffects& effects, double rotor_thrust_n);
+
+/// ESC `esc`'s duty (0..1) at `pulse_us` under esc_offset and its form: `params`' end points moved
+/// by esc_offset_us + esc_offset_per_esc_us[esc], the slope scaled by esc_gain, the first
+/// esc_dead_band_us above the moved low end point giving none. Throws FieldError
+/// "esc_offset.per_esc_us" when that list is given and has no entry for `esc`.
+double escDuty(const SimEffects& effects, const EscParams& params, int esc, double pulse_us);
 
 /// Ground effect after Cheeseman and Bennett (ARC R&M 3021, 1955): the thrust ratio at equal
 /// power T_IGE / T_OGE = 1 / (1 - (R / 4z)^2), with its excess over 1 scaled by `strength`; z is

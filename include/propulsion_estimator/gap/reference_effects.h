@@ -1,0 +1,37 @@
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "propulsion_estimator/common/not_a_number.h"
+#include "propulsion_estimator/model/model_effects.h"
+
+namespace propulsion_estimator {
+namespace gap {
+
+/// An effect as a vehicle's healthy flights show it (diagnose_gap --reference): real vehicles
+/// always warm their motors, fly in the day's air and near the ground, so an effect the bench
+/// model leaves out is often present on the healthy flights too, and is then no change.
+struct ReferenceEffect {
+  double value = 0.0;    ///< the effect's parameter fitted alone there (its ParameterSpec unit)
+  double ci_half = 0.0;  ///< its 95 % half-width
+  /// The range of the signal the effect reads over those flights' blocks; NaN for an effect
+  /// reading none.
+  double signal_low = kNaN;
+  double signal_high = kNaN;
+};
+
+/// Per effect that could be fitted on the healthy flights.
+using ReferenceEffects = std::map<effects::Kind, ReferenceEffect>;
+
+/// Why effect `kind`, fitted at `value` +- `ci_half` on flights whose blocks read its signal at
+/// `signal_median` (NaN for an effect reading none), is no change from the healthy flights: its
+/// parameter there lies within the two intervals combined (root sum of squares). "" when it is a
+/// change, when the healthy flights do not hold the effect, or when they never flew where these
+/// flights do: the median beyond their range by more than the range's width (a high site's air
+/// against the day's air of home), so they cannot vouch for it there.
+std::string notAChange(effects::Kind kind, double value, double ci_half, double signal_median,
+                       const ReferenceEffects& reference);
+
+}  // namespace gap
+}  // namespace propulsion_estimator
