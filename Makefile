@@ -97,11 +97,11 @@ fuzz:
 # cases, each drawing its hardware and vehicle from the randomized family, on a fresh seed each run
 # (printed; SEED=N repeats one); about seven minutes on 2 cores; writes the seed's section of
 # docs/VALIDATION.md. validate-gap-fixed runs the old suite (seed 2026, the thesis hardware). CASES=N for
-# another count.
+# another count; PLAIN=1 flies the family without its background physics and law forms.
 CASES ?= 44
 SEED ?=
 validate-gap: build
-	$(SETUP) && nice python3 scripts/validate_gap.py --family --cases $(CASES) --jobs 2 $(if $(SEED),--seed $(SEED)) \
+	$(SETUP) && nice python3 scripts/validate_gap.py --family $(if $(PLAIN),--plain-world) --cases $(CASES) --jobs 2 $(if $(SEED),--seed $(SEED)) \
 		--bin $(WS)/install/propulsion_estimator/lib/propulsion_estimator --repo $(CURDIR) \
 		--work $(WS)/validate_gap_family --markdown docs/VALIDATION.md --compare-rpm-view
 validate-gap-fixed: build
