@@ -15,10 +15,10 @@ namespace gap {
 struct ReferenceEffect {
   double value = 0.0;    ///< the effect's parameter fitted alone there (its ParameterSpec unit)
   double ci_half = 0.0;  ///< its 95 % half-width
-  /// The range of the signal the effect reads over those flights' blocks; NaN for an effect
-  /// reading none.
+  /// The lowest value of the signal the effect reads over those flights' blocks; NaN for an
+  /// effect reading none.
   double signal_low = kNaN;
-  double signal_high = kNaN;
+  double signal_high = kNaN;  ///< the highest, likewise
 };
 
 /// Per effect that could be fitted on the healthy flights.
