@@ -113,7 +113,7 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
 FlightRead readFlight(const std::string& manifest, std::size_t index, const ManifestEntry& entry,
                       const FlightLogOptions& options, const PropulsionModel& model,
                       const gap::AirborneSettings& airborne) {
-  if (!entry.refusal.empty()) return {std::nullopt, entry.refusal, {}};
+  if (!entry.refusal.empty()) return {std::nullopt, entry.refusal, {}, {}};
   const std::string at = manifest + ": flights[" + std::to_string(index) + "]";
   try {
     const std::unique_ptr<FlightLogReader> reader =
@@ -127,7 +127,7 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
         return {std::nullopt, at + ".segments[" + std::to_string(s) + "]: " + formatNumber(segments[s].start_s) +
                                   ".." + formatNumber(segments[s].end_s) + " s is outside " + reader->path() +
                                   " (0.." + formatPrintf("%.3f", reader->durationS()) + " s)",
-                {}};
+                {}, {}};
       }
     }
     Flight flight{entry.flight.log, reader->read(options), segments};
@@ -135,7 +135,7 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
         entry.flight.airborne_mass_kg.empty() ? "" : weighAirborne(model, entry.flight, airborne, &flight);
     return {std::move(flight), "", reader->refusal(), stretches};
   } catch (const InputError& e) {
-    return {std::nullopt, at + ": " + e.what(), {}};
+    return {std::nullopt, at + ": " + e.what(), {}, {}};
   }
 }
 
