@@ -48,6 +48,9 @@ std::string effectsRefusal(const std::string& text) {
   return refusal([&] { pe::sim::parseSimEffectsYaml(text, "e.yaml"); });
 }
 
+// What an effects file reads as: its summary.
+std::string effectsRead(const std::string& text) { return pe::sim::parseSimEffectsYaml(text, "e.yaml").summary(); }
+
 // A small valid profile; each test breaks one thing in it.
 const std::string kProfile = R"(autopilot:
   flavour: px4
@@ -135,26 +138,21 @@ TEST(SimParamsYaml, RefusesUnknownMissingAndOutOfRangeValues) {
 }
 
 TEST(SimEffectsYaml, ReadsEveryEffectWithItsParameter) {
-  const pe::sim::SimEffects effects = pe::sim::parseSimEffectsYaml(
-      "supply_resistance: {ohm: 0.05}\nair_density: {temperature_c: 35, pressure_pa: 90000}\n"
-      "ground_effect: {strength: 1.0}\nthrust_loss: {fraction: 0.05}\n"
-      "motor_temperature: {thermal_resistance_c_per_w: 2.0}\nclimb_inflow: {strength: 0.5}\nesc_offset: {us: -15}\n",
-      "e.yaml");
-  EXPECT_EQ(effects.summary(),
+  EXPECT_EQ(effectsRead("supply_resistance: {ohm: 0.05}\nair_density: {temperature_c: 35, pressure_pa: 90000}\n"
+                        "ground_effect: {strength: 1.0}\nthrust_loss: {fraction: 0.05}\n"
+                        "motor_temperature: {thermal_resistance_c_per_w: 2.0}\nclimb_inflow: {strength: 0.5}\n"
+                        "esc_offset: {us: -15}\n"),
             "supply_resistance(ohm=0.05) air_density(temperature_c=35,pressure_pa=90000) ground_effect(strength=1) "
             "thrust_loss(fraction=0.05) motor_temperature(thermal_resistance_c_per_w=2) climb_inflow(strength=0.5) "
             "esc_offset(us=-15)");
-  EXPECT_EQ(pe::sim::parseSimEffectsYaml("{}", "e.yaml").summary(), "none");
+  EXPECT_EQ(effectsRead("{}"), "none");
 }
 
 // The forms of three effects' laws, so that no correction fits its truth exactly.
 TEST(SimEffectsYaml, ReadsTheLawsForms) {
-  const pe::sim::SimEffects effects = pe::sim::parseSimEffectsYaml(
-      "supply_resistance: {ohm: 0.05, current_coefficient_per_a: 0.01}\n"
-      "thrust_loss: {fraction: 0.05, load_exponent: 0.5, reference_thrust_n: 3.2}\n"
-      "esc_offset: {us: -15, per_esc_us: [2, -3, 1, 0], gain: 1.02, dead_band_us: 4}\n",
-      "e.yaml");
-  EXPECT_EQ(effects.summary(),
+  EXPECT_EQ(effectsRead("supply_resistance: {ohm: 0.05, current_coefficient_per_a: 0.01}\n"
+                        "thrust_loss: {fraction: 0.05, load_exponent: 0.5, reference_thrust_n: 3.2}\n"
+                        "esc_offset: {us: -15, per_esc_us: [2, -3, 1, 0], gain: 1.02, dead_band_us: 4}\n"),
             "supply_resistance(ohm=0.05,current_coefficient_per_a=0.01) "
             "thrust_loss(fraction=0.05,load_exponent=0.5,reference_thrust_n=3.2) "
             "esc_offset(us=-15,per_esc_us=[2;-3;1;0],gain=1.02,dead_band_us=4)");
