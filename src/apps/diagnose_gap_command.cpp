@@ -289,7 +289,7 @@ MotorReference learnReference(const Arguments& args, const PropulsionModel& mode
                   : std::string());
   }
   std::printf("reference: each effect fitted alone on them (an effect as large here is not named): %s\n",
-              shown.c_str());
+              shown.empty() ? "none (no effect the flights can test)" : shown.c_str());
   return reference;
 }
 

@@ -1,5 +1,6 @@
 // The gap diagnosis' steps (private to src/gap/): diagnosis.cpp holds the cut into blocks and the
-// selection of effects, diagnosis_report.cpp what the diagnosis reports of them.
+// selection of effects, diagnosis_report.cpp what the diagnosis reports of them,
+// reference_effects.cpp the effects of a vehicle's healthy flights.
 #pragma once
 
 #include <algorithm>

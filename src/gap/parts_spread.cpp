@@ -78,7 +78,7 @@ EffectSize effectSizeAgainstParts(const ThrustViews& views, const std::vector<co
     const double parts = kind == effects::Kind::kThrustLoss  ? spread.thrust_fraction
                          : kind == effects::Kind::kEscOffset ? escs
                                                              : std::max(spread.thrust_fraction, escs);
-    if (!std::isfinite(change) || !std::isfinite(parts)) continue;
+    if (!std::isfinite(change) || !std::isfinite(parts) || !std::isfinite(signed_shift)) continue;
     changes.push_back(signed_change);
     shifts.push_back(signed_shift);
     if (change > parts) ++size.blocks_beyond;
@@ -88,7 +88,7 @@ EffectSize effectSizeAgainstParts(const ThrustViews& views, const std::vector<co
     }
   }
   // A thrust loss and an ESC offset have the parts' own laws: only their size tells them apart.
-  if (kind != effects::Kind::kThrustLoss && kind != effects::Kind::kEscOffset) {
+  if (effects::requiredSignal(kind) != effects::Signal::kNone) {
     size.imitated_share = imitatedShare(changes, shifts, spread.thrust_fraction);
   }
   return size;
@@ -101,7 +101,11 @@ std::string withinPartsSpread(effects::Kind kind, double parameter, const Effect
            formatPrintf("%.1f", 100.0 * spread.thrust_fraction) +
            " %): what another effect's law leaves over, or a bench unit weaker than the vehicle's";
   }
-  if (size.blocks_beyond >= kMinBlocksBeyondParts || size.imitated_share <= spread.max_imitated_share) return "";
+  if (size.blocks_beyond >= kMinBlocksBeyondParts) return "";
+  // A thrust loss and an ESC offset have the parts' own laws: their shape never names them.
+  if (effects::requiredSignal(kind) != effects::Signal::kNone && size.imitated_share <= spread.max_imitated_share) {
+    return "";
+  }
   return "not named: changes the thrust by at most " + formatPrintf("%.1f", size.largest_change_pct) +
          " % on any block (" + formatPrintf("%.1f", size.parts_change_pct) +
          " % there is what healthy rotors and ESCs differ from the bench's by: " +

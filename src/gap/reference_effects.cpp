@@ -30,6 +30,7 @@ std::string notAChange(effects::Kind kind, double value, double ci_half, double 
 namespace detail {
 
 ReferenceEffects Diagnoser::fitEachAlone() {
+  config_.validate();
   cut();
   findUnits();
   balanceMotors();

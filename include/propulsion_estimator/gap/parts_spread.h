@@ -53,8 +53,9 @@ struct EffectSize {
   int blocks_beyond = 0;  ///< blocks where the effect's change exceeds the parts' there
   /// Share of the effect's change (mean square over the blocks) that the parts' best imitation
   /// takes up: a thrust factor within PartsSpread::thrust_fraction plus an ESC shift within
-  /// esc_end_point_us, fitted by least squares. 1 for a thrust loss or an ESC offset (the laws
-  /// of the parts' spreads) and for an effect that changes nothing.
+  /// esc_end_point_us, fitted by least squares. 1 for an effect reading no signal (a thrust loss
+  /// or an ESC offset: the laws of the parts' spreads, judged by size alone) and for an effect that
+  /// changes nothing.
   double imitated_share = 1.0;
 };
 

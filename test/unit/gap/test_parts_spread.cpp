@@ -1,11 +1,13 @@
 // An effect is named only beyond what a healthy vehicle's parts differ from the bench unit by.
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/model/effect_description.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/gap/parts_spread.h"
 #include "propulsion_estimator/model/model_yaml.h"
@@ -168,11 +170,19 @@ TEST_F(PartsSpreadTest, TheImitatedShareSeparatesShapesFromNearConstantChanges) 
 
 // A thrust loss and an ESC offset are the parts' own laws: their shape never names them.
 TEST_F(PartsSpreadTest, TheSpreadsOwnLawsAreJudgedBySizeAlone) {
-  fx::ModelEffects fitted;
-  fitted.setParameter(fx::Kind::kThrustLoss, 0.015);
-  EXPECT_EQ(gap::effectSizeAgainstParts(views_, all_, fitted, fx::Kind::kThrustLoss, gap::PartsSpread())
-                .imitated_share,
-            1.0);
+  gap::PartsSpread spread;
+  spread.max_imitated_share = 1.0;  // names every effect reading a signal
+  for (const auto& [kind, value] : {std::pair{fx::Kind::kThrustLoss, 0.015}, std::pair{fx::Kind::kEscOffset, 8.0}}) {
+    fx::ModelEffects fitted;
+    fitted.setParameter(kind, value);
+    const gap::EffectSize size = gap::effectSizeAgainstParts(views_, all_, fitted, kind, spread);
+    EXPECT_EQ(size.imitated_share, 1.0);
+    EXPECT_NE(gap::withinPartsSpread(kind, value, size, spread), "") << fx::describe(kind).name;
+  }
+  // Beyond the thrust spread a constant loss is only partly imitated, yet still judged by size.
+  fx::ModelEffects large;
+  large.setParameter(fx::Kind::kThrustLoss, 0.10);
+  EXPECT_EQ(gap::effectSizeAgainstParts(views_, all_, large, fx::Kind::kThrustLoss, spread).imitated_share, 1.0);
 }
 
 TEST(PartsSpread, RefusesAValueOutsideItsRange) {

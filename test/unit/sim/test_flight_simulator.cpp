@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/simulation_error.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
@@ -523,6 +524,24 @@ TEST(FlightSimulator, RefusesAVehicleItCannotFlyNamingItsUrdf) {
   EXPECT_EQ(refused(one_way), repoPath("config/sim/../f450_quad.urdf") +
                                   ": the rotor layout cannot control roll, pitch, yaw and thrust independently");
   EXPECT_EQ(refused(quad), "accepted");
+}
+
+// An effects file's per-ESC offsets for another count of ESCs than the vehicle's rotors is
+// refused before anything flies.
+TEST(FlightSimulator, RefusesEscOffsetsForAnotherCountOfEscs) {
+  const pe::sim::FlightProfile profile = defaultProfile();
+  const pe::Vehicle quad = pe::loadVehicleUrdf(profile.vehicle.urdf_path);
+  pe::sim::SimEffects effects;
+  effects.esc_offset_us = 10.0;
+  effects.esc_offset_per_esc_us = {1.0, -1.0};
+  try {
+    pe::sim::checkFlight(thesisParams(), effects, profile, quad);
+    FAIL() << "two ESC offsets were accepted for four rotors";
+  } catch (const pe::FieldError& e) {
+    EXPECT_EQ(std::string(e.what()), "esc_offset.per_esc_us: has 2 entries for the vehicle's 4 rotors");
+  }
+  effects.esc_offset_per_esc_us = {1.0, -1.0, 2.0, 0.0};
+  EXPECT_NO_THROW(pe::sim::checkFlight(thesisParams(), effects, profile, quad));
 }
 
 TEST(FlightSimulator, FliesAHexacopter) {

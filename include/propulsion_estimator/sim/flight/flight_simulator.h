@@ -38,7 +38,8 @@ struct FlightResult {
 /// (with intact propellers of the parameter file's chain), "<profile>: faults.weak_propeller.motor:
 /// ..." for a motor the vehicle does not have, and "<profile>: vehicle.parts: motor k's drawn
 /// propeller.torque_coefficient: ..." for a motor whose drawn parts make a chain the simulator
-/// refuses.
+/// refuses; FieldError "esc_offset.per_esc_us" for an effects file's ESC offsets of another count
+/// than the vehicle's rotors.
 void checkFlight(const SimParams& params, const SimEffects& effects, const FlightProfile& profile,
                  const Vehicle& vehicle, const FlightSensorParams& sensors = {});
 

@@ -36,9 +36,10 @@ struct PowerTrainState {
 /// speed and current, answers a climb or the ground as the rotor's torque does.
 class PowerTrain {
  public:
-  /// `motors` identical chains.
+  /// `motors` identical chains. Throws FieldError "esc_offset.per_esc_us" when that list is given
+  /// with another count than the motors'.
   PowerTrain(PropulsionChain chain, int motors, const SimEffects& effects, double initial_temperature_c);
-  /// One chain per motor (a damaged propeller on one of them).
+  /// One chain per motor (a damaged propeller on one of them); throws likewise.
   PowerTrain(std::vector<PropulsionChain> chains, const SimEffects& effects, double initial_temperature_c);
 
   /// What rotor k's disc sees from the next step on; still air out of ground effect until set.

@@ -27,13 +27,14 @@ namespace sim {
 /// Three effects take an optional form beside their parameter, so that the law a flight obeys is
 /// never exactly the one a diagnosis corrects with (each form's default is the plain law):
 ///   supply_resistance  current_coefficient_per_a: in flight the path's wire and connectors warm
-///                      with the current, R = ohm (1 + c I) with I the battery current of the
-///                      last step (the bench keeps ohm)
+///                      with the current, R = ohm (1 + c I) with I the ESCs' current of the last
+///                      step (the bench and the flight's thrust-reserve check keep ohm)
 ///   thrust_loss        load_exponent, reference_thrust_n: the airframe's loss follows each
 ///                      rotor's loading, fraction (T / reference_thrust_n)^load_exponent
 ///   esc_offset         per_esc_us, gain, dead_band_us: each flying ESC's end points moved by
 ///                      us + per_esc_us[k], its duty's slope scaled by gain, and its first
-///                      dead_band_us above the low end point giving no duty
+///                      dead_band_us above the low end point giving no duty (the duty steps up
+///                      at the band's edge: the band matters near idle only)
 struct SimEffects {
   std::optional<double> supply_resistance_ohm;  ///< ohm between the battery's terminals and the ESCs
   double supply_current_coefficient_per_a = 0.0;  ///< 1/A; supply_resistance's rise per amp
@@ -66,8 +67,9 @@ double airframeThrustShare(const SimEffects& effects, double rotor_thrust_n);
 
 /// ESC `esc`'s duty (0..1) at `pulse_us` under esc_offset and its form: `params`' end points moved
 /// by esc_offset_us + esc_offset_per_esc_us[esc], the slope scaled by esc_gain, the first
-/// esc_dead_band_us above the moved low end point giving none. Throws FieldError
-/// "esc_offset.per_esc_us" when that list is given and has no entry for `esc`.
+/// esc_dead_band_us above the moved low end point giving none; the bench ESC's duty when
+/// esc_offset is off (its form then unused). Throws FieldError "esc_offset.per_esc_us" when
+/// esc_offset is on and that list is given without an entry for `esc`.
 double escDuty(const SimEffects& effects, const EscParams& params, int esc, double pulse_us);
 
 /// Ground effect after Cheeseman and Bennett (ARC R&M 3021, 1955): the thrust ratio at equal
