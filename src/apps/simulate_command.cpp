@@ -164,7 +164,7 @@ void runFlight(const FlightOptions& options) {
   const std::filesystem::path folder = std::filesystem::absolute(options.manifest).parent_path();
   FlightManifest manifest;
   manifest.flights.push_back(
-      {std::filesystem::proximate(std::filesystem::absolute(options.bag), folder).string(), result.segments});
+      {std::filesystem::proximate(std::filesystem::absolute(options.bag), folder).string(), result.segments, {}});
   const bool airborne = profile.manifest_spans == sim::ManifestSpans::kAirborne;
   const std::string settle = formatNumber(profile.manifest_settle_s);
   saveFlightManifest(manifest, options.manifest,

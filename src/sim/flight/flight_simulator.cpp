@@ -224,7 +224,8 @@ FlightSetup setUpFlight(const SimParams& params, const SimEffects& effects, cons
   };
   FlightSetup setup{
       scheduleFlight(profile), fromUrdf([&] { return MultirotorDynamics(vehicle, profile.vehicle, profile.cable); }),
-      fromUrdf([&] { return FlightController(vehicle, profile.autopilot, profile.vehicle.landing_gear_height_m); })};
+      fromUrdf([&] { return FlightController(vehicle, profile.autopilot, profile.vehicle.landing_gear_height_m); }),
+      {}};
   const int rotors = static_cast<int>(vehicle.rotors.size());
   if (profile.faults.weak_propeller && profile.faults.weak_propeller->motor > rotors) {
     throw ConfigError(profile.source + ": faults.weak_propeller.motor: " +

@@ -361,8 +361,8 @@ TEST(FlightProfileYaml, RefusesBadValuesAndUnknownKeys) {
 
 TEST(FlightManifest, RoundTripsThroughItsWriter) {
   pe::FlightManifest manifest;
-  manifest.flights.push_back({"flight_01.bag", {{5.0, 178.0, 1.315}, {180.25, 200.125, 1.711}}});
-  manifest.flights.push_back({"/data/flight_02.bag", {{0.1, 0.3, 0.2}}});
+  manifest.flights.push_back({"flight_01.bag", {{5.0, 178.0, 1.315}, {180.25, 200.125, 1.711}}, {}});
+  manifest.flights.push_back({"/data/flight_02.bag", {{0.1, 0.3, 0.2}}, {}});
   const std::string text = pe::flightManifestToYaml(manifest, "written by a test");
   EXPECT_EQ(text.rfind("# written by a test\n", 0), 0u) << text;
   const pe::FlightManifest read = pe::parseFlightManifest(text, "m.yaml");
