@@ -208,12 +208,7 @@ FlightSetup setUpFlight(const SimParams& params, const SimEffects& effects, cons
   params.validate();
   effects.validate();
   sensors.validate();
-  if (effects.esc_offset_us && !effects.esc_offset_per_esc_us.empty() &&
-      effects.esc_offset_per_esc_us.size() != vehicle.rotors.size()) {
-    throw FieldError("esc_offset.per_esc_us", "has " + std::to_string(effects.esc_offset_per_esc_us.size()) +
-                                                  " entries for the vehicle's " + std::to_string(vehicle.rotors.size()) +
-                                                  " rotors");
-  }
+  effects.validateEscCount(static_cast<int>(vehicle.rotors.size()));
   // The vehicle's refusals (no mass properties, a rotor layout the mixer cannot use) name its URDF.
   const auto fromUrdf = [&profile](const auto& make) {
     try {

@@ -2,9 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
-
-#include "propulsion_estimator/common/field_error.h"
 
 namespace propulsion_estimator {
 namespace sim {
@@ -24,11 +21,7 @@ PowerTrain::PowerTrain(std::vector<PropulsionChain> chains, const SimEffects& ef
       temperature_c_(chains_.size(), initial_temperature_c),
       inputs_(chains_.size()),
       loads_(chains_.size()) {
-  if (effects.esc_offset_us && !effects.esc_offset_per_esc_us.empty() &&
-      effects.esc_offset_per_esc_us.size() != chains_.size()) {
-    throw FieldError("esc_offset.per_esc_us", "has " + std::to_string(effects.esc_offset_per_esc_us.size()) +
-                                                  " entries for " + std::to_string(chains_.size()) + " ESCs");
-  }
+  effects.validateEscCount(static_cast<int>(chains_.size()));
   state_.duty.assign(chains_.size(), 0.0);
   state_.motors.assign(chains_.size(), ChainState{});
   state_.winding_temperature_c = temperature_c_;

@@ -37,6 +37,14 @@ void SimEffects::validate() const {
   requireWithin("esc_offset.dead_band_us", esc_dead_band_us, 0.0, 50.0, " us");
 }
 
+void SimEffects::validateEscCount(int escs) const {
+  if (!esc_offset_us || esc_offset_per_esc_us.empty() || static_cast<int>(esc_offset_per_esc_us.size()) == escs) {
+    return;
+  }
+  throw FieldError("esc_offset.per_esc_us", "has " + std::to_string(esc_offset_per_esc_us.size()) +
+                                                " entries for the vehicle's " + std::to_string(escs) + " rotors");
+}
+
 SimEffects SimEffects::onTheBench() const {
   SimEffects bench;
   bench.supply_resistance_ohm = supply_resistance_ohm;

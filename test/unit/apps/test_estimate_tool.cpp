@@ -81,28 +81,24 @@ TEST(EstimateTool, TakesTheNodesParametersFromAFileAsALaunchFileLoadsThem) {
   EXPECT_EQ(defaults.status, 0) << defaults.err;
   EXPECT_NE(defaults.out.find("0 hovers"), std::string::npos) << defaults.out;
   EXPECT_NE(defaults.out.find("most often thrust below hover/min_mass_kg"), std::string::npos) << defaults.out;
-  std::ofstream(dir / "params.yaml") << "hover:\n  min_mass_kg: 0.01\n";
-  const ToolRun tuned = runTool(PE_ESTIMATE,
-                                vehicle + " --params " + quoted((dir / "params.yaml").string()) + " --out " +
-                                    quoted((dir / "b").string()) + " " + quoted(log),
-                                dir);
+  // estimate on the log with a parameter file `name` holding `text`, into its own folder.
+  const auto withParams = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return runTool(PE_ESTIMATE,
+                   vehicle + " --params " + quoted((dir / name).string()) + " --out " +
+                       quoted((dir / (name + ".out")).string()) + " " + quoted(log),
+                   dir);
+  };
+  const ToolRun tuned = withParams("params.yaml", "hover:\n  min_mass_kg: 0.01\n");
   EXPECT_EQ(tuned.status, 0) << tuned.err;
   EXPECT_NE(tuned.out.find("2 hovers"), std::string::npos) << tuned.out;
   EXPECT_NE(tuned.out.find("min_mass_kg 0.01"), std::string::npos) << tuned.out;  // each loaded value, once
-  std::ofstream(dir / "channels.yaml") << "motor_channels: [5, 6, 7, 8]\n";
-  const ToolRun channels = runTool(PE_ESTIMATE,
-                                   vehicle + " --params " + quoted((dir / "channels.yaml").string()) + " --out " +
-                                       quoted((dir / "c").string()) + " " + quoted(log),
-                                   dir);
+  const ToolRun channels = withParams("channels.yaml", "motor_channels: [5, 6, 7, 8]\n");
   EXPECT_EQ(channels.status, 1);
   EXPECT_EQ(channels.err, "estimate: " + (dir / "channels.yaml").string() +
                               ": motor_channels: estimate reads motor k from the log's output k (1..4); leave it out\n");
   // A value the estimator refuses is named by the file and its key, not as an option.
-  std::ofstream(dir / "window.yaml") << "hover:\n  window_s: -1\n";
-  const ToolRun window = runTool(PE_ESTIMATE,
-                                 vehicle + " --params " + quoted((dir / "window.yaml").string()) + " --out " +
-                                     quoted((dir / "d").string()) + " " + quoted(log),
-                                 dir);
+  const ToolRun window = withParams("window.yaml", "hover:\n  window_s: -1\n");
   EXPECT_EQ(window.status, 1);
   EXPECT_EQ(window.err, "estimate: " + (dir / "window.yaml").string() +
                             ": hover/window_s: must be a positive number, got -1\n");

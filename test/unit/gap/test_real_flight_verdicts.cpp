@@ -56,7 +56,11 @@ class CrazyPadFlights : public ::testing::Test {
   gap::Diagnosis diagnose(const std::vector<pe::Flight>& flights, const std::vector<pe::Flight>& reference = {}) const {
     gap::DiagnosisConfig config;
     config.rotor_diameter_m = 0.045;
-    if (!reference.empty()) config.motor_reference = gap::learnReference(model_, vehicle_, reference, config);
+    if (!reference.empty()) {
+      // As diagnose_gap --reference: the healthy flights' level and motors, then their own effects.
+      config.motor_reference = gap::learnReference(model_, vehicle_, reference, config);
+      config.reference_effects = gap::fitReferenceEffects(model_, vehicle_, reference, config);
+    }
     return gap::diagnoseGap(model_, vehicle_, flights, config);
   }
 

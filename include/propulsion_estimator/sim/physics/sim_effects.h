@@ -53,6 +53,9 @@ struct SimEffects {
 
   /// Throws FieldError "<effect>.<parameter>" for a value outside its physical range.
   void validate() const;
+  /// Throws FieldError "esc_offset.per_esc_us" when esc_offset is on and that list is given with
+  /// another count than `escs`, the vehicle's rotors.
+  void validateEscCount(int escs) const;
   /// The effects a thrust stand shows (supply_resistance, air_density, motor_temperature); the others
   /// need an airframe, the ground or flight, or (esc_offset) are by definition the bench's reference.
   SimEffects onTheBench() const;
