@@ -102,6 +102,7 @@ offline::EstimateOptions optionsOf(const Arguments& args, const Vehicle& vehicle
   offline::EstimateOptions options;
   options.estimator = params.estimator;
   options.capability = params.capability;
+  options.esc_telemetry = params.esc_telemetry;
   // A log's motor k is its output k: channels 1..n, whatever the vehicle's RCOut channels were.
   const EstimatorConfig numbered = offline::replayEstimatorConfig(vehicle);
   if (source->has("motor_channels") && params.estimator.motor_channels != numbered.motor_channels) {

@@ -11,44 +11,21 @@
 
 namespace propulsion_estimator {
 namespace gap {
-namespace {
-
-// The logged message as MAVROS delivers it: ESC i on channel i + 1.
-EscTelemetry message(const EscTelemetryReading& reading) {
-  EscTelemetry out;
-  out.stamp_s = reading.time_s;
-  for (int k = 0; k < reading.escs; ++k) {
-    out.escs.push_back({reading.time_s, reading.rpm[k], reading.current_a[k], reading.voltage_v[k], kNaN,
-                        reading.count[k]});
-  }
-  return out;
-}
-
-}  // namespace
-
 ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                                   const ModelCheckConfig& config) {
-  const EstimatorConfig estimator_config = offline::replayEstimatorConfig(vehicle);
-  Estimator estimator(model, vehicle, estimator_config);
-  ModelCheck check(estimator_config.motor_channels, config);
-  if (model.motorReference()) {
-    check.setBaseline(model.motorReference()->esc_rpm_deviation, model.motorReference()->esc_current_deviation);
-  }
+  OnboardSession session(model, vehicle, offline::replayOnboardConfig(vehicle, {}, config));
   ModelCheckReplay replay;
   replay.telemetry = !streams.esc.empty();
   if (!replay.telemetry) return replay;
-  const std::size_t motors = estimator_config.motor_channels.size();
+  const std::size_t motors = vehicle.rotors.size();
   std::vector<double> rpm_sum(motors, 0.0), current_sum(motors, 0.0);
   double next_report_s = 0.0;
-  const offline::FlightFeed feed(streams, model);
+  const offline::FlightFeed feed(streams);
   for (const offline::Arrival& a : feed.arrivals()) {
-    if (a.kind == offline::Stream::kEsc) check.addTelemetry(a.time_s, message(streams.esc[a.index]));
-    if (a.kind == offline::Stream::kBattery) check.addBattery(a.time_s, streams.battery[a.index].voltage_v);
-    if (!feed.feed(a, &estimator)) continue;
-    check.addEstimate(a.time_s, estimator.output());
+    if (!feed.feed(a, &session)) continue;
     if (a.time_s < next_report_s) continue;
     next_report_s = a.time_s + 1.0;
-    const ModelCheckReport report = check.report(a.time_s);
+    const ModelCheckReport report = session.modelCheck().report(a.time_s);
     if (report.verdict == ModelCheckVerdict::kNotJudged) continue;
     ++replay.judgements;
     for (std::size_t k = 0; k < motors; ++k) {

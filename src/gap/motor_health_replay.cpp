@@ -14,19 +14,16 @@ namespace gap {
 
 MotorHealthReplay replayMotorHealth(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                                     const MotorHealthConfig& config) {
-  const EstimatorConfig estimator_config = offline::replayEstimatorConfig(vehicle);
-  Estimator estimator(model, vehicle, estimator_config);
-  MotorHealth health(vehicle, estimator_config.motor_channels, config, model.motorReference());
+  OnboardSession session(model, vehicle, offline::replayOnboardConfig(vehicle, config));
   MotorHealthReplay replay;
   replay.first_flag_s = kNaN;
   double next_verdict_s = 0.0;
-  const offline::FlightFeed feed(streams, model);
+  const offline::FlightFeed feed(streams);
   for (const offline::Arrival& a : feed.arrivals()) {
-    if (!feed.feed(a, &estimator)) continue;
-    health.add(estimator.output());
+    if (!feed.feed(a, &session)) continue;
     if (a.time_s < next_verdict_s) continue;
     next_verdict_s = a.time_s + 1.0;
-    const MotorHealthVerdict verdict = health.verdict();
+    const MotorHealthVerdict verdict = session.motorHealth();
     replay.judgements += verdict.judged;
     if (verdict.flagged_channel == 0) continue;
     if (replay.flagged_channels.empty()) replay.first_flag_s = a.time_s;

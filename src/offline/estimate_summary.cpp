@@ -1,5 +1,6 @@
 #include "propulsion_estimator/offline/estimate_summary.h"
 
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
@@ -37,6 +38,24 @@ std::string motorHealth(const FlightEstimate& e) {
   return text;
 }
 
+std::string escCheck(const FlightEstimate& e) {
+  const ModelCheckReport& r = e.esc_check;
+  if (!r.telemetry_seen) return "Not judged: the log carries no ESC telemetry.\n";
+  if (r.verdict == ModelCheckVerdict::kNotJudged) return "Not judged: " + r.note + ".\n";
+  std::string text = "Last judgement: **" + std::string(modelCheckVerdictName(r.verdict)) + "**" +
+                     (r.flagged_channel != 0 ? " on channel " + std::to_string(r.flagged_channel) : std::string()) +
+                     " (" + r.note + ").\n";
+  text += "\n| channel | hover rpm / model | hover current / model |\n|---|---|---|\n";
+  for (const MotorCheck& m : r.motors) {
+    text += "| " + std::to_string(m.channel) + " | " + number(m.hover_rpm_ratio, "%.3f") + " | " +
+            number(m.hover_current_ratio, "%.3f") + " |\n";
+  }
+  text += "\nSupply resistance (battery to ESCs): " + number(r.supply_resistance_ohm, "%.4f ohm") + ".\n";
+  text += "\nVerdicts other than consistent during the flight: " +
+          (e.esc_flags.empty() ? std::string("none") : nameList(e.esc_flags, 8)) + ".\n";
+  return text;
+}
+
 }  // namespace
 
 std::string estimateSummaryMarkdown(const FlightEstimate& e, const std::string& model_name,
@@ -50,6 +69,7 @@ std::string estimateSummaryMarkdown(const FlightEstimate& e, const std::string& 
   text += "\nThe mass of an episode is the hover average at its last sample (the node's `~payload` "
           "`total_mass_kg`); the payload margin keeps the minimum thrust-to-weight at the present voltage.\n";
   text += "\n## Motor health\n\n" + motorHealth(e);
+  text += "\n## Live ESC check\n\n" + escCheck(e);
   const EstimatorCounters& c = e.counters;
   text += "\n## Inputs\n\n" + std::to_string(c.accepted) + " RCOut messages estimated, " +
           std::to_string(c.rejected[static_cast<int>(Rejection::kDisarmed)]) + " disarmed or stopped; " +

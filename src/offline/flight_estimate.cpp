@@ -135,6 +135,23 @@ class EpisodeTracker {
   std::vector<HoverEpisode> episodes_;
 };
 
+template <typename T>
+void addOnce(std::vector<T>* list, const T& value) {
+  if (std::find(list->begin(), list->end(), value) == list->end()) list->push_back(value);
+}
+
+// The ESC check's judgement, kept when judged; a verdict other than consistent listed once.
+void takeEscCheck(ModelCheckReport report, FlightEstimate* result) {
+  if (report.verdict == ModelCheckVerdict::kNotJudged) return;
+  if (report.verdict != ModelCheckVerdict::kConsistent) {
+    addOnce(&result->esc_flags, std::string(modelCheckVerdictName(report.verdict)) +
+                                    (report.flagged_channel != 0
+                                         ? " on channel " + std::to_string(report.flagged_channel)
+                                         : std::string()));
+  }
+  result->esc_check = std::move(report);
+}
+
 void warnRefusals(const EstimatorCounters& counters, const Estimator& estimator, std::vector<std::string>* warnings) {
   std::string refused;
   for (int r = 1; r < kRejectionCount; ++r) {
@@ -204,48 +221,42 @@ void EstimateOptions::validate(std::size_t rotors) const {
 FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                               const EstimateOptions& options) {
   options.validate(vehicle.rotors.size());
-  Estimator estimator(model, vehicle, options.estimator);
-  MotorHealth health(vehicle, options.estimator.motor_channels, options.capability.motor_health,
-                     model.motorReference());
-  CapabilityEstimator capability(model, static_cast<int>(vehicle.rotors.size()), options.capability);
+  OnboardConfig config;
+  config.estimator = options.estimator;
+  config.capability = options.capability;
+  config.esc_telemetry = options.esc_telemetry;
+  OnboardSession session(model, vehicle, config);
   RateLimiter limiter(options.sample_rate_hz);
-  EpisodeTracker episodes(capability, options.estimator.payload.episode_gap_s);
+  EpisodeTracker episodes(session.capabilityEstimator(), options.estimator.payload.episode_gap_s);
   std::array<std::uint64_t, kBlockerCount> blockers{};
   double next_verdict_s = -std::numeric_limits<double>::infinity();
-  const bool modelled_current = model.output(Output::kCurrent).source != OutputSource::kNone;
 
   FlightEstimate result;
   result.source = streams.source;
-  const FlightFeed feed(streams, model);
+  const FlightFeed feed(streams);
   for (const Arrival& a : feed.arrivals()) {
-    const bool accepted = feed.feed(a, &estimator);
-    if (a.kind == Stream::kBattery) {
-      const BatteryReading& b = streams.battery[a.index];
-      capability.addBattery(a.time_s, b.voltage_v, BatteryReport{kNaN, b.current_a},
-                            modelled_current ? estimator.output().totals.current_a : kNaN);
-    }
-    if (!accepted) continue;
-    const EstimatorOutput& out = estimator.output();
+    if (!feed.feed(a, &session)) continue;
+    const EstimatorOutput& out = session.estimator().output();
     ++blockers[static_cast<int>(out.hover.blocker)];
-    health.add(out);
     episodes.add(out);
     if (limiter.admit(out.stamp_s)) result.samples.push_back(sampleOf(out));
     // Judged once a second of the log, as the node's ~capability asks (a verdict costs a fit).
     if (out.stamp_s < next_verdict_s) continue;
     next_verdict_s = out.stamp_s + 1.0;
-    const MotorHealthVerdict verdict = health.verdict();
+    const MotorHealthVerdict verdict = session.motorHealth();
     if (verdict.judged) result.motor_health = verdict;
-    if (verdict.flagged_channel != 0 &&
-        std::find(result.flagged_channels.begin(), result.flagged_channels.end(), verdict.flagged_channel) ==
-            result.flagged_channels.end()) {
-      result.flagged_channels.push_back(verdict.flagged_channel);
-    }
+    if (verdict.flagged_channel != 0) addOnce(&result.flagged_channels, verdict.flagged_channel);
+    takeEscCheck(session.modelCheck().report(out.stamp_s), &result);
   }
+  if (result.esc_check.verdict == ModelCheckVerdict::kNotJudged) {
+    result.esc_check = session.modelCheck().report(session.estimator().output().stamp_s);
+  }
+  const Estimator& estimator = session.estimator();
   result.hovers = episodes.take();
   result.counters = estimator.counters();
   result.empty_mass_kg = estimator.output().payload.empty_mass_kg;
   result.empty_mass_source = emptyMassSourceName(estimator.output().payload.empty_mass_source);
-  if (!result.motor_health.judged) result.motor_health = health.verdict();
+  if (!result.motor_health.judged) result.motor_health = session.motorHealth();
 
   warnRefusals(result.counters, estimator, &result.warnings);
   warnDomain(result.counters, model.domain(),
@@ -254,6 +265,9 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
   for (int channel : result.flagged_channels) {
     result.warnings.push_back("the motor-health check flagged channel " + std::to_string(channel) +
                               " (its share of the thrust beyond the healthy spread; diagnose_gap locates it)");
+  }
+  for (const std::string& flag : result.esc_flags) {
+    result.warnings.push_back("the live ESC check said " + flag + " (ESC telemetry against the model)");
   }
   return result;
 }

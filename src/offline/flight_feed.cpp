@@ -6,6 +6,8 @@
 #include <limits>
 #include <numeric>
 
+#include "propulsion_estimator/common/not_a_number.h"
+
 namespace propulsion_estimator {
 namespace offline {
 namespace {
@@ -24,12 +26,23 @@ void add(const std::vector<Reading>& stream, Stream kind, std::vector<Arrival>* 
   std::inplace_merge(order->begin(), order->begin() + middle, order->end(), before);
 }
 
-Rejection feedRcOut(const RcOutFrame& frame, double t, Estimator* estimator) {
+Rejection feedRcOut(const RcOutFrame& frame, double t, OnboardSession* session) {
   // The estimator's channels (the vehicle's rotors), as the flight logged them.
-  const std::size_t motors = std::min<std::size_t>(estimator->config().motor_channels.size(), kMaxMotors);
+  const std::size_t motors = std::min<std::size_t>(session->config().estimator.motor_channels.size(), kMaxMotors);
   std::array<std::uint16_t, kMaxMotors> channels{};
   for (std::size_t k = 0; k < motors; ++k) channels[k] = static_cast<std::uint16_t>(frame.pwm_us[k]);
-  return estimator->addMotorOutputs(t, t, channels.data(), motors);
+  return session->addMotorOutputs(t, t, channels.data(), motors);
+}
+
+// The logged reading as MAVROS delivers it: ESC i on channel i + 1.
+EscTelemetry escMessage(const EscTelemetryReading& reading) {
+  EscTelemetry out;
+  out.stamp_s = reading.time_s;
+  for (int k = 0; k < reading.escs; ++k) {
+    out.escs.push_back({reading.time_s, reading.rpm[k], reading.current_a[k], reading.voltage_v[k], kNaN,
+                        reading.count[k]});
+  }
+  return out;
 }
 
 }  // namespace
@@ -41,18 +54,16 @@ EstimatorConfig replayEstimatorConfig(const Vehicle& vehicle) {
   return config;
 }
 
-FlightFeed::FlightFeed(const FlightStreams& streams, const PropulsionModel& model) : streams_(streams) {
-  const effects::ModelEffects& fx = model.effects();
-  for (effects::Kind kind : effects::kAllKinds) {
-    if (!fx.has(kind)) continue;
-    switch (effects::requiredSignal(kind)) {
-      case effects::Signal::kBatteryCurrent: battery_current_ = true; break;
-      case effects::Signal::kAirDensity: air_temperature_ = true; break;
-      case effects::Signal::kHeight: range_ = true; break;
-      case effects::Signal::kMotorTemperature: motor_temperature_ = true; break;
-      default: break;
-    }
-  }
+OnboardConfig replayOnboardConfig(const Vehicle& vehicle, const MotorHealthConfig& motor_health,
+                                  const ModelCheckConfig& esc_telemetry) {
+  OnboardConfig config;
+  config.estimator = replayEstimatorConfig(vehicle);
+  config.capability.motor_health = motor_health;
+  config.esc_telemetry = esc_telemetry;
+  return config;
+}
+
+FlightFeed::FlightFeed(const FlightStreams& streams) : streams_(streams) {
   arrivals_.reserve(streams.battery.size() + streams.imu.size() + streams.vertical_speed_m_s.size() +
                     streams.horizontal_velocity.size() + streams.static_pressure_pa.size() +
                     streams.air_temperature_c.size() + streams.height_above_ground_m.size() +
@@ -62,39 +73,40 @@ FlightFeed::FlightFeed(const FlightStreams& streams, const PropulsionModel& mode
   add(streams.vertical_speed_m_s, Stream::kVerticalSpeed, &arrivals_);
   add(streams.horizontal_velocity, Stream::kHorizontalVelocity, &arrivals_);
   add(streams.static_pressure_pa, Stream::kStaticPressure, &arrivals_);
-  if (air_temperature_) add(streams.air_temperature_c, Stream::kAirTemperature, &arrivals_);
-  if (range_) add(streams.height_above_ground_m, Stream::kRange, &arrivals_);
-  if (motor_temperature_) add(streams.motor_temperature_c, Stream::kMotorTemperature, &arrivals_);
+  add(streams.air_temperature_c, Stream::kAirTemperature, &arrivals_);
+  add(streams.height_above_ground_m, Stream::kRange, &arrivals_);
+  add(streams.motor_temperature_c, Stream::kMotorTemperature, &arrivals_);
   add(streams.esc, Stream::kEsc, &arrivals_);
   add(streams.rc_out, Stream::kRcOut, &arrivals_);
 }
 
-bool FlightFeed::feed(const Arrival& arrival, Estimator* estimator) const {
+bool FlightFeed::feed(const Arrival& arrival, OnboardSession* session) const {
   const double t = arrival.time_s;
   const std::size_t i = arrival.index;
   switch (arrival.kind) {
-    case Stream::kBattery:
-      estimator->addBattery(t, streams_.battery[i].voltage_v);
-      if (battery_current_) estimator->addBatteryCurrent(t, streams_.battery[i].current_a);
+    case Stream::kBattery: {
+      const BatteryReading& b = streams_.battery[i];
+      session->addBattery(t, b.voltage_v, b.current_a, kNaN);
       return false;
+    }
     case Stream::kImu:
-      estimator->addImu(t, streams_.imu[i].orientation, streams_.imu[i].specific_force_m_s2);
+      session->addImu(t, streams_.imu[i].orientation, streams_.imu[i].specific_force_m_s2);
       return false;
-    case Stream::kVerticalSpeed: estimator->addVerticalSpeed(t, streams_.vertical_speed_m_s[i].value); return false;
+    case Stream::kVerticalSpeed: session->addVerticalSpeed(t, streams_.vertical_speed_m_s[i].value); return false;
     case Stream::kHorizontalVelocity:
-      estimator->addHorizontalVelocity(t, streams_.horizontal_velocity[i].east_m_s,
-                                       streams_.horizontal_velocity[i].north_m_s);
+      session->addHorizontalVelocity(t, streams_.horizontal_velocity[i].east_m_s,
+                                     streams_.horizontal_velocity[i].north_m_s);
       return false;
-    case Stream::kStaticPressure: estimator->addStaticPressure(t, streams_.static_pressure_pa[i].value); return false;
-    case Stream::kAirTemperature: estimator->addAirTemperature(t, streams_.air_temperature_c[i].value); return false;
+    case Stream::kStaticPressure: session->addStaticPressure(t, streams_.static_pressure_pa[i].value); return false;
+    case Stream::kAirTemperature: session->addAirTemperature(t, streams_.air_temperature_c[i].value); return false;
     case Stream::kRange:
-      estimator->addRange(t, streams_.height_above_ground_m[i].value, 0.0, std::numeric_limits<double>::infinity());
+      session->addRange(t, streams_.height_above_ground_m[i].value, 0.0, std::numeric_limits<double>::infinity());
       return false;
     case Stream::kMotorTemperature:
-      estimator->addMotorTemperature(t, streams_.motor_temperature_c[i].value);
+      session->addMotorTemperature(t, streams_.motor_temperature_c[i].value);
       return false;
-    case Stream::kEsc: return false;
-    case Stream::kRcOut: return feedRcOut(streams_.rc_out[i], t, estimator) == Rejection::kNone;
+    case Stream::kEsc: session->addEscTelemetry(t, escMessage(streams_.esc[i])); return false;
+    case Stream::kRcOut: return feedRcOut(streams_.rc_out[i], t, session) == Rejection::kNone;
   }
   return false;
 }

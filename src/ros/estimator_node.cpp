@@ -39,12 +39,12 @@ std::uint8_t diagnosticLevel(HealthLevel level) {
   return DiagnosticStatus::ERROR;
 }
 
-void copy(const HealthStatus& health, diagnostic_updater::DiagnosticStatusWrapper* status) {
+}  // namespace
+
+void EstimatorNode::copy(const HealthStatus& health, diagnostic_updater::DiagnosticStatusWrapper* status) {
   for (const auto& [key, value] : health.values) status->add(key, value);
   status->summary(diagnosticLevel(health.level), health.message);
 }
-
-}  // namespace
 
 EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : params_(readEstimatorNodeParams(private_nh)),
@@ -53,27 +53,27 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   PropulsionModel model = loadModelFile(params_.model);
   model_fingerprint_ = modelFingerprint(model);
   Vehicle vehicle = loadVehicle(nh, params_);
-  estimator_ = std::make_unique<Estimator>(std::move(model), std::move(vehicle), params_.estimator);
-  // The model now lives in the estimator: read its metadata there, not from the moved-from local.
-  const ModelMetadata& meta = estimator_->model().metadata();
-  const ModelDomain& domain = estimator_->model().domain();
+  session_ = std::make_unique<OnboardSession>(
+      std::move(model), std::move(vehicle),
+      OnboardConfig{params_.estimator, params_.capability, params_.esc_telemetry, params_.mass_view},
+      params_.model);
+  // The model now lives in the session: read its metadata there, not from the moved-from local.
+  const Estimator& estimator = session_->estimator();
+  const ModelMetadata& meta = estimator.model().metadata();
+  const ModelDomain& domain = estimator.model().domain();
   ROS_INFO_STREAM("model " << params_.model << ": " << meta.esc << " + " << meta.motor << " + " << meta.propeller
                            << ", domain " << domain.pwm_min_us << "-" << domain.pwm_max_us << " us, "
                            << domain.voltage_min_v << "-" << domain.voltage_max_v
                            << " V, outside: " << outsideDomainName(domain.outside)
-                           << "; outputs not modelled (published as NaN): " << unmodelledOutputs(estimator_->model()));
-
-  capability_ = std::make_unique<CapabilityEstimator>(estimator_->model(),
-                                                      static_cast<int>(estimator_->vehicle().rotors.size()),
-                                                      params_.capability);
-  makeMotorChecks();
+                           << "; outputs not modelled (published as NaN): " << unmodelledOutputs(estimator.model()));
+  logMotorChecks();
   loadTare();
-  const MassEstimate& payload = estimator_->output().payload;
+  const MassEstimate& payload = estimator.output().payload;
   ROS_INFO_STREAM("empty mass: " << (std::isnan(payload.empty_mass_kg) ? std::string("unknown until ~tare")
                                                                        : std::to_string(payload.empty_mass_kg) + " kg")
                                  << " (source: " << emptyMassSourceName(payload.empty_mass_source) << ")");
 
-  const std::size_t motors = estimator_->vehicle().rotors.size();
+  const std::size_t motors = estimator.vehicle().rotors.size();
   motors_msg_.motors.resize(motors);
   for (std::size_t i = 0; i < motors; ++i) {
     motors_msg_.motors[i].channel = static_cast<std::uint8_t>(params_.estimator.motor_channels[i]);
@@ -97,22 +97,21 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   // Each task judges the period since its own previous run.
   diagnostics_.add("Inputs", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     const HealthSnapshot now = takeSnapshot();
-    copy(judgeInputs(*estimator_, inputs_before_, now, params_.health), &status);
+    copy(judgeInputs(session_->estimator(), inputs_before_, now, params_.health), &status);
     inputs_before_ = now;
   });
   diagnostics_.add("Motor outputs", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     const HealthSnapshot now = takeSnapshot();
-    copy(judgeMotorOutputs(*estimator_, outputs_before_, now, params_.health), &status);
+    copy(judgeMotorOutputs(session_->estimator(), outputs_before_, now, params_.health), &status);
     outputs_before_ = now;
   });
   diagnostics_.add("Model domain", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     const HealthSnapshot now = takeSnapshot();
-    copy(judgeDomain(*estimator_, domain_before_, now, params_.health), &status);
+    copy(judgeDomain(session_->estimator(), domain_before_, now, params_.health), &status);
     domain_before_ = now;
   });
   diagnostics_.add("Payload", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
-    estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
-    copy(judgePayload(*estimator_), &status);
+    copy(session_->payloadHealth(ros::Time::now().toSec()), &status);
   });
   diagnostics_.add("Tare file", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     status.add("tare_file", params_.tare_file);
@@ -120,11 +119,11 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   });
   diagnostics_.add("Effects", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     const HealthSnapshot now = takeSnapshot();
-    copy(judgeEffects(*estimator_, effects_before_, now, params_.health), &status);
+    copy(judgeEffects(session_->estimator(), effects_before_, now, params_.health), &status);
     effects_before_ = now;
   });
   diagnostics_.add("Capability", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
-    copy(judgeCapability(last_capability_, last_health_, params_.capability), &status);
+    copy(judgeCapability(last_capability_.capability, last_capability_.motor_health, params_.capability), &status);
   });
   inputs_before_ = outputs_before_ = domain_before_ = effects_before_ = takeSnapshot();
   // One tick per diagnostic_period, not a polling timer: every tick wakes two of roscpp's threads.
@@ -158,20 +157,13 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   }
 }
 
-// The onboard motor-health check and the live ESC check, each against the model's reference of
-// healthy flights where it has one.
-void EstimatorNode::makeMotorChecks() {
-  motor_health_ = std::make_unique<MotorHealth>(estimator_->vehicle(), params_.estimator.motor_channels,
-                                                params_.capability.motor_health, estimator_->model().motorReference());
-  ROS_INFO_STREAM("motor health: " << (estimator_->model().motorReference()
-                                           ? "each motor against the model's reference of " +
-                                                 std::to_string(estimator_->model().motorReference()->flights) +
-                                                 " healthy flights"
-                                           : std::string("against the ideal balance, beyond the spread healthy "
-                                                         "vehicles show (no motor_reference in the model)")));
-  model_check_ = std::make_unique<ModelCheck>(params_.estimator.motor_channels, params_.esc_telemetry);
-  if (const auto& reference = estimator_->model().motorReference(); reference && !reference->esc_rpm_deviation.empty()) {
-    model_check_->setBaseline(reference->esc_rpm_deviation, reference->esc_current_deviation);
+void EstimatorNode::logMotorChecks() const {
+  const std::optional<MotorReference>& reference = session_->estimator().model().motorReference();
+  ROS_INFO_STREAM("motor health: " << (reference ? "each motor against the model's reference of " +
+                                                       std::to_string(reference->flights) + " healthy flights"
+                                                 : std::string("against the ideal balance, beyond the spread healthy "
+                                                               "vehicles show (no motor_reference in the model)")));
+  if (reference && !reference->esc_rpm_deviation.empty()) {
     ROS_INFO_STREAM("live ESC check: each motor against the model's reference of " << reference->flights
                                                                                    << " healthy flights");
   }
@@ -202,7 +194,7 @@ void EstimatorNode::loadTare() {
   if (!tare) {
     setTareFileStatus(DiagnosticStatus::OK, params_.tare_file + ": none yet");
   } else if (tare->model_fingerprint == model_fingerprint_) {
-    estimator_->setEmptyMass(tare->empty_mass_kg, EmptyMassSource::kTareFile);
+    session_->setEmptyMass(tare->empty_mass_kg, EmptyMassSource::kTareFile);
     std::ostringstream message;
     message << params_.tare_file << ": empty mass " << tare->empty_mass_kg << " kg";
     setTareFileStatus(DiagnosticStatus::OK, message.str());
@@ -225,7 +217,7 @@ void EstimatorNode::setTareFileStatus(std::uint8_t level, const std::string& mes
 
 void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& input_nh, const ros::NodeHandle& private_nh,
                                            const ros::TransportHints& hints) {
-  const effects::ModelEffects& fx = estimator_->model().effects();
+  const effects::ModelEffects& fx = session_->estimator().model().effects();
   if (fx.empty()) {
     ROS_INFO_STREAM("effects: none (" << params_.model << " has no effects: section)");
     return;
@@ -241,7 +233,7 @@ void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& input_nh, const ros:
     if (!fx.has(kind)) continue;
     const effects::Signal signal = effects::requiredSignal(kind);
     switch (signal) {
-      case effects::Signal::kBatteryCurrent: pass_battery_current_ = true; break;
+      case effects::Signal::kBatteryCurrent: break;
       case effects::Signal::kAirDensity:
         require(kind, "static_pressure_topic", params_.static_pressure_topic);
         require(kind, "air_temperature_topic", params_.air_temperature_topic);
@@ -270,7 +262,7 @@ void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& input_nh, const ros:
 }
 
 HealthSnapshot EstimatorNode::takeSnapshot() const {
-  return HealthSnapshot{ros::Time::now().toSec(), inputs_, estimator_->counters()};
+  return HealthSnapshot{ros::Time::now().toSec(), inputs_, session_->estimator().counters()};
 }
 
 void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) {
@@ -281,32 +273,26 @@ void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) 
     ROS_ERROR_STREAM_THROTTLE(5.0, params_.rc_out_topic << ": " << inputs_.last_decoding_error);
     return;
   }
-  inputs_.last_rc_out_verdict = estimator_->addMotorOutputs(rc_out_.header.stamp.toSec(), ros::Time::now().toSec(),
-                                                            rc_out_.channels.data(), rc_out_.channels.size());
+  inputs_.last_rc_out_verdict = session_->addMotorOutputs(rc_out_.header.stamp.toSec(), ros::Time::now().toSec(),
+                                                          rc_out_.channels.data(), rc_out_.channels.size());
   if (inputs_.last_rc_out_verdict != Rejection::kNone) {
     logRejection(inputs_.last_rc_out_verdict);
     return;
   }
-  motor_health_->add(estimator_->output());
-  checkModel(ros::Time::now().toSec());
   // Estimated and averaged always; published at most at publish_rate_hz (on the stamps, so that a
   // replayed bag publishes as the flight did).
-  if (publish_limiter_.admit(estimator_->output().stamp_s)) publish();
+  if (publish_limiter_.admit(session_->estimator().output().stamp_s)) publish();
 }
 
 void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message) {
   const std::lock_guard<std::mutex> lock(state_);
   ++inputs_.received[static_cast<int>(NodeInput::kBattery)];
-  const double now = ros::Time::now().toSec();
-  logRejection(estimator_->addBattery(now, message->voltage));
-  if (pass_battery_current_) logRejection(estimator_->addBatteryCurrent(now, message->current));
-  model_check_->addBattery(now, message->voltage);
-  applySupplyResistance();
-  // The modelled current stands in for a current the autopilot does not measure (NaN).
-  const double modelled_a = estimator_->model().output(Output::kCurrent).source == OutputSource::kNone
-                                ? kNaN
-                                : estimator_->output().totals.current_a;
-  capability_->addBattery(now, message->voltage, BatteryReport{message->percentage, message->current}, modelled_a);
+  logRejection(session_->addBattery(ros::Time::now().toSec(), message->voltage, message->current, message->percentage));
+  const double applied_ohm = session_->supplyAppliedOhm();
+  if (!supply_logged_ && !std::isnan(applied_ohm)) {
+    ROS_INFO_STREAM("supply_resistance effect applied from ESC telemetry: " << applied_ohm << " ohm");
+    supply_logged_ = true;
+  }
 }
 
 void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
@@ -320,7 +306,7 @@ void EstimatorNode::onImu(const sensor_msgs::Imu::ConstPtr& message) {
   }
   const auto& q = message->orientation;
   const auto& a = message->linear_acceleration;
-  logRejection(estimator_->addImu(ros::Time::now().toSec(), Eigen::Quaterniond(q.w, q.x, q.y, q.z),
+  logRejection(session_->addImu(ros::Time::now().toSec(), Eigen::Quaterniond(q.w, q.x, q.y, q.z),
                                   Eigen::Vector3d(a.x, a.y, a.z)));
 }
 
@@ -328,42 +314,42 @@ void EstimatorNode::onVelocity(const geometry_msgs::TwistStamped::ConstPtr& mess
   const std::lock_guard<std::mutex> lock(state_);
   ++inputs_.received[static_cast<int>(NodeInput::kVelocity)];
   const double now_s = ros::Time::now().toSec();
-  logRejection(estimator_->addVerticalSpeed(now_s, message->twist.linear.z));
-  logRejection(estimator_->addHorizontalVelocity(now_s, message->twist.linear.x, message->twist.linear.y));
+  logRejection(session_->addVerticalSpeed(now_s, message->twist.linear.z));
+  logRejection(session_->addHorizontalVelocity(now_s, message->twist.linear.x, message->twist.linear.y));
 }
 
 void EstimatorNode::onStaticPressure(const sensor_msgs::FluidPressure::ConstPtr& message) {
   const std::lock_guard<std::mutex> lock(state_);
-  logRejection(estimator_->addStaticPressure(ros::Time::now().toSec(), message->fluid_pressure));
+  logRejection(session_->addStaticPressure(ros::Time::now().toSec(), message->fluid_pressure));
 }
 
 void EstimatorNode::onAirTemperature(const sensor_msgs::Temperature::ConstPtr& message) {
   const std::lock_guard<std::mutex> lock(state_);
-  logRejection(estimator_->addAirTemperature(ros::Time::now().toSec(), message->temperature));
+  logRejection(session_->addAirTemperature(ros::Time::now().toSec(), message->temperature));
 }
 
 void EstimatorNode::onRange(const sensor_msgs::Range::ConstPtr& message) {
   const std::lock_guard<std::mutex> lock(state_);
-  logRejection(estimator_->addRange(ros::Time::now().toSec(), message->range, message->min_range,
+  logRejection(session_->addRange(ros::Time::now().toSec(), message->range, message->min_range,
                                     message->max_range));
 }
 
 void EstimatorNode::onMotorTemperature(const sensor_msgs::Temperature::ConstPtr& message) {
   const std::lock_guard<std::mutex> lock(state_);
-  logRejection(estimator_->addMotorTemperature(ros::Time::now().toSec(), message->temperature));
+  logRejection(session_->addMotorTemperature(ros::Time::now().toSec(), message->temperature));
 }
 
 void EstimatorNode::logRejection(Rejection rejection) {
   if (rejection == Rejection::kNone) return;
   if (rejection == Rejection::kDisarmed) {
-    ROS_INFO_STREAM_THROTTLE(30.0, describe(estimator_->lastRejection()));
+    ROS_INFO_STREAM_THROTTLE(30.0, describe(session_->estimator().lastRejection()));
   } else {
-    ROS_WARN_STREAM_THROTTLE(5.0, describe(estimator_->lastRejection()));
+    ROS_WARN_STREAM_THROTTLE(5.0, describe(session_->estimator().lastRejection()));
   }
 }
 
 void EstimatorNode::publish() {
-  const EstimatorOutput& out = estimator_->output();
+  const EstimatorOutput& out = session_->estimator().output();
   const std_msgs::Header& header = rc_out_.header;
 
   motors_msg_.header = header;
@@ -411,12 +397,9 @@ void EstimatorNode::publish() {
 }
 
 void EstimatorNode::publishCapability() {
-  estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
-  const double now = ros::Time::now().toSec();
-  last_capability_ = capability_->evaluate(capabilityInput(now), estimator_->effectSignals(now));
-  last_health_ = motor_health_->verdict();
-  const CapabilityReport& c = last_capability_;
-  const MotorHealthVerdict& h = last_health_;
+  last_capability_ = session_->capability(ros::Time::now().toSec());
+  const CapabilityReport& c = last_capability_.capability;
+  const MotorHealthVerdict& h = last_capability_.motor_health;
   Capability msg;
   msg.header.stamp = ros::Time::now();
   msg.hover_mass_kg = c.hover_mass_kg;
@@ -459,7 +442,7 @@ void EstimatorNode::publishCapability() {
   msg.flagged_channel = static_cast<std::uint8_t>(h.flagged_channel);
   msg.cg_offset_x_m = h.cg_offset_x_m;
   msg.cg_offset_y_m = h.cg_offset_y_m;
-  fillModelCheck(ros::Time::now().toSec(), &msg);
+  fillModelCheck(last_capability_, &msg);
   msg.payload_over_limit = c.payload_over_limit;
   msg.endurance_below_reserve = c.endurance_below_reserve;
   capability_pub_.publish(msg);
@@ -469,7 +452,7 @@ bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
   TareResult tare;
   {
     const std::lock_guard<std::mutex> lock(state_);
-    tare = estimator_->tare(ros::Time::now().toSec());
+    tare = session_->tare(ros::Time::now().toSec());
   }
   // The file is written (fsync) without the lock: the network thread goes on estimating meanwhile.
   response.success = tare.ok;
@@ -491,27 +474,14 @@ bool EstimatorNode::onTare(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
 
 bool EstimatorNode::onDetectHover(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   const std::lock_guard<std::mutex> lock(state_);
-  estimator_->expireHover(ros::Time::now().toSec());  // inputs may have stopped
-  const EstimatorOutput& out = estimator_->output();
-  response.success = out.hover.hovering;
-  std::ostringstream message;
-  message.precision(4);
-  message << estimator_->describeHover();
-  if (!std::isnan(out.payload.total_mass_kg)) {
-    message << "; averaged mass " << out.payload.total_mass_kg << " kg (std " << out.payload.mass_std_kg << " kg, "
-            << out.payload.window_samples << " samples over " << out.payload.window_s << " s)";
-  }
-  response.message = message.str();
+  std::tie(response.success, response.message) = session_->detectHover(ros::Time::now().toSec());
   return true;
 }
 
 bool EstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   std::unique_lock<std::mutex> lock(state_);
-  estimator_->reset();
-  motor_health_->clear();
-  model_check_->reset();
-  if (rpm_view_) rpm_view_->reset();
-  const MassEstimate p = estimator_->output().payload;
+  session_->reset();
+  const MassEstimate p = session_->estimator().output().payload;
   lock.unlock();
   std::ostringstream message;
   message << "windows and tare cleared; empty mass now "

@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
       const pe::sim::FlightResult result = pe::sim::simulateFlight(params, {}, profile, vehicle, seed, &sink, sensors);
       const std::string name = "flight_" + std::to_string(seed) + ".ulg";
       sink.save(std::string(argv[3]) + "/" + name);
-      manifest.flights.push_back({name, result.segments});
+      manifest.flights.push_back({name, result.segments, {}});
       std::printf("%s: %.0f s, %zu bytes\n", name.c_str(), result.duration_s, sink.bytes().size());
     }
     pe::saveFlightManifest(manifest, std::string(argv[3]) + "/flights.yaml", "An hour of PX4 ULog for make bench");

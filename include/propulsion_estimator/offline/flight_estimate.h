@@ -8,6 +8,7 @@
 #include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "propulsion_estimator/onboard/capability.h"
+#include "propulsion_estimator/onboard/model_check.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 
 namespace propulsion_estimator {
@@ -18,6 +19,7 @@ namespace offline {
 struct EstimateOptions {
   EstimatorConfig estimator;  ///< motor channels 1..n and the node's defaults (replayEstimatorConfig)
   CapabilityConfig capability;  ///< the node's defaults: min thrust-to-weight 1.6, no battery
+  ModelCheckConfig esc_telemetry;  ///< the live ESC check's (the node's esc_telemetry/...) defaults
   /// Rows kept per second of the log's clock, as the node's publish_rate_hz limits ~payload (0: every
   /// accepted RCOut message). Hover episodes are judged on every message whatever the rate.
   double sample_rate_hz = 10.0;
@@ -67,13 +69,18 @@ struct FlightEstimate {
   std::string empty_mass_source;  ///< "parameter", "urdf", "none"
   MotorHealthVerdict motor_health;  ///< the last judged window (judged false: why not)
   std::vector<int> flagged_channels;  ///< every channel the motor-health check flagged, first flag first
+  /// The live ESC check's last judgement (its verdict not_judged: never judged, and why in its note).
+  ModelCheckReport esc_check;
+  /// Every verdict other than consistent the ESC check gave, as "propeller on channel 2" or
+  /// "supply", first first.
+  std::vector<std::string> esc_flags;
   /// One line each, with the numbers: refused inputs, readings outside the model's domain (with the
   /// log's and the model's ranges), no hover and why, flagged motors.
   std::vector<std::string> warnings;
 };
 
 /// Runs the node's onboard session (the estimator's hover detection, mass and payload, the motor
-/// health check and the capability) on `streams` message by message, in the order a replayed bag
+/// health check, the live ESC check and the capability) on `streams` message by message, in the order a replayed bag
 /// hands them to the node (FlightFeed). Throws ConfigError when the options do not fit the vehicle
 /// (see EstimateOptions::validate).
 FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,

@@ -3,9 +3,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/logs/flight_streams.h"
-#include "propulsion_estimator/model/propulsion_model.h"
+#include "propulsion_estimator/onboard/onboard_session.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 
 namespace propulsion_estimator {
@@ -37,31 +36,30 @@ struct Arrival {
 /// (config/estimator_params.yaml), the vehicle's rotors on channels 1..n.
 EstimatorConfig replayEstimatorConfig(const Vehicle& vehicle);
 
-/// A logged flight's messages in the order a replayed bag hands them to the node, and what the
-/// node takes from each: the battery's voltage, the IMU, the velocity, the static pressure and
-/// RCOut always; the battery current, the air temperature, the rangefinder (a logged range is a
-/// valid one) and the motor temperature only where the model has an effect that reads them, as
-/// the node subscribes. ESC telemetry is left to the caller (the live model check).
+/// A logged flight's messages in the order a replayed bag hands them to the node, each handed to
+/// the onboard session as the node's callbacks do: every signal the log carries (the session
+/// drops those the model's effects do not read, as the node does not subscribe to them), the ESC
+/// telemetry as MAVROS delivers it (ESC i on channel i + 1), a logged range as a valid one.
 class FlightFeed {
  public:
   /// Sorts every message of `streams` by time (allocates once); `streams` must outlive the feed.
-  FlightFeed(const FlightStreams& streams, const PropulsionModel& model);
+  explicit FlightFeed(const FlightStreams& streams);
 
   /// Every message, by time; at equal times the inputs before the RCOut message they feed.
   const std::vector<Arrival>& arrivals() const { return arrivals_; }
-  /// Gives `estimator` the message `arrival`, received at its log time, as the node's callbacks
-  /// do. True when it was an RCOut message the estimator accepted, whose output() the onboard
-  /// checks then take.
-  bool feed(const Arrival& arrival, Estimator* estimator) const;
+  /// Gives `session` the message `arrival`, received at its log time. True when it was an RCOut
+  /// message the estimator accepted.
+  bool feed(const Arrival& arrival, OnboardSession* session) const;
 
  private:
   const FlightStreams& streams_;
   std::vector<Arrival> arrivals_;
-  bool battery_current_ = false;
-  bool air_temperature_ = false;
-  bool range_ = false;
-  bool motor_temperature_ = false;
 };
+
+/// The onboard session's configuration for a logged flight: replayEstimatorConfig, the node's
+/// defaults for the rest, `motor_health` and `esc_telemetry` as given.
+OnboardConfig replayOnboardConfig(const Vehicle& vehicle, const MotorHealthConfig& motor_health = {},
+                                  const ModelCheckConfig& esc_telemetry = {});
 
 }  // namespace offline
 }  // namespace propulsion_estimator

@@ -19,12 +19,9 @@
 #include "propulsion_estimator/MotorEstimates.h"
 #include "propulsion_estimator/PayloadEstimate.h"
 #include "propulsion_estimator/PropulsionTotals.h"
-#include "propulsion_estimator/onboard/capability.h"
-#include "propulsion_estimator/estimation/estimator.h"
-#include "propulsion_estimator/estimation/motor_health.h"
+#include "propulsion_estimator/onboard/esc_telemetry_health.h"
 #include "propulsion_estimator/onboard/health_summary.h"
-#include "propulsion_estimator/onboard/model_check.h"
-#include "propulsion_estimator/onboard/rpm_mass_view.h"
+#include "propulsion_estimator/onboard/onboard_session.h"
 #include "propulsion_estimator/onboard/rate_limiter.h"
 #include "propulsion_estimator/ros/estimator_params.h"
 #include "propulsion_estimator/ros/esc_telemetry_codec.h"
@@ -33,8 +30,9 @@
 
 namespace propulsion_estimator {
 
-/// estimator_node: adapts topics, services and diagnostics to the core Estimator. Nothing is
-/// computed or judged here: the diagnostics copy the health summary (onboard/health_summary.h).
+/// estimator_node: adapts topics, services and diagnostics to the onboard session
+/// (onboard/onboard_session.h), which computes and judges everything: the node subscribes, decodes,
+/// hands each reading over, and copies the session's answers into messages and diagnostics.
 ///
 /// Threads: the subscriptions' callbacks run in roscpp's network thread as each message is read
 /// (InlineCallbackQueue); timers and services run in the thread that spins the global queue
@@ -58,24 +56,14 @@ class EstimatorNode {
   void onEscTelemetry(const topic_tools::ShapeShifter::ConstPtr& message, const std::string& topic);
   /// Subscribes to the ESC telemetry topics that are not "" and adds the "ESC telemetry" diagnostic.
   void setUpEscTelemetry(ros::NodeHandle& input_nh, const ros::TransportHints& hints);
-  /// The live model check's diagnostic, from `report`.
-  void judgeEscTelemetry(const ModelCheckReport& report, diagnostic_updater::DiagnosticStatusWrapper* status) const;
   /// The measured rpm and current beside the modelled ones on ~motors (NaN when absent or stale).
   void fillMeasured(double now_s);
   /// The model check's fields of ~capability.
-  void fillModelCheck(double now_s, Capability* msg);
-  /// The motor-health check and the live ESC check, each against the model's motor_reference
-  /// where it has one.
-  void makeMotorChecks();
-  /// Applies the estimated supply resistance as the model's effect, when enabled and estimated.
-  void applySupplyResistance();
-  /// After an accepted RCOut: the model check's and the rpm view's sample.
-  void checkModel(double now_s);
-  /// Whether ~capability's mass comes from the rpm view now (esc_telemetry/mass_view rpm, a mass
-  /// from it, every motor's telemetry fresh).
-  bool rpmViewInUse(double now_s) const;
-  /// What ~capability evaluates: the estimator's output, its mass from the view in use.
-  const EstimatorOutput& capabilityInput(double now_s);
+  static void fillModelCheck(const CapabilityState& state, Capability* msg);
+  /// A health verdict of the session as a diagnostic status.
+  static void copy(const HealthStatus& health, diagnostic_updater::DiagnosticStatusWrapper* status);
+  /// Logs which references the motor checks judge against.
+  void logMotorChecks() const;
   /// Subscribes to what the model's effects read (and refuses a needed topic set to ""); logs
   /// which effects apply with which parameters.
   void subscribeEffectSignals(ros::NodeHandle& input_nh, const ros::NodeHandle& private_nh,
@@ -97,21 +85,13 @@ class EstimatorNode {
 
   EstimatorNodeParams params_;
   std::string model_fingerprint_;
-  std::unique_ptr<Estimator> estimator_;
-  std::unique_ptr<CapabilityEstimator> capability_;
-  std::unique_ptr<MotorHealth> motor_health_;
-  std::unique_ptr<ModelCheck> model_check_;
+  std::unique_ptr<OnboardSession> session_;
   EscTelemetryDecoder esc_decoder_;
   EscTelemetry esc_message_;
-  std::uint64_t esc_received_ = 0, esc_undecodable_ = 0;
-  std::string esc_last_error_;
-  double supply_applied_ohm_ = kNaN;  ///< the supply resistance applied as the effect; NaN: none
-  std::optional<RpmMassView> rpm_view_;  ///< when the model has thrust_from_rpm
-  EstimatorOutput rpm_output_;  ///< the estimator's output with the rpm view's mass, for ~capability
-  CapabilityReport last_capability_;
-  MotorHealthVerdict last_health_;
+  EscInputActivity esc_inputs_;
+  bool supply_logged_ = false;  ///< the supply resistance's first application was logged
+  CapabilityState last_capability_;
 
-  bool pass_battery_current_ = false;  ///< only a supply_resistance effect reads it
   ros::Publisher motors_pub_, totals_pub_, payload_pub_, capability_pub_;
   ros::ServiceServer tare_srv_, detect_hover_srv_, reset_srv_;
   diagnostic_updater::Updater diagnostics_;

@@ -163,9 +163,10 @@ TEST(FlightFeed, TakesTheSignalsTheNodeSubscribesTo) {
   streams.air_temperature_c.push_back({0.5, -100.0});  // outside -60..85 deg C
   // Without an effect that reads it the node does not subscribe to the air temperature: not refused.
   const pe::PropulsionModel plain = thesisModel();
-  pe::Estimator estimator(plain, vehicle, pe::offline::replayEstimatorConfig(vehicle));
-  const pe::offline::FlightFeed feed(streams, plain);
-  for (const pe::offline::Arrival& a : feed.arrivals()) feed.feed(a, &estimator);
+  pe::OnboardSession session(plain, vehicle, pe::offline::replayOnboardConfig(vehicle));
+  const pe::offline::FlightFeed feed(streams);
+  for (const pe::offline::Arrival& a : feed.arrivals()) feed.feed(a, &session);
+  const pe::Estimator& estimator = session.estimator();
   EXPECT_EQ(estimator.counters().rejected[static_cast<int>(pe::Rejection::kBadAirTemperature)], 0u);
   EXPECT_EQ(estimator.counters().accepted, streams.rc_out.size());
   // Arrivals by time, the inputs before the RCOut message they feed.
@@ -183,10 +184,10 @@ TEST(FlightFeed, FeedsTheAirTemperatureToAModelThatReadsIt) {
   fx.bench_air_density_kg_m3 = 1.2;
   fx.setParameter(pe::effects::Kind::kAirDensity, 1.0);
   const pe::PropulsionModel model = thesisModel().withEffects(fx);
-  pe::Estimator estimator(model, vehicle, pe::offline::replayEstimatorConfig(vehicle));
-  const pe::offline::FlightFeed feed(streams, model);
-  for (const pe::offline::Arrival& a : feed.arrivals()) feed.feed(a, &estimator);
-  EXPECT_EQ(estimator.counters().rejected[static_cast<int>(pe::Rejection::kBadAirTemperature)], 1u);
+  pe::OnboardSession session(model, vehicle, pe::offline::replayOnboardConfig(vehicle));
+  const pe::offline::FlightFeed feed(streams);
+  for (const pe::offline::Arrival& a : feed.arrivals()) feed.feed(a, &session);
+  EXPECT_EQ(session.estimator().counters().rejected[static_cast<int>(pe::Rejection::kBadAirTemperature)], 1u);
 }
 
 TEST(EstimateOptions, RefusesASampleRateOutsideItsRange) {
@@ -219,7 +220,9 @@ TEST(EstimateCsv, RoundTripsEverySampleWithNaNAsAnEmptyCell) {
     EXPECT_EQ(b.hovering, a.hovering);
     EXPECT_EQ(std::isnan(b.total_mass_kg), std::isnan(a.total_mass_kg));
     nan_totals += std::isnan(b.total_mass_kg);
-    if (!std::isnan(a.total_mass_kg)) EXPECT_NEAR(b.total_mass_kg, a.total_mass_kg, 1e-8);
+    if (!std::isnan(a.total_mass_kg)) {
+      EXPECT_NEAR(b.total_mass_kg, a.total_mass_kg, 1e-8);
+    }
     EXPECT_EQ(b.motors_out_of_domain, a.motors_out_of_domain);
     ASSERT_EQ(b.motor_thrust_n.size(), 4u);
     EXPECT_NEAR(b.motor_thrust_n[2], a.motor_thrust_n[2], 1e-8);

@@ -1,5 +1,5 @@
-// The live model check on simulated flights with ESC telemetry (issue 21): the core estimator and
-// the check fed as the node feeds them, the telemetry from the simulator's own ESC sensors (noise,
+// The live model check on simulated flights with ESC telemetry (issue 21): the onboard session
+// fed as the node feeds it, the telemetry from the simulator's own ESC sensors (noise,
 // gain errors, lost packets). A propeller that lost 10 % of its thrust coefficient is flagged on its
 // own channel with the verdict "propeller" on every motor of a quad and a hexa; the supply
 // resistance is estimated; flights without a fault are never flagged.
@@ -18,8 +18,7 @@
 #include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/fitting/rpm_thrust_fit.h"
-#include "propulsion_estimator/onboard/model_check.h"
-#include "propulsion_estimator/onboard/rpm_mass_view.h"
+#include "propulsion_estimator/onboard/onboard_session.h"
 #include "propulsion_estimator/sim/stand/bench_simulator.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_simulator.h"
@@ -45,24 +44,23 @@ std::vector<int> firstChannels(std::size_t n) {
   return channels;
 }
 
-// Feeds the estimator and the check as estimator_node does; judges the check every 0.5 s.
+// Feeds the onboard session as estimator_node does; judges the check every 0.5 s.
 class CheckSink : public pe::sim::FlightSink {
  public:
   CheckSink(const pe::Vehicle& vehicle, const pe::ModelCheckConfig& config)
-      : check(firstChannels(vehicle.rotors.size()), config),
-        estimator_(thesisModel(), vehicle, estimatorConfig(vehicle)) {}
+      : session(thesisModel(), vehicle, sessionConfig(vehicle, config)) {}
 
   void rcOut(const pe::sim::RcOutSample& s) override {
-    if (estimator_.addMotorOutputs(s.time_s, s.time_s, s.channels.data(), s.channels.size()) != pe::Rejection::kNone) {
+    if (session.addMotorOutputs(s.time_s, s.time_s, s.channels.data(), s.channels.size()) != pe::Rejection::kNone) {
       return;
     }
-    const pe::EstimatorOutput& out = estimator_.output();
-    check.addEstimate(s.time_s, out);
-    if (view) view->add(s.time_s, out, check, pe::kNaN);
+    const pe::EstimatorOutput& out = session.estimator().output();
+    if (view) view->add(s.time_s, out, session.modelCheck(), pe::kNaN);
     if (out.hover.hovering && !first_hover_s) first_hover_s = s.time_s;
+    if (out.hover.hovering) hover_mass_kg = out.payload.total_mass_kg;
     if (s.time_s < next_report_s_) return;
     next_report_s_ = s.time_s + 0.5;
-    last = check.report(s.time_s);
+    last = session.modelCheck().report(s.time_s);
     if (last.flagged_channel != 0 && !first_flag_s) {
       first_flag_s = s.time_s;
       first_flag = last;
@@ -70,18 +68,17 @@ class CheckSink : public pe::sim::FlightSink {
     if (last.flagged_channel != 0) flags |= 1u << last.flagged_channel;
   }
   void battery(const pe::sim::BatterySample& s) override {
-    estimator_.addBattery(s.time_s, s.voltage_v);
-    check.addBattery(s.time_s, s.voltage_v);
+    session.addBattery(s.time_s, s.voltage_v, s.current_a, s.percentage);
   }
-  void imu(const pe::sim::ImuSample& s) override { estimator_.addImu(s.time_s, s.orientation, s.linear_acceleration_m_s2); }
-  void velocity(const pe::sim::VelocitySample& s) override { estimator_.addVerticalSpeed(s.time_s, s.linear_m_s.z()); }
+  void imu(const pe::sim::ImuSample& s) override { session.addImu(s.time_s, s.orientation, s.linear_acceleration_m_s2); }
+  void velocity(const pe::sim::VelocitySample& s) override { session.addVerticalSpeed(s.time_s, s.linear_m_s.z()); }
   void escTelemetry(const pe::sim::EscTelemetrySample& s) override {
     pe::EscTelemetry message;
     message.stamp_s = s.time_s;
     for (const pe::sim::EscReading& r : s.escs) {
       message.escs.push_back({s.time_s, r.rpm, r.current_a, r.voltage_v, r.temperature_c, s.px4 ? -1 : r.count});
     }
-    check.addTelemetry(s.time_s, message);
+    session.addEscTelemetry(s.time_s, message);
   }
   void pose(const pe::sim::PoseSample&) override {}
   void staticPressure(const pe::sim::ScalarSample&) override {}
@@ -90,20 +87,21 @@ class CheckSink : public pe::sim::FlightSink {
   void motorTemperature(const pe::sim::ScalarSample&) override {}
   void truth(const pe::sim::TruthSample& s) override { true_mass_kg = s.total_mass_kg; }
 
-  pe::ModelCheck check;
+  pe::OnboardSession session;
   std::optional<pe::RpmMassView> view;
   double true_mass_kg = pe::kNaN;
+  double hover_mass_kg = pe::kNaN;  ///< the payload average at the last hover message
   pe::ModelCheckReport last, first_flag;
   std::optional<double> first_hover_s, first_flag_s;
   unsigned flags = 0;
 
  private:
-  static pe::EstimatorConfig estimatorConfig(const pe::Vehicle& vehicle) {
-    pe::EstimatorConfig config;
-    config.motor_channels = firstChannels(vehicle.rotors.size());
+  static pe::OnboardConfig sessionConfig(const pe::Vehicle& vehicle, const pe::ModelCheckConfig& check) {
+    pe::OnboardConfig config;
+    config.estimator.motor_channels = firstChannels(vehicle.rotors.size());
+    config.esc_telemetry = check;
     return config;
   }
-  pe::Estimator estimator_;
   double next_report_s_ = 0.0;
 };
 
@@ -178,11 +176,32 @@ TEST(ModelCheckFlight, TheSupplyResistanceIsEstimatedWithin20Percent) {
       const auto sink = fly(quad, hoverProfile(20.0, 0, 1.0, px4), ++seed, effects);
       EXPECT_TRUE(sink->last.supply_resistance_estimated);
       EXPECT_NEAR(sink->last.supply_resistance_ohm, ohm, 0.2 * ohm);
-      EXPECT_NEAR(sink->check.supplyResistanceOhm(), ohm, 0.2 * ohm);
+      EXPECT_NEAR(sink->session.modelCheck().supplyResistanceOhm(), ohm, 0.2 * ohm);
       EXPECT_LT(sink->last.supply_resistance_std_ohm, 0.2 * ohm);
       EXPECT_EQ(sink->flags, 0u);
     }
   }
+}
+
+// The session's loop from the model check back into the estimator (esc_telemetry/
+// apply_supply_resistance): the resistance it estimates becomes the model's supply_resistance
+// effect, and the hover mass the PWM view gives moves towards the truth.
+TEST(ModelCheckFlight, TheAppliedSupplyResistanceBringsTheMassBack) {
+  const pe::Vehicle quad = pe::loadVehicleUrdf(repoPath("config/f450_quad.urdf"));
+  pe::sim::SimEffects effects;
+  effects.supply_resistance_ohm = 0.08;
+  pe::ModelCheckConfig apply;
+  apply.apply_supply_resistance = true;
+  const auto plain = fly(quad, hoverProfile(30.0, 0, 1.0), seedBase(400), effects);
+  const auto corrected = fly(quad, hoverProfile(30.0, 0, 1.0), seedBase(400), effects, apply);
+  EXPECT_TRUE(std::isnan(plain->session.supplyAppliedOhm()));
+  EXPECT_NEAR(corrected->session.supplyAppliedOhm(), 0.08, 0.2 * 0.08);
+  const double plain_error = std::fabs(plain->hover_mass_kg / plain->true_mass_kg - 1.0);
+  const double corrected_error = std::fabs(corrected->hover_mass_kg / corrected->true_mass_kg - 1.0);
+  std::printf("hover mass off by %.2f %% without the applied resistance, %.2f %% with it\n", 100.0 * plain_error,
+              100.0 * corrected_error);
+  EXPECT_GT(plain_error, 0.02);
+  EXPECT_LT(corrected_error, 0.5 * plain_error);
 }
 
 // A family of flights without a fault: quad or hexa, PX4 or ArduPilot, the centre of gravity up to

@@ -34,7 +34,7 @@ const Graph kMayInclude = {
     {"sim/physics", {"common"}},
     {"sim/stand", {"common", "logs", "sim/physics"}},
     {"sim/flight", {"common", "vehicle", "logs", "sim/physics"}},
-    {"ros", {"common", "model", "vehicle", "estimation", "onboard"}},
+    {"ros", {"common", "model", "vehicle", "onboard"}},
     {"bag", {"common", "logs", "ros", "sim/flight"}},
     {"apps", {"common", "model", "vehicle", "onboard", "logs", "offline", "fitting", "gap", "sim/physics", "sim/stand", "sim/flight", "ros",
               "bag"}},

@@ -1,0 +1,106 @@
+// The onboard session (issue 34): what estimator_node and every offline replay drive alike. Its
+// readers judge at the time they are asked (a hover whose inputs stopped is over), it takes a
+// signal only where an effect of the model reads it, and it refuses an rpm mass view it cannot give.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/model/model_yaml.h"
+#include "propulsion_estimator/onboard/esc_telemetry_health.h"
+#include "propulsion_estimator/onboard/onboard_session.h"
+#include "test_paths.h"
+
+namespace pe = propulsion_estimator;
+
+namespace {
+
+pe::PropulsionModel thesisModel() { return pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml")); }
+
+pe::OnboardConfig quadConfig() {
+  pe::OnboardConfig config;
+  config.estimator.motor_channels = {1, 2, 3, 4};
+  return config;
+}
+
+// A steady hover at `pwm` for `seconds` at 50 Hz from `*t`, a fresh voltage every second.
+void hover(pe::OnboardSession* session, double* t, double seconds, double pwm = 1500.0) {
+  const std::vector<std::uint16_t> channels(4, static_cast<std::uint16_t>(pwm));
+  double last_battery = -10.0;
+  for (const double end = *t + seconds; *t < end - 1e-9; *t += 0.02) {
+    if (*t - last_battery >= 1.0) {
+      session->addBattery(*t, 11.4, pe::kNaN, pe::kNaN);
+      last_battery = *t;
+    }
+    ASSERT_EQ(session->addMotorOutputs(*t, *t, channels.data(), channels.size()), pe::Rejection::kNone) << *t;
+  }
+}
+
+}  // namespace
+
+TEST(OnboardSession, RefusesTheRpmMassViewOnAModelWithoutThrustFromRpm) {
+  pe::OnboardConfig config = quadConfig();
+  config.mass_view = "rpm";
+  try {
+    pe::OnboardSession session(thesisModel(), pe::Vehicle::quadX(0.225), config, "e300.yaml");
+    FAIL() << "accepted";
+  } catch (const pe::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "esc_telemetry/mass_view: rpm, but e300.yaml has no thrust_from_rpm (fit_surfaces writes "
+                           "it from bench logs with an rpm column)");
+  }
+}
+
+TEST(OnboardSession, EveryVerdictIsJudgedAtTheTimeItIsAskedFor) {
+  pe::OnboardSession session(thesisModel(), pe::Vehicle::quadX(0.225), quadConfig());
+  double t = 100.0;
+  hover(&session, &t, 8.0);
+  EXPECT_TRUE(session.detectHover(t).first);
+  EXPECT_EQ(session.payloadHealth(t).values.empty(), false);
+  EXPECT_GT(session.capability(t).capability.hover_mass_kg, 0.0);
+  // No input for ten seconds: the hover is over whichever reader asks first, without being told to
+  // expire it.
+  EXPECT_FALSE(session.detectHover(t + 10.0).first);
+  EXPECT_FALSE(session.estimator().output().hover.hovering);
+}
+
+TEST(OnboardSession, TakesASignalOnlyWhereAnEffectOfTheModelReadsIt) {
+  const pe::Vehicle quad = pe::Vehicle::quadX(0.225);
+  pe::OnboardSession plain(thesisModel(), quad, quadConfig());
+  EXPECT_FALSE(plain.reads(pe::effects::Signal::kAirDensity));
+  EXPECT_EQ(plain.addAirTemperature(1.0, -100.0), pe::Rejection::kNone);  // dropped, as never subscribed
+  EXPECT_EQ(plain.addMotorTemperature(1.0, -100.0), pe::Rejection::kNone);
+
+  pe::effects::ModelEffects fx = thesisModel().effects();
+  fx.bench_air_density_kg_m3 = 1.2;
+  fx.setParameter(pe::effects::Kind::kAirDensity, 1.0);
+  pe::OnboardSession reading(thesisModel().withEffects(fx), quad, quadConfig());
+  EXPECT_TRUE(reading.reads(pe::effects::Signal::kAirDensity));
+  EXPECT_EQ(reading.addAirTemperature(1.0, -100.0), pe::Rejection::kBadAirTemperature);
+}
+
+TEST(OnboardSession, ResetForgetsTheHoverAndTheChecks) {
+  pe::OnboardSession session(thesisModel(), pe::Vehicle::quadX(0.225), quadConfig());
+  double t = 100.0;
+  hover(&session, &t, 8.0);
+  ASSERT_FALSE(std::isnan(session.estimator().output().payload.total_mass_kg));
+  session.reset();
+  EXPECT_TRUE(std::isnan(session.estimator().output().payload.total_mass_kg));
+  EXPECT_FALSE(session.motorHealth().judged);
+}
+
+TEST(EscTelemetryHealth, SaysSoWhenNoTelemetryCameAndWhyNoneWasUsable) {
+  pe::OnboardSession session(thesisModel(), pe::Vehicle::quadX(0.225), quadConfig());
+  pe::EscInputActivity activity{"/mavros/esc_telemetry/telemetry, /mavros/esc_status/status", 0, 0, ""};
+  pe::HealthStatus status = pe::judgeEscTelemetry(session, 1.0, activity);
+  EXPECT_EQ(status.level, pe::HealthLevel::kOk);
+  EXPECT_EQ(status.message, "no ESC telemetry: nothing measured, model check off, estimates unchanged");
+  activity.received = activity.undecodable = 3;
+  activity.last_error = "not a mavros_msgs/ESCStatus";
+  status = pe::judgeEscTelemetry(session, 1.0, activity);
+  EXPECT_EQ(status.message, "no usable ESC telemetry (not a mavros_msgs/ESCStatus): nothing measured, model check off");
+  ASSERT_FALSE(status.values.empty());
+  EXPECT_EQ(status.values[0].second, "/mavros/esc_telemetry/telemetry, /mavros/esc_status/status");
+  EXPECT_EQ(status.values[2].second, "3");
+}
