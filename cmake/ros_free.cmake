@@ -10,8 +10,8 @@ get_filename_component(PE_REPO_DIR "${CMAKE_CURRENT_SOURCE_DIR}" REALPATH)
 # Every unit test source but those that need what this build leaves out. Each test is judged by
 # what its source includes or runs, so that a test added to any folder (or one that starts writing
 # a bag) is judged the same way, with no list to keep:
-#  - ROS: it includes a ROS header (ros/, rosbag/, a *_msgs package) or one of this package's ros/
-#    or bag/ modules (the codecs, the parameters, the callback queue, the bag writer and reader):
+#  - ROS: it includes a ROS header (ros/, rosbag/, a *_msgs package) or one of this package's ros/,
+#    codecs/ or bag/ modules (the codecs, the parameters, the callback queue, the bag writer and reader):
 #    roscpp, rosbag and the messages are not installable for arm64, and neither module is built here.
 #  - The command-line tools: it includes a header of src/apps/ (the CLI layer) or names a tool's
 #    path (PE_FIT_SURFACES, PE_SIMULATE, PE_ESTIMATOR_NODE, ... from src/apps/<tool>_main.cpp) to
@@ -28,7 +28,7 @@ string(REPLACE ";" "|" PE_TOOLS "${PE_TOOLS}")
 string(TOUPPER "${PE_TOOLS}" PE_TOOLS)
 string(REPLACE "." "\\." PE_APPS_HEADERS "${PE_APPS_HEADERS}")
 set(PE_NEEDS_ROS_REGEX
-  "^#include [<\"](ros|rosbag|[a-z_]+_msgs|propulsion_estimator/ros|propulsion_estimator/bag)/"
+  "^#include [<\"](ros|rosbag|[a-z_]+_msgs|propulsion_estimator/ros|propulsion_estimator/codecs|propulsion_estimator/bag)/"
   "^#include \"(${PE_APPS_HEADERS}|fuzz_inputs\\.h)\""
   "PE_(${PE_TOOLS})([^A-Z_]|$)")
 string(REPLACE ";" "|" PE_NEEDS_ROS_REGEX "${PE_NEEDS_ROS_REGEX}")

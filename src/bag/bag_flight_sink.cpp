@@ -12,8 +12,8 @@
 #include <limits>
 
 #include "propulsion_estimator/SimTruth.h"
-#include "propulsion_estimator/ros/esc_telemetry_codec.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/esc_telemetry_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 namespace propulsion_estimator {
 namespace {

@@ -23,8 +23,8 @@
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/number_format.h"
-#include "propulsion_estimator/ros/esc_telemetry_codec.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/esc_telemetry_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 namespace propulsion_estimator {
 namespace {

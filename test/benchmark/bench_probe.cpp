@@ -31,9 +31,9 @@
 
 #include "propulsion_estimator/PropulsionTotals.h"
 #include "propulsion_estimator/common/mavros_topics.h"
-#include "propulsion_estimator/ros/esc_telemetry_codec.h"
+#include "propulsion_estimator/codecs/esc_telemetry_codec.h"
 #include "propulsion_estimator/ros/inline_callback_queue.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 namespace pe = propulsion_estimator;
 

@@ -3,7 +3,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 namespace pe = propulsion_estimator;
 

@@ -19,7 +19,7 @@
 #include "propulsion_estimator/logs/tyto_csv.h"
 #include "propulsion_estimator/logs/ulog_flight_reader.h"
 #include "propulsion_estimator/model/model_yaml.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 

@@ -24,9 +24,9 @@
 #include "propulsion_estimator/onboard/onboard_session.h"
 #include "propulsion_estimator/onboard/rate_limiter.h"
 #include "propulsion_estimator/ros/estimator_params.h"
-#include "propulsion_estimator/ros/esc_telemetry_codec.h"
+#include "propulsion_estimator/codecs/esc_telemetry_codec.h"
 #include "propulsion_estimator/ros/inline_callback_queue.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 namespace propulsion_estimator {
 

@@ -14,7 +14,7 @@
 #include "propulsion_estimator/bag/bag_flight_sink.h"
 #include "propulsion_estimator/model/effect_description.h"
 #include "propulsion_estimator/model/model_yaml.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 #include "test_paths.h"
 #include "tool_process.h"
 

@@ -25,8 +25,8 @@
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "propulsion_estimator/common/yaml_map.h"
 #include "propulsion_estimator/bag/bag_flight_sink.h"
-#include "propulsion_estimator/ros/esc_telemetry_codec.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/esc_telemetry_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 #include "simulate_command.h"
 #include "test_paths.h"
 

@@ -20,7 +20,7 @@
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/input_error.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 namespace pe = propulsion_estimator;
 namespace fs = std::filesystem;

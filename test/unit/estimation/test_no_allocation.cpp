@@ -10,9 +10,9 @@
 #include "propulsion_estimator/estimation/motor_health.h"
 #include "propulsion_estimator/onboard/model_check.h"
 #include "propulsion_estimator/onboard/rpm_mass_view.h"
-#include "propulsion_estimator/ros/esc_telemetry_codec.h"
+#include "propulsion_estimator/codecs/esc_telemetry_codec.h"
 #include "propulsion_estimator/sim/flight/motor_mixer.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 namespace {
 std::atomic<long> g_allocations{0};

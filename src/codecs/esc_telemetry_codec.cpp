@@ -1,4 +1,4 @@
-#include "propulsion_estimator/ros/esc_telemetry_codec.h"
+#include "propulsion_estimator/codecs/esc_telemetry_codec.h"
 
 #include <ros/serialization.h>
 #include <std_msgs/Header.h>

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 #include <std_msgs/Float64.h>
 
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 namespace pe = propulsion_estimator;
 

@@ -1,4 +1,4 @@
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 #include <ros/serialization.h>
 

@@ -8,8 +8,8 @@
 #include <memory>
 #include <string>
 
-#include "propulsion_estimator/ros/esc_telemetry_codec.h"
-#include "propulsion_estimator/ros/rcout_codec.h"
+#include "propulsion_estimator/codecs/esc_telemetry_codec.h"
+#include "propulsion_estimator/codecs/rcout_codec.h"
 
 namespace pe = propulsion_estimator;
 
