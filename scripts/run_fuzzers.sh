@@ -9,7 +9,8 @@
 # test/fuzz/corpus/<reader>/ (libFuzzer -merge=1), for the user to review and commit.
 set -u
 repo="$(cd "$(dirname "$0")/.." && pwd)"
-readers="model_yaml bench_csv tyto_csv flight_manifest flight_profile vehicle_urdf rcout tare_file ulog dataflash flight_bag"
+# The fuzzed readers: one corpus folder each, the one list (CMake builds fuzz_<folder> for each).
+readers="$(cd "$repo/test/fuzz/corpus" && ls -d -- */ | tr -d / | tr '\n' ' ')"
 seconds=60
 merge=0
 bin=""

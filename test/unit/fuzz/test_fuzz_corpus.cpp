@@ -53,6 +53,19 @@ Outcome replay(const fuzz::FuzzInput& input, const fs::path& folder) {
 
 }  // namespace
 
+// The corpus folders are the list of fuzzed inputs (CMake and scripts/run_fuzzers.sh read them):
+// each names an entry point, and each entry point has one.
+TEST(FuzzCorpus, TheCorpusFoldersAreTheEntryPoints) {
+  std::vector<std::string> folders, inputs;
+  for (const fs::directory_entry& entry : fs::directory_iterator(repoPath("test/fuzz/corpus"))) {
+    if (entry.is_directory()) folders.push_back(entry.path().filename().string());
+  }
+  for (const fuzz::FuzzInput& input : fuzz::fuzzInputs()) inputs.push_back(input.name);
+  std::sort(folders.begin(), folders.end());
+  std::sort(inputs.begin(), inputs.end());
+  EXPECT_EQ(folders, inputs);
+}
+
 TEST(FuzzCorpus, EveryReaderHasASeedCorpusThatItAcceptsInPart) {
   for (const fuzz::FuzzInput& input : fuzz::fuzzInputs()) {
     const Outcome outcome = replay(input, repoPath("test/fuzz/corpus/") + input.name);

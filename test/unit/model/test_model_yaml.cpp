@@ -398,7 +398,7 @@ TEST(ModelYaml, RefusesHalfTheBenchAir) {
 TEST(ModelYaml, RoundTripsTheMotorReference) {
   pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
   model.setMotorReference(pe::MotorReference{{0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7,
-                                             {0.037, 0.053, 0.035, 0.051}});
+                                             {0.037, 0.053, 0.035, 0.051}, {}, {}});
   const pe::PropulsionModel back = pe::parseModelYaml(pe::modelToYaml(model), "back.yaml");
   ASSERT_TRUE(back.motorReference());
   EXPECT_EQ(back.motorReference()->flights, 7);
@@ -411,7 +411,8 @@ TEST(ModelYaml, RoundTripsTheMotorReference) {
 
 TEST(ModelYaml, RoundTripsTheMotorReferencesEscDeviationsAndThrustFactors) {
   pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
-  pe::MotorReference reference{{0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}};
+  pe::MotorReference reference{
+      {0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}, {}, {}};
   reference.esc_rpm_deviation = {0.012, -0.008, 0.011, -0.009};
   reference.esc_current_deviation = {-0.03, 0.025, -0.028, 0.027};
   reference.thrust_factor = 0.962;

@@ -370,7 +370,7 @@ TEST(MotorHealth, FlagsAMotorWeakerThanTheVehiclesReference) {
   // so its model thrust reads T / 0.85. Against a reference of equal shares (1 % flight-to-flight
   // spread of the gap) it is flagged.
   const pe::MotorReference reference{{0.25, 0.25, 0.25, 0.25}, {0.003, 0.003, 0.003, 0.003}, 5,
-                                     {0.01, 0.01, 0.01, 0.01}};
+                                     {0.01, 0.01, 0.01, 0.01}, {}, {}};
   pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {}, reference);
   const pe::MotorHealthVerdict verdict = hover(&health, {3.3, 3.3, 3.3 / 0.85, 3.3});
   ASSERT_TRUE(verdict.judged);
@@ -389,7 +389,7 @@ TEST(MotorHealth, WithoutAReferenceOnlyAMotorBeyondTheHealthySpreadIsFlagged) {
 
 TEST(MotorHealth, RefusesAReferenceOfAnotherMotorCount) {
   const pe::MotorReference six{{1 / 6.0, 1 / 6.0, 1 / 6.0, 1 / 6.0, 1 / 6.0, 1 / 6.0}, std::vector<double>(6, 0.0), 3,
-                               std::vector<double>(6, 0.01)};
+                               std::vector<double>(6, 0.01), {}, {}};
   try {
     pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {}, six);
     FAIL() << "a six-motor reference was taken for a quad";

@@ -106,7 +106,7 @@ class CheckSink : public pe::sim::FlightSink {
 };
 
 // The first seed of a test's flights: `base`, or PE_MODEL_CHECK_SEED plus `base` to fly fresh seeds
-// (a held-out run: PE_MODEL_CHECK_SEED=9000 test_sim --gtest_filter='ModelCheckFlight.*').
+// (a held-out run: PE_MODEL_CHECK_SEED=9000 test_onboard --gtest_filter='ModelCheckFlight.*').
 std::uint64_t seedBase(std::uint64_t base) {
   const char* offset = std::getenv("PE_MODEL_CHECK_SEED");
   return offset ? base + std::strtoull(offset, nullptr, 10) : base;
@@ -216,7 +216,9 @@ TEST(ModelCheckFlight, NoFlagOnTwoHundredFlightsWithoutAFault) {
   for (int flight = 0; flight < 200; ++flight) {
     const bool hexacopter = flight % 2 == 1;
     pe::Vehicle vehicle = hexacopter ? six : quad;
-    vehicle.empty_mass->mass_kg += 0.3 * unit(random);
+    pe::MassProperties mass = vehicle.empty_mass.value();
+    mass.mass_kg += 0.3 * unit(random);
+    vehicle.empty_mass = mass;
     pe::sim::FlightProfile profile = hoverProfile(12.0 + 8.0 * unit(random), 0, 1.0, unit(random) < 0.5);
     profile.vehicle.centre_of_mass_offset_m =
         Eigen::Vector3d(0.03 * unit(random) - 0.015, 0.03 * unit(random) - 0.015, 0.0);
