@@ -1,6 +1,7 @@
 #include "propulsion_estimator/logs/dataflash_flight_reader.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -15,6 +16,9 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kGoodRange = 4;  // RFND Stat: RangeFinder::Status::Good
 constexpr double kDownward = 25;  // RFND Orient: ROTATION_PITCH_270
+// s; an ESC's report older than this is not carried into a reading (ArduPilot logs ESC telemetry
+// at about 10 Hz per ESC; the live model check's own staleness is esc_telemetry/stale_after_s).
+constexpr double kEscFreshS = 0.5;
 
 // ArduPilot's attitude (roll, pitch, yaw in degrees: body FRD to local NED) as the package's
 // (body FLU to local ENU, REP-103).
@@ -188,6 +192,60 @@ class SignalReader {
     note("rangefinder: RFND Dist (good readings)");
   }
 
+  // ESC telemetry: each ESC row (Instance k: RPM, Curr, Volt) updates its motor's latest report;
+  // the rows logged at one time make one reading, in which a motor whose last report is older
+  // than kEscFreshS is not reported (NaN), as MAVROS' ESCTelemetry carries only what is fresh.
+  // Rows without a finite RPM (a motor temperature alone) are no ESC report.
+  void escTelemetry(int motors) {
+    const auto type = file_.typeNamed("ESC");
+    const auto rpm = column("ESC", "RPM");
+    const auto instance = column("ESC", "Instance");
+    const auto time = type ? timeColumn(file_, *type) : std::nullopt;
+    if (!rpm || !instance || !time) {
+      note(type ? "esc_telemetry: not in this log (ESC has no RPM or Instance)" : "esc_telemetry: not in this log (no ESC)");
+      return;
+    }
+    const auto current = column("ESC", "Curr");
+    const auto voltage = column("ESC", "Volt");
+    EscTelemetryReading latest;
+    latest.escs = std::min(motors, kMaxMotors);
+    latest.rpm.fill(kNaN);
+    latest.current_a.fill(kNaN);
+    latest.voltage_v.fill(kNaN);
+    latest.count.fill(-1);
+    std::array<double, kMaxMotors> reported_s;
+    reported_s.fill(-std::numeric_limits<double>::infinity());
+    double pending_s = kNaN;
+    const auto flush = [&]() {
+      if (std::isnan(pending_s)) return;
+      EscTelemetryReading reading = latest;
+      reading.time_s = pending_s;
+      for (int k = 0; k < reading.escs; ++k) {
+        if (pending_s - reported_s[k] <= kEscFreshS) continue;
+        reading.rpm[k] = reading.current_a[k] = reading.voltage_v[k] = kNaN;
+      }
+      streams_->esc.push_back(reading);
+      pending_s = kNaN;
+    };
+    for (const dataflash::Message& message : file_.messages()) {
+      if (message.type != *type) continue;
+      const double k = value(message, *instance);
+      const double speed = value(message, *rpm);
+      if (!(k >= 0 && k < latest.escs) || !std::isfinite(speed)) continue;
+      const double t = (value(message, time->column) * time->to_us - first_us_) / 1e6;
+      if (t != pending_s) flush();
+      const auto i = static_cast<std::size_t>(k);
+      latest.rpm[i] = speed;
+      latest.current_a[i] = current ? value(message, *current) : kNaN;
+      latest.voltage_v[i] = voltage ? value(message, *voltage) : kNaN;
+      reported_s[i] = t;
+      pending_s = t;
+    }
+    flush();
+    note(streams_->esc.empty() ? "esc_telemetry: not in this log (no ESC row with an RPM)"
+                               : "esc_telemetry: ESC RPM, Curr, Volt per Instance (the rows of one time as one reading)");
+  }
+
   void motorTemperature() {
     const auto type = file_.typeNamed("ESC");
     auto temp = column("ESC", "MotTemp");
@@ -203,8 +261,9 @@ class SignalReader {
     for (const dataflash::Message& message : file_.messages()) {
       if (message.type != *type) continue;
       const double k = value(message, *instance);
-      if (!(k >= 0 && k < kMaxMotors)) continue;
-      latest[static_cast<std::size_t>(k)] = value(message, *temp);
+      const double reading_c = value(message, *temp);
+      if (!(k >= 0 && k < kMaxMotors) || std::isnan(reading_c)) continue;
+      latest[static_cast<std::size_t>(k)] = reading_c;
       double hottest = -std::numeric_limits<double>::infinity();
       for (const double reading : latest) {
         if (!std::isnan(reading)) hottest = std::max(hottest, reading);
@@ -259,6 +318,7 @@ FlightStreams DataflashFlightReader::read(const FlightLogOptions& options) const
   reader.barometer();
   reader.rangefinder();
   reader.motorTemperature();
+  reader.escTelemetry(options.motors);
   const std::string unused = options.unusedSourcesNote("a DataFlash log");
   if (!unused.empty()) streams.notes.push_back(unused);
   return streams;

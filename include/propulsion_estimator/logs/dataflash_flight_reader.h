@@ -17,7 +17,9 @@ namespace propulsion_estimator {
 /// - pose, velocity: XKF1 (core 0), else NKF1 or EKF1, -PD, -VD; without them CTUN Alt and CRt (cm/s);
 /// - static_pressure, air_temperature: BARO Press, Temp;
 /// - rangefinder: RFND Dist (m; Stat 4, good, only, and a downward Orient 25 where logged);
-/// - motor_temperature: the hottest ESC MotTemp (MTemp; the ESC's own Temp is not a motor's, not read).
+/// - motor_temperature: the hottest ESC MotTemp (MTemp; the ESC's own Temp is not a motor's, not read);
+/// - esc: ESC RPM, Curr, Volt of Instance 0..n-1 (the ESC telemetry ArduPilot logs), the rows of one
+///   time as one reading, a report older than 0.5 s left out.
 /// Times: TimeUS (TimeMS in older logs), seconds from the log's first timed message.
 class DataflashFlightReader : public FlightLogReader {
  public:

@@ -94,10 +94,22 @@ void DataflashFlightSink::rangefinder(const RangeSample& sample) {
                            .put<std::uint8_t>(25));
 }
 
+// A motor temperature alone is an ESC row of instance 0 without telemetry (RPM, Volt, Curr NaN).
 void DataflashFlightSink::motorTemperature(const ScalarSample& sample) {
   const auto hottest = static_cast<float>(sample.value);
-  writer_.write(kEsc, start(sample.time_s).put<std::uint8_t>(0).put(0.0f).put(0.0f).put(0.0f)
+  writer_.write(kEsc, start(sample.time_s).put<std::uint8_t>(0).put(NAN).put(NAN).put(NAN)
                           .put(static_cast<std::int16_t>(std::lround(hottest - 5.0f))).put(0.0f).put(hottest));
+}
+
+// ArduPilot logs one ESC row per ESC (AP_ESC_Telem::write_log_messages); the motor temperature has
+// its own rows above, so MotTemp is NaN here.
+void DataflashFlightSink::escTelemetry(const EscTelemetrySample& sample) {
+  for (std::size_t k = 0; k < sample.escs.size(); ++k) {
+    const EscReading& esc = sample.escs[k];
+    writer_.write(kEsc, start(sample.time_s).put(static_cast<std::uint8_t>(k)).put(static_cast<float>(esc.rpm))
+                            .put(static_cast<float>(esc.voltage_v)).put(static_cast<float>(esc.current_a))
+                            .put(static_cast<std::int16_t>(std::lround(esc.temperature_c))).put(0.0f).put(NAN));
+  }
 }
 
 }  // namespace sim

@@ -165,7 +165,7 @@ std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile) {
   Eigen::Vector2d position = Eigen::Vector2d::Zero();
   for (std::size_t i = 0; i < profile.segments.size(); ++i) {
     const FlightSegment& s = profile.segments[i];
-    ScheduledSegment scheduled{s, static_cast<int>(i), time, time, height, height, payload, position, position};
+    ScheduledSegment scheduled{s, static_cast<int>(i), time, time, height, height, payload, position};
     double duration = s.duration_s;
     switch (s.kind) {
       case SegmentKind::kPayload:
@@ -192,7 +192,6 @@ std::vector<ScheduledSegment> scheduleFlight(const FlightProfile& profile) {
     }
     scheduled.end_s = time + duration;
     scheduled.end_height_m = height;
-    scheduled.end_position_m = position;
     schedule.push_back(scheduled);
     time = scheduled.end_s;
   }

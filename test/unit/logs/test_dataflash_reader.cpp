@@ -43,6 +43,7 @@ TEST(DataflashReader, ReadsBackWhatTheSimulatorWrote) {
   EXPECT_EQ(reader.refusal(), "");
   const pe::FlightStreams read = reader.read(options());
   expectRoundTrip(read, sim, 0.0);
+  expectEscRoundTrip(read, sim);
   EXPECT_EQ(read.notes.front(), "rc_out: RCOU C1..C4 (us)");
   pe::FlightLogOptions with_topic = options();
   with_topic.sources["battery"] = "/my/battery";
@@ -136,5 +137,40 @@ TEST(DataflashReader, FindsColumnsByLabelInOlderLayouts) {
   // Yaw 90 deg (east in NED) is ENU yaw 0: the body's x axis points east, ENU x.
   EXPECT_LT((streams.imu[0].orientation * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitX()).norm(), 1e-9);
   EXPECT_NEAR(streams.imu[0].specific_force_m_s2.z(), 9.8, 1e-6);
-  EXPECT_EQ(streams.notes.back(), "motor_temperature: not in this log (no ESC)");
+  EXPECT_EQ(streams.notes.rbegin()[1], "motor_temperature: not in this log (no ESC)");
+  EXPECT_EQ(streams.notes.back(), "esc_telemetry: not in this log (no ESC)");
+}
+
+// ArduPilot logs a row per ESC at its own time: the rows of one time are one reading, an ESC whose
+// last report is older than half a second is not reported in it, a row without an RPM (a motor
+// temperature alone) is no report, and an instance beyond the motors is ignored.
+TEST(DataflashReader, MergesTheEscRowsOfOneTimeAndLeavesOutAStaleEsc) {
+  pe::dataflash::Writer writer;
+  writer.define(10, "BAT", "QffB", "TimeUS,Volt,Curr,Inst");
+  writer.define(11, "RCOU", "QHH", "TimeUS,C1,C2");
+  writer.define(12, "ESC", "QBfffhff", "TimeUS,Instance,RPM,Volt,Curr,Temp,CTot,MotTemp");
+  writer.write(10, pe::BinaryPayload().put<std::uint64_t>(1000000).put(15.0f).put(8.0f).put<std::uint8_t>(0));
+  writer.write(11, pe::BinaryPayload().put<std::uint64_t>(1000000).put<std::uint16_t>(1500).put<std::uint16_t>(1500));
+  const auto esc = [&](std::uint64_t us, std::uint8_t instance, float rpm) {
+    writer.write(12, pe::BinaryPayload().put(us).put(instance).put(rpm).put(15.5f).put(4.0f + instance)
+                         .put<std::int16_t>(30).put(0.0f).put(NAN));
+  };
+  esc(1100000, 0, 6000.0f);
+  esc(1100000, 1, 6100.0f);
+  esc(1100000, 7, 9999.0f);  // no motor 8
+  esc(1200000, 1, NAN);      // a temperature row
+  esc(1800000, 1, 6200.0f);  // ESC 0 last reported 0.7 s before
+  const pe::FlightStreams streams = pe::DataflashFlightReader(writer.bytes(), "esc.bin").read(options(2));
+  ASSERT_EQ(streams.esc.size(), 2u);
+  EXPECT_EQ(streams.esc[0].escs, 2);
+  EXPECT_NEAR(streams.esc[0].time_s, 0.1, 1e-9);
+  EXPECT_EQ(streams.esc[0].rpm[0], 6000.0);
+  EXPECT_EQ(streams.esc[0].rpm[1], 6100.0);
+  EXPECT_EQ(streams.esc[0].current_a[1], 5.0);
+  EXPECT_EQ(streams.esc[0].voltage_v[0], 15.5);
+  EXPECT_EQ(streams.esc[0].count[0], -1);
+  EXPECT_TRUE(std::isnan(streams.esc[1].rpm[0]));
+  EXPECT_TRUE(std::isnan(streams.esc[1].current_a[0]));
+  EXPECT_EQ(streams.esc[1].rpm[1], 6200.0);
+  EXPECT_EQ(streams.notes.back(), "esc_telemetry: ESC RPM, Curr, Volt per Instance (the rows of one time as one reading)");
 }

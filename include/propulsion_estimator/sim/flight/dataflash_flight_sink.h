@@ -10,8 +10,8 @@ namespace propulsion_estimator {
 namespace sim {
 
 /// Writes a simulated flight as ArduPilot's DataFlash log: RCOU, BAT, IMU with ATT (NED/FRD,
-/// degrees), XKF1, BARO, RFND and ESC (MotTemp, the hottest motor's temperature on instance 0),
-/// each type's FMT before it. TimeUS is `boot_s` + the sample's time, in us. The truth is not
+/// degrees), XKF1, BARO, RFND and ESC (a row per ESC with its RPM, Volt, Curr and Temp; the
+/// hottest motor's MotTemp in rows of its own on instance 0), each type's FMT before it. TimeUS is `boot_s` + the sample's time, in us. The truth is not
 /// written.
 class DataflashFlightSink : public FlightSink {
  public:
@@ -27,6 +27,7 @@ class DataflashFlightSink : public FlightSink {
   void airTemperature(const ScalarSample& sample) override;
   void rangefinder(const RangeSample& sample) override;
   void motorTemperature(const ScalarSample& sample) override;
+  void escTelemetry(const EscTelemetrySample& sample) override;
   void truth(const TruthSample&) override {}
 
   /// The log so far.

@@ -62,7 +62,6 @@ struct ScheduledSegment {
   double end_height_m = 0.0;  ///< m, the height setpoint at the end
   double payload_mass_kg = 0.0;  ///< attached during the segment
   Eigen::Vector2d start_position_m = Eigen::Vector2d::Zero();  ///< east, north setpoint at the start, m
-  Eigen::Vector2d end_position_m = Eigen::Vector2d::Zero();    ///< east, north setpoint at the end, m
 };
 
 /// Spin-up on the ground before a take-off climbs, and time a landing gets after touching down to
