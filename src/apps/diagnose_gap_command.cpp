@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/mavros_topics.h"
@@ -169,13 +170,13 @@ std::vector<FlightRead> readFlights(const std::string& manifest, const std::vect
 // "rc_out 90115, battery 1803, ..., no rangefinder, ...": the readings of each signal.
 std::string streamSummary(const FlightStreams& streams, std::size_t* readings) {
   const std::vector<std::size_t> counts = signalCounts(streams);
-  std::string text;
+  std::vector<std::string> items;
   for (std::size_t i = 0; i < counts.size(); ++i) {
     const std::string& name = flightSignalNames()[i];
-    text += (text.empty() ? "" : ", ") + (counts[i] == 0 ? "no " + name : name + " " + std::to_string(counts[i]));
+    items.push_back(counts[i] == 0 ? "no " + name : name + " " + std::to_string(counts[i]));
     *readings += counts[i];
   }
-  return text;
+  return joined(items);
 }
 
 // The diagnosis of the flights read, and its report in `out`: report.md, report.yaml, the
@@ -190,13 +191,11 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   args.plotter.plot("gap", args.out);
   writeTextFile(args.out + "/report.md", gap::gapReportMarkdown(diagnosis, model, args.command));
   // The input model with the selected effects: what estimator_node loads to correct online.
-  std::string selected_names;
-  for (effects::Kind kind : diagnosis.selected) {
-    selected_names += (selected_names.empty() ? "" : ", ") + std::string(effects::kindName(kind));
-  }
+  std::vector<std::string> selected;
+  for (effects::Kind kind : diagnosis.selected) selected.push_back(effects::kindName(kind));
+  std::vector<std::string> corrected_with = selected;
   for (const gap::Ambiguity& ambiguity : diagnosis.ambiguous) {
-    selected_names += (selected_names.empty() ? "" : ", ") + std::string(effects::kindName(ambiguity.kinds[0])) +
-                      " (ambiguous, the best fit of its group)";
+    corrected_with.push_back(std::string(effects::kindName(ambiguity.kinds[0])) + " (ambiguous, the best fit of its group)");
   }
   // The fingerprint the motors were judged against goes with it: the node's live check and later
   // diagnoses judge change from the same reference.
@@ -208,15 +207,13 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   corrected.setMotorReference(reference);
   saveModelFile(corrected, args.out + "/corrected_model.yaml",
                 args.model + " with the effects diagnose_gap selected (" +
-                    (selected_names.empty() ? std::string("none") : selected_names) + "); see report.md");
+                    (corrected_with.empty() ? std::string("none") : joined(corrected_with)) + "); see report.md");
 
   const gap::ResidualStats& overall = diagnosis.overall;
   std::printf("gap: %d samples, model minus flight: bias %s %%, RMSE %s %%\n", overall.samples,
               formatPrintf("%.2f", overall.bias_pct).c_str(), formatPrintf("%.2f", overall.rmse_pct).c_str());
   if (!diagnosis.steady_data_shortfall.empty()) std::printf("%s\n", diagnosis.steady_data_shortfall.c_str());
-  std::string selected;
-  for (effects::Kind kind : diagnosis.selected) selected += (selected.empty() ? "" : ", ") + std::string(effects::kindName(kind));
-  std::printf("selected: %s; held-out RMSE %s %% -> %s %%\n", selected.empty() ? "none" : selected.c_str(),
+  std::printf("selected: %s; held-out RMSE %s %% -> %s %%\n", selected.empty() ? "none" : joined(selected).c_str(),
               formatPrintf("%.2f", diagnosis.heldout.before_rmse_pct).c_str(),
               formatPrintf("%.2f", diagnosis.heldout.after_rmse_pct).c_str());
   for (const gap::Ambiguity& ambiguity : diagnosis.ambiguous) {
@@ -273,23 +270,23 @@ MotorReference learnReference(const Arguments& args, const PropulsionModel& mode
   gap::DiagnosisConfig own = config;
   own.motor_reference = reference;
   *reference_effects = gap::fitReferenceEffects(model, vehicle, flights, own);
-  std::string shares;
+  std::vector<std::string> shares;
   for (std::size_t k = 0; k < reference.shares.size(); ++k) {
-    shares += (k == 0 ? "" : ", ") + formatPrintf("%.1f", 100.0 * reference.shares[k]) + " +- " +
-              formatPrintf("%.1f", 100.0 * reference.share_std[k]);
+    shares.push_back(formatPrintf("%.1f", 100.0 * reference.shares[k]) + " +- " +
+                     formatPrintf("%.1f", 100.0 * reference.share_std[k]));
   }
   std::printf("reference: %d healthy flights; each motor's share of the thrust in steady hover, %%: %s\n",
-              reference.flights, shares.c_str());
-  std::string shown;
+              reference.flights, joined(shares).c_str());
+  std::vector<std::string> shown;
   for (const auto& [kind, effect] : *reference_effects) {
-    shown += (shown.empty() ? "" : ", ") + std::string(effects::describe(kind).name) + " " +
-             formatPrintf("%.4g", effect.value) + " +- " + formatPrintf("%.2g", effect.ci_half) +
-             (std::isfinite(effect.signal_low)
-                  ? " (" + formatPrintf("%.4g", effect.signal_low) + ".." + formatPrintf("%.4g", effect.signal_high) + ")"
-                  : std::string());
+    shown.push_back(std::string(effects::describe(kind).name) + " " + formatPrintf("%.4g", effect.value) + " +- " +
+                    formatPrintf("%.2g", effect.ci_half) +
+                    (std::isfinite(effect.signal_low) ? " (" + formatPrintf("%.4g", effect.signal_low) + ".." +
+                                                            formatPrintf("%.4g", effect.signal_high) + ")"
+                                                      : std::string()));
   }
   std::printf("reference: each effect fitted alone on them (an effect as large here is not named): %s\n",
-              shown.empty() ? "none (no effect the flights can test)" : shown.c_str());
+              shown.empty() ? "none (no effect the flights can test)" : joined(shown).c_str());
   return reference;
 }
 

@@ -16,6 +16,8 @@
 #include <CLI/CLI.hpp>
 
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/name_list.h"
+#include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/logs/file_pattern.h"
@@ -148,15 +150,12 @@ LogResult estimateLog(const std::string& path, const std::string& directory, con
 }
 
 std::string hoverList(const offline::FlightEstimate& estimate) {
-  std::string masses;
+  std::vector<std::string> masses;
   for (const offline::HoverEpisode& h : estimate.hovers) {
-    if (std::isnan(h.total_mass_kg)) continue;
-    char text[32];
-    std::snprintf(text, sizeof text, "%s%.3f kg", masses.empty() ? "" : ", ", h.total_mass_kg);
-    masses += text;
+    if (!std::isnan(h.total_mass_kg)) masses.push_back(formatPrintf("%.3f kg", h.total_mass_kg));
   }
   return std::to_string(estimate.hovers.size()) + (estimate.hovers.size() == 1 ? " hover" : " hovers") +
-         (masses.empty() ? "" : " (" + masses + ")");
+         (masses.empty() ? "" : " (" + joined(masses) + ")");
 }
 
 // The run's index: every log with its hovers and warnings, or why it was refused.

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 
 namespace propulsion_estimator {
@@ -12,11 +13,7 @@ namespace {
 // Without a URDF: the thesis' quadcopter, its rotors at unknown positions.
 constexpr int kDefaultMotors = 4;
 
-std::string signalNames() {
-  std::string names;
-  for (const std::string& name : flightSignalNames()) names += (names.empty() ? "" : ", ") + name;
-  return names;
-}
+std::string signalNames() { return joined(flightSignalNames()); }
 
 }  // namespace
 

@@ -12,4 +12,10 @@ std::string nameList(const std::vector<std::string>& names, std::size_t shown) {
   return text;
 }
 
+std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+  std::string text;
+  for (std::size_t k = 0; k < items.size(); ++k) text += (k == 0 ? "" : separator) + items[k];
+  return text;
+}
+
 }  // namespace propulsion_estimator

@@ -1,5 +1,6 @@
 #include "propulsion_estimator/common/yaml_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -9,6 +10,7 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/parser.h>
 
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/text_file.h"
 
@@ -139,15 +141,10 @@ void YamlMap::allowOnly(std::initializer_list<const char*> allowed) const {
 void YamlMap::allowOnly(const std::vector<std::string>& allowed) const {
   for (const auto& entry : node_) {
     const std::string key = entry.first.as<std::string>();
-    bool known = false;
-    std::string list;
-    for (const std::string& name : allowed) {
-      known = known || key == name;
-      list += (list.empty() ? "" : ", ") + name;
-    }
+    const bool known = std::find(allowed.begin(), allowed.end(), key) != allowed.end();
     if (!known) {
-      throw ConfigError(source_ + ":" + lineOf(entry.first) + ": " + keyPath(key) + ": unknown key (allowed: " + list +
-                        ")");
+      throw ConfigError(source_ + ":" + lineOf(entry.first) + ": " + keyPath(key) + ": unknown key (allowed: " +
+                        joined(allowed) + ")");
     }
   }
 }
@@ -256,12 +253,10 @@ std::vector<YamlMap> YamlMap::maps(const std::string& key) const {
 
 std::string YamlMap::choice(const std::string& key, std::initializer_list<const char*> choices) const {
   const std::string value = text(key);
-  std::string list;
   for (const char* option : choices) {
     if (value == option) return value;
-    list += (list.empty() ? "" : ", ") + std::string(option);
   }
-  fail(key, "'" + value + "' is not one of " + list);
+  fail(key, "'" + value + "' is not one of " + joined(std::vector<std::string>(choices.begin(), choices.end())));
 }
 
 YamlMap parseYamlDocument(const std::string& text, const std::string& source) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
 
@@ -62,15 +63,13 @@ void HoverStatistics::merge(const HoverStatistics& o) {
 }
 
 std::string hoverCheckNames(std::uint8_t mask) {
-  std::string names;
+  std::vector<std::string> names;
   for (const auto& [bit, name] : {std::pair<std::uint8_t, const char*>{kTiltCheck, "tilt"},
                                   {kVerticalSpeedCheck, "vertical speed"},
                                   {kVerticalAccelCheck, "vertical acceleration"}}) {
-    if (!(mask & bit)) continue;
-    if (!names.empty()) names += ", ";
-    names += name;
+    if (mask & bit) names.push_back(name);
   }
-  return names.empty() ? "none" : names;
+  return names.empty() ? "none" : joined(names);
 }
 
 HoverDetector::HoverDetector(const HoverConfig& config) : config_(config), window_(config.window_s) {}

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
@@ -115,12 +116,10 @@ std::vector<ManifestSegment> airborneSegments(const FlightStreams& streams, cons
   const std::vector<AirborneStretch> stretches = findAirborneStretches(streams, model, settings, &why);
   if (stretches.empty()) throw DataError(streams.source + ": no airborne stretch: " + why);
   if (mass_kg.size() > 1 && mass_kg.size() != stretches.size()) {
-    std::string list;
-    for (const AirborneStretch& s : stretches) {
-      list += (list.empty() ? "" : ", ") + seconds(s.lift_off_s) + " to " + seconds(s.touchdown_s);
-    }
+    std::vector<std::string> list;
+    for (const AirborneStretch& s : stretches) list.push_back(seconds(s.lift_off_s) + " to " + seconds(s.touchdown_s));
     throw DataError(streams.source + ": " + std::to_string(mass_kg.size()) + " masses for " +
-                    std::to_string(stretches.size()) + " airborne stretches (" + list + ")");
+                    std::to_string(stretches.size()) + " airborne stretches (" + joined(list) + ")");
   }
   std::vector<ManifestSegment> segments;
   for (std::size_t k = 0; k < stretches.size(); ++k) {

@@ -6,6 +6,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/model/effect_description.h"
@@ -412,14 +413,9 @@ void writeNestedSection(std::ostream& md, const NestedHoldOut& nested) {
      << formatPrintf("%.2f", nested.after_rmse_pct) << " % corrected (bias " << formatPrintf("%.2f", nested.before_bias_pct)
      << " % -> " << formatPrintf("%.2f", nested.after_bias_pct) << " %).\n\n| scored on | chosen on | effects | suspect |\n"
      << "|---|---|---|---|\n";
-  const auto join = [](const std::vector<std::string>& names) {
-    std::string text;
-    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-    return text;
-  };
   for (const NestedFold& fold : nested.folds) {
-    md << "| " << join(fold.scored_on) << " | " << join(fold.fitted_on) << " | "
-       << (fold.effects.empty() ? std::string("none") : join(kindNames(fold.effects))) << " | "
+    md << "| " << joined(fold.scored_on) << " | " << joined(fold.fitted_on) << " | "
+       << (fold.effects.empty() ? std::string("none") : joined(kindNames(fold.effects))) << " | "
        << (fold.suspect_channel ? std::to_string(*fold.suspect_channel) : std::string("none")) << " |\n";
   }
   md << "\n";
@@ -449,12 +445,12 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
   md << "\nWeighed segments used (s on each log's clock, kg; a flight given one mass for the whole flight: the "
         "airborne stretches found in its log):\n\n";
   for (const FlightGap& flight : diagnosis.flights) {
-    std::string spans;
+    std::vector<std::string> spans;
     for (const ManifestSegment& segment : flight.segments) {
-      spans += (spans.empty() ? "" : ", ") + formatPrintf("%.1f", segment.start_s) + "-" +
-               formatPrintf("%.1f", segment.end_s) + " s at " + formatPrintf("%.3f", segment.mass_kg) + " kg";
+      spans.push_back(formatPrintf("%.1f", segment.start_s) + "-" + formatPrintf("%.1f", segment.end_s) + " s at " +
+                      formatPrintf("%.3f", segment.mass_kg) + " kg");
     }
-    md << "- " << flight.name << ": " << spans << "\n";
+    md << "- " << flight.name << ": " << joined(spans) << "\n";
   }
   md << "\nPayload error of the node, tare on the lightest weighed segment: "
      << formatPrintf("%.2f", diagnosis.payload_err_pct, "n/a") << " % (RMS over the heavier segments).\n\n";

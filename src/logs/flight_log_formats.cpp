@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/input_error.h"
@@ -21,9 +22,7 @@ void FlightLogOptions::validate(const std::string& what) const {
   for (const auto& [name, source] : sources) {
     const std::vector<std::string>& names = flightSignalNames();
     if (std::find(names.begin(), names.end(), name) == names.end()) {
-      std::string list;
-      for (const std::string& signal : names) list += (list.empty() ? "" : ", ") + signal;
-      throw ConfigError(what + ": '" + name + "' is not a signal (one of " + list + ")");
+      throw ConfigError(what + ": '" + name + "' is not a signal (one of " + joined(names) + ")");
     }
     if (source.empty()) throw ConfigError(what + ": " + name + ": an empty source");
   }
@@ -37,9 +36,9 @@ void FlightLogOptions::validate(const std::string& what) const {
 
 std::string FlightLogOptions::unusedSourcesNote(const std::string& format) const {
   if (sources.empty()) return "";
-  std::string names;
-  for (const auto& entry : sources) names += (names.empty() ? "" : ", ") + entry.first + "=" + entry.second;
-  return "sources given (" + names + ") not used: " + format + " is read from its own messages, named above";
+  std::vector<std::string> given;
+  for (const auto& [name, source] : sources) given.push_back(name + "=" + source);
+  return "sources given (" + joined(given) + ") not used: " + format + " is read from its own messages, named above";
 }
 
 void FlightLogFormats::add(FlightLogFormat format) {
@@ -65,9 +64,7 @@ std::unique_ptr<FlightLogReader> FlightLogFormats::open(const std::string& path)
   for (const FlightLogFormat& format : formats_) {
     if (head.compare(0, format.magic.size(), format.magic) == 0) return format.open(path);
   }
-  std::string list;
-  for (const std::string& name : names()) list += (list.empty() ? "" : ", ") + name;
-  throw DataError(path + ": not a flight log of a known format (" + list + "): it starts with \"" + printableBytes(head) +
+  throw DataError(path + ": not a flight log of a known format (" + joined(names()) + "): it starts with \"" + printableBytes(head) +
                   "\"");
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
@@ -153,16 +154,16 @@ void takeEscCheck(ModelCheckReport report, FlightEstimate* result) {
 }
 
 void warnRefusals(const EstimatorCounters& counters, const Estimator& estimator, std::vector<std::string>* warnings) {
-  std::string refused;
+  std::vector<std::string> refused;
   for (int r = 1; r < kRejectionCount; ++r) {
     const auto reason = static_cast<Rejection>(r);
     if (reason == Rejection::kDisarmed || counters.rejected[r] == 0) continue;
-    refused += (refused.empty() ? "" : ", ") + std::to_string(counters.rejected[r]) + " " + rejectionName(reason);
+    refused.push_back(std::to_string(counters.rejected[r]) + " " + rejectionName(reason));
   }
   if (refused.empty()) return;
   // The last refusal is worth quoting only when it is one of those counted (not a disarmed motor).
   const RejectionDetail& last = estimator.lastRejection();
-  warnings->push_back("inputs refused: " + refused +
+  warnings->push_back("inputs refused: " + joined(refused) +
                       (last.reason == Rejection::kDisarmed ? "" : " (the last: " + describe(last) + ")"));
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
 
@@ -111,12 +112,11 @@ HealthStatus judgeMotorOutputs(const Estimator& estimator, const HealthSnapshot&
 }
 
 std::string unmodelledOutputs(const PropulsionModel& model) {
-  std::string list;
+  std::vector<std::string> list;
   for (Output output : kAllOutputs) {
-    if (model.output(output).source != OutputSource::kNone) continue;
-    list += (list.empty() ? "" : ", ") + std::string(outputName(output));
+    if (model.output(output).source == OutputSource::kNone) list.push_back(outputName(output));
   }
-  return list.empty() ? "none" : list;
+  return list.empty() ? "none" : joined(list);
 }
 
 HealthStatus judgeDomain(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,
@@ -163,12 +163,11 @@ HealthStatus judgePayload(const Estimator& estimator) {
   // hover with no IMU would count as hover. Said only while the window holds samples.
   if (hover.samples > 0 && hover.inactiveChecks()) {
     status.level = HealthLevel::kWarn;
-    std::string missing;
-    if (hover.inactiveChecks() & (kTiltCheck | kVerticalAccelCheck)) missing = "no fresh IMU";
-    if (hover.inactiveChecks() & kVerticalSpeedCheck) {
-      missing += std::string(missing.empty() ? "" : ", ") + "no fresh velocity or barometer";
-    }
-    status.message += "; hover checks inactive: " + hoverCheckNames(hover.inactiveChecks()) + " (" + missing + ")";
+    std::vector<std::string> missing;
+    if (hover.inactiveChecks() & (kTiltCheck | kVerticalAccelCheck)) missing.push_back("no fresh IMU");
+    if (hover.inactiveChecks() & kVerticalSpeedCheck) missing.push_back("no fresh velocity or barometer");
+    status.message +=
+        "; hover checks inactive: " + hoverCheckNames(hover.inactiveChecks()) + " (" + joined(missing) + ")";
   }
   return status;
 }
@@ -198,7 +197,7 @@ HealthStatus judgeEffects(const Estimator& estimator, const HealthSnapshot& befo
     return status;
   }
   const effects::Signals signals = estimator.effectSignals(now.time_s);
-  std::string applied, skipped;
+  std::vector<std::string> applied, skipped;
   for (effects::Kind kind : effects::kAllKinds) {
     if (!fx.has(kind)) continue;
     const std::size_t k = static_cast<std::size_t>(kind);
@@ -212,15 +211,18 @@ HealthStatus judgeEffects(const Estimator& estimator, const HealthSnapshot& befo
           << " messages since the last report";
     if (missing) value << "; " << signalSource(signal, config) << " missing or stale";
     add(&status, effects::kindName(kind), value.str());
-    std::string& list = skips > 0 || missing ? skipped : applied;
-    list += (list.empty() ? "" : ", ") + std::string(effects::kindName(kind));
-    if (skips > 0 || missing) list += " (" + signalSource(signal, config) + " missing or stale)";
+    if (skips > 0 || missing) {
+      skipped.push_back(std::string(effects::kindName(kind)) + " (" + signalSource(signal, config) +
+                        " missing or stale)");
+    } else {
+      applied.push_back(effects::kindName(kind));
+    }
   }
   if (!skipped.empty()) {
     status.level = HealthLevel::kWarn;
-    status.message = "skipped: " + skipped + (applied.empty() ? std::string() : "; applied: " + applied);
+    status.message = "skipped: " + joined(skipped) + (applied.empty() ? std::string() : "; applied: " + joined(applied));
   } else {
-    status.message = "applied: " + applied;
+    status.message = "applied: " + joined(applied);
   }
   return status;
 }
