@@ -22,7 +22,7 @@ void FlightInputOptions::addTo(CLI::App& app) {
                  "Vehicle URDF: rotors (rotor_<k>_joint, in motor-channel order) and geometry (default: a quadcopter "
                  "on channels 1-4, geometry unknown)");
   app.add_option("--frame", frame_,
-                 "Instead of --urdf, a common frame in ArduPilot's motor order: quad_x, hexa_x, octo_x (needs --arm-m)");
+                 "Instead of --urdf, a common frame in the autopilots' motor order (PX4's and ArduPilot's agree): quad_x, hexa_x, octo_x (needs --arm-m)");
   app.add_option("--arm-m", arm_m_, "Arm length of --frame: centre to rotor hub, m");
   app.add_option("--topic", topics_,
                  "NAME=TOPIC: in a rosbag, read signal NAME from TOPIC instead of MAVROS' (repeatable); names: " +
