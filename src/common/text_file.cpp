@@ -7,8 +7,22 @@
 namespace propulsion_estimator {
 
 std::string readTextFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError(path + ": cannot open file");
+  // Read at once into a string of the file's size: a stream that grows as it reads copies a
+  // large log several times over (an hour of ULog is 50 MB).
+  const std::streamoff size = in.tellg();
+  if (size > 0) {
+    std::string content(static_cast<std::size_t>(size), '\0');
+    in.seekg(0);
+    in.read(content.data(), static_cast<std::streamsize>(size));
+    if (in.bad()) throw InputError(path + ": cannot read file");
+    content.resize(static_cast<std::size_t>(in.gcount()));
+    return content;
+  }
+  // No size (a pipe, a file of the proc filesystem): read as it comes.
+  in.clear();
+  in.seekg(0);
   std::ostringstream content;
   content << in.rdbuf();
   if (in.bad()) throw InputError(path + ": cannot read file");

@@ -27,11 +27,20 @@ class Topics {
   bool has(const std::string& name, int instance = 0) const { return !ids(name, instance).empty(); }
 
   void forEach(const std::string& name, int instance, const std::function<void(const ulog::DataMessage&)>& use) const {
-    const std::set<std::uint16_t> wanted = ids(name, instance);
-    if (wanted.empty()) return;
+    const std::set<std::uint16_t> ids_wanted = ids(name, instance);
+    if (ids_wanted.empty()) return;
+    // A flag per msg_id: each pass looks at every data message of the log, a million in an hour.
+    std::vector<bool> wanted(std::numeric_limits<std::uint16_t>::max() + 1, false);
+    for (std::uint16_t id : ids_wanted) wanted[id] = true;
     for (const ulog::DataMessage& message : file_.data()) {
-      if (wanted.count(message.msg_id)) use(message);
+      if (wanted[message.msg_id]) use(message);
     }
+  }
+  // How many messages forEach(name, instance) gives, to size what they fill.
+  std::size_t count(const std::string& name, int instance) const {
+    std::size_t n = 0;
+    forEach(name, instance, [&n](const ulog::DataMessage&) { ++n; });
+    return n;
   }
 
   // The first of `paths` the format of `name` has.
@@ -130,6 +139,8 @@ class SignalReader {
     }
     // The accelerometer's latest specific force, paired with each attitude.
     std::vector<std::pair<double, Eigen::Vector3d>> forces;
+    forces.reserve(topics_.count(accel_topic, 0));
+    streams_->imu.reserve(topics_.count("vehicle_attitude", 0));
     const std::size_t step = ulog::sizeOf(a0->primitive);
     topics_.forEach(accel_topic, 0, [&](const ulog::DataMessage& message) {
       ulog::Locator at = *a0;
