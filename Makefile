@@ -52,7 +52,9 @@ sizes: deps
 	python3 scripts/check_sizes.py
 
 # The colcon tests alone, in the Release build.
+# Earlier results are removed first: a test binary renamed since would leave its old results behind.
 check: build
+	rm -f $(WS)/build/propulsion_estimator/test_results/propulsion_estimator/*.xml
 	cd $(WS) && colcon test --event-handlers console_direct+ \
 		&& colcon test-result --verbose
 
@@ -73,6 +75,7 @@ test-sanitizers: deps
 	cd $(WS) && colcon build $(SAN) --event-handlers console_direct+ \
 		--cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
 		-DPE_SANITIZE=ON
+	rm -f $(WS)/sanitizers/build/propulsion_estimator/test_results/propulsion_estimator/*.xml
 	cd $(WS) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 		GTEST_FILTER=-$(SAN_LEFT_OUT) \
 		colcon test $(SAN) --event-handlers console_direct+ --ctest-args -R _gtest_ \
