@@ -16,6 +16,7 @@
 #include "propulsion_estimator/gap/blocks.h"
 #include "propulsion_estimator/gap/effect_fit.h"
 #include "propulsion_estimator/gap/motor_balance.h"
+#include "propulsion_estimator/gap/parts_spread.h"
 #include "propulsion_estimator/gap/rotor_lag.h"
 #include "propulsion_estimator/gap/sign_flip_test.h"
 #include "propulsion_estimator/gap/thrust_views.h"
@@ -78,6 +79,15 @@ struct HeldOutPrediction {
 };
 
 
+// Effects fitted with their strength free to differ between light and heavy loads (by the load
+// that explains most): what a later round's effect must beat (law_left_over.cpp).
+struct FlexibleLaw {
+  HeldOutPrediction prediction;
+  double mean_square = 0.0;  // joint, over the blocks
+  std::string load;          // "current", "collective command", ...
+};
+
+
 class Diagnoser {
  public:
   Diagnoser(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
@@ -89,6 +99,14 @@ class Diagnoser {
   // Each effect fitted alone on these flights (a vehicle's healthy ones, with their own levels
   // from config.motor_reference) and the range of the signal it reads (fitReferenceEffects).
   ReferenceEffects fitEachAlone();
+  // The 95 % half-width of the last of `kinds`' parameters, fitted with the others, from each
+  // flight left out in turn; 0 with fewer than three flights (reference_effects.cpp).
+  double jackknifeHalfWidth(const std::vector<Kind>& kinds) const;
+  // `fit_half`, or for an effect read mostly between flights and compared with the healthy
+  // flights' the larger of it and its jackknife over these flights (kinds.back() with the others).
+  double flightsHalfWidth(const std::vector<Kind>& kinds, double fit_half) const;
+  // The share of `signal`'s variance over the blocks between the flights' means (NaN without it).
+  double betweenFlightShare(effects::Signal signal) const;
 
  private:
   // A diagnosis of the outer one's blocks kept only (`keep_block`, per block), seeing them through
@@ -117,6 +135,22 @@ class Diagnoser {
   effects::ModelEffects references() const;
   std::string testability(Kind kind) const;
   HeldOutPrediction predictHeldOut(const std::vector<Kind>& kinds) const;
+  // `kinds` fitted apart on the light and the heavy half (by `load`) of each unit's training blocks.
+  using LoadOf = std::function<double(const Block&)>;
+  HeldOutPrediction predictHeldOutByLoad(const std::vector<Kind>& kinds, const LoadOf& load) const;
+  // The effects each held-out block is seen through, from one fit on the other units' blocks.
+  using EffectsOfBlock = std::function<const effects::ModelEffects&(const Block&)>;
+  using UnitFit = std::function<EffectsOfBlock(const std::vector<const Block*>& training)>;
+  HeldOutPrediction predictHeldOutWith(const UnitFit& fit_unit) const;
+  // In a round after `selected`'s: "" when candidate `kind` (of `size`, held-out prediction `with`
+  // of joint mean square `ms`) is more than what their laws leave over (law_left_over.cpp); else
+  // why not.
+  const FlexibleLaw& flexibleLaw(const std::vector<Kind>& kinds);
+  // Why `kind`, read from a signal that changes mostly between flights within the healthy flights'
+  // range, cannot be told in a later round from an earlier effect's leftover; "" otherwise.
+  std::string readBetweenFlightsAsBefore(Kind kind) const;
+  std::string leftOverOfLaw(Kind kind, const std::vector<Kind>& selected, const EffectSize& size,
+                            const HeldOutPrediction& with, double ms);
   // A view's weight in the joint error: the PWM view's block-to-block noise variance over the
   // view's (`view`, from the plain model's held-out residuals `before`); 1 without the view.
   double viewWeight(const HeldOutPrediction& before, const std::vector<double>& view) const;
@@ -185,6 +219,7 @@ class Diagnoser {
   std::vector<std::string> unit_names_;  // of each unit: the flight's name, or "flight#segment"
   std::vector<Kind> working_;  // the effects the correction uses: selected and ambiguous leaders
   std::set<Kind> grouped_;     // members of an ambiguous group: not tried again
+  std::map<std::vector<Kind>, FlexibleLaw> flexible_laws_;  // by the effects fitted flexibly
   int units_ = 0;
   std::string unit_name_;
   Diagnosis diagnosis_;

@@ -181,55 +181,6 @@ std::string Diagnoser::testability(Kind kind) const {
   return "";
 }
 
-HeldOutPrediction Diagnoser::predictHeldOut(const std::vector<Kind>& kinds) const {
-  HeldOutPrediction prediction;
-  prediction.pwm.assign(blocks_.size(), kNaN);
-  prediction.current.assign(blocks_.size(), kNaN);
-  prediction.rpm.assign(blocks_.size(), kNaN);
-  prediction.view_n.assign(blocks_.size(), kNaN);
-  const effects::ModelEffects base = references();
-  for (int unit = 0; unit < units_; ++unit) {
-    std::vector<const Block*> training;
-    for (std::size_t i = 0; i < blocks_.size(); ++i) {
-      if (unit_of_block_[i] != unit) training.push_back(&blocks_[i]);
-    }
-    // Neighbouring blocks carry little new information: a stride keeps long flights quick.
-    if (training.size() > 3000) {
-      const std::size_t stride = training.size() / 3000 + 1;
-      std::vector<const Block*> thinned;
-      for (std::size_t i = 0; i < training.size(); i += stride) thinned.push_back(training[i]);
-      training.swap(thinned);
-    }
-    const EffectFit fit = fitEffects(views_, training, kinds, base);
-    // The current view's residual, and how it moves per ampere the avionics draw beside the motors.
-    double sum_rs = 0.0, sum_ss = 0.0;
-    std::vector<double> slope(blocks_.size(), kNaN);
-    for (std::size_t i = 0; i < blocks_.size(); ++i) {
-      if (unit_of_block_[i] != unit) continue;
-      const double view = views_.pwmView(blocks_[i], fit.effects);
-      prediction.view_n[i] = view;
-      prediction.pwm[i] = relative(view, blocks_[i]);
-      prediction.current[i] = relative(views_.currentView(blocks_[i], fit.effects), blocks_[i]);
-      prediction.rpm[i] = relative(views_.rpmView(blocks_[i], fit.effects), blocks_[i]);
-      Block less = blocks_[i];
-      less.current_a -= 1.0;
-      slope[i] = prediction.current[i] - relative(views_.currentView(less, fit.effects), blocks_[i]);
-      if (std::isfinite(prediction.current[i]) && std::isfinite(slope[i])) {
-        sum_rs += prediction.current[i] * slope[i];
-        sum_ss += slope[i] * slope[i];
-      }
-    }
-    // The avionics' own draw (flight controller, companion computer, radios, camera) is on the
-    // battery current but turns no rotor: a nuisance of the current view, not thrust. It is taken
-    // out per held-out unit, alike for every candidate, within 0..kMaxAvionicsCurrentA.
-    const double avionics_a = sum_ss > 0.0 ? std::clamp(sum_rs / sum_ss, 0.0, kMaxAvionicsCurrentA) : 0.0;
-    for (std::size_t i = 0; i < blocks_.size(); ++i) {
-      if (unit_of_block_[i] == unit && std::isfinite(slope[i])) prediction.current[i] -= avionics_a * slope[i];
-    }
-  }
-  return prediction;
-}
-
 // How the current view's residual follows an effect's correction of the PWM view (from `without`
 // to `with`): 1 when both views err alike, 0 when the current view does not see the effect.
 double Diagnoser::currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const {
@@ -336,11 +287,14 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
       result.reason = "its 95 % interval includes no effect";
     } else if (!within_parts.empty()) {
       result.reason = within_parts;
-    } else if (const std::string same = notAChange(kind, result.parameter, half,
+    } else if (const std::string same = notAChange(kind, result.parameter, flightsHalfWidth(kinds, half),
                                                    signalMedian(all_, effects::requiredSignal(kind)),
                                                    config_.reference_effects);
                !same.empty()) {
       result.reason = same;
+    } else if (const std::string left_over = round > 0 ? leftOverOfLaw(kind, selected, result.size, prediction, ms) : "";
+               !left_over.empty()) {
+      result.reason = left_over;
     } else if (!vehicle_.hasGeometry() && effects::requiredSignal(kind) == effects::Signal::kNone) {
       // A correction that reads no signal moves every block alike, and so does one weak motor:
       // without the rotors' positions the moment balance cannot tell them apart.

@@ -29,6 +29,81 @@ std::string notAChange(effects::Kind kind, double value, double ci_half, double 
 
 namespace detail {
 
+namespace {
+
+// Two-sided 95 % quantiles of Student's t for 1..9 degrees of freedom; beyond, 2.26 and less.
+double studentT95(int degrees) {
+  static const double table[] = {12.71, 4.30, 3.18, 2.78, 2.57, 2.45, 2.36, 2.31, 2.26};
+  return degrees >= 1 && degrees <= 9 ? table[degrees - 1] : 2.0 + 2.6 / degrees;
+}
+
+}  // namespace
+
+// The fit's interval counts stretches of blocks as independent, but a flight's blocks also err
+// together (its payload's hang, its air, its battery): an effect read from a signal that changes
+// mostly between flights (the day's air) is known only as well as a handful of flights tell it.
+// Each flight left out in turn (the jackknife), its 95 % half-width. (An effect read within each
+// flight, as the ground effect at take-off, keeps the fit's interval: its flights each tell it.)
+double Diagnoser::jackknifeHalfWidth(const std::vector<Kind>& kinds) const {
+  std::set<int> flights;
+  for (const Block& block : blocks_) flights.insert(block.flight);
+  const int n = static_cast<int>(flights.size());
+  if (n < 3) return 0.0;
+  std::vector<double> values;
+  for (int left_out : flights) {
+    std::vector<const Block*> kept;
+    for (const Block* block : all_) {
+      if (block->flight != left_out) kept.push_back(block);
+    }
+    const std::optional<double> value = fitEffects(views_, kept, kinds, references()).effects.parameter(kinds.back());
+    if (!value || !std::isfinite(*value)) return 0.0;
+    values.push_back(*value);
+  }
+  double mean = 0.0;
+  for (double value : values) mean += value / n;
+  double sum = 0.0;
+  for (double value : values) sum += (value - mean) * (value - mean);
+  return studentT95(n - 1) * std::sqrt((n - 1.0) / n * sum);
+}
+
+// The share of `signal`'s variance over the blocks that lies between the flights' means: 1 for
+// the day's air, near 0 for the height near the ground at each take-off; NaN without the signal.
+double Diagnoser::betweenFlightShare(effects::Signal signal) const {
+  if (signal == effects::Signal::kNone) return kNaN;
+  std::map<int, std::pair<double, int>> sums;
+  double total = 0.0;
+  int count = 0;
+  for (const Block* block : all_) {
+    const double value = block->signals.value(signal);
+    if (!std::isfinite(value)) continue;
+    sums[block->flight].first += value;
+    ++sums[block->flight].second;
+    total += value;
+    ++count;
+  }
+  if (count < 2) return kNaN;
+  const double mean = total / count;
+  double all = 0.0, between = 0.0;
+  for (const Block* block : all_) {
+    const double value = block->signals.value(signal);
+    if (!std::isfinite(value)) continue;
+    const auto& flight = sums.at(block->flight);
+    const double flight_mean = flight.first / flight.second;
+    all += (value - mean) * (value - mean);
+    between += (flight_mean - mean) * (flight_mean - mean);
+  }
+  return all > 0.0 ? between / all : kNaN;
+}
+
+// The same holds for these flights' own fit when it is compared with the healthy flights'.
+double Diagnoser::flightsHalfWidth(const std::vector<Kind>& kinds, double fit_half) const {
+  if (!config_.reference_effects.count(kinds.back()) ||
+      !(betweenFlightShare(effects::requiredSignal(kinds.back())) >= 0.5)) {
+    return fit_half;
+  }
+  return std::max(fit_half, jackknifeHalfWidth(kinds));
+}
+
 ReferenceEffects Diagnoser::fitEachAlone() {
   config_.validate();
   cut();
@@ -41,6 +116,9 @@ ReferenceEffects Diagnoser::fitEachAlone() {
     ReferenceEffect effect;
     effect.value = *fit.effects.parameter(kind);
     effect.ci_half = fit.ci_half.front();
+    if (betweenFlightShare(effects::requiredSignal(kind)) >= 0.5) {
+      effect.ci_half = std::max(effect.ci_half, jackknifeHalfWidth({kind}));
+    }
     if (!std::isfinite(effect.value) || !std::isfinite(effect.ci_half)) continue;
     const effects::Signal signal = effects::requiredSignal(kind);
     if (signal != effects::Signal::kNone) {

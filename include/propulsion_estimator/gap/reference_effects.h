@@ -14,7 +14,9 @@ namespace gap {
 /// model leaves out is often present on the healthy flights too, and is then no change.
 struct ReferenceEffect {
   double value = 0.0;    ///< the effect's parameter fitted alone there (its ParameterSpec unit)
-  double ci_half = 0.0;  ///< its 95 % half-width
+  /// Its 95 % half-width; for an effect whose signal changes mostly between flights (the day's
+  /// air), the larger of the fit's and the flights' jackknife (each flight left out in turn).
+  double ci_half = 0.0;
   /// The lowest value of the signal the effect reads over those flights' blocks; NaN for an
   /// effect reading none.
   double signal_low = kNaN;

@@ -37,6 +37,15 @@ struct World {
   double avionics_a = 0.0;         // drawn beside the motors: on the battery current, turning no rotor
   bool telemetry = false;          // ESC telemetry: each rotor's speed at 10 Hz, 1 % noise
   double one_mass_kg = 0.0;        // every hover at this mass (0: the flights' varied payloads)
+  // Each flight's motors at their own temperature (the day's, 14-26 C), logged, and each rotor's
+  // thrust at a given command (1 + motor_per_c (T - 22 C)): motor_temperature's own law.
+  bool motor_temperature = false;
+  double motor_per_c = 0.0;
+  double motor_warming_c = 0.0;    // each flight's motors warm by this much, linearly over the flight
+  bool no_current = false;         // no battery current logged
+  // Each flight's rotors give (1 + flight_spread * a flight's own draw in -1.2..1) of their thrust:
+  // what a payload's hang and the day do to one flight and not to the next.
+  double flight_spread = 0.0;
 };
 
 // The rotors' thrust against speed, T = a n^2 (about 7000 rpm in hover), for the model and the
@@ -78,6 +87,9 @@ class SyntheticFlights : public ::testing::Test {
     flight.name = name;
     flight.streams.source = name;
     flight.streams.motors = 4;
+    const double motor_c = 14.0 + 3.0 * static_cast<double>(seed % 5);
+    static const double kFlightDraw[] = {0.6, 1.0, -0.8, 0.4, -1.2};
+    const double warm = (1.0 + world.motor_per_c * (motor_c - 22.0)) * (1.0 + world.flight_spread * kFlightDraw[seed % 5]);
     double t = 0.0;
     for (std::size_t s = 0; s < masses.size(); ++s) {
       const double mass = world.one_mass_kg > 0.0 ? world.one_mass_kg : masses[s];
@@ -91,7 +103,8 @@ class SyntheticFlights : public ::testing::Test {
         for (int pass = 0; pass < 3; ++pass) {
           current = 0.0;
           for (int k = 0; k < 4; ++k) {
-            const double factor = (k == world.weak_motor ? world.weak_factor : 1.0) * (1.0 - world.thrust_loss);
+            const double factor =
+                (k == world.weak_motor ? world.weak_factor : 1.0) * (1.0 - world.thrust_loss) * warm;
             pwm[k] = pwmFor(mass * pe::kStandardGravity / 4.0 / factor, esc_voltage) + world.esc_offset_us;
             current += motorCurrent(pwm[k] - world.esc_offset_us, esc_voltage) *
                        (k == world.weak_motor ? std::pow(world.weak_factor, 1.5) : 1.0);
@@ -116,8 +129,13 @@ class SyntheticFlights : public ::testing::Test {
           flight.streams.esc.push_back(esc);
         }
         if (i % 5 == 0) {
-          const double sensed_current = current + world.avionics_a + world.current_noise_a * current_noise(rng);
+          const double sensed_current = world.no_current ? std::nan("")
+                                                         : current + world.avionics_a + world.current_noise_a * current_noise(rng);
           flight.streams.battery.push_back({t, sensed, -sensed_current});  // PX4 through MAVROS: negated
+          if (world.motor_temperature) {
+            const double warming = world.motor_warming_c * t / (47.0 * static_cast<double>(masses.size()));
+            flight.streams.motor_temperature_c.push_back({t, motor_c + warming});
+          }
         }
         pe::ImuReading imu;
         imu.time_s = t;
@@ -606,6 +624,84 @@ TEST_F(SyntheticFlights, ReportsAmbiguousWhenTheFlightsCannotSeparateTwoEffects)
       EXPECT_EQ(effect.reason.rfind("ambiguous: ", 0), 0u) << effect.reason;
     }
   }
+}
+
+// Issue 33 point 5: a motor heating too small to move the thrust beyond healthy parts' spread
+// (0.2 %/C over the day's 14-26 C: at most 1.6 %) is named alone by its shape, which no part
+// gives; after a thrust loss it is not, since what a mis-shaped law of the first effect leaves
+// over has such a shape too (the family's development seeds: motor heating and the day's air
+// named beside supply resistances, ESC offsets and thrust losses that were not of their law).
+TEST_F(SyntheticFlights, AfterAFirstEffectASecondMustMoveTheThrustBeyondThePartsSpread) {
+  World warm;
+  warm.motor_temperature = true;
+  warm.motor_per_c = -0.002;
+  warm.no_current = true;
+  const gap::Diagnosis alone = diagnose(warm);
+  ASSERT_EQ(alone.selected, std::vector<Kind>{Kind::kMotorTemperature});
+  const gap::EffectResult& heating = alone.effects.at(static_cast<std::size_t>(Kind::kMotorTemperature));
+  EXPECT_EQ(heating.size.blocks_beyond, 0);
+  EXPECT_LE(heating.size.imitated_share, gap::PartsSpread().max_imitated_share);
+
+  World both = warm;
+  both.thrust_loss = 0.06;
+  both.telemetry = true;  // without the current, the RPM view tells the loss from an ESC offset
+  const gap::Diagnosis after = diagnose(both);
+  EXPECT_EQ(after.selected, std::vector<Kind>{Kind::kThrustLoss}) << gap::gapReportMarkdown(after, model_, "cmd");
+  const std::string& reason = after.effects.at(static_cast<std::size_t>(Kind::kMotorTemperature)).reason;
+  EXPECT_EQ(reason.rfind("not named: after thrust_loss, an effect must move the thrust beyond healthy parts' spread", 0),
+            0u)
+      << reason;
+}
+
+// A healthy flight's blocks err together (its payload's hang, its air): an effect read from a
+// signal that changes between flights, as the motors' temperature on three days, is known only
+// as well as three flights tell it, and the reference's interval says so.
+TEST_F(SyntheticFlights, AReferenceEffectReadBetweenFlightsIsKnownAsWellAsItsFlightsTellIt) {
+  World warm;
+  warm.motor_temperature = true;
+  warm.motor_per_c = -0.002;
+  warm.flight_spread = 0.01;
+  warm.no_current = true;
+  const std::vector<pe::Flight> all = flights(warm);
+  const std::vector<pe::Flight> three(all.begin(), all.begin() + 3);
+  const gap::ReferenceEffects reference = gap::fitReferenceEffects(model_, vehicle_, three, gap::DiagnosisConfig());
+  ASSERT_EQ(reference.count(Kind::kMotorTemperature), 1u);
+  const gap::ReferenceEffect& heating = reference.at(Kind::kMotorTemperature);
+  // Three flights at 17, 20 and 23 C, each 0.6-1 % off on its own: three points, each off by as
+  // much as the effect moves them (measured +-0.016 per C).
+  EXPECT_GT(heating.ci_half, 0.005);
+  EXPECT_LT(std::abs(heating.value - warm.motor_per_c), heating.ci_half);
+}
+
+// Which interval: the flights' jackknife only where the signal changes mostly between flights
+// (more than half its variance between the flights' means). The healthy flights at 17, 20 and 23 C
+// (a variance of 6 C^2 between them) warm by 6 C over each flight (3 C^2 within: 0.67 between)
+// or by 12 C (12 C^2 within: 0.33 between); each flight 0.6-1 % off on its own.
+TEST_F(SyntheticFlights, TheFlightsJackknifeIsUsedWhereTheSignalChangesMostlyBetweenFlights) {
+  World warm;
+  warm.motor_temperature = true;
+  warm.motor_per_c = -0.002;
+  warm.flight_spread = 0.01;
+  warm.no_current = true;
+  const auto referenceHalfWidth = [&](double warming_c) {
+    warm.motor_warming_c = warming_c;
+    const std::vector<pe::Flight> all = flights(warm);
+    const std::vector<pe::Flight> three(all.begin(), all.begin() + 3);
+    return gap::fitReferenceEffects(model_, vehicle_, three, gap::DiagnosisConfig()).at(Kind::kMotorTemperature).ci_half;
+  };
+  // Measured: +-0.0105 per C (the jackknife of three flights) and +-0.0007 (the fit's).
+  EXPECT_GT(referenceHalfWidth(6.0), 0.005);
+  EXPECT_LT(referenceHalfWidth(12.0), 0.002);
+}
+
+// A second effect that is there, and large, is still named beside the first.
+TEST_F(SyntheticFlights, ASecondEffectBeyondWhatTheFirstLawLeavesIsNamed) {
+  World world;
+  world.thrust_loss = 0.05;
+  world.supply_resistance = 0.08;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  EXPECT_EQ(std::set<Kind>(diagnosis.selected.begin(), diagnosis.selected.end()),
+            (std::set<Kind>{Kind::kThrustLoss, Kind::kSupplyResistance}));
 }
 
 TEST_F(SyntheticFlights, TheNestedHoldOutScoresEachFlightOnADiagnosisThatNeverSawIt) {
