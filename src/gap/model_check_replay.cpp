@@ -19,6 +19,7 @@ ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& v
   if (!replay.telemetry) return replay;
   const std::size_t motors = vehicle.rotors.size();
   std::vector<double> rpm_sum(motors, 0.0), current_sum(motors, 0.0);
+  double level_sum = 0.0;
   double next_report_s = 0.0;
   const offline::FlightFeed feed(streams);
   for (const offline::Arrival& a : feed.arrivals()) {
@@ -28,6 +29,7 @@ ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& v
     const ModelCheckReport report = session.modelCheck().report(a.time_s);
     if (report.verdict == ModelCheckVerdict::kNotJudged) continue;
     ++replay.judgements;
+    level_sum += report.median_rpm_ratio;
     for (std::size_t k = 0; k < motors; ++k) {
       rpm_sum[k] += report.motors[k].rpm_deviation;
       current_sum[k] += report.motors[k].current_deviation;
@@ -37,6 +39,7 @@ ModelCheckReplay replayModelCheck(const PropulsionModel& model, const Vehicle& v
     addOnce(&replay.verdicts, std::string(modelCheckVerdictName(report.verdict)));
     if (report.flagged_channel != 0) addOnce(&replay.flagged_channels, report.flagged_channel);
   }
+  if (replay.judgements > 0) replay.median_rpm_ratio = level_sum / replay.judgements;
   for (std::size_t k = 0; replay.judgements > 0 && k < motors; ++k) {
     replay.rpm_deviation.push_back(rpm_sum[k] / replay.judgements);
     replay.current_deviation.push_back(current_sum[k] / replay.judgements);

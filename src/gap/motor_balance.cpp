@@ -280,9 +280,11 @@ void learnEscBaseline(const PropulsionModel& model, const Vehicle& vehicle, cons
   plain.setMotorReference(std::nullopt);
   const std::size_t motors = vehicle.rotors.size();
   std::vector<double> rpm(motors, 0.0), current(motors, 0.0);
+  double level = 0.0;
   for (const Flight& flight : flights) {
     const ModelCheckReplay replay = replayModelCheck(plain, vehicle, flight.streams);
     if (replay.rpm_deviation.size() != motors) return;
+    level += replay.median_rpm_ratio / static_cast<double>(flights.size());
     for (std::size_t k = 0; k < motors; ++k) {
       rpm[k] += replay.rpm_deviation[k] / static_cast<double>(flights.size());
       current[k] += replay.current_deviation[k] / static_cast<double>(flights.size());
@@ -290,6 +292,7 @@ void learnEscBaseline(const PropulsionModel& model, const Vehicle& vehicle, cons
   }
   reference->esc_rpm_deviation = rpm;
   reference->esc_current_deviation = current;
+  reference->esc_rpm_level = level;
 }
 
 }  // namespace

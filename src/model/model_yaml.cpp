@@ -253,11 +253,11 @@ void writeRpmThrust(YAML::Emitter& out, const RpmThrust& fit) {
 }
 
 // motor_reference: {flights, shares: [...], share_std: [...], gap_std: [...]}, one entry per motor;
-// with ESC telemetry also esc_rpm_deviation and esc_current_deviation; with weighed steady flight
+// with ESC telemetry also esc_rpm_deviation, esc_current_deviation and esc_rpm_level; with weighed steady flight
 // thrust_factor, current_thrust_factor and rpm_thrust_factor (each where the view exists).
 MotorReference readMotorReference(const YamlMap& map) {
   map.allowOnly({"flights", "shares", "share_std", "gap_std", "esc_rpm_deviation", "esc_current_deviation",
-                 "thrust_factor", "current_thrust_factor", "rpm_thrust_factor"});
+                 "thrust_factor", "current_thrust_factor", "rpm_thrust_factor", "esc_rpm_level"});
   MotorReference reference;
   reference.flights = map.integer("flights");
   reference.shares = map.numbers("shares");
@@ -265,7 +265,8 @@ MotorReference readMotorReference(const YamlMap& map) {
   reference.gap_std = map.numbers("gap_std");
   for (const auto& [key, value] : {std::make_pair("thrust_factor", &reference.thrust_factor),
                                    std::make_pair("current_thrust_factor", &reference.current_thrust_factor),
-                                   std::make_pair("rpm_thrust_factor", &reference.rpm_thrust_factor)}) {
+                                   std::make_pair("rpm_thrust_factor", &reference.rpm_thrust_factor),
+                                   std::make_pair("esc_rpm_level", &reference.esc_rpm_level)}) {
     if (map.has(key)) *value = map.number(key);
   }
   if (map.has("esc_rpm_deviation") || map.has("esc_current_deviation")) {
@@ -280,7 +281,8 @@ void writeMotorReference(YAML::Emitter& out, const MotorReference& reference) {
   out << YAML::Key << "flights" << YAML::Value << reference.flights;
   for (const auto& [key, value] : {std::make_pair("thrust_factor", reference.thrust_factor),
                                    std::make_pair("current_thrust_factor", reference.current_thrust_factor),
-                                   std::make_pair("rpm_thrust_factor", reference.rpm_thrust_factor)}) {
+                                   std::make_pair("rpm_thrust_factor", reference.rpm_thrust_factor),
+                                   std::make_pair("esc_rpm_level", reference.esc_rpm_level)}) {
     if (!std::isnan(value)) out << YAML::Key << key << YAML::Value << formatNumber(value);
   }
   std::vector<std::pair<const char*, const std::vector<double>*>> lists = {

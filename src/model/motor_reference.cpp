@@ -31,6 +31,7 @@ void MotorReference::validate() const {
                          std::to_string(esc_current_deviation.size()) + " values for " + std::to_string(shares.size()) +
                          " shares (none or one per motor, both)");
   }
+  if (!std::isnan(esc_rpm_level)) requireWithin("motor_reference.esc_rpm_level", esc_rpm_level, 0.5, 1.5);
   for (std::size_t k = 0; k < esc_rpm_deviation.size(); ++k) {
     requireWithin("motor_reference.esc_rpm_deviation[" + std::to_string(k) + "]", esc_rpm_deviation[k], -0.5, 0.5);
     requireWithin("motor_reference.esc_current_deviation[" + std::to_string(k) + "]", esc_current_deviation[k], -0.5,

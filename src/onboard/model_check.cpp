@@ -92,13 +92,18 @@ ModelCheck::ModelCheck(std::vector<int> channels, ModelCheckConfig config)
   }
 }
 
-void ModelCheck::setBaseline(std::vector<double> rpm_deviation, std::vector<double> current_deviation) {
+void ModelCheck::setBaseline(std::vector<double> rpm_deviation, std::vector<double> current_deviation,
+                             double rpm_level) {
   if (rpm_deviation.size() != current_deviation.size() ||
       (!rpm_deviation.empty() && rpm_deviation.size() != motors_.size())) {
     throw std::invalid_argument("ESC baseline: " + std::to_string(rpm_deviation.size()) + " rpm and " +
                                 std::to_string(current_deviation.size()) + " current deviations for " +
                                 std::to_string(motors_.size()) + " rotors");
   }
+  if (!std::isnan(rpm_level) && !(rpm_level > 0.0)) {
+    throw std::invalid_argument("ESC baseline: rpm level " + std::to_string(rpm_level) + " is not positive");
+  }
+  baseline_rpm_level_ = std::isnan(rpm_level) ? 1.0 : rpm_level;
   baseline_log_rpm_.clear();
   baseline_log_current_.clear();
   for (std::size_t k = 0; k < rpm_deviation.size(); ++k) {
@@ -266,10 +271,11 @@ ModelCheckReport ModelCheck::report(double now_s) const {
     out.note = std::string(modelCheckVerdictName(out.verdict)) + " on channel " + std::to_string(out.flagged_channel) +
                ": rpm " + percent(1.0 + motor.rpm_deviation) + ", current " + percent(1.0 + motor.current_deviation) +
                (baseline_log_rpm_.empty() ? " against the other motors" : " against the other motors and its healthy flights");
-  } else if (std::fabs(out.median_rpm_ratio - 1.0) > config_.supply_tolerance) {
+  } else if (std::fabs(out.median_rpm_ratio / baseline_rpm_level_ - 1.0) > config_.supply_tolerance) {
     out.verdict = ModelCheckVerdict::kSupply;
     out.note = "every motor alike off the model: rpm " + percent(out.median_rpm_ratio) + ", current " +
-               percent(out.median_current_ratio);
+               percent(out.median_current_ratio) +
+               (baseline_rpm_level_ != 1.0 ? " (" + percent(baseline_rpm_level_) + " on its healthy flights)" : "");
   } else {
     out.note = "every motor within tolerance of the model: rpm " + percent(out.median_rpm_ratio) + ", current " +
                percent(out.median_current_ratio);

@@ -18,7 +18,7 @@ OnboardSession::OnboardSession(PropulsionModel model, Vehicle vehicle, const Onb
       model_check_(config.estimator.motor_channels, config.esc_telemetry) {
   const PropulsionModel& m = estimator_.model();
   if (const auto& reference = m.motorReference(); reference && !reference->esc_rpm_deviation.empty()) {
-    model_check_.setBaseline(reference->esc_rpm_deviation, reference->esc_current_deviation);
+    model_check_.setBaseline(reference->esc_rpm_deviation, reference->esc_current_deviation, reference->esc_rpm_level);
   }
   if (m.rpmThrust()) rpm_view_.emplace(*m.rpmThrust(), config.estimator.payload.averaging_window_s);
   if (config.mass_view == "rpm" && !m.rpmThrust()) {

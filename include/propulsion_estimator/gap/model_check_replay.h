@@ -26,6 +26,9 @@ struct ModelCheckReplay {
   /// (against the baseline, where the model's reference holds one); empty when never judged.
   std::vector<double> rpm_deviation;
   std::vector<double> current_deviation;  ///< see rpm_deviation
+  /// The mean over the judgements of the motors' median rpm against the model
+  /// (ModelCheckReport::median_rpm_ratio); NaN when never judged.
+  double median_rpm_ratio = kNaN;
 };
 
 /// Replays a flight's logged streams through the core Estimator (default configuration, channels

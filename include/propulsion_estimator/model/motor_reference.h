@@ -23,6 +23,11 @@ struct MotorReference {
   /// check judges each motor's change from these. Empty when the flights had no ESC telemetry.
   std::vector<double> esc_rpm_deviation;
   std::vector<double> esc_current_deviation;  ///< see esc_rpm_deviation
+  /// What the live ESC check saw of every motor together on those flights: the motors' median
+  /// hover rpm against the model (1 = as the model says), averaged over the flights. The day's
+  /// air, warm motors and the vehicle's parts move it; the check's "supply" verdict judges its
+  /// change from this. NaN when unknown (then against 1).
+  double esc_rpm_level = std::numeric_limits<double>::quiet_NaN();
   /// The vehicle's vertical thrust in steady flight on those flights (weighed mass times specific
   /// force) over the model's from the pulse widths: its parts, frame and propellers against the
   /// bench's. Effects are then judged as changes from it. NaN when unknown.

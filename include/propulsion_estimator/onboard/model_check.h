@@ -116,9 +116,12 @@ class ModelCheck {
   void addBattery(double receipt_s, double voltage_v);
   /// Judges each motor by its change from a healthy baseline (MotorReference's esc_rpm_deviation
   /// and esc_current_deviation, one per rotor): healthy motors differ by their parts, as much as
-  /// the tolerances. Empty lists: against the other motors alone. Throws std::invalid_argument
-  /// when the lists are not both empty or both one per rotor. Survives reset().
-  void setBaseline(std::vector<double> rpm_deviation, std::vector<double> current_deviation);
+  /// the tolerances. Empty lists: against the other motors alone. `rpm_level` (esc_rpm_level):
+  /// the motors' median rpm against the model on those flights, which the supply verdict judges
+  /// its change from (NaN: from 1). Throws std::invalid_argument when the lists are not both empty
+  /// or both one per rotor, or for a level not positive. Survives reset().
+  void setBaseline(std::vector<double> rpm_deviation, std::vector<double> current_deviation,
+                   double rpm_level = kNaN);
   /// Forgets every average and the supply resistance.
   void reset();
 
@@ -152,6 +155,7 @@ class ModelCheck {
   std::vector<Motor> motors_;
   std::vector<int> esc_to_motor_;  ///< rotor index of ESC i, -1 for none
   std::vector<double> baseline_log_rpm_, baseline_log_current_;  ///< per rotor; empty: no baseline
+  double baseline_rpm_level_ = 1.0;  ///< the healthy flights' median rpm against the model
   double estimate_receipt_s_ = kNaN;
   bool hovering_ = false;
   bool telemetry_seen_ = false;

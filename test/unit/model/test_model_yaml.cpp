@@ -417,6 +417,7 @@ TEST(ModelYaml, RoundTripsTheMotorReferencesEscDeviationsAndThrustFactors) {
   reference.esc_current_deviation = {-0.03, 0.025, -0.028, 0.027};
   reference.thrust_factor = 0.962;
   reference.rpm_thrust_factor = 0.981;
+  reference.esc_rpm_level = 1.027;
   model.setMotorReference(reference);
   const pe::PropulsionModel back = pe::parseModelYaml(pe::modelToYaml(model), "back.yaml");
   ASSERT_TRUE(back.motorReference());
@@ -425,6 +426,10 @@ TEST(ModelYaml, RoundTripsTheMotorReferencesEscDeviationsAndThrustFactors) {
   EXPECT_EQ(back.motorReference()->thrust_factor, 0.962);
   EXPECT_TRUE(std::isnan(back.motorReference()->current_thrust_factor));
   EXPECT_EQ(back.motorReference()->rpm_thrust_factor, 0.981);
+  EXPECT_EQ(back.motorReference()->esc_rpm_level, 1.027);
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, esc_rpm_level: 0, shares: [0.25, 0.25, 0.25, 0.25], "
+                             "share_std: [0, 0, 0, 0], gap_std: [0, 0, 0, 0]}\n"),
+            "m.yaml:31: motor_reference.esc_rpm_level: 0 is outside 0.5..1.5");
   EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, thrust_factor: 0.2, shares: [0.25, 0.25, 0.25, 0.25], "
                              "share_std: [0, 0, 0, 0], gap_std: [0, 0, 0, 0]}\n"),
             "m.yaml:31: motor_reference.thrust_factor: 0.2 is outside 0.5..1.5");

@@ -116,6 +116,32 @@ TEST(ModelCheck, JudgesEachMotorByItsChangeFromTheBaseline) {
   EXPECT_NE(report.note.find("against the other motors and its healthy flights"), std::string::npos) << report.note;
 }
 
+// A vehicle whose every motor turns 3 % slower than the model says on its healthy flights (its
+// parts, the day's air, warm motors) is no supply fault on every flight: against the level of its
+// healthy flights only a change counts, and a further 3 % since is one.
+TEST(ModelCheck, JudgesTheMotorsTogetherByTheirChangeFromTheHealthyLevel) {
+  const double slow_rpm[4] = {0.97, 0.97, 0.97, 0.97}, slow_current[4] = {0.92, 0.92, 0.92, 0.92};
+  pe::ModelCheck plain({1, 2, 3, 4}, {});
+  double t = 0.0;
+  feed(&plain, &t, 5.0, slow_rpm, slow_current);
+  EXPECT_EQ(plain.report(t).verdict, pe::ModelCheckVerdict::kSupply) << plain.report(t).note;
+
+  pe::ModelCheck check({1, 2, 3, 4}, {});
+  check.setBaseline({0, 0, 0, 0}, {0, 0, 0, 0}, 0.97);
+  t = 0.0;
+  feed(&check, &t, 5.0, slow_rpm, slow_current);
+  EXPECT_EQ(check.report(t).verdict, pe::ModelCheckVerdict::kConsistent) << check.report(t).note;
+
+  check.reset();
+  const double slower_rpm[4] = {0.94, 0.94, 0.94, 0.94}, slower_current[4] = {0.85, 0.85, 0.85, 0.85};
+  t = 0.0;
+  feed(&check, &t, 5.0, slower_rpm, slower_current);
+  const pe::ModelCheckReport report = check.report(t);
+  EXPECT_EQ(report.verdict, pe::ModelCheckVerdict::kSupply) << report.note;
+  EXPECT_NE(report.note.find("(-3.0 % on its healthy flights)"), std::string::npos) << report.note;
+  EXPECT_THROW(check.setBaseline({}, {}, 0.0), std::invalid_argument);
+}
+
 TEST(RpmMassView, SaysWhenTheBenchsAirStoodInForTheFlights) {
   pe::ModelCheck check({1, 2, 3, 4}, {});
   double t = 0.0;
