@@ -45,6 +45,10 @@ std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& confi
 // model's: is this the right model? nullopt otherwise (usable_data.cpp).
 std::optional<std::string> outsideTheDomain(const std::vector<Block>& blocks, const ModelDomain& domain, int motors);
 
+// A signal changes "mostly between flights" when more than this share of its variance over the
+// blocks lies between the flights' means (betweenFlightShare): a majority, not a calibration.
+constexpr double kMostlyBetweenFlights = 0.5;
+
 // Passes of revisitRounds at most: each pass stops at the first round that changed.
 constexpr int kMaxRevisitPasses = 6;
 
@@ -99,6 +103,8 @@ class Diagnoser {
   // Each effect fitted alone on these flights (a vehicle's healthy ones, with their own levels
   // from config.motor_reference) and the range of the signal it reads (fitReferenceEffects).
   ReferenceEffects fitEachAlone();
+
+ private:
   // The 95 % half-width of the last of `kinds`' parameters, fitted with the others, from each
   // flight left out in turn; 0 with fewer than three flights (reference_effects.cpp).
   double jackknifeHalfWidth(const std::vector<Kind>& kinds) const;
@@ -108,7 +114,6 @@ class Diagnoser {
   // The share of `signal`'s variance over the blocks between the flights' means (NaN without it).
   double betweenFlightShare(effects::Signal signal) const;
 
- private:
   // A diagnosis of the outer one's blocks kept only (`keep_block`, per block), seeing them through
   // `views`: fresh ones for the nested hold-out, the outer's (with its suspect's factor) for the
   // selection on steady blocks.

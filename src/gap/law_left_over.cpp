@@ -50,7 +50,7 @@ std::string Diagnoser::readBetweenFlightsAsBefore(Kind kind) const {
   const effects::Signal signal = effects::requiredSignal(kind);
   const auto healthy = config_.reference_effects.find(kind);
   if (signal == effects::Signal::kNone || healthy == config_.reference_effects.end() ||
-      !std::isfinite(healthy->second.signal_low) || !(betweenFlightShare(signal) >= 0.5)) {
+      !std::isfinite(healthy->second.signal_low) || !(betweenFlightShare(signal) > kMostlyBetweenFlights)) {
     return "";
   }
   std::vector<double> values;
@@ -89,7 +89,7 @@ std::string Diagnoser::leftOverOfLaw(Kind kind, const std::vector<Kind>& selecte
   }
   const FlexibleLaw& flexible = flexibleLaw(selected);
   const double p = signFlipPValue(groupImprovements(flexible.prediction, with), config_.permutations,
-                                  config_.seed + 7919u + static_cast<unsigned>(kind));
+                                  config_.seed + 7919u + static_cast<unsigned>(kind));  // a stream of its own
   if (ms < flexible.mean_square && p < config_.significance) return "";
   return "not taken: no better than " + earlier + " with a strength free to differ with the " + flexible.load +
          " (joint held-out error " + formatPrintf("%.2f", 100.0 * std::sqrt(ms)) + " % against " +

@@ -98,7 +98,7 @@ double Diagnoser::betweenFlightShare(effects::Signal signal) const {
 // The same holds for these flights' own fit when it is compared with the healthy flights'.
 double Diagnoser::flightsHalfWidth(const std::vector<Kind>& kinds, double fit_half) const {
   if (!config_.reference_effects.count(kinds.back()) ||
-      !(betweenFlightShare(effects::requiredSignal(kinds.back())) >= 0.5)) {
+      !(betweenFlightShare(effects::requiredSignal(kinds.back())) > kMostlyBetweenFlights)) {
     return fit_half;
   }
   return std::max(fit_half, jackknifeHalfWidth(kinds));
@@ -116,7 +116,7 @@ ReferenceEffects Diagnoser::fitEachAlone() {
     ReferenceEffect effect;
     effect.value = *fit.effects.parameter(kind);
     effect.ci_half = fit.ci_half.front();
-    if (betweenFlightShare(effects::requiredSignal(kind)) >= 0.5) {
+    if (betweenFlightShare(effects::requiredSignal(kind)) > kMostlyBetweenFlights) {
       effect.ci_half = std::max(effect.ci_half, jackknifeHalfWidth({kind}));
     }
     if (!std::isfinite(effect.value) || !std::isfinite(effect.ci_half)) continue;
