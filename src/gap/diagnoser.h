@@ -60,6 +60,19 @@ struct RoundOutcome {
   int round = 0;  // 0-based, its place in the forward selection
 };
 
+// The median of `signal` over the blocks that read it; NaN for Signal::kNone or none read.
+inline double signalMedian(const std::vector<const Block*>& blocks, effects::Signal signal) {
+  if (signal == effects::Signal::kNone) return kNaN;
+  std::vector<double> values;
+  for (const Block* block : blocks) {
+    const double value = block->signals.value(signal);
+    if (std::isfinite(value)) values.push_back(value);
+  }
+  if (values.empty()) return kNaN;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
 // Mean of the finite squares of `view` (per block; the PWM view's are all finite); NaN when none
 // is finite (no such view).
 inline double finiteMeanSquare(const std::vector<double>& view) {

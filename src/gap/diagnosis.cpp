@@ -9,22 +9,6 @@
 namespace propulsion_estimator {
 namespace gap {
 namespace detail {
-namespace {
-
-// The median of `signal` over the blocks that read it; NaN for Signal::kNone or none read.
-double signalMedian(const std::vector<const Block*>& blocks, effects::Signal signal) {
-  if (signal == effects::Signal::kNone) return kNaN;
-  std::vector<double> values;
-  for (const Block* block : blocks) {
-    const double value = block->signals.value(signal);
-    if (std::isfinite(value)) values.push_back(value);
-  }
-  if (values.empty()) return kNaN;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
-
-}  // namespace
 
 // The rotors' lag: given, or identified from the flights when it explains their transients.
 double Diagnoser::rotorLag() {

@@ -3,10 +3,10 @@
 // resistance rises with the current, a thrust loss that follows each rotor's loading, ESCs each
 // with its own gain leave a residual after the first correction, and a second effect that reads a
 // signal varying from flight to flight (the motors' temperature, the day's air) takes it up as
-// well as a real one would, with a shape no part gives. On the family's development seeds 5151,
-// 7001 and 7002 such leftovers moved the thrust by at most the parts' spread, or were read from
-// the day's air the healthy flights also flew in, while the real second effects (a translational
-// lift, a supply resistance beside an ESC offset) moved it by several times the spread. So a later
+// well as a real one would, with a shape no part gives. On the family's development seed 5151 such
+// leftovers named by their shape moved the thrust by 0.7-2.2 % (the parts' spread 2.8-3.2 %), those
+// named by their size (2.7-3.0 %) were read from the day's air the healthy flights also flew in,
+// and the real second effect there (a translational lift) moved it by 17-30 %. So a later
 // round names an effect only
 //  - by its size: beyond what healthy parts could give (the shape alone, which names a small
 //    first effect, does not name a later one);
@@ -53,18 +53,18 @@ std::string Diagnoser::readBetweenFlightsAsBefore(Kind kind) const {
       !std::isfinite(healthy->second.signal_low) || !(betweenFlightShare(signal) > kMostlyBetweenFlights)) {
     return "";
   }
-  std::vector<double> values;
+  const double median = signalMedian(all_, signal);
+  double lowest = median, highest = median;
   for (const Block* block : all_) {
     const double value = block->signals.value(signal);
-    if (std::isfinite(value)) values.push_back(value);
+    if (!std::isfinite(value)) continue;
+    lowest = std::min(lowest, value);
+    highest = std::max(highest, value);
   }
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  const double median = values[values.size() / 2];
-  const auto [lowest, highest] = std::minmax_element(values.begin(), values.end());
   // Three healthy flights span a narrow range of the day's air: the day-to-day spread these
   // flights show themselves is as ordinary, and a site far from home lies beyond both.
   const double low = healthy->second.signal_low, high = healthy->second.signal_high;
-  const double width = std::max(high - low, *highest - *lowest);
+  const double width = std::max(high - low, highest - lowest);
   if (median < low - width || median > high + width) return "";
   return "its signal changes mostly between flights and stays where the vehicle's healthy flights read it (median " +
          formatPrintf("%.4g", median) + " against " + formatPrintf("%.4g", low) + ".." + formatPrintf("%.4g", high) +

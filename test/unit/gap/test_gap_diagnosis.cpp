@@ -674,7 +674,8 @@ TEST_F(SyntheticFlights, AReferenceEffectReadBetweenFlightsIsKnownAsWellAsItsFli
     EXPECT_EQ(effects.count(Kind::kMotorTemperature), 1u);
     return effects.count(Kind::kMotorTemperature) ? effects.at(Kind::kMotorTemperature) : gap::ReferenceEffect{};
   };
-  // Measured: +-0.016 per C and +-0.0105 (the jackknife of three flights), +-0.0007 (the fit's).
+  // Measured: +-0.016 and +-0.0105 per C (the jackknife of three flights) still and warming 6 C;
+  // +-0.0007 (the fit's) warming 12 C.
   const gap::ReferenceEffect still = reference(0.0);
   EXPECT_GT(still.ci_half, 0.005);
   EXPECT_LT(std::abs(still.value - warm.motor_per_c), still.ci_half);
