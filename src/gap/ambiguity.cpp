@@ -65,6 +65,10 @@ void Diagnoser::finishReasons(std::map<Kind, EffectResult>* results) const {
                       formatPrintf("%.3f", ambiguity.swap_p_value) + "): not named";
     }
   }
+  for (Kind kind : background_) {
+    EffectResult& result = (*results)[kind];
+    result.reason = "modelled as the vehicle's own, " + result.reason;
+  }
   for (auto& [kind, result] : *results) {
     const bool working = std::find(working_.begin(), working_.end(), kind) != working_.end();
     if (result.testable && !working && result.reason == "passes every test") {

@@ -51,6 +51,8 @@ constexpr double kMostlyBetweenFlights = 0.5;
 
 // Passes of revisitRounds at most: each pass stops at the first round that changed.
 constexpr int kMaxRevisitPasses = 6;
+// At most this many of the vehicle's own effects are modelled as the background (not named).
+constexpr int kMaxBackgroundEffects = 2;
 
 // What one round of the selection chose: its leader and, when the flights cannot tell it from
 // other candidates, the group.
@@ -203,9 +205,12 @@ class Diagnoser {
   HeldOutPrediction revisitRounds(std::vector<RoundOutcome>* rounds, std::map<Kind, EffectResult>* results);
   // One round of the forward selection: every candidate tried on top of `selected`; the best one
   // that passes every test, or nullopt.
+  // `own`, when given: the best candidate that passed the tests of improvement and was refused only
+  // as the vehicle's own (within the parts' spread, or no change from its healthy flights).
   std::optional<Kind> selectionRound(int round, const std::vector<Kind>& selected, const HeldOutPrediction& current,
                                      std::map<Kind, EffectResult>* results,
-                                     std::map<Kind, HeldOutPrediction>* admissible);
+                                     std::map<Kind, HeldOutPrediction>* admissible,
+                                     std::optional<Kind>* own = nullptr);
   // Why a candidate that lowers nothing enough was not taken, in the numbers the tests used.
   std::string notSignificant(const EffectResult& result, double base_pwm_rmse_pct, double drop_pct,
                              double mean_square_ratio) const;
@@ -235,7 +240,8 @@ class Diagnoser {
   std::vector<const Block*> all_;
   std::vector<int> unit_of_block_;  // the held-out unit (flight or segment) of each block
   std::vector<std::string> unit_names_;  // of each unit: the flight's name, or "flight#segment"
-  std::vector<Kind> working_;  // the effects the correction uses: selected and ambiguous leaders
+  std::vector<Kind> working_;  // the effects the correction uses: background, selected and ambiguous leaders
+  std::vector<Kind> background_;  // the vehicle's own effects, modelled but not named
   std::set<Kind> grouped_;     // members of an ambiguous group: not tried again
   std::map<std::vector<Kind>, FlexibleLaw> flexible_laws_;  // by the effects fitted flexibly
   int units_ = 0;

@@ -109,6 +109,8 @@ void emitSelection(YAML::Emitter& out, const Diagnosis& diagnosis) {
   out << YAML::Key << "selected" << YAML::Value << YAML::Flow << YAML::BeginSeq;
   for (effects::Kind kind : diagnosis.selected) out << effects::kindName(kind);
   out << YAML::EndSeq;
+  out << YAML::Key << "background" << YAML::Value << YAML::Flow << kindNames(diagnosis.background);
+
   out << YAML::Key << "ambiguous" << YAML::Value << YAML::BeginSeq;
   for (const Ambiguity& ambiguity : diagnosis.ambiguous) out << YAML::Flow << kindNames(ambiguity.kinds);
   out << YAML::EndSeq;
@@ -372,6 +374,15 @@ void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
     md << ".\n\n";
     for (effects::Kind kind : diagnosis.selected) md << "- `" << effects::kindName(kind) << "`: " << effects::describe(kind).meaning << ".\n";
     md << "\n";
+  }
+  if (!diagnosis.background.empty()) {
+    md << "**Modelled, not named:** ";
+    for (std::size_t k = 0; k < diagnosis.background.size(); ++k) {
+      md << (k ? ", " : "") << "`" << effects::kindName(diagnosis.background[k]) << "`";
+    }
+    md << ": the vehicle's own (no change from its healthy flights, or within its parts' spread; the line above says "
+          "which), in the correction and beneath the effects tried after it, so that what it explains does not hide "
+          "a small effect.\n\n";
   }
   for (const Ambiguity& ambiguity : diagnosis.ambiguous) {
     md << "**Ambiguous: one of ";

@@ -138,7 +138,10 @@ ReferenceEffects Diagnoser::fitEachAlone() {
 
 ReferenceEffects fitReferenceEffects(const PropulsionModel& model, const Vehicle& vehicle,
                                      const std::vector<Flight>& flights, const DiagnosisConfig& config) {
-  return detail::Diagnoser(model, vehicle, flights, config, {}).fitEachAlone();
+  // The healthy flights are fitted against the bench model alone, whatever was learned before.
+  DiagnosisConfig own = config;
+  own.reference_effects.clear();
+  return detail::Diagnoser(model, vehicle, flights, own, {}).fitEachAlone();
 }
 
 }  // namespace gap

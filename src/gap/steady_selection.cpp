@@ -29,6 +29,8 @@ HeldOutPrediction Diagnoser::select(const HeldOutPrediction& before, std::map<Ki
   Diagnoser steady(*this, steady_, views_);
   steady.selectEffects(steady.predictHeldOut({}), results);
   working_ = steady.working_;
+  background_ = steady.background_;
+  diagnosis_.background = steady.diagnosis_.background;
   grouped_ = steady.grouped_;
   diagnosis_.selected = steady.diagnosis_.selected;
   diagnosis_.ambiguous = steady.diagnosis_.ambiguous;

@@ -261,7 +261,11 @@ struct Diagnosis {
   /// Groups of effects one of which explains part of the gap, but which these flights cannot tell
   /// apart; none of them is in `selected`.
   std::vector<Ambiguity> ambiguous;
-  /// The selected effects and each ambiguous group's leader, fitted on all flights: the best
+  /// The vehicle's own effects (the day's air, its motors' warming): significant on these flights
+  /// but no change from its healthy flights or within its parts' spread, so not named; modelled
+  /// beneath the named ones so that a small effect is not hidden in what they explain.
+  std::vector<effects::Kind> background;
+  /// The background, the selected effects and each ambiguous group's leader, fitted on all flights: the best
   /// prediction, whatever the name, on top of the reference's thrust factor (correctedEffects).
   effects::ModelEffects fitted;
   HeldOut heldout;  ///< scores on held-out flights before and after them

@@ -349,12 +349,40 @@ TEST_F(SyntheticFlights, AnEffectTheHealthyFlightsShowAlikeIsNotNamed) {
   const gap::Diagnosis same = gap::diagnoseGap(model_, vehicle_, flights(wired), config);
   EXPECT_TRUE(same.selected.empty());
   const gap::EffectResult& wiring = same.effects.at(static_cast<std::size_t>(Kind::kSupplyResistance));
-  EXPECT_NE(wiring.reason.find("no change from the vehicle's healthy flights"), std::string::npos) << wiring.reason;
+  EXPECT_EQ(wiring.reason.rfind("modelled as the vehicle's own, not named: no change from the vehicle's healthy flights", 0),
+            0u)
+      << wiring.reason;
+  // Not named, but modelled: the correction carries it.
+  EXPECT_EQ(same.background, std::vector<Kind>{Kind::kSupplyResistance});
+  EXPECT_NEAR(same.fitted.parameter(Kind::kSupplyResistance).value_or(0.0), 0.04, 0.01);
+  EXPECT_LT(same.heldout.after_rmse_pct, 0.5 * same.heldout.before_rmse_pct);
+  EXPECT_NE(gap::gapReportYaml(same).find("background: [supply_resistance]"), std::string::npos);
+  EXPECT_NE(gap::gapReportMarkdown(same, model_, "cmd").find("**Modelled, not named:** `supply_resistance`"),
+            std::string::npos);
 
   World worse = wired;
   worse.supply_resistance = 0.12;
   const gap::Diagnosis since = gap::diagnoseGap(model_, vehicle_, flights(worse), config);
   EXPECT_EQ(since.selected, std::vector<Kind>{Kind::kSupplyResistance});
+}
+
+// ESCs 6 us off the bench's, within what healthy parts give (10 us): no finding, but modelled, so
+// that what they explain is not left in the error a small effect must beat; the correction
+// carries the offset.
+TEST_F(SyntheticFlights, AnEffectWithinThePartsSpreadIsModelledUnnamed) {
+  World parts;
+  parts.esc_offset_us = 6.0;
+  parts.no_current = true;
+  const gap::Diagnosis alone = diagnose(parts);
+  EXPECT_TRUE(alone.selected.empty()) << gap::gapReportMarkdown(alone, model_, "cmd");
+  EXPECT_EQ(alone.background, std::vector<Kind>{Kind::kEscOffset});
+  EXPECT_NEAR(alone.fitted.parameter(Kind::kEscOffset).value_or(0.0), 6.0, 1.5);
+  EXPECT_LT(alone.heldout.after_rmse_pct, 0.5 * alone.heldout.before_rmse_pct);
+  const std::string& reason = alone.effects.at(static_cast<std::size_t>(Kind::kEscOffset)).reason;
+  EXPECT_EQ(reason.rfind("modelled as the vehicle's own, not named: changes the thrust by at most", 0), 0u) << reason;
+  EXPECT_NE(gap::gapReportYaml(alone).find("background: [esc_offset]"), std::string::npos);
+  EXPECT_NE(gap::gapReportMarkdown(alone, model_, "cmd").find("**Modelled, not named:** `esc_offset`"),
+            std::string::npos);
 }
 
 TEST_F(SyntheticFlights, WithoutGeometryAWeakMotorIsNotNamedAsAnEffect) {
