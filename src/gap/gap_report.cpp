@@ -380,9 +380,9 @@ void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
     for (std::size_t k = 0; k < diagnosis.background.size(); ++k) {
       md << (k ? ", " : "") << "`" << effects::kindName(diagnosis.background[k]) << "`";
     }
-    md << ": the vehicle's own (no change from its healthy flights, or within its parts' spread; the line above says "
-          "which), in the correction and beneath the effects tried after it, so that what it explains does not hide "
-          "a small effect.\n\n";
+    md << ": the vehicle's own (no change from its healthy flights, or within its parts' spread: its line in the "
+          "table above says which), in the correction and beneath the effects tried after it, so that what it "
+          "explains does not hide a small effect.\n\n";
   }
   for (const Ambiguity& ambiguity : diagnosis.ambiguous) {
     md << "**Ambiguous: one of ";
