@@ -389,13 +389,15 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
     std::map<Kind, HeldOutPrediction> admissible;
     std::optional<Kind> own;
     const std::optional<Kind> best = selectionRound(round, working_, current, results, &admissible, &own);
-    if (!best && own && rounds.empty() && static_cast<int>(background_.size()) < kMaxBackgroundEffects) {
+    const bool own_first = own && (!best || (*results)[*own].joint_rmse_pct < (*results)[*best].joint_rmse_pct);
+    if (own_first && rounds.empty() && static_cast<int>(background_.size()) < kMaxBackgroundEffects) {
       // The vehicle's own effect (the day's air, its motors' warming, parts within their spread)
-      // is no finding, but left in the error it hides a small effect that is one: it is modelled,
-      // unnamed, and the round tried again on top of it. Only when no candidate passes (modelled
-      // first whenever it explains more, it took a real motor heating's place on development seed
-      // 5151), and only before a first effect is named: after one, what its law leaves over is
-      // what the background would take up (law_left_over.cpp).
+      // is no finding, but left in the error it hides a small effect that is one, and where it
+      // explains more than any candidate that passes, naming that candidate would name what the
+      // vehicle's own leaves (an ESC offset within the parts' spread named as a supply resistance
+      // on development seed 7002): it is modelled, unnamed, and the round tried again on top of
+      // it. Only before a first effect is named: after one, what its law leaves over is what the
+      // background would take up (law_left_over.cpp).
       background_.push_back(*own);
       adopt(rounds);
       current = predictHeldOut(working_);
