@@ -198,6 +198,8 @@ class Diagnoser {
   Breakdown phase(const BlockView& pwm_view) const;
   void balanceMotors();
   HeldOutPrediction selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
+  // Prefixes the trace's steps from `first_step` on with the background they ran on top of.
+  void markOnBackground(std::size_t first_step);
   // working_, grouped_ and the diagnosis' selected and ambiguous lists from the rounds' outcomes.
   void adopt(const std::vector<RoundOutcome>& rounds);
   // Each round chosen again with the other rounds' effects in, until nothing changes; the held-out

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "diagnoser.h"
+#include "propulsion_estimator/common/name_list.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -388,7 +389,9 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
   for (int round = 0; can_hold_out && round < config_.max_effects; ++round) {
     std::map<Kind, HeldOutPrediction> admissible;
     std::optional<Kind> own;
+    const std::size_t first_step = diagnosis_.trace.size();
     const std::optional<Kind> best = selectionRound(round, working_, current, results, &admissible, &own);
+    if (!background_.empty() && rounds.empty()) markOnBackground(first_step);
     const bool own_first = own && (!best || (*results)[*own].joint_rmse_pct < (*results)[*best].joint_rmse_pct);
     if (own_first && rounds.empty() && static_cast<int>(background_.size()) < kMaxBackgroundEffects) {
       // The vehicle's own effect (the day's air, its motors' warming, parts within their spread)
@@ -422,6 +425,17 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
   }
   finishReasons(results);
   return current;
+}
+
+// The trace's steps from `first_step` on ran with the background in: the report shows the first
+// round twice, without it and on top of it.
+void Diagnoser::markOnBackground(std::size_t first_step) {
+  std::vector<std::string> names;
+  for (Kind kind : background_) names.push_back(effects::kindName(kind));
+  for (std::size_t step = first_step; step < diagnosis_.trace.size(); ++step) {
+    diagnosis_.trace[step].verdict =
+        "with " + nameList(names, 3) + " modelled as the vehicle's own: " + diagnosis_.trace[step].verdict;
+  }
 }
 
 // The effects the rounds chose, as the correction and the report take them.

@@ -51,6 +51,13 @@ std::vector<std::string> kindNames(const std::vector<effects::Kind>& kinds) {
   return names;
 }
 
+// The effects' names as Markdown code, joined: "`a`, `b`".
+std::string codeList(const std::vector<effects::Kind>& kinds) {
+  std::vector<std::string> names;
+  for (effects::Kind kind : kinds) names.push_back("`" + std::string(effects::kindName(kind)) + "`");
+  return joined(names);
+}
+
 void emitNested(YAML::Emitter& out, const NestedHoldOut& nested) {
   out << YAML::Key << "nested" << YAML::Value << YAML::BeginMap;
   if (!nested.unavailable.empty()) {
@@ -110,7 +117,6 @@ void emitSelection(YAML::Emitter& out, const Diagnosis& diagnosis) {
   for (effects::Kind kind : diagnosis.selected) out << effects::kindName(kind);
   out << YAML::EndSeq;
   out << YAML::Key << "background" << YAML::Value << YAML::Flow << kindNames(diagnosis.background);
-
   out << YAML::Key << "ambiguous" << YAML::Value << YAML::BeginSeq;
   for (const Ambiguity& ambiguity : diagnosis.ambiguous) out << YAML::Flow << kindNames(ambiguity.kinds);
   out << YAML::EndSeq;
@@ -376,20 +382,12 @@ void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
     md << "\n";
   }
   if (!diagnosis.background.empty()) {
-    md << "**Modelled, not named:** ";
-    for (std::size_t k = 0; k < diagnosis.background.size(); ++k) {
-      md << (k ? ", " : "") << "`" << effects::kindName(diagnosis.background[k]) << "`";
-    }
-    md << ": the vehicle's own (no change from its healthy flights, or within its parts' spread: its line in the "
+    md << "**Modelled, not named:** " << codeList(diagnosis.background) << ": the vehicle's own (no change from its healthy flights, or within its parts' spread: its line in the "
           "table above says which), in the correction and beneath the effects tried after it, so that what it "
           "explains does not hide a small effect.\n\n";
   }
   for (const Ambiguity& ambiguity : diagnosis.ambiguous) {
-    md << "**Ambiguous: one of ";
-    for (std::size_t k = 0; k < ambiguity.kinds.size(); ++k) {
-      md << (k ? ", " : "") << "`" << effects::kindName(ambiguity.kinds[k]) << "`";
-    }
-    md << "** explains part of the gap, but these flights cannot tell which: swapping the leader for the runner-up "
+    md << "**Ambiguous: one of " << codeList(ambiguity.kinds) << "** explains part of the gap, but these flights cannot tell which: swapping the leader for the runner-up "
           "raises the joint held-out error by only "
        << formatPrintf("%.3f", ambiguity.swap_loss_pct) << " points (sign-flip p = "
        << formatPrintf("%.3f", ambiguity.swap_p_value) << "). The correction uses the leader. The flight that would "

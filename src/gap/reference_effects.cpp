@@ -138,10 +138,7 @@ ReferenceEffects Diagnoser::fitEachAlone() {
 
 ReferenceEffects fitReferenceEffects(const PropulsionModel& model, const Vehicle& vehicle,
                                      const std::vector<Flight>& flights, const DiagnosisConfig& config) {
-  // The healthy flights are fitted against the bench model alone, whatever was learned before.
-  DiagnosisConfig own = config;
-  own.reference_effects.clear();
-  return detail::Diagnoser(model, vehicle, flights, own, {}).fitEachAlone();
+  return detail::Diagnoser(model, vehicle, flights, config, {}).fitEachAlone();
 }
 
 }  // namespace gap
