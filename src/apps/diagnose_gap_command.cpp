@@ -97,17 +97,12 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
     const auto given = options.sources.find(name);
     return given == options.sources.end() ? std::string(usual) : given->second;
   };
-  using effects::Signal;
-  config.signal_sources = {
-      {Signal::kBatteryCurrent, source("battery", kBatteryTopic) + " (current)"},
-      {Signal::kAirDensity,
-       source("static_pressure", kStaticPressureTopic) + " and " + source("air_temperature", kAirTemperatureTopic)},
-      {Signal::kHeight, source("rangefinder", kRangefinderTopic)},
-      {Signal::kMotorTemperature, source("motor_temperature", kMotorTemperatureTopic)},
-      {Signal::kVerticalSpeed, source("velocity", kVelocityTopic)},
-      {Signal::kHorizontalSpeed, source("velocity", kVelocityTopic)},
-      {Signal::kAxialSpeed, source("velocity", kVelocityTopic) + " and " + source("imu", kImuTopic)},
-  };
+  config.signal_sources.battery = source("battery", kBatteryTopic);
+  config.signal_sources.velocity = source("velocity", kVelocityTopic);
+  config.signal_sources.imu = source("imu", kImuTopic);
+  for (input::Scalar scalar : input::kAllScalars) {
+    config.signal_sources.inputs[input::index(scalar)] = source(input::spec(scalar).name, input::spec(scalar).topic);
+  }
   return config;
 }
 

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "propulsion_estimator/SimTruth.h"
+#include "propulsion_estimator/common/input_signal.h"
 #include "propulsion_estimator/codecs/esc_telemetry_codec.h"
 #include "propulsion_estimator/codecs/rcout_codec.h"
 
@@ -134,10 +135,12 @@ void BagFlightSink::staticPressure(const sim::ScalarSample& sample) {
   msg.header = header(stamp(sample.time_s), sample.frame_id);
   msg.fluid_pressure = sample.value;
   msg.variance = sample.sigma * sample.sigma;
-  bag_.write(kStaticPressureTopic, msg.header.stamp, msg);
+  bag_.write(input::spec(input::Scalar::kStaticPressure).topic, msg.header.stamp, msg);
 }
 
-void BagFlightSink::airTemperature(const sim::ScalarSample& sample) { writeTemperature(kAirTemperatureTopic, sample); }
+void BagFlightSink::airTemperature(const sim::ScalarSample& sample) {
+  writeTemperature(input::spec(input::Scalar::kAirTemperature).topic, sample);
+}
 
 void BagFlightSink::rangefinder(const sim::RangeSample& sample) {
   sensor_msgs::Range msg;
@@ -147,11 +150,11 @@ void BagFlightSink::rangefinder(const sim::RangeSample& sample) {
   msg.min_range = static_cast<float>(sample.min_range_m);
   msg.max_range = static_cast<float>(sample.max_range_m);
   msg.range = static_cast<float>(sample.range_m);
-  bag_.write(kRangefinderTopic, msg.header.stamp, msg);
+  bag_.write(input::spec(input::Scalar::kRangefinder).topic, msg.header.stamp, msg);
 }
 
 void BagFlightSink::motorTemperature(const sim::ScalarSample& sample) {
-  writeTemperature(kMotorTemperatureTopic, sample);
+  writeTemperature(input::spec(input::Scalar::kMotorTemperature).topic, sample);
 }
 
 void BagFlightSink::writeTemperature(const char* topic, const sim::ScalarSample& sample) {

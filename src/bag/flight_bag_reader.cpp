@@ -35,10 +35,7 @@ enum class Signal {
   kImu,
   kPose,
   kVelocity,
-  kStaticPressure,
-  kAirTemperature,
-  kRangefinder,
-  kMotorTemperature,
+  kInput,  // a scalar input: Source::scalar says which
   kEscTelemetry,
   kEscStatus
 };
@@ -50,6 +47,7 @@ struct Source {
   std::string datatype;
   std::string md5sum;
   bool required;
+  input::Scalar scalar = input::Scalar::kStaticPressure;  // for Signal::kInput
 };
 
 template <typename Message>
@@ -58,18 +56,29 @@ Source sourceOf(Signal signal, const std::string& topic, bool required = false) 
           ros::message_traits::MD5Sum<Message>::value(), required};
 }
 
+Source inputSource(input::Scalar scalar, const std::string& topic) {
+  Source source;
+  switch (input::spec(scalar).message) {
+    case input::Message::kFluidPressure: source = sourceOf<sensor_msgs::FluidPressure>(Signal::kInput, topic); break;
+    case input::Message::kTemperature: source = sourceOf<sensor_msgs::Temperature>(Signal::kInput, topic); break;
+    case input::Message::kRange: source = sourceOf<sensor_msgs::Range>(Signal::kInput, topic); break;
+  }
+  source.scalar = scalar;
+  return source;
+}
+
 std::vector<Source> sourcesOf(const FlightBagTopics& topics) {
-  return {{Signal::kRcOut, &topics.rc_out, kRcOutDataType, kRcOutMd5Sum, true},
-          sourceOf<sensor_msgs::BatteryState>(Signal::kBattery, topics.battery, true),
-          sourceOf<sensor_msgs::Imu>(Signal::kImu, topics.imu),
-          sourceOf<geometry_msgs::PoseStamped>(Signal::kPose, topics.pose),
-          sourceOf<geometry_msgs::TwistStamped>(Signal::kVelocity, topics.velocity),
-          sourceOf<sensor_msgs::FluidPressure>(Signal::kStaticPressure, topics.static_pressure),
-          sourceOf<sensor_msgs::Temperature>(Signal::kAirTemperature, topics.air_temperature),
-          sourceOf<sensor_msgs::Range>(Signal::kRangefinder, topics.rangefinder),
-          sourceOf<sensor_msgs::Temperature>(Signal::kMotorTemperature, topics.motor_temperature),
-          {Signal::kEscTelemetry, &topics.esc_telemetry, kEscTelemetryDataType, kEscTelemetryMd5Sum, false},
-          {Signal::kEscStatus, &topics.esc_status, kEscStatusDataType, kEscStatusMd5Sum, false}};
+  std::vector<Source> sources = {{Signal::kRcOut, &topics.rc_out, kRcOutDataType, kRcOutMd5Sum, true},
+                                 sourceOf<sensor_msgs::BatteryState>(Signal::kBattery, topics.battery, true),
+                                 sourceOf<sensor_msgs::Imu>(Signal::kImu, topics.imu),
+                                 sourceOf<geometry_msgs::PoseStamped>(Signal::kPose, topics.pose),
+                                 sourceOf<geometry_msgs::TwistStamped>(Signal::kVelocity, topics.velocity)};
+  for (input::Scalar scalar : input::kAllScalars) {
+    sources.push_back(inputSource(scalar, topics.inputs[input::index(scalar)]));
+  }
+  sources.push_back({Signal::kEscTelemetry, &topics.esc_telemetry, kEscTelemetryDataType, kEscTelemetryMd5Sum, false});
+  sources.push_back({Signal::kEscStatus, &topics.esc_status, kEscStatusDataType, kEscStatusMd5Sum, false});
+  return sources;
 }
 
 // Whether a serialized sensor_msgs/BatteryState's float32[] arrays (cell_voltage,
@@ -111,9 +120,9 @@ class StreamBuilder {
 
   // Decodes one message of `signal`; false with the reason in `error` for a malformed one or an
   // RCOut message with too few channels.
-  bool add(Signal signal, double time_s, std::uint8_t* data, std::uint32_t size, std::string* error) {
+  bool add(const Source& source, double time_s, std::uint8_t* data, std::uint32_t size, std::string* error) {
     ros::serialization::IStream stream(data, size);
-    switch (signal) {
+    switch (source.signal) {
       case Signal::kRcOut:
         return addRcOut(time_s, data, size, error);
       case Signal::kBattery:
@@ -141,33 +150,38 @@ class StreamBuilder {
         streams_->vertical_speed_m_s.push_back({time_s, velocity_.twist.linear.z});
         streams_->horizontal_velocity.push_back({time_s, velocity_.twist.linear.x, velocity_.twist.linear.y});
         return true;
-      case Signal::kStaticPressure:
-        ros::serialization::deserialize(stream, pressure_);
-        streams_->static_pressure_pa.push_back({time_s, pressure_.fluid_pressure});
-        return true;
-      case Signal::kAirTemperature:
-        ros::serialization::deserialize(stream, temperature_);
-        streams_->air_temperature_c.push_back({time_s, temperature_.temperature});
-        return true;
-      case Signal::kRangefinder:
-        ros::serialization::deserialize(stream, range_);
-        // REP-117: -inf and +inf say below and beyond the sensor's reach; NaN fails both tests.
-        if (range_.range >= range_.min_range && range_.range <= range_.max_range) {
-          streams_->height_above_ground_m.push_back({time_s, range_.range});
-        }
-        return true;
-      case Signal::kMotorTemperature:
-        ros::serialization::deserialize(stream, temperature_);
-        streams_->motor_temperature_c.push_back({time_s, temperature_.temperature});
+      case Signal::kInput:
+        addInput(source.scalar, time_s, stream);
         return true;
       case Signal::kEscTelemetry:
       case Signal::kEscStatus:
-        return addEsc(signal == Signal::kEscStatus, time_s, data, size, error);
+        return addEsc(source.signal == Signal::kEscStatus, time_s, data, size, error);
     }
     return true;
   }
 
  private:
+  void addInput(input::Scalar scalar, double time_s, ros::serialization::IStream& stream) {
+    std::vector<ScalarReading>& readings = streams_->input(scalar);
+    switch (input::spec(scalar).message) {
+      case input::Message::kFluidPressure:
+        ros::serialization::deserialize(stream, pressure_);
+        readings.push_back({time_s, pressure_.fluid_pressure});
+        return;
+      case input::Message::kTemperature:
+        ros::serialization::deserialize(stream, temperature_);
+        readings.push_back({time_s, temperature_.temperature});
+        return;
+      case input::Message::kRange:
+        ros::serialization::deserialize(stream, range_);
+        // REP-117: -inf and +inf say below and beyond the sensor's reach; NaN fails both tests.
+        if (range_.range >= range_.min_range && range_.range <= range_.max_range) {
+          readings.push_back({time_s, range_.range});
+        }
+        return;
+    }
+  }
+
   bool addRcOut(double time_s, const std::uint8_t* data, std::uint32_t size, std::string* error) {
     if (!RcOutDecoder::decodePayload(data, size, &rc_out_, error)) return false;
     if (static_cast<int>(rc_out_.channels.size()) < motors_) {
@@ -229,10 +243,7 @@ void reserve(const rosbag::Bag& bag, const Source& source, FlightStreams* stream
     case Signal::kVelocity:
       reserveFor(bag, topic, &streams->horizontal_velocity);
       return reserveFor(bag, topic, &streams->vertical_speed_m_s);
-    case Signal::kStaticPressure: return reserveFor(bag, topic, &streams->static_pressure_pa);
-    case Signal::kAirTemperature: return reserveFor(bag, topic, &streams->air_temperature_c);
-    case Signal::kRangefinder: return reserveFor(bag, topic, &streams->height_above_ground_m);
-    case Signal::kMotorTemperature: return reserveFor(bag, topic, &streams->motor_temperature_c);
+    case Signal::kInput: return reserveFor(bag, topic, &streams->input(source.scalar));
     case Signal::kEscTelemetry:
     case Signal::kEscStatus: return reserveFor(bag, topic, &streams->esc);
   }
@@ -252,11 +263,11 @@ std::mutex& bagLifetimeMutex() {
 const std::vector<std::string>& FlightBagTopics::names() { return flightSignalNames(); }
 
 std::string* FlightBagTopics::find(const std::string& name) {
-  std::string* const topics[] = {&rc_out,          &battery,         &imu,         &pose,
-                                 &velocity,        &static_pressure, &air_temperature, &rangefinder,
-                                 &motor_temperature, &esc_telemetry, &esc_status};
-  for (std::size_t i = 0; i < names().size(); ++i) {
-    if (names()[i] == name) return topics[i];
+  if (const auto scalar = input::scalarFromName(name)) return &inputs[input::index(*scalar)];
+  std::string* const topics[] = {&rc_out, &battery, &imu, &pose, &velocity, &esc_telemetry, &esc_status};
+  const char* const topic_names[] = {"rc_out", "battery", "imu", "pose", "velocity", "esc_telemetry", "esc_status"};
+  for (std::size_t i = 0; i < std::size(topics); ++i) {
+    if (name == topic_names[i]) return topics[i];
   }
   return nullptr;
 }
@@ -348,7 +359,7 @@ FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int motors) c
         if (*source.topic != message.getTopic()) continue;
         bool added = false;
         try {
-          added = builder.add(source.signal, time_s, buffer.data(), size, &error);
+          added = builder.add(source, time_s, buffer.data(), size, &error);
         } catch (const ros::serialization::StreamOverrunException& e) {
           error = "malformed " + source.datatype + ": " + e.what();
         }

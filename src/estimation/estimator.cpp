@@ -16,14 +16,8 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // What the effects' signals can be; beyond, the reading is in another unit (mA, hPa, K) or broken.
+// The scalar inputs' ranges are in their entries (input_signal.h).
 constexpr double kMaxBatteryCurrentA = 1000.0;
-constexpr double kMinStaticPressurePa = 30000.0;  // the bench air's range (ModelMetadata::validate)
-constexpr double kMaxStaticPressurePa = 110000.0;
-// A barometer's die, which PX4 reports as the air's temperature, runs warmer than the air.
-constexpr double kMinAirTemperatureC = -60.0;
-constexpr double kMaxAirTemperatureC = 85.0;
-constexpr double kMinMotorTemperatureC = -40.0;
-constexpr double kMaxMotorTemperatureC = 200.0;
 
 }  // namespace
 
@@ -32,9 +26,11 @@ const char* rejectionName(Rejection rejection) {
       "none",           "bad_voltage",  "bad_imu",         "bad_velocity", "no_battery",    "stale_battery",
       "disarmed",       "too_few_channels", "time_backwards", "stamp_ahead", "duplicate", "outside_domain",
       "non_finite_estimate",
-      "bad_battery_current", "bad_static_pressure", "bad_air_temperature", "bad_range", "bad_motor_temperature"};
+      "bad_battery_current", "bad_input"};
   return kNames[static_cast<int>(rejection)];
 }
+
+std::string badInputName(input::Scalar scalar) { return std::string("bad_") + input::spec(scalar).name; }
 
 const char* verticalSpeedSourceName(VerticalSpeedSource source) {
   switch (source) {
@@ -85,22 +81,17 @@ std::string describe(const RejectionDetail& d) {
       out << "battery current " << d.value << " A refused (must be finite, at most " << kMaxBatteryCurrentA
           << " A either way)";
       break;
-    case Rejection::kBadStaticPressure:
-      out << "static pressure " << d.value << " Pa refused (outside " << kMinStaticPressurePa << ".."
-          << kMaxStaticPressurePa << " Pa)";
+    case Rejection::kBadInput: {
+      const input::ScalarSpec& input = input::spec(d.input);
+      out << input.description << " " << d.value << " " << input.unit << " refused (";
+      if (input.message == input::Message::kRange) {
+        out << "NaN, or outside the sensor's min_range..max_range " << d.limit << ".." << d.limit_high
+            << " m, which sensor_msgs/Range says to discard)";
+      } else {
+        out << "outside " << d.limit << ".." << d.limit_high << " " << input.unit << ")";
+      }
       break;
-    case Rejection::kBadAirTemperature:
-      out << "air temperature " << d.value << " deg C refused (outside " << kMinAirTemperatureC << ".."
-          << kMaxAirTemperatureC << " deg C)";
-      break;
-    case Rejection::kBadRange:
-      out << "rangefinder range " << d.value << " m refused (NaN, or outside the sensor's min_range..max_range "
-          << d.limit << ".." << d.limit_high << " m, which sensor_msgs/Range says to discard)";
-      break;
-    case Rejection::kBadMotorTemperature:
-      out << "motor temperature " << d.value << " deg C refused (outside " << kMinMotorTemperatureC << ".."
-          << kMaxMotorTemperatureC << " deg C)";
-      break;
+    }
   }
   return out.str();
 }
@@ -147,10 +138,8 @@ void Estimator::checkClock(double receipt_s) {
     accel_filter_.clear();
     barometric_speed_.clear();
     have_voltage_ = have_imu_ = have_velocity_ = have_stamp_ = have_accepted_ = false;
-    for (Reading* reading : {&battery_current_a_, &static_pressure_pa_, &air_temperature_c_, &range_m_,
-                             &motor_temperature_c_}) {
-      reading->have = false;
-    }
+    battery_current_a_.have = false;
+    for (Reading& reading : inputs_) reading.have = false;
     ++counters_.clock_resets;
   }
   last_receipt_s_ = receipt_s;
@@ -216,46 +205,35 @@ Rejection Estimator::addBatteryCurrent(double receipt_s, double current_a) {
   return Rejection::kNone;
 }
 
-Rejection Estimator::addStaticPressure(double receipt_s, double pressure_pa) {
-  checkClock(receipt_s);
-  if (!(pressure_pa >= kMinStaticPressurePa && pressure_pa <= kMaxStaticPressurePa)) {
-    return reject(Rejection::kBadStaticPressure, 0, pressure_pa);
-  }
-  static_pressure_pa_.set(receipt_s, pressure_pa);
-  barometric_speed_.add(receipt_s, pressure_pa);
-  return Rejection::kNone;
+Rejection Estimator::rejectInput(input::Scalar scalar, double value, double limit, double limit_high) {
+  ++counters_.rejected_inputs[input::index(scalar)];
+  reject(Rejection::kBadInput, 0, value, limit, limit_high);
+  last_rejection_.input = scalar;
+  return Rejection::kBadInput;
 }
 
-Rejection Estimator::addAirTemperature(double receipt_s, double temperature_c) {
+Rejection Estimator::addInput(input::Scalar scalar, double receipt_s, double value) {
   checkClock(receipt_s);
-  if (!(temperature_c >= kMinAirTemperatureC && temperature_c <= kMaxAirTemperatureC)) {
-    return reject(Rejection::kBadAirTemperature, 0, temperature_c);
-  }
-  air_temperature_c_.set(receipt_s, temperature_c);
+  const input::ScalarSpec& spec = input::spec(scalar);
+  if (!(value >= spec.min && value <= spec.max)) return rejectInput(scalar, value, spec.min, spec.max);
+  inputs_[input::index(scalar)].set(receipt_s, value);
+  if (scalar == input::Scalar::kStaticPressure) barometric_speed_.add(receipt_s, value);
   return Rejection::kNone;
 }
 
 Rejection Estimator::addRange(double receipt_s, double range_m, double min_range_m, double max_range_m) {
   checkClock(receipt_s);
+  const input::Scalar range = input::Scalar::kRangefinder;
   double usable = range_m;
   if (!(min_range_m >= 0.0 && min_range_m < max_range_m && std::isfinite(max_range_m)) || std::isnan(range_m)) {
-    return reject(Rejection::kBadRange, 0, range_m, min_range_m, max_range_m);
+    return rejectInput(range, range_m, min_range_m, max_range_m);
   }
   if (range_m == -kInf) {
     usable = min_range_m;
   } else if (range_m != kInf && !(range_m >= min_range_m && range_m <= max_range_m)) {
-    return reject(Rejection::kBadRange, 0, range_m, min_range_m, max_range_m);
+    return rejectInput(range, range_m, min_range_m, max_range_m);
   }
-  range_m_.set(receipt_s, usable);
-  return Rejection::kNone;
-}
-
-Rejection Estimator::addMotorTemperature(double receipt_s, double temperature_c) {
-  checkClock(receipt_s);
-  if (!(temperature_c >= kMinMotorTemperatureC && temperature_c <= kMaxMotorTemperatureC)) {
-    return reject(Rejection::kBadMotorTemperature, 0, temperature_c);
-  }
-  motor_temperature_c_.set(receipt_s, temperature_c);
+  inputs_[input::index(range)].set(receipt_s, usable);
   return Rejection::kNone;
 }
 
@@ -263,11 +241,10 @@ effects::Signals Estimator::effectSignals(double now_s) const {
   // The readings in force; their preparation is the diagnosis' too (effect_signals.h).
   effects::RawSignals raw;
   raw.battery_current_a = battery_current_a_.at(now_s, config_.battery_timeout_s);
-  raw.static_pressure_pa = static_pressure_pa_.at(now_s, config_.static_pressure_timeout_s);
-  raw.air_temperature_c = air_temperature_c_.at(now_s, config_.air_temperature_timeout_s);
-  raw.range_m = range_m_.at(now_s, config_.rangefinder_timeout_s);
+  for (input::Scalar scalar : input::kAllScalars) {
+    raw.input(scalar) = inputs_[input::index(scalar)].at(now_s, config_.inputTimeoutS(scalar));
+  }
   raw.body_z_up = imuFresh(now_s) ? body_to_world_(2, 2) : 1.0;
-  raw.motor_temperature_c = motor_temperature_c_.at(now_s, config_.motor_temperature_timeout_s);
   raw.vertical_speed_m_s = velocityFresh(now_s) ? vertical_speed_m_s_ : kNaN;
   if (now_s - horizontal_receipt_s_ <= config_.velocity_timeout_s) {
     raw.velocity_east_m_s = velocity_east_m_s_;
@@ -429,7 +406,8 @@ HoverSample Estimator::hoverSample(const Totals& totals, double receipt_s, bool 
   if (velocityFresh(receipt_s)) {
     sample.vertical_speed_m_s = vertical_speed_m_s_;
     *speed_source = VerticalSpeedSource::kVelocity;
-  } else if (!std::isnan(static_pressure_pa_.at(receipt_s, config_.static_pressure_timeout_s)) &&
+  } else if (!std::isnan(inputs_[input::index(input::Scalar::kStaticPressure)].at(
+                 receipt_s, config_.inputTimeoutS(input::Scalar::kStaticPressure))) &&
              !std::isnan(barometric_speed_.value())) {
     sample.vertical_speed_m_s = barometric_speed_.value();
     *speed_source = VerticalSpeedSource::kBarometer;

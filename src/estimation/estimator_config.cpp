@@ -29,10 +29,7 @@ void EstimatorConfig::validate(std::size_t rotors) const {
   requirePositive("battery_timeout_s", battery_timeout_s);
   requirePositive("imu/timeout_s", imu_timeout_s);
   requirePositive("velocity/timeout_s", velocity_timeout_s);
-  requirePositive("static_pressure/timeout_s", static_pressure_timeout_s);
-  requirePositive("air_temperature/timeout_s", air_temperature_timeout_s);
-  requirePositive("rangefinder/timeout_s", rangefinder_timeout_s);
-  requirePositive("motor_temperature/timeout_s", motor_temperature_timeout_s);
+  for (input::Scalar scalar : input::kAllScalars) requirePositive(input::timeoutParameter(scalar), inputTimeoutS(scalar));
   requirePositive("imu/accel_filter_s", accel_filter_s);
   requirePositive("imu/accel_bias_filter_s", accel_bias_filter_s);
   requirePositive("clock_jump_reset_s", clock_jump_reset_s);

@@ -22,7 +22,8 @@ BenchGap benchGap(const ThrustViews& views, const BenchLog& log) {
     row.pwm_us[0] = pwm[i];
     row.voltage_v = voltage[i];
     row.truth_n = thrust[i];
-    row.signals.motor_temperature_c = log.has(BenchColumn::kMotorTemp) ? log.column(BenchColumn::kMotorTemp)[i] : kNaN;
+    row.signals.set(effects::Signal::kMotorTemperature,
+                    log.has(BenchColumn::kMotorTemp) ? log.column(BenchColumn::kMotorTemp)[i] : kNaN);
     rows.push_back(row);
   }
   std::vector<const Block*> all;
@@ -32,8 +33,9 @@ BenchGap benchGap(const ThrustViews& views, const BenchLog& log) {
   gap.where.push_back(breakdownBy("voltage_v", all, [](const Block& row) { return row.voltage_v; },
                                   quantileEdges(all, [](const Block& row) { return row.voltage_v; }, 4), view, "%.2f",
                                   "a voltage column"));
-  const auto temperature = [](const Block& row) { return row.signals.motor_temperature_c; };
-  gap.where.push_back(breakdownBy("motor_temperature_c", all, temperature, quantileEdges(all, temperature, 4), view,
+  const effects::Signal signal = effects::Signal::kMotorTemperature;
+  const auto temperature = [signal](const Block& row) { return row.signals.value(signal); };
+  gap.where.push_back(breakdownBy(effects::signalKey(signal), all, temperature, quantileEdges(all, temperature, 4), view,
                                   "%.1f", "a motor_temp_c column"));
   return gap;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
@@ -31,18 +32,6 @@ class Cursor {
   const std::vector<Reading>& stream_;
   std::size_t next_ = 0;
 };
-
-// The signals a block averages besides PWM, voltage, current and IMU, in Accumulator::signal.
-enum class BlockSignal {
-  kHeight,
-  kVerticalSpeed,
-  kHorizontalSpeed,
-  kAxialSpeed,
-  kAirDensity,
-  kMotorTemperature,
-  kCount
-};
-constexpr int kBlockSignalCount = static_cast<int>(BlockSignal::kCount);
 
 // How much a block's collective command moved, whatever the log's rate: the change of its
 // least-squares trend across the block plus the spread of its noise about the trend. A frame-by-frame
@@ -95,8 +84,9 @@ struct Accumulator {
   int current_frames = 0, imu_frames = 0;
   std::array<double, kMaxMotors> rpm{};
   std::array<int, kMaxMotors> rpm_frames{};
-  std::array<double, kBlockSignalCount> signal{};
-  std::array<int, kBlockSignalCount> signal_frames{};
+  // The effects' signals but the battery current (averaged with the block's current), by Signal.
+  std::array<double, effects::kSignalCount> signal{};
+  std::array<int, effects::kSignalCount> signal_frames{};
   double altitude = 0.0;
   int altitude_frames = 0;
   CommandSteadiness steadiness;
@@ -119,14 +109,17 @@ struct Accumulator {
     }
   }
 
-  void addSignal(BlockSignal which, double value) {
-    const int k = static_cast<int>(which);
-    if (std::isfinite(value)) {
-      signal[k] += value;
-      ++signal_frames[k];
+  void addSignals(const effects::Signals& prepared) {
+    for (effects::Signal which : effects::allSignals()) {
+      const double value = prepared.value(which);
+      const int k = static_cast<int>(which);
+      if (std::isfinite(value)) {
+        signal[k] += value;
+        ++signal_frames[k];
+      }
     }
   }
-  double meanSignal(BlockSignal which) const {
+  double meanSignal(effects::Signal which) const {
     const int k = static_cast<int>(which);
     return signal_frames[k] == frames ? signal[k] / frames : kNaN;
   }
@@ -144,15 +137,10 @@ struct Accumulator {
     block.voltage_v = voltage / frames;
     block.current_a = current_frames == frames ? current / frames : kNaN;
     block.specific_force_up_m_s2 = imu_frames == frames ? force_up / frames : kStandardGravity;
-    block.signals.height_m = meanSignal(BlockSignal::kHeight);
-    block.signals.vertical_speed_m_s = meanSignal(BlockSignal::kVerticalSpeed);
-    block.signals.horizontal_speed_m_s = meanSignal(BlockSignal::kHorizontalSpeed);
-    block.signals.axial_speed_m_s = meanSignal(BlockSignal::kAxialSpeed);
-    block.signals.air_density_kg_m3 = meanSignal(BlockSignal::kAirDensity);
-    block.signals.motor_temperature_c = meanSignal(BlockSignal::kMotorTemperature);
-    block.signals.battery_current_a = block.current_a;
+    for (effects::Signal which : effects::allSignals()) block.signals.set(which, meanSignal(which));
+    block.signals.set(effects::Signal::kBatteryCurrent, block.current_a);
     block.altitude_m = altitude_frames == frames ? altitude / frames : kNaN;
-    const double vertical_speed = block.signals.vertical_speed_m_s;
+    const double vertical_speed = block.signals.value(effects::Signal::kVerticalSpeed);
     block.hover = !std::isfinite(vertical_speed) || std::abs(vertical_speed) < hover_max_vertical_speed_m_s;
     block.pwm_change_us = steadiness.changeUs();
     block.accel_up_m_s2 = block.specific_force_up_m_s2 - kStandardGravity;
@@ -169,10 +157,7 @@ bool hasCurrent(const std::vector<BatteryReading>& battery) {
 struct SignalCursors {
   explicit SignalCursors(const FlightStreams& streams)
       : speed(streams.vertical_speed_m_s),
-        pressure(streams.static_pressure_pa),
-        air(streams.air_temperature_c),
-        range(streams.height_above_ground_m),
-        motor_temperature(streams.motor_temperature_c),
+        inputs(cursorsOf(streams.inputs, std::make_index_sequence<input::kScalarCount>())),
         horizontal_velocity(streams.horizontal_velocity) {}
 
   effects::RawSignals at(double time_s, double timeout_s, const BatteryReading& battery, const ImuReading* imu) {
@@ -188,20 +173,24 @@ struct SignalCursors {
       raw.body_z_north = body_z.y();
       raw.body_z_up = body_z.z();
     }
-    raw.range_m = value(range);
     raw.vertical_speed_m_s = value(speed);
     const HorizontalVelocityReading* horizontal = horizontal_velocity.at(time_s, timeout_s);
     if (horizontal) {
       raw.velocity_east_m_s = horizontal->east_m_s;
       raw.velocity_north_m_s = horizontal->north_m_s;
     }
-    raw.static_pressure_pa = value(pressure);
-    raw.air_temperature_c = value(air);
-    raw.motor_temperature_c = value(motor_temperature);
+    for (int k = 0; k < input::kScalarCount; ++k) raw.inputs[k] = value(inputs[k]);
     return raw;
   }
 
-  Cursor<ScalarReading> speed, pressure, air, range, motor_temperature;
+  template <std::size_t... k>
+  static input::PerScalar<Cursor<ScalarReading>> cursorsOf(const input::PerScalar<std::vector<ScalarReading>>& streams,
+                                                           std::index_sequence<k...>) {
+    return {Cursor<ScalarReading>(streams[k])...};
+  }
+
+  Cursor<ScalarReading> speed;
+  input::PerScalar<Cursor<ScalarReading>> inputs;
   Cursor<HorizontalVelocityReading> horizontal_velocity;
 };
 
@@ -316,8 +305,8 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       const ImuReading* i = imu.at(frame.time_s, timeout);
       // The node's preparation of the effects' signals (effect_signals.h), frame by frame.
       const effects::Signals prepared = effects::prepareSignals(signals.at(frame.time_s, timeout, *b, i));
-      if (std::isfinite(prepared.battery_current_a)) {
-        acc.current += prepared.battery_current_a;
+      if (std::isfinite(prepared.value(effects::Signal::kBatteryCurrent))) {
+        acc.current += prepared.value(effects::Signal::kBatteryCurrent);
         ++acc.current_frames;
       }
       acc.addMotors(frame, motors, vehicle, i, esc.at(frame.time_s, timeout));
@@ -325,12 +314,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
         acc.force_up += (i->orientation * i->specific_force_m_s2).z();
         ++acc.imu_frames;
       }
-      acc.addSignal(BlockSignal::kHeight, prepared.height_m);
-      acc.addSignal(BlockSignal::kVerticalSpeed, prepared.vertical_speed_m_s);
-      acc.addSignal(BlockSignal::kHorizontalSpeed, prepared.horizontal_speed_m_s);
-      acc.addSignal(BlockSignal::kAxialSpeed, prepared.axial_speed_m_s);
-      acc.addSignal(BlockSignal::kAirDensity, prepared.air_density_kg_m3);
-      acc.addSignal(BlockSignal::kMotorTemperature, prepared.motor_temperature_c);
+      acc.addSignals(prepared);
       const ScalarReading* z = altitude.at(frame.time_s, timeout);
       if (z) {
         acc.altitude += z->value;

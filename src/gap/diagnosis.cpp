@@ -158,8 +158,7 @@ std::string Diagnoser::testability(Kind kind) const {
     ++with_signal;
     if (description.informative && description.informative(value, config_.rotor_diameter_m)) ++informative;
   }
-  const auto source = config_.signal_sources.find(signal);
-  const std::string needs = source != config_.signal_sources.end() ? source->second : effects::signalName(signal);
+  const std::string needs = effects::sourcesOf(signal, config_.signal_sources);
   if (with_signal < static_cast<int>(blocks_.size()) / 2) return "needs " + needs;
   const int few = std::max(4, static_cast<int>(blocks_.size()) / 50);
   if (description.informative && informative < few) return description.uninformative(config_.rotor_diameter_m);

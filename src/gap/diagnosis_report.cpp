@@ -59,8 +59,8 @@ Breakdown Diagnoser::phase(const BlockView& pwm_view) const {
   phase.name = "phase";
   std::map<std::string, std::vector<const Block*>> bins;
   for (const Block* block : all_) {
-    const double height = block->signals.height_m;
-    const double speed = block->signals.vertical_speed_m_s;
+    const double height = block->signals.value(effects::Signal::kHeight);
+    const double speed = block->signals.value(effects::Signal::kVerticalSpeed);
     if (std::isfinite(height) && height < 2.0 * config_.rotor_diameter_m) {
       bins["near the ground"].push_back(block);
     } else if (std::isfinite(speed) && speed > 0.2) {
@@ -79,28 +79,30 @@ Breakdown Diagnoser::phase(const BlockView& pwm_view) const {
 void Diagnoser::reportWhere(const BlockView& pwm_view) {
   diagnosis_.where.push_back(operatingRegion(pwm_view));
   diagnosis_.where.push_back(phase(pwm_view));
-  const auto source = [&](effects::Signal signal) { return config_.signal_sources.at(signal); };
-  const auto height = [](const Block& b) { return b.signals.height_m; };
-  const auto speed = [](const Block& b) { return b.signals.vertical_speed_m_s; };
-  const auto horizontal = [](const Block& b) { return b.signals.horizontal_speed_m_s; };
-  const auto current = [](const Block& b) { return b.current_a; };
-  const auto motor_temperature = [](const Block& b) { return b.signals.motor_temperature_c; };
-  const auto density = [](const Block& b) { return b.signals.air_density_kg_m3; };
-  const auto time = [](const Block& b) { return b.flight_time_s; };
   const double d = config_.rotor_diameter_m;
-  diagnosis_.where.push_back(breakdownBy("height_above_ground_m", all_, height, {d, 2 * d, 1.0, 2.0, 5.0}, pwm_view,
-                                         "%.2f", source(effects::Signal::kHeight)));
-  diagnosis_.where.push_back(breakdownBy("vertical_speed_m_s", all_, speed, {-1.0, -0.3, -0.1, 0.1, 0.3, 1.0}, pwm_view,
-                                         "%.1f", source(effects::Signal::kVerticalSpeed)));
-  diagnosis_.where.push_back(breakdownBy("horizontal_speed_m_s", all_, horizontal, {0.5, 1.0, 2.0, 4.0, 8.0}, pwm_view,
-                                         "%.1f", source(effects::Signal::kHorizontalSpeed)));
-  diagnosis_.where.push_back(breakdownBy("total_current_a", all_, current, quantileEdges(all_, current, 4), pwm_view,
-                                         "%.1f", source(effects::Signal::kBatteryCurrent)));
-  diagnosis_.where.push_back(breakdownBy("motor_temperature_c", all_, motor_temperature,
-                                         quantileEdges(all_, motor_temperature, 4), pwm_view, "%.1f",
-                                         source(effects::Signal::kMotorTemperature)));
-  diagnosis_.where.push_back(breakdownBy("air_density_kg_m3", all_, density, quantileEdges(all_, density, 3), pwm_view,
-                                         "%.3f", source(effects::Signal::kAirDensity)));
+  for (effects::Signal signal : effects::allSignals()) {
+    const auto value = [signal](const Block& b) { return b.signals.value(signal); };
+    // Heights by the rotor's diameter (the ground effect's scale), speeds at fixed steps, the rest by quantiles.
+    std::vector<double> edges;
+    const char* format = "%.1f";
+    switch (signal) {
+      case effects::Signal::kHeight:
+        edges = {d, 2 * d, 1.0, 2.0, 5.0};
+        format = "%.2f";
+        break;
+      case effects::Signal::kVerticalSpeed:
+      case effects::Signal::kAxialSpeed: edges = {-1.0, -0.3, -0.1, 0.1, 0.3, 1.0}; break;
+      case effects::Signal::kHorizontalSpeed: edges = {0.5, 1.0, 2.0, 4.0, 8.0}; break;
+      case effects::Signal::kAirDensity:
+        edges = quantileEdges(all_, value, 3);
+        format = "%.3f";
+        break;
+      default: edges = quantileEdges(all_, value, 4); break;
+    }
+    diagnosis_.where.push_back(breakdownBy(effects::signalKey(signal), all_, value, edges, pwm_view, format,
+                                           effects::sourcesOf(signal, config_.signal_sources)));
+  }
+  const auto time = [](const Block& b) { return b.flight_time_s; };
   diagnosis_.where.push_back(
       breakdownBy("time_in_flight_s", all_, time, {60.0, 120.0, 300.0, 600.0}, pwm_view, "%.0f", "time"));
   Breakdown by_flight;
@@ -238,10 +240,7 @@ void Diagnoser::collectSamples(const PlainViews& plain) {
     sample.pwm_us = meanPwm(block);
     sample.voltage_v = block.voltage_v;
     sample.current_a = block.current_a;
-    sample.height_m = block.signals.height_m;
-    sample.vertical_speed_m_s = block.signals.vertical_speed_m_s;
-    sample.air_density_kg_m3 = block.signals.air_density_kg_m3;
-    sample.motor_temperature_c = block.signals.motor_temperature_c;
+    sample.signals = block.signals;
     sample.flight_time_s = block.flight_time_s;
     sample.hover = block.hover;
     diagnosis_.samples.push_back(sample);

@@ -254,15 +254,22 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
 
 void writeGapReportData(const Diagnosis& diagnosis, const std::string& directory) {
   std::ofstream csv = openReportFile(directory, "gap_samples.csv");
-  csv << "flight,time_s,truth_n,model_n,current_view_n,rpm_view_n,corrected_n,pwm_us,voltage_v,current_a,height_m,"
-         "vertical_speed_m_s,air_density_kg_m3,motor_temperature_c,flight_time_s,hover\n";
+  csv << "flight,time_s,truth_n,model_n,current_view_n,rpm_view_n,corrected_n,pwm_us,voltage_v,current_a";
+  // The battery current is current_a's.
+  const auto columns = [](effects::Signal signal) { return signal != effects::Signal::kBatteryCurrent; };
+  for (effects::Signal signal : effects::allSignals()) {
+    if (columns(signal)) csv << "," << effects::signalKey(signal);
+  }
+  csv << ",flight_time_s,hover\n";
   const auto cell = [](double value) { return std::isfinite(value) ? formatPrintf("%.6g", value) : std::string(); };
   for (const GapSample& s : diagnosis.samples) {
     csv << s.flight << "," << cell(s.time_s) << "," << cell(s.truth_n) << "," << cell(s.model_n) << ","
-        << cell(s.current_view_n) << "," << cell(s.rpm_view_n) << "," << cell(s.corrected_n) << "," << cell(s.pwm_us) << "," << cell(s.voltage_v)
-        << "," << cell(s.current_a) << "," << cell(s.height_m) << "," << cell(s.vertical_speed_m_s) << ","
-        << cell(s.air_density_kg_m3) << "," << cell(s.motor_temperature_c) << "," << cell(s.flight_time_s) << ","
-        << (s.hover ? 1 : 0) << "\n";
+        << cell(s.current_view_n) << "," << cell(s.rpm_view_n) << "," << cell(s.corrected_n) << "," << cell(s.pwm_us)
+        << "," << cell(s.voltage_v) << "," << cell(s.current_a);
+    for (effects::Signal signal : effects::allSignals()) {
+      if (columns(signal)) csv << "," << cell(s.signals.value(signal));
+    }
+    csv << "," << cell(s.flight_time_s) << "," << (s.hover ? 1 : 0) << "\n";
   }
   std::ofstream selected = openReportFile(directory, "gap_selected.csv");
   selected << "name\n";

@@ -91,7 +91,7 @@ double ThrustViews::rpmView(const Block& block, const effects::ModelEffects& eff
   double thrust = 0.0;
   for (int k = 0; k < motors_; ++k) {
     if (!std::isfinite(block.rpm[k])) return kNaN;
-    thrust += motor_scale_[k] * rpm_thrust->thrustN(block.rpm[k], block.signals.air_density_kg_m3) * block.axis_up[k];
+    thrust += motor_scale_[k] * rpm_thrust->thrustN(block.rpm[k], block.signals.value(effects::Signal::kAirDensity)) * block.axis_up[k];
   }
   return rpm_level_ * thrust * viewFactor(effects, block.signals, rpmViewExponent);
 }

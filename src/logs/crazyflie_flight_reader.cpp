@@ -177,7 +177,9 @@ FlightStreams CrazyflieFlightReader::read(const FlightLogOptions& options) const
   reader.battery();
   reader.imu();
   reader.localPosition();
-  reader.note("static_pressure, air_temperature, rangefinder, motor_temperature, esc: not read from a Crazyflie uSD log");
+  std::string unread;
+  for (input::Scalar scalar : input::kAllScalars) unread += std::string(input::spec(scalar).name) + ", ";
+  reader.note(unread + "esc: not read from a Crazyflie uSD log");
   const std::string unused = options.unusedSourcesNote("a Crazyflie uSD log");
   if (!unused.empty()) streams.notes.push_back(unused);
   return streams;

@@ -172,8 +172,8 @@ class SignalReader {
       return;
     }
     forEach("BARO", [&](const dataflash::Message& message, double t) {
-      streams_->static_pressure_pa.push_back({t, value(message, *press)});
-      if (temp) streams_->air_temperature_c.push_back({t, value(message, *temp)});
+      streams_->input(input::Scalar::kStaticPressure).push_back({t, value(message, *press)});
+      if (temp) streams_->input(input::Scalar::kAirTemperature).push_back({t, value(message, *temp)});
     });
     note(std::string("static_pressure: BARO Press; air_temperature: ") + (temp ? "BARO Temp" : "not in this log"));
   }
@@ -187,7 +187,7 @@ class SignalReader {
     forEach("RFND", [&](const dataflash::Message& message, double t) {
       if (stat && value(message, *stat) != kGoodRange) return;
       if (orient && value(message, *orient) != kDownward) return;
-      streams_->height_above_ground_m.push_back({t, value(message, *dist)});
+      streams_->input(input::Scalar::kRangefinder).push_back({t, value(message, *dist)});
     });
     note("rangefinder: RFND Dist (good readings)");
   }
@@ -247,13 +247,14 @@ class SignalReader {
   }
 
   void motorTemperature() {
+    const std::string name = input::spec(input::Scalar::kMotorTemperature).name;
     const auto type = file_.typeNamed("ESC");
     auto temp = column("ESC", "MotTemp");
     if (!temp) temp = column("ESC", "MTemp");
     const auto instance = column("ESC", "Instance");
     const auto time = type ? timeColumn(file_, *type) : std::nullopt;
     if (!temp || !instance || !time) {
-      note(type ? "motor_temperature: not in this log (ESC has no MotTemp)" : "motor_temperature: not in this log (no ESC)");
+      note(name + (type ? ": not in this log (ESC has no MotTemp)" : ": not in this log (no ESC)"));
       return;
     }
     // The hottest of the motors' latest readings, at each reading.
@@ -268,9 +269,9 @@ class SignalReader {
       for (const double reading : latest) {
         if (!std::isnan(reading)) hottest = std::max(hottest, reading);
       }
-      streams_->motor_temperature_c.push_back({(value(message, time->column) * time->to_us - first_us_) / 1e6, hottest});
+      streams_->input(input::Scalar::kMotorTemperature).push_back({(value(message, time->column) * time->to_us - first_us_) / 1e6, hottest});
     }
-    note("motor_temperature: the hottest ESC MotTemp");
+    note(name + ": the hottest ESC MotTemp");
   }
 
  private:

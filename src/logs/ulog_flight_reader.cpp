@@ -202,8 +202,8 @@ class SignalReader {
       return;
     }
     topics_.forEach("vehicle_air_data", 0, [&](const ulog::DataMessage& message) {
-      streams_->static_pressure_pa.push_back({time(message), value(message, *pressure)});
-      if (temperature) streams_->air_temperature_c.push_back({time(message), value(message, *temperature)});
+      streams_->input(input::Scalar::kStaticPressure).push_back({time(message), value(message, *pressure)});
+      if (temperature) streams_->input(input::Scalar::kAirTemperature).push_back({time(message), value(message, *temperature)});
     });
     note(std::string("static_pressure: vehicle_air_data[0].baro_pressure_pa; air_temperature: ") +
          (temperature ? "its barometer's temperature" : "not in this log"));
@@ -222,7 +222,7 @@ class SignalReader {
       if (orientation && value(message, *orientation) != kDownward) return;
       const double range = value(message, *distance);
       if (range >= value(message, *low) && range <= value(message, *high)) {
-        streams_->height_above_ground_m.push_back({time(message), range});
+        streams_->input(input::Scalar::kRangefinder).push_back({time(message), range});
       }
     });
     note("rangefinder: distance_sensor.current_distance (downward, within its range)");
@@ -251,7 +251,7 @@ class SignalReader {
       const int escs = std::min<int>(static_cast<int>(value(message, *count)), static_cast<int>(temperatures.size()));
       double hottest = -std::numeric_limits<double>::infinity();
       for (int k = 0; k < escs; ++k) hottest = std::max(hottest, value(message, temperatures[k]));
-      if (escs > 0 && std::isfinite(hottest)) streams_->motor_temperature_c.push_back({time(message), hottest});
+      if (escs > 0 && std::isfinite(hottest)) streams_->input(input::Scalar::kMotorTemperature).push_back({time(message), hottest});
     });
     note("motor_temperature: the hottest esc_status[0].esc[k].motor_temperature");
   }

@@ -18,18 +18,63 @@ double heightAboveGroundM(double range_m, double body_z_up) {
   return range_m * body_z_up;
 }
 
+namespace {
+
+// The effect signals read as they are from a scalar input, and the input.
+struct DirectSignal {
+  Signal signal;
+  input::Scalar scalar;
+};
+constexpr DirectSignal kDirectSignals[] = {{Signal::kMotorTemperature, input::Scalar::kMotorTemperature}};
+
+}  // namespace
+
+bool preparedFrom(Signal signal, input::Scalar scalar) {
+  using input::Scalar;
+  switch (signal) {
+    case Signal::kAirDensity: return scalar == Scalar::kStaticPressure || scalar == Scalar::kAirTemperature;
+    case Signal::kHeight: return scalar == Scalar::kRangefinder;
+    default: break;
+  }
+  for (const DirectSignal& direct : kDirectSignals) {
+    if (direct.signal == signal && direct.scalar == scalar) return true;
+  }
+  return false;
+}
+
+std::string sourcesOf(Signal signal, const SignalSources& sources) {
+  switch (signal) {
+    case Signal::kNone: return "none";
+    case Signal::kBatteryCurrent: return sources.battery + " (current)";
+    case Signal::kVerticalSpeed:
+    case Signal::kHorizontalSpeed: return sources.velocity;
+    case Signal::kAxialSpeed: return sources.velocity + " and " + sources.imu;
+    default: break;
+  }
+  std::string joined;
+  for (input::Scalar scalar : input::kAllScalars) {
+    if (!preparedFrom(signal, scalar)) continue;
+    joined += (joined.empty() ? "" : " and ") + sources.inputs[input::index(scalar)];
+  }
+  return joined;
+}
+
 Signals prepareSignals(const RawSignals& raw) {
+  using input::Scalar;
   Signals signals;
-  signals.battery_current_a = dischargeCurrentA(raw.battery_current_a);
-  signals.air_density_kg_m3 = airDensityKgM3(raw.static_pressure_pa, raw.air_temperature_c);
-  signals.height_m = heightAboveGroundM(raw.range_m, raw.body_z_up);
-  signals.motor_temperature_c = raw.motor_temperature_c;
-  signals.vertical_speed_m_s = raw.vertical_speed_m_s;
-  signals.horizontal_speed_m_s = std::hypot(raw.velocity_east_m_s, raw.velocity_north_m_s);
-  const bool horizontal = std::isfinite(signals.horizontal_speed_m_s);
-  signals.axial_speed_m_s =
-      raw.vertical_speed_m_s * raw.body_z_up +
-      (horizontal ? raw.velocity_east_m_s * raw.body_z_east + raw.velocity_north_m_s * raw.body_z_north : 0.0);
+  signals.set(Signal::kBatteryCurrent, dischargeCurrentA(raw.battery_current_a));
+  signals.set(Signal::kAirDensity,
+              airDensityKgM3(raw.input(Scalar::kStaticPressure), raw.input(Scalar::kAirTemperature)));
+  signals.set(Signal::kHeight, heightAboveGroundM(raw.input(Scalar::kRangefinder), raw.body_z_up));
+  for (const DirectSignal& direct : kDirectSignals) signals.set(direct.signal, raw.input(direct.scalar));
+  signals.set(Signal::kVerticalSpeed, raw.vertical_speed_m_s);
+  const double horizontal = std::hypot(raw.velocity_east_m_s, raw.velocity_north_m_s);
+  signals.set(Signal::kHorizontalSpeed, horizontal);
+  signals.set(Signal::kAxialSpeed,
+              raw.vertical_speed_m_s * raw.body_z_up +
+                  (std::isfinite(horizontal)
+                       ? raw.velocity_east_m_s * raw.body_z_east + raw.velocity_north_m_s * raw.body_z_north
+                       : 0.0));
   return signals;
 }
 

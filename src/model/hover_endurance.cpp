@@ -116,7 +116,7 @@ HoverDischarge integrateHoverDischarge(const PropulsionModel& model, const Disch
     double voltage = open_v - pack.resistance_ohm * total_a;
     std::optional<HoverPoint> point;
     for (int iteration = 0; iteration < kSagIterations; ++iteration) {
-      at_point.signals.battery_current_a = total_a;
+      at_point.signals.set(effects::Signal::kBatteryCurrent, total_a);
       point = hoverPoint(model, thrust_per_motor_n, voltage, at_point);
       if (!point) break;
       total_a = motors * point->current_a;

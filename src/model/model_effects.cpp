@@ -48,35 +48,38 @@ std::optional<Kind> kindFromName(const std::string& name) {
 
 Signal requiredSignal(Kind kind) { return describe(kind).signal; }
 
-const char* signalName(Signal signal) {
-  switch (signal) {
-    case Signal::kNone: return "none";
-    case Signal::kBatteryCurrent: return "battery current";
-    case Signal::kAirDensity: return "air density (static pressure and air temperature)";
-    case Signal::kHeight: return "height above the ground";
-    case Signal::kMotorTemperature: return "motor temperature";
-    case Signal::kVerticalSpeed: return "vertical speed";
-    case Signal::kHorizontalSpeed: return "horizontal speed";
-    case Signal::kAxialSpeed: return "speed along the rotors' axes (velocity and attitude)";
-  }
-  return "?";
+namespace {
+
+// Each Signal's name for messages and key with its unit, in declaration order.
+struct SignalText {
+  const char* name;
+  const char* key;
+};
+constexpr std::array<SignalText, kSignalCount> kSignalTexts = {{
+    {"none", "none"},
+    {"battery current", "battery_current_a"},
+    {"air density (static pressure and air temperature)", "air_density_kg_m3"},
+    {"height above the ground", "height_m"},
+    {"motor temperature", "motor_temperature_c"},
+    {"vertical speed", "vertical_speed_m_s"},
+    {"horizontal speed", "horizontal_speed_m_s"},
+    {"speed along the rotors' axes (velocity and attitude)", "axial_speed_m_s"},
+}};
+
+}  // namespace
+
+const char* signalName(Signal signal) { return kSignalTexts[static_cast<int>(signal)].name; }
+
+const char* signalKey(Signal signal) { return kSignalTexts[static_cast<int>(signal)].key; }
+
+const std::array<Signal, kSignalCount - 1>& allSignals() {
+  static const std::array<Signal, kSignalCount - 1> kSignals = {
+      Signal::kBatteryCurrent, Signal::kAirDensity,      Signal::kHeight,    Signal::kMotorTemperature,
+      Signal::kVerticalSpeed,  Signal::kHorizontalSpeed, Signal::kAxialSpeed};
+  return kSignals;
 }
 
 const ParameterSpec& parameterSpec(Kind kind) { return describe(kind).parameter; }
-
-double Signals::value(Signal signal) const {
-  switch (signal) {
-    case Signal::kBatteryCurrent: return battery_current_a;
-    case Signal::kAirDensity: return air_density_kg_m3;
-    case Signal::kHeight: return height_m;
-    case Signal::kMotorTemperature: return motor_temperature_c;
-    case Signal::kVerticalSpeed: return vertical_speed_m_s;
-    case Signal::kHorizontalSpeed: return horizontal_speed_m_s;
-    case Signal::kAxialSpeed: return axial_speed_m_s;
-    case Signal::kNone: break;
-  }
-  return kNaN;
-}
 
 std::optional<double> ModelEffects::parameter(Kind kind) const {
   if (!(on_ & bit(kind))) return std::nullopt;

@@ -157,8 +157,12 @@ void warnRefusals(const EstimatorCounters& counters, const Estimator& estimator,
   std::vector<std::string> refused;
   for (int r = 1; r < kRejectionCount; ++r) {
     const auto reason = static_cast<Rejection>(r);
-    if (reason == Rejection::kDisarmed || counters.rejected[r] == 0) continue;
+    if (reason == Rejection::kDisarmed || reason == Rejection::kBadInput || counters.rejected[r] == 0) continue;
     refused.push_back(std::to_string(counters.rejected[r]) + " " + rejectionName(reason));
+  }
+  for (input::Scalar scalar : input::kAllScalars) {
+    const std::uint64_t count = counters.rejected_inputs[input::index(scalar)];
+    if (count > 0) refused.push_back(std::to_string(count) + " " + badInputName(scalar));
   }
   if (refused.empty()) return;
   // The last refusal is worth quoting only when it is one of those counted (not a disarmed motor).

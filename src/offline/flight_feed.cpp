@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <limits>
 #include <numeric>
 
 #include "propulsion_estimator/common/not_a_number.h"
@@ -17,9 +16,10 @@ bool before(const Arrival& a, const Arrival& b) { return a.time_s < b.time_s || 
 // Appends a stream's messages and merges them with those before: each stream comes in time order
 // (sorted first where a log's is not), so a merge per stream orders a long log in a fraction of a sort.
 template <typename Reading>
-void add(const std::vector<Reading>& stream, Stream kind, std::vector<Arrival>* order) {
+void add(const std::vector<Reading>& stream, Stream kind, std::vector<Arrival>* order,
+         input::Scalar scalar = input::Scalar::kStaticPressure) {
   const std::ptrdiff_t middle = static_cast<std::ptrdiff_t>(order->size());
-  for (std::size_t i = 0; i < stream.size(); ++i) order->push_back({stream[i].time_s, kind, i});
+  for (std::size_t i = 0; i < stream.size(); ++i) order->push_back({stream[i].time_s, kind, i, scalar});
   if (!std::is_sorted(order->begin() + middle, order->end(), before)) {
     std::stable_sort(order->begin() + middle, order->end(), before);
   }
@@ -64,18 +64,15 @@ OnboardConfig replayOnboardConfig(const Vehicle& vehicle, const MotorHealthConfi
 }
 
 FlightFeed::FlightFeed(const FlightStreams& streams) : streams_(streams) {
+  std::size_t inputs = 0;
+  for (const auto& readings : streams.inputs) inputs += readings.size();
   arrivals_.reserve(streams.battery.size() + streams.imu.size() + streams.vertical_speed_m_s.size() +
-                    streams.horizontal_velocity.size() + streams.static_pressure_pa.size() +
-                    streams.air_temperature_c.size() + streams.height_above_ground_m.size() +
-                    streams.motor_temperature_c.size() + streams.esc.size() + streams.rc_out.size());
+                    streams.horizontal_velocity.size() + inputs + streams.esc.size() + streams.rc_out.size());
   add(streams.battery, Stream::kBattery, &arrivals_);
   add(streams.imu, Stream::kImu, &arrivals_);
   add(streams.vertical_speed_m_s, Stream::kVerticalSpeed, &arrivals_);
   add(streams.horizontal_velocity, Stream::kHorizontalVelocity, &arrivals_);
-  add(streams.static_pressure_pa, Stream::kStaticPressure, &arrivals_);
-  add(streams.air_temperature_c, Stream::kAirTemperature, &arrivals_);
-  add(streams.height_above_ground_m, Stream::kRange, &arrivals_);
-  add(streams.motor_temperature_c, Stream::kMotorTemperature, &arrivals_);
+  for (input::Scalar scalar : input::kAllScalars) add(streams.input(scalar), Stream::kInput, &arrivals_, scalar);
   add(streams.esc, Stream::kEsc, &arrivals_);
   add(streams.rc_out, Stream::kRcOut, &arrivals_);
 }
@@ -97,14 +94,7 @@ bool FlightFeed::feed(const Arrival& arrival, OnboardSession* session) const {
       session->addHorizontalVelocity(t, streams_.horizontal_velocity[i].east_m_s,
                                      streams_.horizontal_velocity[i].north_m_s);
       return false;
-    case Stream::kStaticPressure: session->addStaticPressure(t, streams_.static_pressure_pa[i].value); return false;
-    case Stream::kAirTemperature: session->addAirTemperature(t, streams_.air_temperature_c[i].value); return false;
-    case Stream::kRange:
-      session->addRange(t, streams_.height_above_ground_m[i].value, 0.0, std::numeric_limits<double>::infinity());
-      return false;
-    case Stream::kMotorTemperature:
-      session->addMotorTemperature(t, streams_.motor_temperature_c[i].value);
-      return false;
+    case Stream::kInput: session->addInput(arrival.input, t, streams_.input(arrival.input)[i].value); return false;
     case Stream::kEsc: session->addEscTelemetry(t, escMessage(streams_.esc[i])); return false;
     case Stream::kRcOut: return feedRcOut(streams_.rc_out[i], t, session) == Rejection::kNone;
   }

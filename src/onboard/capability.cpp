@@ -109,7 +109,7 @@ OperatingPoint CapabilityEstimator::fullThrottle(double voltage_v, const Correct
   double total_a = 0.0;
   // The supply resistance's drop depends on the current it sets.
   for (int k = 0; k < kSagIterations; ++k) {
-    at.signals.battery_current_a = total_a;
+    at.signals.set(effects::Signal::kBatteryCurrent, total_a);
     if (!evaluateCorrected(model_, at, pwm_max_us_, voltage_v, &e)) return OperatingPoint{kNaN, kNaN, kNaN, kNaN, kNaN, false};
     total_a = motors_ * (std::isfinite(e.current_a) ? e.current_a : 0.0);
   }
@@ -168,7 +168,7 @@ CapabilityReport CapabilityEstimator::evaluate(const EstimatorOutput& output, co
                       : formatPrintf("%.1f", payload.window_s) + " s of hover (" + payloadStateName(payload.state) + ")";
   if (battery_) c.cutoff_voltage_v = battery_->config().cells * config_.cell_cutoff_v;
   Correction correction{&model_.effects(), signals};
-  correction.signals.vertical_speed_m_s = 0.0;
+  correction.signals.set(effects::Signal::kVerticalSpeed, 0.0);
   evaluatePayload(correction, &c);
   if (std::isnan(c.hover_mass_kg)) {
     c.payload_note = "no hover yet";
@@ -182,8 +182,8 @@ CapabilityReport CapabilityEstimator::evaluate(const EstimatorOutput& output, co
     c.payload_over_limit = c.max_additional_payload_kg < 0.0;
     if (!std::isnan(c.voltage_v)) {
       Correction at = correction;
-      at.signals.battery_current_a = measured_current_a_;
-      if (!std::isfinite(at.signals.battery_current_a)) at.signals.battery_current_a = output.totals.current_a;
+      at.signals.set(effects::Signal::kBatteryCurrent, measured_current_a_);
+      if (!std::isfinite(at.signals.value(effects::Signal::kBatteryCurrent))) at.signals.set(effects::Signal::kBatteryCurrent, output.totals.current_a);
       const std::optional<HoverPoint> hover = hoverPoint(model_, weight_n / motors_, c.voltage_v, at);
       if (hover) {
         c.hover_pwm_us = hover->pwm_us;

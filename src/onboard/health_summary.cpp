@@ -84,7 +84,12 @@ HealthStatus judgeMotorOutputs(const Estimator& estimator, const HealthSnapshot&
   const InputActivity& inputs = now.inputs;
   add(&status, "accepted", c.accepted);
   for (int r = 1; r < kRejectionCount; ++r) {
-    add(&status, std::string("rejected ") + rejectionName(static_cast<Rejection>(r)), c.rejected[r]);
+    if (r != static_cast<int>(Rejection::kBadInput)) {
+      add(&status, std::string("rejected ") + rejectionName(static_cast<Rejection>(r)), c.rejected[r]);
+    }
+  }
+  for (input::Scalar scalar : input::kAllScalars) {
+    add(&status, "rejected " + badInputName(scalar), c.rejected_inputs[input::index(scalar)]);
   }
   add(&status, "rejected undecodable", inputs.rc_out_undecodable);
   add(&status, "clock resets", c.clock_resets);
@@ -173,19 +178,8 @@ HealthStatus judgePayload(const Estimator& estimator) {
 }
 
 std::string signalSource(effects::Signal signal, const HealthConfig& config) {
-  switch (signal) {
-    case effects::Signal::kBatteryCurrent: return "battery current on " + config.battery_input;
-    case effects::Signal::kAirDensity:
-      return "static pressure on " + config.static_pressure_input + " and air temperature on " +
-             config.air_temperature_input;
-    case effects::Signal::kHeight: return "height above the ground on " + config.rangefinder_input;
-    case effects::Signal::kMotorTemperature: return "motor temperature on " + config.motor_temperature_input;
-    case effects::Signal::kVerticalSpeed: return "vertical speed on " + config.velocity_input;
-    case effects::Signal::kHorizontalSpeed: return "horizontal speed on " + config.velocity_input;
-    case effects::Signal::kAxialSpeed: return "speed along the rotors' axes from " + config.velocity_input;
-    case effects::Signal::kNone: break;
-  }
-  return "no signal";
+  if (signal == effects::Signal::kNone) return "no signal";
+  return std::string(effects::signalName(signal)) + " on " + effects::sourcesOf(signal, config.signal_sources);
 }
 
 HealthStatus judgeEffects(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,

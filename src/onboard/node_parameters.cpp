@@ -78,10 +78,9 @@ void readFilesAndTopics(ParamReader& read, EstimatorNodeParams* params) {
   read.optional("rc_out_topic", &p.rc_out_topic);
   read.optional("imu_topic", &p.imu_topic);
   read.optional("velocity_topic", &p.velocity_topic);
-  read.optional("static_pressure_topic", &p.static_pressure_topic);
-  read.optional("air_temperature_topic", &p.air_temperature_topic);
-  read.optional("rangefinder_topic", &p.rangefinder_topic);
-  read.optional("motor_temperature_topic", &p.motor_temperature_topic);
+  for (input::Scalar scalar : input::kAllScalars) {
+    read.optional(input::topicParameter(scalar), &p.input_topics[input::index(scalar)]);
+  }
   read.optional("esc_telemetry_topic", &p.esc_telemetry_topic);
   read.optional("esc_status_topic", &p.esc_status_topic);
   read.optional("domain_warn_fraction", &p.health.domain_warn_fraction);
@@ -100,10 +99,9 @@ void readEstimatorConfig(ParamReader& read, EstimatorConfig* config, double* pub
   read.optional("imu/accel_filter_s", &c.accel_filter_s);
   read.optional("imu/accel_bias_filter_s", &c.accel_bias_filter_s);
   read.optional("velocity/timeout_s", &c.velocity_timeout_s);
-  read.optional("static_pressure/timeout_s", &c.static_pressure_timeout_s);
-  read.optional("air_temperature/timeout_s", &c.air_temperature_timeout_s);
-  read.optional("rangefinder/timeout_s", &c.rangefinder_timeout_s);
-  read.optional("motor_temperature/timeout_s", &c.motor_temperature_timeout_s);
+  for (input::Scalar scalar : input::kAllScalars) {
+    read.optional(input::timeoutParameter(scalar), &c.input_timeout_s[input::index(scalar)]);
+  }
   read.optional("publish_rate_hz", publish_rate_hz);
   read.optional("clock_jump_reset_s", &c.clock_jump_reset_s);
   read.optional("max_stamp_ahead_s", &c.max_stamp_ahead_s);
@@ -154,11 +152,10 @@ void validateNodeParams(const ParamReader& read, EstimatorNodeParams* params) {
   EstimatorNodeParams& p = *params;
   p.health.battery_input = p.battery_topic;
   p.health.rc_out_input = p.rc_out_topic;
-  p.health.velocity_input = p.velocity_topic;
-  p.health.static_pressure_input = p.static_pressure_topic;
-  p.health.air_temperature_input = p.air_temperature_topic;
-  p.health.rangefinder_input = p.rangefinder_topic;
-  p.health.motor_temperature_input = p.motor_temperature_topic;
+  p.health.signal_sources.battery = p.battery_topic;
+  p.health.signal_sources.velocity = p.velocity_topic;
+  p.health.signal_sources.imu = p.imu_topic;
+  p.health.signal_sources.inputs = p.input_topics;
   p.health.validate();
   p.capability.validate();
   p.esc_telemetry.validate();
@@ -193,6 +190,21 @@ void readModelCheckConfig(ParamReader& read, ModelCheckConfig* config) {
 
 }  // namespace
 
+namespace {
+
+// " static_pressure_topic /mavros/imu/static_pressure (timeout_s 1), ...": each scalar input's.
+std::string inputTopics(const EstimatorNodeParams& p) {
+  std::ostringstream text;
+  for (input::Scalar scalar : input::kAllScalars) {
+    const std::string& topic = p.input_topics[input::index(scalar)];
+    text << (scalar == input::kAllScalars.front() ? " " : ", ") << input::topicParameter(scalar) << " "
+         << (topic.empty() ? "(disabled)" : topic) << " (timeout_s " << p.estimator.inputTimeoutS(scalar) << ")";
+  }
+  return text.str();
+}
+
+}  // namespace
+
 std::string describeNodeParameters(const EstimatorNodeParams& p) {
   const EstimatorConfig& c = p.estimator;
   const CapabilityConfig& k = p.capability;
@@ -214,13 +226,8 @@ std::string describeNodeParameters(const EstimatorNodeParams& p) {
                   << ", compensate_acceleration " << c.compensate_acceleration << ", accel_filter_s "
                   << c.accel_filter_s << ", accel_bias_filter_s " << c.accel_bias_filter_s
                   << "\n  velocity: timeout_s " << c.velocity_timeout_s
-                  << "\n  static_pressure_topic (hover vertical speed without velocity, air_density): "
-                  << (p.static_pressure_topic.empty() ? "(disabled)" : p.static_pressure_topic) << " (timeout_s "
-                  << c.static_pressure_timeout_s
-                  << ")\n  effect signals (subscribed when the model's effects read them): air_temperature_topic " << p.air_temperature_topic << " (timeout_s "
-                  << c.air_temperature_timeout_s << "), rangefinder_topic " << p.rangefinder_topic << " (timeout_s "
-                  << c.rangefinder_timeout_s << "), motor_temperature_topic " << p.motor_temperature_topic
-                  << " (timeout_s " << c.motor_temperature_timeout_s << ")"
+                  << "\n  scalar inputs (static_pressure always, the others when the model's effects read them):"
+                  << inputTopics(p)
                   << "\n  hover: window_s " << c.hover.window_s << ", min_window_fill " << c.hover.min_window_fill
                   << ", max_thrust_rel_std " << c.hover.max_thrust_rel_std << ", max_tilt_deg "
                   << c.hover.max_tilt_deg << ", max_vertical_speed_m_s " << c.hover.max_vertical_speed_m_s

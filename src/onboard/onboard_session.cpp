@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/model/effect_signals.h"
 
 namespace propulsion_estimator {
 
@@ -26,9 +27,12 @@ OnboardSession::OnboardSession(PropulsionModel model, Vehicle vehicle, const Onb
                       " has no thrust_from_rpm (fit_surfaces writes it from bench logs with an rpm column)");
   }
   battery_current_ = config.esc_telemetry.apply_supply_resistance || reads(effects::Signal::kBatteryCurrent);
-  air_temperature_ = reads(effects::Signal::kAirDensity);
-  height_ = reads(effects::Signal::kHeight);
-  motor_temperature_ = reads(effects::Signal::kMotorTemperature);
+  for (input::Scalar scalar : input::kAllScalars) {
+    inputs_read_[input::index(scalar)] =
+        scalar == input::Scalar::kStaticPressure ||
+        std::any_of(effects::allSignals().begin(), effects::allSignals().end(),
+                    [&](effects::Signal signal) { return reads(signal) && effects::preparedFrom(signal, scalar); });
+  }
 }
 
 bool OnboardSession::reads(effects::Signal signal) const {
@@ -47,7 +51,7 @@ Rejection OnboardSession::addMotorOutputs(double stamp_s, double now_s, const st
   // The air density is prepared only for a hover, the one sample the view takes.
   if (rpm_view_) {
     rpm_view_->add(now_s, output, model_check_,
-                   output.hover.hovering ? estimator_.effectSignals(now_s).air_density_kg_m3 : kNaN);
+                   output.hover.hovering ? estimator_.effectSignals(now_s).value(effects::Signal::kAirDensity) : kNaN);
   }
   return verdict;
 }
@@ -81,20 +85,13 @@ Rejection OnboardSession::addHorizontalVelocity(double now_s, double east_m_s, d
   return estimator_.addHorizontalVelocity(now_s, east_m_s, north_m_s);
 }
 
-Rejection OnboardSession::addStaticPressure(double now_s, double pressure_pa) {
-  return estimator_.addStaticPressure(now_s, pressure_pa);
-}
-
-Rejection OnboardSession::addAirTemperature(double now_s, double temperature_c) {
-  return air_temperature_ ? estimator_.addAirTemperature(now_s, temperature_c) : Rejection::kNone;
+Rejection OnboardSession::addInput(input::Scalar scalar, double now_s, double value) {
+  return readsInput(scalar) ? estimator_.addInput(scalar, now_s, value) : Rejection::kNone;
 }
 
 Rejection OnboardSession::addRange(double now_s, double range_m, double min_range_m, double max_range_m) {
-  return height_ ? estimator_.addRange(now_s, range_m, min_range_m, max_range_m) : Rejection::kNone;
-}
-
-Rejection OnboardSession::addMotorTemperature(double now_s, double temperature_c) {
-  return motor_temperature_ ? estimator_.addMotorTemperature(now_s, temperature_c) : Rejection::kNone;
+  return readsInput(input::Scalar::kRangefinder) ? estimator_.addRange(now_s, range_m, min_range_m, max_range_m)
+                                                 : Rejection::kNone;
 }
 
 void OnboardSession::addEscTelemetry(double now_s, const EscTelemetry& message) {

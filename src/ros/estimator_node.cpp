@@ -151,10 +151,6 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (!params_.velocity_topic.empty()) {
     velocity_sub_ = input_nh.subscribe(params_.velocity_topic, 20, &EstimatorNode::onVelocity, this, hints);
   }
-  if (!params_.static_pressure_topic.empty()) {
-    static_pressure_sub_ =
-        input_nh.subscribe(params_.static_pressure_topic, 20, &EstimatorNode::onStaticPressure, this, hints);
-  }
 }
 
 void EstimatorNode::logMotorChecks() const {
@@ -218,47 +214,66 @@ void EstimatorNode::setTareFileStatus(std::uint8_t level, const std::string& mes
 void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& input_nh, const ros::NodeHandle& private_nh,
                                            const ros::TransportHints& hints) {
   const effects::ModelEffects& fx = session_->estimator().model().effects();
-  if (fx.empty()) {
-    ROS_INFO_STREAM("effects: none (" << params_.model << " has no effects: section)");
-    return;
-  }
   // A needed topic set to "" would skip its correction for the whole flight: refused at start.
-  auto require = [this, &private_nh](effects::Kind kind, const char* parameter, const std::string& topic) {
+  const auto require = [this, &private_nh](effects::Kind kind, const std::string& parameter, const std::string& topic) {
     if (topic.empty()) {
-      throw ConfigError(private_nh.resolveName(parameter) + ": empty, but the model's " +
-                        effects::kindName(kind) + " effect (" + params_.model + ") reads it");
+      throw ConfigError(private_nh.resolveName(parameter) + ": empty, but the model's " + effects::kindName(kind) +
+                        " effect (" + params_.model + ") reads it");
     }
   };
   for (effects::Kind kind : effects::kAllKinds) {
     if (!fx.has(kind)) continue;
     const effects::Signal signal = effects::requiredSignal(kind);
-    switch (signal) {
-      case effects::Signal::kBatteryCurrent: break;
-      case effects::Signal::kAirDensity:
-        require(kind, "static_pressure_topic", params_.static_pressure_topic);
-        require(kind, "air_temperature_topic", params_.air_temperature_topic);
-        air_temperature_sub_ =
-            input_nh.subscribe(params_.air_temperature_topic, 5, &EstimatorNode::onAirTemperature, this, hints);
-        break;
-      case effects::Signal::kHeight:
-        require(kind, "rangefinder_topic", params_.rangefinder_topic);
-        range_sub_ = input_nh.subscribe(params_.rangefinder_topic, 20, &EstimatorNode::onRange, this, hints);
-        break;
-      case effects::Signal::kMotorTemperature:
-        require(kind, "motor_temperature_topic", params_.motor_temperature_topic);
-        motor_temperature_sub_ =
-            input_nh.subscribe(params_.motor_temperature_topic, 5, &EstimatorNode::onMotorTemperature, this, hints);
-        break;
-      case effects::Signal::kVerticalSpeed:
-      case effects::Signal::kHorizontalSpeed:
-      case effects::Signal::kAxialSpeed: require(kind, "velocity_topic", params_.velocity_topic); break;
-      case effects::Signal::kNone: break;
+    for (input::Scalar scalar : input::kAllScalars) {
+      if (effects::preparedFrom(signal, scalar)) {
+        require(kind, input::topicParameter(scalar), params_.input_topics[input::index(scalar)]);
+      }
     }
+    if (signal == effects::Signal::kVerticalSpeed || signal == effects::Signal::kHorizontalSpeed ||
+        signal == effects::Signal::kAxialSpeed) {
+      require(kind, "velocity_topic", params_.velocity_topic);
+    }
+  }
+  for (input::Scalar scalar : input::kAllScalars) {
+    const std::string& topic = params_.input_topics[input::index(scalar)];
+    if (session_->readsInput(scalar) && !topic.empty()) {
+      input_subs_[input::index(scalar)] = subscribeInput(input_nh, scalar, topic, hints);
+    }
+  }
+  if (fx.empty()) {
+    ROS_INFO_STREAM("effects: none (" << params_.model << " has no effects: section)");
+    return;
+  }
+  for (effects::Kind kind : effects::kAllKinds) {
+    if (!fx.has(kind)) continue;
+    const effects::Signal signal = effects::requiredSignal(kind);
     ROS_INFO_STREAM("effect applied: " << effects::kindName(kind) << " (" << effects::describeParameters(kind, fx)
                                        << (signal == effects::Signal::kNone
                                                ? std::string(")")
                                                : "; reads the " + signalSource(signal, params_.health) + ")"));
   }
+}
+
+ros::Subscriber EstimatorNode::subscribeInput(ros::NodeHandle& input_nh, input::Scalar scalar,
+                                              const std::string& topic, const ros::TransportHints& hints) {
+  constexpr std::uint32_t kQueue = 20;
+  switch (input::spec(scalar).message) {
+    case input::Message::kFluidPressure:
+      return input_nh.subscribe<sensor_msgs::FluidPressure>(
+          topic, kQueue,
+          boost::function<void(const sensor_msgs::FluidPressure::ConstPtr&)>(
+              [this, scalar](const sensor_msgs::FluidPressure::ConstPtr& m) { onInput(scalar, m->fluid_pressure); }),
+          ros::VoidConstPtr(), hints);
+    case input::Message::kTemperature:
+      return input_nh.subscribe<sensor_msgs::Temperature>(
+          topic, kQueue,
+          boost::function<void(const sensor_msgs::Temperature::ConstPtr&)>(
+              [this, scalar](const sensor_msgs::Temperature::ConstPtr& m) { onInput(scalar, m->temperature); }),
+          ros::VoidConstPtr(), hints);
+    case input::Message::kRange:
+      return input_nh.subscribe(topic, kQueue, &EstimatorNode::onRange, this, hints);
+  }
+  return {};
 }
 
 HealthSnapshot EstimatorNode::takeSnapshot() const {
@@ -318,25 +333,15 @@ void EstimatorNode::onVelocity(const geometry_msgs::TwistStamped::ConstPtr& mess
   logRejection(session_->addHorizontalVelocity(now_s, message->twist.linear.x, message->twist.linear.y));
 }
 
-void EstimatorNode::onStaticPressure(const sensor_msgs::FluidPressure::ConstPtr& message) {
+void EstimatorNode::onInput(input::Scalar scalar, double value) {
   const std::lock_guard<std::mutex> lock(state_);
-  logRejection(session_->addStaticPressure(ros::Time::now().toSec(), message->fluid_pressure));
-}
-
-void EstimatorNode::onAirTemperature(const sensor_msgs::Temperature::ConstPtr& message) {
-  const std::lock_guard<std::mutex> lock(state_);
-  logRejection(session_->addAirTemperature(ros::Time::now().toSec(), message->temperature));
+  logRejection(session_->addInput(scalar, ros::Time::now().toSec(), value));
 }
 
 void EstimatorNode::onRange(const sensor_msgs::Range::ConstPtr& message) {
   const std::lock_guard<std::mutex> lock(state_);
   logRejection(session_->addRange(ros::Time::now().toSec(), message->range, message->min_range,
                                     message->max_range));
-}
-
-void EstimatorNode::onMotorTemperature(const sensor_msgs::Temperature::ConstPtr& message) {
-  const std::lock_guard<std::mutex> lock(state_);
-  logRejection(session_->addMotorTemperature(ros::Time::now().toSec(), message->temperature));
 }
 
 void EstimatorNode::logRejection(Rejection rejection) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "propulsion_estimator/common/input_signal.h"
 #include "propulsion_estimator/common/mavros_topics.h"
 #include "propulsion_estimator/logs/flight_log_formats.h"
 #include "propulsion_estimator/logs/flight_log_reader.h"
@@ -20,10 +21,8 @@ struct FlightBagTopics {
   std::string imu = kImuTopic;                          ///< sensor_msgs/Imu
   std::string pose = kPoseTopic;                        ///< geometry_msgs/PoseStamped
   std::string velocity = kVelocityTopic;                ///< geometry_msgs/TwistStamped
-  std::string static_pressure = kStaticPressureTopic;   ///< sensor_msgs/FluidPressure
-  std::string air_temperature = kAirTemperatureTopic;   ///< sensor_msgs/Temperature
-  std::string rangefinder = kRangefinderTopic;          ///< sensor_msgs/Range
-  std::string motor_temperature = kMotorTemperatureTopic;  ///< sensor_msgs/Temperature
+  /// Each scalar input's topic (its ScalarSpec's message type), by input::index.
+  input::PerScalar<std::string> inputs = input::defaultTopics();
   std::string esc_telemetry = kEscTelemetryTopic;       ///< mavros_msgs/ESCTelemetry (ArduPilot)
   std::string esc_status = kEscStatusTopic;             ///< mavros_msgs/ESCStatus (PX4)
 

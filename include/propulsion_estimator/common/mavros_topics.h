@@ -2,7 +2,8 @@
 
 namespace propulsion_estimator {
 
-/// The topics a flight's signals arrive on, as MAVROS names them: the node's default inputs, the
+/// The topics a flight's signals arrive on, as MAVROS names them (the scalar inputs' are in
+/// input_signal.h): the node's default inputs, the
 /// simulator's bag topics and the flight bag reader's defaults, spelt here only.
 ///@{
 constexpr const char* kRcOutTopic = "/mavros/rc/out";                                   ///< mavros_msgs/RCOut
@@ -10,14 +11,8 @@ constexpr const char* kBatteryTopic = "/mavros/battery";                        
 constexpr const char* kImuTopic = "/mavros/imu/data";                                   ///< sensor_msgs/Imu
 constexpr const char* kPoseTopic = "/mavros/local_position/pose";                       ///< geometry_msgs/PoseStamped
 constexpr const char* kVelocityTopic = "/mavros/local_position/velocity_local";         ///< geometry_msgs/TwistStamped
-constexpr const char* kStaticPressureTopic = "/mavros/imu/static_pressure";             ///< sensor_msgs/FluidPressure
-constexpr const char* kAirTemperatureTopic = "/mavros/imu/temperature_baro";            ///< sensor_msgs/Temperature
-constexpr const char* kRangefinderTopic = "/mavros/rangefinder/rangefinder";            ///< sensor_msgs/Range
 constexpr const char* kEscTelemetryTopic = "/mavros/esc_telemetry";  ///< mavros_msgs/ESCTelemetry (ArduPilot)
 constexpr const char* kEscStatusTopic = "/mavros/esc_status";        ///< mavros_msgs/ESCStatus (PX4)
 ///@}
-/// The hottest motor's temperature (sensor_msgs/Temperature): no MAVROS topic carries it, this is
-/// the package's own default.
-constexpr const char* kMotorTemperatureTopic = "/motor_temperature";
 
 }  // namespace propulsion_estimator

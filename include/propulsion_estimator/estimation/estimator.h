@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include "propulsion_estimator/common/input_signal.h"
 #include "propulsion_estimator/estimation/barometric_vertical_speed.h"
 #include "propulsion_estimator/estimation/estimator_config.h"
 #include "propulsion_estimator/estimation/hover_detector.h"
@@ -40,16 +41,17 @@ enum class Rejection {
                        ///< for an output it has; one it lacks (`none`) is NaN and not refused
   /// Signals of the model's effects, refused outside what the quantity can be (a unit error):
   kBadBatteryCurrent,   ///< infinite, or more than 1000 A either way
-  kBadStaticPressure,   ///< outside 30000..110000 Pa (the bench air's range)
-  kBadAirTemperature,   ///< outside -60..85 deg C
-  kBadRange,            ///< NaN, or finite outside the sensor's own min_range..max_range
-  kBadMotorTemperature,  ///< outside -40..200 deg C
+  /// A scalar input outside its ScalarSpec's min..max, or NaN; a range outside its message's own
+  /// min_range..max_range (RejectionDetail::input says which input).
+  kBadInput,
 };
-constexpr int kRejectionCount = 18;  ///< number of Rejection values
-static_assert(static_cast<int>(Rejection::kBadMotorTemperature) + 1 == kRejectionCount,
-              "kRejectionCount counts every Rejection");
-/// "bad_voltage", "stale_battery", ...: the name of a rejection in diagnostics and counters.
+constexpr int kRejectionCount = 15;  ///< number of Rejection values
+static_assert(static_cast<int>(Rejection::kBadInput) + 1 == kRejectionCount, "kRejectionCount counts every Rejection");
+/// "bad_voltage", "stale_battery", ...: the name of a rejection in diagnostics and counters
+/// ("bad_input" for any scalar input: badInputName names which).
 const char* rejectionName(Rejection rejection);
+/// "bad_air_temperature": the name of a refused reading of `scalar` in diagnostics and counters.
+std::string badInputName(input::Scalar scalar);
 
 /// The last refusal with what it was about, turned into text only when someone asks.
 struct RejectionDetail {
@@ -57,7 +59,8 @@ struct RejectionDetail {
   int channel = 0;     ///< 1-based, for kDisarmed
   double value = 0.0;  ///< offending value (voltage, PWM, channel count, seconds)
   double limit = 0.0;  ///< what it was checked against
-  double limit_high = 0.0;  ///< upper end where the check is a range (kBadRange)
+  double limit_high = 0.0;  ///< upper end where the check is a range (kBadInput)
+  input::Scalar input = input::Scalar::kStaticPressure;  ///< the refused input, for kBadInput
 };
 /// One line for diagnostics: the rejection with its channel, value and limit ("none" for kNone).
 std::string describe(const RejectionDetail& detail);
@@ -110,6 +113,7 @@ struct EstimatorOutput {
 /// and effects applied, for diagnostics.
 struct EstimatorCounters {
   std::array<std::uint64_t, kRejectionCount> rejected{};  ///< refused inputs, indexed by Rejection
+  input::PerScalar<std::uint64_t> rejected_inputs{};  ///< of rejected[kBadInput], by input::index
   std::uint64_t accepted = 0;  ///< RCOut messages accepted
   std::uint64_t motor_samples = 0;  ///< motor estimates computed (accepted messages times motors)
   std::uint64_t motor_samples_outside_domain = 0;  ///< of which outside the model's domain
@@ -157,18 +161,18 @@ class Estimator {
   /// discharging) and a flying multicopter only discharges. NaN is BatteryState's "not measured":
   /// ignored, not refused. Ages like the voltage (battery_timeout_s).
   Rejection addBatteryCurrent(double receipt_s, double current_a);
-  /// Static pressure (Pa) and air temperature (deg C) give the air density p / (R T). The static
-  /// pressure's height rate is also the hover check's vertical speed while no velocity is fresh.
-  Rejection addStaticPressure(double receipt_s, double pressure_pa);
-  /// Air temperature in deg C; kBadAirTemperature outside -60..85 deg C.
-  Rejection addAirTemperature(double receipt_s, double temperature_c);
-  /// A downward rangefinder's reading (m), REP-117: +inf (nothing within max_range) is out of
-  /// ground effect, -inf (closer than min_range) is taken as min_range, the farthest the ground
-  /// can then be, so that the correction is never overdone. The height is the range times the
-  /// cosine of the tilt while the IMU is fresh.
+  /// A reading of the scalar input `scalar` in its ScalarSpec's unit; kBadInput when NaN or
+  /// outside the spec's min..max. Used until its timeout (EstimatorConfig::input_timeout_s). Static
+  /// pressure and air temperature give the air density p / (R T); the static pressure's height
+  /// rate is also the hover check's vertical speed while no velocity is fresh. A range given here
+  /// is a valid reading (a log keeps only those); +inf is out of ground effect.
+  Rejection addInput(input::Scalar scalar, double receipt_s, double value);
+  /// A downward rangefinder's sensor_msgs/Range (m), REP-117: kBadInput for NaN or a finite range
+  /// outside the message's min_range..max_range; +inf (nothing within max_range) is out of ground
+  /// effect, -inf (closer than min_range) is taken as min_range, the farthest the ground can then
+  /// be, so that the correction is never overdone. The height is the range times the cosine of
+  /// the tilt while the IMU is fresh.
   Rejection addRange(double receipt_s, double range_m, double min_range_m, double max_range_m);
-  /// Motor winding or bell temperature in deg C; kBadMotorTemperature outside -40..200 deg C.
-  Rejection addMotorTemperature(double receipt_s, double temperature_c);
   /// The signals as the corrections read them at `now_s`: NaN where missing or stale. Prepared
   /// by effects::prepareSignals, as the gap diagnosis prepares its flights' (effect_signals.h).
   effects::Signals effectSignals(double now_s) const;
@@ -229,6 +233,7 @@ class Estimator {
 
   Rejection reject(Rejection reason, int channel = 0, double value = 0.0, double limit = 0.0,
                    double limit_high = 0.0);
+  Rejection rejectInput(input::Scalar scalar, double value, double limit, double limit_high);
   void checkClock(double receipt_s);
   bool imuFresh(double now_s) const;
   bool velocityFresh(double now_s) const;
@@ -275,7 +280,8 @@ class Estimator {
   double horizontal_receipt_s_ = -std::numeric_limits<double>::infinity();
   double velocity_receipt_s_ = 0.0;
   bool have_velocity_ = false;
-  Reading battery_current_a_, static_pressure_pa_, air_temperature_c_, range_m_, motor_temperature_c_;
+  Reading battery_current_a_;
+  input::PerScalar<Reading> inputs_;
   double last_stamp_s_ = 0.0;
   bool have_stamp_ = false;
   double last_receipt_s_ = 0.0;

@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "propulsion_estimator/common/input_signal.h"
 #include "propulsion_estimator/estimation/hover_detector.h"
 #include "propulsion_estimator/estimation/payload_estimator.h"
 
@@ -19,17 +20,11 @@ struct EstimatorConfig {
   double battery_timeout_s = 5.0;  ///< MAVROS on PX4 may publish the battery at 0.5-1 Hz
   double imu_timeout_s = 0.5;  ///< s; an older attitude is not used for tilt or acceleration compensation
   double velocity_timeout_s = 0.5;  ///< s; an older vertical speed is not used by the hover check
-  /// How long a reading of a signal of the model's effects stays in use; older, the correction that
-  /// reads it is skipped. The battery current ages with the voltage (battery_timeout_s), the
-  /// vertical speed with the velocity (velocity_timeout_s). Defaults: a few periods of what MAVROS
-  /// publishes (static pressure 10-50 Hz, its temperature and a motor temperature about 1 Hz, a
-  /// rangefinder 10-50 Hz).
-  ///@{
-  double static_pressure_timeout_s = 1.0;
-  double air_temperature_timeout_s = 5.0;
-  double rangefinder_timeout_s = 0.5;
-  double motor_temperature_timeout_s = 5.0;
-  ///@}
+  /// How long a reading of each scalar input stays in use, by input::index (`<name>/timeout_s`;
+  /// defaults in the inputs' entries, a few periods of what MAVROS publishes); older, the
+  /// correction that reads it is skipped. The battery current ages with the voltage
+  /// (battery_timeout_s), the vertical speed with the velocity (velocity_timeout_s).
+  input::PerScalar<double> input_timeout_s = input::defaultTimeouts();
   bool compensate_tilt = true;          ///< vertical thrust = sum T_i (R a_i) . z, with the IMU's attitude
   bool compensate_acceleration = true;  ///< mass = vertical thrust / (g + vertical acceleration)
   double accel_filter_s = 0.3;          ///< low-pass of the vertical acceleration
@@ -45,6 +40,8 @@ struct EstimatorConfig {
   /// ConfigError naming the parameter and its value. `rotors`: how many rotors the vehicle has.
   /// The windows are sized by time, in fixed memory (BinnedWindow), so no rate bounds them.
   void validate(std::size_t rotors) const;
+  /// The timeout of `scalar`, s.
+  double inputTimeoutS(input::Scalar scalar) const { return input_timeout_s[input::index(scalar)]; }
 };
 
 }  // namespace propulsion_estimator

@@ -14,6 +14,7 @@
 #include "propulsion_estimator/gap/residual_breakdown.h"
 #include "propulsion_estimator/logs/bench_log.h"
 #include "propulsion_estimator/logs/flight_streams.h"
+#include "propulsion_estimator/model/effect_signals.h"
 #include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/model/propulsion_model.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
@@ -82,15 +83,7 @@ struct DiagnosisConfig {
   /// have them and the model a thrust_from_rpm); false: the PWM and current views only.
   bool rpm_view = true;
   /// Where each signal comes from, for "not testable: needs ..." lines.
-  std::map<effects::Signal, std::string> signal_sources = {
-      {effects::Signal::kBatteryCurrent, std::string(kBatteryTopic) + " (current)"},
-      {effects::Signal::kAirDensity, std::string(kStaticPressureTopic) + " and " + kAirTemperatureTopic},
-      {effects::Signal::kHeight, kRangefinderTopic},
-      {effects::Signal::kMotorTemperature, kMotorTemperatureTopic},
-      {effects::Signal::kVerticalSpeed, kVelocityTopic},
-      {effects::Signal::kHorizontalSpeed, kVelocityTopic},
-      {effects::Signal::kAxialSpeed, std::string(kVelocityTopic) + " and " + kImuTopic},
-  };
+  effects::SignalSources signal_sources;
 
   /// Throws FieldError naming the setting.
   void validate() const;
@@ -226,17 +219,13 @@ struct GapSample {
   double rpm_view_n = 0.0;        ///< vertical thrust from the measured rotor speeds (NaN without)
   double corrected_n = 0.0;       ///< with the selected effects
   double pwm_us = 0.0;            ///< mean over the motors
-  /// The signals at the sample, SI units (V, A, m, m/s, kg/m^3, deg C, s since the first weighed
-  /// segment); NaN where missing.
+  /// The inputs at the sample and the time since the first weighed segment, SI units (V, A, s).
   ///@{
   double voltage_v = 0.0;
   double current_a = 0.0;
-  double height_m = 0.0;
-  double vertical_speed_m_s = 0.0;
-  double air_density_kg_m3 = 0.0;
-  double motor_temperature_c = 0.0;
   double flight_time_s = 0.0;
   ///@}
+  effects::Signals signals;  ///< the effects' signals at the sample (effects::signalKey); NaN where missing
   bool hover = false;  ///< steady: slow vertical speed, steady commands
 };
 

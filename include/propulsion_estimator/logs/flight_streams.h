@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "propulsion_estimator/common/input_signal.h"
 #include "propulsion_estimator/logs/flight_manifest.h"
 
 namespace propulsion_estimator {
@@ -75,20 +76,22 @@ struct FlightStreams {
   std::vector<ScalarReading> altitude_m;             ///< local position z (up)
   std::vector<ScalarReading> vertical_speed_m_s;     ///< local velocity z (up)
   std::vector<HorizontalVelocityReading> horizontal_velocity;  ///< local velocity x, y (east, north)
-  std::vector<ScalarReading> static_pressure_pa;  ///< Pa
-  std::vector<ScalarReading> air_temperature_c;  ///< deg C
-  std::vector<ScalarReading> height_above_ground_m;  ///< rangefinder range (valid readings only)
-  std::vector<ScalarReading> motor_temperature_c;  ///< deg C
+  /// Each scalar input's readings, in its ScalarSpec's unit (a rangefinder's valid readings only).
+  input::PerScalar<std::vector<ScalarReading>> inputs;
   std::vector<EscTelemetryReading> esc;  ///< ESC telemetry; empty without
   /// How the reader found the signals, one line each ("rc_out: actuator_outputs[0].output[0..3]",
-  /// "motor_temperature: not in this log (no esc_status)"); empty for a reader that says nothing.
+  /// "air_temperature: not in this log"); empty for a reader that says nothing.
   std::vector<std::string> notes;
+
+  /// The readings of the scalar input `scalar`.
+  std::vector<ScalarReading>& input(input::Scalar scalar) { return inputs[input::index(scalar)]; }
+  const std::vector<ScalarReading>& input(input::Scalar scalar) const { return inputs[input::index(scalar)]; }
 };
 
 /// The signals of a flight, in FlightStreams' order: "rc_out", "battery", "imu", "pose" (altitude_m),
-/// "velocity" (vertical_speed_m_s and horizontal_velocity), "static_pressure", "air_temperature", "rangefinder"
-/// (height_above_ground_m), "motor_temperature", "esc_telemetry" and "esc_status" (esc: ArduPilot's
-/// and PX4's messages). A log format names its sources by these.
+/// "velocity" (vertical_speed_m_s and horizontal_velocity), each scalar input's name (inputs),
+/// "esc_telemetry" and "esc_status" (esc: ArduPilot's and PX4's messages). A log format names its
+/// sources by these.
 const std::vector<std::string>& flightSignalNames();
 
 /// The readings of each signal of `streams`, in flightSignalNames() order.

@@ -68,23 +68,35 @@ std::optional<Kind> kindFromName(const std::string& name);
 Signal requiredSignal(Kind kind);
 /// "battery current", "air density (static pressure and air temperature)", ...: for messages.
 const char* signalName(Signal signal);
+/// "battery_current_a", "air_density_kg_m3", ...: the signal with its unit, in files and reports;
+/// "none" for Signal::kNone.
+const char* signalKey(Signal signal);
+/// Every signal but Signal::kNone, in declaration order.
+const std::array<Signal, kSignalCount - 1>& allSignals();
 /// The fitted parameter of `kind`: key, plausible range and neutral value.
 const ParameterSpec& parameterSpec(Kind kind);
 
-/// The signals the corrections read, in SI units; NaN where a signal is missing or stale.
+/// The signals the corrections read, in SI units (signalKey says which); NaN where a signal is
+/// missing or stale. The battery current is drawn by all ESCs, >= 0; the vertical speed is up
+/// positive (REP-103); the horizontal speed is over the ground (no wind sensor: the air's is not
+/// known); the axial speed is the vehicle's speed along its body z axis (the rotors' axes), climb
+/// positive: what flows through the discs axially, in forward flight too (a disc tilted into its
+/// motion climbs into it).
 struct Signals {
-  double battery_current_a = kNaN;  ///< drawn by all ESCs, >= 0
-  double air_density_kg_m3 = kNaN;  ///< kg/m^3
-  double height_m = kNaN;  ///< of the height reference above the ground
-  double motor_temperature_c = kNaN;  ///< deg C
-  double vertical_speed_m_s = kNaN;  ///< up positive (REP-103)
-  double horizontal_speed_m_s = kNaN;  ///< over the ground, >= 0 (no wind sensor: the air's is not known)
-  /// The vehicle's speed along its body z axis (the rotors' axes), climb positive: what flows
-  /// through the discs axially, in forward flight too (a disc tilted into its motion climbs into it).
-  double axial_speed_m_s = kNaN;
+  /// The value of `signal`; NaN for Signal::kNone and for a signal not set.
+  double value(Signal signal) const { return values_[static_cast<int>(signal)]; }
+  /// Sets `signal` (Signal::kNone stays NaN).
+  void set(Signal signal, double value) {
+    if (signal != Signal::kNone) values_[static_cast<int>(signal)] = value;
+  }
 
-  /// The value of `signal`; NaN for Signal::kNone.
-  double value(Signal signal) const;
+ private:
+  static std::array<double, kSignalCount> missing() {
+    std::array<double, kSignalCount> values;
+    values.fill(kNaN);
+    return values;
+  }
+  std::array<double, kSignalCount> values_ = missing();
 };
 
 /// The inputs the ESCs really see.

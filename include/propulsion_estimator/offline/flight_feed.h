@@ -17,10 +17,7 @@ enum class Stream {
   kImu,
   kVerticalSpeed,
   kHorizontalVelocity,
-  kStaticPressure,
-  kAirTemperature,
-  kRange,
-  kMotorTemperature,
+  kInput,  ///< a scalar input: Arrival::input says which
   kEsc,
   kRcOut,
 };
@@ -30,6 +27,7 @@ struct Arrival {
   double time_s;      ///< s on the log's clock
   Stream kind;        ///< the stream
   std::size_t index;  ///< in that stream
+  input::Scalar input = input::Scalar::kStaticPressure;  ///< for Stream::kInput
 };
 
 /// The estimator's configuration for a logged flight: the node's defaults

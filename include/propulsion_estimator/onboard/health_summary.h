@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "propulsion_estimator/estimation/estimator.h"
+#include "propulsion_estimator/model/effect_signals.h"
 
 namespace propulsion_estimator {
 
@@ -46,14 +47,7 @@ struct HealthSnapshot {
 struct HealthConfig {
   std::string battery_input = "battery";     ///< e.g. the battery topic
   std::string rc_out_input = "motor outputs";  ///< e.g. the RCOut topic
-  /// Where the effects' signals come from (the topics), for the Effects verdict.
-  ///@{
-  std::string velocity_input = "velocity";
-  std::string static_pressure_input = "static pressure";
-  std::string air_temperature_input = "air temperature";
-  std::string rangefinder_input = "rangefinder";
-  std::string motor_temperature_input = "motor temperature";
-  ///@}
+  effects::SignalSources signal_sources;  ///< where the effects' signals come from, for the Effects verdict
   /// Share of motor samples outside the model's domain per period above which "Model domain" warns.
   double domain_warn_fraction = 0.2;
 

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "propulsion_estimator/common/input_signal.h"
 #include "propulsion_estimator/common/mavros_topics.h"
 #include "propulsion_estimator/estimation/estimator_config.h"
 #include "propulsion_estimator/onboard/capability.h"
@@ -20,13 +21,11 @@ struct EstimatorNodeParams {
   std::string rc_out_topic = kRcOutTopic;       ///< mavros_msgs/RCOut
   std::string imu_topic = kImuTopic;            ///< "" disables
   std::string velocity_topic = kVelocityTopic;  ///< "" disables
-  /// The barometer: the hover check's vertical speed while no velocity is fresh, and the
-  /// air_density effect's signal. "" disables.
-  std::string static_pressure_topic = kStaticPressureTopic;     ///< sensor_msgs/FluidPressure
-  /// Signals of the model's effects, subscribed only when an effect of the model reads them.
-  std::string air_temperature_topic = kAirTemperatureTopic;    ///< sensor_msgs/Temperature
-  std::string rangefinder_topic = kRangefinderTopic;     ///< sensor_msgs/Range
-  std::string motor_temperature_topic = kMotorTemperatureTopic;            ///< sensor_msgs/Temperature
+  /// Each scalar input's topic (`<name>_topic`, its message type in its ScalarSpec), by
+  /// input::index; "" disables one. The barometer's static pressure is always subscribed (the hover
+  /// check's vertical speed while no velocity is fresh); the others only when an effect of the
+  /// model reads a signal prepared from them.
+  input::PerScalar<std::string> input_topics = input::defaultTopics();
   /// ESC telemetry, optional: measured rpm and current per motor and the live model check. Both
   /// are subscribed; whichever the autopilot publishes is used. "" disables one.
   std::string esc_telemetry_topic = kEscTelemetryTopic;  ///< mavros_msgs/ESCTelemetry (ArduPilot)

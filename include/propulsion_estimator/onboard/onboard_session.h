@@ -56,6 +56,9 @@ class OnboardSession {
   /// Whether the model's effects read `signal` (the node subscribes to those topics only; the
   /// session drops a reading of a signal nothing reads, as the node never receives it).
   bool reads(effects::Signal signal) const;
+  /// Whether the session takes readings of `scalar`: the static pressure always (the hover check's
+  /// vertical speed without velocity), another only when an effect reads a signal prepared from it.
+  bool readsInput(input::Scalar scalar) const { return inputs_read_[input::index(scalar)]; }
 
   /// One RCOut message (µs per channel) stamped `stamp_s`: estimated, and when accepted, taken
   /// by the motor-health check, the model check and the rpm view. Returns the estimator's verdict.
@@ -67,11 +70,10 @@ class OnboardSession {
   Rejection addImu(double now_s, const Eigen::Quaterniond& orientation, const Eigen::Vector3d& specific_force);
   Rejection addVerticalSpeed(double now_s, double vertical_speed_m_s);  ///< m/s, up positive
   Rejection addHorizontalVelocity(double now_s, double east_m_s, double north_m_s);  ///< m/s
-  Rejection addStaticPressure(double now_s, double pressure_pa);  ///< Pa
-  Rejection addAirTemperature(double now_s, double temperature_c);  ///< °C; dropped unless read
-  /// m and the sensor's limits; dropped unless an effect reads the height.
+  /// A reading of `scalar` in its ScalarSpec's unit (Estimator::addInput); dropped unless read.
+  Rejection addInput(input::Scalar scalar, double now_s, double value);
+  /// A sensor_msgs/Range: m and the sensor's limits (Estimator::addRange); dropped unless read.
   Rejection addRange(double now_s, double range_m, double min_range_m, double max_range_m);
-  Rejection addMotorTemperature(double now_s, double temperature_c);  ///< °C; dropped unless read
   /// One decoded ESC telemetry message (the live model check).
   void addEscTelemetry(double now_s, const EscTelemetry& message);
 
@@ -113,7 +115,7 @@ class OnboardSession {
   ModelCheck model_check_;
   std::optional<RpmMassView> rpm_view_;
   bool battery_current_ = false;  ///< a supply_resistance effect (or its application) reads it
-  bool air_temperature_ = false, height_ = false, motor_temperature_ = false;
+  input::PerScalar<bool> inputs_read_{};  ///< see readsInput
   double supply_applied_ohm_ = kNaN;
   EstimatorOutput rpm_output_;  ///< the estimator's output with the rpm view's mass
 };

@@ -48,10 +48,8 @@ class EstimatorNode {
   void onBattery(const sensor_msgs::BatteryState::ConstPtr& message);
   void onImu(const sensor_msgs::Imu::ConstPtr& message);
   void onVelocity(const geometry_msgs::TwistStamped::ConstPtr& message);
-  void onStaticPressure(const sensor_msgs::FluidPressure::ConstPtr& message);
-  void onAirTemperature(const sensor_msgs::Temperature::ConstPtr& message);
+  void onInput(input::Scalar scalar, double value);  ///< a scalar input's reading, in its spec's unit
   void onRange(const sensor_msgs::Range::ConstPtr& message);
-  void onMotorTemperature(const sensor_msgs::Temperature::ConstPtr& message);
   /// ESC telemetry (estimator_node_esc.cpp): mavros_msgs/ESCTelemetry or ESCStatus from `topic`.
   void onEscTelemetry(const topic_tools::ShapeShifter::ConstPtr& message, const std::string& topic);
   /// Subscribes to the ESC telemetry topics that are not "" and adds the "ESC telemetry" diagnostic.
@@ -64,12 +62,15 @@ class EstimatorNode {
   static void copy(const HealthStatus& health, diagnostic_updater::DiagnosticStatusWrapper* status);
   /// Logs which references the motor checks judge against.
   void logMotorChecks() const;
-  /// Subscribes to what the model's effects read (and refuses a needed topic set to ""); logs
-  /// which effects apply with which parameters.
+  /// Subscribes to the scalar inputs the session reads (and refuses a topic an effect needs set
+  /// to ""); logs which effects apply with which parameters.
   void subscribeEffectSignals(ros::NodeHandle& input_nh, const ros::NodeHandle& private_nh,
                               const ros::TransportHints& hints);
   /// Applies the tare file of an earlier run, if any and taken with this model.
   void loadTare();
+  /// Subscribes to `scalar` on `topic`, decoding its ScalarSpec's message.
+  ros::Subscriber subscribeInput(ros::NodeHandle& input_nh, input::Scalar scalar, const std::string& topic,
+                                 const ros::TransportHints& hints);
   /// What the Tare file diagnostic says (and the log, once).
   void setTareFileStatus(std::uint8_t level, const std::string& message);
   void logRejection(Rejection rejection);
@@ -116,7 +117,7 @@ class EstimatorNode {
   /// Declared last, so destroyed first: a subscriber's destruction waits for its running callback,
   /// which uses everything above.
   ros::Subscriber rc_out_sub_, battery_sub_, imu_sub_, velocity_sub_;
-  ros::Subscriber static_pressure_sub_, air_temperature_sub_, range_sub_, motor_temperature_sub_;
+  input::PerScalar<ros::Subscriber> input_subs_;  ///< by input::index
   ros::Subscriber esc_telemetry_sub_, esc_status_sub_;
 };
 

@@ -23,7 +23,7 @@ const EffectDescription& airDensityEffect() {
         "fly on another day or site with static pressure and air temperature logged: an air-density loss "
         "follows the air, not the current or the payload";
     d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
-      return std::pow(signals.air_density_kg_m3 / references.bench_air_density_kg_m3, value);
+      return std::pow(signals.value(Signal::kAirDensity) / references.bench_air_density_kg_m3, value);
     };
     // The battery current at the sensed voltage measures electrical power, and at a given power
     // momentum theory gives T proportional to (rho P^2)^(1/3): the current view sees

@@ -24,7 +24,7 @@ const EffectDescription& climbInflowEffect() {
     // Momentum theory: a climb's axial inflow lowers the blades' angle of attack, while a slow
     // descent (into the vortex-ring region) barely changes thrust at a given rotor speed.
     d.thrust_factor = [](double value, const ModelEffects&, const Signals& signals) {
-      return 1.0 - value * std::max(signals.axial_speed_m_s, 0.0);
+      return 1.0 - value * std::max(signals.value(Signal::kAxialSpeed), 0.0);
     };
     // Momentum theory gives a climb's loss at constant power about as at constant speed.
     d.current_view_exponent = [](double) { return 1.0; };

@@ -19,7 +19,7 @@ const EffectDescription& groundEffectEffect() {
         "hover at three heights below two rotor diameters and one well above: ground effect grows as the "
         "rotors near the ground";
     d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
-      const double distance = std::max(signals.height_m + references.rotor_height_m, kMinGroundDistanceM);
+      const double distance = std::max(signals.value(Signal::kHeight) + references.rotor_height_m, kMinGroundDistanceM);
       return 1.0 + value / (distance * distance);
     };
     // Cheeseman-Bennett's ratio is at constant power: the current view sees it as the PWM view does.

@@ -16,7 +16,7 @@ const EffectDescription& motorTemperatureEffect() {
         "a long hover from cold motors, motor temperature logged: motor heating grows with the motors' "
         "temperature over the flight";
     d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
-      return 1.0 + value * (signals.motor_temperature_c - references.motor_reference_c);
+      return 1.0 + value * (signals.value(Signal::kMotorTemperature) - references.motor_reference_c);
     };
     // A hot motor spins faster at a given duty (weaker flux) but needs more current per newton
     // metre and loses more in its hotter copper: the PWM view under-reads thrust while the

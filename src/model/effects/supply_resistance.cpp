@@ -19,7 +19,7 @@ const EffectDescription& supplyResistanceEffect() {
         " loss grows with the current drawn";
     // V' = V - R I: the ESCs see the sensed voltage less the drop across the supply.
     d.correct_inputs = [](double value, const Inputs& inputs, const Signals& signals) {
-      return Inputs{inputs.pwm_us, inputs.voltage_v - value * signals.battery_current_a};
+      return Inputs{inputs.pwm_us, inputs.voltage_v - value * signals.value(Signal::kBatteryCurrent)};
     };
     return d;
   }();

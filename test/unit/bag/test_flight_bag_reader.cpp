@@ -152,16 +152,16 @@ TEST_F(FlightBagReader, ReadsWhatTheSimulatorWritesOnTheManifestsClock) {
   const std::vector<std::size_t> counts = pe::signalCounts(streams);
   EXPECT_EQ(counts[counts.size() - 2], 1u);  // esc_telemetry
   EXPECT_EQ(counts.back(), 1u);              // esc_status
-  ASSERT_EQ(streams.static_pressure_pa.size(), 1u);
-  EXPECT_DOUBLE_EQ(streams.static_pressure_pa[0].value, 101000.5);
-  ASSERT_EQ(streams.air_temperature_c.size(), 1u);
-  EXPECT_DOUBLE_EQ(streams.air_temperature_c[0].value, 21.5);
-  ASSERT_EQ(streams.motor_temperature_c.size(), 1u);
-  EXPECT_NEAR(streams.motor_temperature_c[0].time_s, 0.7, 1e-9);
-  EXPECT_DOUBLE_EQ(streams.motor_temperature_c[0].value, 45.25);
-  ASSERT_EQ(streams.height_above_ground_m.size(), 1u);  // the readings out of reach are left out
-  EXPECT_NEAR(streams.height_above_ground_m[0].time_s, 0.8, 1e-9);
-  EXPECT_DOUBLE_EQ(streams.height_above_ground_m[0].value, 2.5);
+  ASSERT_EQ(streams.input(pe::input::Scalar::kStaticPressure).size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.input(pe::input::Scalar::kStaticPressure)[0].value, 101000.5);
+  ASSERT_EQ(streams.input(pe::input::Scalar::kAirTemperature).size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.input(pe::input::Scalar::kAirTemperature)[0].value, 21.5);
+  ASSERT_EQ(streams.input(pe::input::Scalar::kMotorTemperature).size(), 1u);
+  EXPECT_NEAR(streams.input(pe::input::Scalar::kMotorTemperature)[0].time_s, 0.7, 1e-9);
+  EXPECT_DOUBLE_EQ(streams.input(pe::input::Scalar::kMotorTemperature)[0].value, 45.25);
+  ASSERT_EQ(streams.input(pe::input::Scalar::kRangefinder).size(), 1u);  // the readings out of reach are left out
+  EXPECT_NEAR(streams.input(pe::input::Scalar::kRangefinder)[0].time_s, 0.8, 1e-9);
+  EXPECT_DOUBLE_EQ(streams.input(pe::input::Scalar::kRangefinder)[0].value, 2.5);
 }
 
 TEST_F(FlightBagReader, LeavesTheStreamsOfMissingOptionalTopicsEmpty) {
@@ -172,10 +172,10 @@ TEST_F(FlightBagReader, LeavesTheStreamsOfMissingOptionalTopicsEmpty) {
   EXPECT_TRUE(streams.imu.empty());
   EXPECT_TRUE(streams.altitude_m.empty());
   EXPECT_TRUE(streams.vertical_speed_m_s.empty());
-  EXPECT_TRUE(streams.static_pressure_pa.empty());
-  EXPECT_TRUE(streams.air_temperature_c.empty());
-  EXPECT_TRUE(streams.height_above_ground_m.empty());
-  EXPECT_TRUE(streams.motor_temperature_c.empty());
+  EXPECT_TRUE(streams.input(pe::input::Scalar::kStaticPressure).empty());
+  EXPECT_TRUE(streams.input(pe::input::Scalar::kAirTemperature).empty());
+  EXPECT_TRUE(streams.input(pe::input::Scalar::kRangefinder).empty());
+  EXPECT_TRUE(streams.input(pe::input::Scalar::kMotorTemperature).empty());
   EXPECT_TRUE(streams.horizontal_velocity.empty());
   EXPECT_TRUE(streams.esc.empty());
 }
@@ -205,10 +205,10 @@ TEST_F(FlightBagReader, ReadsTheTopicsItIsGiven) {
   // Two signals may read one topic.
   *topics.find("air_temperature") = "/esc/temperature";
   const pe::FlightStreams streams = pe::FlightBagReader(file("renamed.bag")).read(topics, 4);
-  ASSERT_EQ(streams.motor_temperature_c.size(), 1u);
-  EXPECT_DOUBLE_EQ(streams.motor_temperature_c[0].value, 30.0);
-  ASSERT_EQ(streams.air_temperature_c.size(), 1u);
-  EXPECT_NEAR(streams.air_temperature_c[0].time_s, 1.0, 1e-9);
+  ASSERT_EQ(streams.input(pe::input::Scalar::kMotorTemperature).size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.input(pe::input::Scalar::kMotorTemperature)[0].value, 30.0);
+  ASSERT_EQ(streams.input(pe::input::Scalar::kAirTemperature).size(), 1u);
+  EXPECT_NEAR(streams.input(pe::input::Scalar::kAirTemperature)[0].time_s, 1.0, 1e-9);
 }
 
 TEST_F(FlightBagReader, NamesItsSignals) {

@@ -491,7 +491,7 @@ TEST(Estimator, BarometerGivesTheHoverVerticalSpeedWithoutVelocity) {
   const auto climb = [](double rate_m_s) {
     EstimatorFixture f;
     for (int k = 0; k < 250; ++k) {  // 5 s of motor outputs at 50 Hz, the barometer at 25 Hz
-      if (k % 2 == 0) f.estimator.addStaticPressure(f.t, 101325.0 - 1.2250 * 9.80665 * rate_m_s * (f.t - 100.0));
+      if (k % 2 == 0) f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 101325.0 - 1.2250 * 9.80665 * rate_m_s * (f.t - 100.0));
       f.fly(1690.0, 0.02);
     }
     return f.estimator.output();
@@ -507,7 +507,7 @@ TEST(Estimator, BarometerGivesTheHoverVerticalSpeedWithoutVelocity) {
   // Velocity, when fresh, is preferred.
   EstimatorFixture f;
   f.estimator.addVerticalSpeed(f.t, 0.1);
-  f.estimator.addStaticPressure(f.t, 101325.0);
+  f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 101325.0);
   f.fly(1690.0, 0.1);
   EXPECT_EQ(f.estimator.output().vertical_speed_source, pe::VerticalSpeedSource::kVelocity);
 }

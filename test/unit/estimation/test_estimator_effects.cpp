@@ -66,13 +66,13 @@ TEST(EstimatorEffects, SupplyResistanceLowersTheVoltageByTheDropOfTheBatteryCurr
 
 TEST(EstimatorEffects, AirDensityScalesThrustByTheDensityRatioToTheExponent) {
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), only(fx::Kind::kAirDensity, 0.85));
-  f.estimator.addStaticPressure(f.t, 95000.0);
-  f.estimator.addAirTemperature(f.t, 30.0);
+  f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 95000.0);
+  f.estimator.addInput(pe::input::Scalar::kAirTemperature, f.t, 30.0);
   f.fly(kPwm, 0.1);
   const double rho = 95000.0 / (pe::kSpecificGasConstantDryAir * (30.0 + pe::kZeroCelsiusInKelvin));
   EXPECT_NEAR(benchDensity(f), 101325.0 / (pe::kSpecificGasConstantDryAir * 295.15), 1e-12) << "the model's 22 deg C";
   expectMotor(f, kPwm, kVoltage, std::pow(rho / benchDensity(f), 0.85));
-  EXPECT_NEAR(f.estimator.effectSignals(f.t).air_density_kg_m3, rho, 1e-12);
+  EXPECT_NEAR(f.estimator.effectSignals(f.t).value(pe::effects::Signal::kAirDensity), rho, 1e-12);
 }
 
 TEST(EstimatorEffects, GroundEffectGrowsAsTheRangefinderNearsTheGround) {
@@ -88,7 +88,7 @@ TEST(EstimatorEffects, GroundEffectGrowsAsTheRangefinderNearsTheGround) {
   f.estimator.addRange(f.t, 0.3, 0.1, 12.0);
   f.fly(kPwm, 0.02);
   const double height = 0.3 * std::cos(0.2);
-  EXPECT_NEAR(f.estimator.effectSignals(f.t).height_m, height, 1e-12);
+  EXPECT_NEAR(f.estimator.effectSignals(f.t).value(pe::effects::Signal::kHeight), height, 1e-12);
   expectMotor(f, kPwm, kVoltage, 1.0 + 0.0011 / ((height + 0.05) * (height + 0.05)));
   // REP-117: nothing within max_range is out of ground effect; closer than min_range is taken as
   // min_range, the least correction the reading allows.
@@ -112,7 +112,7 @@ TEST(EstimatorEffects, ThrustLossNeedsNoSignal) {
 
 TEST(EstimatorEffects, MotorTemperatureScalesThrustLinearlyFromItsReference) {
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), only(fx::Kind::kMotorTemperature, 0.0012));
-  f.estimator.addMotorTemperature(f.t, 60.0);
+  f.estimator.addInput(pe::input::Scalar::kMotorTemperature, f.t, 60.0);
   f.fly(kPwm, 0.1);
   expectMotor(f, kPwm, kVoltage, 1.0 + 0.0012 * (60.0 - 22.0));
 }
@@ -140,10 +140,10 @@ TEST(EstimatorEffects, AllEffectsTogetherAreTheProductAtTheCorrectedInputs) {
   effects.setParameter(fx::Kind::kClimbInflow, 0.04);
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), effects);
   f.estimator.addBatteryCurrent(f.t, 30.0);
-  f.estimator.addStaticPressure(f.t, 100000.0);
-  f.estimator.addAirTemperature(f.t, 10.0);
+  f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 100000.0);
+  f.estimator.addInput(pe::input::Scalar::kAirTemperature, f.t, 10.0);
   f.estimator.addRange(f.t, 1.0, 0.1, 12.0);
-  f.estimator.addMotorTemperature(f.t, 45.0);
+  f.estimator.addInput(pe::input::Scalar::kMotorTemperature, f.t, 45.0);
   f.estimator.addVerticalSpeed(f.t, 0.2);
   f.fly(kPwm, 0.1);
   const double rho = 100000.0 / (pe::kSpecificGasConstantDryAir * (10.0 + pe::kZeroCelsiusInKelvin));
@@ -190,8 +190,8 @@ TEST(EstimatorEffects, AnEffectAtItsNeutralValueIsStillSkippedWithoutItsSignal) 
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), only(fx::Kind::kAirDensity, 0.0));
   f.fly(kPwm, 0.1);
   EXPECT_TRUE(skipped(f, fx::Kind::kAirDensity));
-  f.estimator.addStaticPressure(f.t, 97000.0);
-  f.estimator.addAirTemperature(f.t, 25.0);
+  f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 97000.0);
+  f.estimator.addInput(pe::input::Scalar::kAirTemperature, f.t, 25.0);
   f.fly(kPwm, 0.02);
   EXPECT_FALSE(skipped(f, fx::Kind::kAirDensity));
   expectMotor(f, kPwm, kVoltage, 1.0);
@@ -208,15 +208,15 @@ TEST(EstimatorEffects, AStaleSignalSkipsItsCorrectionAfterItsTimeout) {
   const Case cases[] = {
       {fx::Kind::kSupplyResistance, 0.05, config.battery_timeout_s,
        [](pe::Estimator& e, double t) { e.addBatteryCurrent(t, -18.0); }},
-      {fx::Kind::kAirDensity, 1.0, config.static_pressure_timeout_s,  // the shorter of the two
+      {fx::Kind::kAirDensity, 1.0, config.input_timeout_s[pe::input::index(pe::input::Scalar::kStaticPressure)],  // the shorter of the two
        [](pe::Estimator& e, double t) {
-         e.addStaticPressure(t, 97000.0);
-         e.addAirTemperature(t, 25.0);
+         e.addInput(pe::input::Scalar::kStaticPressure, t, 97000.0);
+         e.addInput(pe::input::Scalar::kAirTemperature, t, 25.0);
        }},
-      {fx::Kind::kGroundEffect, 0.0011, config.rangefinder_timeout_s,
+      {fx::Kind::kGroundEffect, 0.0011, config.input_timeout_s[pe::input::index(pe::input::Scalar::kRangefinder)],
        [](pe::Estimator& e, double t) { e.addRange(t, 0.4, 0.1, 12.0); }},
-      {fx::Kind::kMotorTemperature, 0.001, config.motor_temperature_timeout_s,
-       [](pe::Estimator& e, double t) { e.addMotorTemperature(t, 50.0); }},
+      {fx::Kind::kMotorTemperature, 0.001, config.input_timeout_s[pe::input::index(pe::input::Scalar::kMotorTemperature)],
+       [](pe::Estimator& e, double t) { e.addInput(pe::input::Scalar::kMotorTemperature, t, 50.0); }},
       {fx::Kind::kClimbInflow, 0.03, config.velocity_timeout_s,
        [](pe::Estimator& e, double t) { e.addVerticalSpeed(t, 0.3); }},
   };
@@ -242,20 +242,20 @@ TEST(EstimatorEffects, AStaleSignalSkipsItsCorrectionAfterItsTimeout) {
 
 TEST(EstimatorEffects, AirDensityNeedsBothPressureAndTemperatureFresh) {
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), only(fx::Kind::kAirDensity, 1.0));
-  f.estimator.addAirTemperature(f.t, 25.0);  // stays fresh 5 s
+  f.estimator.addInput(pe::input::Scalar::kAirTemperature, f.t, 25.0);  // stays fresh 5 s
   for (int k = 0; k < 100; ++k) {  // 2 s of pressure at 50 Hz
-    f.estimator.addStaticPressure(f.t, 97000.0);
+    f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 97000.0);
     f.fly(kPwm, 0.02);
   }
   EXPECT_FALSE(skipped(f, fx::Kind::kAirDensity));
   f.fly(kPwm, 1.1);  // the pressure ages out first
   EXPECT_TRUE(skipped(f, fx::Kind::kAirDensity));
   for (int k = 0; k < 150; ++k) {  // then the temperature, with pressure coming again
-    f.estimator.addStaticPressure(f.t, 97000.0);
+    f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 97000.0);
     f.fly(kPwm, 0.02);
   }
   EXPECT_TRUE(skipped(f, fx::Kind::kAirDensity));
-  EXPECT_TRUE(std::isnan(f.estimator.effectSignals(f.t).air_density_kg_m3));
+  EXPECT_TRUE(std::isnan(f.estimator.effectSignals(f.t).value(pe::effects::Signal::kAirDensity)));
 }
 
 TEST(EstimatorEffects, NaNBatteryCurrentIsNotMeasuredNotRefused) {
@@ -276,45 +276,52 @@ TEST(EstimatorEffects, RefusesSignalsThatCannotBeTheirQuantity) {
         "battery current 20000 A refused (must be finite, at most 1000 A either way)");
   check(f.estimator.addBatteryCurrent(f.t, -kInf), pe::Rejection::kBadBatteryCurrent,
         "battery current -inf A refused (must be finite, at most 1000 A either way)");
-  check(f.estimator.addStaticPressure(f.t, 1013.25), pe::Rejection::kBadStaticPressure,
+  check(f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 1013.25), pe::Rejection::kBadInput,
         "static pressure 1013.25 Pa refused (outside 30000..110000 Pa)");
-  check(f.estimator.addStaticPressure(f.t, std::nan("")), pe::Rejection::kBadStaticPressure,
+  check(f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, std::nan("")), pe::Rejection::kBadInput,
         "static pressure nan Pa refused (outside 30000..110000 Pa)");
-  check(f.estimator.addAirTemperature(f.t, 293.15), pe::Rejection::kBadAirTemperature,
+  check(f.estimator.addInput(pe::input::Scalar::kAirTemperature, f.t, 293.15), pe::Rejection::kBadInput,
         "air temperature 293.15 deg C refused (outside -60..85 deg C)");
-  check(f.estimator.addMotorTemperature(f.t, 350.0), pe::Rejection::kBadMotorTemperature,
+  check(f.estimator.addInput(pe::input::Scalar::kMotorTemperature, f.t, 350.0), pe::Rejection::kBadInput,
         "motor temperature 350 deg C refused (outside -40..200 deg C)");
-  check(f.estimator.addRange(f.t, std::nan(""), 0.1, 12.0), pe::Rejection::kBadRange,
+  check(f.estimator.addRange(f.t, std::nan(""), 0.1, 12.0), pe::Rejection::kBadInput,
         "rangefinder range nan m refused (NaN, or outside the sensor's min_range..max_range 0.1..12 m, which "
         "sensor_msgs/Range says to discard)");
-  check(f.estimator.addRange(f.t, 14.0, 0.1, 12.0), pe::Rejection::kBadRange,
+  check(f.estimator.addRange(f.t, 14.0, 0.1, 12.0), pe::Rejection::kBadInput,
         "rangefinder range 14 m refused (NaN, or outside the sensor's min_range..max_range 0.1..12 m, which "
         "sensor_msgs/Range says to discard)");
-  check(f.estimator.addRange(f.t, 2.0, 0.0, 0.0), pe::Rejection::kBadRange,
+  check(f.estimator.addRange(f.t, 2.0, 0.0, 0.0), pe::Rejection::kBadInput,
         "rangefinder range 2 m refused (NaN, or outside the sensor's min_range..max_range 0..0 m, which "
         "sensor_msgs/Range says to discard)");
   // Refused readings are not used.
   const fx::Signals signals = f.estimator.effectSignals(f.t);
-  EXPECT_TRUE(std::isnan(signals.battery_current_a));
-  EXPECT_TRUE(std::isnan(signals.air_density_kg_m3));
-  EXPECT_TRUE(std::isnan(signals.height_m));
-  EXPECT_TRUE(std::isnan(signals.motor_temperature_c));
-  EXPECT_STREQ(pe::rejectionName(pe::Rejection::kBadRange), "bad_range");
-  EXPECT_STREQ(pe::rejectionName(pe::Rejection::kBadMotorTemperature), "bad_motor_temperature");
+  EXPECT_TRUE(std::isnan(signals.value(fx::Signal::kBatteryCurrent)));
+  EXPECT_TRUE(std::isnan(signals.value(fx::Signal::kAirDensity)));
+  EXPECT_TRUE(std::isnan(signals.value(fx::Signal::kHeight)));
+  EXPECT_TRUE(std::isnan(signals.value(fx::Signal::kMotorTemperature)));
+  EXPECT_STREQ(pe::rejectionName(pe::Rejection::kBadInput), "bad_input");
+  EXPECT_EQ(pe::badInputName(pe::input::Scalar::kRangefinder), "bad_rangefinder");
+  EXPECT_EQ(pe::badInputName(pe::input::Scalar::kMotorTemperature), "bad_motor_temperature");
+  // Each refusal is counted against its input.
+  const pe::EstimatorCounters& counters = f.estimator.counters();
+  EXPECT_EQ(counters.rejected[static_cast<int>(pe::Rejection::kBadInput)], 7u);
+  EXPECT_EQ(counters.rejected_inputs[pe::input::index(pe::input::Scalar::kStaticPressure)], 2u);
+  EXPECT_EQ(counters.rejected_inputs[pe::input::index(pe::input::Scalar::kRangefinder)], 3u);
+  EXPECT_EQ(counters.rejected_inputs[pe::input::index(pe::input::Scalar::kMotorTemperature)], 1u);
 }
 
 TEST(EstimatorEffects, SignalsOfAnotherTimelineAreForgottenWhenTheClockJumpsBack) {
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), only(fx::Kind::kThrustLoss, 0.04));
-  f.estimator.addMotorTemperature(f.t, 50.0);
-  EXPECT_EQ(f.estimator.effectSignals(f.t).motor_temperature_c, 50.0);
+  f.estimator.addInput(pe::input::Scalar::kMotorTemperature, f.t, 50.0);
+  EXPECT_EQ(f.estimator.effectSignals(f.t).value(pe::effects::Signal::kMotorTemperature), 50.0);
   f.t -= 60.0;  // a bag played again
   f.estimator.addBattery(f.t, kVoltage);
-  EXPECT_TRUE(std::isnan(f.estimator.effectSignals(f.t).motor_temperature_c));
+  EXPECT_TRUE(std::isnan(f.estimator.effectSignals(f.t).value(pe::effects::Signal::kMotorTemperature)));
 }
 
 TEST(EstimatorConfig, RefusesANonPositiveSignalTimeout) {
   pe::EstimatorConfig config;
-  config.rangefinder_timeout_s = 0.0;
+  config.input_timeout_s[pe::input::index(pe::input::Scalar::kRangefinder)] = 0.0;
   try {
     config.validate(4);
     FAIL() << "accepted";

@@ -62,12 +62,12 @@ TEST(Estimator, AppliesEveryEffectWithoutHeapAllocation) {
     f.estimator.addImu(f.t, level, Eigen::Vector3d(0, 0, 9.81));
     f.estimator.addVerticalSpeed(f.t, 0.1);
     f.estimator.addRange(f.t, 2.0, 0.1, 12.0);
-    f.estimator.addStaticPressure(f.t, 98000.0);
+    f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 98000.0);
     if (k % 50 == 0) {
       f.estimator.addBattery(f.t, 11.4);
       f.estimator.addBatteryCurrent(f.t, -17.0);
-      f.estimator.addAirTemperature(f.t, 24.0);
-      f.estimator.addMotorTemperature(f.t, 45.0);
+      f.estimator.addInput(pe::input::Scalar::kAirTemperature, f.t, 24.0);
+      f.estimator.addInput(pe::input::Scalar::kMotorTemperature, f.t, 45.0);
     }
     ASSERT_EQ(f.estimator.addMotorOutputs(f.t, f.t, channels.data(), channels.size()), pe::Rejection::kNone);
   }

@@ -100,7 +100,7 @@ pe::Flight simulateDynamicFlight(std::uint64_t seed, const Script& script = {}) 
     flight.streams.horizontal_velocity.push_back({s.time_s, s.linear_m_s.x(), s.linear_m_s.y()});
   }
   for (const auto& s : sink.ranges) {
-    if (std::isfinite(s.range_m)) flight.streams.height_above_ground_m.push_back({s.time_s, s.range_m});
+    if (std::isfinite(s.range_m)) flight.streams.input(pe::input::Scalar::kRangefinder).push_back({s.time_s, s.range_m});
   }
   flight.segments = result.segments;
   return flight;
@@ -130,7 +130,7 @@ Cut cut(const pe::Flight& flight, double time_constant_s) {
     ++result.blocks;
     const double residual = 100.0 * (views.pwmView(block, {}) / block.truth_n - 1.0);
     const bool used = gap::isQuasiSteady(block, defaults.dynamic_max_pwm_change_us, defaults.dynamic_max_accel_m_s2);
-    if (used && block.signals.horizontal_speed_m_s > 1.0) {
+    if (used && block.signals.value(pe::effects::Signal::kHorizontalSpeed) > 1.0) {
       ++result.moving;
       result.moving_bias_pct += residual;
     }

@@ -25,7 +25,7 @@ std::vector<gap::Block> blocksOf(const gap::ThrustViews& views, const fx::ModelE
       block.axis_up[k] = 1.0;
     }
     block.voltage_v = 11.0 + 0.02 * i;
-    block.signals.battery_current_a = 5.0 + 0.5 * i;
+    block.signals.set(pe::effects::Signal::kBatteryCurrent, 5.0 + 0.5 * i);
     block.truth_n = 1.0;
     block.truth_n = views.pwmView(block, truth);
     blocks.push_back(block);

@@ -32,7 +32,7 @@ pe::Flight levelFlight() {
     imu.time_s = t;
     imu.specific_force_m_s2 = Eigen::Vector3d(0.0, 0.0, pe::kStandardGravity);
     flight.streams.imu.push_back(imu);
-    flight.streams.height_above_ground_m.push_back({t, 1.5});
+    flight.streams.input(pe::input::Scalar::kRangefinder).push_back({t, 1.5});
   }
   flight.segments.push_back({2.0, 12.0, 1.2});
   return flight;
@@ -59,9 +59,9 @@ TEST(GapBlocks, AveragesEachBlockOfASegment) {
   EXPECT_NEAR(block.current_a, 8.0, 1e-12) << "discharge counts positive whatever the autopilot's sign";
   EXPECT_NEAR(block.truth_n, 1.2 * pe::kStandardGravity, 1e-9);
   EXPECT_NEAR(block.axis_up[2], 1.0, 1e-12);
-  EXPECT_NEAR(block.signals.height_m, 1.5, 1e-12);
-  EXPECT_TRUE(std::isnan(block.signals.air_density_kg_m3)) << "no pressure or air temperature logged";
-  EXPECT_TRUE(std::isnan(block.signals.vertical_speed_m_s));
+  EXPECT_NEAR(block.signals.value(pe::effects::Signal::kHeight), 1.5, 1e-12);
+  EXPECT_TRUE(std::isnan(block.signals.value(pe::effects::Signal::kAirDensity))) << "no pressure or air temperature logged";
+  EXPECT_TRUE(std::isnan(block.signals.value(pe::effects::Signal::kVerticalSpeed)));
   EXPECT_TRUE(block.hover);
   EXPECT_NEAR(block.accel_up_m_s2, 0.0, 1e-12);
   EXPECT_TRUE(gap::isQuasiSteady(block, 40.0, 0.8));

@@ -134,7 +134,7 @@ class SyntheticFlights : public ::testing::Test {
           flight.streams.battery.push_back({t, sensed, -sensed_current});  // PX4 through MAVROS: negated
           if (world.motor_temperature) {
             const double warming = world.motor_warming_c * t / (47.0 * static_cast<double>(masses.size()));
-            flight.streams.motor_temperature_c.push_back({t, motor_c + warming});
+            flight.streams.input(pe::input::Scalar::kMotorTemperature).push_back({t, motor_c + warming});
           }
         }
         pe::ImuReading imu;

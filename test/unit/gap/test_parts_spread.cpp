@@ -74,7 +74,7 @@ TEST_F(PartsSpreadTest, MeasuresAThrustLossAgainstTheThrustSpread) {
 TEST_F(PartsSpreadTest, AnEffectReadingASignalIsMeasuredAgainstTheLargerSpread) {
   fx::ModelEffects fitted;
   fitted.setParameter(fx::Kind::kSupplyResistance, 0.01);
-  for (gap::Block& block : blocks_) block.signals.battery_current_a = 20.0;
+  for (gap::Block& block : blocks_) block.signals.set(pe::effects::Signal::kBatteryCurrent, 20.0);
   gap::PartsSpread spread;
   spread.thrust_fraction = 0.0;
   spread.esc_end_point_us = 10.0;
@@ -131,7 +131,7 @@ TEST_F(PartsSpreadTest, AThrustGainBeyondTheSpreadIsNotBlockage) {
 // an ESC shift cannot imitate that, so it is named although it changes no block by the parts'
 // 3 %; a change alike on every block, as small, is not.
 TEST_F(PartsSpreadTest, AShapeNoPartGivesIsNamedHoweverSmall) {
-  for (int i = 0; i < 30; ++i) blocks_[i].signals.height_m = i % 8 == 3 ? 0.2 : 5.0;  // 4 blocks
+  for (int i = 0; i < 30; ++i) blocks_[i].signals.set(pe::effects::Signal::kHeight, i % 8 == 3 ? 0.2 : 5.0);  // 4 blocks
   fx::ModelEffects fitted;
   fitted.setParameter(fx::Kind::kGroundEffect, 0.0008);  // 2 % at 0.2 m, 0.003 % at 5 m
   const gap::PartsSpread spread;
@@ -141,7 +141,7 @@ TEST_F(PartsSpreadTest, AShapeNoPartGivesIsNamedHoweverSmall) {
   EXPECT_LT(size.imitated_share, 0.2);
   EXPECT_EQ(gap::withinPartsSpread(fx::Kind::kGroundEffect, 0.0008, size, spread), "");
 
-  for (gap::Block& block : blocks_) block.signals.height_m = 0.4;
+  for (gap::Block& block : blocks_) block.signals.set(pe::effects::Signal::kHeight, 0.4);
   const gap::EffectSize flat = gap::effectSizeAgainstParts(views_, all_, fitted, fx::Kind::kGroundEffect, spread);
   EXPECT_GT(flat.imitated_share, 0.999);
   EXPECT_NE(gap::withinPartsSpread(fx::Kind::kGroundEffect, 0.0008, flat, spread), "");

@@ -40,9 +40,9 @@ effects::Signals nodeSignals(const Readings& r) {
   EXPECT_EQ(estimator.addBatteryCurrent(t, r.current_a), pe::Rejection::kNone);
   EXPECT_EQ(estimator.addImu(t, r.attitude(), Eigen::Vector3d(0.0, 0.0, pe::kStandardGravity)), pe::Rejection::kNone);
   EXPECT_EQ(estimator.addRange(t, r.range_m, 0.1, 20.0), pe::Rejection::kNone);
-  EXPECT_EQ(estimator.addStaticPressure(t, r.pressure_pa), pe::Rejection::kNone);
-  EXPECT_EQ(estimator.addAirTemperature(t, r.air_temperature_c), pe::Rejection::kNone);
-  EXPECT_EQ(estimator.addMotorTemperature(t, r.motor_temperature_c), pe::Rejection::kNone);
+  EXPECT_EQ(estimator.addInput(pe::input::Scalar::kStaticPressure, t, r.pressure_pa), pe::Rejection::kNone);
+  EXPECT_EQ(estimator.addInput(pe::input::Scalar::kAirTemperature, t, r.air_temperature_c), pe::Rejection::kNone);
+  EXPECT_EQ(estimator.addInput(pe::input::Scalar::kMotorTemperature, t, r.motor_temperature_c), pe::Rejection::kNone);
   EXPECT_EQ(estimator.addVerticalSpeed(t, r.vertical_speed_m_s), pe::Rejection::kNone);
   EXPECT_EQ(estimator.addHorizontalVelocity(t, r.east_m_s, r.north_m_s), pe::Rejection::kNone);
   return estimator.effectSignals(t);
@@ -65,10 +65,10 @@ gap::Block diagnosisBlock(const Readings& r) {
     imu.orientation = r.attitude();
     imu.specific_force_m_s2 = Eigen::Vector3d(0.0, 0.0, pe::kStandardGravity);
     flight.streams.imu.push_back(imu);
-    flight.streams.height_above_ground_m.push_back({t, r.range_m});
-    flight.streams.static_pressure_pa.push_back({t, r.pressure_pa});
-    flight.streams.air_temperature_c.push_back({t, r.air_temperature_c});
-    flight.streams.motor_temperature_c.push_back({t, r.motor_temperature_c});
+    flight.streams.input(pe::input::Scalar::kRangefinder).push_back({t, r.range_m});
+    flight.streams.input(pe::input::Scalar::kStaticPressure).push_back({t, r.pressure_pa});
+    flight.streams.input(pe::input::Scalar::kAirTemperature).push_back({t, r.air_temperature_c});
+    flight.streams.input(pe::input::Scalar::kMotorTemperature).push_back({t, r.motor_temperature_c});
     flight.streams.vertical_speed_m_s.push_back({t, r.vertical_speed_m_s});
     flight.streams.horizontal_velocity.push_back({t, r.east_m_s, r.north_m_s});
   }
@@ -83,21 +83,21 @@ void expectSamePreparation(const Readings& r) {
   const effects::Signals node = nodeSignals(r);
   const gap::Block block = diagnosisBlock(r);
   const effects::Signals& fit = block.signals;
-  EXPECT_NEAR(node.height_m, fit.height_m, 1e-9);
-  EXPECT_NEAR(node.battery_current_a, fit.battery_current_a, 1e-9);
-  EXPECT_NEAR(node.battery_current_a, block.current_a, 1e-9);
-  EXPECT_NEAR(node.air_density_kg_m3, fit.air_density_kg_m3, 1e-12);
-  EXPECT_NEAR(node.motor_temperature_c, fit.motor_temperature_c, 1e-12);
-  EXPECT_NEAR(node.vertical_speed_m_s, fit.vertical_speed_m_s, 1e-12);
-  EXPECT_NEAR(node.horizontal_speed_m_s, fit.horizontal_speed_m_s, 1e-12);
-  EXPECT_NEAR(node.axial_speed_m_s, fit.axial_speed_m_s, 1e-12);
+  EXPECT_NEAR(node.value(effects::Signal::kHeight), fit.value(effects::Signal::kHeight), 1e-9);
+  EXPECT_NEAR(node.value(effects::Signal::kBatteryCurrent), fit.value(effects::Signal::kBatteryCurrent), 1e-9);
+  EXPECT_NEAR(node.value(effects::Signal::kBatteryCurrent), block.current_a, 1e-9);
+  EXPECT_NEAR(node.value(effects::Signal::kAirDensity), fit.value(effects::Signal::kAirDensity), 1e-12);
+  EXPECT_NEAR(node.value(effects::Signal::kMotorTemperature), fit.value(effects::Signal::kMotorTemperature), 1e-12);
+  EXPECT_NEAR(node.value(effects::Signal::kVerticalSpeed), fit.value(effects::Signal::kVerticalSpeed), 1e-12);
+  EXPECT_NEAR(node.value(effects::Signal::kHorizontalSpeed), fit.value(effects::Signal::kHorizontalSpeed), 1e-12);
+  EXPECT_NEAR(node.value(effects::Signal::kAxialSpeed), fit.value(effects::Signal::kAxialSpeed), 1e-12);
   // And what they are: the tilted range's vertical, the discharge, the dry air's density.
-  EXPECT_NEAR(fit.height_m, r.range_m * std::cos(r.roll_rad), 1e-9);
-  EXPECT_NEAR(fit.battery_current_a, std::fabs(r.current_a), 1e-9);
-  EXPECT_NEAR(fit.air_density_kg_m3, effects::airDensityKgM3(r.pressure_pa, r.air_temperature_c), 1e-12);
+  EXPECT_NEAR(fit.value(effects::Signal::kHeight), r.range_m * std::cos(r.roll_rad), 1e-9);
+  EXPECT_NEAR(fit.value(effects::Signal::kBatteryCurrent), std::fabs(r.current_a), 1e-9);
+  EXPECT_NEAR(fit.value(effects::Signal::kAirDensity), effects::airDensityKgM3(r.pressure_pa, r.air_temperature_c), 1e-12);
   // The speed over the ground, and the velocity along the rolled body's z axis (0, -sin, cos).
-  EXPECT_NEAR(fit.horizontal_speed_m_s, std::hypot(r.east_m_s, r.north_m_s), 1e-12);
-  EXPECT_NEAR(fit.axial_speed_m_s,
+  EXPECT_NEAR(fit.value(effects::Signal::kHorizontalSpeed), std::hypot(r.east_m_s, r.north_m_s), 1e-12);
+  EXPECT_NEAR(fit.value(effects::Signal::kAxialSpeed),
               r.vertical_speed_m_s * std::cos(r.roll_rad) - r.north_m_s * std::sin(r.roll_rad), 1e-9);
 }
 
@@ -129,9 +129,9 @@ TEST(SignalPreparation, TheFormulas) {
   raw.vertical_speed_m_s = 1.0;
   raw.body_z_up = 0.8;
   raw.body_z_east = 0.6;
-  EXPECT_NEAR(effects::prepareSignals(raw).axial_speed_m_s, 0.8, 1e-12);
-  EXPECT_TRUE(std::isnan(effects::prepareSignals(raw).horizontal_speed_m_s));
+  EXPECT_NEAR(effects::prepareSignals(raw).value(effects::Signal::kAxialSpeed), 0.8, 1e-12);
+  EXPECT_TRUE(std::isnan(effects::prepareSignals(raw).value(effects::Signal::kHorizontalSpeed)));
   raw.velocity_east_m_s = 2.0;
   raw.velocity_north_m_s = 5.0;
-  EXPECT_NEAR(effects::prepareSignals(raw).axial_speed_m_s, 0.8 + 1.2, 1e-12);
+  EXPECT_NEAR(effects::prepareSignals(raw).value(effects::Signal::kAxialSpeed), 0.8 + 1.2, 1e-12);
 }

@@ -24,7 +24,7 @@ class ThrustViewsTest : public ::testing::Test {
     }
     block_.voltage_v = 11.5;
     block_.current_a = 4.0 * model_.evaluateRaw(pe::Output::kCurrent, 1550.0, 11.5);
-    block_.signals.battery_current_a = block_.current_a;
+    block_.signals.set(pe::effects::Signal::kBatteryCurrent, block_.current_a);
     block_.truth_n = 4.0 * views_.motorThrust(1550.0, 11.5);
     // T = a n^2 at the bench's air: each rotor's speed gives a quarter of the truth.
     pe::RpmThrust rpm_thrust;
@@ -78,7 +78,7 @@ TEST_F(ThrustViewsTest, NoCurrentViewWithoutACurrentOrOutOfReach) {
 TEST_F(ThrustViewsTest, TheRpmViewReadsTheMeasuredSpeedsAtTheFlightsAir) {
   EXPECT_NEAR(views_.rpmView(block_, fx::ModelEffects()), block_.truth_n, 1e-9 * block_.truth_n);
   gap::Block thin = block_;
-  thin.signals.air_density_kg_m3 = 1.08;
+  thin.signals.set(pe::effects::Signal::kAirDensity, 1.08);
   EXPECT_NEAR(views_.rpmView(thin, fx::ModelEffects()), 0.9 * block_.truth_n, 1e-9 * block_.truth_n);
   views_.setMotorScale(2, 0.8);
   EXPECT_NEAR(views_.rpmView(block_, fx::ModelEffects()), 3.8 / 4.0 * block_.truth_n, 1e-9 * block_.truth_n);
@@ -94,7 +94,7 @@ TEST_F(ThrustViewsTest, TheRpmViewSeesTheAirOnTheRotorAndNothingBeforeTheShaft) 
   supply.setParameter(fx::Kind::kSupplyResistance, 0.05);
   EXPECT_NEAR(views_.rpmView(block_, supply), block_.truth_n, 1e-9 * block_.truth_n);
   gap::Block warm = block_;
-  warm.signals.motor_temperature_c = 60.0;
+  warm.signals.set(pe::effects::Signal::kMotorTemperature, 60.0);
   fx::ModelEffects heating;
   heating.setParameter(fx::Kind::kMotorTemperature, -0.002);
   heating.motor_reference_c = 20.0;

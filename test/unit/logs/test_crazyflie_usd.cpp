@@ -203,8 +203,8 @@ TEST(CrazyflieUsdLog, ReadsAHoverIntoFlightStreams) {
   EXPECT_NEAR(streams.vertical_speed_m_s[1].value, 0.1, 1e-7);
   EXPECT_NEAR(streams.horizontal_velocity[1].east_m_s, 0.3, 1e-7);
   EXPECT_NEAR(streams.horizontal_velocity[1].north_m_s, -0.4, 1e-7);
-  EXPECT_TRUE(streams.static_pressure_pa.empty() && streams.air_temperature_c.empty() &&
-              streams.height_above_ground_m.empty() && streams.motor_temperature_c.empty() && streams.esc.empty());
+  EXPECT_TRUE(streams.input(pe::input::Scalar::kStaticPressure).empty() && streams.input(pe::input::Scalar::kAirTemperature).empty() &&
+              streams.input(pe::input::Scalar::kRangefinder).empty() && streams.input(pe::input::Scalar::kMotorTemperature).empty() && streams.esc.empty());
   EXPECT_EQ(streams.notes,
             (std::vector<std::string>{
                 "rc_out: pwm.m1_pwm..m4_pwm (duty 0..65535 as 1000..2000 us)",

@@ -37,15 +37,15 @@ TEST(RealFlightLogs, Px4UlogIsReadAndDiagnosed) {
   EXPECT_EQ(streams.battery.size(), 21u);
   EXPECT_GT(streams.imu.size(), 1000u);
   EXPECT_GT(streams.altitude_m.size(), 600u);
-  EXPECT_EQ(streams.static_pressure_pa.size(), 120u);
-  EXPECT_TRUE(streams.height_above_ground_m.empty());
+  EXPECT_EQ(streams.input(pe::input::Scalar::kStaticPressure).size(), 120u);
+  EXPECT_TRUE(streams.input(pe::input::Scalar::kRangefinder).empty());
   EXPECT_TRUE(hasNote(streams, "rangefinder: not in this log (no distance_sensor)"));
   EXPECT_TRUE(hasNote(streams, "motor_temperature: not in this log (no esc_status)"));
   // Physical sense, in the package's frames: a battery of a few cells, the barometer near sea level
   // pressure, the specific force up about g when still.
   EXPECT_GT(streams.battery[5].voltage_v, 6.0);
   EXPECT_LT(streams.battery[5].voltage_v, 26.0);
-  EXPECT_NEAR(streams.static_pressure_pa[5].value, 1.0e5, 1.5e4);
+  EXPECT_NEAR(streams.input(pe::input::Scalar::kStaticPressure)[5].value, 1.0e5, 1.5e4);
   const pe::ImuReading& first = streams.imu.front();
   EXPECT_NEAR((first.orientation * first.specific_force_m_s2).z(), 9.81, 1.5);
   for (const pe::RcOutFrame& frame : streams.rc_out) {
@@ -115,9 +115,9 @@ TEST(RealFlightLogs, ArduCopterLogIsReadAndDiagnosed) {
   EXPECT_EQ(streams.rc_out.size(), 11916u);
   EXPECT_EQ(streams.battery.size(), 2384u);
   EXPECT_EQ(streams.altitude_m.size(), 2383u);
-  EXPECT_EQ(streams.static_pressure_pa.size(), 2383u);
+  EXPECT_EQ(streams.input(pe::input::Scalar::kStaticPressure).size(), 2383u);
   EXPECT_GT(streams.imu.size(), 2000u);
-  EXPECT_TRUE(streams.height_above_ground_m.empty());
+  EXPECT_TRUE(streams.input(pe::input::Scalar::kRangefinder).empty());
   // Physical sense: a 4S battery (16.5 V full, 15.2-16 V under the hover's 14 A), motors idle at
   // 1000 us on the ground, the specific force up about g.
   double max_current_a = 0.0;

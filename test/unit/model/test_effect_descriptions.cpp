@@ -15,13 +15,13 @@ namespace {
 // Signals at which every correction has something to read.
 fx::Signals everySignal() {
   fx::Signals signals;
-  signals.battery_current_a = 20.0;
-  signals.air_density_kg_m3 = 1.1;
-  signals.height_m = 0.3;
-  signals.motor_temperature_c = 50.0;
-  signals.vertical_speed_m_s = 1.0;
-  signals.horizontal_speed_m_s = 3.0;
-  signals.axial_speed_m_s = 1.0;
+  signals.set(fx::Signal::kBatteryCurrent, 20.0);
+  signals.set(fx::Signal::kAirDensity, 1.1);
+  signals.set(fx::Signal::kHeight, 0.3);
+  signals.set(fx::Signal::kMotorTemperature, 50.0);
+  signals.set(fx::Signal::kVerticalSpeed, 1.0);
+  signals.set(fx::Signal::kHorizontalSpeed, 3.0);
+  signals.set(fx::Signal::kAxialSpeed, 1.0);
   return signals;
 }
 

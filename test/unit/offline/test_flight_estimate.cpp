@@ -2,6 +2,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -45,8 +46,8 @@ pe::FlightStreams shortFlight() {
     streams.vertical_speed_m_s.push_back({v.time_s, v.linear_m_s.z()});
     streams.horizontal_velocity.push_back({v.time_s, v.linear_m_s.x(), v.linear_m_s.y()});
   }
-  for (const auto& p : recorded.pressures) streams.static_pressure_pa.push_back({p.time_s, p.value});
-  for (const auto& t : recorded.air_temperatures) streams.air_temperature_c.push_back({t.time_s, t.value});
+  for (const auto& p : recorded.pressures) streams.input(pe::input::Scalar::kStaticPressure).push_back({p.time_s, p.value});
+  for (const auto& t : recorded.air_temperatures) streams.input(pe::input::Scalar::kAirTemperature).push_back({t.time_s, t.value});
   return streams;
 }
 
@@ -160,14 +161,14 @@ TEST(FlightEstimate, CountsTheRefusedInputsWithTheLastOne) {
 TEST(FlightFeed, TakesTheSignalsTheNodeSubscribesTo) {
   const pe::Vehicle vehicle = pe::Vehicle::upwardRotors(4);
   pe::FlightStreams streams = steadyCommand(1500.0, 11.5, 2.0);
-  streams.air_temperature_c.push_back({0.5, -100.0});  // outside -60..85 deg C
+  streams.input(pe::input::Scalar::kAirTemperature).push_back({0.5, -100.0});  // outside -60..85 deg C
   // Without an effect that reads it the node does not subscribe to the air temperature: not refused.
   const pe::PropulsionModel plain = thesisModel();
   pe::OnboardSession session(plain, vehicle, pe::offline::replayOnboardConfig(vehicle));
   const pe::offline::FlightFeed feed(streams);
   for (const pe::offline::Arrival& a : feed.arrivals()) feed.feed(a, &session);
   const pe::Estimator& estimator = session.estimator();
-  EXPECT_EQ(estimator.counters().rejected[static_cast<int>(pe::Rejection::kBadAirTemperature)], 0u);
+  EXPECT_EQ(estimator.counters().rejected[static_cast<int>(pe::Rejection::kBadInput)], 0u);
   EXPECT_EQ(estimator.counters().accepted, streams.rc_out.size());
   // Arrivals by time, the inputs before the RCOut message they feed.
   ASSERT_EQ(feed.arrivals().front().kind, pe::offline::Stream::kBattery);
@@ -179,7 +180,7 @@ TEST(FlightFeed, TakesTheSignalsTheNodeSubscribesTo) {
 TEST(FlightFeed, FeedsTheAirTemperatureToAModelThatReadsIt) {
   const pe::Vehicle vehicle = pe::Vehicle::upwardRotors(4);
   pe::FlightStreams streams = steadyCommand(1500.0, 11.5, 2.0);
-  streams.air_temperature_c.push_back({0.5, -100.0});
+  streams.input(pe::input::Scalar::kAirTemperature).push_back({0.5, -100.0});
   pe::effects::ModelEffects fx = thesisModel().effects();
   fx.bench_air_density_kg_m3 = 1.2;
   fx.setParameter(pe::effects::Kind::kAirDensity, 1.0);
@@ -187,7 +188,29 @@ TEST(FlightFeed, FeedsTheAirTemperatureToAModelThatReadsIt) {
   pe::OnboardSession session(model, vehicle, pe::offline::replayOnboardConfig(vehicle));
   const pe::offline::FlightFeed feed(streams);
   for (const pe::offline::Arrival& a : feed.arrivals()) feed.feed(a, &session);
-  EXPECT_EQ(session.estimator().counters().rejected[static_cast<int>(pe::Rejection::kBadAirTemperature)], 1u);
+  EXPECT_EQ(session.estimator().counters().rejected[static_cast<int>(pe::Rejection::kBadInput)], 1u);
+  EXPECT_EQ(session.estimator().counters().rejected_inputs[pe::input::index(pe::input::Scalar::kAirTemperature)], 1u);
+}
+
+// A log keeps a rangefinder's valid readings only (its sensor's limits are not logged): each is
+// taken, +inf (nothing within reach) included, and the ground effect applied. Fed as a
+// sensor_msgs/Range without limits they were all refused before the inputs had one entry each.
+TEST(FlightFeed, TakesALoggedRangeAsValid) {
+  const pe::Vehicle vehicle = pe::Vehicle::upwardRotors(4);
+  pe::FlightStreams streams = steadyCommand(1500.0, 11.5, 2.0);
+  auto& range = streams.input(pe::input::Scalar::kRangefinder);
+  for (double t = 0.0; t < 2.0; t += 0.05) range.push_back({t, t < 1.0 ? 0.3 : std::numeric_limits<double>::infinity()});
+  pe::effects::ModelEffects fx = thesisModel().effects();
+  fx.setParameter(pe::effects::Kind::kGroundEffect, 0.0011);
+  const pe::PropulsionModel model = thesisModel().withEffects(fx);
+  pe::OnboardSession session(model, vehicle, pe::offline::replayOnboardConfig(vehicle));
+  ASSERT_TRUE(session.readsInput(pe::input::Scalar::kRangefinder));
+  const pe::offline::FlightFeed feed(streams);
+  for (const pe::offline::Arrival& a : feed.arrivals()) feed.feed(a, &session);
+  const pe::EstimatorCounters& counters = session.estimator().counters();
+  EXPECT_EQ(counters.rejected[static_cast<int>(pe::Rejection::kBadInput)], 0u);
+  EXPECT_GT(counters.effect_applied[static_cast<int>(pe::effects::Kind::kGroundEffect)], 0u);
+  EXPECT_EQ(counters.effect_skipped[static_cast<int>(pe::effects::Kind::kGroundEffect)], 0u);
 }
 
 TEST(EstimateOptions, RefusesASampleRateOutsideItsRange) {

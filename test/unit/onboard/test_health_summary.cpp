@@ -316,7 +316,7 @@ TEST(HealthSummary, EffectsWarnNamingEachCorrectionSkippedForItsSignal) {
   effects.setParameter(pe::effects::Kind::kThrustLoss, 0.03);
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), effects);
   pe::HealthConfig config = nodeConfig();
-  config.rangefinder_input = "/mavros/rangefinder/rangefinder";
+  config.signal_sources.inputs[pe::input::index(pe::input::Scalar::kRangefinder)] = "/mavros/rangefinder/rangefinder";
   const pe::HealthSnapshot start = snapshot(f.estimator, f.t);
   f.estimator.addBatteryCurrent(f.t, -15.0);
   f.fly(1690.0, 0.1);  // no rangefinder yet

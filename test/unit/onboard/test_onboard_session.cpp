@@ -69,15 +69,15 @@ TEST(OnboardSession, TakesASignalOnlyWhereAnEffectOfTheModelReadsIt) {
   const pe::Vehicle quad = pe::Vehicle::quadX(0.225);
   pe::OnboardSession plain(thesisModel(), quad, quadConfig());
   EXPECT_FALSE(plain.reads(pe::effects::Signal::kAirDensity));
-  EXPECT_EQ(plain.addAirTemperature(1.0, -100.0), pe::Rejection::kNone);  // dropped, as never subscribed
-  EXPECT_EQ(plain.addMotorTemperature(1.0, -100.0), pe::Rejection::kNone);
+  EXPECT_EQ(plain.addInput(pe::input::Scalar::kAirTemperature, 1.0, -100.0), pe::Rejection::kNone);  // dropped, as never subscribed
+  EXPECT_EQ(plain.addInput(pe::input::Scalar::kMotorTemperature, 1.0, -100.0), pe::Rejection::kNone);
 
   pe::effects::ModelEffects fx = thesisModel().effects();
   fx.bench_air_density_kg_m3 = 1.2;
   fx.setParameter(pe::effects::Kind::kAirDensity, 1.0);
   pe::OnboardSession reading(thesisModel().withEffects(fx), quad, quadConfig());
   EXPECT_TRUE(reading.reads(pe::effects::Signal::kAirDensity));
-  EXPECT_EQ(reading.addAirTemperature(1.0, -100.0), pe::Rejection::kBadAirTemperature);
+  EXPECT_EQ(reading.addInput(pe::input::Scalar::kAirTemperature, 1.0, -100.0), pe::Rejection::kBadInput);
 }
 
 TEST(OnboardSession, ResetForgetsTheHoverAndTheChecks) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "parameter_template.h"
+#include "propulsion_estimator/common/input_signal.h"
 #include "test_paths.h"
 
 namespace {
@@ -19,13 +20,18 @@ std::string readRepoFile(const std::string& relative) {
   return text.str();
 }
 
-// Every name the node's parameter reader knows (src/onboard/node_parameters.cpp).
+// Every name the node's parameter reader knows (src/onboard/node_parameters.cpp): those it
+// spells, and each scalar input's topic and timeout (input_signal.h).
 std::set<std::string> readerParameters() {
   const std::string source = readRepoFile("src/onboard/node_parameters.cpp");
   const std::regex call(R"re(read\.(required|optional)\("([^"]+)")re");
   std::set<std::string> names;
   for (auto it = std::sregex_iterator(source.begin(), source.end(), call); it != std::sregex_iterator(); ++it) {
     names.insert((*it)[2].str());
+  }
+  for (propulsion_estimator::input::Scalar scalar : propulsion_estimator::input::kAllScalars) {
+    names.insert(propulsion_estimator::input::topicParameter(scalar));
+    names.insert(propulsion_estimator::input::timeoutParameter(scalar));
   }
   return names;
 }

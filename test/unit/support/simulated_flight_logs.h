@@ -87,14 +87,14 @@ inline void expectRoundTrip(const propulsion_estimator::FlightStreams& read, con
   ASSERT_EQ(read.altitude_m.size(), sim.velocities.size());
   EXPECT_NEAR(read.altitude_m[200].value, sim.poses[200].position_m.z(), 1e-6);
   EXPECT_NEAR(read.vertical_speed_m_s[200].value, sim.velocities[200].linear_m_s.z(), 1e-6);
-  ASSERT_EQ(read.static_pressure_pa.size(), sim.pressures.size());
-  EXPECT_NEAR(read.static_pressure_pa[5].value, sim.pressures[5].value, 0.01);
-  EXPECT_FALSE(read.air_temperature_c.empty());
+  ASSERT_EQ(read.input(pe::input::Scalar::kStaticPressure).size(), sim.pressures.size());
+  EXPECT_NEAR(read.input(pe::input::Scalar::kStaticPressure)[5].value, sim.pressures[5].value, 0.01);
+  EXPECT_FALSE(read.input(pe::input::Scalar::kAirTemperature).empty());
   std::size_t in_range = 0;
   for (const pe::sim::RangeSample& r : sim.ranges) in_range += r.range_m >= r.min_range_m && r.range_m <= r.max_range_m;
-  EXPECT_EQ(read.height_above_ground_m.size(), in_range);
-  ASSERT_EQ(read.motor_temperature_c.size(), sim.motor_temperatures.size());
-  EXPECT_NEAR(read.motor_temperature_c.back().value, sim.motor_temperatures.back().value, 1e-4);
+  EXPECT_EQ(read.input(pe::input::Scalar::kRangefinder).size(), in_range);
+  ASSERT_EQ(read.input(pe::input::Scalar::kMotorTemperature).size(), sim.motor_temperatures.size());
+  EXPECT_NEAR(read.input(pe::input::Scalar::kMotorTemperature).back().value, sim.motor_temperatures.back().value, 1e-4);
 }
 
 // The ESC telemetry a log reader read back against what the simulator emitted: one reading per
