@@ -49,7 +49,7 @@ struct ScalarSpec {
   /// A reading outside min..max is another unit (hPa, K) or a broken sensor, and is refused. A
   /// range's own bounds come with each message (sensor_msgs/Range); these are the widest allowed.
   double min;
-  double max;
+  double max;  ///< see min
   double timeout_s;   ///< default staleness: a few periods of what MAVROS publishes
   const char* topic;  ///< default topic (MAVROS's where it has one)
   Message message;    ///< the message it arrives in
@@ -65,8 +65,9 @@ std::string topicParameter(Scalar scalar);
 std::string timeoutParameter(Scalar scalar);
 /// "sensor_msgs/Temperature": the message type `scalar` arrives in.
 const char* messageType(Scalar scalar);
-/// Every scalar's default timeout_s, and its default topic.
+/// Every scalar's default timeout_s.
 PerScalar<double> defaultTimeouts();
+/// Every scalar's default topic.
 PerScalar<std::string> defaultTopics();
 
 }  // namespace input

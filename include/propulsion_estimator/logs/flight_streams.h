@@ -85,6 +85,7 @@ struct FlightStreams {
 
   /// The readings of the scalar input `scalar`.
   std::vector<ScalarReading>& input(input::Scalar scalar) { return inputs[input::index(scalar)]; }
+  /// The readings of the scalar input `scalar`.
   const std::vector<ScalarReading>& input(input::Scalar scalar) const { return inputs[input::index(scalar)]; }
 };
 

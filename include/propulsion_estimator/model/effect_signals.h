@@ -30,6 +30,7 @@ struct RawSignals {
 
   /// The reading of the scalar input `scalar`.
   double& input(input::Scalar scalar) { return inputs[input::index(scalar)]; }
+  /// The reading of the scalar input `scalar`.
   double input(input::Scalar scalar) const { return inputs[input::index(scalar)]; }
 };
 
