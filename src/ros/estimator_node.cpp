@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <sstream>
 
 #include "propulsion_estimator/common/config_error.h"
@@ -254,24 +255,35 @@ void EstimatorNode::subscribeEffectSignals(ros::NodeHandle& input_nh, const ros:
   }
 }
 
+namespace {
+
+constexpr std::uint32_t kInputQueue = 20;
+
+// Subscribes to `topic`, handing each message's field (`field` reads it) to `take`.
+template <typename Message, typename Field>
+ros::Subscriber subscribeScalar(ros::NodeHandle& input_nh, const std::string& topic, const ros::TransportHints& hints,
+                                Field field, std::function<void(double)> take) {
+  return input_nh.subscribe<Message>(
+      topic, kInputQueue,
+      boost::function<void(const typename Message::ConstPtr&)>(
+          [field, take](const typename Message::ConstPtr& message) { take(field(*message)); }),
+      ros::VoidConstPtr(), hints);
+}
+
+}  // namespace
+
 ros::Subscriber EstimatorNode::subscribeInput(ros::NodeHandle& input_nh, input::Scalar scalar,
                                               const std::string& topic, const ros::TransportHints& hints) {
-  constexpr std::uint32_t kQueue = 20;
+  const auto take = [this, scalar](double value) { onInput(scalar, value); };
   switch (input::spec(scalar).message) {
     case input::Message::kFluidPressure:
-      return input_nh.subscribe<sensor_msgs::FluidPressure>(
-          topic, kQueue,
-          boost::function<void(const sensor_msgs::FluidPressure::ConstPtr&)>(
-              [this, scalar](const sensor_msgs::FluidPressure::ConstPtr& m) { onInput(scalar, m->fluid_pressure); }),
-          ros::VoidConstPtr(), hints);
+      return subscribeScalar<sensor_msgs::FluidPressure>(
+          input_nh, topic, hints, [](const sensor_msgs::FluidPressure& m) { return m.fluid_pressure; }, take);
     case input::Message::kTemperature:
-      return input_nh.subscribe<sensor_msgs::Temperature>(
-          topic, kQueue,
-          boost::function<void(const sensor_msgs::Temperature::ConstPtr&)>(
-              [this, scalar](const sensor_msgs::Temperature::ConstPtr& m) { onInput(scalar, m->temperature); }),
-          ros::VoidConstPtr(), hints);
+      return subscribeScalar<sensor_msgs::Temperature>(
+          input_nh, topic, hints, [](const sensor_msgs::Temperature& m) { return m.temperature; }, take);
     case input::Message::kRange:
-      return input_nh.subscribe(topic, kQueue, &EstimatorNode::onRange, this, hints);
+      return input_nh.subscribe(topic, kInputQueue, &EstimatorNode::onRange, this, hints);
   }
   return {};
 }
