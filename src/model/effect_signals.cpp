@@ -43,20 +43,19 @@ bool preparedFrom(Signal signal, input::Scalar scalar) {
 }
 
 std::string sourcesOf(Signal signal, const SignalSources& sources) {
+  std::string topics;
   switch (signal) {
     case Signal::kNone: return "none";
-    case Signal::kBatteryCurrent: return sources.battery + " (current)";
+    case Signal::kBatteryCurrent: topics = sources.battery; break;
     case Signal::kVerticalSpeed:
-    case Signal::kHorizontalSpeed: return sources.velocity;
-    case Signal::kAxialSpeed: return sources.velocity + " and " + sources.imu;
-    default: break;
+    case Signal::kHorizontalSpeed: topics = sources.velocity; break;
+    case Signal::kAxialSpeed: topics = sources.velocity + " and " + sources.imu; break;
+    default:
+      for (input::Scalar scalar : input::kAllScalars) {
+        if (preparedFrom(signal, scalar)) topics += (topics.empty() ? "" : " and ") + sources.inputs[input::index(scalar)];
+      }
   }
-  std::string joined;
-  for (input::Scalar scalar : input::kAllScalars) {
-    if (!preparedFrom(signal, scalar)) continue;
-    joined += (joined.empty() ? "" : " and ") + sources.inputs[input::index(scalar)];
-  }
-  return joined;
+  return std::string(signalName(signal)) + " on " + topics;
 }
 
 Signals prepareSignals(const RawSignals& raw) {

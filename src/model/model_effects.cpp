@@ -58,12 +58,12 @@ struct SignalText {
 constexpr std::array<SignalText, kSignalCount> kSignalTexts = {{
     {"none", "none"},
     {"battery current", "battery_current_a"},
-    {"air density (static pressure and air temperature)", "air_density_kg_m3"},
+    {"air density", "air_density_kg_m3"},
     {"height above the ground", "height_m"},
     {"motor temperature", "motor_temperature_c"},
     {"vertical speed", "vertical_speed_m_s"},
     {"horizontal speed", "horizontal_speed_m_s"},
-    {"speed along the rotors' axes (velocity and attitude)", "axial_speed_m_s"},
+    {"speed along the rotors' axes", "axial_speed_m_s"},
 }};
 
 }  // namespace

@@ -179,7 +179,7 @@ HealthStatus judgePayload(const Estimator& estimator) {
 
 std::string signalSource(effects::Signal signal, const HealthConfig& config) {
   if (signal == effects::Signal::kNone) return "no signal";
-  return std::string(effects::signalName(signal)) + " on " + effects::sourcesOf(signal, config.signal_sources);
+  return effects::sourcesOf(signal, config.signal_sources);
 }
 
 HealthStatus judgeEffects(const Estimator& estimator, const HealthSnapshot& before, const HealthSnapshot& now,

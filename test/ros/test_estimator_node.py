@@ -261,11 +261,11 @@ class EstimatorNodeTest(unittest.TestCase):
                     self.assertNotIn("/propulsion_estimator", subscribers(topic))
 
             # The battery's current (0 A in the harness's messages) is fresh, the other signals missing.
-            missing = ("air_density (static pressure on /mavros/imu/static_pressure and air temperature on "
+            missing = ("air_density (air density on /mavros/imu/static_pressure and "
                        "/mavros/imu/temperature_baro missing or stale), ground_effect (height above the ground on "
                        "/mavros/rangefinder/rangefinder missing or stale), motor_temperature (motor temperature on "
-                       "/motor_temperature missing or stale), climb_inflow (speed along the rotors' axes from "
-                       "/mavros/local_position/velocity_local missing or stale)")
+                       "/motor_temperature missing or stale), climb_inflow (speed along the rotors' axes on "
+                       "/mavros/local_position/velocity_local and /mavros/imu/data missing or stale)")
             expected = "skipped: " + missing + "; applied: supply_resistance, thrust_loss, esc_offset"
             end = rospy.Time.now() + rospy.Duration(10.0)
             while effects_message() != expected:

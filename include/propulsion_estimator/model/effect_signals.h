@@ -64,9 +64,9 @@ struct SignalSources {
   input::PerScalar<std::string> inputs = input::defaultTopics();  ///< each scalar input's
 };
 
-/// "/mavros/imu/static_pressure and /mavros/imu/temperature_baro": the sources `signal` is
-/// prepared from, joined by "and"; the battery's says "(current)"; "none" for Signal::kNone. Does
-/// not throw.
+/// "air density on /mavros/imu/static_pressure and /mavros/imu/temperature_baro": the signal's name
+/// (signalName) and the sources it is prepared from, joined by "and", for the "needs ..." and
+/// "missing or stale" texts; "none" for Signal::kNone. Does not throw.
 std::string sourcesOf(Signal signal, const SignalSources& sources);
 
 /// Every signal the effects read, prepared from `raw` with the functions above; the vertical speed

@@ -66,7 +66,7 @@ const char* kindName(Kind kind);
 std::optional<Kind> kindFromName(const std::string& name);
 /// The signal `kind`'s correction reads (Signal::kNone for thrust_loss and esc_offset).
 Signal requiredSignal(Kind kind);
-/// "battery current", "air density (static pressure and air temperature)", ...: for messages.
+/// "battery current", "air density", ...: for messages.
 const char* signalName(Signal signal);
 /// "battery_current_a", "air_density_kg_m3", ...: the signal with its unit, in files and reports;
 /// "none" for Signal::kNone.
