@@ -263,11 +263,12 @@ std::mutex& bagLifetimeMutex() {
 const std::vector<std::string>& FlightBagTopics::names() { return flightSignalNames(); }
 
 std::string* FlightBagTopics::find(const std::string& name) {
-  if (const auto scalar = input::scalarFromName(name)) return &inputs[input::index(*scalar)];
-  std::string* const topics[] = {&rc_out, &battery, &imu, &pose, &velocity, &esc_telemetry, &esc_status};
-  const char* const topic_names[] = {"rc_out", "battery", "imu", "pose", "velocity", "esc_telemetry", "esc_status"};
-  for (std::size_t i = 0; i < std::size(topics); ++i) {
-    if (name == topic_names[i]) return topics[i];
+  // In names()' order: the fixed signals, each scalar input's, the ESCs'.
+  std::vector<std::string*> topics = {&rc_out, &battery, &imu, &pose, &velocity};
+  for (std::string& topic : inputs) topics.push_back(&topic);
+  topics.insert(topics.end(), {&esc_telemetry, &esc_status});
+  for (std::size_t i = 0; i < names().size(); ++i) {
+    if (names()[i] == name) return topics[i];
   }
   return nullptr;
 }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
@@ -156,9 +155,9 @@ bool hasCurrent(const std::vector<BatteryReading>& battery) {
 // The readings of the signals the effects read, in force at each frame (Cursor's rules).
 struct SignalCursors {
   explicit SignalCursors(const FlightStreams& streams)
-      : speed(streams.vertical_speed_m_s),
-        inputs(cursorsOf(streams.inputs, std::make_index_sequence<input::kScalarCount>())),
-        horizontal_velocity(streams.horizontal_velocity) {}
+      : speed(streams.vertical_speed_m_s), horizontal_velocity(streams.horizontal_velocity) {
+    for (const std::vector<ScalarReading>& readings : streams.inputs) inputs.emplace_back(readings);
+  }
 
   effects::RawSignals at(double time_s, double timeout_s, const BatteryReading& battery, const ImuReading* imu) {
     const auto value = [&](Cursor<ScalarReading>& cursor) {
@@ -183,15 +182,9 @@ struct SignalCursors {
     return raw;
   }
 
-  template <std::size_t... k>
-  static input::PerScalar<Cursor<ScalarReading>> cursorsOf(const input::PerScalar<std::vector<ScalarReading>>& streams,
-                                                           std::index_sequence<k...>) {
-    return {Cursor<ScalarReading>(streams[k])...};
-  }
-
   Cursor<ScalarReading> speed;
-  input::PerScalar<Cursor<ScalarReading>> inputs;
   Cursor<HorizontalVelocityReading> horizontal_velocity;
+  std::vector<Cursor<ScalarReading>> inputs;  // by input::index
 };
 
 std::string segmentName(const Flight& flight, int index) {

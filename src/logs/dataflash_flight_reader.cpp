@@ -247,14 +247,13 @@ class SignalReader {
   }
 
   void motorTemperature() {
-    const std::string name = input::spec(input::Scalar::kMotorTemperature).name;
     const auto type = file_.typeNamed("ESC");
     auto temp = column("ESC", "MotTemp");
     if (!temp) temp = column("ESC", "MTemp");
     const auto instance = column("ESC", "Instance");
     const auto time = type ? timeColumn(file_, *type) : std::nullopt;
     if (!temp || !instance || !time) {
-      note(name + (type ? ": not in this log (ESC has no MotTemp)" : ": not in this log (no ESC)"));
+      note(type ? "motor_temperature: not in this log (ESC has no MotTemp)" : "motor_temperature: not in this log (no ESC)");
       return;
     }
     // The hottest of the motors' latest readings, at each reading.
@@ -271,7 +270,7 @@ class SignalReader {
       }
       streams_->input(input::Scalar::kMotorTemperature).push_back({(value(message, time->column) * time->to_us - first_us_) / 1e6, hottest});
     }
-    note(name + ": the hottest ESC MotTemp");
+    note("motor_temperature: the hottest ESC MotTemp");
   }
 
  private:
