@@ -1,6 +1,8 @@
 #include "propulsion_estimator/bag/bag_records.h"
 
+#include <algorithm>
 #include <cstdint>
+#include <iterator>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -108,10 +110,31 @@ class BagWalker {
     if (index_pos_ != 0 && record_starts_.count(index_pos_) == 0 && index_pos_ != size_) {
       return "the bag header's index position " + std::to_string(index_pos_) + " is not a record's start";
     }
+    // rosbag reads as many records as the counts say, wherever they end: past the last record it
+    // reads a length from whatever bytes follow.
+    const std::uint64_t indexed = index_connections_ + index_chunks_;
+    if (indexed > 0 && recordsFrom(index_pos_) < indexed) {
+      return "the bag header states " + std::to_string(index_connections_) + " connections and " +
+             std::to_string(index_chunks_) + " chunks at byte " + std::to_string(index_pos_) + ", but only " +
+             std::to_string(recordsFrom(index_pos_)) + " records lie there";
+    }
+    for (const auto& [chunk, connections] : chunk_connections_) {
+      const std::uint64_t after = recordsFrom(chunk) - 1;
+      if (after < connections) {
+        return "the chunk at byte " + std::to_string(chunk) + " lists " + std::to_string(connections) +
+               " connections, but only " + std::to_string(after) + " records follow it";
+      }
+    }
     return "";
   }
 
  private:
+  // Records from the one at `at` (included) to the file's end; 0 when none starts there.
+  std::uint64_t recordsFrom(std::uint64_t at) const {
+    const auto first = record_starts_.find(at);
+    return first == record_starts_.end() ? 0 : static_cast<std::uint64_t>(std::distance(first, record_starts_.end()));
+  }
+
   bool readLength(std::uint64_t* at, const char* what, std::string* problem, std::uint32_t* out = nullptr) {
     std::uint32_t length = 0;
     if (size_ - *at < 4) return false;
@@ -146,19 +169,36 @@ class BagWalker {
     switch (static_cast<std::uint8_t>(op->second[0])) {
       case kBagHeaderOp:
         index_pos_ = number(fields, "index_pos", 0);
+        index_connections_ = number(fields, "conn_count", 0);
+        index_chunks_ = number(fields, "chunk_count", 0);
         return "";
       case kChunkOp:
         chunk_starts_.insert(record);
         return checkChunk(fields, at, data_length);
       case kIndexDataOp:
+        // rosbag reads `count` entries of 12 bytes, past the record's data if it says so.
+        if (number(fields, "count", 0) > data_length / 12) {
+          return "index record states " + std::to_string(number(fields, "count", 0)) + " entries in " +
+                 std::to_string(data_length) + " bytes";
+        }
         return checkIndex(data(at, data_length));
       case kConnectionOp: {
         const std::string connection = data(at, data_length);
         return fieldsFit(connection.data(), connection.size()) ? "" : "malformed connection header";
       }
-      case kChunkInfoOp:
-        return chunk_starts_.count(number(fields, "chunk_pos", 0)) ? ""
-                                                                    : "chunk info pointing at no chunk's start";
+      case kChunkInfoOp: {
+        const std::uint64_t chunk = number(fields, "chunk_pos", 0);
+        const std::uint64_t connections = number(fields, "count", 0);
+        if (chunk_starts_.count(chunk) == 0) return "chunk info pointing at no chunk's start";
+        // rosbag reads `count` (connection, messages) pairs of 8 bytes, then as many index records
+        // after the chunk.
+        if (connections > data_length / 8) {
+          return "chunk info states " + std::to_string(connections) + " connections in " + std::to_string(data_length) +
+                 " bytes";
+        }
+        chunk_connections_[chunk] = std::max(chunk_connections_[chunk], connections);
+        return "";
+      }
       default:
         return "";
     }
@@ -221,8 +261,9 @@ class BagWalker {
   std::ifstream in_;
   std::uint64_t size_ = 0;
   std::uint32_t pending_ = 0;
-  std::uint64_t index_pos_ = 0;
+  std::uint64_t index_pos_ = 0, index_connections_ = 0, index_chunks_ = 0;
   std::set<std::uint64_t> record_starts_, chunk_starts_, chunk_records_;
+  std::map<std::uint64_t, std::uint64_t> chunk_connections_;  // chunk start -> connections its info lists
   std::uint64_t chunk_size_ = 0;
   bool chunk_walked_ = false;
 };

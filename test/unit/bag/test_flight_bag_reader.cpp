@@ -21,6 +21,7 @@
 #include "propulsion_estimator/common/data_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/codecs/rcout_codec.h"
+#include "test_paths.h"
 
 namespace pe = propulsion_estimator;
 namespace fs = std::filesystem;
@@ -247,6 +248,13 @@ TEST_F(FlightBagReader, RefusesARecordLongerThanTheFileBeforeRosbagReadsIt) {
   EXPECT_EQ(refusal(file("cut.bag")).rfind(file("cut.bag") + ": not a readable bag: at byte ", 0), 0u)
       << refusal(file("cut.bag"));
   std::cout << "  " << refusal(file("cut.bag")) << "\n";
+}
+
+// rosbag reads as many index entries as a record states, past its data if need be, and then a
+// record length from the middle of the next record (fuzz_flight_bag's finding: 2.3 GB asked for).
+TEST_F(FlightBagReader, RefusesAnIndexRecordStatingMoreEntriesThanItHolds) {
+  const std::string found = repoPath("test/fuzz/regressions/flight_bag/oom-index-record-count-beyond-its-data");
+  EXPECT_EQ(refusal(found), found + ": not a readable bag: at byte 9636: index record states 93 entries in 144 bytes");
 }
 
 // The registry tells a bag by its first bytes, not its name, and reads it through the interface.
