@@ -16,6 +16,10 @@
 namespace propulsion_estimator {
 namespace {
 
+// A count, a flag set or a function the log states as a number: a field declared as a float (a
+// damaged or foreign format) may hold anything; outside 0..65535 it states none (-1).
+int smallInteger(double value) { return value >= 0.0 && value <= 65535.0 ? static_cast<int>(value) : -1; }
+
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kDownward = 25;  // distance_sensor.orientation: ROTATION_DOWNWARD_FACING
 
@@ -248,7 +252,7 @@ class SignalReader {
       temperatures.push_back(*at);
     }
     topics_.forEach("esc_status", 0, [&](const ulog::DataMessage& message) {
-      const int escs = std::min<int>(static_cast<int>(value(message, *count)), static_cast<int>(temperatures.size()));
+      const int escs = std::min<int>(smallInteger(value(message, *count)), static_cast<int>(temperatures.size()));
       double hottest = -std::numeric_limits<double>::infinity();
       for (int k = 0; k < escs; ++k) hottest = std::max(hottest, value(message, temperatures[k]));
       if (escs > 0 && std::isfinite(hottest)) streams_->input(input::Scalar::kMotorTemperature).push_back({time(message), hottest});
@@ -277,8 +281,8 @@ class SignalReader {
     }
     constexpr int kMotor1 = 101;
     topics_.forEach("esc_status", 0, [&](const ulog::DataMessage& message) {
-      const int n = std::min<int>(static_cast<int>(value(message, *count)), static_cast<int>(escs.size()));
-      const auto flags = online ? static_cast<unsigned>(value(message, *online)) : ~0u;
+      const int n = std::min<int>(smallInteger(value(message, *count)), static_cast<int>(escs.size()));
+      const auto flags = online ? static_cast<unsigned>(std::max(0, smallInteger(value(message, *online)))) : ~0u;
       EscTelemetryReading reading;
       reading.time_s = time(message);
       reading.status = true;
@@ -288,7 +292,7 @@ class SignalReader {
       reading.count.fill(-1);
       for (int k = 0; k < n; ++k) {
         if (!(flags & (1u << k))) continue;
-        const int motor = escs[k].function ? static_cast<int>(value(message, *escs[k].function)) - kMotor1 : k;
+        const int motor = escs[k].function ? smallInteger(value(message, *escs[k].function)) - kMotor1 : k;
         if (motor < 0 || motor >= kMaxMotors) continue;
         reading.rpm[motor] = value(message, escs[k].rpm);
         reading.voltage_v[motor] = value(message, escs[k].voltage);
