@@ -157,7 +157,7 @@ HoverDischarge integrateHoverDischarge(const PropulsionModel& model, const Disch
         " leaves the model's " + formatPrintf("%.2f", domain.voltage_min_v) + "-" +
         formatPrintf("%.2f V", domain.voltage_max_v) + " for " + formatPrintf("%.0f%%", 100.0 * outside_voltage / steps) +
         " of the discharge; there the model " +
-        (domain.outside == OutsideDomain::kClamp ? "clamps the voltage to its domain" : "extrapolates"));
+        (domain.outside == OutsideDomain::kClamp ? "takes the same drive at its nearest voltage" : "extrapolates"));
   }
   if (below_pwm > 0) {
     result.notes.push_back("for " + formatPrintf("%.0f%%", 100.0 * below_pwm / steps) +

@@ -89,10 +89,21 @@ bool ModelDomain::contains(double pwm_us, double voltage_v) const {
   return voltage_v >= lo && voltage_v <= hi;
 }
 
-void ModelDomain::clamp(double* pwm_us, double* voltage_v) const {
-  *pwm_us = std::clamp(*pwm_us, pwm_min_us, pwm_max_us);
-  const auto [lo, hi] = voltageRange(*pwm_us);
-  *voltage_v = std::clamp(*voltage_v, lo, hi);
+double ModelDomain::clamp(double* pwm_us, double* voltage_v) const {
+  double pwm = std::clamp(*pwm_us, pwm_min_us, pwm_max_us);
+  // Beyond the bench's voltages nothing was measured: the motor sees the duty times the supply,
+  // so the same drive (PWM above the bench's lowest, times voltage) at the nearest voltage it had.
+  // Within them the surfaces' own voltage law holds, at the nearest voltage logged at that PWM.
+  const double box_v = std::clamp(*voltage_v, voltage_min_v, voltage_max_v);
+  double current_scale = 1.0;
+  if (box_v != *voltage_v && *voltage_v > 0.0) {
+    pwm = std::clamp(pwm_min_us + (pwm - pwm_min_us) * *voltage_v / box_v, pwm_min_us, pwm_max_us);
+    current_scale = box_v / *voltage_v;
+  }
+  const auto [lo, hi] = voltageRange(pwm);
+  *pwm_us = pwm;
+  *voltage_v = std::clamp(box_v, lo, hi);
+  return current_scale;
 }
 
 void ModelDomain::validate() const {
@@ -227,11 +238,13 @@ std::array<double, kOutputCount> PropulsionModel::computeSi(double pwm_us, doubl
 
 bool PropulsionModel::evaluate(double pwm_us, double voltage_v, OperatingPoint* estimate) const {
   const bool inside = domain_.contains(pwm_us, voltage_v);
+  double current_scale = 1.0;
   if (!inside) {
     if (domain_.outside == OutsideDomain::kReject) return false;
-    if (domain_.outside == OutsideDomain::kClamp) domain_.clamp(&pwm_us, &voltage_v);
+    if (domain_.outside == OutsideDomain::kClamp) current_scale = domain_.clamp(&pwm_us, &voltage_v);
   }
-  const std::array<double, kOutputCount> si = computeSi(pwm_us, voltage_v);
+  std::array<double, kOutputCount> si = computeSi(pwm_us, voltage_v);
+  si[index(Output::kCurrent)] *= current_scale;
   estimate->thrust_n = si[index(Output::kThrust)];
   estimate->current_a = si[index(Output::kCurrent)];
   estimate->power_w = si[index(Output::kPower)];

@@ -88,8 +88,12 @@ struct ModelDomain {
   std::pair<double, double> voltageRange(double pwm_us) const;
   /// Whether (us, V) lies in the box and, with `covered`, in the covered voltage range at that PWM.
   bool contains(double pwm_us, double voltage_v) const;
-  /// The nearest point of the domain in PWM first, then in voltage at that PWM.
-  void clamp(double* pwm_us, double* voltage_v) const;
+  /// Into the domain: the PWM clamped to its range; a voltage beyond the box's to the nearest bound
+  /// at the same drive ((PWM - pwm_min_us) x voltage, what the motor sees through the ESC's duty),
+  /// the PWM moving with it within its range; then to the voltage logged nearest at that PWM.
+  /// Returns the factor on the battery current, the same power at the supply's voltage: the bound's
+  /// voltage over the supply's (1 within the box's voltages).
+  double clamp(double* pwm_us, double* voltage_v) const;
   /// Throws ConfigError naming the field for an empty box or a `covered` whose levels are not
   /// ascending, outside the box, or with an empty voltage range.
   void validate() const;
@@ -148,7 +152,8 @@ class PropulsionModel {
   /// The same surfaces with other effects (a corrected model); throws as the constructor does.
   PropulsionModel withEffects(effects::ModelEffects effects) const;
 
-  /// Evaluates all outputs. Outside the domain the inputs are clamped, or the surfaces
+  /// Evaluates all outputs. Outside the domain the inputs are clamped (ModelDomain::clamp; the
+  /// battery current then scaled to the same power at the supply's voltage), or the surfaces
   /// extrapolated, as the model says, and in_domain is false; with the reject policy nothing is
   /// computed and false is returned. Thrust, current, power and rpm are floored at zero (an idling
   /// polynomial may dip below it); efficiency is zero where power is zero.

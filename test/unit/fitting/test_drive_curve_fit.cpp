@@ -193,10 +193,18 @@ TEST(ModelDomain, CoveredRegionIsInterpolatedBetweenPwmLevelsAndClampsIntoIt) {
   EXPECT_FALSE(domain.contains(2000.0, 22.0));  // inside the box, where the bench never went
   EXPECT_TRUE(domain.contains(1500.0, 21.6));   // 21.5 V is the lowest covered at 1500 us
   EXPECT_FALSE(domain.contains(1500.0, 21.4));
+  // Within the box's voltages: clamped to the PWM range, then to the voltage logged there.
   double pwm = 2100.0, v = 21.0;
-  domain.clamp(&pwm, &v);
+  EXPECT_DOUBLE_EQ(domain.clamp(&pwm, &v), 1.0);
   EXPECT_DOUBLE_EQ(pwm, 2000.0);
   EXPECT_DOUBLE_EQ(v, 23.0);
+  // Below them: the same drive, (PWM - 1000 us) x voltage, at the box's 20 V (1450 us), then the
+  // voltage logged nearest at that PWM; the battery current is the same power at 18 V.
+  pwm = 1500.0;
+  v = 18.0;
+  EXPECT_DOUBLE_EQ(domain.clamp(&pwm, &v), 20.0 / 18.0);
+  EXPECT_DOUBLE_EQ(pwm, 1450.0);
+  EXPECT_NEAR(v, 21.35, 1e-12);
   domain.covered = {{2000.0, 23.0, 25.0}, {1000.0, 20.0, 25.0}};
   try {
     domain.validate();

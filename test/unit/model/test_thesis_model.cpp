@@ -71,6 +71,30 @@ TEST(ThesisModel, ClampsAndFlagsArmedIdleBelowTheDomain) {
   EXPECT_DOUBLE_EQ(idle.thrust_n, bottom.thrust_n);
 }
 
+// A battery sagging below the bench's 10.5 V: the motor sees the duty times the voltage, so the
+// clamp keeps that drive at 10.5 V (a lower PWM) rather than the command at a voltage it never had,
+// and the battery current is the same power at the lower voltage.
+TEST(ThesisModel, ClampsALowVoltageAtTheSameDrive) {
+  const pe::PropulsionModel model = pe::loadModelFile(repoPath(kModel));
+  pe::OperatingPoint sagged, same_drive;
+  ASSERT_TRUE(model.evaluate(1600.0, 9.5, &sagged));
+  const double pwm = 1200.0 + 400.0 * 9.5 / 10.5;
+  ASSERT_TRUE(model.evaluate(pwm, 10.5, &same_drive));
+  EXPECT_FALSE(sagged.in_domain);
+  EXPECT_TRUE(same_drive.in_domain);
+  EXPECT_NEAR(sagged.thrust_n, same_drive.thrust_n, 1e-9);
+  EXPECT_NEAR(sagged.power_w, same_drive.power_w, 1e-9);
+  EXPECT_NEAR(sagged.current_a, same_drive.current_a * 10.5 / 9.5, 1e-9);
+  pe::OperatingPoint at_command;
+  ASSERT_TRUE(model.evaluate(1600.0, 10.5, &at_command));
+  EXPECT_LT(sagged.thrust_n, 0.9 * at_command.thrust_n) << "less thrust than the command at the lowest voltage";
+  // Above the bench's 12.6 V the same drive is a higher PWM at 12.6 V.
+  pe::OperatingPoint full, full_drive;
+  ASSERT_TRUE(model.evaluate(1500.0, 12.9, &full));
+  ASSERT_TRUE(model.evaluate(1200.0 + 300.0 * 12.9 / 12.6, 12.6, &full_drive));
+  EXPECT_NEAR(full.thrust_n, full_drive.thrust_n, 1e-9);
+}
+
 // Table 5.4 as printed: poly52 in raw microseconds.
 const char* kPrintedTable54 = R"(
     unit: g/W
