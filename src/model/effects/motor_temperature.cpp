@@ -23,8 +23,8 @@ const EffectDescription& motorTemperatureEffect() {
     // current view over-reads it, by about as much (weaker magnets and costlier copper share
     // the change between the two views).
     d.current_view_exponent = [](double) { return -1.0; };
-    // A warm motor turns slower for the same command; at the speed it does turn, the propeller
-    // lifts as on the bench: the RPM view does not see it.
+    // A warm motor turns at another speed for the same command; at the speed it does turn, the
+    // propeller lifts as on the bench: the RPM view does not see it.
     d.rpm_view_exponent = [](double) { return 0.0; };
     d.reference = {"reference_c", &ModelEffects::motor_reference_c, -40.0, 150.0,
                    "the model has no bench air temperature, the reference of the motor's temperature"};
