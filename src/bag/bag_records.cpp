@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <iterator>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -111,9 +111,10 @@ class BagWalker {
       return "the bag header's index position " + std::to_string(index_pos_) + " is not a record's start";
     }
     // rosbag reads as many records as the counts say, wherever they end: past the last record it
-    // reads a length from whatever bytes follow.
+    // reads a length from whatever bytes follow. (An index position of 0 is an unindexed bag,
+    // which rosbag refuses itself.)
     const std::uint64_t indexed = index_connections_ + index_chunks_;
-    if (indexed > 0 && recordsFrom(index_pos_) < indexed) {
+    if (index_pos_ != 0 && indexed > 0 && recordsFrom(index_pos_) < indexed) {
       return "the bag header states " + std::to_string(index_connections_) + " connections and " +
              std::to_string(index_chunks_) + " chunks at byte " + std::to_string(index_pos_) + ", but only " +
              std::to_string(recordsFrom(index_pos_)) + " records lie there";

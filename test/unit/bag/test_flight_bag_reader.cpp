@@ -257,6 +257,75 @@ TEST_F(FlightBagReader, RefusesAnIndexRecordStatingMoreEntriesThanItHolds) {
   EXPECT_EQ(refusal(found), found + ": not a readable bag: at byte 9636: index record states 93 entries in 144 bytes");
 }
 
+namespace {
+
+// Where the value of header field `name` (a `size`-byte integer) lies in `bag`, from `from` on:
+// each field is its length (4 bytes), "name=" and the value.
+std::size_t fieldValueAt(const std::string& bag, const std::string& name, std::size_t size, std::size_t from = 0) {
+  const std::uint32_t length = static_cast<std::uint32_t>(name.size() + 1 + size);
+  const std::string field = std::string(reinterpret_cast<const char*>(&length), 4) + name + "=";
+  const std::size_t at = bag.find(field, from);
+  EXPECT_NE(at, std::string::npos) << name;
+  return at + field.size();
+}
+
+template <typename T>
+T integerAt(const std::string& bag, std::size_t at) {
+  T value;
+  std::memcpy(&value, bag.data() + at, sizeof(T));
+  return value;
+}
+
+template <typename T>
+void setIntegerAt(std::string* bag, std::size_t at, T value) {
+  bag->replace(at, sizeof(T), std::string(reinterpret_cast<const char*>(&value), sizeof(T)));
+}
+
+}  // namespace
+
+// rosbag reads as many connection and chunk-info records at the index position as the bag header
+// counts, and as many index records after each chunk as its chunk info lists, past the last record
+// if need be.
+TEST_F(FlightBagReader, RefusesCountsThatRosbagWouldFollowPastTheLastRecord) {
+  writeMinimalBag(file("good.bag"));
+  std::ifstream in(file("good.bag"), std::ios::binary);
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto index_pos = integerAt<std::uint64_t>(good, fieldValueAt(good, "index_pos", 8));
+  ASSERT_EQ(integerAt<std::uint32_t>(good, fieldValueAt(good, "conn_count", 4)), 2u);  // rc/out and battery
+  ASSERT_EQ(integerAt<std::uint32_t>(good, fieldValueAt(good, "chunk_count", 4)), 1u);
+
+  std::string connections = good;
+  setIntegerAt<std::uint32_t>(&connections, fieldValueAt(good, "conn_count", 4), 100);
+  std::ofstream(file("connections.bag"), std::ios::binary) << connections;
+  EXPECT_EQ(refusal(file("connections.bag")),
+            file("connections.bag") + ": not a readable bag: the bag header states 100 connections and 1 chunks at byte " +
+                std::to_string(index_pos) + ", but only 3 records lie there");
+
+  // The chunk info is the last record: its data, (connection, messages) pairs, ends the file.
+  const std::size_t chunk_info = fieldValueAt(good, "chunk_pos", 8);
+  const auto chunk_pos = integerAt<std::uint64_t>(good, chunk_info);
+  const std::size_t count_at = fieldValueAt(good, "count", 4, chunk_info);
+  ASSERT_EQ(integerAt<std::uint32_t>(good, count_at), 2u);
+  ASSERT_EQ(integerAt<std::uint32_t>(good, good.size() - 20), 16u);  // its data length
+  std::string short_data = good;
+  setIntegerAt<std::uint32_t>(&short_data, count_at, 7);
+  std::ofstream(file("short.bag"), std::ios::binary) << short_data;
+  const std::string short_refusal = refusal(file("short.bag"));
+  EXPECT_EQ(short_refusal.rfind(file("short.bag") + ": not a readable bag: at byte ", 0), 0u) << short_refusal;
+  EXPECT_NE(short_refusal.find(": chunk info states 7 connections in 16 bytes"), std::string::npos) << short_refusal;
+
+  std::string listed = short_data;
+  setIntegerAt<std::uint32_t>(&listed, good.size() - 20, 56);
+  for (std::uint32_t connection = 2; connection < 7; ++connection) {
+    listed += std::string(reinterpret_cast<const char*>(&connection), 4) + std::string("\x01\x00\x00\x00", 4);
+  }
+  std::ofstream(file("listed.bag"), std::ios::binary) << listed;
+  EXPECT_EQ(refusal(file("listed.bag")), file("listed.bag") + ": not a readable bag: the chunk at byte " +
+                                             std::to_string(chunk_pos) +
+                                             " lists 7 connections, but only 5 records follow it");
+  EXPECT_EQ(refusal(file("good.bag")), "") << "the unedited bag is read";
+}
+
 // The registry tells a bag by its first bytes, not its name, and reads it through the interface.
 TEST_F(FlightBagReader, IsTheRegistrysRosbagFormat) {
   pe::FlightLogFormats formats;

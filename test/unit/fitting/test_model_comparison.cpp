@@ -338,7 +338,7 @@ TEST(ModelComparisonStrawson, OneMotorWithAllItsPropellersOrdersAsPhysicsSays) {
   EXPECT_GT(rpm(7), rpm(8));
   EXPECT_LT(thrust(7), thrust(8));
   // A 0.6 kg quad on 2S: every combination hovers within its measured domain (7.3-11.1 V) and
-  // to the 7.0 V cut-off, but the lightest-lifting two-blade: below the bench's 7.33 V its full
+  // to the 7.0 V cut-off, but the Gemfan two-blade 5x4 (4): below the bench's 7.33 V its full
   // drive gives less than the hover thrust, and it says so instead of an endurance.
   for (const auto& [propeller, c] : by_propeller) {
     ASSERT_TRUE(c.hover.has_value()) << propeller;
