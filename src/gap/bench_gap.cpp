@@ -28,7 +28,7 @@ BenchGap benchGap(const ThrustViews& views, const BenchLog& log) {
   }
   std::vector<const Block*> all;
   for (const Block& row : rows) all.push_back(&row);
-  const auto view = [&](const Block& row) { return views.motorThrust(row.pwm_us[0], row.voltage_v); };
+  const auto view = [&](const Block& row) { return views.surfaceThrust(row.pwm_us[0], row.voltage_v); };
   gap.stats = statsOf(all, view);
   gap.where.push_back(breakdownBy("voltage_v", all, [](const Block& row) { return row.voltage_v; },
                                   quantileEdges(all, [](const Block& row) { return row.voltage_v; }, 4), view, "%.2f",

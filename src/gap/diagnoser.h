@@ -37,7 +37,13 @@ struct UnusedData {
   int transient = 0;               // blocks changing or accelerating beyond the steadiness bounds
   int without_attitude = 0;        // blocks with a frame lacking the attitude
   int frames_without_battery = 0;  // rc/out frames without a fresh battery voltage
+  int rejected_outside = 0;        // blocks outside the domain of a model whose policy is reject
 };
+// Whether every motor's inputs lie in the model's domain (usable_data.cpp).
+bool insideDomain(const Block& block, const ModelDomain& domain, int motors);
+// Whether the node would refuse the block: a motor outside the domain of a model whose policy is
+// reject (usable_data.cpp).
+bool rejectedOutside(const Block& block, const ModelDomain& domain, int motors);
 // "no usable sample in any weighed segment of any flight: ..." with each reason's count and
 // bound (usable_data.cpp).
 std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config);
@@ -137,12 +143,14 @@ class Diagnoser {
   // correction uses (selected and ambiguous leaders), fitted; views_ carries the suspect's factor.
   effects::ModelEffects selectAndFit();
   void nestedHoldOut();
-  // The selection (selectEffects), on the steady blocks alone when transient ones are in and the
-  // steady ones suffice for the test; then the held-out prediction of what it chose on every block.
+  // The selection (selectEffects), on the blocks selectionMask() keeps; then the held-out
+  // prediction of what it chose on every block.
   HeldOutPrediction select(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
-  bool selectsOnSteadyBlocks() const;
-  // The sign-flip test's units (flight, group) among the blocks, or among the steady ones.
-  int stretchCount(bool steady_only) const;
+  // The blocks the selection runs on: the steady ones inside the model's domain, else the steady
+  // ones, whichever first leaves out some and keeps enough stretches for the test; empty: all.
+  std::vector<bool> selectionMask() const;
+  // The sign-flip test's units (flight, group) among the blocks `mask` keeps (empty: all).
+  int stretchCount(const std::vector<bool>& mask) const;
   // Whether the flights tell `leader` from the other candidates that passed every test in its
   // round (`admissible`, their held-out predictions): the group it cannot be told from, or nullopt.
   std::optional<Ambiguity> ambiguityOf(Kind leader, const std::map<Kind, HeldOutPrediction>& admissible);

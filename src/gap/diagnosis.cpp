@@ -51,6 +51,10 @@ void Diagnoser::cut() {
     unused.frames_without_battery += cut.frames_without_battery;
     for (const Block& block : cut.blocks) {
       group = std::max(group, block.group + 1);
+      if (rejectedOutside(block, model_.domain(), motorCount())) {
+        ++unused.rejected_outside;
+        continue;
+      }
       if (isQuasiSteady(block, config_.max_pwm_change_us, config_.max_accel_m_s2)) {
         blocks_.push_back(block);
         steady_.push_back(true);
@@ -66,12 +70,17 @@ void Diagnoser::cut() {
   diagnosis_.blocks = static_cast<int>(blocks_.size());
   unused.transient = diagnosis_.transient_blocks;
   if (blocks_.empty()) throw DataError(nothingUsable(unused, config_));
+  if (unused.rejected_outside > 0) {
+    diagnosis_.problems.push_back(std::to_string(unused.rejected_outside) +
+                                  " blocks outside the model's domain left out: it rejects them (outside: reject), "
+                                  "as the node does");
+  }
   if (const std::optional<std::string> outside = outsideTheDomain(blocks_, model_.domain(), motorCount())) {
     diagnosis_.problems.push_back(*outside);
   }
   for (const Block& block : blocks_) all_.push_back(&block);
   // The selection's test counts stretches, not blocks: too few, and no effect can be significant.
-  const int stretches = stretchCount(false);
+  const int stretches = stretchCount({});
   const int needed = fewestGroupsForSignificance(config_.significance);
   if (stretches < needed) {
     diagnosis_.steady_data_shortfall =

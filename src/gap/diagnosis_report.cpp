@@ -167,14 +167,25 @@ std::string Diagnoser::dynamicBlocks() const {
          formatNumber(config_.dynamic_max_accel_m_s2) + " m/s^2";
 }
 
-// When the selection ran on the steady blocks alone: which, and why.
+// When the selection ran on some blocks alone: which, and why.
 std::string Diagnoser::selectionBlocks() const {
-  if (!selectsOnSteadyBlocks()) return "";
-  const auto steady = std::count(steady_.begin(), steady_.end(), true);
-  return ", on the " + std::to_string(steady) +
-         " steady blocks alone (a transient block's error also carries what the lag model leaves over, which a "
-         "mean-shifting effect would soak up); what they chose is fitted and scored on all " +
-         std::to_string(diagnosis_.blocks);
+  const std::vector<bool> mask = selectionMask();
+  if (mask.empty()) return "";
+  const bool transient_out = std::find(steady_.begin(), steady_.end(), false) != steady_.end();
+  const bool outside_out = mask != steady_;
+  std::string why;
+  if (transient_out) {
+    why = "a transient block's error also carries what the lag model leaves over, which a mean-shifting effect "
+          "would soak up";
+  }
+  if (outside_out) {
+    why += std::string(why.empty() ? "" : "; ") + "outside the model's domain its value is what `outside: " +
+           outsideDomainName(model_.domain().outside) + "` gives where the bench measured nothing, which no effect's law "
+           "describes";
+  }
+  return ", on the " + std::to_string(std::count(mask.begin(), mask.end(), true)) +
+         (transient_out ? " steady blocks" : " blocks") + (outside_out ? " inside the model's domain" : "") +
+         " alone (" + why + "); what they chose is fitted and scored on all " + std::to_string(diagnosis_.blocks);
 }
 
 std::string Diagnoser::rpmView() const {

@@ -39,20 +39,39 @@ void ThrustViews::setLevels(double pwm, double current, double rpm) {
   rpm_level_ = std::isnan(rpm) ? 1.0 : rpm;
 }
 
-double ThrustViews::motorThrust(double pwm_us, double voltage_v) const {
+double ThrustViews::surfaceThrust(double pwm_us, double voltage_v) const {
   return std::max(0.0, model_.evaluateRaw(Output::kThrust, pwm_us, voltage_v) * thrust_to_si_);
 }
 
-double ThrustViews::motorCurrent(double pwm_us, double voltage_v) const {
-  return std::max(0.0, model_.evaluateRaw(Output::kCurrent, pwm_us, voltage_v));
+double ThrustViews::motorThrust(double pwm_us, double voltage_v) const {
+  return std::max(0.0, model_.evaluateRaw(Output::kThrust, pwm_us, voltage_v) * thrust_to_si_ +
+                           outsideOffset(pwm_us, voltage_v).thrust_n);
 }
 
-double ThrustViews::verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs) const {
+ThrustViews::Offset ThrustViews::outsideOffset(double pwm_us, double voltage_v) const {
+  OperatingPoint node;
+  if (model_.domain().contains(pwm_us, voltage_v) || !model_.evaluate(pwm_us, voltage_v, &node)) return {};
+  Offset offset;
+  offset.thrust_n = node.thrust_n - model_.evaluateRaw(Output::kThrust, pwm_us, voltage_v) * thrust_to_si_;
+  if (has_current_) offset.current_a = node.current_a - model_.evaluateRaw(Output::kCurrent, pwm_us, voltage_v);
+  return offset;
+}
+
+double ThrustViews::verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs,
+                                   const Offset* offsets) const {
   double thrust = 0.0;
   for (int k = 0; k < motors_; ++k) {
-    thrust += motor_scale_[k] * motorThrust(inputs[k].pwm_us + pwm_shift_us, inputs[k].voltage_v) * block.axis_up[k];
+    const double motor = model_.evaluateRaw(Output::kThrust, inputs[k].pwm_us + pwm_shift_us, inputs[k].voltage_v) *
+                             thrust_to_si_ + offsets[k].thrust_n;
+    thrust += motor_scale_[k] * std::max(0.0, motor) * block.axis_up[k];
   }
   return thrust;
+}
+
+std::array<ThrustViews::Offset, kMaxMotors> ThrustViews::offsets(const Block& block) const {
+  std::array<Offset, kMaxMotors> offsets;
+  for (int k = 0; k < motors_; ++k) offsets[k] = outsideOffset(block.pwm_us[k], block.voltage_v);
+  return offsets;
 }
 
 double ThrustViews::pwmView(const Block& block, const effects::ModelEffects& effects) const {
@@ -60,7 +79,8 @@ double ThrustViews::pwmView(const Block& block, const effects::ModelEffects& eff
   for (int k = 0; k < motors_; ++k) {
     inputs[k] = effects::correctInputs(effects, block.pwm_us[k], block.voltage_v, block.signals);
   }
-  return pwm_level_ * verticalThrust(block, 0.0, inputs.data()) * effects::thrustFactor(effects, block.signals);
+  return pwm_level_ * verticalThrust(block, 0.0, inputs.data(), offsets(block).data()) *
+         effects::thrustFactor(effects, block.signals);
 }
 
 double ThrustViews::currentView(const Block& block, const effects::ModelEffects& effects) const {
@@ -69,9 +89,13 @@ double ThrustViews::currentView(const Block& block, const effects::ModelEffects&
   for (int k = 0; k < motors_; ++k) {
     inputs[k] = effects::correctInputs(effects, block.pwm_us[k], block.voltage_v, block.signals);
   }
+  const std::array<Offset, kMaxMotors> offset = offsets(block);
   auto total_current = [&](double shift) {
     double current = 0.0;
-    for (int k = 0; k < motors_; ++k) current += motorCurrent(inputs[k].pwm_us + shift, inputs[k].voltage_v);
+    for (int k = 0; k < motors_; ++k) {
+      current += std::max(0.0, model_.evaluateRaw(Output::kCurrent, inputs[k].pwm_us + shift, inputs[k].voltage_v) +
+                                   offset[k].current_a);
+    }
     return current;
   };
   // The current surface rises with pulse width over the usable range: bisection on the shift.
@@ -81,7 +105,7 @@ double ThrustViews::currentView(const Block& block, const effects::ModelEffects&
     const double middle = 0.5 * (low + high);
     (total_current(middle) < block.current_a ? low : high) = middle;
   }
-  return current_level_ * verticalThrust(block, 0.5 * (low + high), inputs.data()) *
+  return current_level_ * verticalThrust(block, 0.5 * (low + high), inputs.data(), offset.data()) *
          viewFactor(effects, block.signals, currentViewExponent);
 }
 

@@ -24,8 +24,23 @@ std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& confi
     add(std::to_string(unused.frames_without_battery) + " rc/out frames without a battery voltage within " +
         formatNumber(config.signal_timeout_s) + " s");
   }
+  if (unused.rejected_outside > 0) {
+    add(std::to_string(unused.rejected_outside) +
+        " blocks outside the model's domain, which it rejects (outside: reject) as the node would");
+  }
   return "no usable sample in any weighed segment of any flight" +
          (reasons.empty() ? std::string(" (see the lines above for each segment)") : ": " + reasons);
+}
+
+bool insideDomain(const Block& block, const ModelDomain& domain, int motors) {
+  for (int k = 0; k < motors; ++k) {
+    if (!domain.contains(block.pwm_us[k], block.voltage_v)) return false;
+  }
+  return true;
+}
+
+bool rejectedOutside(const Block& block, const ModelDomain& domain, int motors) {
+  return domain.outside == OutsideDomain::kReject && !insideDomain(block, domain, motors);
 }
 
 std::optional<std::string> outsideTheDomain(const std::vector<Block>& blocks, const ModelDomain& domain, int motors) {

@@ -34,8 +34,13 @@ class ThrustViews {
   /// Vertical thrust of the RPM view with `effects` applied, N; NaN when left out, without a
   /// thrust_from_rpm in the model or without every motor's speed in the block.
   double rpmView(const Block& block, const effects::ModelEffects& effects) const;
-  /// One motor's thrust from the surfaces, N (not clamped to the domain; floored at 0).
+  /// One motor's thrust as the node evaluates it, N (floored at 0): the surfaces' inside the
+  /// domain; outside it as the model's `outside` policy says (PropulsionModel::evaluate: clamped or
+  /// extrapolated; with `reject`, which the node would refuse, the surfaces' own value).
   double motorThrust(double pwm_us, double voltage_v) const;
+  /// One motor's thrust from the surfaces at any point, N (never clamped; floored at 0): what the
+  /// bench rows judge.
+  double surfaceThrust(double pwm_us, double voltage_v) const;
 
   /// A per-motor factor on thrust (1 = as modelled), for a motor the balance shows to be off.
   void setMotorScale(int motor, double scale) { motor_scale_[motor] = scale; }
@@ -48,8 +53,18 @@ class ThrustViews {
   int motors() const { return motors_; }
 
  private:
-  double motorCurrent(double pwm_us, double voltage_v) const;
-  double verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs) const;
+  // Outside the domain, what the node's evaluation adds to the surfaces' own value at a block's
+  // measured inputs (zero inside). The views take the node's value there and an effect's
+  // correction as the surfaces' response to the corrected inputs around it: with no effect the
+  // views are the node's, and a correction keeps the sensitivity the clamp would flatten.
+  struct Offset {
+    double thrust_n = 0.0;
+    double current_a = 0.0;
+  };
+  Offset outsideOffset(double pwm_us, double voltage_v) const;
+  std::array<Offset, kMaxMotors> offsets(const Block& block) const;
+  double verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs,
+                        const Offset* offsets) const;
   // The product of the thrust-acting effects' factors, each raised to the view's exponent.
   static double viewFactor(const effects::ModelEffects& effects, const effects::Signals& signals,
                            double (*exponent)(effects::Kind, double));

@@ -115,6 +115,59 @@ TEST_F(ThrustViewsTest, NoRpmViewWithoutEverySpeedOrAThrustFromRpmOrWhenLeftOut)
   EXPECT_TRUE(std::isnan(views_.rpmView(block_, fx::ModelEffects())));
 }
 
+// issue 35: outside the domain the views take the model as the node evaluates it (its `outside`
+// policy), so that the diagnosis and the node agree on every such sample; an effect's correction
+// is the surfaces' response around that value.
+TEST_F(ThrustViewsTest, OutsideTheDomainThePlainViewsAreTheNodes) {
+  // A sagged pack (10.0 V, below the bench's 10.5 V) and one motor past the top of the PWM range.
+  gap::Block outside = block_;
+  outside.voltage_v = 10.0;
+  outside.pwm_us[2] = 1950.0;
+  double node_n = 0.0, node_a = 0.0, surfaces_n = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    pe::OperatingPoint point;
+    ASSERT_TRUE(model_.evaluate(outside.pwm_us[k], outside.voltage_v, &point));
+    EXPECT_FALSE(point.in_domain);
+    EXPECT_DOUBLE_EQ(views_.motorThrust(outside.pwm_us[k], outside.voltage_v), point.thrust_n);
+    node_n += point.thrust_n;
+    node_a += point.current_a;
+    surfaces_n += views_.surfaceThrust(outside.pwm_us[k], outside.voltage_v);
+  }
+  ASSERT_GT(std::abs(surfaces_n / node_n - 1.0), 0.01) << "the test needs a point where clamping matters";
+  const fx::ModelEffects plain;
+  EXPECT_NEAR(views_.pwmView(outside, plain), node_n, 1e-9 * node_n);
+  // At the node's own current the current view finds the node's thrust.
+  outside.current_a = node_a;
+  EXPECT_NEAR(views_.currentView(outside, plain), node_n, 1e-3 * node_n);
+  // A correction still moves the view as the surfaces do (the clamp would leave a PWM offset at
+  // the top of the range without effect): an ESC offset of 30 us takes what it takes inside.
+  fx::ModelEffects offset;
+  offset.setParameter(fx::Kind::kEscOffset, 30.0);
+  const double shifted = views_.pwmView(outside, offset);
+  double expected = node_n;
+  for (int k = 0; k < 4; ++k) {
+    expected += views_.surfaceThrust(outside.pwm_us[k] - 30.0, outside.voltage_v) -
+                views_.surfaceThrust(outside.pwm_us[k], outside.voltage_v);
+  }
+  EXPECT_NEAR(shifted, expected, 1e-9 * node_n);
+  EXPECT_LT(shifted, 0.95 * node_n);
+}
+
+TEST_F(ThrustViewsTest, OutsideTheDomainOfAnExtrapolatingModelTheViewsAreTheSurfaces) {
+  pe::ModelDomain domain = model_.domain();
+  domain.outside = pe::OutsideDomain::kExtrapolate;
+  std::array<pe::OutputDefinition, pe::kOutputCount> outputs;
+  for (int i = 0; i < pe::kOutputCount; ++i) outputs[i] = model_.output(static_cast<pe::Output>(i));
+  const pe::PropulsionModel extrapolating(model_.metadata(), domain, outputs);
+  const gap::ThrustViews views(extrapolating, 4);
+  gap::Block outside = block_;
+  outside.voltage_v = 10.0;
+  double surfaces_n = 0.0;
+  for (int k = 0; k < 4; ++k) surfaces_n += views.surfaceThrust(outside.pwm_us[k], outside.voltage_v);
+  EXPECT_DOUBLE_EQ(views.pwmView(outside, fx::ModelEffects{}), surfaces_n);
+  EXPECT_DOUBLE_EQ(views.motorThrust(1550.0, 10.0), views.surfaceThrust(1550.0, 10.0));
+}
+
 TEST(ThrustViewExponent, EachEffectOnThrustSaysHowTheRpmViewSeesIt) {
   EXPECT_DOUBLE_EQ(gap::rpmViewExponent(fx::Kind::kThrustLoss, 0.05), 1.0);
   EXPECT_DOUBLE_EQ(gap::rpmViewExponent(fx::Kind::kGroundEffect, 0.01), 1.0);
