@@ -18,6 +18,7 @@
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/offline/flight_estimate.h"
 #include "propulsion_estimator/offline/flight_feed.h"
+#include "model_variants.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;
@@ -865,11 +866,7 @@ TEST_F(SyntheticFlights, TheDiagnosisAndTheNodeAgreeOnEverySampleOutsideTheDomai
 // issue 35: a model whose policy is reject gives the node nothing outside its domain; the diagnosis
 // leaves out the same blocks and says so, with the count.
 TEST_F(SyntheticFlights, LeavesOutWhatAModelThatRejectsWouldRefuse) {
-  pe::ModelDomain domain = model_.domain();
-  domain.outside = pe::OutsideDomain::kReject;
-  std::array<pe::OutputDefinition, pe::kOutputCount> outputs;
-  for (int i = 0; i < pe::kOutputCount; ++i) outputs[i] = model_.output(static_cast<pe::Output>(i));
-  const pe::PropulsionModel rejecting(model_.metadata(), domain, outputs);
+  const pe::PropulsionModel rejecting = withOutsidePolicy(model_, pe::OutsideDomain::kReject);
   const std::vector<pe::Flight> sagged = {fly("low1.bag", World{}, {1.3, 1.6, 1.75}, 10.3, 1),
                                           fly("low2.bag", World{}, {1.35, 1.5, 1.8}, 10.2, 2)};
   const gap::Diagnosis clamped = gap::diagnoseGap(model_, vehicle_, sagged, gap::DiagnosisConfig{});
@@ -892,5 +889,5 @@ TEST_F(SyntheticFlights, LeavesOutWhatAModelThatRejectsWouldRefuse) {
                            " blocks outside the model's domain left out: it rejects them (outside: reject), as the "
                            "node does"),
             1);
-  for (const gap::GapSample& sample : partly.samples) EXPECT_GE(sample.voltage_v, domain.voltage_min_v);
+  for (const gap::GapSample& sample : partly.samples) EXPECT_GE(sample.voltage_v, model_.domain().voltage_min_v);
 }

@@ -7,6 +7,7 @@
 
 #include "propulsion_estimator/gap/thrust_views.h"
 #include "propulsion_estimator/model/model_yaml.h"
+#include "model_variants.h"
 #include "test_paths.h"
 
 namespace pe = propulsion_estimator;
@@ -154,11 +155,7 @@ TEST_F(ThrustViewsTest, OutsideTheDomainThePlainViewsAreTheNodes) {
 }
 
 TEST_F(ThrustViewsTest, OutsideTheDomainOfAnExtrapolatingModelTheViewsAreTheSurfaces) {
-  pe::ModelDomain domain = model_.domain();
-  domain.outside = pe::OutsideDomain::kExtrapolate;
-  std::array<pe::OutputDefinition, pe::kOutputCount> outputs;
-  for (int i = 0; i < pe::kOutputCount; ++i) outputs[i] = model_.output(static_cast<pe::Output>(i));
-  const pe::PropulsionModel extrapolating(model_.metadata(), domain, outputs);
+  const pe::PropulsionModel extrapolating = withOutsidePolicy(model_, pe::OutsideDomain::kExtrapolate);
   const gap::ThrustViews views(extrapolating, 4);
   gap::Block outside = block_;
   outside.voltage_v = 10.0;
