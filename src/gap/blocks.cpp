@@ -147,6 +147,9 @@ struct Accumulator {
   }
 };
 
+// s; a rotor spins down within this after its command stops.
+constexpr double kGroundDrawSettleS = 1.0;
+
 bool hasCurrent(const std::vector<BatteryReading>& battery) {
   return std::any_of(battery.begin(), battery.end(),
                      [](const BatteryReading& reading) { return std::isfinite(reading.current_a); });
@@ -231,6 +234,8 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
   const double flight_start = flight.segments.empty() ? 0.0 : flight.segments.front().start_s;
   const int motors = config.motors;
   const std::vector<RcOutFrame> commands = laggedCommands(streams.rc_out, motors, config.rotor_time_constant_s);
+  result.ground_draw =
+      measureGroundDraw(streams, motors, config.stopped_pwm_us, kGroundDrawSettleS, config.signal_timeout_s);
   int group = first_group;
 
   for (int s = 0; s < static_cast<int>(flight.segments.size()); ++s) {
@@ -259,6 +264,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
         return;
       }
       Block block = acc.average(motors, config.hover_max_vertical_speed_m_s);
+      if (std::isfinite(result.ground_draw.current_a)) block.current_a -= result.ground_draw.current_a;
       block.flight = flight_index;
       block.segment = s;
       block.group = group + block_in_segment / blocks_per_group;

@@ -39,6 +39,10 @@ struct UnusedData {
   int frames_without_battery = 0;  // rc/out frames without a fresh battery voltage
   int rejected_outside = 0;        // blocks outside the domain of a model whose policy is reject
 };
+// The report's clause on the current the avionics draw beside the motors: measured on the flights
+// named in `measured` ("0.61 A on f1.bag"), fitted on those in `unmeasured` (usable_data.cpp).
+std::string groundDrawText(const std::vector<std::string>& measured, const std::vector<std::string>& unmeasured,
+                           double stopped_pwm_us);
 // Whether every motor's inputs lie in the model's domain (usable_data.cpp).
 bool insideDomain(const Block& block, const ModelDomain& domain, int motors);
 // Whether the node would refuse the block: a motor outside the domain of a model whose policy is

@@ -42,6 +42,10 @@ void Diagnoser::cut() {
   block_config.block_s = config_.block_s;
   block_config.group_s = config_.group_s;
   block_config.signal_timeout_s = config_.signal_timeout_s;
+  // Disarmed commands lie below the bench's lowest PWM and at most at 1000 us (PX4 900, ArduPilot
+  // its minimum); an armed idle may reach down to the bench's lowest and spins its rotor.
+  block_config.stopped_pwm_us = std::min(1000.0, model_.domain().pwm_min_us - 100.0);
+  std::vector<std::string> measured, unmeasured;
   int group = 0;
   UnusedData unused;
   for (int f = 0; f < static_cast<int>(flights_.size()); ++f) {
@@ -49,6 +53,12 @@ void Diagnoser::cut() {
     for (const std::string& problem : cut.problems) diagnosis_.problems.push_back(problem);
     unused.without_attitude += cut.blocks_without_attitude;
     unused.frames_without_battery += cut.frames_without_battery;
+    if (cut.has_current) {
+      (std::isfinite(cut.ground_draw.current_a) ? measured : unmeasured)
+          .push_back(std::isfinite(cut.ground_draw.current_a)
+                         ? formatPrintf("%.2f A", cut.ground_draw.current_a) + " on " + flights_[f].name
+                         : flights_[f].name);
+    }
     for (const Block& block : cut.blocks) {
       group = std::max(group, block.group + 1);
       if (rejectedOutside(block, model_.domain(), motorCount())) {
@@ -68,6 +78,7 @@ void Diagnoser::cut() {
     }
   }
   diagnosis_.blocks = static_cast<int>(blocks_.size());
+  diagnosis_.ground_draw = groundDrawText(measured, unmeasured, block_config.stopped_pwm_us);
   unused.transient = diagnosis_.transient_blocks;
   if (blocks_.empty()) throw DataError(nothingUsable(unused, config_));
   if (unused.rejected_outside > 0) {

@@ -205,7 +205,7 @@ std::string Diagnoser::method() const {
          formatNumber(config_.max_pwm_change_us) + " us within the block, vertical acceleration at most " +
          formatNumber(config_.max_accel_m_s2) + " m/s^2" + dynamicBlocks() + "): " + std::to_string(diagnosis_.blocks) +
          " used, " + std::to_string(diagnosis_.transient_blocks) + " transient left out; " + diagnosis_.rotor_lag +
-         ". Forward selection over " +
+         (diagnosis_.ground_draw.empty() ? std::string() : "; " + diagnosis_.ground_draw) + ". Forward selection over " +
          std::to_string(units_) + " held-out " + unit_name_ + "s (each fitted on the others)" + selectionBlocks() +
          ". An effect is added when the held-out RMSE of the PWM view (or of the RPM view, where there is one) falls "
          "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "propulsion_estimator/gap/ground_draw.h"
 #include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/model_effects.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
@@ -24,7 +25,10 @@ struct Block {
   std::array<double, kMaxMotors> pwm_us{};  ///< per motor, mean over the block, us
   std::array<double, kMaxMotors> axis_up{};  ///< vertical component of each rotor's thrust axis
   double voltage_v = 0.0;  ///< mean battery voltage, V
-  double current_a = 0.0;        ///< battery discharge current, >= 0; NaN without a current sensor
+  /// The motors' share of the battery discharge current, A: the battery's less the flight's ground
+  /// draw where the log shows one (the effects' kBatteryCurrent signal keeps the battery's); NaN
+  /// without a current sensor.
+  double current_a = 0.0;
   /// per motor, mean mechanical speed from ESC telemetry, rpm; NaN without telemetry of it over at
   /// least half the block
   std::array<double, kMaxMotors> rpm{};
@@ -51,6 +55,9 @@ struct BlockConfig {
   /// s; the rotors' first-order spin-up lag (RotorLag): each motor's pulse width is averaged
   /// through it, so that a block's model thrust is the one the rotors gave; 0: no lag modelled.
   double rotor_time_constant_s = 0.0;
+  /// us; a motor commanded at or below this is stopped (disarmed): the battery current with every
+  /// motor stopped is the flight's ground draw (measureGroundDraw), taken out of each block's current.
+  double stopped_pwm_us = 1000.0;
 };
 
 /// Whether a block is quasi-steady: its collective PWM changed by at most `max_pwm_change_us`
@@ -67,6 +74,7 @@ struct FlightBlocks {
   bool has_current = false;  ///< whether the flight had a battery current
   int frames_without_battery = 0;  ///< rc/out frames in segments with no battery voltage within the timeout
   int blocks_without_attitude = 0;  ///< blocks left out: some frame had no attitude within the timeout
+  GroundDraw ground_draw;  ///< the battery current with every motor stopped, taken out of the blocks' current
 };
 
 /// Cuts `flight` into blocks inside its weighed segments, its commands through the rotor lag. A segment outside the log's time span,

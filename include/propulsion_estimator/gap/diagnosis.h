@@ -237,6 +237,10 @@ struct Diagnosis {
   int dynamic_blocks = 0;  ///< blocks used although not steady, their commands through the rotor lag
   double rotor_time_constant_s = 0.0;  ///< s, the lag the blocks were cut with (0: none)
   std::string rotor_lag;  ///< where the lag comes from, or why none is modelled; for the report
+  /// What the current view takes out of the battery current beside the motors' (the avionics'
+  /// draw): measured on each flight's ground with the motors stopped, or fitted; for the report.
+  /// Empty without a battery current.
+  std::string ground_draw;
   /// "" when the quasi-steady blocks span enough group_s stretches for the selection's test to reach
   /// its significance; else one line, "not enough steady data: ...", also among the problems.
   std::string steady_data_shortfall;
