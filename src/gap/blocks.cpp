@@ -216,6 +216,17 @@ bool isQuasiSteady(const Block& block, double max_pwm_change_us, double max_acce
   return block.pwm_change_us <= max_pwm_change_us && std::abs(block.accel_up_m_s2) <= max_accel_m_s2;
 }
 
+bool insideDomain(const Block& block, const ModelDomain& domain, int motors) {
+  for (int k = 0; k < motors; ++k) {
+    if (!domain.contains(block.pwm_us[k], block.voltage_v)) return false;
+  }
+  return true;
+}
+
+bool rejectedOutside(const Block& block, const ModelDomain& domain, int motors) {
+  return domain.outside == OutsideDomain::kReject && !insideDomain(block, domain, motors);
+}
+
 FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle& vehicle, const BlockConfig& config,
                            int first_group) {
   FlightBlocks result;

@@ -40,14 +40,9 @@ struct UnusedData {
   int rejected_outside = 0;        // blocks outside the domain of a model whose policy is reject
 };
 // The report's clause on the current the avionics draw beside the motors: measured on the flights
-// named in `measured` ("0.61 A on f1.bag"), fitted on those in `unmeasured` (usable_data.cpp).
+// named in `measured` ("0.61 A on f1.bag"), fitted on those in `unmeasured` (diagnosis_report.cpp).
 std::string groundDrawText(const std::vector<std::string>& measured, const std::vector<std::string>& unmeasured,
                            double stopped_pwm_us);
-// Whether every motor's inputs lie in the model's domain (usable_data.cpp).
-bool insideDomain(const Block& block, const ModelDomain& domain, int motors);
-// Whether the node would refuse the block: a motor outside the domain of a model whose policy is
-// reject (usable_data.cpp).
-bool rejectedOutside(const Block& block, const ModelDomain& domain, int motors);
 // "no usable sample in any weighed segment of any flight: ..." with each reason's count and
 // bound (usable_data.cpp).
 std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config);

@@ -42,9 +42,7 @@ void Diagnoser::cut() {
   block_config.block_s = config_.block_s;
   block_config.group_s = config_.group_s;
   block_config.signal_timeout_s = config_.signal_timeout_s;
-  // Disarmed commands lie below the bench's lowest PWM and at most at 1000 us (PX4 900, ArduPilot
-  // its minimum); an armed idle may reach down to the bench's lowest and spins its rotor.
-  block_config.stopped_pwm_us = std::min(1000.0, model_.domain().pwm_min_us - 100.0);
+  block_config.stopped_pwm_us = stoppedPwmUs(model_.domain());
   std::vector<std::string> measured, unmeasured;
   int group = 0;
   UnusedData unused;

@@ -4,6 +4,27 @@ namespace propulsion_estimator {
 namespace gap {
 namespace detail {
 
+std::string groundDrawText(const std::vector<std::string>& measured, const std::vector<std::string>& unmeasured,
+                           double stopped_pwm_us) {
+  const auto list = [](const std::vector<std::string>& items) {
+    std::string text;
+    for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+    return text;
+  };
+  const std::string fitted = "the avionics' draw fitted per held-out unit within 0-" +
+                             formatNumber(kMaxAvionicsCurrentA) + " A";
+  const std::string readings = "at least " + std::to_string(kMinGroundDrawReadings) +
+                               " battery readings with every motor stopped (at or below " +
+                               formatNumber(stopped_pwm_us) + " us) for a second";
+  if (measured.empty()) {
+    return unmeasured.empty() ? "" : "the current view takes out " + fitted + " (no flight has " + readings + ")";
+  }
+  std::string text = "the current view takes out what the battery gave on the ground with every motor stopped: " +
+                     list(measured) + ", and " + fitted + " beyond it";
+  if (!unmeasured.empty()) text += "; on " + list(unmeasured) + " (without " + readings + ") all of it is fitted";
+  return text;
+}
+
 void Diagnoser::reportGap(const BlockView& pwm_view, const std::vector<double>& plain_view) {
   diagnosis_.overall = statsOf(all_, pwm_view);
   diagnosis_.payload_err_pct = payloadErrorPct(blocks_, plain_view);
@@ -250,7 +271,7 @@ void Diagnoser::collectSamples(const PlainViews& plain) {
     sample.corrected_n = views_.pwmView(block, diagnosis_.fitted);
     sample.pwm_us = meanPwm(block);
     sample.voltage_v = block.voltage_v;
-    sample.current_a = block.current_a;
+    sample.current_a = block.signals.value(effects::Signal::kBatteryCurrent);
     sample.signals = block.signals;
     sample.flight_time_s = block.flight_time_s;
     sample.hover = block.hover;

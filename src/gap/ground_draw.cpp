@@ -4,10 +4,10 @@
 #include <cmath>
 #include <vector>
 
-#include "propulsion_estimator/model/effect_signals.h"
-
 namespace propulsion_estimator {
 namespace gap {
+
+double stoppedPwmUs(const ModelDomain& domain) { return std::min(1000.0, domain.pwm_min_us - 10.0); }
 
 GroundDraw measureGroundDraw(const FlightStreams& streams, int motors, double stopped_us, double settle_s,
                              double timeout_s) {
@@ -17,7 +17,8 @@ GroundDraw measureGroundDraw(const FlightStreams& streams, int motors, double st
     }
     return true;
   };
-  std::vector<double> currents;
+  std::vector<double> on_ground;
+  double spinning_sum_a = 0.0;  // the discharge's sign as the sensor reports it
   std::size_t next = 0;
   double stopped_since = kNaN;  // first frame of the run of stopped frames in force; NaN: spinning
   const RcOutFrame* in_force = nullptr;
@@ -31,15 +32,20 @@ GroundDraw measureGroundDraw(const FlightStreams& streams, int motors, double st
       }
     }
     if (!in_force || reading.time_s - in_force->time_s > timeout_s || !std::isfinite(reading.current_a)) continue;
-    if (std::isnan(stopped_since) || reading.time_s - stopped_since < settle_s) continue;
-    currents.push_back(effects::dischargeCurrentA(reading.current_a));
+    if (std::isnan(stopped_since)) {
+      spinning_sum_a += reading.current_a;
+    } else if (reading.time_s - stopped_since >= settle_s) {
+      on_ground.push_back(reading.current_a);
+    }
   }
   GroundDraw draw;
-  draw.readings = static_cast<int>(currents.size());
+  draw.readings = static_cast<int>(on_ground.size());
   if (draw.readings < kMinGroundDrawReadings) return draw;
-  const auto middle = currents.begin() + currents.size() / 2;
-  std::nth_element(currents.begin(), middle, currents.end());
-  draw.current_a = *middle;
+  const auto middle = on_ground.begin() + on_ground.size() / 2;
+  std::nth_element(on_ground.begin(), middle, on_ground.end());
+  // Without a spinning reading the sign is the ground's own: a draw, not a charge.
+  const double sign = spinning_sum_a < 0.0 || (spinning_sum_a == 0.0 && *middle < 0.0) ? -1.0 : 1.0;
+  draw.current_a = sign * *middle;
   return draw;
 }
 

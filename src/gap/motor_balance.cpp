@@ -307,9 +307,11 @@ MotorReference learnReference(const PropulsionModel& model, const Vehicle& vehic
   block_config.block_s = config.block_s;
   block_config.group_s = config.group_s;
   block_config.signal_timeout_s = config.signal_timeout_s;
+  block_config.stopped_pwm_us = stoppedPwmUs(model.domain());
   std::vector<Block> blocks;
   for (int f = 0; f < static_cast<int>(flights.size()); ++f) {
     for (const Block& block : cutIntoBlocks(flights[f], f, vehicle, block_config, 0).blocks) {
+      if (rejectedOutside(block, model.domain(), motors)) continue;
       if (isQuasiSteady(block, config.max_pwm_change_us, config.max_accel_m_s2)) blocks.push_back(block);
     }
   }

@@ -32,38 +32,6 @@ std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& confi
          (reasons.empty() ? std::string(" (see the lines above for each segment)") : ": " + reasons);
 }
 
-std::string groundDrawText(const std::vector<std::string>& measured, const std::vector<std::string>& unmeasured,
-                           double stopped_pwm_us) {
-  const auto list = [](const std::vector<std::string>& items) {
-    std::string text;
-    for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
-    return text;
-  };
-  const std::string fitted = "the avionics' draw fitted per held-out unit within 0-" +
-                             formatNumber(kMaxAvionicsCurrentA) + " A";
-  const std::string readings = std::to_string(kMinGroundDrawReadings) +
-                               " battery readings with every motor stopped, at or below " +
-                               formatNumber(stopped_pwm_us) + " us";
-  if (measured.empty()) {
-    return unmeasured.empty() ? "" : "the current view takes out " + fitted + " (no flight has " + readings + ")";
-  }
-  std::string text = "the current view takes out what the battery gave on the ground with every motor stopped: " +
-                     list(measured) + ", and " + fitted + " beyond it";
-  if (!unmeasured.empty()) text += "; on " + list(unmeasured) + " (without " + readings + ") all of it is fitted";
-  return text;
-}
-
-bool insideDomain(const Block& block, const ModelDomain& domain, int motors) {
-  for (int k = 0; k < motors; ++k) {
-    if (!domain.contains(block.pwm_us[k], block.voltage_v)) return false;
-  }
-  return true;
-}
-
-bool rejectedOutside(const Block& block, const ModelDomain& domain, int motors) {
-  return domain.outside == OutsideDomain::kReject && !insideDomain(block, domain, motors);
-}
-
 std::optional<std::string> outsideTheDomain(const std::vector<Block>& blocks, const ModelDomain& domain, int motors) {
   int outside = 0;
   double pwm_low = std::numeric_limits<double>::infinity(), pwm_high = -pwm_low;

@@ -7,6 +7,7 @@
 #include "propulsion_estimator/gap/ground_draw.h"
 #include "propulsion_estimator/logs/flight_streams.h"
 #include "propulsion_estimator/model/model_effects.h"
+#include "propulsion_estimator/model/propulsion_model.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
 
 namespace propulsion_estimator {
@@ -55,8 +56,9 @@ struct BlockConfig {
   /// s; the rotors' first-order spin-up lag (RotorLag): each motor's pulse width is averaged
   /// through it, so that a block's model thrust is the one the rotors gave; 0: no lag modelled.
   double rotor_time_constant_s = 0.0;
-  /// us; a motor commanded at or below this is stopped (disarmed): the battery current with every
-  /// motor stopped is the flight's ground draw (measureGroundDraw), taken out of each block's current.
+  /// us; a motor commanded at or below this is stopped (stoppedPwmUs): the battery current with
+  /// every motor stopped is the flight's ground draw (measureGroundDraw), taken out of each block's
+  /// current.
   double stopped_pwm_us = 1000.0;
 };
 
@@ -76,6 +78,11 @@ struct FlightBlocks {
   int blocks_without_attitude = 0;  ///< blocks left out: some frame had no attitude within the timeout
   GroundDraw ground_draw;  ///< the battery current with every motor stopped, taken out of the blocks' current
 };
+
+/// Whether every motor's inputs (pulse width, voltage) lie in `domain`.
+bool insideDomain(const Block& block, const ModelDomain& domain, int motors);
+/// Whether the node refuses the block: a motor outside the domain of a model whose policy is reject.
+bool rejectedOutside(const Block& block, const ModelDomain& domain, int motors);
 
 /// Cuts `flight` into blocks inside its weighed segments, its commands through the rotor lag. A segment outside the log's time span,
 /// or with no rc/out and battery inside it, is listed in `problems` and skipped. Without IMU the

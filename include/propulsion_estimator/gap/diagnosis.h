@@ -219,7 +219,8 @@ struct GapSample {
   double rpm_view_n = 0.0;        ///< vertical thrust from the measured rotor speeds (NaN without)
   double corrected_n = 0.0;       ///< with the selected effects
   double pwm_us = 0.0;            ///< mean over the motors
-  /// The inputs at the sample and the time since the first weighed segment, SI units (V, A, s).
+  /// The inputs at the sample and the time since the first weighed segment, SI units (V, A, s);
+  /// the current is the battery's (the current view takes the ground draw out of it).
   ///@{
   double voltage_v = 0.0;
   double current_a = 0.0;

@@ -30,8 +30,9 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
                            const std::vector<int>& channels, const DiagnosisConfig& config);
 
 /// The vehicle's healthy fingerprint from `flights` known to be healthy (their weighed segments),
-/// cut into blocks as the diagnosis cuts them (no rotor lag) and read in steady hover through
-/// `model`'s surfaces. ConfigError when fewer than three flights have steady hover, or for a
+/// cut into blocks as the diagnosis cuts them (no rotor lag; each flight's ground draw out of the
+/// current; the blocks a `reject` model refuses left out) and read in steady hover as the node
+/// evaluates `model`. ConfigError when fewer than three flights have steady hover, or for a
 /// vehicle without rotor geometry.
 MotorReference learnReference(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
                               const DiagnosisConfig& config);

@@ -11,9 +11,10 @@ namespace gap {
 
 /// Three views of the vertical thrust a block flew with:
 ///  - the PWM view: each motor's thrust at its pulse width and the sensed voltage (what the node
-///    estimates);
+///    estimates; outside the domain as the node evaluates it);
 ///  - the current view: the pulse widths shifted by one common offset until the current surface
-///    gives the measured battery current, and the thrust surface read there;
+///    gives the motors' share of the measured battery current (Block::current_a), and the thrust
+///    surface read there;
 ///  - the RPM view: each motor's thrust at its measured speed (ESC telemetry) through the model's
 ///    thrust_from_rpm, at the flight's air density.
 /// Causes err differently in them: an ESC end-point offset leaves the current and RPM views

@@ -32,8 +32,9 @@ struct MotorReference {
   /// force) over the model's from the pulse widths: its parts, frame and propellers against the
   /// bench's. Effects are then judged as changes from it. NaN when unknown.
   double thrust_factor = std::numeric_limits<double>::quiet_NaN();
-  /// Likewise over the model's thrust from the battery current (the diagnosis' current view) and
-  /// from ESC telemetry's rotor speeds (its RPM view); NaN without them.
+  /// Likewise over the model's thrust from the battery current less the ground draw (the diagnosis'
+  /// current view; a reference learnt before 2026-12-02 has the avionics' draw in it) and from ESC
+  /// telemetry's rotor speeds (its RPM view); NaN without them.
   double current_thrust_factor = std::numeric_limits<double>::quiet_NaN();
   double rpm_thrust_factor = std::numeric_limits<double>::quiet_NaN();  ///< see current_thrust_factor
 

@@ -65,3 +65,23 @@ TEST(GroundDraw, LeavesOutReadingsWithoutACurrentOrAFreshCommand) {
   streams.rc_out.resize(40);
   EXPECT_EQ(gap::measureGroundDraw(streams, 4, 1000.0, 1.0, 0.5).readings, 15);
 }
+
+TEST(GroundDraw, KeepsTheSignOfASensorsOffsetAtRest) {
+  // ArduPilot's sign (discharge positive): a sensor reading -0.05 A at rest is an offset, not a draw.
+  pe::FlightStreams streams = groundAndFlight();
+  for (pe::BatteryReading& reading : streams.battery) {
+    reading.current_a = reading.time_s >= 3.0 && reading.time_s < 10.0 ? 15.0 : -0.05;
+  }
+  EXPECT_DOUBLE_EQ(gap::measureGroundDraw(streams, 4, 1000.0, 1.0, 0.5).current_a, -0.05);
+  // MAVROS's sign for PX4 (discharge negative): the same offset reads +0.05 A.
+  for (pe::BatteryReading& reading : streams.battery) reading.current_a = -reading.current_a;
+  EXPECT_DOUBLE_EQ(gap::measureGroundDraw(streams, 4, 1000.0, 1.0, 0.5).current_a, -0.05);
+}
+
+TEST(GroundDraw, AMotorIsStoppedAtMost1000UsAnd10UsBelowTheBenchsLowest) {
+  pe::ModelDomain domain;
+  domain.pwm_min_us = 1200.0;
+  EXPECT_DOUBLE_EQ(gap::stoppedPwmUs(domain), 1000.0);
+  domain.pwm_min_us = 1000.0;
+  EXPECT_DOUBLE_EQ(gap::stoppedPwmUs(domain), 990.0);
+}
