@@ -147,6 +147,11 @@ struct Accumulator {
   }
 };
 
+// Whether the node refuses the block: a motor outside the domain of a model whose policy is reject.
+bool rejectedOutside(const Block& block, const ModelDomain& domain, int motors) {
+  return domain.outside == OutsideDomain::kReject && !insideDomain(block, domain, motors);
+}
+
 // s; a rotor spins down within this after its command stops.
 constexpr double kGroundDrawSettleS = 1.0;
 
@@ -223,10 +228,6 @@ bool insideDomain(const Block& block, const ModelDomain& domain, int motors) {
   return true;
 }
 
-bool rejectedOutside(const Block& block, const ModelDomain& domain, int motors) {
-  return domain.outside == OutsideDomain::kReject && !insideDomain(block, domain, motors);
-}
-
 FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle& vehicle, const BlockConfig& config,
                            int first_group) {
   FlightBlocks result;
@@ -246,7 +247,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
   const int motors = config.motors;
   const std::vector<RcOutFrame> commands = laggedCommands(streams.rc_out, motors, config.rotor_time_constant_s);
   result.ground_draw =
-      measureGroundDraw(streams, motors, config.stopped_pwm_us, kGroundDrawSettleS, config.signal_timeout_s);
+      measureGroundDraw(streams, motors, stoppedPwmUs(config.domain), kGroundDrawSettleS, config.signal_timeout_s);
   int group = first_group;
 
   for (int s = 0; s < static_cast<int>(flight.segments.size()); ++s) {
@@ -264,7 +265,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     const double timeout = config.signal_timeout_s;
     const int blocks_per_group = std::max(1, static_cast<int>(std::lround(config.group_s / config.block_s)));
     int block_in_segment = 0;
-    int usable = 0, without_attitude = 0, frames = 0, without_battery = 0;
+    int usable = 0, without_attitude = 0, rejected = 0, frames = 0, without_battery = 0;
 
     Accumulator acc;
     int current_block = 0;
@@ -282,12 +283,15 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
       block.flight_time_s = block.time_s - flight_start;
       block.mass_kg = segment.mass_kg;
       block.truth_n = block.mass_kg * block.specific_force_up_m_s2;
-      if (acc.imu_frames == acc.frames || !result.has_imu) {
-        result.blocks.push_back(block);
-        ++usable;
-      } else {
+      if (acc.imu_frames != acc.frames && result.has_imu) {
         ++result.blocks_without_attitude;
         ++without_attitude;
+      } else if (rejectedOutside(block, config.domain, motors)) {
+        ++result.blocks_rejected_outside;
+        ++rejected;
+      } else {
+        result.blocks.push_back(block);
+        ++usable;
       }
       ++block_in_segment;
       acc = Accumulator();
@@ -334,7 +338,8 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     flush();
     group += (block_in_segment + blocks_per_group - 1) / blocks_per_group;
     result.frames_without_battery += without_battery;
-    if (usable == 0) {
+    // Blocks a rejecting model refuses are said once for all flights (the diagnosis' count).
+    if (usable == 0 && rejected == 0) {
       result.problems.push_back(nothingInSegment(segmentName(flight, s), without_attitude, frames, without_battery,
                                                  timeout));
     }

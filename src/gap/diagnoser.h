@@ -39,6 +39,9 @@ struct UnusedData {
   int frames_without_battery = 0;  // rc/out frames without a fresh battery voltage
   int rejected_outside = 0;        // blocks outside the domain of a model whose policy is reject
 };
+// How the diagnosis and the healthy reference alike cut flights into blocks for `model`.
+BlockConfig blockConfig(const DiagnosisConfig& config, const PropulsionModel& model, int motors,
+                        double rotor_time_constant_s);
 // The report's clause on the current the avionics draw beside the motors: measured on the flights
 // named in `measured` ("0.61 A on f1.bag"), fitted on those in `unmeasured` (diagnosis_report.cpp).
 std::string groundDrawText(const std::vector<std::string>& measured, const std::vector<std::string>& unmeasured,

@@ -33,16 +33,22 @@ double Diagnoser::rotorLag() {
   return lag->time_constant_s;
 }
 
+BlockConfig blockConfig(const DiagnosisConfig& config, const PropulsionModel& model, int motors,
+                        double rotor_time_constant_s) {
+  BlockConfig block_config;
+  block_config.motors = motors;
+  block_config.block_s = config.block_s;
+  block_config.group_s = config.group_s;
+  block_config.signal_timeout_s = config.signal_timeout_s;
+  block_config.rotor_time_constant_s = rotor_time_constant_s;
+  block_config.domain = model.domain();
+  return block_config;
+}
+
 void Diagnoser::cut() {
   diagnosis_.rotor_time_constant_s = rotorLag();
   const bool dynamic = diagnosis_.rotor_time_constant_s > 0.0;
-  BlockConfig block_config;
-  block_config.rotor_time_constant_s = diagnosis_.rotor_time_constant_s;
-  block_config.motors = motorCount();
-  block_config.block_s = config_.block_s;
-  block_config.group_s = config_.group_s;
-  block_config.signal_timeout_s = config_.signal_timeout_s;
-  block_config.stopped_pwm_us = stoppedPwmUs(model_.domain());
+  const BlockConfig block_config = blockConfig(config_, model_, motorCount(), diagnosis_.rotor_time_constant_s);
   std::vector<std::string> measured, unmeasured;
   int group = 0;
   UnusedData unused;
@@ -51,18 +57,14 @@ void Diagnoser::cut() {
     for (const std::string& problem : cut.problems) diagnosis_.problems.push_back(problem);
     unused.without_attitude += cut.blocks_without_attitude;
     unused.frames_without_battery += cut.frames_without_battery;
-    if (cut.has_current) {
-      (std::isfinite(cut.ground_draw.current_a) ? measured : unmeasured)
-          .push_back(std::isfinite(cut.ground_draw.current_a)
-                         ? formatPrintf("%.2f A", cut.ground_draw.current_a) + " on " + flights_[f].name
-                         : flights_[f].name);
+    unused.rejected_outside += cut.blocks_rejected_outside;
+    if (cut.has_current && std::isfinite(cut.ground_draw.current_a)) {
+      measured.push_back(formatPrintf("%.2f A", cut.ground_draw.current_a) + " on " + flights_[f].name);
+    } else if (cut.has_current) {
+      unmeasured.push_back(flights_[f].name);
     }
     for (const Block& block : cut.blocks) {
       group = std::max(group, block.group + 1);
-      if (rejectedOutside(block, model_.domain(), motorCount())) {
-        ++unused.rejected_outside;
-        continue;
-      }
       if (isQuasiSteady(block, config_.max_pwm_change_us, config_.max_accel_m_s2)) {
         blocks_.push_back(block);
         steady_.push_back(true);
@@ -76,7 +78,7 @@ void Diagnoser::cut() {
     }
   }
   diagnosis_.blocks = static_cast<int>(blocks_.size());
-  diagnosis_.ground_draw = groundDrawText(measured, unmeasured, block_config.stopped_pwm_us);
+  diagnosis_.ground_draw = groundDrawText(measured, unmeasured, stoppedPwmUs(model_.domain()));
   unused.transient = diagnosis_.transient_blocks;
   if (blocks_.empty()) throw DataError(nothingUsable(unused, config_));
   if (unused.rejected_outside > 0) {

@@ -7,6 +7,7 @@
 #include <set>
 #include <utility>
 
+#include "diagnoser.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/gap/model_check_replay.h"
 #include "propulsion_estimator/vehicle/rotor_balance.h"
@@ -302,16 +303,10 @@ MotorReference learnReference(const PropulsionModel& model, const Vehicle& vehic
   if (!vehicle.hasGeometry()) throw ConfigError("--reference: needs the rotor geometry (give --urdf or --frame)");
   const int motors = static_cast<int>(vehicle.rotors.size());
   const ThrustViews views(model, motors, false);
-  BlockConfig block_config;
-  block_config.motors = motors;
-  block_config.block_s = config.block_s;
-  block_config.group_s = config.group_s;
-  block_config.signal_timeout_s = config.signal_timeout_s;
-  block_config.stopped_pwm_us = stoppedPwmUs(model.domain());
+  const BlockConfig block_config = detail::blockConfig(config, model, motors, 0.0);
   std::vector<Block> blocks;
   for (int f = 0; f < static_cast<int>(flights.size()); ++f) {
     for (const Block& block : cutIntoBlocks(flights[f], f, vehicle, block_config, 0).blocks) {
-      if (rejectedOutside(block, model.domain(), motors)) continue;
       if (isQuasiSteady(block, config.max_pwm_change_us, config.max_accel_m_s2)) blocks.push_back(block);
     }
   }

@@ -39,13 +39,18 @@ void ThrustViews::setLevels(double pwm, double current, double rpm) {
   rpm_level_ = std::isnan(rpm) ? 1.0 : rpm;
 }
 
-double ThrustViews::surfaceThrust(double pwm_us, double voltage_v) const {
-  return std::max(0.0, model_.evaluateRaw(Output::kThrust, pwm_us, voltage_v) * thrust_to_si_);
+double ThrustViews::surfaceThrust(double pwm_us, double voltage_v) const { return offsetThrust(pwm_us, voltage_v, 0.0); }
+
+double ThrustViews::offsetThrust(double pwm_us, double voltage_v, double offset_n) const {
+  return std::max(0.0, model_.evaluateRaw(Output::kThrust, pwm_us, voltage_v) * thrust_to_si_ + offset_n);
 }
 
 double ThrustViews::motorThrust(double pwm_us, double voltage_v) const {
-  return std::max(0.0, model_.evaluateRaw(Output::kThrust, pwm_us, voltage_v) * thrust_to_si_ +
-                           outsideOffset(pwm_us, voltage_v).thrust_n);
+  OperatingPoint node;
+  if (model_.domain().contains(pwm_us, voltage_v) || !model_.evaluate(pwm_us, voltage_v, &node)) {
+    return surfaceThrust(pwm_us, voltage_v);
+  }
+  return node.thrust_n;
 }
 
 ThrustViews::Offset ThrustViews::outsideOffset(double pwm_us, double voltage_v) const {
@@ -61,9 +66,8 @@ double ThrustViews::verticalThrust(const Block& block, double pwm_shift_us, cons
                                    const Offset* offsets) const {
   double thrust = 0.0;
   for (int k = 0; k < motors_; ++k) {
-    const double motor = model_.evaluateRaw(Output::kThrust, inputs[k].pwm_us + pwm_shift_us, inputs[k].voltage_v) *
-                             thrust_to_si_ + offsets[k].thrust_n;
-    thrust += motor_scale_[k] * std::max(0.0, motor) * block.axis_up[k];
+    thrust += motor_scale_[k] * offsetThrust(inputs[k].pwm_us + pwm_shift_us, inputs[k].voltage_v, offsets[k].thrust_n) *
+              block.axis_up[k];
   }
   return thrust;
 }

@@ -56,10 +56,11 @@ struct BlockConfig {
   /// s; the rotors' first-order spin-up lag (RotorLag): each motor's pulse width is averaged
   /// through it, so that a block's model thrust is the one the rotors gave; 0: no lag modelled.
   double rotor_time_constant_s = 0.0;
-  /// us; a motor commanded at or below this is stopped (stoppedPwmUs): the battery current with
-  /// every motor stopped is the flight's ground draw (measureGroundDraw), taken out of each block's
-  /// current.
-  double stopped_pwm_us = 1000.0;
+  /// The model's domain: with `outside: reject` a block outside it is left out (and counted), as
+  /// the node refuses it; a motor commanded at or below stoppedPwmUs(domain) is stopped, and the
+  /// battery current with every motor stopped is the flight's ground draw (measureGroundDraw),
+  /// taken out of each block's current. The default, an empty box, stops no command.
+  ModelDomain domain;
 };
 
 /// Whether a block is quasi-steady: its collective PWM changed by at most `max_pwm_change_us`
@@ -76,13 +77,12 @@ struct FlightBlocks {
   bool has_current = false;  ///< whether the flight had a battery current
   int frames_without_battery = 0;  ///< rc/out frames in segments with no battery voltage within the timeout
   int blocks_without_attitude = 0;  ///< blocks left out: some frame had no attitude within the timeout
+  int blocks_rejected_outside = 0;  ///< blocks left out: outside the domain of a model that rejects them
   GroundDraw ground_draw;  ///< the battery current with every motor stopped, taken out of the blocks' current
 };
 
 /// Whether every motor's inputs (pulse width, voltage) lie in `domain`.
 bool insideDomain(const Block& block, const ModelDomain& domain, int motors);
-/// Whether the node refuses the block: a motor outside the domain of a model whose policy is reject.
-bool rejectedOutside(const Block& block, const ModelDomain& domain, int motors);
 
 /// Cuts `flight` into blocks inside its weighed segments, its commands through the rotor lag. A segment outside the log's time span,
 /// or with no rc/out and battery inside it, is listed in `problems` and skipped. Without IMU the

@@ -63,6 +63,8 @@ class ThrustViews {
     double current_a = 0.0;
   };
   Offset outsideOffset(double pwm_us, double voltage_v) const;
+  // The surfaces' thrust plus `offset_n`, floored at 0, N.
+  double offsetThrust(double pwm_us, double voltage_v, double offset_n) const;
   std::array<Offset, kMaxMotors> offsets(const Block& block) const;
   double verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs,
                         const Offset* offsets) const;
