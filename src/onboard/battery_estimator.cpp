@@ -18,6 +18,9 @@ constexpr double kInitialEStdV = 1.0;
 constexpr double kInitialRStdOhm = 0.05;
 // A current sensor's bias holds for about this long: the count's variance grows with it.
 constexpr double kBiasCorrelationS = 60.0;
+// The current's recent mean (s) and the move off it (A) that excites the resistance.
+constexpr double kExcitationMeanS = 30.0;
+constexpr double kExcitationA = 1.0;
 // Below this the resistance's standard deviation counts as identified, however small the resistance.
 constexpr double kResistanceStdFloorOhm = 0.003;
 
@@ -33,6 +36,11 @@ void BatteryEstimatorConfig::validate() const {
   requireWithin("capability/battery/capacity_rel_std", capacity_rel_std, 0.0, 0.5);
   requireWithin("capability/battery/knee_soc_std", knee_soc_std, 0.0, 0.5);
   requireWithin("capability/battery/min_current_span_a", min_current_span_a, 0.0, 1000.0, " A");
+  requireWithin("capability/battery/polarisation_rel", polarisation_rel, 0.0, 10.0);
+  requirePositive("capability/battery/polarisation_time_s", polarisation_time_s);
+  requireWithin("capability/battery/cold_capacity_rel", cold_capacity_rel, 0.0, 0.9);
+  requirePositive("capability/battery/interval_low_z", interval_low_z, 10.0);
+  requirePositive("capability/battery/interval_high_z", interval_high_z, 10.0);
   requirePositive("capability/battery/max_resistance_rel_std", max_resistance_rel_std);
   requirePositive("capability/battery/max_soc_std", max_soc_std, 1.0);
 }
@@ -48,6 +56,7 @@ void BatteryEstimator::add(double time_s, double voltage_v, double current_a) {
     last_s_ = time_s;
     soc_ = config_.curve.stateOfCharge(voltage_v / config_.cells);
     soc_var_ = kInitialSocStd * kInitialSocStd;
+    mean_current_a_ = have_current ? current_a : 0.0;
     fit_.reset(Eigen::Vector2d(voltage_v, 0.0), Eigen::Vector2d(kInitialEStdV, kInitialRStdOhm), config_.voltage_sigma_v);
   } else {
     if (!(time_s > last_s_)) return;
@@ -61,12 +70,14 @@ void BatteryEstimator::add(double time_s, double voltage_v, double current_a) {
   if (have_current) {
     min_current_a_ = std::isnan(min_current_a_) ? current_a : std::min(min_current_a_, current_a);
     max_current_a_ = std::isnan(max_current_a_) ? current_a : std::max(max_current_a_, current_a);
+    if (std::isnan(loaded_since_s_) && max_current_a_ - min_current_a_ >= config_.min_current_span_a) {
+      loaded_since_s_ = time_s;
+    }
     // The voltage the pack would rest at; its noise, the resistance's spread times the current and
     // how far a pack may lie off the curve.
     const double curve_v = config_.cells * config_.curve_sigma_cell_v;
     const Eigen::Vector2d sag(0.0, current_a);
-    correctWithCurve(voltage_v + sag.dot(fit_.parameters()),
-                     sigma2 * (1.0 + sag.dot(fit_.covariance() * sag)) + curve_v * curve_v);
+    correctWithCurve(voltage_v + sag.dot(fit_.parameters()), sigma2 * (1.0 + sag.dot(fit_.covariance() * sag)) + curve_v * curve_v);
   }
   last_current_a_ = current_a;
   publish();
@@ -82,10 +93,21 @@ void BatteryEstimator::countCharge(double dt_s, double current_a) {
 }
 
 void BatteryEstimator::updateResistance(double dt_s, double voltage_v, double current_a) {
-  // V = E - R I: the line's slope against -I is R, which no pack has below zero.
-  fit_.forget(std::exp(-dt_s / config_.resistance_memory_s));
-  fit_.add(-current_a, voltage_v);
+  // V = E - R I: the line's slope against -I is R, which no pack has below zero. Only a change of
+  // current tells R from E: while the current stays within kExcitationA of its recent mean (a
+  // steady hover) R is held and not forgotten, and the reading moves E alone. Fitting both there
+  // let a pack whose curve is not the built-in one (E carried along the wrong slope) pull R to
+  // zero, or to five times its value, within ten minutes of hover.
+  const bool excited = std::abs(current_a - mean_current_a_) >= kExcitationA;
+  const double keep = std::exp(-dt_s / config_.resistance_memory_s);
+  fit_.forget(keep, excited ? keep : 1.0);
+  if (excited) {
+    fit_.add(-current_a, voltage_v);
+  } else {
+    fit_.addWithSlopeHeld(-current_a, voltage_v);
+  }
   fit_.parameters()(1) = std::max(0.0, fit_.parameters()(1));
+  mean_current_a_ += std::min(1.0, dt_s / kExcitationMeanS) * (current_a - mean_current_a_);
 }
 
 void BatteryEstimator::correctWithCurve(double open_circuit_v, double variance) {
@@ -116,6 +138,7 @@ void BatteryEstimator::publish() {
   estimate_.open_circuit_voltage_v = fit_.parameters()(0);
   estimate_.current_a = last_current_a_;
   estimate_.current_span_a = std::isnan(max_current_a_) ? 0.0 : max_current_a_ - min_current_a_;
+  estimate_.loaded_s = std::isnan(loaded_since_s_) ? 0.0 : last_s_ - loaded_since_s_;
 }
 
 std::string BatteryEstimator::withheldReason() const {

@@ -1,5 +1,6 @@
 #include "propulsion_estimator/onboard/capability.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "propulsion_estimator/common/field_error.h"
@@ -266,16 +267,28 @@ void CapabilityEstimator::evaluateEndurance(const Correction& correction, Capabi
   if (px4) return;
   // The spread: the endurance at one standard deviation less charge (the estimate's and where the
   // pack's knee lies against the curve's), at one more resistance, and the capacity's.
-  const double charge_std = std::hypot(b.state_of_charge_std, battery_->config().knee_soc_std);
-  const HoverDischarge less_charge =
-      discharge(std::max(0.0, b.state_of_charge - charge_std), resistance, thrust_per_motor_n, correction);
-  const HoverDischarge more_resistance = discharge(b.state_of_charge, resistance + b.internal_resistance_std_ohm,
-                                                   thrust_per_motor_n, correction);
-  const double by_charge = c->hover_endurance_s - less_charge.endurance_s.value_or(0.0);
-  const double by_resistance = c->hover_endurance_s - more_resistance.endurance_s.value_or(0.0);
+  const BatteryEstimatorConfig& pack = battery_->config();
+  const double charge_std = std::hypot(b.state_of_charge_std, pack.knee_soc_std);
+  const auto shorter_by = [&](double state_of_charge, double resistance_ohm) {
+    const HoverDischarge d = discharge(std::clamp(state_of_charge, 0.0, 1.0), resistance_ohm, thrust_per_motor_n, correction);
+    return c->hover_endurance_s - d.endurance_s.value_or(0.0);
+  };
+  const double by_charge = shorter_by(b.state_of_charge - charge_std, resistance);
+  const double by_resistance = shorter_by(b.state_of_charge, resistance + b.internal_resistance_std_ohm);
   // The capacity's own spread scales the whole endurance.
-  const double by_capacity = c->hover_endurance_s * battery_->config().capacity_rel_std;
+  const double by_capacity = c->hover_endurance_s * pack.capacity_rel_std;
   c->hover_endurance_std_s = std::sqrt(by_charge * by_charge + by_resistance * by_resistance + by_capacity * by_capacity);
+  // The interval's low end also holds what only lowers the endurance: the polarisation still to
+  // build on a pack's first minutes, and a cold pack's lost capacity (its temperature unknown).
+  const double unseen_ohm = resistance * pack.polarisation_rel * std::exp(-b.loaded_s / pack.polarisation_time_s);
+  const double by_polarisation = shorter_by(b.state_of_charge, resistance + b.internal_resistance_std_ohm + unseen_ohm);
+  const double by_cold = c->hover_endurance_s * pack.cold_capacity_rel;
+  const double by_more_charge = -shorter_by(b.state_of_charge + charge_std, resistance);
+  const double low = std::sqrt(by_charge * by_charge + by_polarisation * by_polarisation + by_capacity * by_capacity +
+                               by_cold * by_cold);
+  const double high = std::sqrt(by_more_charge * by_more_charge + by_resistance * by_resistance + by_capacity * by_capacity);
+  c->hover_endurance_low_s = std::max(0.0, c->hover_endurance_s - pack.interval_low_z * low);
+  c->hover_endurance_high_s = c->hover_endurance_s + pack.interval_high_z * high;
 }
 
 void CapabilityEstimator::evaluateEnduranceAtMeasuredCurrent(CapabilityReport* c) const {
@@ -311,6 +324,8 @@ HealthStatus judgeCapability(const CapabilityReport& c, const MotorHealthVerdict
   if (!c.payload_note.empty()) status.values.emplace_back("payload note", c.payload_note);
   value("hover endurance (s)", c.hover_endurance_s);
   value("hover endurance std (s)", c.hover_endurance_std_s);
+  value("hover endurance 90 % low (s)", c.hover_endurance_low_s);
+  value("hover endurance 90 % high (s)", c.hover_endurance_high_s);
   value("state of charge", c.state_of_charge);
   value("internal resistance (ohm)", c.internal_resistance_ohm);
   status.values.emplace_back("endurance basis", c.endurance_basis);
@@ -353,7 +368,11 @@ HealthStatus judgeCapability(const CapabilityReport& c, const MotorHealthVerdict
                           (c.payload_sagged ? "" : " at the present voltage, no sag")) +
                    ", hover endurance " +
                    (std::isnan(c.hover_endurance_s) ? "unknown (" + c.endurance_basis + ")"
-                                                    : formatPrintf("%.0f s", c.hover_endurance_s));
+                                                    : formatPrintf("%.0f s", c.hover_endurance_s) +
+                                                          (std::isnan(c.hover_endurance_low_s)
+                                                               ? std::string()
+                                                               : formatPrintf(" (90 %%: %.0f", c.hover_endurance_low_s) +
+                                                                     formatPrintf("-%.0f s)", c.hover_endurance_high_s)));
   if (health.judged) {
     status.message += ", motors balanced, centre of gravity " +
                       formatPrintf("%.1f", 100.0 * std::hypot(health.cg_offset_x_m, health.cg_offset_y_m)) +

@@ -445,6 +445,8 @@ void EstimatorNode::publishCapability() {
   msg.remaining_ah = c.remaining_ah;
   msg.hover_endurance_s = c.hover_endurance_s;
   msg.hover_endurance_std_s = c.hover_endurance_std_s;
+  msg.hover_endurance_low_s = c.hover_endurance_low_s;
+  msg.hover_endurance_high_s = c.hover_endurance_high_s;
   msg.endurance_basis = c.endurance_basis;
   msg.reserve_s = params_.capability.reserve_s;
   msg.motor_health_judged = h.judged;

@@ -28,6 +28,20 @@ struct BatteryEstimatorConfig {
   /// How far along the charge axis a pack's knee near empty may lie off the curve's (0..1): where
   /// the loaded cut-off falls, which no minute of hover above the knee shows.
   double knee_soc_std = 0.05;
+  /// How much more than the resistance identified so far the hover may come to see, relative, on
+  /// a pack's first minutes: the slow polarisation (minutes) builds after the least squares has
+  /// settled. It fades as exp(-loaded time / polarisation_time_s). Enters the interval's low end.
+  double polarisation_rel = 0.5;
+  double polarisation_time_s = 300.0;  ///< s; how long the slow polarisation takes to build
+  /// Share of the rated capacity a pack of unknown temperature may lack (a cold pack gives less):
+  /// enters the interval's low end.
+  double cold_capacity_rel = 0.08;
+  /// The 90 % interval's ends in spreads below and above the central figure, calibrated on the
+  /// battery family's development packs (test_capability_flight.cpp, docs/capability.md).
+  ///@{
+  double interval_low_z = 1.32;
+  double interval_high_z = 0.48;
+  ///@}
   /// A; the least change of current the resistance needs to be identified (a take-off gives it).
   double min_current_span_a = 2.0;
   double max_resistance_rel_std = 0.35;  ///< the resistance's standard deviation over it, at most
@@ -49,13 +63,15 @@ struct BatteryEstimate {
   double open_circuit_voltage_v = kNaN;  ///< pack; the terminal voltage plus resistance x current
   double current_a = kNaN;               ///< the last current used (measured or given)
   double current_span_a = 0.0;           ///< A; largest minus smallest current seen
+  /// s since the current first varied by min_current_span_a (the take-off); 0 before.
+  double loaded_s = 0.0;
 };
 
 /// The pack's state of charge and internal resistance from its terminal voltage and current, O(1)
 /// per reading, fixed memory. The resistance and the voltage the pack would rest at come from a
 /// recursive least squares with forgetting of voltage against current (V = E - R I, as PX4's
-/// battery estimator does), its E carried along the open-circuit curve as charge is drawn; the
-/// state of charge from a Kalman filter that counts the charge drawn (coulomb counting) and is
+/// battery estimator does), its E carried along the open-circuit curve as charge is drawn, R held
+/// while the current stays steady (nothing tells it from E then); the state of charge from a Kalman filter that counts the charge drawn (coulomb counting) and is
 /// corrected by the curve at the open-circuit voltage: the curve corrects the counter's drift, the
 /// counter the curve's flat middle.
 class BatteryEstimator {
@@ -89,6 +105,8 @@ class BatteryEstimator {
   double last_s_ = 0.0;
   double last_current_a_ = kNaN;
   double min_current_a_ = kNaN, max_current_a_ = kNaN;
+  double loaded_since_s_ = kNaN;  // when the current span first reached min_current_span_a
+  double mean_current_a_ = 0.0;  // low-passed: a move off it excites R
   // State of charge and its variance.
   double soc_ = 0.0, soc_var_ = 0.0;
   // V = E - R I: offset E (V) and slope R (ohm) against -I.

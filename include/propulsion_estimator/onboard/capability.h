@@ -110,6 +110,13 @@ struct CapabilityReport {
   double remaining_ah = kNaN;  ///< charge drawn until the loaded cut-off (or PX4's empty)
   double hover_endurance_s = kNaN;  ///< s; hover time left to the loaded cut-off
   double hover_endurance_std_s = kNaN;  ///< from the state of charge's and the resistance's spread
+  /// s; the 90 % interval of the hover time left: what the node does not know yet (the charge and
+  /// where the pack's knee lies, the polarisation still to build, a cold pack's lost capacity, the
+  /// capacity's spread), calibrated on the battery family (docs/capability.md). NaN with the endurance.
+  ///@{
+  double hover_endurance_low_s = kNaN;
+  double hover_endurance_high_s = kNaN;
+  ///@}
   std::string endurance_basis;          ///< how it was computed, or why it is NaN (withheld: ...)
   bool payload_over_limit = false;       ///< max_additional_payload_kg < 0
   bool endurance_below_reserve = false;  ///< hover_endurance_s < reserve_s

@@ -14,10 +14,16 @@ class ForgettingLineFit {
   /// and slope) for readings of noise `noise_std` (> 0). Throws nothing.
   void reset(const Eigen::Vector2d& start, const Eigen::Vector2d& prior_std, double noise_std);
   /// Ages the fit by `keep` (0..1, exp(-dt / memory)): older readings weigh less.
-  void forget(double keep);
+  void forget(double keep) { forget(keep, keep); }
+  /// Ages the offset by `keep_offset` and the slope by `keep_slope` (0..1 each): a slope the
+  /// readings no longer excite (x steady) is kept while the offset follows y.
+  void forget(double keep_offset, double keep_slope);
   /// Takes the reading `y` at `x`. Returns its residual before the update; `innovation` (if given)
   /// receives the residual's variance relative to the noise's (>= 1).
   double add(double x, double y, double* innovation = nullptr);
+  /// Takes the reading `y` at `x` with the slope held as it is (a reading that cannot tell the
+  /// slope from the offset): only the offset and its variance move. Returns the residual.
+  double addWithSlopeHeld(double x, double y);
 
   /// Offset and slope.
   const Eigen::Vector2d& parameters() const { return theta_; }

@@ -128,3 +128,27 @@ TEST(BatteryEstimatorConfig, RefusesBadValues) {
     EXPECT_EQ(std::string(e.what()), "capability/battery/resistance_memory_s: must be a positive number, got 0");
   }
 }
+
+// Fifteen minutes of steady hover on a pack whose curve is not the built-in one (its voltage
+// falls 0.3 V a cell faster towards empty): nothing in a steady current tells the resistance from
+// the curve, so the resistance found at the take-off is kept. Fitting both there pulled it to zero
+// (and the endurance was withheld for the last five minutes) or to five times its value.
+TEST(BatteryEstimator, ASteadyHoverKeepsTheResistanceFoundAtTheTakeOff) {
+  pe::BatteryEstimator estimator(threeCell());
+  const pe::OcvCurve curve = pe::OcvCurve::lipo();
+  std::mt19937 rng(5);
+  std::normal_distribution<double> voltage_noise(0.0, 0.01), current_noise(0.0, 0.1);
+  double soc = 0.95;
+  const double resistance = 0.03;
+  double after_takeoff = pe::kNaN;
+  for (int t = 0; t <= 1000; ++t) {
+    const double current = (t < 5 ? 0.5 : 13.0 + 0.002 * t) + current_noise(rng);
+    if (t > 0) soc -= current / (3600.0 * 4.0);
+    const double cell_v = curve.cellVoltage(soc) - 0.3 * (1.0 - soc) * (1.0 - soc);
+    estimator.add(t, 3 * cell_v - resistance * current + voltage_noise(rng), current);
+    if (t == 60) after_takeoff = estimator.estimate().internal_resistance_ohm;
+  }
+  EXPECT_NEAR(after_takeoff, resistance, 0.005);
+  EXPECT_NEAR(estimator.estimate().internal_resistance_ohm, after_takeoff, 0.002);
+  EXPECT_EQ(estimator.withheldReason(), "");
+}

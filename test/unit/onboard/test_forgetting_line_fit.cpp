@@ -68,3 +68,22 @@ TEST(ForgettingLineFit, AStretchWithoutExcitationDoesNotWindTheCovarianceUp) {
   EXPECT_LE(fit.covariance()(0, 0), 2.0 * 2.0 / (0.1 * 0.1) * (1.0 + 1e-12));
   EXPECT_GT(fit.covariance()(1, 1), 0.0);
 }
+
+// With the slope held, a reading moves the offset alone and the slope's variance stays; aged by the
+// offset only, the slope's variance stays too.
+TEST(ForgettingLineFit, AReadingWithTheSlopeHeldMovesTheOffsetAlone) {
+  pe::ForgettingLineFit fit;
+  fit.reset(Eigen::Vector2d::Zero(), Eigen::Vector2d(2.0, 0.5), 0.1);
+  for (int k = 0; k < 100; ++k) fit.add(std::sin(0.3 * k), 1.0 + 0.4 * std::sin(0.3 * k));
+  const Eigen::Vector2d before = fit.parameters();
+  const double slope_variance = fit.covariance()(1, 1);
+  for (int k = 0; k < 3000; ++k) {
+    fit.forget(0.99, 1.0);
+    fit.addWithSlopeHeld(3.0, 2.5 + 0.4 * 3.0);  // the offset moved to 2.5 where x never varies
+  }
+  EXPECT_EQ(fit.parameters()(1), before(1));
+  EXPECT_NEAR(fit.parameters()(0), 2.5 + 3.0 * (0.4 - before(1)), 1e-6);  // the reading less the held slope times x
+  EXPECT_EQ(fit.covariance()(1, 1), slope_variance);
+  EXPECT_EQ(fit.covariance()(0, 1), fit.covariance()(1, 0));
+  EXPECT_GT(fit.covariance()(0, 0) * fit.covariance()(1, 1) - fit.covariance()(0, 1) * fit.covariance()(1, 0), 0.0);
+}
