@@ -25,17 +25,11 @@ TareRecord parseTareFile(const std::string& text, const std::string& source);
 /// The tare in `path`; nullopt when the file does not exist. ConfigError naming the file for
 /// content that is not a tare (InputError when it cannot be read).
 std::optional<TareRecord> loadTareFile(const std::string& path);
-/// Writes atomically, so that a crash never leaves half a file and two nodes never write into
-/// each other's: a temporary file of a name unique to this call (pid, counter, random) next to
-/// `path` is written, fsynced and renamed over `path`, then the folder is fsynced. InputError
-/// naming the file and the failed step when it cannot be written (the temporary file removed).
+/// Writes atomically (writeFileAtomically()): a crash never leaves half a file. InputError naming
+/// the file and the failed step when it cannot be written.
 void saveTareFile(const std::string& path, const TareRecord& record);
-/// A write takes milliseconds: a temporary file older than this was left by a process killed
-/// while it wrote.
-constexpr double kStaleTareTemporaryAgeS = 60.0;
-/// Removes the temporary files of saveTareFile() next to `path` ("<path>.tmp-...") that are older
-/// than kStaleTareTemporaryAgeS, and returns their names. A file that cannot be removed is left
-/// (and not returned); never throws.
+/// Removes the temporary files of saveTareFile() next to `path` that a killed write left
+/// (removeStaleTemporaries()), and returns their names; never throws.
 std::vector<std::string> removeStaleTareTemporaries(const std::string& path);
 /// Removes the file if it exists; InputError naming it when it exists and cannot be removed.
 void removeTareFile(const std::string& path);

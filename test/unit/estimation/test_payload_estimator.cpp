@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "propulsion_estimator/common/atomic_file.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/estimation/payload_estimator.h"
@@ -169,7 +170,7 @@ TEST(TareFile, RemovesOnlyStaleTemporariesOfItsOwnFile) {
   std::ofstream(path + ".tmp-4343-0-77") << "being written now";
   std::ofstream(folder + "/other.yaml.tmp-4242-0-77") << "another file's";
   age(path, 3600.0);
-  age(path + ".tmp-4242-0-77", pe::kStaleTareTemporaryAgeS + 5.0);
+  age(path + ".tmp-4242-0-77", pe::kStaleTemporaryAgeS + 5.0);
   age(folder + "/other.yaml.tmp-4242-0-77", 3600.0);
   EXPECT_EQ(pe::removeStaleTareTemporaries(path), (std::vector<std::string>{path + ".tmp-4242-0-77"}));
   std::vector<std::string> names;

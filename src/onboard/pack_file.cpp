@@ -1,0 +1,127 @@
+#include "propulsion_estimator/onboard/pack_file.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include "propulsion_estimator/common/atomic_file.h"
+#include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/common/yaml_map.h"
+
+namespace propulsion_estimator {
+namespace {
+
+std::string exact(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.17g", value);
+  return text;
+}
+
+std::string list(const std::vector<double>& values) {
+  std::string text = "[";
+  for (std::size_t k = 0; k < values.size(); ++k) text += (k ? ", " : "") + exact(values[k]);
+  return text + "]";
+}
+
+// A YAML double-quoted scalar: the identity may hold any character.
+std::string yamlQuoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof(escape), "\\x%02x", static_cast<unsigned char>(c));
+      out += escape;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+PackRecord parsePackFile(const std::string& text, const std::string& source) {
+  const YamlMap root = parseYamlDocument(text, source);
+  root.allowOnly({"pack_id", "cells", "flights", "capacity_ah", "ocv_soc", "ocv_cell_v", "resistance_ohm"});
+  PackRecord record;
+  record.pack_id = root.text("pack_id");
+  if (record.pack_id.empty()) root.fail("pack_id", "must not be empty");
+  record.cells = root.integer("cells");
+  if (record.cells < 1 || record.cells > 14) root.fail("cells", std::to_string(record.cells) + " is outside 1..14");
+  record.flights = root.integer("flights");
+  if (record.flights < 0) root.fail("flights", "must not be negative");
+  record.capacity_ah = root.optionalNumber("capacity_ah");
+  if (record.capacity_ah && !(*record.capacity_ah > 0.0)) root.fail("capacity_ah", "must be positive");
+  record.ocv_soc = root.numbers("ocv_soc");
+  record.ocv_cell_v = root.numbers("ocv_cell_v");
+  if (record.ocv_soc.size() != record.ocv_cell_v.size()) {
+    root.fail("ocv_cell_v", "has " + std::to_string(record.ocv_cell_v.size()) + " points, ocv_soc " +
+                                std::to_string(record.ocv_soc.size()));
+  }
+  for (std::size_t k = 0; k < record.ocv_soc.size(); ++k) {
+    if (record.ocv_soc[k] < 0.0 || record.ocv_soc[k] > 1.0) root.fail("ocv_soc", "must lie within 0..1");
+    if (k > 0 && !(record.ocv_soc[k] > record.ocv_soc[k - 1])) root.fail("ocv_soc", "must increase");
+    if (k > 0 && !(record.ocv_cell_v[k] > record.ocv_cell_v[k - 1])) root.fail("ocv_cell_v", "must increase");
+  }
+  record.resistance_ohm = root.numbers("resistance_ohm");
+  for (double r : record.resistance_ohm) {
+    if (r < 0.0) root.fail("resistance_ohm", "must not be negative");
+  }
+  return record;
+}
+
+std::string packFileText(const PackRecord& r) {
+  std::string text = "# Written by propulsion_estimator: what it learned of one battery pack from its flights.\n";
+  text += "pack_id: " + yamlQuoted(r.pack_id) + "\n";
+  text += "cells: " + std::to_string(r.cells) + "\n";
+  text += "flights: " + std::to_string(r.flights) + "\n";
+  if (r.capacity_ah) text += "capacity_ah: " + exact(*r.capacity_ah) + "\n";
+  text += "ocv_soc: " + list(r.ocv_soc) + "\n";
+  text += "ocv_cell_v: " + list(r.ocv_cell_v) + "\n";
+  text += "resistance_ohm: " + list(r.resistance_ohm) + "\n";
+  return text;
+}
+
+std::optional<PackRecord> loadPackFile(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return std::nullopt;
+  return parsePackFile(readTextFile(path), path);
+}
+
+void savePackFile(const std::string& path, const PackRecord& record) {
+  writeFileAtomically(path, packFileText(record), "pack file");
+}
+
+std::string packFilePath(const std::string& pattern, const std::string& pack_id) {
+  static const std::string kPlaceholder = "{pack_id}";
+  std::string path = pattern;
+  for (std::size_t at = path.find(kPlaceholder); at != std::string::npos; at = path.find(kPlaceholder, at + pack_id.size())) {
+    path.replace(at, kPlaceholder.size(), pack_id);
+  }
+  return path;
+}
+
+PackFileLookup packFileRecordFor(const std::string& path, const std::string& pack_id, int cells) {
+  PackFileLookup lookup;
+  std::optional<PackRecord> record = loadPackFile(path);
+  if (!record) {
+    lookup.note = path + ": none yet for pack " + yamlQuoted(pack_id) + ": learned from this flight";
+  } else if (record->pack_id != pack_id) {
+    lookup.writable = false;
+    lookup.note = path + ": holds pack " + yamlQuoted(record->pack_id) + ", not this flight's " + yamlQuoted(pack_id) +
+                  ": not used, not overwritten (put {pack_id} in capability/battery/pack_file for a file per pack)";
+  } else if (record->cells != cells) {
+    lookup.writable = false;
+    lookup.note = path + ": pack " + yamlQuoted(pack_id) + " has " + std::to_string(record->cells) + " cells there, " +
+                  std::to_string(cells) + " configured: not used, not overwritten";
+  } else {
+    lookup.note = path + ": pack " + yamlQuoted(pack_id) + ", " + std::to_string(record->flights) + " flights learned";
+    lookup.record = std::move(record);
+  }
+  return lookup;
+}
+
+}  // namespace propulsion_estimator
