@@ -43,6 +43,9 @@ void BatteryEstimatorConfig::validate() const {
   requirePositive("capability/battery/interval_high_z", interval_high_z, 10.0);
   requirePositive("capability/battery/max_resistance_rel_std", max_resistance_rel_std);
   requirePositive("capability/battery/max_soc_std", max_soc_std, 1.0);
+  if (!std::isnan(initial_resistance_ohm)) {
+    requireWithin("capability/battery/pack_file: resistance_ohm", initial_resistance_ohm, 0.0, 10.0, " ohm");
+  }
 }
 
 BatteryEstimator::BatteryEstimator(BatteryEstimatorConfig config) : config_(std::move(config)) { config_.validate(); }
@@ -54,10 +57,14 @@ void BatteryEstimator::add(double time_s, double voltage_v, double current_a) {
   if (!started_) {
     started_ = true;
     last_s_ = time_s;
-    soc_ = config_.curve.stateOfCharge(voltage_v / config_.cells);
+    const bool resting = !(current_a >= config_.rest_current_a);
+    soc_ = config_.curve.stateOfCharge(voltage_v / config_.cells - (resting ? config_.rest_offset_cell_v : 0.0));
     soc_var_ = kInitialSocStd * kInitialSocStd;
     mean_current_a_ = have_current ? current_a : 0.0;
-    fit_.reset(Eigen::Vector2d(voltage_v, 0.0), Eigen::Vector2d(kInitialEStdV, kInitialRStdOhm), config_.voltage_sigma_v);
+    const bool known = config_.initial_resistance_ohm > 0.0;
+    fit_.reset(Eigen::Vector2d(voltage_v, known ? config_.initial_resistance_ohm : 0.0),
+               Eigen::Vector2d(kInitialEStdV, known ? config_.initial_resistance_ohm / 3.0 : kInitialRStdOhm),
+               config_.voltage_sigma_v);
   } else {
     if (!(time_s > last_s_)) return;
     const double dt_s = time_s - last_s_;
@@ -77,7 +84,10 @@ void BatteryEstimator::add(double time_s, double voltage_v, double current_a) {
     // how far a pack may lie off the curve.
     const double curve_v = config_.cells * config_.curve_sigma_cell_v;
     const Eigen::Vector2d sag(0.0, current_a);
-    correctWithCurve(voltage_v + sag.dot(fit_.parameters()), sigma2 * (1.0 + sag.dot(fit_.covariance() * sag)) + curve_v * curve_v);
+    // A curve learned under the hover's load lies below the rest by the polarisation a hover
+    // builds: a resting voltage is read on it less that.
+    const double rest_offset_v = current_a < config_.rest_current_a ? config_.cells * config_.rest_offset_cell_v : 0.0;
+    correctWithCurve(voltage_v + sag.dot(fit_.parameters()) - rest_offset_v, sigma2 * (1.0 + sag.dot(fit_.covariance() * sag)) + curve_v * curve_v);
   }
   last_current_a_ = current_a;
   publish();

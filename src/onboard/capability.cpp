@@ -78,6 +78,12 @@ std::optional<BatteryEstimatorConfig> CapabilityConfig::battery() const {
   battery.cells = *cells;
   battery.capacity_ah = *capacity_ah;
   battery.curve = curve();
+  if (pack) {
+    battery.curve = learnedCurve(*pack, battery.curve);
+    if (pack->capacity_ah) battery.capacity_ah = *pack->capacity_ah;
+    if (!pack->resistance_ohm.empty()) battery.initial_resistance_ohm = pack->resistance_ohm.back();
+    battery.rest_offset_cell_v = pack->rest_offset_cell_v.value_or(0.0);
+  }
   return battery;
 }
 
@@ -89,7 +95,13 @@ CapabilityEstimator::CapabilityEstimator(const PropulsionModel& model, int motor
     throw FieldError("capability/pwm_max_us", formatNumber(pwm_max_us_) + " us is not above the model's lowest PWM " +
                                                   formatNumber(model_.domain().pwm_min_us) + " us");
   }
-  if (const std::optional<BatteryEstimatorConfig> battery = config_.battery()) battery_.emplace(*battery);
+  if (const std::optional<BatteryEstimatorConfig> battery = config_.battery()) {
+    battery_.emplace(*battery);
+    PackLearnerConfig learner;
+    learner.cells = battery->cells;
+    learner.capacity_ah = battery->capacity_ah;
+    learner_.emplace(learner);
+  }
 }
 
 void CapabilityEstimator::addBattery(double time_s, double voltage_v, const BatteryReport& battery,
@@ -98,10 +110,19 @@ void CapabilityEstimator::addBattery(double time_s, double voltage_v, const Batt
   const bool known = battery.percentage >= 0.0 && battery.percentage <= 1.0;
   px4_remaining_ = config_.percentage == PercentageMode::kPx4Remaining && known ? battery.percentage : kNaN;
   if (!battery_) return;
-  battery_->add(time_s, voltage_v, std::isfinite(measured_current_a_) ? measured_current_a_ : modelled_current_a);
+  const double current_a = std::isfinite(measured_current_a_) ? measured_current_a_ : modelled_current_a;
+  battery_->add(time_s, voltage_v, current_a);
+  learner_->add(time_s, voltage_v, current_a, battery_->estimate());
   if (config_.percentage == PercentageMode::kCapacityFraction && known) {
     battery_->addStateOfCharge(battery.percentage, kReportedSocSigma);
   }
+}
+
+PackRecord CapabilityEstimator::learnPack(const PackRecord& previous) {
+  if (!packFlightFinished()) return previous;
+  PackRecord record = learner_->learned(previous, battery_->config().curve);
+  learner_->startNextFlight();
+  return record;
 }
 
 OperatingPoint CapabilityEstimator::fullThrottle(double voltage_v, const Correction& correction) const {

@@ -1,5 +1,6 @@
 #include "propulsion_estimator/onboard/pack_file.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
@@ -45,7 +46,8 @@ std::string yamlQuoted(const std::string& text) {
 
 PackRecord parsePackFile(const std::string& text, const std::string& source) {
   const YamlMap root = parseYamlDocument(text, source);
-  root.allowOnly({"pack_id", "cells", "flights", "capacity_ah", "ocv_soc", "ocv_cell_v", "resistance_ohm"});
+  root.allowOnly({"pack_id", "cells", "flights", "capacity_ah", "ocv_soc", "ocv_cell_v", "resistance_ohm",
+                  "rest_offset_cell_v"});
   PackRecord record;
   record.pack_id = root.text("pack_id");
   if (record.pack_id.empty()) root.fail("pack_id", "must not be empty");
@@ -67,6 +69,10 @@ PackRecord parsePackFile(const std::string& text, const std::string& source) {
     if (k > 0 && !(record.ocv_cell_v[k] > record.ocv_cell_v[k - 1])) root.fail("ocv_cell_v", "must increase");
   }
   record.resistance_ohm = root.numbers("resistance_ohm");
+  record.rest_offset_cell_v = root.optionalNumber("rest_offset_cell_v");
+  if (record.rest_offset_cell_v && std::abs(*record.rest_offset_cell_v) > 0.5) {
+    root.fail("rest_offset_cell_v", "must lie within -0.5..0.5 V");
+  }
   for (double r : record.resistance_ohm) {
     if (r < 0.0) root.fail("resistance_ohm", "must not be negative");
   }
@@ -82,6 +88,7 @@ std::string packFileText(const PackRecord& r) {
   text += "ocv_soc: " + list(r.ocv_soc) + "\n";
   text += "ocv_cell_v: " + list(r.ocv_cell_v) + "\n";
   text += "resistance_ohm: " + list(r.resistance_ohm) + "\n";
+  if (r.rest_offset_cell_v) text += "rest_offset_cell_v: " + exact(*r.rest_offset_cell_v) + "\n";
   return text;
 }
 

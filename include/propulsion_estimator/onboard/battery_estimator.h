@@ -16,6 +16,13 @@ struct BatteryEstimatorConfig {
   int cells = 0;              ///< in series
   double capacity_ah = 0.0;   ///< Ah; the rated capacity
   OcvCurve curve = OcvCurve::lipo();  ///< the cells' open-circuit curve
+  /// ohm; the resistance a pack file learned on earlier flights, where the least squares starts
+  /// (with a third of it as its spread); NaN: none known, it starts from nothing.
+  double initial_resistance_ohm = kNaN;
+  /// V per cell a pack at rest stands above `curve` (a curve learned under the hover's load, the
+  /// pack file's): taken off a resting voltage before it is read on the curve.
+  double rest_offset_cell_v = 0.0;
+  double rest_current_a = 3.0;  ///< A; below this the pack is at rest
   /// s; the internal resistance's recursive least squares forgets older samples with this time
   /// constant (the resistance grows as the pack empties and warms).
   double resistance_memory_s = 300.0;

@@ -11,6 +11,8 @@
 #include "propulsion_estimator/model/hover_endurance.h"
 #include "propulsion_estimator/onboard/battery_estimator.h"
 #include "propulsion_estimator/onboard/ocv_curve.h"
+#include "propulsion_estimator/onboard/pack_file.h"
+#include "propulsion_estimator/onboard/pack_learner.h"
 
 namespace propulsion_estimator {
 
@@ -47,6 +49,10 @@ struct CapabilityConfig {
   PercentageMode percentage = PercentageMode::kIgnore;  ///< how BatteryState.percentage is read
   double reserve_s = 120.0;  ///< s; hover endurance below this warns
   MotorHealthConfig motor_health;  ///< the motor-health check's settings (capability/motor_health/...)
+  /// What the pack file holds of the pack flown (capability/battery/pack_file): its learned
+  /// capacity, curve (over the charge flown; the chemistry's or the user's beyond) and resistance
+  /// replace the rated capacity, the curve and the resistance's empty start. nullopt: none.
+  std::optional<PackRecord> pack;
 
   /// Throws FieldError naming the parameter (capability/...): rate, PWM and thrust-to-weight not positive, a
   /// capacity at or below zero, cells outside 1..14, capacity without cells (or cells without
@@ -55,7 +61,8 @@ struct CapabilityConfig {
   void validate() const;
   /// The cells' open-circuit curve: the user's table, else the chemistry's.
   OcvCurve curve() const;
-  /// The battery estimator's configuration when capacity and cells are configured.
+  /// The battery estimator's configuration when capacity and cells are configured, with what the
+  /// pack file learned.
   std::optional<BatteryEstimatorConfig> battery() const;
 };
 
@@ -144,6 +151,12 @@ class CapabilityEstimator {
   const CapabilityConfig& config() const { return config_; }
   /// The pack's estimator; nullopt without a battery configured.
   const std::optional<BatteryEstimator>& battery() const { return battery_; }
+  /// Whether a flight has been flown and the pack has rested since (PackLearner); false without a
+  /// battery configured.
+  bool packFlightFinished() const { return learner_ && learner_->flightFinished(); }
+  /// `previous` with the finished flight learned (PackLearner::learned), and the learner starts
+  /// on the next flight. `previous` unchanged when no flight has finished.
+  PackRecord learnPack(const PackRecord& previous);
 
  private:
   /// Thrust and current of all motors at the top PWM with the terminals at `voltage_v`.
@@ -160,6 +173,7 @@ class CapabilityEstimator {
   CapabilityConfig config_;
   double pwm_max_us_;
   std::optional<BatteryEstimator> battery_;
+  std::optional<PackLearner> learner_;
   double px4_remaining_ = kNaN;
   double measured_current_a_ = kNaN;
 };

@@ -28,6 +28,8 @@ class OcvCurve {
   double stateOfCharge(double cell_v) const;
   double emptyCellV() const { return cell_v_.front(); }  ///< V at 0 % charge
   double fullCellV() const { return cell_v_.back(); }    ///< V at 100 % charge
+  const std::vector<double>& socTable() const { return soc_; }      ///< the table's states of charge
+  const std::vector<double>& cellVTable() const { return cell_v_; }  ///< the table's V per cell
 
  private:
   std::size_t segment(double state_of_charge) const;

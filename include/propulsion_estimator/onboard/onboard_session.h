@@ -103,6 +103,11 @@ class OnboardSession {
 
   const Estimator& estimator() const { return estimator_; }  ///< its output, counters and model
   const CapabilityEstimator& capabilityEstimator() const { return capability_; }  ///< its config and battery
+  /// Whether a flight has been flown and the pack has rested since (the pack file is due).
+  bool packFlightFinished() const { return capability_.packFlightFinished(); }
+  /// `previous` with the finished flight learned; the next flight is learned afresh
+  /// (CapabilityEstimator::learnPack).
+  PackRecord learnPack(const PackRecord& previous) { return capability_.learnPack(previous); }
   const OnboardConfig& config() const { return config_; }  ///< as given
 
  private:

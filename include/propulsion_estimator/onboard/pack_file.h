@@ -16,6 +16,7 @@ namespace propulsion_estimator {
 /// ocv_soc: [0.15, 0.2, ...]     # the pack's open-circuit curve over the charge flown (0..1, rising)
 /// ocv_cell_v: [3.62, 3.68, ...] # V per cell
 /// resistance_ohm: [0.021, 0.022] # the resistance identified on each flight, oldest first (ageing)
+/// rest_offset_cell_v: 0.012     # how far the pack rests above its loaded curve (absent until learned)
 /// @endcode
 struct PackRecord {
   std::string pack_id;
@@ -25,6 +26,9 @@ struct PackRecord {
   std::vector<double> ocv_soc;        ///< 0..1, increasing; empty until learned
   std::vector<double> ocv_cell_v;     ///< V per cell, increasing, one per ocv_soc
   std::vector<double> resistance_ohm;  ///< ohm; one per flight that identified it, oldest first
+  /// V per cell the pack rests above its learned (loaded) curve: the polarisation a hover builds,
+  /// read at the landings (absent until learned).
+  std::optional<double> rest_offset_cell_v;
 };
 
 /// The record in a pack file's text. ConfigError "<source>:<line>: <key>: <problem>" for content

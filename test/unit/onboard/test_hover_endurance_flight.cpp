@@ -316,3 +316,79 @@ TEST(CapabilityFlight, TheHoverTimeLeftOverAFlightWithItsInterval) {
   EXPECT_LT(last_width, 0.5 * first_width);
   if (const char* path = std::getenv("PE_ENDURANCE_CSV")) pe::writeTextFile(path, csv);
 }
+
+namespace {
+
+// A pack flown once before: from 100 % it hovers until 12 % of the time to its loaded cut-off is
+// left (the truth's, as a pilot lands on the autopilot's warning), lands and rests 10 s; the pack
+// file's record after it.
+pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double payload_kg, double time_to_cutoff_s) {
+  CapabilitySink sink(f450(), userPack(), thesisModel());
+  fly(profile(payload_kg, 0.88 * time_to_cutoff_s, 1.0, "[0.0, 0.0, 0.0]", "", 12.0), &sink, {}, params);
+  EXPECT_TRUE(sink.packFlightFinished());
+  pe::PackRecord fresh;
+  fresh.pack_id = "family pack";
+  fresh.cells = 3;
+  return sink.learnPack(fresh);
+}
+
+// The pack's second flight from 100, 60 and 30 % (packs `seeds` of the family), its record from
+// learnedFromOneFlight given: the hover time left 60 s after take-off within 10 % of the truth in
+// at least `share` of the cases.
+void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, double share) {
+  int cases = 0, within = 0;
+  for (std::uint32_t seed : seeds) {
+    const pe::sim::DrawnBattery drawn = pe::sim::drawBattery(pe::sim::BatteryFamily{}, seed);
+    pe::sim::SimParams params = thesisParams();
+    params.battery = drawn.params;
+    const double payload_kg = seed % 2 ? 0.0 : 0.3;
+    CapabilitySink full(f450(), userPack(), thesisModel());
+    fly(profile(payload_kg, 3000.0, 1.0), &full, {}, params);
+    ASSERT_TRUE(full.cutoff_s.has_value());
+    const pe::PackRecord record = learnedFromOneFlight(params, payload_kg, *full.cutoff_s - *full.takeoff_s);
+    for (double initial_soc : {1.0, 0.6, 0.3}) {
+      pe::CapabilityConfig user = userPack();
+      user.pack = record;
+      CapabilitySink sink(f450(), user, thesisModel(), {60.0});
+      fly(profile(payload_kg, 3000.0, initial_soc), &sink, {}, params);
+      ASSERT_TRUE(sink.cutoff_s.has_value());
+      if (*sink.cutoff_s < *sink.takeoff_s + 90.0 || !sink.predictions[0]) continue;
+      const pe::CapabilityReport& c = sink.predictions[0]->report;
+      const double flown_s = *sink.cutoff_s - sink.predictions[0]->made_s;
+      const double error = (c.hover_endurance_s - flown_s) / flown_s;
+      std::printf("seed %u %s, payload %.1f kg, from %.0f %%, learned %d points, %.2f Ah, R %.1f mOhm: predicted %.0f s "
+                  "(90 %% %.0f..%.0f), flew %.0f s, error %+.1f %%\n",
+                  seed, drawn.describe().c_str(), payload_kg, 100.0 * initial_soc, static_cast<int>(record.ocv_soc.size()),
+                  record.capacity_ah.value_or(pe::kNaN),
+                  1000.0 * (record.resistance_ohm.empty() ? pe::kNaN : record.resistance_ohm.back()), c.hover_endurance_s,
+                  c.hover_endurance_low_s, c.hover_endurance_high_s, flown_s, 100.0 * error);
+      ++cases;
+      within += std::abs(error) < 0.10;
+    }
+  }
+  std::printf("a pack flown once before: within 10 %% after 60 s in %d of %d cases\n", within, cases);
+  ASSERT_GT(cases, 0);
+  EXPECT_GE(within, share * cases);
+}
+
+}  // namespace
+
+// Development: packs 1-20 chose how a flight is learned (measured 2026-12-02: 45 of 60 within
+// 10 % after 60 s; the same packs unlearned, HoverEnduranceOnFamilyPacks*, about 3 in 10). Issue
+// 36's bar, 90 %, does not hold: from 30 % charge the hover left after 60 s is 1-3 minutes, and
+// the polarisation of a flight a minute old is not the long hover's the learned curve holds
+// (docs/capability.md). Asserted: the measured share, as a regression guard.
+TEST(CapabilityFlight, APackFlownOnceBeforeDevelopmentPacks) {
+  std::vector<std::uint32_t> seeds;
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) seeds.push_back(seed);
+  expectALearnedPackWithin10Percent(seeds, 0.74);
+}
+
+// Held out: 20 packs drawn on 2026-12-02 after the learner was fixed on packs 1-20, first flown
+// then: 39 of 58 within 10 % (from 100 %: 19 of 20, 60 %: 15 of 19, 30 %: 5 of 19). Asserted:
+// that share, as a regression guard.
+TEST(CapabilityFlight, APackFlownOnceBeforeHeldOutPacks) {
+  expectALearnedPackWithin10Percent({65406, 229737, 243417, 257057, 274397, 323679, 444364, 491976, 499329, 544398,
+                                     551762, 565555, 576810, 658139, 714122, 754525, 788487, 875409, 917716, 957820},
+                                    0.67);
+}

@@ -43,9 +43,9 @@ inline pe::sim::SimParams thesisParams() {
 }
 
 // Take-off to 2 m and a hover of `hover_s` with `payload_kg` on a 0.3 m cable, from
-// `initial_soc`, the centre of gravity `cg_offset` off the URDF's; `faults` a profile section.
+// `initial_soc`, the centre of gravity `cg_offset` off the URDF's; `faults` a profile section; `rest_after_s` on the ground after landing.
 inline std::string profile(double payload_kg, double hover_s, double initial_soc, const std::string& cg_offset = "[0.0, 0.0, 0.0]",
-                    const std::string& faults = "") {
+                    const std::string& faults = "", double rest_after_s = 2.0) {
   std::string text = "autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, "
                      "rc_out_rate_hz: 50}\n"
                      "vehicle: {urdf: " +
@@ -66,7 +66,8 @@ inline std::string profile(double payload_kg, double hover_s, double initial_soc
           std::to_string(hover_s) +
           "}\n"
           "  - {type: land, rate_m_s: 0.6}\n"
-          "  - {type: wait, duration_s: 2}\n";
+          "  - {type: wait, duration_s: " +
+          std::to_string(rest_after_s) + "}\n";
   return text;
 }
 
@@ -117,6 +118,10 @@ class CapabilitySink : public pe::sim::FlightSink {
                                   truth_.battery_current_a};
     }
   }
+  /// `previous` with the flight learned (the pack file's next record), once it has finished.
+  pe::PackRecord learnPack(const pe::PackRecord& previous) { return capability_.learnPack(previous); }
+  bool packFlightFinished() const { return capability_.packFlightFinished(); }
+
   void battery(const pe::sim::BatterySample& s) override {
     estimator_.addBattery(s.time_s, s.voltage_v);
     estimator_.addBatteryCurrent(s.time_s, s.current_a);
