@@ -95,13 +95,7 @@ CapabilityEstimator::CapabilityEstimator(const PropulsionModel& model, int motor
     throw FieldError("capability/pwm_max_us", formatNumber(pwm_max_us_) + " us is not above the model's lowest PWM " +
                                                   formatNumber(model_.domain().pwm_min_us) + " us");
   }
-  if (const std::optional<BatteryEstimatorConfig> battery = config_.battery()) {
-    battery_.emplace(*battery);
-    PackLearnerConfig learner;
-    learner.cells = battery->cells;
-    learner.capacity_ah = battery->capacity_ah;
-    learner_.emplace(learner);
-  }
+  startBattery();
 }
 
 void CapabilityEstimator::addBattery(double time_s, double voltage_v, const BatteryReport& battery,
@@ -110,12 +104,30 @@ void CapabilityEstimator::addBattery(double time_s, double voltage_v, const Batt
   const bool known = battery.percentage >= 0.0 && battery.percentage <= 1.0;
   px4_remaining_ = config_.percentage == PercentageMode::kPx4Remaining && known ? battery.percentage : kNaN;
   if (!battery_) return;
+  battery_read_ = true;
   const double current_a = std::isfinite(measured_current_a_) ? measured_current_a_ : modelled_current_a;
   battery_->add(time_s, voltage_v, current_a);
   learner_->add(time_s, voltage_v, current_a, battery_->estimate());
   if (config_.percentage == PercentageMode::kCapacityFraction && known) {
     battery_->addStateOfCharge(battery.percentage, kReportedSocSigma);
   }
+}
+
+void CapabilityEstimator::startBattery() {
+  const std::optional<BatteryEstimatorConfig> battery = config_.battery();
+  if (!battery) return;
+  battery_.emplace(*battery);
+  PackLearnerConfig learner;
+  learner.cells = battery->cells;
+  learner.capacity_ah = battery->capacity_ah;
+  learner_.emplace(learner);
+}
+
+bool CapabilityEstimator::usePack(const PackRecord& record) {
+  if (!battery_ || battery_read_) return false;
+  config_.pack = record;
+  startBattery();
+  return true;
 }
 
 PackRecord CapabilityEstimator::learnPack(const PackRecord& previous) {

@@ -74,6 +74,8 @@ void readFilesAndTopics(ParamReader& read, EstimatorNodeParams* params) {
   read.required("model", &p.model);
   read.optional("urdf_file", &p.urdf_file);
   read.optional("tare_file", &p.tare_file);
+  read.optional("capability/battery/pack_file", &p.pack_file);
+  read.optional("capability/battery/pack_id", &p.pack_id);
   read.optional("battery_topic", &p.battery_topic);
   read.optional("rc_out_topic", &p.rc_out_topic);
   read.optional("imu_topic", &p.imu_topic);
@@ -158,6 +160,10 @@ void validateNodeParams(const ParamReader& read, EstimatorNodeParams* params) {
   p.health.signal_sources.inputs = p.input_topics;
   p.health.validate();
   p.capability.validate();
+  if (!p.pack_file.empty() && !p.capability.battery()) {
+    throw ConfigError(read.where("capability/battery/pack_file") +
+                      ": needs the pack it learns, capability/battery/capacity_ah and cells");
+  }
   p.esc_telemetry.validate();
   if (p.mass_view != "pwm" && p.mass_view != "rpm") {
     throw ConfigError(read.where("esc_telemetry/mass_view") + ": '" + p.mass_view + "' is not pwm or rpm");
@@ -248,6 +254,8 @@ std::string describeNodeParameters(const EstimatorNodeParams& p) {
                   << (k.cells ? std::to_string(*k.cells) : "(not set)") << ", chemistry " << k.chemistry
                   << (k.ocv_table_soc.empty() ? "" : " (replaced by ocv_table, " + std::to_string(k.ocv_table_soc.size()) + " points)")
                   << ", cell_cutoff_v " << k.cell_cutoff_v << ", percentage " << percentageModeName(k.percentage)
+                  << ", pack_file " << (p.pack_file.empty() ? "(not learned)" : p.pack_file) << ", pack_id "
+                  << (p.pack_id.empty() ? "(BatteryState.serial_number)" : p.pack_id)
                   << "\n  capability/motor_health: block_s " << k.motor_health.block_s << ", window_s "
                   << k.motor_health.window_s << ", max_gap " << k.motor_health.max_gap
                   << ", healthy_gap_std " << k.motor_health.healthy_gap_std

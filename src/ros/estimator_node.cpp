@@ -49,9 +49,11 @@ void EstimatorNode::copy(const HealthStatus& health, diagnostic_updater::Diagnos
 
 EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : params_(readEstimatorNodeParams(private_nh)),
+      pack_file_(params_.pack_file, params_.capability.cells.value_or(0)),
       diagnostics_(nh, private_nh),
       publish_limiter_(params_.publish_rate_hz) {
   PropulsionModel model = loadModelFile(params_.model);
+  identifyPack(params_.pack_id, true);
   model_fingerprint_ = modelFingerprint(model);
   Vehicle vehicle = loadVehicle(nh, params_);
   session_ = std::make_unique<OnboardSession>(
@@ -117,6 +119,17 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   diagnostics_.add("Tare file", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     status.add("tare_file", params_.tare_file);
     status.summary(tare_file_level_, tare_file_message_);
+  });
+  diagnostics_.add("Pack file", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    status.add("pack_file", params_.pack_file);
+    if (!pack_file_.enabled()) {
+      status.summary(DiagnosticStatus::OK, "none: capability/battery/pack_file is empty, no pack is learned");
+    } else if (!pack_file_.identified()) {
+      status.summary(DiagnosticStatus::WARN, "no pack identity yet: capability/battery/pack_id is empty and no "
+                                             "BatteryState.serial_number has come");
+    } else {
+      status.summary(pack_file_.active() ? DiagnosticStatus::OK : DiagnosticStatus::WARN, pack_file_.note());
+    }
   });
   diagnostics_.add("Effects", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     const HealthSnapshot now = takeSnapshot();
@@ -200,6 +213,24 @@ void EstimatorNode::loadTare() {
                                                   tare->model + ", fingerprint " + tare->model_fingerprint + ") than " +
                                                   params_.model + " (fingerprint " + model_fingerprint_ + ")");
   }
+}
+
+void EstimatorNode::identifyPack(const std::string& pack_id, bool before_start) {
+  if (!pack_file_.enabled() || pack_id.empty()) return;
+  const std::optional<PackRecord> record = pack_file_.identify(pack_id, static_cast<long long>(std::time(nullptr)));
+  ROS_INFO_STREAM("pack file: " << pack_file_.note());
+  if (!record) return;
+  if (before_start) {
+    params_.capability.pack = record;
+  } else if (!session_->usePack(*record)) {
+    ROS_WARN_STREAM("pack file: pack \"" << pack_id << "\" identified after the first battery reading: its record "
+                                          "is not used on this flight");
+  }
+}
+
+void EstimatorNode::learnPack() {
+  if (!pack_file_.active() || !session_->packFlightFinished()) return;
+  ROS_INFO_STREAM("pack file: " << pack_file_.save(session_->learnPack(pack_file_.previous())));
 }
 
 void EstimatorNode::setTareFileStatus(std::uint8_t level, const std::string& message) {
@@ -314,7 +345,11 @@ void EstimatorNode::onRcOut(const topic_tools::ShapeShifter::ConstPtr& message) 
 void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message) {
   const std::lock_guard<std::mutex> lock(state_);
   ++inputs_.received[static_cast<int>(NodeInput::kBattery)];
+  if (pack_file_.enabled() && !pack_file_.identified() && !message->serial_number.empty()) {
+    identifyPack(message->serial_number, false);
+  }
   logRejection(session_->addBattery(ros::Time::now().toSec(), message->voltage, message->current, message->percentage));
+  learnPack();
   const double applied_ohm = session_->supplyAppliedOhm();
   if (!supply_logged_ && !std::isnan(applied_ohm)) {
     ROS_INFO_STREAM("supply_resistance effect applied from ESC telemetry: " << applied_ohm << " ohm");

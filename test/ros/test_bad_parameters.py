@@ -74,6 +74,11 @@ class BadParametersTest(unittest.TestCase):
         self.assertTrue(line.startswith("/l/capability/battery/usable_fraction: removed: the usable charge follows "
                                         "from the open-circuit curve"), line)
 
+    def test_pack_file_without_a_battery(self):
+        self.assertEqual(start("m", {"model": MODEL, "capability/battery/pack_file": "/tmp/pe_pack_{pack_id}.yaml"}),
+                         (1, "/m/capability/battery/pack_file: needs the pack it learns, capability/battery/capacity_ah "
+                             "and cells"))
+
     def test_unknown_percentage_mode(self):
         self.assertEqual(start("l", {"model": MODEL, "capability/battery/percentage": "remaining"}),
                          (1, "capability/battery/percentage: \"remaining\" is not ignore, px4_remaining or "

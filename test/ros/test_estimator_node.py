@@ -14,7 +14,7 @@ import rostest
 import yaml
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from propulsion_estimator.msg import PayloadEstimate
-from sensor_msgs.msg import Imu, Range
+from sensor_msgs.msg import BatteryState, Imu, Range
 
 from estimator_harness import EstimatorHarness, is_nan
 
@@ -366,6 +366,69 @@ class EstimatorNodeTest(unittest.TestCase):
             process.stop()
             launch.stop()
             shutil.rmtree(os.path.dirname(bad))
+
+    def test_9_pack_file_learned_from_a_flight_and_read_at_the_next_start(self):
+        """A node with a pack file and no pack_id takes the pack's identity from the battery's serial
+        number, writes the pack's record once the flight has landed and rested 10 s, and a node
+        started later reads it for the same pack."""
+        folder = tempfile.mkdtemp(prefix="pe_pack_")
+        path = os.path.join(folder, "SN-1.yaml")
+        statuses = {}
+
+        def on_diagnostics(message):
+            for status in message.status:
+                node, _, task = status.name.partition(": ")
+                if node.endswith("packed"):
+                    statuses[task] = status
+
+        def start():
+            for key, value in (("model", rospy.get_param("/propulsion_estimator/model")),
+                               ("capability/battery/capacity_ah", 4.0), ("capability/battery/cells", 3),
+                               ("capability/battery/pack_file", os.path.join(folder, "{pack_id}.yaml")),
+                               ("battery_topic", "/packed_battery")):
+                rospy.set_param("/packed/" + key, value)
+            launch = roslaunch.scriptapi.ROSLaunch()
+            launch.start()
+            process = launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name="packed",
+                                                        namespace="/", output="log"))
+            rospy.wait_for_service("/packed/tare", timeout=30.0)
+            return launch, process
+
+        publisher = rospy.Publisher("/packed_battery", BatteryState, queue_size=50)
+        diagnostics = rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
+        launch, process = start()
+        try:
+            self.h.wait_for(lambda: publisher.get_num_connections() > 0, 10.0, "the node's battery subscription")
+            self.h.wait_for(lambda: "Pack file" in statuses, 10.0, "the Pack file diagnostic")
+            self.assertEqual(statuses["Pack file"].level, DiagnosticStatus.WARN)
+            self.assertTrue(statuses["Pack file"].message.startswith("no pack identity yet"))
+            rate = rospy.Rate(10.0)
+            for voltage_v, current_a, seconds in ((12.4, 0.5, 3.0), (11.9, 14.0, 4.0), (12.3, 0.5, 12.0)):
+                for _ in range(int(10 * seconds)):
+                    publisher.publish(BatteryState(voltage=voltage_v, current=current_a, serial_number="SN-1"))
+                    rate.sleep()
+            self.h.wait_for(lambda: os.path.exists(path), 10.0, "the pack file " + path)
+            with open(path) as f:
+                record = yaml.safe_load(f)
+            self.assertEqual(record["pack_id"], "SN-1")
+            self.assertEqual(record["cells"], 3)
+            self.assertEqual(record["flights"], 1)
+            self.assertEqual(glob.glob(path + ".tmp*"), [])
+            process.stop()
+            launch.stop()
+            statuses.clear()
+            launch, process = start()
+            self.h.wait_for(lambda: publisher.get_num_connections() > 0, 10.0, "the restarted node's subscription")
+            publisher.publish(BatteryState(voltage=12.4, current=0.5, serial_number="SN-1"))
+            self.h.wait_for(lambda: "Pack file" in statuses and statuses["Pack file"].message.endswith(
+                "1 flights learned"), 10.0, "the restarted node's Pack file diagnostic")
+            self.assertEqual(statuses["Pack file"].message, path + ": pack \"SN-1\", 1 flights learned")
+            self.assertEqual(statuses["Pack file"].level, DiagnosticStatus.OK)
+        finally:
+            diagnostics.unregister()
+            process.stop()
+            launch.stop()
+            shutil.rmtree(folder)
 
 
 if __name__ == "__main__":

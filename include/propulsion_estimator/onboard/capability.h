@@ -157,8 +157,14 @@ class CapabilityEstimator {
   /// `previous` with the finished flight learned (PackLearner::learned), and the learner starts
   /// on the next flight. `previous` unchanged when no flight has finished.
   PackRecord learnPack(const PackRecord& previous);
+  /// The pack flown is `record`'s (identified by the first battery message's serial number):
+  /// the battery estimator starts from what it holds. False, and nothing changed, once a battery
+  /// reading has been taken or without a battery configured.
+  bool usePack(const PackRecord& record);
 
  private:
+  /// The battery estimator and the pack learner from the configuration (none without a battery).
+  void startBattery();
   /// Thrust and current of all motors at the top PWM with the terminals at `voltage_v`.
   OperatingPoint fullThrottle(double voltage_v, const Correction& correction) const;
   void evaluatePayload(const Correction& correction, CapabilityReport* c) const;
@@ -174,6 +180,7 @@ class CapabilityEstimator {
   double pwm_max_us_;
   std::optional<BatteryEstimator> battery_;
   std::optional<PackLearner> learner_;
+  bool battery_read_ = false;
   double px4_remaining_ = kNaN;
   double measured_current_a_ = kNaN;
 };

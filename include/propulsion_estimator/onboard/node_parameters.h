@@ -17,6 +17,11 @@ struct EstimatorNodeParams {
   std::string model;       ///< required: path of the model YAML
   std::string urdf_file;   ///< optional: vehicle description; else robot_description, else no geometry
   std::string tare_file;   ///< optional: where ~tare persists the empty mass ("" = not persisted)
+  /// optional (capability/battery/pack_file): where each pack's learned record is kept ("" = not
+  /// learned; "{pack_id}" in it: a file per pack). Needs capability/battery/capacity_ah and cells.
+  std::string pack_file;
+  /// optional (capability/battery/pack_id): the pack flown; "" = BatteryState.serial_number's.
+  std::string pack_id;
   std::string battery_topic = kBatteryTopic;    ///< sensor_msgs/BatteryState
   std::string rc_out_topic = kRcOutTopic;       ///< mavros_msgs/RCOut
   std::string imu_topic = kImuTopic;            ///< "" disables

@@ -108,6 +108,8 @@ class OnboardSession {
   /// `previous` with the finished flight learned; the next flight is learned afresh
   /// (CapabilityEstimator::learnPack).
   PackRecord learnPack(const PackRecord& previous) { return capability_.learnPack(previous); }
+  /// The pack flown is `record`'s, before any battery reading (CapabilityEstimator::usePack).
+  bool usePack(const PackRecord& record) { return capability_.usePack(record); }
   const OnboardConfig& config() const { return config_; }  ///< as given
 
  private:

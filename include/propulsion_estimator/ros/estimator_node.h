@@ -22,6 +22,7 @@
 #include "propulsion_estimator/onboard/esc_telemetry_health.h"
 #include "propulsion_estimator/onboard/health_summary.h"
 #include "propulsion_estimator/onboard/onboard_session.h"
+#include "propulsion_estimator/onboard/pack_file_keeper.h"
 #include "propulsion_estimator/onboard/rate_limiter.h"
 #include "propulsion_estimator/ros/estimator_params.h"
 #include "propulsion_estimator/codecs/esc_telemetry_codec.h"
@@ -68,6 +69,11 @@ class EstimatorNode {
                               const ros::TransportHints& hints);
   /// Applies the tare file of an earlier run, if any and taken with this model.
   void loadTare();
+  /// The pack file of pack `pack_id`, read into the session (`before_start`: into the parameters
+  /// the session is made with).
+  void identifyPack(const std::string& pack_id, bool before_start);
+  /// After a battery message: a finished flight's record written.
+  void learnPack();
   /// Subscribes to `scalar` on `topic`, decoding its ScalarSpec's message.
   ros::Subscriber subscribeInput(ros::NodeHandle& input_nh, input::Scalar scalar, const std::string& topic,
                                  const ros::TransportHints& hints);
@@ -87,6 +93,7 @@ class EstimatorNode {
   EstimatorNodeParams params_;
   std::string model_fingerprint_;
   std::unique_ptr<OnboardSession> session_;
+  PackFileKeeper pack_file_;  // capability/battery/pack_file across the run
   EscTelemetryDecoder esc_decoder_;
   EscTelemetry esc_message_;
   EscInputActivity esc_inputs_;

@@ -79,13 +79,15 @@ TEST(ParameterNames, TemplateReaderAndReadmeAgree) {
   EXPECT_EQ(in_readme, in_reader) << "README: " << listed(in_readme) << "\nreader: " << listed(in_reader);
 }
 
-// The required model, the unset empty mass, battery and curve and the PWM top are shown, not set: a
-// loaded template must neither point the node at a model nor invent an empty mass or a battery.
+// The required model, the unset empty mass, battery, curve, pack file and the PWM top are shown,
+// not set: a loaded template must neither point the node at a model nor invent an empty mass, a
+// battery or a pack.
 TEST(ParameterNames, TemplateSetsNeitherTheModelNorAnEmptyMass) {
   const ParameterTemplate file = loadParameterTemplate();
   EXPECT_EQ(file.commented, (std::set<std::string>{"capability/battery/capacity_ah", "capability/battery/cells",
                                                    "capability/battery/ocv_table/cell_v",
-                                                   "capability/battery/ocv_table/soc", "capability/pwm_max_us",
+                                                   "capability/battery/ocv_table/soc", "capability/battery/pack_file",
+                                                   "capability/battery/pack_id", "capability/pwm_max_us",
                                                    "empty_mass_kg", "model"}));
   EXPECT_EQ(file.values.count("model"), 0u);
   EXPECT_EQ(file.values.count("empty_mass_kg"), 0u);
