@@ -15,6 +15,14 @@ namespace {
 constexpr int kDischargeSteps = 30;
 // Fixed-point iterations of the full-throttle current and the voltage it sags to.
 constexpr int kSagIterations = 6;
+// A pack temperature outside these (deg C) is not a reading (0 K, a sensor's fill value).
+constexpr double kLowestPackC = -40.0;
+constexpr double kHighestPackC = 90.0;
+// The cold term of the interval: the whole of cold_capacity_rel at or below kColdPackC, none at or
+// above kWarmPackC (a rule of thumb of LiPo practice: the capacity given falls below room
+// temperature), linear between.
+constexpr double kColdPackC = 10.0;
+constexpr double kWarmPackC = 25.0;
 // A percentage a smart battery reports as a share of the capacity: trusted to this.
 constexpr double kReportedSocSigma = 0.02;
 
@@ -61,6 +69,7 @@ void CapabilityConfig::validate() const {
                                                              " V is not below the open-circuit curve's full " +
                                                              formatNumber(ocv.fullCellV()) + " V");
   }
+  if (temperature_c) requireWithin("capability/battery/temperature_c", *temperature_c, kLowestPackC, kHighestPackC, " deg C");
   if (!(reserve_s >= 0.0) || std::isinf(reserve_s)) {
     throw FieldError("capability/reserve_s", "must be a non-negative number, got " + formatNumber(reserve_s));
   }
@@ -101,6 +110,8 @@ CapabilityEstimator::CapabilityEstimator(const PropulsionModel& model, int motor
 void CapabilityEstimator::addBattery(double time_s, double voltage_v, const BatteryReport& battery,
                                      double modelled_current_a) {
   measured_current_a_ = std::isfinite(battery.current_a) ? std::abs(battery.current_a) : kNaN;
+  const bool reported = battery.temperature_c >= kLowestPackC && battery.temperature_c <= kHighestPackC;
+  temperature_c_ = reported ? battery.temperature_c : config_.temperature_c.value_or(kNaN);
   const bool known = battery.percentage >= 0.0 && battery.percentage <= 1.0;
   px4_remaining_ = config_.percentage == PercentageMode::kPx4Remaining && known ? battery.percentage : kNaN;
   if (!battery_) return;
@@ -315,7 +326,13 @@ void CapabilityEstimator::evaluateEndurance(const Correction& correction, Capabi
   // build on a pack's first minutes, and a cold pack's lost capacity (its temperature unknown).
   const double unseen_ohm = resistance * pack.polarisation_rel * std::exp(-b.loaded_s / pack.polarisation_time_s);
   const double by_polarisation = shorter_by(b.state_of_charge, resistance + b.internal_resistance_std_ohm + unseen_ohm);
-  const double by_cold = c->hover_endurance_s * pack.cold_capacity_rel;
+  const double coldness = std::isnan(temperature_c_)
+                              ? 1.0
+                              : std::clamp((kWarmPackC - temperature_c_) / (kWarmPackC - kColdPackC), 0.0, 1.0);
+  const double by_cold = c->hover_endurance_s * pack.cold_capacity_rel * coldness;
+  c->endurance_basis += std::isnan(temperature_c_)
+                            ? "; pack temperature unknown: the interval allows for a cold pack"
+                            : "; pack at " + formatPrintf("%.0f deg C", temperature_c_);
   const double by_more_charge = -shorter_by(b.state_of_charge + charge_std, resistance);
   const double low = std::sqrt(by_charge * by_charge + by_polarisation * by_polarisation + by_capacity * by_capacity +
                                by_cold * by_cold);

@@ -140,6 +140,7 @@ void readCapabilityConfig(ParamReader& read, CapabilityConfig* config) {
   read.optional("capability/battery/ocv_table/soc", &k.ocv_table_soc);
   read.optional("capability/battery/ocv_table/cell_v", &k.ocv_table_cell_v);
   read.optional("capability/battery/cell_cutoff_v", &k.cell_cutoff_v);
+  read.optional("capability/battery/temperature_c", &k.temperature_c);
   std::string percentage = percentageModeName(k.percentage);
   read.optional("capability/battery/percentage", &percentage);
   k.percentage = percentageModeFromName(percentage);
@@ -254,6 +255,7 @@ std::string describeNodeParameters(const EstimatorNodeParams& p) {
                   << (k.cells ? std::to_string(*k.cells) : "(not set)") << ", chemistry " << k.chemistry
                   << (k.ocv_table_soc.empty() ? "" : " (replaced by ocv_table, " + std::to_string(k.ocv_table_soc.size()) + " points)")
                   << ", cell_cutoff_v " << k.cell_cutoff_v << ", percentage " << percentageModeName(k.percentage)
+                  << ", temperature_c " << (k.temperature_c ? std::to_string(*k.temperature_c) : "(BatteryState's, else unknown)")
                   << ", pack_file " << (p.pack_file.empty() ? "(not learned)" : p.pack_file) << ", pack_id "
                   << (p.pack_id.empty() ? "(BatteryState.serial_number)" : p.pack_id)
                   << "\n  capability/motor_health: block_s " << k.motor_health.block_s << ", window_s "

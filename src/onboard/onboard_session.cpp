@@ -56,7 +56,8 @@ Rejection OnboardSession::addMotorOutputs(double stamp_s, double now_s, const st
   return verdict;
 }
 
-Rejection OnboardSession::addBattery(double now_s, double voltage_v, double current_a, double percentage) {
+Rejection OnboardSession::addBattery(double now_s, double voltage_v, double current_a, double percentage,
+                                     double temperature_c) {
   Rejection verdict = estimator_.addBattery(now_s, voltage_v);
   if (battery_current_) {
     const Rejection current = estimator_.addBatteryCurrent(now_s, current_a);
@@ -68,7 +69,7 @@ Rejection OnboardSession::addBattery(double now_s, double voltage_v, double curr
   const double modelled_a = estimator_.model().output(Output::kCurrent).source == OutputSource::kNone
                                 ? kNaN
                                 : estimator_.output().totals.current_a;
-  capability_.addBattery(now_s, voltage_v, BatteryReport{percentage, current_a}, modelled_a);
+  capability_.addBattery(now_s, voltage_v, BatteryReport{percentage, current_a, temperature_c}, modelled_a);
   return verdict;
 }
 

@@ -348,7 +348,8 @@ void EstimatorNode::onBattery(const sensor_msgs::BatteryState::ConstPtr& message
   if (pack_file_.enabled() && !pack_file_.identified() && !message->serial_number.empty()) {
     identifyPack(message->serial_number, false);
   }
-  logRejection(session_->addBattery(ros::Time::now().toSec(), message->voltage, message->current, message->percentage));
+  logRejection(session_->addBattery(ros::Time::now().toSec(), message->voltage, message->current, message->percentage,
+                                    message->temperature));
   learnPack();
   const double applied_ohm = session_->supplyAppliedOhm();
   if (!supply_logged_ && !std::isnan(applied_ohm)) {

@@ -48,6 +48,9 @@ struct CapabilityConfig {
   double cell_cutoff_v = 3.5;  ///< V per cell; the loaded terminal voltage the endurance runs to
   PercentageMode percentage = PercentageMode::kIgnore;  ///< how BatteryState.percentage is read
   double reserve_s = 120.0;  ///< s; hover endurance below this warns
+  /// deg C; the pack's temperature when BatteryState does not report one (capability/battery/
+  /// temperature_c); not set: unknown, and the interval allows for a cold pack.
+  std::optional<double> temperature_c;
   MotorHealthConfig motor_health;  ///< the motor-health check's settings (capability/motor_health/...)
   /// What the pack file holds of the pack flown (capability/battery/pack_file): its learned
   /// capacity, curve (over the charge flown; the chemistry's or the user's beyond) and resistance
@@ -73,6 +76,7 @@ struct CapabilityConfig {
 struct BatteryReport {
   double percentage = kNaN;  ///< 0..1, read per CapabilityConfig::percentage
   double current_a = kNaN;   ///< A; current drawn (its magnitude)
+  double temperature_c = kNaN;  ///< deg C; the pack's (BatteryState.temperature), NaN when not reported
 };
 
 /// The answers of thesis chapter 1 for the present flight, SI units; NaN where a figure cannot be
@@ -183,6 +187,7 @@ class CapabilityEstimator {
   bool battery_read_ = false;
   double px4_remaining_ = kNaN;
   double measured_current_a_ = kNaN;
+  double temperature_c_ = kNaN;  // the pack's, reported or configured; NaN: unknown
 };
 
 /// The Capability diagnostic: WARN when the payload exceeds its limit, the hover endurance is below

@@ -64,8 +64,9 @@ class OnboardSession {
   /// by the motor-health check, the model check and the rpm view. Returns the estimator's verdict.
   Rejection addMotorOutputs(double stamp_s, double now_s, const std::uint16_t* channels, std::size_t count);
   /// The battery: voltage (V), current (A, NaN when not measured), percentage (0-1, NaN when not
-  /// reported). Returns the first refusal of the voltage or the current, kNone when both were taken.
-  Rejection addBattery(double now_s, double voltage_v, double current_a, double percentage);
+  /// reported), the pack's temperature (deg C, NaN when not reported). Returns the first refusal of the voltage or the current, kNone when both were taken.
+  Rejection addBattery(double now_s, double voltage_v, double current_a, double percentage,
+                       double temperature_c = kNaN);
   /// The attitude and the specific force, m/s², body axes.
   Rejection addImu(double now_s, const Eigen::Quaterniond& orientation, const Eigen::Vector3d& specific_force);
   Rejection addVerticalSpeed(double now_s, double vertical_speed_m_s);  ///< m/s, up positive

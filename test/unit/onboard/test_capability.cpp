@@ -146,7 +146,8 @@ TEST(Capability, EnduranceToTheLoadedCutoffFromTheEstimatedState) {
   const double voltage = feedPack(&estimator, 0.8, 32.0, 0.03);
   const pe::CapabilityReport c = estimator.evaluate(hovering(1.5, voltage));
   ASSERT_FALSE(std::isnan(c.hover_endurance_s)) << c.endurance_basis;
-  EXPECT_EQ(c.endurance_basis, "to the loaded cut-off at the model's hover current, internal resistance included");
+  EXPECT_EQ(c.endurance_basis, "to the loaded cut-off at the model's hover current, internal resistance included; "
+                               "pack temperature unknown: the interval allows for a cold pack");
   EXPECT_EQ(c.charge_basis, "open-circuit curve and coulomb counting");
   EXPECT_NEAR(c.internal_resistance_ohm, 0.03, 0.005);
   EXPECT_NEAR(c.state_of_charge, 0.8 - 30 * 32.0 / 3600.0 / 4.0, 0.03);
@@ -168,6 +169,36 @@ TEST(Capability, EnduranceToTheLoadedCutoffFromTheEstimatedState) {
   pack.resistance_ohm = 0.1;
   EXPECT_LT(*pe::integrateHoverDischarge(model, pack, 1.5 * pe::kStandardGravity / 4, 4, 30).endurance_s,
             c.hover_endurance_s);
+}
+
+// The 90 % interval holds the central figure; a warm pack's temperature, reported or configured,
+// takes the cold pack's lost capacity out of its low end; a cold one's keeps it; an unknown one
+// says so.
+TEST(Capability, TheIntervalsLowEndAllowsForAColdPackOnlyWhenItMayBeCold) {
+  const pe::PropulsionModel model = voltageCurrentModel();
+  const auto interval = [&](double reported_c, std::optional<double> configured_c) {
+    pe::CapabilityConfig config = configured();
+    config.temperature_c = configured_c;
+    pe::CapabilityEstimator estimator(model, 4, config);
+    pe::BatteryReport report;
+    report.temperature_c = reported_c;
+    const double voltage = feedPack(&estimator, 0.95, 32.0, 0.01, report);
+    return estimator.evaluate(hovering(1.5, voltage));
+  };
+  const pe::CapabilityReport unknown = interval(pe::kNaN, std::nullopt);
+  ASSERT_FALSE(std::isnan(unknown.hover_endurance_s)) << unknown.endurance_basis;
+  EXPECT_GT(unknown.hover_endurance_low_s, 0.0);
+  EXPECT_LT(unknown.hover_endurance_low_s, unknown.hover_endurance_s);
+  EXPECT_GT(unknown.hover_endurance_high_s, unknown.hover_endurance_s);
+  const pe::CapabilityReport warm = interval(30.0, std::nullopt);
+  EXPECT_EQ(warm.hover_endurance_s, unknown.hover_endurance_s);
+  EXPECT_GT(warm.hover_endurance_low_s, unknown.hover_endurance_low_s);
+  EXPECT_EQ(warm.hover_endurance_high_s, unknown.hover_endurance_high_s);
+  EXPECT_NE(warm.endurance_basis.find("; pack at 30 deg C"), std::string::npos) << warm.endurance_basis;
+  EXPECT_EQ(interval(5.0, std::nullopt).hover_endurance_low_s, unknown.hover_endurance_low_s);
+  // The parameter stands in for a temperature the message does not carry (NaN, or 0 K's -273).
+  EXPECT_EQ(interval(pe::kNaN, 30.0).hover_endurance_low_s, warm.hover_endurance_low_s);
+  EXPECT_EQ(interval(-273.15, 30.0).hover_endurance_low_s, warm.hover_endurance_low_s);
 }
 
 TEST(Capability, TheEnduranceIsWithheldWithItsReasonBeforeConvergence) {
@@ -312,6 +343,9 @@ TEST(CapabilityConfig, RefusesBadParametersWithOneLine) {
   };
   pe::CapabilityConfig config = configured();
   EXPECT_EQ(refusal(config), "accepted");
+  config.temperature_c = -50.0;
+  EXPECT_EQ(refusal(config), "capability/battery/temperature_c: -50 is outside -40..90 deg C");
+  config.temperature_c.reset();
   config.capacity_ah = 0.0;
   EXPECT_EQ(refusal(config), "capability/battery/capacity_ah: must be a positive number, got 0");
   config.capacity_ah = -2.0;

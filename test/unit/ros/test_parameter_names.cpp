@@ -87,7 +87,8 @@ TEST(ParameterNames, TemplateSetsNeitherTheModelNorAnEmptyMass) {
   EXPECT_EQ(file.commented, (std::set<std::string>{"capability/battery/capacity_ah", "capability/battery/cells",
                                                    "capability/battery/ocv_table/cell_v",
                                                    "capability/battery/ocv_table/soc", "capability/battery/pack_file",
-                                                   "capability/battery/pack_id", "capability/pwm_max_us",
+                                                   "capability/battery/pack_id", "capability/battery/temperature_c",
+                                                   "capability/pwm_max_us",
                                                    "empty_mass_kg", "model"}));
   EXPECT_EQ(file.values.count("model"), 0u);
   EXPECT_EQ(file.values.count("empty_mass_kg"), 0u);

@@ -127,7 +127,8 @@ class CapabilitySink : public pe::sim::FlightSink {
     estimator_.addBatteryCurrent(s.time_s, s.current_a);
     // The simulated percentage is the true state of charge: the default mode (ignore) never reads it.
     const double modelled_a = estimator_.output().totals.current_a;
-    capability_.addBattery(s.time_s, s.voltage_v, pe::BatteryReport{s.percentage, s.current_a}, modelled_a);
+    capability_.addBattery(s.time_s, s.voltage_v, pe::BatteryReport{s.percentage, s.current_a, pack_temperature_c},
+                           modelled_a);
   }
   void imu(const pe::sim::ImuSample& s) override {
     estimator_.addImu(s.time_s, s.orientation, s.linear_acceleration_m_s2);
@@ -148,6 +149,8 @@ class CapabilitySink : public pe::sim::FlightSink {
     if (takeoff_s && s.time_s > *takeoff_s + 5.0 && !cutoff_s && filtered_v_ < cutoff_v_) cutoff_s = s.time_s;
   }
 
+  /// deg C the battery messages report for the pack (BatteryState.temperature); NaN: none.
+  double pack_temperature_c = pe::kNaN;
   std::optional<double> takeoff_s, hover_start_s, first_flag_s, cutoff_s;
   unsigned flagged_channels = 0;
   std::optional<pe::MotorHealthVerdict> last_health;
