@@ -119,7 +119,7 @@ HoverDischarge integrateHoverDischarge(const PropulsionModel& model, const Disch
       at_point.signals.set(effects::Signal::kBatteryCurrent, total_a);
       point = hoverPoint(model, thrust_per_motor_n, voltage, at_point);
       if (!point) break;
-      total_a = motors * point->current_a;
+      total_a = motors * point->current_a + pack.other_current_a;
       voltage = open_v - pack.resistance_ohm * total_a;
     }
     if (!point) {
@@ -129,7 +129,7 @@ HoverDischarge integrateHoverDischarge(const PropulsionModel& model, const Disch
       break;
     }
     // The current surface is floored at zero; a zero hover current would be an endless flight.
-    if (!(total_a > 0.0)) {
+    if (!(total_a - pack.other_current_a > 0.0)) {
       result.notes.push_back("no endurance: the model's hover current is 0 A at " + formatPrintf("%.2f V", voltage) +
                              " and " + formatPrintf("%.0f us", point->pwm_us) +
                              " (its current surface is at or below zero there)");

@@ -15,6 +15,10 @@ namespace {
 constexpr int kDischargeSteps = 30;
 // Fixed-point iterations of the full-throttle current and the voltage it sags to.
 constexpr int kSagIterations = 6;
+// Above this the motors run (A, all motors, modelled): the battery's current less the motors' is
+// then what else the pack feeds, averaged over kUnmodelledMemoryS.
+constexpr double kMotorsRunningA = 1.0;
+constexpr double kUnmodelledMemoryS = 30.0;
 // A pack temperature outside these (deg C) is not a reading (0 K, a sensor's fill value).
 constexpr double kLowestPackC = -40.0;
 constexpr double kHighestPackC = 90.0;
@@ -110,6 +114,13 @@ CapabilityEstimator::CapabilityEstimator(const PropulsionModel& model, int motor
 void CapabilityEstimator::addBattery(double time_s, double voltage_v, const BatteryReport& battery,
                                      double modelled_current_a) {
   measured_current_a_ = std::isfinite(battery.current_a) ? std::abs(battery.current_a) : kNaN;
+  if (std::isfinite(measured_current_a_) && modelled_current_a > kMotorsRunningA && std::isfinite(time_s)) {
+    const double unmodelled = measured_current_a_ - modelled_current_a;
+    const double follow = std::isnan(unmodelled_s_) ? 1.0 : std::clamp((time_s - unmodelled_s_) / kUnmodelledMemoryS, 0.0, 1.0);
+    unmodelled_current_a_ = std::isnan(unmodelled_current_a_) ? unmodelled
+                                                              : unmodelled_current_a_ + follow * (unmodelled - unmodelled_current_a_);
+    unmodelled_s_ = time_s;
+  }
   const bool reported = battery.temperature_c >= kLowestPackC && battery.temperature_c <= kHighestPackC;
   temperature_c_ = reported ? battery.temperature_c : config_.temperature_c.value_or(kNaN);
   const bool known = battery.percentage >= 0.0 && battery.percentage <= 1.0;
@@ -236,6 +247,7 @@ CapabilityReport CapabilityEstimator::evaluate(const EstimatorOutput& output, co
       }
     }
   }
+  c.unmodelled_current_a = unmodelled_current_a_;
   evaluateEndurance(correction, &c);
   c.endurance_below_reserve = c.hover_endurance_s < config_.reserve_s;
   return c;
@@ -254,6 +266,7 @@ HoverDischarge CapabilityEstimator::discharge(double state_of_charge, double res
   pack.charge_ah = state_of_charge * capacity_ah;
   pack.resistance_ohm = resistance_ohm;
   pack.cutoff_voltage_v = cells * config_.cell_cutoff_v;
+  pack.other_current_a = std::isfinite(unmodelled_current_a_) ? unmodelled_current_a_ : 0.0;
   if (!std::isnan(px4_remaining_)) {
     // PX4's remaining already runs to its own empty voltage: the charge is drawn to its end.
     pack.charge_ah = px4_remaining_ * capacity_ah;
@@ -308,6 +321,9 @@ void CapabilityEstimator::evaluateEndurance(const Correction& correction, Capabi
   }
   c->endurance_basis = px4 ? "PX4's remaining drawn at the model's hover current"
                            : "to the loaded cut-off at the model's hover current, internal resistance included";
+  if (std::isfinite(unmodelled_current_a_)) {
+    c->endurance_basis += ", " + formatPrintf("%.2f A", unmodelled_current_a_) + " beyond the motors' (measured less modelled)";
+  }
   if (px4) return;
   // The spread: the endurance at one standard deviation less charge (the estimate's and where the
   // pack's knee lies against the curve's), at one more resistance, and the capacity's.

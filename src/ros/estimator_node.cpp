@@ -481,6 +481,7 @@ void EstimatorNode::publishCapability() {
   msg.remaining_ah = c.remaining_ah;
   msg.hover_endurance_s = c.hover_endurance_s;
   msg.hover_endurance_std_s = c.hover_endurance_std_s;
+  msg.unmodelled_current_a = c.unmodelled_current_a;
   msg.hover_endurance_low_s = c.hover_endurance_low_s;
   msg.hover_endurance_high_s = c.hover_endurance_high_s;
   msg.endurance_basis = c.endurance_basis;

@@ -94,6 +94,9 @@ struct DischargePack {
   double charge_ah = 0.0;         ///< Ah; drawn at most
   double resistance_ohm = 0.0;    ///< ohm; open-circuit to terminals
   double cutoff_voltage_v = 0.0;  ///< V; loaded, where the hover ends
+  /// A; what the pack feeds besides the motors (avionics, companion computer, camera): drawn and
+  /// sagging the voltage with the motors' current.
+  double other_current_a = 0.0;
 };
 
 /// Integrates the hover of `motors` motors, each giving `thrust_per_motor_n`, in `steps` equal

@@ -111,6 +111,10 @@ struct CapabilityReport {
   double hover_pwm_us = kNaN;
   double hover_current_a = kNaN;
   ///@}
+  /// A; the battery current the model's motors do not account for (avionics, companion computer,
+  /// camera, and the model's own current error): the measured less the modelled, averaged while
+  /// the motors run; drawn with the hover in the endurance. NaN without a measured current.
+  double unmodelled_current_a = kNaN;
   /// The pack's state (BatteryEstimator) and on what it rests.
   double state_of_charge = kNaN;  ///< 0..1 of the rated capacity
   double state_of_charge_std = kNaN;  ///< one standard deviation, the curve's uncertainty included
@@ -188,6 +192,8 @@ class CapabilityEstimator {
   double px4_remaining_ = kNaN;
   double measured_current_a_ = kNaN;
   double temperature_c_ = kNaN;  // the pack's, reported or configured; NaN: unknown
+  double unmodelled_current_a_ = kNaN;  // measured less modelled, low-passed while the motors run
+  double unmodelled_s_ = kNaN;          // time of its last update
 };
 
 /// The Capability diagnostic: WARN when the payload exceeds its limit, the hover endurance is below

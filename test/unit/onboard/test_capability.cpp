@@ -201,6 +201,42 @@ TEST(Capability, TheIntervalsLowEndAllowsForAColdPackOnlyWhenItMayBeCold) {
   EXPECT_EQ(interval(-273.15, 30.0).hover_endurance_low_s, warm.hover_endurance_low_s);
 }
 
+// The battery feeds more than the motors (avionics, a companion computer): the measured current
+// less the modelled is averaged while the motors run and drawn with the hover, so the endurance is
+// the hand integration with that current added, shorter than without it.
+TEST(Capability, WhatTheBatteryFeedsBesidesTheMotorsIsDrawnWithTheHover) {
+  const pe::PropulsionModel model = voltageCurrentModel();
+  const pe::OcvCurve curve = pe::OcvCurve::lipo();
+  const auto fly = [&](double other_a) {
+    pe::CapabilityEstimator estimator(model, 4, configured());
+    double soc = 0.9, voltage = 0.0;
+    for (int t = 0; t <= 60; ++t) {
+      const double motors_a = t < 10 ? 0.0 : 32.0;
+      const double battery_a = motors_a + other_a;
+      if (t > 0) soc -= battery_a / (3600.0 * 4.0);
+      voltage = 3 * curve.cellVoltage(soc) - 0.01 * battery_a;
+      estimator.addBattery(t, voltage, pe::BatteryReport{pe::kNaN, battery_a}, motors_a);
+    }
+    return estimator.evaluate(hovering(1.5, voltage));
+  };
+  const pe::CapabilityReport plain = fly(0.0), fed = fly(2.0);
+  ASSERT_FALSE(std::isnan(fed.hover_endurance_s)) << fed.endurance_basis;
+  EXPECT_NEAR(plain.unmodelled_current_a, 0.0, 1e-9);
+  EXPECT_NEAR(fed.unmodelled_current_a, 2.0, 1e-9);
+  EXPECT_NE(fed.endurance_basis.find(", 2.00 A beyond the motors' (measured less modelled)"), std::string::npos)
+      << fed.endurance_basis;
+  pe::DischargePack pack;
+  pack.open_circuit_v = [&](double drawn_ah) { return 3 * curve.cellVoltage(fed.state_of_charge - drawn_ah / 4.0); };
+  pack.charge_ah = fed.state_of_charge * 4.0;
+  pack.resistance_ohm = fed.internal_resistance_ohm;
+  pack.cutoff_voltage_v = 10.5;
+  pack.other_current_a = 2.0;
+  const pe::HoverDischarge expected = pe::integrateHoverDischarge(model, pack, 1.5 * pe::kStandardGravity / 4, 4, 30);
+  ASSERT_TRUE(expected.endurance_s.has_value());
+  EXPECT_DOUBLE_EQ(fed.hover_endurance_s, *expected.endurance_s);
+  EXPECT_LT(fed.hover_endurance_s, plain.hover_endurance_s);
+}
+
 TEST(Capability, TheEnduranceIsWithheldWithItsReasonBeforeConvergence) {
   const pe::PropulsionModel model = voltageCurrentModel();
   pe::CapabilityEstimator estimator(model, 4, configured());

@@ -21,6 +21,10 @@ using namespace capability_flight;
 
 namespace {
 
+// A of avionics beside the ESCs on the flights of pack `seed`: 0.3-1.5 A, a value of its own per
+// pack (a flight controller and radios to a companion computer and a camera), never zero.
+double avionicsA(std::uint32_t seed) { return 0.3 + 1.2 * ((seed * 2654435761u) % 1000u) / 1000.0; }
+
 // One prediction of the hover time left and the time the vehicle then hovered until the cut-off.
 struct EnduranceCase {
   std::string label;  // seed, pack, payload, start
@@ -55,7 +59,7 @@ std::vector<EnduranceCase> flyFamilyPacks(const std::vector<std::uint32_t>& seed
       }
       CapabilitySink sink(f450(), user, thesisModel(), {20.0, 60.0});
       if (temperature_known) sink.pack_temperature_c = drawn.temperature_c;
-      fly(profile(payload_kg, 3000.0, initial_soc), &sink, {}, params);
+      fly(profile(payload_kg, 3000.0, initial_soc, "[0.0, 0.0, 0.0]", "", 2.0, avionicsA(seed)), &sink, {}, params);
       const std::string label = "seed " + std::to_string(seed) + " " + drawn.describe() + ", payload " +
                                 std::to_string(payload_kg).substr(0, 3) + " kg, from " +
                                 std::to_string(static_cast<int>(100.0 * initial_soc)) + " %";
@@ -305,7 +309,7 @@ TEST(CapabilityFlight, TheHoverTimeLeftOverAFlightWithItsInterval) {
   pe::sim::SimParams params = thesisParams();
   params.battery = drawn.params;
   CapabilitySink sink(f450(), userPack(), thesisModel(), after_s);
-  fly(profile(0.0, 3000.0, 1.0), &sink, {}, params);
+  fly(profile(0.0, 3000.0, 1.0, "[0.0, 0.0, 0.0]", "", 2.0, avionicsA(406777)), &sink, {}, params);
   ASSERT_TRUE(sink.cutoff_s.has_value());
   std::string csv = "after_takeoff_s,predicted_s,low_s,high_s,flown_s\n";
   int points = 0, held = 0;
@@ -337,9 +341,10 @@ namespace {
 // A pack flown once before: from 100 % it hovers until 12 % of the time to its loaded cut-off is
 // left (the truth's, as a pilot lands on the autopilot's warning), lands and rests 10 s; the pack
 // file's record after it.
-pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double payload_kg, double time_to_cutoff_s) {
+pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double payload_kg, double time_to_cutoff_s,
+                                    double avionics_a) {
   CapabilitySink sink(f450(), userPack(), thesisModel());
-  fly(profile(payload_kg, 0.88 * time_to_cutoff_s, 1.0, "[0.0, 0.0, 0.0]", "", 12.0), &sink, {}, params);
+  fly(profile(payload_kg, 0.88 * time_to_cutoff_s, 1.0, "[0.0, 0.0, 0.0]", "", 12.0, avionics_a), &sink, {}, params);
   EXPECT_TRUE(sink.packFlightFinished());
   pe::PackRecord fresh;
   fresh.pack_id = "family pack";
@@ -357,15 +362,16 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
     pe::sim::SimParams params = thesisParams();
     params.battery = drawn.params;
     const double payload_kg = seed % 2 ? 0.0 : 0.3;
+    const double avionics_a = avionicsA(seed);
     CapabilitySink full(f450(), userPack(), thesisModel());
-    fly(profile(payload_kg, 3000.0, 1.0), &full, {}, params);
+    fly(profile(payload_kg, 3000.0, 1.0, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &full, {}, params);
     ASSERT_TRUE(full.cutoff_s.has_value());
-    const pe::PackRecord record = learnedFromOneFlight(params, payload_kg, *full.cutoff_s - *full.takeoff_s);
+    const pe::PackRecord record = learnedFromOneFlight(params, payload_kg, *full.cutoff_s - *full.takeoff_s, avionics_a);
     for (double initial_soc : {1.0, 0.6, 0.3}) {
       pe::CapabilityConfig user = userPack();
       user.pack = record;
       CapabilitySink sink(f450(), user, thesisModel(), {60.0});
-      fly(profile(payload_kg, 3000.0, initial_soc), &sink, {}, params);
+      fly(profile(payload_kg, 3000.0, initial_soc, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &sink, {}, params);
       ASSERT_TRUE(sink.cutoff_s.has_value());
       if (*sink.cutoff_s < *sink.takeoff_s + 90.0 || !sink.predictions[0]) continue;
       const pe::CapabilityReport& c = sink.predictions[0]->report;
@@ -388,7 +394,7 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
 
 }  // namespace
 
-// Development: packs 1-20 chose how a flight is learned (measured 2026-12-02: 45 of 60 within
+// Development: packs 1-20 chose how a flight is learned (measured 2026-12-02: 43 of 60 within
 // 10 % after 60 s; the same packs unlearned, HoverEnduranceOnFamilyPacks*, about 3 in 10). Issue
 // 36's bar, 90 %, does not hold: from 30 % charge the hover left after 60 s is 1-3 minutes, and
 // the polarisation of a flight a minute old is not the long hover's the learned curve holds
@@ -396,14 +402,14 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
 TEST(CapabilityFlight, APackFlownOnceBeforeDevelopmentPacks) {
   std::vector<std::uint32_t> seeds;
   for (std::uint32_t seed = 1; seed <= 20; ++seed) seeds.push_back(seed);
-  expectALearnedPackWithin10Percent(seeds, 0.74);
+  expectALearnedPackWithin10Percent(seeds, 0.71);
 }
 
 // Held out: 20 packs drawn on 2026-12-02 after the learner was fixed on packs 1-20, first flown
-// then: 39 of 58 within 10 % (from 100 %: 19 of 20, 60 %: 15 of 19, 30 %: 5 of 19). Asserted:
-// that share, as a regression guard.
+// then (with each pack's avionics draw since: 39 of 56 within 10 %; from 100 %: 19 of 20, 60 %:
+// 14 of 19, 30 %: 6 of 17). Asserted: that share, as a regression guard.
 TEST(CapabilityFlight, APackFlownOnceBeforeHeldOutPacks) {
   expectALearnedPackWithin10Percent({65406, 229737, 243417, 257057, 274397, 323679, 444364, 491976, 499329, 544398,
                                      551762, 565555, 576810, 658139, 714122, 754525, 788487, 875409, 917716, 957820},
-                                    0.67);
+                                    0.69);
 }

@@ -43,16 +43,18 @@ inline pe::sim::SimParams thesisParams() {
 }
 
 // Take-off to 2 m and a hover of `hover_s` with `payload_kg` on a 0.3 m cable, from
-// `initial_soc`, the centre of gravity `cg_offset` off the URDF's; `faults` a profile section; `rest_after_s` on the ground after landing.
+// `initial_soc`, the centre of gravity `cg_offset` off the URDF's; `faults` a profile section;
+// `rest_after_s` on the ground after landing; `avionics_current_a` drawn from the battery beside the
+// ESCs (flight controller, companion computer, radios).
 inline std::string profile(double payload_kg, double hover_s, double initial_soc, const std::string& cg_offset = "[0.0, 0.0, 0.0]",
-                    const std::string& faults = "", double rest_after_s = 2.0) {
+                    const std::string& faults = "", double rest_after_s = 2.0, double avionics_current_a = 0.0) {
   std::string text = "autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, "
                      "rc_out_rate_hz: 50}\n"
                      "vehicle: {urdf: " +
                      repoPath("config/f450_quad.urdf") + ", centre_of_mass_offset_m: " + cg_offset +
                      ", landing_gear: {height_m: 0.12, half_width_m: 0.12}, drag_area_m2: 0.04, "
                      "battery_initial_soc: " +
-                     std::to_string(initial_soc) +
+                     std::to_string(initial_soc) + ", avionics_current_a: " + std::to_string(avionics_current_a) +
                      "}\n"
                      "payload_cable: {length_m: 0.3, attach_point_m: [0.0, 0.0, -0.04], stiffness_n_per_m: 1000, "
                      "damping_n_s_per_m: 10}\n"
