@@ -37,6 +37,7 @@ max_len() {
     bench_csv|tyto_csv) echo 2048 ;;
     flight_manifest) echo 1024 ;;
     rcout|tare_file) echo 256 ;;
+    pack_file) echo 1024 ;;
     ulog|dataflash) echo 8192 ;;
     flight_bag) echo 16384 ;;
   esac

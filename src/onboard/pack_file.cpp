@@ -66,6 +66,7 @@ PackRecord parsePackFile(const std::string& text, const std::string& source) {
   for (std::size_t k = 0; k < record.ocv_soc.size(); ++k) {
     if (record.ocv_soc[k] < 0.0 || record.ocv_soc[k] > 1.0) root.fail("ocv_soc", "must lie within 0..1");
     if (k > 0 && !(record.ocv_soc[k] > record.ocv_soc[k - 1])) root.fail("ocv_soc", "must increase");
+    if (record.ocv_cell_v[k] < 2.0 || record.ocv_cell_v[k] > 4.5) root.fail("ocv_cell_v", "must lie within 2..4.5 V");
     if (k > 0 && !(record.ocv_cell_v[k] > record.ocv_cell_v[k - 1])) root.fail("ocv_cell_v", "must increase");
   }
   record.resistance_ohm = root.numbers("resistance_ohm");

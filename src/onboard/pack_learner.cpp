@@ -161,7 +161,14 @@ OcvCurve learnedCurve(const PackRecord& record, const OcvCurve& fallback) {
     soc.push_back(1.0);
     cell_v.push_back(cell_v.back() + kMinRiseV);
   }
-  return OcvCurve(soc, cell_v, "capability/battery/pack_file");
+  if (soc.size() < 2) return fallback;
+  try {
+    return OcvCurve(soc, cell_v, "capability/battery/pack_file");
+  } catch (const FieldError&) {
+    // Points a reader accepted that still give no rising table (closer than the steps above):
+    // nothing to learn from them.
+    return fallback;
+  }
 }
 
 }  // namespace propulsion_estimator

@@ -11,6 +11,7 @@
 
 #include "propulsion_estimator/bag/flight_bag_reader.h"
 #include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/onboard/pack_learner.h"
 #include "propulsion_estimator/onboard/tare_file.h"
 #include "propulsion_estimator/logs/bench_csv.h"
 #include "propulsion_estimator/logs/csv_text.h"
@@ -77,6 +78,14 @@ bool feedVehicleUrdf(const std::uint8_t* data, std::size_t size) {
 
 bool feedTareFile(const std::uint8_t* data, std::size_t size) {
   return acceptsText(data, size, [](const std::string& text) { parseTareFile(text, "fuzz_tare.yaml"); });
+}
+
+// A pack file read back, and the curve the node would build from it (learnedCurve: every table a
+// file can hold must give a curve or be refused by the reader).
+bool feedPackFile(const std::uint8_t* data, std::size_t size) {
+  return acceptsText(data, size, [](const std::string& text) {
+    learnedCurve(parsePackFile(text, "fuzz_pack.yaml"), OcvCurve::lipo());
+  });
 }
 
 // The bytes as the serialized payload of a mavros_msgs/RCOut, received as the node receives it
@@ -162,8 +171,8 @@ const std::vector<FuzzInput>& fuzzInputs() {
       {"tyto_csv", feedTytoCsv},               {"flight_manifest", feedFlightManifest},
       {"flight_profile", feedFlightProfile},   {"vehicle_urdf", feedVehicleUrdf},
       {"rcout", feedRcOut},                    {"tare_file", feedTareFile},
-      {"ulog", feedUlog},                      {"dataflash", feedDataflash},
-      {"flight_bag", feedFlightBag},
+      {"pack_file", feedPackFile},             {"ulog", feedUlog},
+      {"dataflash", feedDataflash},            {"flight_bag", feedFlightBag},
   };
   return inputs;
 }

@@ -19,7 +19,7 @@ struct FuzzInput {
 };
 
 /// Every fuzzed reader: model_yaml, bench_csv, tyto_csv, flight_manifest, flight_profile,
-/// vehicle_urdf, rcout, tare_file, ulog, dataflash, flight_bag.
+/// vehicle_urdf, rcout, tare_file, pack_file, ulog, dataflash, flight_bag.
 const std::vector<FuzzInput>& fuzzInputs();
 /// The reader called `name`; std::invalid_argument listing the names when there is none.
 const FuzzInput& fuzzInput(const std::string& name);

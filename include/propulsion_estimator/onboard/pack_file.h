@@ -33,8 +33,8 @@ struct PackRecord {
 
 /// The record in a pack file's text. ConfigError "<source>:<line>: <key>: <problem>" for content
 /// that is not one: an unknown or missing key, an empty pack_id, cells outside 1..14, a negative
-/// flight count, a capacity not positive, a curve whose lists differ in length or do not rise, a
-/// resistance negative.
+/// flight count, a capacity not positive, a curve whose lists differ in length, do not rise or
+/// leave 0..1 and 2..4.5 V a cell, a resistance negative.
 PackRecord parsePackFile(const std::string& text, const std::string& source);
 /// The file's text for `record` (numbers to the last bit, so that it reads back identical).
 std::string packFileText(const PackRecord& record);

@@ -70,7 +70,8 @@ class PackLearner {
 
 /// The open-circuit curve a pack's record gives, over 0..1: its learned points, and `fallback`
 /// (the chemistry's or the user's) beyond them, shifted to meet them so the curve stays continuous
-/// and rising. `fallback` itself when the record has fewer than two points.
+/// and rising. `fallback` itself when the record has fewer than two points or its points give no
+/// rising table. Throws nothing.
 OcvCurve learnedCurve(const PackRecord& record, const OcvCurve& fallback);
 
 }  // namespace propulsion_estimator

@@ -94,6 +94,6 @@ TEST(FuzzCorpus, UnknownReaderIsNamedWithTheKnownOnes) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
               "no fuzzed reader 'nope' (known: model_yaml, bench_csv, tyto_csv, flight_manifest, flight_profile, "
-              "vehicle_urdf, rcout, tare_file, ulog, dataflash, flight_bag)");
+              "vehicle_urdf, rcout, tare_file, pack_file, ulog, dataflash, flight_bag)");
   }
 }
