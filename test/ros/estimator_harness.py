@@ -100,6 +100,20 @@ class EstimatorHarness:
         return self.diagnostic(name)
 
 
+def node_diagnostics(node_name):
+    """Subscribes to /diagnostics for the node whose name ends in `node_name`: returns the dict of
+    its newest status per task (filled as they come) and the subscriber, to unregister."""
+    statuses = {}
+
+    def on_diagnostics(message):
+        for status in message.status:
+            node, _, task = status.name.partition(": ")
+            if node.endswith(node_name):
+                statuses[task] = status
+
+    return statuses, rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
+
+
 def wait_until(condition, timeout_s, what, poll_s=0.05):
     """Polls `condition` on the wall clock until it holds; AssertionError naming `what` after
     `timeout_s` (for tests that drive time themselves, where ROS time may stand still)."""

@@ -12,11 +12,11 @@ import roslaunch
 import rospy
 import rostest
 import yaml
-from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from diagnostic_msgs.msg import DiagnosticStatus
 from propulsion_estimator.msg import PayloadEstimate
 from sensor_msgs.msg import BatteryState, Imu, Range
 
-from estimator_harness import EstimatorHarness, is_nan
+from estimator_harness import EstimatorHarness, is_nan, node_diagnostics
 
 G = 9.80665
 HOVER = [1690, 1690, 1690, 1690, 1000, 1000, 1000, 1000]
@@ -230,13 +230,7 @@ class EstimatorNodeTest(unittest.TestCase):
         with open(model, "w") as f:
             f.write(text + "\n" + ALL_EFFECTS)
         rospy.set_param("/effects_node/model", model)
-        statuses = {}
-
-        def on_diagnostics(message):
-            for status in message.status:
-                node, _, task = status.name.partition(": ")
-                if node.endswith("effects_node"):
-                    statuses[task] = status
+        statuses, diagnostics = node_diagnostics("effects_node")
 
         def subscribers(topic):
             return dict(rosgraph.Master("/test_estimator_node").getSystemState()[1]).get(topic, [])
@@ -244,7 +238,6 @@ class EstimatorNodeTest(unittest.TestCase):
         def effects_message():
             return statuses["Effects"].message if "Effects" in statuses else "none"
 
-        diagnostics = rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
         launch = roslaunch.scriptapi.ROSLaunch()
         launch.start()
         process = launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name="effects_node",
@@ -337,15 +330,8 @@ class EstimatorNodeTest(unittest.TestCase):
         open(bad, "w").close()
         rospy.set_param("/bad_tare/model", rospy.get_param("/propulsion_estimator/model"))
         rospy.set_param("/bad_tare/tare_file", bad)
-        statuses = {}
+        statuses, diagnostics = node_diagnostics("bad_tare")
 
-        def on_diagnostics(message):
-            for status in message.status:
-                node, _, task = status.name.partition(": ")
-                if node.endswith("bad_tare"):
-                    statuses[task] = status
-
-        diagnostics = rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
         launch = roslaunch.scriptapi.ROSLaunch()
         launch.start()
         process = launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name="bad_tare",
@@ -373,13 +359,7 @@ class EstimatorNodeTest(unittest.TestCase):
         started later reads it for the same pack."""
         folder = tempfile.mkdtemp(prefix="pe_pack_")
         path = os.path.join(folder, "SN-1.yaml")
-        statuses = {}
-
-        def on_diagnostics(message):
-            for status in message.status:
-                node, _, task = status.name.partition(": ")
-                if node.endswith("packed"):
-                    statuses[task] = status
+        statuses, diagnostics = node_diagnostics("packed")
 
         def start():
             for key, value in (("model", rospy.get_param("/propulsion_estimator/model")),
@@ -395,7 +375,6 @@ class EstimatorNodeTest(unittest.TestCase):
             return launch, process
 
         publisher = rospy.Publisher("/packed_battery", BatteryState, queue_size=50)
-        diagnostics = rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
         launch, process = start()
         try:
             self.h.wait_for(lambda: publisher.get_num_connections() > 0, 10.0, "the node's battery subscription")
