@@ -19,9 +19,9 @@ namespace propulsion_estimator {
 /// rest_offset_cell_v: 0.012     # how far the pack rests above its loaded curve (absent until learned)
 /// @endcode
 struct PackRecord {
-  std::string pack_id;
-  int cells = 0;
-  int flights = 0;
+  std::string pack_id;  ///< the pack's identity; never empty in a file
+  int cells = 0;        ///< in series, 1..14
+  int flights = 0;      ///< flights learned from
   std::optional<double> capacity_ah;  ///< Ah
   std::vector<double> ocv_soc;        ///< 0..1, increasing; empty until learned
   std::vector<double> ocv_cell_v;     ///< V per cell, increasing, one per ocv_soc
