@@ -21,6 +21,7 @@ std::optional<PackRecord> PackFileKeeper::identify(const std::string& pack_id, l
   record_.pack_id = pack_id;
   record_.cells = cells_;
   writable_ = true;
+  note_.clear();
   for (const std::string& stale : removeStaleTemporaries(path_)) note_ += "removed " + stale + " (a write killed); ";
   try {
     PackFileLookup lookup = packFileRecordFor(path_, pack_id, cells_);

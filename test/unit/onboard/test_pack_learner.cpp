@@ -138,6 +138,7 @@ TEST(PackFileKeeper, ReadsWritesAndNeverTouchesAnotherPack) {
   EXPECT_EQ(read->flights, 1);
   EXPECT_FALSE(next.identify("B", 0).has_value());  // another pack: its own file, none yet
   EXPECT_EQ(next.path(), folder + "/B.yaml");
+  EXPECT_EQ(next.note(), folder + "/B.yaml: none yet for pack \"B\": learned from this flight");
 
   pe::PackFileKeeper single(folder + "/A.yaml", 3);
   EXPECT_FALSE(single.identify("B", 0).has_value());
