@@ -142,6 +142,7 @@ void CapabilityEstimator::startBattery() {
   PackLearnerConfig learner;
   learner.cells = battery->cells;
   learner.capacity_ah = battery->capacity_ah;
+  learner.rest_current_a = battery->rest_current_a;  // one rest for the estimator and the learner
   learner_.emplace(learner);
 }
 

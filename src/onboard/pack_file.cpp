@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include <yaml-cpp/yaml.h>
+
 #include "propulsion_estimator/common/atomic_file.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/yaml_map.h"
@@ -12,35 +14,21 @@
 namespace propulsion_estimator {
 namespace {
 
+// Every bit of a double, so that the file reads back identical (yaml-cpp's own precision is less).
 std::string exact(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.17g", value);
   return text;
 }
 
-std::string list(const std::vector<double>& values) {
-  std::string text = "[";
-  for (std::size_t k = 0; k < values.size(); ++k) text += (k ? ", " : "") + exact(values[k]);
-  return text + "]";
+void emitList(YAML::Emitter* yaml, const char* key, const std::vector<double>& values) {
+  *yaml << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (double value : values) *yaml << exact(value);
+  *yaml << YAML::EndSeq;
 }
 
-// A YAML double-quoted scalar: the identity may hold any character.
-std::string yamlQuoted(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escape[8];
-      std::snprintf(escape, sizeof(escape), "\\x%02x", static_cast<unsigned char>(c));
-      out += escape;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+// "pack "A"" in the lines of the log and the diagnostics.
+std::string named(const std::string& pack_id) { return "pack \"" + pack_id + "\""; }
 
 }  // namespace
 
@@ -81,16 +69,18 @@ PackRecord parsePackFile(const std::string& text, const std::string& source) {
 }
 
 std::string packFileText(const PackRecord& r) {
-  std::string text = "# Written by propulsion_estimator: what it learned of one battery pack from its flights.\n";
-  text += "pack_id: " + yamlQuoted(r.pack_id) + "\n";
-  text += "cells: " + std::to_string(r.cells) + "\n";
-  text += "flights: " + std::to_string(r.flights) + "\n";
-  if (r.capacity_ah) text += "capacity_ah: " + exact(*r.capacity_ah) + "\n";
-  text += "ocv_soc: " + list(r.ocv_soc) + "\n";
-  text += "ocv_cell_v: " + list(r.ocv_cell_v) + "\n";
-  text += "resistance_ohm: " + list(r.resistance_ohm) + "\n";
-  if (r.rest_offset_cell_v) text += "rest_offset_cell_v: " + exact(*r.rest_offset_cell_v) + "\n";
-  return text;
+  YAML::Emitter yaml;
+  yaml << YAML::Comment("Written by propulsion_estimator: what it learned of one battery pack from its flights.")
+       << YAML::Newline << YAML::BeginMap;
+  yaml << YAML::Key << "pack_id" << YAML::Value << YAML::DoubleQuoted << r.pack_id;
+  yaml << YAML::Key << "cells" << YAML::Value << r.cells << YAML::Key << "flights" << YAML::Value << r.flights;
+  if (r.capacity_ah) yaml << YAML::Key << "capacity_ah" << YAML::Value << exact(*r.capacity_ah);
+  emitList(&yaml, "ocv_soc", r.ocv_soc);
+  emitList(&yaml, "ocv_cell_v", r.ocv_cell_v);
+  emitList(&yaml, "resistance_ohm", r.resistance_ohm);
+  if (r.rest_offset_cell_v) yaml << YAML::Key << "rest_offset_cell_v" << YAML::Value << exact(*r.rest_offset_cell_v);
+  yaml << YAML::EndMap;
+  return std::string(yaml.c_str()) + "\n";
 }
 
 std::optional<PackRecord> loadPackFile(const std::string& path) {
@@ -116,17 +106,17 @@ PackFileLookup packFileRecordFor(const std::string& path, const std::string& pac
   PackFileLookup lookup;
   std::optional<PackRecord> record = loadPackFile(path);
   if (!record) {
-    lookup.note = path + ": none yet for pack " + yamlQuoted(pack_id) + ": learned from this flight";
+    lookup.note = path + ": none yet for " + named(pack_id) + ": learned from this flight";
   } else if (record->pack_id != pack_id) {
     lookup.writable = false;
-    lookup.note = path + ": holds pack " + yamlQuoted(record->pack_id) + ", not this flight's " + yamlQuoted(pack_id) +
+    lookup.note = path + ": holds " + named(record->pack_id) + ", not this flight's \"" + pack_id + "\"" +
                   ": not used, not overwritten (put {pack_id} in capability/battery/pack_file for a file per pack)";
   } else if (record->cells != cells) {
     lookup.writable = false;
-    lookup.note = path + ": pack " + yamlQuoted(pack_id) + " has " + std::to_string(record->cells) + " cells there, " +
+    lookup.note = path + ": " + named(pack_id) + " has " + std::to_string(record->cells) + " cells there, " +
                   std::to_string(cells) + " configured: not used, not overwritten";
   } else {
-    lookup.note = path + ": pack " + yamlQuoted(pack_id) + ", " + std::to_string(record->flights) + " flights learned";
+    lookup.note = path + ": " + named(pack_id) + ", " + std::to_string(record->flights) + " flights learned";
     lookup.record = std::move(record);
   }
   return lookup;
