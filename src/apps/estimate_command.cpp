@@ -24,6 +24,7 @@
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/offline/estimate_csv.h"
 #include "propulsion_estimator/offline/estimate_summary.h"
+#include "propulsion_estimator/offline/flight_record.h"
 #include "propulsion_estimator/offline/flight_estimate.h"
 #include "propulsion_estimator/offline/flight_feed.h"
 #include "propulsion_estimator/offline/yaml_parameter_source.h"
@@ -141,6 +142,7 @@ LogResult estimateLog(const std::string& path, const std::string& directory, con
     std::filesystem::create_directories(directory);
     writeTextFile(directory + "/estimates.csv", offline::estimateCsv(estimate.samples));
     writeTextFile(directory + "/summary.md", offline::estimateSummaryMarkdown(estimate, model_name, "mass.png"));
+    writeTextFile(directory + "/flight.yaml", offline::flightRecordText(offline::flightRecordOf(estimate)));
     result.estimate = std::move(estimate);
   } catch (const InputError& e) {
     result.refusal = e.what();
@@ -238,7 +240,7 @@ int runEstimate(int argc, char** argv) {
   CLI::App app{
       "Runs the estimator's onboard session (hover detection, mass, payload, motor health, capability) offline on "
       "flight logs (PX4 ULog, ArduPilot DataFlash, rosbag with MAVROS topics), message by message as estimator_node "
-      "runs on a replayed bag, and writes per log estimates.csv, summary.md and mass.png."};
+      "runs on a replayed bag, and writes per log estimates.csv, summary.md, flight.yaml and mass.png."};
   Arguments args;
   app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
   app.add_option("logs", args.logs, "Flight logs (a quoted pattern such as 'logs/*.ulg' is expanded)")->required();

@@ -234,6 +234,17 @@ std::vector<double> YamlMap::numbers(const std::string& key) const {
   return result;
 }
 
+std::vector<std::string> YamlMap::texts(const std::string& key) const {
+  const YAML::Node value = required(key);
+  if (!value.IsSequence()) fail(key, "expected a list of text, got " + describe(value));
+  std::vector<std::string> result;
+  for (const YAML::Node& item : value) {
+    if (!item.IsScalar()) fail(key, "expected a list of text, got " + describe(item) + " in it");
+    result.push_back(item.Scalar());
+  }
+  return result;
+}
+
 YamlMap YamlMap::map(const std::string& key) const { return YamlMap(required(key), source_, keyPath(key)); }
 
 std::optional<YamlMap> YamlMap::optionalMap(const std::string& key) const {

@@ -262,6 +262,9 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
   result.empty_mass_kg = estimator.output().payload.empty_mass_kg;
   result.empty_mass_source = emptyMassSourceName(estimator.output().payload.empty_mass_source);
   if (!result.motor_health.judged) result.motor_health = session.motorHealth();
+  const CapabilityReport capability = session.capabilityEstimator().evaluate(estimator.output());
+  result.pack_resistance_ohm = capability.internal_resistance_ohm;
+  result.pack_resistance_std_ohm = capability.internal_resistance_std_ohm;
 
   warnRefusals(result.counters, estimator, &result.warnings);
   warnDomain(result.counters, model.domain(),

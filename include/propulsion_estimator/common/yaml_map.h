@@ -37,6 +37,7 @@ class YamlMap {
   std::optional<std::string> optionalText(const std::string& key) const;
   std::pair<double, double> range(const std::string& key) const;  ///< [lo, hi], finite, lo < hi
   std::vector<double> numbers(const std::string& key) const;      ///< a sequence of finite numbers
+  std::vector<std::string> texts(const std::string& key) const;  ///< a sequence of scalars, as text
   bool isSequence(const std::string& key) const;  ///< whether `key` holds a sequence (false when absent)
   YamlMap map(const std::string& key) const;  ///< the mapping under `key`
   /// The mapping under `key`, or nullopt when the key is absent.

@@ -69,6 +69,10 @@ struct FlightEstimate {
   std::string empty_mass_source;  ///< "parameter", "urdf", "none"
   MotorHealthVerdict motor_health;  ///< the last judged window (judged false: why not)
   std::vector<int> flagged_channels;  ///< every channel the motor-health check flagged, first flag first
+  /// The pack's internal resistance at the end of the log (the capability's battery estimate, with
+  /// capability/battery/... configured and the log carrying the current), ohm; NaN when not identified.
+  double pack_resistance_ohm = kNaN;
+  double pack_resistance_std_ohm = kNaN;  ///< ohm; one standard deviation
   /// The live ESC check's last judgement (its verdict not_judged: never judged, and why in its note).
   ModelCheckReport esc_check;
   /// Every verdict other than consistent the ESC check gave, as "propeller on channel 2" or
