@@ -2,7 +2,8 @@
 # Installs what building, running and testing the package needs, from Debian 12's own packages
 # (ROS 1 lives in /usr there); python3-numpy, valgrind and time are make bench's (the rospy peer,
 # the instructions per message, diagnose_gap's peak memory); doxygen is make docs'. Does nothing when everything is
-# already installed.
+# already installed. python3-pytest and python3-distributed (Dask) are fleet's tests' and its
+# --scheduler's.
 # `install_deps.sh fuzz` adds clang and its libFuzzer runtime, which only `make fuzz` needs.
 set -eu
 
@@ -19,6 +20,7 @@ PACKAGES="
   python3-std-msgs python3-sensor-msgs python3-geometry-msgs python3-diagnostic-msgs python3-std-srvs
   python3-topic-tools python3-matplotlib python3-yaml
   python3-numpy valgrind time doxygen
+  python3-pytest python3-distributed
 "
 if [ "${1:-}" = fuzz ]; then
   PACKAGES="$PACKAGES clang libclang-rt-14-dev"

@@ -138,7 +138,8 @@ LogResult estimateLog(const std::string& path, const std::string& directory, con
   try {
     const std::unique_ptr<FlightLogReader> reader = flightLogFormats().open(path);
     offline::FlightEstimate estimate = offline::estimateFlight(model, vehicle, reader->read(log_options), options);
-    if (!reader->refusal().empty()) estimate.warnings.push_back(reader->refusal() + " (read up to there)");
+    estimate.log_damage = reader->refusal();
+    if (!estimate.log_damage.empty()) estimate.warnings.push_back(estimate.log_damage + " (read up to there)");
     std::filesystem::create_directories(directory);
     writeTextFile(directory + "/estimates.csv", offline::estimateCsv(estimate.samples));
     writeTextFile(directory + "/summary.md", offline::estimateSummaryMarkdown(estimate, model_name, "mass.png"));

@@ -124,6 +124,7 @@ FlightRecord flightRecordOf(const FlightEstimate& e) {
   r.esc_flagged_channel = e.esc_check.flagged_channel;
   r.supply_resistance_ohm = e.esc_check.supply_resistance_ohm;
   r.esc_flags = e.esc_flags;
+  r.log_damage = e.log_damage;
   r.warnings = e.warnings;
   return r;
 }
@@ -151,6 +152,7 @@ std::string flightRecordText(const FlightRecord& r) {
   emitNumber(&yaml, "supply_resistance_ohm", r.supply_resistance_ohm);
   emitTexts(&yaml, "flags", r.esc_flags);
   yaml << YAML::EndMap;
+  yaml << YAML::Key << "log_damage" << YAML::Value << YAML::DoubleQuoted << r.log_damage;
   emitTexts(&yaml, "warnings", r.warnings);
   yaml << YAML::EndMap;
   return std::string(yaml.c_str()) + "\n";
@@ -159,7 +161,7 @@ std::string flightRecordText(const FlightRecord& r) {
 FlightRecord parseFlightRecord(const std::string& text, const std::string& source) {
   const YamlMap root = parseYamlDocument(text, source);
   root.allowOnly({"format", "version", "source", "empty_mass_kg", "hovers", "motor_health", "flagged_channels",
-                  "pack", "esc", "warnings"});
+                  "pack", "esc", "log_damage", "warnings"});
   if (root.text("format") != kFormat) root.fail("format", "'" + root.text("format") + "' is not " + kFormat);
   if (root.integer("version") != kVersion) {
     root.fail("version", std::to_string(root.integer("version")) + " is not " + std::to_string(kVersion) +
@@ -186,6 +188,7 @@ FlightRecord parseFlightRecord(const std::string& text, const std::string& sourc
   r.esc_flagged_channel = readChannel(esc, "flagged_channel", 0);
   r.supply_resistance_ohm = optional(esc, "supply_resistance_ohm");
   r.esc_flags = esc.texts("flags");
+  r.log_damage = root.text("log_damage");
   r.warnings = root.texts("warnings");
   return r;
 }

@@ -78,6 +78,8 @@ struct FlightEstimate {
   /// Every verdict other than consistent the ESC check gave, as "propeller on channel 2" or
   /// "supply", first first.
   std::vector<std::string> esc_flags;
+  /// Where the log is damaged and was read up to (the reader's line); "" for a whole log.
+  std::string log_damage;
   /// One line each, with the numbers: refused inputs, readings outside the model's domain (with the
   /// log's and the model's ranges), no hover and why, flagged motors.
   std::vector<std::string> warnings;

@@ -22,6 +22,7 @@ namespace offline {
 /// motor_health: {judged: true, blocks: 10, flagged_channel: 0, motors: [{channel: 1, thrust_gap: 0.004, thrust_gap_std: 0.006}, ...]}
 /// pack: {internal_resistance_ohm: 0.031, internal_resistance_std_ohm: 0.002}
 /// esc: {verdict: consistent, flagged_channel: 0, supply_resistance_ohm: 0.011}
+/// log_damage: ""   # or the reader's line where a damaged log stopped
 /// warnings: []
 /// @endcode
 struct FlightRecord {
@@ -36,6 +37,7 @@ struct FlightRecord {
   int esc_flagged_channel = 0;  ///< its channel, 0: none
   double supply_resistance_ohm = kNaN;  ///< ohm; battery to ESCs, from ESC telemetry
   std::vector<std::string> esc_flags;  ///< every verdict other than consistent, first first
+  std::string log_damage;  ///< where the log is damaged and was read up to; "" for a whole log
   std::vector<std::string> warnings;  ///< one line each
 };
 

@@ -48,6 +48,7 @@ offline::FlightRecord aRecord() {
   r.esc_flagged_channel = 3;
   r.supply_resistance_ohm = pe::kNaN;
   r.esc_flags = {"propeller on channel 3"};
+  r.log_damage = "logs/v03/flight.bag: at byte 299956: D message: truncated (41 of 274 bytes)";
   r.warnings = {"the motor-health check flagged channel 3 (\"its share\": beyond the spread)", "a line\nof two"};
   return r;
 }
@@ -89,6 +90,7 @@ void expectSame(const offline::FlightRecord& a, const offline::FlightRecord& b) 
   EXPECT_EQ(a.esc_flagged_channel, b.esc_flagged_channel);
   EXPECT_TRUE(same(a.supply_resistance_ohm, b.supply_resistance_ohm));
   EXPECT_EQ(a.esc_flags, b.esc_flags);
+  EXPECT_EQ(a.log_damage, b.log_damage);
   EXPECT_EQ(a.warnings, b.warnings);
 }
 

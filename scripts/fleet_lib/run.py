@@ -1,0 +1,132 @@
+"""fleet's command line: every log of the description not kept yet is estimated (on --jobs local
+workers or, with --scheduler, on a Dask distributed cluster), each finished flight written to the
+database at once, then the trends and the report are made from everything the database holds."""
+import argparse
+import concurrent.futures
+import datetime
+import os
+import shutil
+import sys
+
+from . import database, description, references, report, task
+
+
+def _tool(name, given):
+    """The package's tool `name`: --estimate/--diagnose-gap, else beside this script (the devel and
+    install spaces put both in the package's lib folder), else on PATH."""
+    if given:
+        return given
+    here = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
+    for folder in (here, os.path.dirname(os.path.abspath(sys.argv[0]))):
+        candidate = os.path.join(folder, name)
+        if os.access(candidate, os.X_OK):
+            return candidate
+    found = shutil.which(name)
+    if not found:
+        raise SystemExit("fleet: cannot find the %s tool: give --%s" % (name, name.replace("_", "-")))
+    return found
+
+
+def _reference_models(fleet, diagnose_gap, workers):
+    """Each vehicle's model with its reference (learned on `workers` threads where a manifest is
+    given), and one line for each vehicle whose reference could not be learned."""
+    folder = os.path.dirname(os.path.abspath(fleet.database))
+
+    def learn(vehicle):
+        try:
+            return vehicle.name, references.model_for(vehicle, folder, diagnose_gap, sys.executable), None
+        except references.ReferenceError as error:
+            return vehicle.name, None, str(error)
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
+        learned = list(pool.map(learn, fleet.vehicles.values()))
+    return ({name: model for name, model, _ in learned if model},
+            {name: problem for name, _, problem in learned if problem})
+
+
+def jobs_for(fleet, connection, estimate, diagnose_gap, workers):
+    """The tasks of every log not kept yet, and one line for each vehicle whose reference failed."""
+    kept = database.seen(connection)
+    models, problems = _reference_models(fleet, diagnose_gap, workers)
+    jobs = []
+    for name, log, pack, problem in description.logs(fleet):
+        try:
+            digest = task.sha256(log)
+        except OSError:
+            digest = "unreadable:" + log
+        if (name, digest) in kept:
+            continue
+        job = dict(vehicle=name, log=log, pack=pack, estimate=estimate, problem=problem or problems.get(name))
+        vehicle = fleet.vehicles.get(name)
+        if vehicle is not None and name in models:
+            rotors = references.motor_count(models[name])
+            job.update(model=models[name], urdf=vehicle.urdf, params=vehicle.params,
+                       empty_mass_kg=vehicle.empty_mass_kg, rotors=rotors,
+                       reference="vehicle" if rotors is not None else "none")
+        jobs.append(job)
+    return jobs, problems
+
+
+def _local(jobs, workers):
+    # Each task is an estimate process: threads only wait on it.
+    with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
+        futures = [pool.submit(task.estimate_flight, job) for job in jobs]
+        for future in concurrent.futures.as_completed(futures):
+            yield future.result()
+
+
+def _dask(jobs, address):
+    import cloudpickle
+    from distributed import Client, as_completed
+    # The workers need not have this package on their path: the task goes with its code.
+    cloudpickle.register_pickle_by_value(task)
+    with Client(address) as client:
+        futures = client.map(task.estimate_flight, jobs, pure=False)
+        for future in as_completed(futures):
+            yield future.result()
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog="fleet", description="Estimates every new flight of every vehicle of a fleet against its own healthy "
+        "reference, keeps one row per flight in an SQLite database and reports the trends (docs/fleet.md).")
+    parser.add_argument("description", help="the fleet description (YAML)")
+    engine = parser.add_mutually_exclusive_group()
+    engine.add_argument("--jobs", type=int, default=1, help="logs estimated in parallel on this machine (default 1)")
+    engine.add_argument("--scheduler", help="a Dask distributed scheduler's address (tcp://host:8786): each log a task")
+    parser.add_argument("--estimate", help="the estimate tool (default: the package's)")
+    parser.add_argument("--diagnose-gap", help="the diagnose_gap tool, which learns references (default: the package's)")
+    parser.add_argument("--no-report", action="store_true", help="update the database only")
+    parser.add_argument("--quiet", action="store_true", help="no line per flight")
+    args = parser.parse_args(argv)
+    if args.jobs < 1:
+        parser.error("--jobs: %d is not a number of workers (1 or more)" % args.jobs)
+    try:
+        fleet = description.load(args.description)
+        connection = database.connect(fleet.database)
+    except (description.DescriptionError, database.DatabaseError) as error:
+        print("fleet: %s" % error, file=sys.stderr)
+        return 2
+    estimate = _tool("estimate", args.estimate)
+    diagnose_gap = _tool("diagnose_gap", args.diagnose_gap)
+    jobs, problems = jobs_for(fleet, connection, estimate, diagnose_gap, args.jobs)
+    for line in problems.values():
+        print("fleet: %s" % line, file=sys.stderr)
+    engine_name = "dask %s" % args.scheduler if args.scheduler else "jobs %d" % args.jobs
+    run_id = database.start_run(connection, datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+                                os.path.abspath(args.description), engine_name)
+    rows = _dask(jobs, args.scheduler) if args.scheduler else _local(jobs, args.jobs)
+    refused = 0
+    for count, row in enumerate(rows, start=1):
+        database.insert_flight(connection, row, run_id)
+        refused += row["status"] == "refused"
+        if not args.quiet:
+            what = row["problem"] if row["status"] == "refused" else "%d hovers, %d rotors judged" % (
+                len(row["hovers"]), len(row["rotors"]))
+            print("[%d/%d] %s %s: %s" % (count, len(jobs), row["vehicle"] or "?", row["log"], what), flush=True)
+    print("fleet: %d new flights (%d refused) in %s" % (len(jobs), refused, fleet.database))
+    if not args.no_report:
+        written = report.write(fleet, database.flights(connection), problems)
+        print("fleet: report %s" % written)
+    connection.close()
+    return 0

@@ -1,0 +1,128 @@
+"""fleet on a small simulated fleet: the same rows whatever runs the tasks (one local worker, two,
+a two-worker Dask LocalCluster); a run killed mid-way and restarted keeps every flight exactly
+once and none half-written; bad logs, an unknown vehicle and a reference that does not match the
+vehicle each give one line in the database and the report while the run goes on."""
+import os
+import shutil
+import signal
+import sqlite3
+import subprocess
+
+import yaml
+from conftest import fleet_command, variant
+
+from fleet_lib import database
+
+
+def rows(path):
+    connection = database.connect(path)
+    try:
+        flights = database.flights(connection)
+    finally:
+        connection.close()
+    for flight in flights:
+        del flight["id"]
+    return sorted(flights, key=lambda f: (f["vehicle"], f["log"]))
+
+
+def logs_in(folder):
+    return sorted(os.listdir(os.path.join(folder, "logs")))
+
+
+def test_one_worker_two_workers_and_a_dask_cluster_give_the_same_rows(small_fleet):
+    from distributed import LocalCluster
+    one = variant(small_fleet, "jobs1", database="jobs1.sqlite", report="jobs1_report")
+    two = variant(small_fleet, "jobs2", database="jobs2.sqlite", report="jobs2_report")
+    dask = variant(small_fleet, "dask", database="dask.sqlite", report="dask_report")
+    subprocess.run(fleet_command(one, "--jobs", "1", "--quiet"), check=True)
+    subprocess.run(fleet_command(two, "--jobs", "2", "--quiet"), check=True)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        subprocess.run(fleet_command(dask, "--scheduler", cluster.scheduler_address, "--quiet"), check=True)
+    first = rows(os.path.join(small_fleet, "jobs1.sqlite"))
+    assert len(first) == len(logs_in(small_fleet)) == 18
+    assert all(f["status"] == "estimated" and len(f["rotors"]) == 4 and f["hovers"] for f in first)
+    assert first == rows(os.path.join(small_fleet, "jobs2.sqlite"))
+    assert first == rows(os.path.join(small_fleet, "dask.sqlite"))
+    engines = sqlite3.connect(os.path.join(small_fleet, "dask.sqlite")).execute("SELECT engine FROM runs").fetchall()
+    assert engines[0][0].startswith("dask tcp://")
+    # A second run finds nothing new and changes nothing.
+    subprocess.run(fleet_command(one, "--quiet"), check=True)
+    assert rows(os.path.join(small_fleet, "jobs1.sqlite")) == first
+
+
+def test_a_run_killed_mid_way_and_restarted_keeps_every_flight_exactly_once(small_fleet):
+    path = variant(small_fleet, "killed", database="killed.sqlite", report="killed_report")
+    for wanted in (3, 9):
+        # Killed (SIGKILL, no clean-up) once `wanted` flights of this run were written.
+        process = subprocess.Popen(fleet_command(path, "--jobs", "2"), stdout=subprocess.PIPE, text=True,
+                                   start_new_session=True)
+        written = 0
+        for line in process.stdout:
+            written += line.startswith("[")
+            if written == wanted:
+                os.killpg(process.pid, signal.SIGKILL)
+                break
+        process.wait()
+        assert process.returncode == -signal.SIGKILL
+    kept = rows(os.path.join(small_fleet, "killed.sqlite"))
+    assert 3 <= len(kept) < 18
+    subprocess.run(fleet_command(path, "--quiet"), check=True)
+    kept = rows(os.path.join(small_fleet, "killed.sqlite"))
+    assert sorted(os.path.basename(f["log"]) for f in kept) == logs_in(small_fleet)
+    # None half-written: every flight with all its rotors and hovers.
+    assert all(len(f["rotors"]) == 4 and f["hovers"] for f in kept)
+    assert kept == rows(os.path.join(small_fleet, "jobs1.sqlite")) or not os.path.exists(
+        os.path.join(small_fleet, "jobs1.sqlite"))
+
+
+def test_bad_logs_an_unknown_vehicle_and_a_mismatched_reference_are_one_line_each(small_fleet, tmp_path):
+    folder = str(tmp_path)
+    for name in ("model.yaml", "f450_quad.urdf", "node_params.yaml", "fleet.yaml"):
+        shutil.copy(os.path.join(small_fleet, name), folder)
+    for vehicle in ("v01", "v02", "v03"):
+        os.symlink(os.path.join(small_fleet, vehicle), os.path.join(folder, vehicle))
+    os.mkdir(os.path.join(folder, "logs"))
+    for log in logs_in(small_fleet):
+        os.symlink(os.path.join(small_fleet, "logs", log), os.path.join(folder, "logs", log))
+    with open(os.path.join(small_fleet, "logs", "v01_flight_001_pack-v01A.ulg"), "rb") as handle:
+        whole = handle.read()
+    with open(os.path.join(folder, "logs", "v01_flight_007_pack-v01A.ulg"), "wb") as handle:
+        handle.write(whole[:len(whole) // 3])  # truncated mid-flight
+    with open(os.path.join(folder, "logs", "v02_flight_007_pack-v02A.ulg"), "wb") as handle:
+        handle.write(bytes(range(256)) * 64)  # of no known format
+    with open(os.path.join(folder, "logs", "v99_flight_001_pack-v99A.ulg"), "wb") as handle:
+        handle.write(whole)  # a vehicle the description does not hold
+    # v03's model carries a reference of six rotors: it does not match its four motors.
+    with open(os.path.join(folder, "model.yaml")) as handle:
+        model = yaml.safe_load(handle)
+    model["motor_reference"] = {"flights": 3, "shares": [1 / 6.0] * 6, "share_std": [0.001] * 6,
+                                "gap_std": [0.002] * 6}
+    with open(os.path.join(folder, "hexa_reference_model.yaml"), "w") as handle:
+        yaml.safe_dump(model, handle)
+    with open(os.path.join(folder, "fleet.yaml")) as handle:
+        fleet = yaml.safe_load(handle)
+    fleet["vehicles"][2] = {"name": "v03", "model": "hexa_reference_model.yaml", "urdf": "f450_quad.urdf"}
+    with open(os.path.join(folder, "fleet.yaml"), "w") as handle:
+        yaml.safe_dump(fleet, handle)
+    done = subprocess.run(fleet_command(os.path.join(folder, "fleet.yaml"), "--jobs", "2", "--quiet"),
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    assert done.returncode == 0, done.stdout
+    kept = {os.path.basename(f["log"]): f for f in rows(os.path.join(folder, "fleet.sqlite"))}
+    assert len(kept) == 18 + 3
+    truncated = kept["v01_flight_007_pack-v01A.ulg"]
+    assert truncated["status"] == "damaged" and "truncated" in truncated["problem"]
+    garbage = kept["v02_flight_007_pack-v02A.ulg"]
+    assert garbage["status"] == "refused" and "format" in garbage["problem"], garbage["problem"]
+    unknown = kept["v99_flight_001_pack-v99A.ulg"]
+    assert unknown["status"] == "refused" and unknown["problem"] == "vehicle 'v99' is not in the fleet description"
+    mismatched = [f for name, f in kept.items() if name.startswith("v03_")]
+    assert len(mismatched) == 6
+    assert all(f["status"] == "refused" and "motor_reference.shares: 6 shares for 4 rotors" in f["problem"]
+               for f in mismatched), mismatched[0]["problem"]
+    assert all(f["status"] == "estimated" for name, f in kept.items() if name.startswith("v01_") and "007" not in name)
+    with open(os.path.join(folder, "fleet_report", "README.md")) as handle:
+        report = handle.read()
+    problems = report.split("## Logs with problems")[1]
+    for flight in [truncated, garbage, unknown] + mismatched:
+        assert flight["problem"] in problems
+        assert "\n" not in flight["problem"]
