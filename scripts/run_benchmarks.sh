@@ -10,6 +10,7 @@
 #      (default 2000) at 100 Hz after a 15 s warm-up;
 #   4. scripts/bench_diagnose_gap.sh: diagnose_gap on an hour of flight (simulated once, cached).
 #   5. scripts/bench_diagnose_ulog.sh: diagnose_gap and estimate on an hour of PX4 ULog (simulated once, cached).
+#   6. scripts/bench_fleet.sh: fleet on 200 simulated flights (simulated once, cached): flight-hours per core-second.
 # QUICK=1 (make bench QUICK=1) tries the pipeline: one round of 10 s per system, 500 messages under callgrind, no
 # diagnose_gap, and the document goes to the work directory instead of docs/BENCHMARKS.md.
 # Usage, after `make build` and `source .ws/install/setup.sh`: scripts/run_benchmarks.sh [WORK_DIR]
@@ -74,6 +75,8 @@ if [ "$quick" != 1 ]; then
   echo "== diagnose_gap and estimate on an hour of PX4 ULog"
   run diagnose_ulog scripts/bench_diagnose_ulog.sh "$bin" "${BENCH_ULOG_CACHE:-.ws/bench_diagnose_ulog}" \
     "$work/diagnose_ulog.json"
+  echo "== fleet on 200 flights"
+  run fleet scripts/bench_fleet.sh "$bin" "${BENCH_FLEET_CACHE:-.ws/bench_fleet}" "$work/fleet.json"
 fi
 
 cut -d' ' -f1-3 /proc/loadavg >"$work/load_end.txt"

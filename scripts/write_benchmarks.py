@@ -183,6 +183,17 @@ def diagnose_ulog_table(ulog):
     return "\n".join(lines)
 
 
+def fleet_table(fleet):
+    if fleet is None:
+        return NOT_MEASURED + " (make bench QUICK=1 skips it)."
+    return "\n".join([
+        "| flights | flight-hours | whole run, `--jobs 2` | CPU time | peak memory | flight-hours per core-second | "
+        "1,000 flight-hours on 16 cores |", "|---:|---:|---:|---:|---:|---:|---:|",
+        "| %d | %.2f | %.1f s | %.1f s | %.0f MB | %.4f | %.1f min |" % (
+            fleet["flights"], fleet["flight_hours"], fleet["wall_s"], fleet["cpu_s"], fleet["peak_kb"] / 1024.0,
+            fleet["hours_per_core_s"], fleet["minutes_1000h_16_cores"])])
+
+
 def machine():
     info = {"cpu_model": "?", "cpu_mhz": "?", "memory": "?"}
     try:
@@ -234,7 +245,7 @@ def values(results, args):
              e2e_table=e2e_table(e2e), e2e_ratios=e2e_ratios(e2e), e2e_commands=e2e_commands(e2e, commands, repo),
              callgrind_table=callgrind_table(callgrind), diagnose_gap_table=diagnose_gap_table(
                  results.json("diagnose_gap.json")), diagnose_ulog_table=diagnose_ulog_table(
-                 results.json("diagnose_ulog.json")))
+                 results.json("diagnose_ulog.json")), fleet_table=fleet_table(results.json("fleet.json")))
     for key in ("channels", "rate_hz", "battery_rate_hz", "duration_s", "rounds"):
         v[key] = number(e2e[key]) if e2e else "?"
     for key, field in (("callgrind_sent", "rc_out_sent"), ("callgrind_handled", "handled"),

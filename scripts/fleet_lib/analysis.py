@@ -30,7 +30,7 @@ def rotor_line(vehicle, channel, story, flights, band):
     names = [os.path.basename(f["log"]) for f in flights]
     where = "vehicle %s motor %d" % (vehicle, channel)
     if story["story"] == "drift" and story["rate"] < 0:
-        text = ("%s is wearing: its thrust falls %.2f %% per flight (+-%.2f) since flight %d (%s), now %.1f %% of its "
+        text = ("%s is wearing: its thrust falls %.2f %% per flight (+-%.2f %%) since flight %d (%s), now %.1f %% of its "
                 "reference" % (where, -100 * story["rate"], 100 * story["rate_std"], story["onset"] + 1,
                                names[story["onset"]], 100 * story["now"]))
         if story["outside"]:

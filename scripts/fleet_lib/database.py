@@ -19,11 +19,13 @@ MIGRATIONS = [
       vehicle TEXT NOT NULL,             -- as the description names it ('' when no vehicle was found)
       log TEXT NOT NULL,                 -- the log's path as found
       log_sha256 TEXT NOT NULL,          -- its content: a log seen before under another name is not run again
+      log_time_utc TEXT,                 -- the log file's modification time (ISO 8601): when it was closed, where copies keep it
       pack TEXT,                         -- the pack's identity, NULL when the description gives none
       -- estimated; damaged: estimated up to where the log is damaged; refused: not estimated
       status TEXT NOT NULL CHECK (status IN ('estimated', 'damaged', 'refused')),
       problem TEXT,                      -- one line when damaged or refused
       reference TEXT NOT NULL,           -- 'vehicle' (judged against its healthy reference) or 'none'
+      duration_s REAL,                   -- the log's first message to its last
       hover_mass_kg REAL,                -- the mean of the hovers' averaged total masses
       pack_resistance_ohm REAL,
       pack_resistance_std_ohm REAL,
@@ -55,7 +57,7 @@ MIGRATIONS = [
 VERSION = len(MIGRATIONS)
 
 # Row fields compared across engines and runs (the ids and the run differ, nothing else may).
-FLIGHT_FIELDS = ("vehicle", "log", "log_sha256", "pack", "status", "problem", "reference", "hover_mass_kg",
+FLIGHT_FIELDS = ("vehicle", "log", "log_sha256", "log_time_utc", "pack", "status", "problem", "reference", "duration_s", "hover_mass_kg",
                  "pack_resistance_ohm", "pack_resistance_std_ohm", "supply_resistance_ohm", "esc_verdict",
                  "flagged_channel", "warnings")
 

@@ -104,7 +104,8 @@ def write(fleet, flights, problems):
     lines = ["# Fleet report", "",
              "%d vehicles, %d flights (%d refused), from `%s`. Each rotor's factor is its thrust against its share on "
              "the vehicle's healthy reference flights (100 %%: as then); the healthy band is +-%.0f %%." % (
-                 len(vehicles), len(flights), sum(f["status"] == "refused" for f in flights), fleet.database,
+                 len(vehicles), len(flights), sum(f["status"] == "refused" for f in flights),
+                 os.path.relpath(fleet.database, os.path.dirname(os.path.abspath(fleet.path))),
                  100 * fleet.healthy_band), "", "## To inspect", ""]
     wanted = [f for f in findings if f.attention]
     lines += ["- **%s**: %s ([page](vehicle_%s.md))" % (f.vehicle, f.line, f.vehicle) for f in wanted] or ["Nothing."]

@@ -2,6 +2,7 @@
 its vehicle's model, and its rotors judged against the vehicle's healthy reference. A plain
 function of plain values, so that it runs the same in a thread, a process or on a Dask worker;
 what it returns is the flight's row, and nothing in it depends on where it ran."""
+import datetime
 import glob
 import hashlib
 import math
@@ -23,9 +24,19 @@ def sha256(path):
     return digest.hexdigest()
 
 
+def log_time(path):
+    """The log file's modification time, UTC, ISO 8601; None when it cannot be read."""
+    try:
+        stamp = os.stat(path).st_mtime
+    except OSError:
+        return None
+    return datetime.datetime.fromtimestamp(stamp, datetime.timezone.utc).isoformat(timespec="seconds")
+
+
 def _refused(job, problem, digest):
-    return dict(vehicle=job["vehicle"], log=job["log"], log_sha256=digest, pack=job.get("pack"), status="refused",
-                problem=problem, reference=job.get("reference", "none"), hover_mass_kg=None, pack_resistance_ohm=None,
+    return dict(vehicle=job["vehicle"], log=job["log"], log_sha256=digest, log_time_utc=log_time(job["log"]),
+                pack=job.get("pack"), status="refused",
+                problem=problem, reference=job.get("reference", "none"), duration_s=None, hover_mass_kg=None, pack_resistance_ohm=None,
                 pack_resistance_std_ohm=None, supply_resistance_ohm=None, esc_verdict=None, flagged_channel=None,
                 warnings=[], hovers=[], rotors=[])
 
@@ -56,8 +67,9 @@ def row_of(job, digest, record):
     pack = record["pack"]
     esc = record["esc"]
     damage = record.get("log_damage") or None
-    return dict(vehicle=job["vehicle"], log=job["log"], log_sha256=digest, pack=job.get("pack"),
-                status="damaged" if damage else "estimated", problem=damage, reference=job["reference"],
+    return dict(vehicle=job["vehicle"], log=job["log"], log_sha256=digest, log_time_utc=log_time(job["log"]),
+                pack=job.get("pack"), status="damaged" if damage else "estimated", problem=damage, reference=job["reference"],
+                duration_s=float(record["duration_s"]),
                 hover_mass_kg=sum(masses) / len(masses) if masses else None,
                 pack_resistance_ohm=_number(pack.get("internal_resistance_ohm")),
                 pack_resistance_std_ohm=_number(pack.get("internal_resistance_std_ohm")),

@@ -239,6 +239,7 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
   FlightEstimate result;
   result.source = streams.source;
   const FlightFeed feed(streams);
+  if (!feed.arrivals().empty()) result.duration_s = feed.arrivals().back().time_s - feed.arrivals().front().time_s;
   for (const Arrival& a : feed.arrivals()) {
     if (!feed.feed(a, &session)) continue;
     const EstimatorOutput& out = session.estimator().output();

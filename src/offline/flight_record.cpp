@@ -114,6 +114,7 @@ MotorHealthVerdict readMotorHealth(const YamlMap& map) {
 FlightRecord flightRecordOf(const FlightEstimate& e) {
   FlightRecord r;
   r.source = e.source;
+  r.duration_s = e.duration_s;
   r.empty_mass_kg = e.empty_mass_kg;
   r.hovers = e.hovers;
   r.motor_health = e.motor_health;
@@ -135,6 +136,7 @@ std::string flightRecordText(const FlightRecord& r) {
        << YAML::Newline << YAML::BeginMap;
   yaml << YAML::Key << "format" << YAML::Value << kFormat << YAML::Key << "version" << YAML::Value << kVersion;
   yaml << YAML::Key << "source" << YAML::Value << YAML::DoubleQuoted << r.source;
+  yaml << YAML::Key << "duration_s" << YAML::Value << exact(r.duration_s);
   emitNumber(&yaml, "empty_mass_kg", r.empty_mass_kg);
   yaml << YAML::Key << "hovers" << YAML::Value << YAML::BeginSeq;
   for (const HoverEpisode& h : r.hovers) emitHover(&yaml, h);
@@ -160,7 +162,7 @@ std::string flightRecordText(const FlightRecord& r) {
 
 FlightRecord parseFlightRecord(const std::string& text, const std::string& source) {
   const YamlMap root = parseYamlDocument(text, source);
-  root.allowOnly({"format", "version", "source", "empty_mass_kg", "hovers", "motor_health", "flagged_channels",
+  root.allowOnly({"format", "version", "source", "duration_s", "empty_mass_kg", "hovers", "motor_health", "flagged_channels",
                   "pack", "esc", "log_damage", "warnings"});
   if (root.text("format") != kFormat) root.fail("format", "'" + root.text("format") + "' is not " + kFormat);
   if (root.integer("version") != kVersion) {
@@ -169,6 +171,8 @@ FlightRecord parseFlightRecord(const std::string& text, const std::string& sourc
   }
   FlightRecord r;
   r.source = root.text("source");
+  r.duration_s = root.number("duration_s");
+  if (r.duration_s < 0.0) root.fail("duration_s", exact(r.duration_s) + " is negative");
   r.empty_mass_kg = optional(root, "empty_mass_kg");
   for (const YamlMap& hover : root.maps("hovers")) r.hovers.push_back(readHover(hover));
   r.motor_health = readMotorHealth(root.map("motor_health"));

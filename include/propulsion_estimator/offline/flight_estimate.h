@@ -62,6 +62,7 @@ struct HoverEpisode {
 /// What the node would have said over a whole logged flight.
 struct FlightEstimate {
   std::string source;  ///< the log
+  double duration_s = 0.0;  ///< s from the log's first message to its last
   std::vector<EstimateSample> samples;  ///< at EstimateOptions::sample_rate_hz
   std::vector<HoverEpisode> hovers;  ///< in time order
   EstimatorCounters counters;  ///< inputs accepted and refused

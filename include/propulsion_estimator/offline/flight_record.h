@@ -17,6 +17,7 @@ namespace offline {
 /// format: propulsion_estimator/flight_record
 /// version: 1
 /// source: logs/v03/flight_012.bag
+/// duration_s: 71.3
 /// empty_mass_kg: 1.315
 /// hovers: [{start_s: 9.1, end_s: 31.0, total_mass_kg: 1.482, mass_std_kg: 0.004, payload_kg: 0.167, ...}]
 /// motor_health: {judged: true, blocks: 10, flagged_channel: 0, motors: [{channel: 1, thrust_gap: 0.004, thrust_gap_std: 0.006}, ...]}
@@ -27,6 +28,7 @@ namespace offline {
 /// @endcode
 struct FlightRecord {
   std::string source;  ///< the log
+  double duration_s = 0.0;  ///< s from the log's first message to its last
   double empty_mass_kg = kNaN;  ///< kg; NaN when unknown
   std::vector<HoverEpisode> hovers;  ///< in time order
   MotorHealthVerdict motor_health;  ///< the last judged window (judged false: why not)

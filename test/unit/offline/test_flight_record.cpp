@@ -16,6 +16,7 @@ namespace {
 offline::FlightRecord aRecord() {
   offline::FlightRecord r;
   r.source = "logs/v03/flight \"12\": #1.bag";
+  r.duration_s = 71.30000000000001;
   r.empty_mass_kg = 1.3151234567890123;
   offline::HoverEpisode first;
   first.start_s = 9.1;
@@ -57,6 +58,7 @@ bool same(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == 
 
 void expectSame(const offline::FlightRecord& a, const offline::FlightRecord& b) {
   EXPECT_EQ(a.source, b.source);
+  EXPECT_EQ(a.duration_s, b.duration_s);
   EXPECT_TRUE(same(a.empty_mass_kg, b.empty_mass_kg));
   ASSERT_EQ(a.hovers.size(), b.hovers.size());
   for (std::size_t i = 0; i < a.hovers.size(); ++i) {
@@ -144,4 +146,6 @@ TEST(FlightRecord, RefusesWhatIsNotOneWithTheKeyNamed) {
             std::string::npos);
   EXPECT_NE(refusal(replaced(text, "pack:", "battery:")).find("battery"), std::string::npos);
   EXPECT_NE(refusal(text + "warnings_too: []\n").find("warnings_too"), std::string::npos);
+  EXPECT_NE(refusal(replaced(text, "duration_s: 71.300000000000011", "duration_s: -1")).find("duration_s: -1 is negative"),
+            std::string::npos);
 }
