@@ -157,6 +157,7 @@ def main():
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--format", choices=sorted(EXTENSIONS), default="ulog")
     args = parser.parse_args()
+    args.out = os.path.abspath(args.out)  # the profiles name the URDF from their own folders
     if os.path.exists(args.out):
         shutil.rmtree(args.out)
     os.makedirs(args.out)

@@ -26,13 +26,16 @@ class Finding:
 
 
 def rotor_line(vehicle, channel, story, flights, band):
-    """The finding of one rotor's story, or None when there is nothing to say."""
-    names = [os.path.basename(f["log"]) for f in flights]
+    """The finding of one rotor's story, or None when there is nothing to say. `flights`: the
+    series' flights, each with its `number` among its vehicle's flights (1-based, log order)."""
+    def flight(index):
+        return "flight %d (%s)" % (flights[index]["number"], os.path.basename(flights[index]["log"]))
+
     where = "vehicle %s motor %d" % (vehicle, channel)
     if story["story"] == "drift" and story["rate"] < 0:
-        text = ("%s is wearing: its thrust falls %.2f %% per flight (+-%.2f %%) since flight %d (%s), now %.1f %% of its "
-                "reference" % (where, -100 * story["rate"], 100 * story["rate_std"], story["onset"] + 1,
-                               names[story["onset"]], 100 * story["now"]))
+        text = ("%s is wearing: its thrust falls %.2f %% per flight (+-%.2f %%) after %s, now %.1f %% of its "
+                "reference" % (where, -100 * story["rate"], 100 * story["rate_std"], flight(story["onset"]),
+                               100 * story["now"]))
         if story["outside"]:
             text += ", outside the healthy band (+-%.0f %%): inspect its propeller and motor now" % (100 * band)
         else:
@@ -41,13 +44,13 @@ def rotor_line(vehicle, channel, story, flights, band):
         return Finding(vehicle, "motor %d" % channel, "wear", text)
     if story["story"] == "drift":
         return Finding(vehicle, "motor %d" % channel, "drift",
-                       "%s drifts: its thrust rises %.2f %% per flight since flight %d (%s), now %.1f %% of its "
+                       "%s drifts: its thrust rises %.2f %% per flight after %s, now %.1f %% of its "
                        "reference: the reference may not be this vehicle's" % (
-                           where, 100 * story["rate"], story["onset"] + 1, names[story["onset"]], 100 * story["now"]))
+                           where, 100 * story["rate"], flight(story["onset"]), 100 * story["now"]))
     if story["story"] == "step":
-        text = ("%s stepped from %.1f %% to %.1f %% of its reference at flight %d (%s): a part changed (a new "
+        text = ("%s stepped from %.1f %% to %.1f %% of its reference at %s: a part changed (a new "
                 "propeller or motor); a step, not wear" % (where, 100 * story["before"], 100 * story["after"],
-                                                           story["at"] + 1, names[story["at"]]))
+                                                           flight(story["at"])))
         if "then" in story and story["then"]["rate"] < 0:
             text += ", and it wears since: %.2f %% per flight" % (-100 * story["then"]["rate"])
         text += ("; outside the healthy band: inspect it" if story["outside"] else
@@ -98,6 +101,8 @@ def analyse(fleet, flights):
     flights = ordered(flights)
     for name in sorted(set(fleet.vehicles) | {f["vehicle"] for f in flights}):
         own = [f for f in flights if f["vehicle"] == name]
+        for number, f in enumerate(own, start=1):
+            f["number"] = number
         estimated = [f for f in own if f["status"] != "refused"]
         judged = [f for f in estimated if f["rotors"]]
         channels = sorted({r["channel"] for f in judged for r in f["rotors"]})

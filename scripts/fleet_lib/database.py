@@ -113,15 +113,29 @@ def start_run(connection, started_at, description, engine):
 
 
 def seen(connection):
-    """The (vehicle, log_sha256) of every flight kept."""
-    return set(connection.execute("SELECT vehicle, log_sha256 FROM flights"))
+    """The (vehicle, log_sha256) of every flight kept as estimated or damaged. A refused log is
+    tried again on every run (its vehicle may have been added, its reference mended)."""
+    return set(connection.execute("SELECT vehicle, log_sha256 FROM flights WHERE status != 'refused'"))
+
+
+def _forget(connection, where, values):
+    ids = [row[0] for row in connection.execute("SELECT id FROM flights WHERE " + where, values)]
+    for flight_id in ids:
+        for table in ("hovers", "rotors"):
+            connection.execute("DELETE FROM %s WHERE flight_id = ?" % table, (flight_id,))
+        connection.execute("DELETE FROM flights WHERE id = ?", (flight_id,))
 
 
 def insert_flight(connection, row, run_id):
-    """Writes one flight (a task's row) in one transaction: all of it or nothing. A flight already
-    kept (same vehicle and content) is left as it is; returns whether it was written."""
+    """Writes one flight (a task's row) in one transaction: all of it or nothing. It replaces an
+    earlier refused row of the same log and content, and an earlier refused or damaged row of the
+    same log path (a log read while it was still being copied, then whole). A flight already kept
+    (same vehicle and content, estimated or damaged) is left as it is; returns whether it was written."""
     connection.execute("BEGIN IMMEDIATE")
     try:
+        _forget(connection, "vehicle = ? AND log_sha256 = ? AND status = 'refused'", (row["vehicle"], row["log_sha256"]))
+        _forget(connection, "vehicle = ? AND log = ? AND status != 'estimated' AND log_sha256 != ?",
+                (row["vehicle"], row["log"], row["log_sha256"]))
         values = [row[field] if field != "warnings" else json.dumps(row["warnings"]) for field in FLIGHT_FIELDS]
         cursor = connection.execute(
             "INSERT OR IGNORE INTO flights (%s, run_id) VALUES (%s)" % (", ".join(FLIGHT_FIELDS),

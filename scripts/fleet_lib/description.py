@@ -138,6 +138,9 @@ def load(path):
         if "vehicle_pattern" not in root:
             _fail(path, "vehicle_pattern", "missing: the fleet's logs need the pattern that names a log's vehicle")
         vehicle_pattern = _pattern(path, "vehicle_pattern", root["vehicle_pattern"], group="vehicle")
+    for key in ("database", "report"):
+        if key in root and (not isinstance(root[key], str) or not root[key]):
+            _fail(path, key, "expected a path, got %r" % (root[key],))
     band = root.get("healthy_band", 0.05)
     if not isinstance(band, (int, float)) or isinstance(band, bool) or not 0.005 <= band <= 0.5:
         _fail(path, "healthy_band", "%r is outside 0.005..0.5 (a share of the rotor's thrust)" % (band,))

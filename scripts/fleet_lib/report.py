@@ -26,15 +26,18 @@ def _rotor_cell(rotors):
 
 def _plot_rotors(axes, vehicle, band, title):
     for channel, rotor in sorted(vehicle["rotors"].items()):
-        xs = list(range(1, len(rotor["factors"]) + 1))
+        xs = [f["number"] for f in rotor["flights"]]
         ys = [100 * r["factor"] for r in rotor["factors"]]
         line, = axes.plot(xs, ys, ".-", linewidth=0.8, markersize=3, label="motor %d" % channel)
         story = rotor["story"]
+        # The story's fit over the series' positions (the flights judged), drawn at their numbers.
         if story["story"] == "drift":
-            fit = [story["level"] + story["rate"] * max(0, x - 1 - story["onset"]) for x in xs]
+            fit = [story["level"] + story["rate"] * max(0, i - story["onset"]) for i in range(len(xs))]
             axes.plot(xs, [100 * v for v in fit], "-", color=line.get_color(), linewidth=2, alpha=0.6)
         elif story["story"] == "step":
-            fit = [story["before"] if x - 1 < story["at"] else story["after"] for x in xs]
+            then = story.get("then")
+            fit = [story["before"] if i < story["at"] else
+                   (then["level"] + then["rate"] * (i - story["at"]) if then else story["after"]) for i in range(len(xs))]
             axes.plot(xs, [100 * v for v in fit], "--", color=line.get_color(), linewidth=2, alpha=0.6)
     axes.axhspan(100 * (1 - band), 100 * (1 + band), color="0.9", zorder=0)
     axes.set_title(title, fontsize=8)
@@ -69,10 +72,10 @@ def _vehicle_page(folder, name, vehicle, findings, band):
     top.set_ylabel("% of reference thrust", fontsize=7)
     top.legend(fontsize=7)
     for pack, data in sorted(vehicle["packs"].items()):
-        bottom.plot(range(1, len(data["flights"]) + 1), [1e3 * f["pack_resistance_ohm"] for f in data["flights"]],
+        bottom.plot([f["number"] for f in data["flights"]], [1e3 * f["pack_resistance_ohm"] for f in data["flights"]],
                     ".-", label="pack %s%s" % (pack, " (ageing)" if data["story"]["ageing"] else ""))
-    bottom.set_title("%s: pack resistance over each pack's flights" % name, fontsize=8)
-    bottom.set_xlabel("the pack's flight", fontsize=7)
+    bottom.set_title("%s: pack resistance on the flights it flew" % name, fontsize=8)
+    bottom.set_xlabel("flight", fontsize=7)
     bottom.set_ylabel("mOhm", fontsize=7)
     if vehicle["packs"]:
         bottom.legend(fontsize=7)
@@ -99,6 +102,9 @@ def write(fleet, flights, problems):
     """Writes the report into fleet.report; returns its README's path."""
     folder = fleet.report
     os.makedirs(folder, exist_ok=True)
+    for stale in os.listdir(folder):  # pages of vehicles that no longer need attention
+        if stale.startswith("vehicle_") and stale.endswith((".md", ".png")):
+            os.remove(os.path.join(folder, stale))
     vehicles, findings = analysis.analyse(fleet, flights)
     attention = sorted({f.vehicle for f in findings if f.attention})
     lines = ["# Fleet report", "",

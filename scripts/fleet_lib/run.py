@@ -34,9 +34,13 @@ def _reference_models(fleet, diagnose_gap, workers):
 
     def learn(vehicle):
         try:
-            return vehicle.name, references.model_for(vehicle, folder, diagnose_gap, sys.executable), None
+            model = references.model_for(vehicle, folder, diagnose_gap, sys.executable)
+            return vehicle.name, (model, references.motor_count(model) is not None), None
         except references.ReferenceError as error:
             return vehicle.name, None, str(error)
+        except Exception as error:  # noqa: BLE001: one vehicle's model never stops the run
+            return vehicle.name, None, "vehicle %s: its model or reference cannot be used: %s: %s" % (
+                vehicle.name, type(error).__name__, error)
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
         learned = list(pool.map(learn, fleet.vehicles.values()))
@@ -54,15 +58,18 @@ def jobs_for(fleet, connection, estimate, diagnose_gap, workers):
             digest = task.sha256(log)
         except OSError:
             digest = "unreadable:" + log
+        # A log kept, or the same content found twice for one vehicle (the first in log order runs:
+        # the same row whatever the engine).
         if (name, digest) in kept:
             continue
-        job = dict(vehicle=name, log=log, pack=pack, estimate=estimate, problem=problem or problems.get(name))
+        kept.add((name, digest))
+        job = dict(vehicle=name, log=log, digest=digest, pack=pack, estimate=estimate,
+                   problem=problem or problems.get(name))
         vehicle = fleet.vehicles.get(name)
         if vehicle is not None and name in models:
-            rotors = references.motor_count(models[name])
-            job.update(model=models[name], urdf=vehicle.urdf, params=vehicle.params,
-                       empty_mass_kg=vehicle.empty_mass_kg, rotors=rotors,
-                       reference="vehicle" if rotors is not None else "none")
+            model, has_reference = models[name]
+            job.update(model=model, urdf=vehicle.urdf, params=vehicle.params, empty_mass_kg=vehicle.empty_mass_kg,
+                       reference="vehicle" if has_reference else "none")
         jobs.append(job)
     return jobs, problems
 

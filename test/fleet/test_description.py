@@ -52,6 +52,8 @@ def test_a_good_description_loads_with_its_paths_from_its_folder(folder):
     ("vehicles:\n  - {name: v1, model: model.yaml, urdf: vehicle.urdf, empty_mass_kg: -1}\n",
      "fleet.yaml: vehicles[v1].empty_mass_kg: -1 is not a positive mass in kg"),
     ("vehicles: [\n", "fleet.yaml: not YAML"),
+    ("vehicles:\n  - {name: v1, model: model.yaml, urdf: vehicle.urdf}\ndatabase: 5\n",
+     "fleet.yaml: database: expected a path, got 5"),
 ])
 def test_a_bad_description_is_refused_in_one_line_naming_the_key(folder, text, line):
     message = refusal(folder, text)
@@ -93,3 +95,41 @@ def test_a_database_of_a_newer_schema_is_refused_and_an_empty_one_is_migrated(tm
     with pytest.raises(database.DatabaseError) as error:
         database.connect(str(tmp_path / "text.sqlite"))
     assert "not an SQLite database" in str(error.value)
+
+
+def a_row(log, digest, status="estimated", factor=1.0):
+    return dict(vehicle="v1", log=log, log_sha256=digest, log_time_utc=None, pack=None, status=status,
+                problem=None if status == "estimated" else "a line", reference="vehicle", duration_s=60.0,
+                hover_mass_kg=1.3, pack_resistance_ohm=None, pack_resistance_std_ohm=None, supply_resistance_ohm=None,
+                esc_verdict="consistent", flagged_channel=0, warnings=[],
+                hovers=[dict(start_s=1.0, end_s=20.0, total_mass_kg=1.3, payload_kg=0.0)],
+                rotors=[dict(channel=k, factor=factor, factor_std=0.01, factor_low=factor - 0.02,
+                             factor_high=factor + 0.02) for k in (1, 2, 3, 4)])
+
+
+def test_a_flight_is_written_whole_or_not_at_all(tmp_path):
+    connection = database.connect(str(tmp_path / "fleet.sqlite"))
+    run = database.start_run(connection, "2026-12-03T00:00:00+00:00", "fleet.yaml", "jobs 1")
+    broken = a_row("a.ulg", "aa")
+    broken["rotors"][3]["factor"] = None  # fails on the last rotor, after the flight and its hovers
+    with pytest.raises(sqlite3.IntegrityError):
+        database.insert_flight(connection, broken, run)
+    assert database.flights(connection) == []
+    assert connection.execute("SELECT COUNT(*) FROM hovers").fetchone()[0] == 0
+    assert database.insert_flight(connection, a_row("a.ulg", "aa"), run)
+    assert not database.insert_flight(connection, a_row("copy_of_a.ulg", "aa"), run)  # same content: kept once
+    assert [f["log"] for f in database.flights(connection)] == ["a.ulg"]
+
+
+def test_a_refused_or_damaged_log_is_replaced_when_it_is_tried_again(tmp_path):
+    connection = database.connect(str(tmp_path / "fleet.sqlite"))
+    run = database.start_run(connection, "2026-12-03T00:00:00+00:00", "fleet.yaml", "jobs 1")
+    database.insert_flight(connection, a_row("b.ulg", "b-partial", status="damaged"), run)  # read while copied
+    database.insert_flight(connection, a_row("c.ulg", "cc", status="refused"), run)  # its vehicle not described yet
+    assert database.seen(connection) == {("v1", "b-partial")}  # a refused log is tried again
+    database.insert_flight(connection, a_row("b.ulg", "b-whole"), run)
+    database.insert_flight(connection, a_row("c.ulg", "cc"), run)
+    kept = {f["log"]: f for f in database.flights(connection)}
+    assert {log: (f["log_sha256"], f["status"]) for log, f in kept.items()} == {
+        "b.ulg": ("b-whole", "estimated"), "c.ulg": ("cc", "estimated")}
+    assert connection.execute("SELECT COUNT(*) FROM rotors").fetchone()[0] == 8

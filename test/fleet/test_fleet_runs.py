@@ -3,10 +3,12 @@ a two-worker Dask LocalCluster); a run killed mid-way and restarted keeps every 
 once and none half-written; bad logs, an unknown vehicle and a reference that does not match the
 vehicle each give one line in the database and the report while the run goes on."""
 import os
+import random
 import shutil
 import signal
 import sqlite3
 import subprocess
+import time
 
 import yaml
 from conftest import fleet_command, variant
@@ -52,27 +54,28 @@ def test_one_worker_two_workers_and_a_dask_cluster_give_the_same_rows(small_flee
 
 def test_a_run_killed_mid_way_and_restarted_keeps_every_flight_exactly_once(small_fleet):
     path = variant(small_fleet, "killed", database="killed.sqlite", report="killed_report")
-    for wanted in (3, 9):
-        # Killed (SIGKILL, no clean-up) once `wanted` flights of this run were written.
+    whole = variant(small_fleet, "whole", database="whole.sqlite", report="whole_report")
+    subprocess.run(fleet_command(whole, "--jobs", "2", "--quiet"), check=True)
+    rng = random.Random(7)
+    for kill in range(4):
+        # Killed (SIGKILL, no clean-up) at a random moment after its first flight was written: a
+        # write may be under way.
         process = subprocess.Popen(fleet_command(path, "--jobs", "2"), stdout=subprocess.PIPE, text=True,
                                    start_new_session=True)
-        written = 0
         for line in process.stdout:
-            written += line.startswith("[")
-            if written == wanted:
+            if line.startswith("["):
+                time.sleep(rng.uniform(0.0, 0.4))
                 os.killpg(process.pid, signal.SIGKILL)
                 break
         process.wait()
         assert process.returncode == -signal.SIGKILL
     kept = rows(os.path.join(small_fleet, "killed.sqlite"))
-    assert 3 <= len(kept) < 18
+    assert 4 <= len(kept) < 18
+    assert all(len(f["rotors"]) == 4 and f["hovers"] for f in kept)  # none half-written
     subprocess.run(fleet_command(path, "--quiet"), check=True)
     kept = rows(os.path.join(small_fleet, "killed.sqlite"))
     assert sorted(os.path.basename(f["log"]) for f in kept) == logs_in(small_fleet)
-    # None half-written: every flight with all its rotors and hovers.
-    assert all(len(f["rotors"]) == 4 and f["hovers"] for f in kept)
-    assert kept == rows(os.path.join(small_fleet, "jobs1.sqlite")) or not os.path.exists(
-        os.path.join(small_fleet, "jobs1.sqlite"))
+    assert kept == rows(os.path.join(small_fleet, "whole.sqlite"))
 
 
 def test_bad_logs_an_unknown_vehicle_and_a_mismatched_reference_are_one_line_each(small_fleet, tmp_path):
@@ -88,7 +91,7 @@ def test_bad_logs_an_unknown_vehicle_and_a_mismatched_reference_are_one_line_eac
         whole = handle.read()
     with open(os.path.join(folder, "logs", "v01_flight_007_pack-v01A.ulg"), "wb") as handle:
         handle.write(whole[:len(whole) // 3])  # truncated mid-flight
-    with open(os.path.join(folder, "logs", "v02_flight_007_pack-v02A.ulg"), "wb") as handle:
+    with open(os.path.join(folder, "logs", "v01_flight_008_pack-v01B.ulg"), "wb") as handle:
         handle.write(bytes(range(256)) * 64)  # of no known format
     with open(os.path.join(folder, "logs", "v99_flight_001_pack-v99A.ulg"), "wb") as handle:
         handle.write(whole)  # a vehicle the description does not hold
@@ -102,6 +105,16 @@ def test_bad_logs_an_unknown_vehicle_and_a_mismatched_reference_are_one_line_eac
     with open(os.path.join(folder, "fleet.yaml")) as handle:
         fleet = yaml.safe_load(handle)
     fleet["vehicles"][2] = {"name": "v03", "model": "hexa_reference_model.yaml", "urdf": "f450_quad.urdf"}
+    # v02's reference names a flight that is not there: it cannot be learned.
+    with open(os.path.join(small_fleet, "v02", "reference.manifest.yaml")) as handle:
+        manifest = yaml.safe_load(handle)
+    manifest["flights"][0]["log"] = "lost_flight.ulg"
+    os.mkdir(os.path.join(folder, "v02_broken"))
+    for name in os.listdir(os.path.join(small_fleet, "v02")):
+        os.symlink(os.path.join(small_fleet, "v02", name), os.path.join(folder, "v02_broken", name))
+    with open(os.path.join(folder, "v02_broken", "broken.manifest.yaml"), "w") as handle:
+        yaml.safe_dump(manifest, handle)
+    fleet["vehicles"][1]["reference"] = "v02_broken/broken.manifest.yaml"
     with open(os.path.join(folder, "fleet.yaml"), "w") as handle:
         yaml.safe_dump(fleet, handle)
     done = subprocess.run(fleet_command(os.path.join(folder, "fleet.yaml"), "--jobs", "2", "--quiet"),
@@ -111,7 +124,7 @@ def test_bad_logs_an_unknown_vehicle_and_a_mismatched_reference_are_one_line_eac
     assert len(kept) == 18 + 3
     truncated = kept["v01_flight_007_pack-v01A.ulg"]
     assert truncated["status"] == "damaged" and "truncated" in truncated["problem"]
-    garbage = kept["v02_flight_007_pack-v02A.ulg"]
+    garbage = kept["v01_flight_008_pack-v01B.ulg"]
     assert garbage["status"] == "refused" and "format" in garbage["problem"], garbage["problem"]
     unknown = kept["v99_flight_001_pack-v99A.ulg"]
     assert unknown["status"] == "refused" and unknown["problem"] == "vehicle 'v99' is not in the fleet description"
@@ -119,10 +132,15 @@ def test_bad_logs_an_unknown_vehicle_and_a_mismatched_reference_are_one_line_eac
     assert len(mismatched) == 6
     assert all(f["status"] == "refused" and "motor_reference.shares: 6 shares for 4 rotors" in f["problem"]
                for f in mismatched), mismatched[0]["problem"]
-    assert all(f["status"] == "estimated" for name, f in kept.items() if name.startswith("v01_") and "007" not in name)
+    unlearned = [f for name, f in kept.items() if name.startswith("v02_")]
+    assert len(unlearned) == 6
+    assert all(f["status"] == "refused" and f["problem"].startswith("vehicle v02: its reference ") and
+               "could not be learned: " in f["problem"] for f in unlearned), unlearned[0]["problem"]
+    assert all(f["status"] == "estimated" for name, f in kept.items()
+               if name.startswith("v01_") and "007" not in name and "008" not in name)
     with open(os.path.join(folder, "fleet_report", "README.md")) as handle:
         report = handle.read()
     problems = report.split("## Logs with problems")[1]
-    for flight in [truncated, garbage, unknown] + mismatched:
+    for flight in [truncated, garbage, unknown] + mismatched + unlearned:
         assert flight["problem"] in problems
         assert "\n" not in flight["problem"]
