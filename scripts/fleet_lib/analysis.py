@@ -2,19 +2,14 @@
 (trends.judge) against the healthy band, each pack's resistance (trends.pack_ageing), and the
 findings a person acts on, each with its evidence in one line."""
 import os
-import re
 
-from . import trends
-
-
-def _natural(text):
-    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", text)]
+from . import description, trends
 
 
 def ordered(flights):
     """Flights in flight order: a vehicle's logs by their names' natural order (PX4's and
     ArduPilot's names count up; so do the simulator's)."""
-    return sorted(flights, key=lambda f: (f["vehicle"], _natural(os.path.basename(f["log"])), f["log"]))
+    return sorted(flights, key=lambda f: (f["vehicle"], description.natural_key(os.path.basename(f["log"])), f["log"]))
 
 
 class Finding:

@@ -1,6 +1,7 @@
 """The fleet description (docs/fleet.md): its vehicles, each with its model, its healthy reference
 and where its logs are. Paths are relative to the description's folder. Every refusal is one line
 naming the file and the key: DescriptionError."""
+import dataclasses
 import glob
 import os
 import re
@@ -16,35 +17,32 @@ VEHICLE_KEYS = {"name", "model", "reference", "urdf", "empty_mass_kg", "params",
 FLEET_KEYS = {"vehicles", "logs", "vehicle_pattern", "pack_pattern", "database", "report", "healthy_band"}
 
 
+@dataclasses.dataclass
 class Vehicle:
     """One vehicle: its name, files (absolute paths) and log patterns."""
-
-    def __init__(self, name, model, urdf, reference=None, empty_mass_kg=None, params=None, logs=(), pack=None,
-                 pack_pattern=None):
-        self.name = name
-        self.model = model
-        self.urdf = urdf
-        self.reference = reference
-        self.empty_mass_kg = empty_mass_kg
-        self.params = params
-        self.logs = list(logs)
-        self.pack = pack
-        self.pack_pattern = pack_pattern
+    name: str
+    model: str
+    urdf: str
+    reference: str = None
+    empty_mass_kg: float = None
+    params: str = None
+    logs: list = dataclasses.field(default_factory=list)
+    pack: str = None
+    pack_pattern: re.Pattern = None
 
 
+@dataclasses.dataclass
 class Fleet:
     """The description: vehicles by name, fleet-level log patterns with the pattern that names a
     log's vehicle, where the database and the report go, the healthy band of a rotor factor."""
-
-    def __init__(self, path, vehicles, logs, vehicle_pattern, pack_pattern, database, report, healthy_band):
-        self.path = path
-        self.vehicles = vehicles
-        self.logs = logs
-        self.vehicle_pattern = vehicle_pattern
-        self.pack_pattern = pack_pattern
-        self.database = database
-        self.report = report
-        self.healthy_band = healthy_band
+    path: str
+    vehicles: dict
+    logs: list
+    vehicle_pattern: re.Pattern
+    pack_pattern: re.Pattern
+    database: str
+    report: str
+    healthy_band: float
 
 
 def _fail(path, key, problem):
@@ -150,7 +148,8 @@ def load(path):
                  report=os.path.join(folder, root.get("report", "fleet_report")), healthy_band=float(band))
 
 
-def _natural(text):
+def natural_key(text):
+    """A sort key that puts "flight_2" before "flight_10"."""
     return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", text)]
 
 
@@ -195,4 +194,4 @@ def logs(fleet):
     unique = {}
     for row in out:
         unique.setdefault((row[0], row[1]), row)
-    return sorted(unique.values(), key=lambda row: (row[0], _natural(os.path.basename(row[1])), row[1]))
+    return sorted(unique.values(), key=lambda row: (row[0], natural_key(os.path.basename(row[1])), row[1]))

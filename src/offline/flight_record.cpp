@@ -1,10 +1,10 @@
 #include "propulsion_estimator/offline/flight_record.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include <yaml-cpp/yaml.h>
 
+#include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/yaml_map.h"
 #include "propulsion_estimator/onboard/model_check.h"
 
@@ -15,16 +15,9 @@ namespace {
 constexpr const char* kFormat = "propulsion_estimator/flight_record";
 constexpr int kVersion = 1;
 
-// Every bit of a double, so that the file reads back identical (yaml-cpp's own precision is less).
-std::string exact(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", value);
-  return text;
-}
-
 // A NaN figure is left out: the reader takes an absent key as NaN.
 void emitNumber(YAML::Emitter* yaml, const char* key, double value) {
-  if (!std::isnan(value)) *yaml << YAML::Key << key << YAML::Value << exact(value);
+  if (!std::isnan(value)) *yaml << YAML::Key << key << YAML::Value << formatNumber(value);
 }
 
 double optional(const YamlMap& map, const char* key) { return map.optionalNumber(key).value_or(kNaN); }
@@ -136,7 +129,7 @@ std::string flightRecordText(const FlightRecord& r) {
        << YAML::Newline << YAML::BeginMap;
   yaml << YAML::Key << "format" << YAML::Value << kFormat << YAML::Key << "version" << YAML::Value << kVersion;
   yaml << YAML::Key << "source" << YAML::Value << YAML::DoubleQuoted << r.source;
-  yaml << YAML::Key << "duration_s" << YAML::Value << exact(r.duration_s);
+  yaml << YAML::Key << "duration_s" << YAML::Value << formatNumber(r.duration_s);
   emitNumber(&yaml, "empty_mass_kg", r.empty_mass_kg);
   yaml << YAML::Key << "hovers" << YAML::Value << YAML::BeginSeq;
   for (const HoverEpisode& h : r.hovers) emitHover(&yaml, h);
@@ -172,13 +165,13 @@ FlightRecord parseFlightRecord(const std::string& text, const std::string& sourc
   FlightRecord r;
   r.source = root.text("source");
   r.duration_s = root.number("duration_s");
-  if (r.duration_s < 0.0) root.fail("duration_s", exact(r.duration_s) + " is negative");
+  if (r.duration_s < 0.0) root.fail("duration_s", formatNumber(r.duration_s) + " is negative");
   r.empty_mass_kg = optional(root, "empty_mass_kg");
   for (const YamlMap& hover : root.maps("hovers")) r.hovers.push_back(readHover(hover));
   r.motor_health = readMotorHealth(root.map("motor_health"));
   for (double channel : root.numbers("flagged_channels")) {
     if (channel < 1 || channel != std::floor(channel)) {
-      root.fail("flagged_channels", exact(channel) + " is not a channel (they count from 1)");
+      root.fail("flagged_channels", formatNumber(channel) + " is not a channel (they count from 1)");
     }
     r.flagged_channels.push_back(static_cast<int>(channel));
   }

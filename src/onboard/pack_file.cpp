@@ -1,7 +1,6 @@
 #include "propulsion_estimator/onboard/pack_file.h"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <system_error>
 
@@ -9,21 +8,15 @@
 
 #include "propulsion_estimator/common/atomic_file.h"
 #include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/yaml_map.h"
 
 namespace propulsion_estimator {
 namespace {
 
-// Every bit of a double, so that the file reads back identical (yaml-cpp's own precision is less).
-std::string exact(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", value);
-  return text;
-}
-
 void emitList(YAML::Emitter* yaml, const char* key, const std::vector<double>& values) {
   *yaml << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
-  for (double value : values) *yaml << exact(value);
+  for (double value : values) *yaml << formatNumber(value);
   *yaml << YAML::EndSeq;
 }
 
@@ -74,11 +67,11 @@ std::string packFileText(const PackRecord& r) {
        << YAML::Newline << YAML::BeginMap;
   yaml << YAML::Key << "pack_id" << YAML::Value << YAML::DoubleQuoted << r.pack_id;
   yaml << YAML::Key << "cells" << YAML::Value << r.cells << YAML::Key << "flights" << YAML::Value << r.flights;
-  if (r.capacity_ah) yaml << YAML::Key << "capacity_ah" << YAML::Value << exact(*r.capacity_ah);
+  if (r.capacity_ah) yaml << YAML::Key << "capacity_ah" << YAML::Value << formatNumber(*r.capacity_ah);
   emitList(&yaml, "ocv_soc", r.ocv_soc);
   emitList(&yaml, "ocv_cell_v", r.ocv_cell_v);
   emitList(&yaml, "resistance_ohm", r.resistance_ohm);
-  if (r.rest_offset_cell_v) yaml << YAML::Key << "rest_offset_cell_v" << YAML::Value << exact(*r.rest_offset_cell_v);
+  if (r.rest_offset_cell_v) yaml << YAML::Key << "rest_offset_cell_v" << YAML::Value << formatNumber(*r.rest_offset_cell_v);
   yaml << YAML::EndMap;
   return std::string(yaml.c_str()) + "\n";
 }

@@ -1,12 +1,12 @@
 #include "propulsion_estimator/onboard/tare_file.h"
 
-#include <cstdio>
 #include <filesystem>
 #include <system_error>
 
 #include <yaml-cpp/yaml.h>
 
 #include "propulsion_estimator/common/atomic_file.h"
+#include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/yaml_map.h"
@@ -28,8 +28,7 @@ std::optional<TareRecord> loadTareFile(const std::string& path) {
 }
 
 void saveTareFile(const std::string& path, const TareRecord& record) {
-  char mass[32];
-  std::snprintf(mass, sizeof(mass), "%.17g", record.empty_mass_kg);
+  const std::string mass = formatNumber(record.empty_mass_kg);  // reads back to the same double
   YAML::Emitter yaml;
   yaml << YAML::Comment("Written by propulsion_estimator's ~tare service.") << YAML::Newline << YAML::BeginMap
        << YAML::Key << "empty_mass_kg" << YAML::Value << mass << YAML::Key << "model" << YAML::Value << record.model
