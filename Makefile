@@ -64,12 +64,28 @@ check: build
 # -O2 -g under the sanitizers (src/gap/diagnosis.cpp: 20 s against 61 s on the 2-core VM), and
 # the sanitizer build was most of CI's time.
 SAN := --build-base $(WS)/sanitizers/build --install-base $(WS)/sanitizers/install
-# Left out under the sanitizers: the tests that fly many family packs again (the two with each
-# pack's own curve: 417 s and 404 s there, 14 minutes of CI, against 23 s and 26 s in the Release
-# run of make check; the interval's calibration and held-out checks and the learned packs', 27-33 s
-# each in Release); the same code runs sanitized in HoverEnduranceOnFamilyPacks*,
-# TheHoverTimeLeftOverAFlightWithItsInterval, PackLearner.* and the battery estimator's unit tests.
-SAN_LEFT_OUT := CapabilityFlight.HoverEnduranceWithThePacksOwnCurve:CapabilityFlight.HoverEnduranceWithTheOwnCurveOfWarmNewPacks:CapabilityFlight.TheEnduranceIntervalIsCalibratedOnTheDevelopmentPacks:CapabilityFlight.TheEnduranceIntervalHoldsTheTruthOnHeldOutPacks:CapabilityFlight.TheEnduranceIntervalHoldsTheTruthOnHeldOutPacksOfKnownTemperature:CapabilityFlight.APackFlownOnceBeforeDevelopmentPacks:CapabilityFlight.APackFlownOnceBeforeHeldOutPacks
+# The long statistical tests: each flies tens to hundreds of simulated flights or family packs
+# (under the sanitizers 90-150 s each, and the packs' own curves 400 s; in Release 10-80 s). They
+# run once, in the Release build of make check; the sanitizer run and the ROS-free run leave them
+# out, as the same code runs there in the short tests of the same modules
+# (TheHoverTimeLeftOverAFlightWithItsInterval, TwoPacksAlikeAboveTheirKnee..., PackLearner.*,
+# ModelCheckFlight's fault tests, DynamicFlight's other tests). Without them .ci/run did not fit
+# its 90 minutes on 2026-12-03.
+LONG_TESTS := CapabilityFlight.HoverEnduranceOnFamilyPacksDevelopmentSeeds \
+	CapabilityFlight.HoverEnduranceOnFamilyPacksHeldOutSeeds \
+	CapabilityFlight.HoverEnduranceOnFamilyPacksFreshSeeds \
+	CapabilityFlight.HoverEnduranceWithThePacksOwnCurve \
+	CapabilityFlight.HoverEnduranceWithTheOwnCurveOfWarmNewPacks \
+	CapabilityFlight.TheEnduranceIntervalIsCalibratedOnTheDevelopmentPacks \
+	CapabilityFlight.TheEnduranceIntervalHoldsTheTruthOnHeldOutPacks \
+	CapabilityFlight.TheEnduranceIntervalHoldsTheTruthOnHeldOutPacksOfKnownTemperature \
+	CapabilityFlight.APackFlownOnceBeforeDevelopmentPacks \
+	CapabilityFlight.APackFlownOnceBeforeHeldOutPacks \
+	ModelCheckFlight.NoFlagOnTwoHundredFlightsWithoutAFault \
+	DynamicFlight.TheSameFlightsLoggedAtAnyRateKeepTheSameBlocksAndSelectAlike
+space := $(subst ,, )
+LONG_TESTS_GTEST_FILTER := -$(subst $(space),:,$(strip $(LONG_TESTS)))
+LONG_TESTS_CTEST_REGEX := ^($(subst $(space),|,$(subst .,\.,$(strip $(LONG_TESTS)))))$$
 test-sanitizers: deps
 	@mkdir -p $(WS)/src
 	@ln -sfn $(CURDIR) $(WS)/src/propulsion_estimator
@@ -78,7 +94,7 @@ test-sanitizers: deps
 		-DPE_SANITIZE=ON
 	rm -f $(WS)/sanitizers/build/propulsion_estimator/test_results/propulsion_estimator/*.xml
 	cd $(WS) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-		GTEST_FILTER=-$(SAN_LEFT_OUT) \
+		GTEST_FILTER='$(LONG_TESTS_GTEST_FILTER)' \
 		colcon test $(SAN) --event-handlers console_direct+ --ctest-args -R _gtest_ \
 		&& colcon test-result --test-result-base $(WS)/sanitizers/build --verbose
 
@@ -132,7 +148,7 @@ ROS_FREE := $(WS)/ros_free
 ros-free: deps
 	cmake -S . -B $(ROS_FREE) -DPE_ROS_FREE=ON -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(ROS_FREE) -j 2
-	cd $(ROS_FREE) && ctest -j 2 --output-on-failure --no-tests=error
+	cd $(ROS_FREE) && ctest -j 2 --output-on-failure --no-tests=error -E '$(LONG_TESTS_CTEST_REGEX)'
 
 # Raspberry Pi: the ROS-free modules, their unit tests and the core benchmark cross-compiled for
 # arm64 in .ws/arm64/ (no catkin, no ROS for arm64), the tests run under qemu-user; fails when any

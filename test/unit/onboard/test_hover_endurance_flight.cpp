@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdarg>
 #include <cstdlib>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "capability_flight.h"
+#include "parallel_cases.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/sim/physics/battery_family.h"
@@ -36,54 +38,83 @@ struct EnduranceCase {
   bool inInterval() const { return report.hover_endurance_low_s <= flown_s && flown_s <= report.hover_endurance_high_s; }
 };
 
-// Hovers to the loaded cut-off from 100, 60 and 30 % with packs drawn from `family` (each seed a
+// One pack's cases and the lines that tell them, printed once every pack has flown.
+struct PackCases {
+  std::vector<EnduranceCase> cases;
+  std::string log;
+};
+
+// printf's text appended to `log`.
+void appendf(std::string* log, const char* format, ...) __attribute__((format(printf, 2, 3)));
+void appendf(std::string* log, const char* format, ...) {
+  char line[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(line, sizeof line, format, args);
+  va_end(args);
+  *log += line;
+}
+
+// Hovers to the loaded cut-off from 100, 60 and 30 % with pack `seed` drawn from `family` (each seed a
 // pack of its own: shape, resistances, temperature, age), empty (odd seeds) and with 0.3 kg: the
 // hover time left predicted 20 s and 60 s after take-off against the time the vehicle took. A
 // flight that reaches the cut-off within 90 s of take-off is too short to judge a prediction made
 // after 60 s and is left out (printed). With `own_curve` the user also gives the pack's own
 // open-circuit curve (capability/battery/ocv_table: the drawn pack's table); with
 // `temperature_known` the battery messages carry the pack's temperature.
+PackCases flyFamilyPack(std::uint32_t seed, bool own_curve, const pe::sim::BatteryFamily& family, bool temperature_known) {
+  PackCases out;
+  const pe::sim::DrawnBattery drawn = pe::sim::drawBattery(family, seed);
+  pe::sim::SimParams params = thesisParams();
+  params.battery = drawn.params;
+  for (double initial_soc : {1.0, 0.6, 0.3}) {
+    const double payload_kg = seed % 2 ? 0.0 : 0.3;
+    pe::CapabilityConfig user = userPack();
+    if (own_curve) {
+      user.ocv_table_soc = drawn.params.ocv_soc;
+      user.ocv_table_cell_v = drawn.params.ocv_cell_v;
+    }
+    CapabilitySink sink(f450(), user, thesisModel(), {20.0, 60.0});
+    if (temperature_known) sink.pack_temperature_c = drawn.temperature_c;
+    fly(profile(payload_kg, 3000.0, initial_soc, "[0.0, 0.0, 0.0]", "", 2.0, avionicsA(seed)), &sink, {}, params);
+    const std::string label = "seed " + std::to_string(seed) + " " + drawn.describe() + ", payload " +
+                              std::to_string(payload_kg).substr(0, 3) + " kg, from " +
+                              std::to_string(static_cast<int>(100.0 * initial_soc)) + " %";
+    if (!sink.cutoff_s || !sink.predictions[0] || !sink.predictions[1]) {
+      ADD_FAILURE() << label << ": no cut-off or no prediction";
+      continue;
+    }
+    if (*sink.cutoff_s < *sink.takeoff_s + 90.0) {
+      appendf(&out.log, "%s: the cut-off %.0f s after take-off, not judged\n", label.c_str(), *sink.cutoff_s - *sink.takeoff_s);
+      continue;
+    }
+    for (std::size_t k = 0; k < 2; ++k) {
+      const CapabilitySink::Prediction& p = *sink.predictions[k];
+      out.cases.push_back({label, k == 0 ? 20.0 : 60.0, p.report, *sink.cutoff_s - p.made_s});
+      const EnduranceCase& e = out.cases.back();
+      const pe::CapabilityReport& c = e.report;
+      appendf(&out.log,
+              "%s, after %2.0f s: predicted %4.0f s (90 %% %4.0f..%4.0f), flew %4.0f s, error %+5.1f %%%s "
+              "(soc %.2f +- %.2f, R %.1f +- %.1f mOhm)\n",
+              label.c_str(), e.after_s, c.hover_endurance_s, c.hover_endurance_low_s, c.hover_endurance_high_s,
+              e.flown_s, 100.0 * e.error(), e.inInterval() ? "" : " OUTSIDE", c.state_of_charge, c.state_of_charge_std,
+              1000.0 * c.internal_resistance_ohm, 1000.0 * c.internal_resistance_std_ohm);
+      EXPECT_FALSE(std::isnan(c.hover_endurance_s)) << label << ": " << c.endurance_basis;
+    }
+  }
+  return out;
+}
+
+// Every pack of `seeds` flown as flyFamilyPack flies it, the packs in parallel, their lines printed
+// in the order of `seeds`.
 std::vector<EnduranceCase> flyFamilyPacks(const std::vector<std::uint32_t>& seeds, bool own_curve = false,
                                           const pe::sim::BatteryFamily& family = {}, bool temperature_known = false) {
+  const std::vector<PackCases> packs = parallel_cases::map<PackCases>(
+      seeds.size(), [&](std::size_t i) { return flyFamilyPack(seeds[i], own_curve, family, temperature_known); });
   std::vector<EnduranceCase> cases;
-  for (std::uint32_t seed : seeds) {
-    const pe::sim::DrawnBattery drawn = pe::sim::drawBattery(family, seed);
-    pe::sim::SimParams params = thesisParams();
-    params.battery = drawn.params;
-    for (double initial_soc : {1.0, 0.6, 0.3}) {
-      const double payload_kg = seed % 2 ? 0.0 : 0.3;
-      pe::CapabilityConfig user = userPack();
-      if (own_curve) {
-        user.ocv_table_soc = drawn.params.ocv_soc;
-        user.ocv_table_cell_v = drawn.params.ocv_cell_v;
-      }
-      CapabilitySink sink(f450(), user, thesisModel(), {20.0, 60.0});
-      if (temperature_known) sink.pack_temperature_c = drawn.temperature_c;
-      fly(profile(payload_kg, 3000.0, initial_soc, "[0.0, 0.0, 0.0]", "", 2.0, avionicsA(seed)), &sink, {}, params);
-      const std::string label = "seed " + std::to_string(seed) + " " + drawn.describe() + ", payload " +
-                                std::to_string(payload_kg).substr(0, 3) + " kg, from " +
-                                std::to_string(static_cast<int>(100.0 * initial_soc)) + " %";
-      if (!sink.cutoff_s || !sink.predictions[0] || !sink.predictions[1]) {
-        ADD_FAILURE() << label << ": no cut-off or no prediction";
-        continue;
-      }
-      if (*sink.cutoff_s < *sink.takeoff_s + 90.0) {
-        std::printf("%s: the cut-off %.0f s after take-off, not judged\n", label.c_str(), *sink.cutoff_s - *sink.takeoff_s);
-        continue;
-      }
-      for (std::size_t k = 0; k < 2; ++k) {
-        const CapabilitySink::Prediction& p = *sink.predictions[k];
-        cases.push_back({label, k == 0 ? 20.0 : 60.0, p.report, *sink.cutoff_s - p.made_s});
-        const EnduranceCase& e = cases.back();
-        const pe::CapabilityReport& c = e.report;
-        std::printf("%s, after %2.0f s: predicted %4.0f s (90 %% %4.0f..%4.0f), flew %4.0f s, error %+5.1f %%%s "
-                    "(soc %.2f +- %.2f, R %.1f +- %.1f mOhm)\n",
-                    label.c_str(), e.after_s, c.hover_endurance_s, c.hover_endurance_low_s, c.hover_endurance_high_s,
-                    e.flown_s, 100.0 * e.error(), e.inInterval() ? "" : " OUTSIDE", c.state_of_charge,
-                    c.state_of_charge_std, 1000.0 * c.internal_resistance_ohm, 1000.0 * c.internal_resistance_std_ohm);
-        EXPECT_FALSE(std::isnan(c.hover_endurance_s)) << label << ": " << c.endurance_basis;
-      }
-    }
+  for (const PackCases& pack : packs) {
+    std::fputs(pack.log.c_str(), stdout);
+    cases.insert(cases.end(), pack.cases.begin(), pack.cases.end());
   }
   return cases;
 }
@@ -356,8 +387,14 @@ pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double pay
 // learnedFromOneFlight given: the hover time left 60 s after take-off within 10 % of the truth in
 // at least `share` of the cases.
 void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, double share) {
-  int cases = 0, within = 0;
-  for (std::uint32_t seed : seeds) {
+  struct PackOutcome {
+    int cases = 0;
+    int within = 0;
+    std::string log;
+  };
+  const std::vector<PackOutcome> outcomes = parallel_cases::map<PackOutcome>(seeds.size(), [&](std::size_t i) {
+    PackOutcome out;
+    const std::uint32_t seed = seeds[i];
     const pe::sim::DrawnBattery drawn = pe::sim::drawBattery(pe::sim::BatteryFamily{}, seed);
     pe::sim::SimParams params = thesisParams();
     params.battery = drawn.params;
@@ -365,27 +402,41 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
     const double avionics_a = avionicsA(seed);
     CapabilitySink full(f450(), userPack(), thesisModel());
     fly(profile(payload_kg, 3000.0, 1.0, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &full, {}, params);
-    ASSERT_TRUE(full.cutoff_s.has_value());
+    if (!full.cutoff_s) {
+      ADD_FAILURE() << "seed " << seed << ": the full hover reached no cut-off";
+      return out;
+    }
     const pe::PackRecord record = learnedFromOneFlight(params, payload_kg, *full.cutoff_s - *full.takeoff_s, avionics_a);
     for (double initial_soc : {1.0, 0.6, 0.3}) {
       pe::CapabilityConfig user = userPack();
       user.pack = record;
       CapabilitySink sink(f450(), user, thesisModel(), {60.0});
       fly(profile(payload_kg, 3000.0, initial_soc, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &sink, {}, params);
-      ASSERT_TRUE(sink.cutoff_s.has_value());
+      if (!sink.cutoff_s) {
+        ADD_FAILURE() << "seed " << seed << " from " << initial_soc << ": no cut-off";
+        continue;
+      }
       if (*sink.cutoff_s < *sink.takeoff_s + 90.0 || !sink.predictions[0]) continue;
       const pe::CapabilityReport& c = sink.predictions[0]->report;
       const double flown_s = *sink.cutoff_s - sink.predictions[0]->made_s;
       const double error = (c.hover_endurance_s - flown_s) / flown_s;
-      std::printf("seed %u %s, payload %.1f kg, from %.0f %%, learned %d points, %.2f Ah, R %.1f mOhm: predicted %.0f s "
-                  "(90 %% %.0f..%.0f), flew %.0f s, error %+.1f %%\n",
-                  seed, drawn.describe().c_str(), payload_kg, 100.0 * initial_soc, static_cast<int>(record.ocv_soc.size()),
-                  record.capacity_ah.value_or(pe::kNaN),
-                  1000.0 * (record.resistance_ohm.empty() ? pe::kNaN : record.resistance_ohm.back()), c.hover_endurance_s,
-                  c.hover_endurance_low_s, c.hover_endurance_high_s, flown_s, 100.0 * error);
-      ++cases;
-      within += std::abs(error) < 0.10;
+      appendf(&out.log,
+              "seed %u %s, payload %.1f kg, from %.0f %%, learned %d points, %.2f Ah, R %.1f mOhm: predicted %.0f s "
+              "(90 %% %.0f..%.0f), flew %.0f s, error %+.1f %%\n",
+              seed, drawn.describe().c_str(), payload_kg, 100.0 * initial_soc, static_cast<int>(record.ocv_soc.size()),
+              record.capacity_ah.value_or(pe::kNaN),
+              1000.0 * (record.resistance_ohm.empty() ? pe::kNaN : record.resistance_ohm.back()), c.hover_endurance_s,
+              c.hover_endurance_low_s, c.hover_endurance_high_s, flown_s, 100.0 * error);
+      ++out.cases;
+      out.within += std::abs(error) < 0.10;
     }
+    return out;
+  });
+  int cases = 0, within = 0;
+  for (const PackOutcome& outcome : outcomes) {
+    std::fputs(outcome.log.c_str(), stdout);
+    cases += outcome.cases;
+    within += outcome.within;
   }
   std::printf("a pack flown once before: within 10 %% after 60 s in %d of %d cases\n", within, cases);
   ASSERT_GT(cases, 0);
