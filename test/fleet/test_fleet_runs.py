@@ -38,7 +38,10 @@ def test_one_worker_two_workers_and_a_dask_cluster_give_the_same_rows(small_flee
     dask = variant(small_fleet, "dask", database="dask.sqlite", report="dask_report")
     subprocess.run(fleet_command(one, "--jobs", "1", "--quiet"), check=True)
     subprocess.run(fleet_command(two, "--jobs", "2", "--quiet"), check=True)
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+    # On the loopback interface: where the host name does not resolve (containers, fresh CI
+    # machines) the cluster would otherwise wait on the name service.
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                      host="127.0.0.1") as cluster:
         subprocess.run(fleet_command(dask, "--scheduler", cluster.scheduler_address, "--quiet"), check=True)
     first = rows(os.path.join(small_fleet, "jobs1.sqlite"))
     assert len(first) == len(logs_in(small_fleet)) == 18
