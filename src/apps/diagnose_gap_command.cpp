@@ -2,14 +2,11 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <optional>
-#include <thread>
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/name_list.h"
@@ -18,6 +15,7 @@
 #include "propulsion_estimator/common/mavros_topics.h"
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/parallel_for.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/gap/airborne_stretch.h"
 #include "propulsion_estimator/gap/diagnosis.h"
@@ -140,25 +138,8 @@ std::vector<FlightRead> readFlights(const std::string& manifest, const std::vect
                                     const FlightLogOptions& options, const PropulsionModel& model,
                                     const gap::AirborneSettings& airborne, int jobs) {
   std::vector<FlightRead> reads(entries.size());
-  std::vector<std::exception_ptr> failures(entries.size());
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i = next++; i < entries.size(); i = next++) {
-      try {
-        reads[i] = readFlight(manifest, i, entries[i], options, model, airborne);
-      } catch (...) {
-        failures[i] = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  const int threads = std::min<int>(jobs, static_cast<int>(entries.size()));
-  for (int j = 1; j < threads; ++j) pool.emplace_back(work);
-  work();
-  for (std::thread& thread : pool) thread.join();
-  for (const std::exception_ptr& failure : failures) {
-    if (failure) std::rethrow_exception(failure);
-  }
+  parallelFor(entries.size(), jobs,
+              [&](std::size_t i) { reads[i] = readFlight(manifest, i, entries[i], options, model, airborne); });
   return reads;
 }
 

@@ -5,19 +5,18 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
 #include <set>
-#include <thread>
 
 #include <CLI/CLI.hpp>
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/parallel_for.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/logs/file_pattern.h"
@@ -183,32 +182,17 @@ std::vector<LogResult> estimateLogs(const Arguments& args, const std::vector<std
   const offline::EstimateOptions options = optionsOf(args, vehicle);
   const std::vector<std::string> directories = outputDirectories(args.out, logs);
   std::vector<LogResult> results(logs.size());
-  std::vector<std::exception_ptr> failures(logs.size());
-  std::atomic<std::size_t> next{0}, done{0};
-  const auto work = [&] {
-    for (std::size_t i = next++; i < logs.size(); i = next++) {
-      try {
-        results[i] = estimateLog(logs[i], directories[i], model, vehicle, log_options, options, args.model);
-      } catch (...) {
-        failures[i] = std::current_exception();
-        continue;
-      }
-      const LogResult& r = results[i];
-      const std::size_t warnings = r.estimate ? r.estimate->warnings.size() : 0;
-      const std::string what = r.estimate ? hoverList(*r.estimate) + ", " + std::to_string(warnings) +
-                                                (warnings == 1 ? " warning -> " : " warnings -> ") + r.directory
-                                          : "refused: " + r.refusal;
-      std::printf("[%zu/%zu] %s: %s (%.2f s)\n", ++done, logs.size(), r.path.c_str(), what.c_str(), r.seconds);
-      std::fflush(stdout);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 1; j < std::min<int>(args.jobs, static_cast<int>(logs.size())); ++j) pool.emplace_back(work);
-  work();
-  for (std::thread& thread : pool) thread.join();
-  for (const std::exception_ptr& failure : failures) {
-    if (failure) std::rethrow_exception(failure);
-  }
+  std::atomic<std::size_t> done{0};
+  parallelFor(logs.size(), args.jobs, [&](std::size_t i) {
+    results[i] = estimateLog(logs[i], directories[i], model, vehicle, log_options, options, args.model);
+    const LogResult& r = results[i];
+    const std::size_t warnings = r.estimate ? r.estimate->warnings.size() : 0;
+    const std::string what = r.estimate ? hoverList(*r.estimate) + ", " + std::to_string(warnings) +
+                                              (warnings == 1 ? " warning -> " : " warnings -> ") + r.directory
+                                        : "refused: " + r.refusal;
+    std::printf("[%zu/%zu] %s: %s (%.2f s)\n", ++done, logs.size(), r.path.c_str(), what.c_str(), r.seconds);
+    std::fflush(stdout);
+  });
   return results;
 }
 

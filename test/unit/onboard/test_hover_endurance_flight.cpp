@@ -11,11 +11,12 @@
 #include <cstdlib>
 #include <cstdio>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "capability_flight.h"
-#include "parallel_cases.h"
 #include "propulsion_estimator/common/number_format.h"
+#include "propulsion_estimator/common/parallel_for.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/sim/physics/battery_family.h"
 
@@ -38,7 +39,11 @@ struct EnduranceCase {
   bool inInterval() const { return report.hover_endurance_low_s <= flown_s && flown_s <= report.hover_endurance_high_s; }
 };
 
-// One pack's cases and the lines that tell them, printed once every pack has flown.
+// The long tests fly their packs on every core (each pack on its own objects), their lines
+// printed in the order of the seeds once every pack has flown.
+const int kCores = static_cast<int>(std::thread::hardware_concurrency());
+
+// One pack's cases and the lines that tell them.
 struct PackCases {
   std::vector<EnduranceCase> cases;
   std::string log;
@@ -109,8 +114,9 @@ PackCases flyFamilyPack(std::uint32_t seed, bool own_curve, const pe::sim::Batte
 // in the order of `seeds`.
 std::vector<EnduranceCase> flyFamilyPacks(const std::vector<std::uint32_t>& seeds, bool own_curve = false,
                                           const pe::sim::BatteryFamily& family = {}, bool temperature_known = false) {
-  const std::vector<PackCases> packs = parallel_cases::map<PackCases>(
-      seeds.size(), [&](std::size_t i) { return flyFamilyPack(seeds[i], own_curve, family, temperature_known); });
+  std::vector<PackCases> packs(seeds.size());
+  pe::parallelFor(seeds.size(), kCores,
+                  [&](std::size_t i) { packs[i] = flyFamilyPack(seeds[i], own_curve, family, temperature_known); });
   std::vector<EnduranceCase> cases;
   for (const PackCases& pack : packs) {
     std::fputs(pack.log.c_str(), stdout);
@@ -392,8 +398,9 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
     int within = 0;
     std::string log;
   };
-  const std::vector<PackOutcome> outcomes = parallel_cases::map<PackOutcome>(seeds.size(), [&](std::size_t i) {
-    PackOutcome out;
+  std::vector<PackOutcome> outcomes(seeds.size());
+  pe::parallelFor(seeds.size(), kCores, [&](std::size_t i) {
+    PackOutcome& out = outcomes[i];
     const std::uint32_t seed = seeds[i];
     const pe::sim::DrawnBattery drawn = pe::sim::drawBattery(pe::sim::BatteryFamily{}, seed);
     pe::sim::SimParams params = thesisParams();
@@ -404,7 +411,7 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
     fly(profile(payload_kg, 3000.0, 1.0, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &full, {}, params);
     if (!full.cutoff_s) {
       ADD_FAILURE() << "seed " << seed << ": the full hover reached no cut-off";
-      return out;
+      return;
     }
     const pe::PackRecord record = learnedFromOneFlight(params, payload_kg, *full.cutoff_s - *full.takeoff_s, avionics_a);
     for (double initial_soc : {1.0, 0.6, 0.3}) {
@@ -430,7 +437,6 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
       ++out.cases;
       out.within += std::abs(error) < 0.10;
     }
-    return out;
   });
   int cases = 0, within = 0;
   for (const PackOutcome& outcome : outcomes) {
