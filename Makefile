@@ -37,8 +37,8 @@ demo-bag: build
 # All tests: the API reference without a warning, the size rules, the colcon tests (unit, rostests
 # with the soak and the kill-during-tare tests, bag replays, fleet), then the Raspberry Pi's
 # ROS-free tree built natively under the sanitizers and its unit tests run there (ros-free).
-# Three builds (Release, the ROS-free tree, the whole package again under the sanitizers) took 80
-# minutes of a clean clone on 2 cores, past CI's 90 once the packages were installed: the ROS-free
+# Three builds (Release, the ROS-free tree, the whole package again under the sanitizers) came to
+# about 80 minutes of a clean clone on 2 cores, and CI stopped at its 90 on 2026-12-03: the ROS-free
 # tree is the sanitizer build, and the whole package under the sanitizers (its ROS adapters, tools
 # and fuzz corpora included) is make test-sanitizers, to run when those change.
 test: docs sizes check ros-free
@@ -73,8 +73,7 @@ SAN := --build-base $(WS)/sanitizers/build --install-base $(WS)/sanitizers/insta
 # run once, in the Release build of make check; the sanitizer run and the ROS-free run leave them
 # out, as the same code runs there in the short tests of the same modules
 # (TheHoverTimeLeftOverAFlightWithItsInterval, TwoPacksAlikeAboveTheirKnee..., PackLearner.*,
-# ModelCheckFlight's fault tests, DynamicFlight's other tests). Without them .ci/run did not fit
-# its 90 minutes on 2026-12-03.
+# ModelCheckFlight's fault tests, DynamicFlight's other tests).
 LONG_TESTS := CapabilityFlight.HoverEnduranceOnFamilyPacksDevelopmentSeeds \
 	CapabilityFlight.HoverEnduranceOnFamilyPacksHeldOutSeeds \
 	CapabilityFlight.HoverEnduranceOnFamilyPacksFreshSeeds \

@@ -38,8 +38,8 @@ def test_one_worker_two_workers_and_a_dask_cluster_give_the_same_rows(small_flee
     dask = variant(small_fleet, "dask", database="dask.sqlite", report="dask_report")
     subprocess.run(fleet_command(one, "--jobs", "1", "--quiet"), check=True)
     subprocess.run(fleet_command(two, "--jobs", "2", "--quiet"), check=True)
-    # On the loopback interface: where the host name does not resolve (containers, fresh CI
-    # machines) the cluster would otherwise wait on the name service.
+    # On the loopback interface, so that the cluster does not depend on the host name resolving
+    # (containers, fresh CI machines; the ROS tests set ROS_HOSTNAME=localhost for the same reason).
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
                       host="127.0.0.1") as cluster:
         subprocess.run(fleet_command(dask, "--scheduler", cluster.scheduler_address, "--quiet"), check=True)
