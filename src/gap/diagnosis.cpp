@@ -278,7 +278,11 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     result.plausible = result.parameter > spec.min + margin && result.parameter < spec.max - margin;
     result.current_view_ratio = currentViewRatio(round_base, fit.effects);
     result.size = effectSizeAgainstParts(views_, all_, fit.effects, kind, config_.parts_spread);
-    const std::string within_parts = withinPartsSpread(kind, result.parameter, result.size, config_.parts_spread);
+    // With the effect on the vehicle's healthy flights, their fit may stand in for the parts' spread.
+    const bool by_reference =
+        judgedByReferenceAlone(kind, config_.reference_effects, betweenFlightShare(effects::requiredSignal(kind)));
+    const std::string within_parts =
+        by_reference ? "" : withinPartsSpread(kind, result.parameter, result.size, config_.parts_spread);
     const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
     const double drop_pct = base_pwm_rmse_pct - 100.0 * std::sqrt(pwm_ms);
     const bool significant = result.p_value < config_.significance && ms < base_ms &&

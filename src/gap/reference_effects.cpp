@@ -27,6 +27,19 @@ std::string notAChange(effects::Kind kind, double value, double ci_half, double 
          formatPrintf("%.2g", ci_half) + " here): the vehicle's own, not what changed";
 }
 
+// The parts' spread stands in for a reference: without one, healthy rotors and ESCs that differ
+// from the bench's can imitate an effect. A vehicle's own healthy flights carry its own parts, and
+// their fit of the effect holds whatever those parts imitate, so a change from it is not the
+// parts' doing. Not the battery current: it follows the thrust, and what the parts imitate of it
+// moves with each flight's payload (on the family's development seeds it named a supply
+// resistance on a null and a centre-of-gravity case); not a signal that changes between flights
+// (the day's air): a reference's few flights do not pin it.
+bool judgedByReferenceAlone(effects::Kind kind, const ReferenceEffects& reference, double between_flight_share) {
+  const effects::Signal signal = effects::requiredSignal(kind);
+  return reference.count(kind) && signal != effects::Signal::kNone && signal != effects::Signal::kBatteryCurrent &&
+         !(between_flight_share > detail::kMostlyBetweenFlights);
+}
+
 namespace detail {
 
 namespace {

@@ -35,5 +35,13 @@ using ReferenceEffects = std::map<effects::Kind, ReferenceEffect>;
 std::string notAChange(effects::Kind kind, double value, double ci_half, double signal_median,
                        const ReferenceEffects& reference);
 
+/// Whether effect `kind`, found on flights whose blocks hold `between_flight_share` of its
+/// signal's variance between the flights' means (NaN without the signal), is judged by its change
+/// from the healthy flights alone (notAChange) and not also against healthy parts' spread: with the
+/// effect in `reference`, for a signal the vehicle's state sets apart from its thrust (height,
+/// speeds, the motors' temperature) that changes mostly within flights. Not for an effect reading
+/// none or the battery current, nor for the day's air.
+bool judgedByReferenceAlone(effects::Kind kind, const ReferenceEffects& reference, double between_flight_share);
+
 }  // namespace gap
 }  // namespace propulsion_estimator
