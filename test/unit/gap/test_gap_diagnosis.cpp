@@ -45,6 +45,7 @@ struct World {
   bool motor_temperature = false;
   double motor_per_c = 0.0;
   double motor_warming_c = 0.0;    // each flight's motors warm by this much, linearly over the flight
+  bool warming_heats = false;      // the thrust follows the warming too (else only the day's temperature)
   bool no_current = false;         // no battery current logged
   // Each flight's rotors give (1 + flight_spread * a flight's own draw in -1.2..1) of their thrust:
   // what a payload's hang and the day do to one flight and not to the next.
@@ -92,13 +93,18 @@ class SyntheticFlights : public ::testing::Test {
     flight.streams.motors = 4;
     const double motor_c = 14.0 + 3.0 * static_cast<double>(seed % 5);
     static const double kFlightDraw[] = {0.6, 1.0, -0.8, 0.4, -1.2};
-    const double warm = (1.0 + world.motor_per_c * (motor_c - 22.0)) * (1.0 + world.flight_spread * kFlightDraw[seed % 5]);
+    const double flight_factor = 1.0 + world.flight_spread * kFlightDraw[seed % 5];
+    const auto warming_at = [&](double time_s) {
+      return world.motor_warming_c * time_s / (47.0 * static_cast<double>(masses.size()));
+    };
     double t = 0.0;
     for (std::size_t s = 0; s < masses.size(); ++s) {
       const double mass = world.one_mass_kg > 0.0 ? world.one_mass_kg : masses[s];
       const double start = t + 2.0;
       for (int i = 0; i < 50 * 42; ++i, t += 0.02) {
         const double sensed = voltage_v - 0.3 * (t / 150.0);
+        const double warm =
+            (1.0 + world.motor_per_c * (motor_c + (world.warming_heats ? warming_at(t) : 0.0) - 22.0)) * flight_factor;
         // What the ESCs see and what each rotor must give so that the vehicle hovers.
         double esc_voltage = sensed;
         double current = 0.0;
@@ -136,8 +142,7 @@ class SyntheticFlights : public ::testing::Test {
                                                          : current + world.avionics_a + world.current_noise_a * current_noise(rng);
           flight.streams.battery.push_back({t, sensed, -sensed_current});  // PX4 through MAVROS: negated
           if (world.motor_temperature) {
-            const double warming = world.motor_warming_c * t / (47.0 * static_cast<double>(masses.size()));
-            flight.streams.input(pe::input::Scalar::kMotorTemperature).push_back({t, motor_c + warming});
+            flight.streams.input(pe::input::Scalar::kMotorTemperature).push_back({t, motor_c + warming_at(t)});
           }
         }
         pe::ImuReading imu;
@@ -937,4 +942,46 @@ TEST_F(SyntheticFlights, TheCurrentViewTakesOutTheDrawMeasuredOnTheGround) {
   ASSERT_EQ(measured.samples.size(), fitted.samples.size());
   EXPECT_NEAR(measured.samples[0].current_a, fitted.samples[0].current_a, 1e-9);
   EXPECT_TRUE(measured.selected.empty());
+}
+
+// A reference judges a motor heating read within flights by its change from the healthy flights
+// alone (gap::judgedByReferenceAlone): parts assumed to spread so widely (20 % of thrust, every
+// shape imitable) that nothing is named against them are in the healthy flights' fit too. Motors
+// warming 20 C over each flight (its variance within flights about twice the day's between them),
+// their thrust 0.2 %/C lower; the healthy flights warm alike at no cost. A supply resistance stays
+// judged against the parts: what they imitate of the battery current moves with the payload.
+TEST_F(SyntheticFlights, WithAReferenceAHeatingReadWithinFlightsIsJudgedByItsChangeNotByTheParts) {
+  gap::DiagnosisConfig config;
+  config.parts_spread.thrust_fraction = 0.2;
+  config.parts_spread.max_imitated_share = 0.0;
+  World heating;
+  heating.motor_temperature = true;
+  heating.motor_warming_c = 20.0;
+  heating.warming_heats = true;
+  heating.no_current = true;
+  World healthy = heating;
+  heating.motor_per_c = -0.002;
+  const auto reason = [](const gap::Diagnosis& d, Kind kind) { return d.effects.at(static_cast<std::size_t>(kind)).reason; };
+
+  const gap::Diagnosis against_parts = gap::diagnoseGap(model_, vehicle_, flights(heating), config);
+  EXPECT_TRUE(against_parts.selected.empty());
+  EXPECT_EQ(reason(against_parts, Kind::kMotorTemperature).rfind("modelled as the vehicle's own, not named: changes the thrust by at most", 0), 0u)
+      << reason(against_parts, Kind::kMotorTemperature);
+
+  gap::DiagnosisConfig with_reference = config;
+  with_reference.reference_effects = gap::fitReferenceEffects(model_, vehicle_, flights(healthy, 1), with_reference);
+  ASSERT_EQ(with_reference.reference_effects.count(Kind::kMotorTemperature), 1u);
+  const gap::Diagnosis against_reference = gap::diagnoseGap(model_, vehicle_, flights(heating), with_reference);
+  EXPECT_EQ(against_reference.selected, std::vector<Kind>{Kind::kMotorTemperature})
+      << gap::gapReportMarkdown(against_reference, model_, "cmd");
+
+  World wired;
+  wired.supply_resistance = 0.03;
+  gap::DiagnosisConfig wiring_reference = config;
+  wiring_reference.reference_effects = gap::fitReferenceEffects(model_, vehicle_, flights(World{}, 1), wiring_reference);
+  ASSERT_EQ(wiring_reference.reference_effects.count(Kind::kSupplyResistance), 1u);
+  const gap::Diagnosis wiring = gap::diagnoseGap(model_, vehicle_, flights(wired), wiring_reference);
+  EXPECT_TRUE(wiring.selected.empty());
+  EXPECT_EQ(reason(wiring, Kind::kSupplyResistance).rfind("modelled as the vehicle's own, not named: changes the thrust by at most", 0), 0u)
+      << reason(wiring, Kind::kSupplyResistance);
 }
