@@ -102,6 +102,9 @@ TEST_F(CrazyPadFlights, HealthyFlightsGetNoSuspectAgainstTheVehiclesOwnEarlierFl
                                           std::make_pair(subset(e9, 0, 3), subset(e9, 3, 5))}) {
     const gap::Diagnosis diagnosis = diagnose(judged, reference);
     EXPECT_EQ(diagnosis.motors.basis, "reference");
+    // Nor an effect: the healthy flights judge what they read within flights (2026-12-03).
+    EXPECT_TRUE(diagnosis.selected.empty()) << judged.front().name;
+    EXPECT_TRUE(diagnosis.ambiguous.empty()) << judged.front().name;
     EXPECT_FALSE(diagnosis.motors.suspect_channel) << judged.front().name << ": channel "
                                                    << *diagnosis.motors.suspect_channel;
   }
