@@ -12,12 +12,14 @@ A good RCOut whose answer never arrives passes only when the node counted it acc
 sent while the node's process stood still:
 - roscpp drops the oldest queued messages of a subscriber that falls more than the publisher's queue
   behind (this Python test on a loaded 2-core machine can): that loss is the transport's;
-- a node not scheduled for seconds (a loaded CI machine: its /diagnostics stop) reads, once it runs
-  again, the RCOut that queued meanwhile before the voltage that queued beside them, and rightly
-  finds its newest voltage older than battery_timeout_s (shown by stopping the node for 5 s: 1,595
-  refused as stale_battery).
+- a node not scheduled for seconds (a loaded CI machine: its /diagnostics stop and its process uses
+  no CPU) reads, once it runs again, the RCOut that queued meanwhile before the voltage that queued
+  beside them, and rightly finds its newest voltage older than battery_timeout_s (shown by stopping
+  the node for 5 s: 1,595 refused as stale_battery). A node that stops its own diagnostics while
+  busy (a computation blocking its threads) is not excused.
 Both are reported and bounded (max_transport_loss, max_stall_s)."""
 import collections
+import os
 import random
 import struct
 import time
@@ -86,7 +88,10 @@ class SoakTest(unittest.TestCase):
         self.answered = collections.Counter()
         self.latest_totals = self.latest_payload = None
         self.statuses = {}  # task -> (receipt time, status)
-        self.diagnostics_s = []  # wall-clock receipt times of the node's /diagnostics, to find its stalls
+        # (wall-clock receipt time, the node's CPU seconds then) of each /diagnostics from the node,
+        # to find where its process stood still.
+        self.diagnostics_s = []
+        self.pid = None
         rospy.Subscriber(NODE + "/totals", rospy.AnyMsg, self.on_totals, queue_size=100000, buff_size=1 << 24)
         rospy.Subscriber(NODE + "/payload", rospy.AnyMsg, self.on_payload, queue_size=100000, buff_size=1 << 24)
         rospy.Subscriber("/diagnostics", DiagnosticArray, self.on_diagnostics, queue_size=100)
@@ -114,18 +119,29 @@ class SoakTest(unittest.TestCase):
         self.latest_payload = message._buff
 
     def on_diagnostics(self, message):
+        from_node = False
         for status in message.status:
             node, _, task = status.name.partition(": ")
             if node == NODE.lstrip("/"):
                 self.statuses[task] = (time.monotonic(), status)
-                self.diagnostics_s.append(time.time())
+                from_node = True
+        if from_node and self.pid is not None:
+            self.diagnostics_s.append((time.time(), self.cpu_s(self.pid)))
+
+    @staticmethod
+    def cpu_s(pid):
+        """User and system CPU seconds the process has used (/proc/PID/stat, fields 14 and 15)."""
+        with open("/proc/%d/stat" % pid) as f:
+            fields = f.read().rpartition(")")[2].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
     def stalls(self):
-        """(start, end) wall-clock times between which the node sent no /diagnostics for over three of
-        their periods: its process stood still."""
+        """(start, end, CPU seconds) of each gap of over three periods between the node's /diagnostics
+        in which its process used under a tenth of a core: it stood still, not busy."""
         period = rospy.get_param(NODE + "/diagnostic_period")
-        times = sorted(set(self.diagnostics_s))
-        return [(a, b) for a, b in zip(times, times[1:]) if b - a > 3.0 * period]
+        pairs = zip(self.diagnostics_s, self.diagnostics_s[1:])
+        return [(a, b, cpu_b - cpu_a) for (a, cpu_a), (b, cpu_b) in pairs
+                if b - a > 3.0 * period and cpu_b - cpu_a < 0.1 * (b - a)]
 
     def status(self, task, since=None):
         entry = self.statuses.get(task)
@@ -360,7 +376,7 @@ class SoakTest(unittest.TestCase):
     # ---- the test
 
     def test_soak(self):
-        pid = self.node_pid()
+        pid = self.pid = self.node_pid()
         before = self.hover_estimate("a first hover")
         rss_early = self.rss_kb(pid)
         rospy.loginfo("soak: node pid %d, VmRSS %d kB after the first hover; estimate %s", pid, rss_early, before)
@@ -397,13 +413,13 @@ class SoakTest(unittest.TestCase):
         # Sent while the node's process stood still, or in the second after, while it reads the backlog:
         # refused as stale once it runs again (see above).
         stalls = self.stalls()
-        stalled_s = sum(b - a for a, b in stalls)
-        in_stall = {k for k in missing if any(a <= k[0] + 1e-9 * k[1] <= b + 1.0 for a, b in stalls)}
+        stalled_s = sum(b - a for a, b, _ in stalls)
+        in_stall = {k for k in missing if any(a <= k[0] + 1e-9 * k[1] <= b + 1.0 for a, b, _ in stalls)}
         # Answers the node published (one per message it accepted) that never reached this test.
         lost = accepted - sum(self.answered.values())
         rospy.loginfo("soak: the node accepted %d RCOut; %d answers lost on the way to this test; %d good RCOut "
-                      "unanswered were sent in %d stalls of the node (%.1f s); its counts: %s", accepted, lost,
-                      len(in_stall), len(stalls), stalled_s, self.describe_counts())
+                      "unanswered were sent in %d stalls of the node (%.1f s; start, end, CPU s: %s); its counts: %s",
+                      accepted, lost, len(in_stall), len(stalls), stalled_s, stalls, self.describe_counts())
         unexplained = missing - in_stall
         self.assertLessEqual(len(unexplained), max(lost, 0),
                              "%d of %d good RCOut messages never answered (%s), neither counted accepted by the node "
