@@ -344,8 +344,6 @@ Rejection Estimator::evaluateMotors(double receipt_s, const std::uint16_t* chann
   // estimates as they were. The surfaces are evaluated at the inputs the ESCs really see.
   const effects::ModelEffects& model_effects = model_.effects();
   const effects::Signals signals = effectSignals(receipt_s);
-  // Floored as the surfaces' thrust is: a linear law (climb inflow) pushed far past its range.
-  const double thrust_factor = std::max(0.0, effects::thrustFactor(model_effects, signals, skipped));
   for (std::size_t i = 0; i < scratch_.size(); ++i) {
     const int channel = config_.motor_channels[i];
     const effects::Inputs in =
@@ -354,6 +352,9 @@ Rejection Estimator::evaluateMotors(double receipt_s, const std::uint16_t* chann
       return reject(Rejection::kOutsideDomain, channel, in.pwm_us);
     }
     OperatingPoint& p = scratch_[i];
+    // Floored as the surfaces' thrust is: a linear law (climb inflow) pushed far past its range.
+    // Per rotor: the air's law depends on the rotor's load.
+    const double thrust_factor = std::max(0.0, effects::thrustFactor(model_effects, signals, p.thrust_n, skipped));
     // Efficiency is thrust over power: it follows the thrust, the power stays the surfaces'.
     p.thrust_n *= thrust_factor;
     p.efficiency_n_per_w *= thrust_factor;

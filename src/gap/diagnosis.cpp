@@ -154,6 +154,7 @@ effects::ModelEffects Diagnoser::selectAndFit() {
 effects::ModelEffects Diagnoser::references() const {
   effects::ModelEffects references;
   references.bench_air_density_kg_m3 = model_.metadata().benchAirDensity();
+  references.full_thrust_n = model_.fullThrustN();
   references.motor_reference_c = model_.metadata().bench_air_temperature_c.value_or(kNaN);
   if (vehicle_.hasGeometry()) {
     double height = 0.0;

@@ -63,11 +63,12 @@ ThrustViews::Offset ThrustViews::outsideOffset(double pwm_us, double voltage_v) 
 }
 
 double ThrustViews::verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs,
-                                   const Offset* offsets) const {
+                                   const Offset* offsets, const effects::ModelEffects* factors) const {
   double thrust = 0.0;
   for (int k = 0; k < motors_; ++k) {
-    thrust += motor_scale_[k] * offsetThrust(inputs[k].pwm_us + pwm_shift_us, inputs[k].voltage_v, offsets[k].thrust_n) *
-              block.axis_up[k];
+    const double rotor = offsetThrust(inputs[k].pwm_us + pwm_shift_us, inputs[k].voltage_v, offsets[k].thrust_n);
+    const double factor = factors ? effects::thrustFactor(*factors, block.signals, rotor) : 1.0;
+    thrust += motor_scale_[k] * rotor * factor * block.axis_up[k];
   }
   return thrust;
 }
@@ -83,8 +84,7 @@ double ThrustViews::pwmView(const Block& block, const effects::ModelEffects& eff
   for (int k = 0; k < motors_; ++k) {
     inputs[k] = effects::correctInputs(effects, block.pwm_us[k], block.voltage_v, block.signals);
   }
-  return pwm_level_ * verticalThrust(block, 0.0, inputs.data(), offsets(block).data()) *
-         effects::thrustFactor(effects, block.signals);
+  return pwm_level_ * verticalThrust(block, 0.0, inputs.data(), offsets(block).data(), &effects);
 }
 
 double ThrustViews::currentView(const Block& block, const effects::ModelEffects& effects) const {
@@ -109,8 +109,8 @@ double ThrustViews::currentView(const Block& block, const effects::ModelEffects&
     const double middle = 0.5 * (low + high);
     (total_current(middle) < block.current_a ? low : high) = middle;
   }
-  return current_level_ * verticalThrust(block, 0.5 * (low + high), inputs.data(), offset.data()) *
-         viewFactor(effects, block.signals, currentViewExponent);
+  return current_level_ * verticalThrust(block, 0.5 * (low + high), inputs.data(), offset.data(), nullptr) *
+         viewFactor(effects, block.signals, true);
 }
 
 double ThrustViews::rpmView(const Block& block, const effects::ModelEffects& effects) const {
@@ -121,18 +121,28 @@ double ThrustViews::rpmView(const Block& block, const effects::ModelEffects& eff
     if (!std::isfinite(block.rpm[k])) return kNaN;
     thrust += motor_scale_[k] * rpm_thrust->thrustN(block.rpm[k], block.signals.value(effects::Signal::kAirDensity)) * block.axis_up[k];
   }
-  return rpm_level_ * thrust * viewFactor(effects, block.signals, rpmViewExponent);
+  return rpm_level_ * thrust * viewFactor(effects, block.signals, false);
 }
 
 double ThrustViews::viewFactor(const effects::ModelEffects& effects, const effects::Signals& signals,
-                               double (*exponent)(effects::Kind, double)) {
+                               bool current_view) {
   if (effects.empty()) return 1.0;
   double factor = 1.0;
   for (effects::Kind kind : effects::kAllKinds) {
     const std::optional<double> value = effects.parameter(kind);
-    if (!value) continue;
-    const double single = effects::singleThrustFactor(kind, *value, effects, signals);
-    if (std::isfinite(single)) factor *= std::pow(single, exponent(kind, *value));
+    const effects::EffectDescription& description = effects::describe(kind);
+    // The input corrections reach the views through the surfaces.
+    if (!value || !description.thrust_factor) continue;
+    if (description.signal != effects::Signal::kNone && std::isnan(signals.value(description.signal))) continue;
+    if (current_view && description.current_view_factor) {
+      factor *= description.current_view_factor(*value, effects, signals);
+      continue;
+    }
+    const double exponent = current_view ? currentViewExponent(kind, *value) : rpmViewExponent(kind, *value);
+    // A view raises a factor to a power only for laws that do not read the rotor's thrust (the
+    // air's, which does, has a current-view law of its own and none in the RPM view): NaN thrust
+    // would show in the result, not pass unseen.
+    if (exponent != 0.0) factor *= std::pow(effects::singleThrustFactor(kind, *value, effects, signals, kNaN), exponent);
   }
   return factor;
 }

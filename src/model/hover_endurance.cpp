@@ -43,7 +43,7 @@ bool evaluateCorrected(const PropulsionModel& model, const Correction& correctio
   if (!correction.effects) return model.evaluate(pwm_us, voltage_v, point);
   const effects::Inputs in = effects::correctInputs(*correction.effects, pwm_us, voltage_v, correction.signals);
   const bool accepted = model.evaluate(in.pwm_us, in.voltage_v, point);
-  const double factor = std::max(0.0, effects::thrustFactor(*correction.effects, correction.signals));
+  const double factor = std::max(0.0, effects::thrustFactor(*correction.effects, correction.signals, point->thrust_n));
   point->thrust_n *= factor;
   point->efficiency_n_per_w *= factor;
   return accepted;

@@ -146,21 +146,22 @@ Inputs correctInputs(const ModelEffects& effects, double pwm_us, double voltage_
   return inputs;
 }
 
-double singleThrustFactor(Kind kind, double value, const ModelEffects& references, const Signals& signals) {
-  // Checked here, not left to the arithmetic: pow(NaN, 0) is 1, and an air_density exponent of 0
-  // would count as applied without its signal.
+double singleThrustFactor(Kind kind, double value, const ModelEffects& references, const Signals& signals,
+                          double thrust_n) {
+  // Checked here, not left to the arithmetic: an air_density exponent of 0 gives 1 without reading
+  // the density, and would count as applied without its signal.
   const EffectDescription& description = describe(kind);
   if (description.signal != Signal::kNone && std::isnan(signals.value(description.signal))) return kNaN;
-  return description.thrust_factor ? description.thrust_factor(value, references, signals) : 1.0;
+  return description.thrust_factor ? description.thrust_factor(value, references, signals, thrust_n) : 1.0;
 }
 
-double thrustFactor(const ModelEffects& effects, const Signals& signals, KindMask* skipped) {
+double thrustFactor(const ModelEffects& effects, const Signals& signals, double thrust_n, KindMask* skipped) {
   double factor = 1.0;
   if (effects.empty()) return factor;
   for (Kind kind : kAllKinds) {
     const std::optional<double> value = effects.parameter(kind);
     if (!value) continue;
-    const double single = singleThrustFactor(kind, *value, effects, signals);
+    const double single = singleThrustFactor(kind, *value, effects, signals, thrust_n);
     if (std::isfinite(single)) {
       factor *= single;
     } else if (skipped) {

@@ -153,7 +153,6 @@ PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,
     : metadata_(std::move(metadata)), domain_(domain), outputs_(std::move(outputs)), effects_(effects) {
   // One source for the reference: an effects section cannot claim other bench air than the metadata's.
   effects_.bench_air_density_kg_m3 = metadata_.benchAirDensity();
-  effects_.validate();
   domain_.validate();
   for (Output output : kAllOutputs) {
     const OutputDefinition& def = outputs_[index(output)];
@@ -190,6 +189,12 @@ PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,
   for (Output output : {Output::kCurrent, Output::kPower, Output::kEfficiency}) {
     if (outputs_[index(output)].source == OutputSource::kDerived) evaluation_order_[next++] = output;
   }
+  effects_.full_thrust_n = fullThrustN();
+  effects_.validate();
+}
+
+double PropulsionModel::fullThrustN() const {
+  return evaluateRaw(Output::kThrust, domain_.pwm_max_us, domain_.voltage_max_v) * to_si_[index(Output::kThrust)];
 }
 
 void PropulsionModel::setMotorReference(std::optional<MotorReference> reference) {
@@ -200,6 +205,7 @@ void PropulsionModel::setMotorReference(std::optional<MotorReference> reference)
 PropulsionModel PropulsionModel::withEffects(effects::ModelEffects effects) const {
   PropulsionModel copy = *this;
   effects.bench_air_density_kg_m3 = metadata_.benchAirDensity();
+  effects.full_thrust_n = effects_.full_thrust_n;
   effects.validate();
   copy.effects_ = effects;
   return copy;

@@ -25,7 +25,7 @@ ALL_EFFECTS = """effects:
   supply_resistance: {resistance_ohm: 0.035}
   ground_effect: {coefficient_m2: 0.0011, rotor_height_m: 0.05}
   motor_temperature: {per_c: 0.0012, reference_c: 22}
-  air_density: {exponent: 0.85}
+  air_density: {full_thrust_exponent: 0.85}
   thrust_loss: {fraction: 0.04}
   climb_inflow: {per_m_s: 0.03}
   esc_offset: {offset_us: 12}

@@ -66,11 +66,14 @@ class ThrustViews {
   // The surfaces' thrust plus `offset_n`, floored at 0, N.
   double offsetThrust(double pwm_us, double voltage_v, double offset_n) const;
   std::array<Offset, kMaxMotors> offsets(const Block& block) const;
-  double verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs,
-                        const Offset* offsets) const;
-  // The product of the thrust-acting effects' factors, each raised to the view's exponent.
-  static double viewFactor(const effects::ModelEffects& effects, const effects::Signals& signals,
-                           double (*exponent)(effects::Kind, double));
+  // The rotors' thrust along the vertical; with `factors`, each rotor's times the effects' thrust
+  // factor at its own thrust (the PWM view).
+  double verticalThrust(const Block& block, double pwm_shift_us, const effects::Inputs* inputs, const Offset* offsets,
+                        const effects::ModelEffects* factors) const;
+  // The product of the thrust-acting effects' factors as the current view (`current_view`) or the
+  // RPM view sees them: each effect's current_view_factor where it has one, else its thrust factor
+  // raised to the view's exponent.
+  static double viewFactor(const effects::ModelEffects& effects, const effects::Signals& signals, bool current_view);
 
   const PropulsionModel& model_;
   int motors_;

@@ -37,14 +37,19 @@ struct EffectDescription {
   /// PWM view, on the inputs the ESCs see: (pulse width, voltage) corrected with parameter `value`;
   /// nullptr for an effect acting on thrust. Called only with the signal present.
   Inputs (*correct_inputs)(double value, const Inputs& inputs, const Signals& signals);
-  /// PWM view, as a factor on thrust with parameter `value`; nullptr for an effect acting on the
-  /// inputs. Called only with the signal present.
-  double (*thrust_factor)(double value, const ModelEffects& references, const Signals& signals);
+  /// PWM view, as a factor on one rotor's thrust with parameter `value`, given that rotor's thrust
+  /// in N from the surfaces (after the input corrections, before any factor); nullptr for an effect
+  /// acting on the inputs. Called only with the signal present.
+  double (*thrust_factor)(double value, const ModelEffects& references, const Signals& signals, double thrust_n);
   /// Current view: the exponent on the thrust factor with which the thrust read through the
   /// measured battery current sees the effect (1: as the PWM view; 0: not at all; negative: the
   /// other way). Unused for effects acting on the inputs (the current view takes them through the
   /// surfaces).
   double (*current_view_exponent)(double value);
+  /// Current view, for an effect the current view sees by a law of its own rather than as a power
+  /// of its thrust factor (nullptr: current_view_exponent says): the factor on the current view's
+  /// thrust with parameter `value`. Called only with the signal present.
+  double (*current_view_factor)(double value, const ModelEffects& references, const Signals& signals);
   /// RPM view: the exponent on the thrust factor with which the thrust read through each rotor's
   /// measured speed (ESC telemetry, at the flight's air density) sees the effect (1: the air acts on
   /// a rotor at a given speed; 0: the effect only changes the speed, or the view already holds it).

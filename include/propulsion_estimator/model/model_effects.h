@@ -111,7 +111,8 @@ struct Inputs {
 ///   esc_offset         u' = u - offset_us
 ///   supply_resistance  V' = V - resistance_ohm * battery current
 ///   (the surfaces evaluated at u', V' give thrust T and every other output)
-///   air_density        T *= (rho / rho_bench)^exponent
+///   air_density        T *= r y^2, r = rho / rho_bench, r x y^2 + y = x + 1, x = x_full sqrt(T / T_full),
+///                      x_full = (1 / full_thrust_exponent - 1) / 2   (the motor's torque balance)
 ///   ground_effect      T *= 1 + coefficient_m2 / max(h + rotor_height_m, kMinGroundDistanceM)^2
 ///                      (Cheeseman-Bennett's leading term: coefficient = strength * R^2 / 16)
 ///   thrust_loss        T *= 1 - fraction
@@ -120,6 +121,9 @@ struct Inputs {
 ///   translational_lift T *= 1 + per_m2_s2 * horizontal speed^2   (below the rotors' hover induced speed)
 struct ModelEffects {
   double bench_air_density_kg_m3 = kNaN;  ///< reference of air_density (the model's bench air)
+  /// Reference of air_density: the model's thrust at its highest pulse width and voltage, N (set
+  /// by PropulsionModel from its surfaces).
+  double full_thrust_n = kNaN;
   double rotor_height_m = 0.0;  ///< rotor discs above the height reference, for ground_effect
   double motor_reference_c = kNaN;  ///< reference of motor_temperature
 
@@ -160,13 +164,15 @@ constexpr KindMask bit(Kind kind) { return 1u << static_cast<unsigned>(kind); }
 Inputs correctInputs(const ModelEffects& effects, double pwm_us, double voltage_v, const Signals& signals,
                      KindMask* skipped = nullptr);
 
-/// The product of the thrust factors of the effects that are on (1 when none). A factor whose
-/// signal is NaN is skipped and its bit set in `*skipped` (when given).
-double thrustFactor(const ModelEffects& effects, const Signals& signals, KindMask* skipped = nullptr);
+/// The product of the thrust factors of the effects that are on (1 when none) on a rotor whose
+/// surfaces give `thrust_n` N (at the corrected inputs). A factor whose signal is NaN is skipped
+/// and its bit set in `*skipped` (when given).
+double thrustFactor(const ModelEffects& effects, const Signals& signals, double thrust_n, KindMask* skipped = nullptr);
 
-/// One effect's thrust factor with parameter `value` (1 for esc_offset and supply_resistance,
-/// which act on the inputs); NaN when its signal is missing.
-double singleThrustFactor(Kind kind, double value, const ModelEffects& references, const Signals& signals);
+/// One effect's thrust factor with parameter `value` on a rotor whose surfaces give `thrust_n` N
+/// (1 for esc_offset and supply_resistance, which act on the inputs); NaN when its signal is missing.
+double singleThrustFactor(Kind kind, double value, const ModelEffects& references, const Signals& signals,
+                          double thrust_n);
 
 }  // namespace effects
 }  // namespace propulsion_estimator

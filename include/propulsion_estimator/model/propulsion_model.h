@@ -145,7 +145,9 @@ class PropulsionModel {
   /// Throws ConfigError (without file context) for a unit that does not fit its output, a
   /// derivation that is circular or refers to an absent output, thrust not modelled, or an
   /// empty domain; FieldError ("effects.<name>.<key>") for effects that ModelEffects::validate()
-  /// refuses. The effects' bench air density is taken from the metadata, whatever `effects` says.
+  /// refuses (air_density: a thrust surface not above zero at the domain's top corner). The
+  /// effects' references from the model (bench air density, full thrust) are the model's, whatever
+  /// `effects` says.
   PropulsionModel(ModelMetadata metadata, ModelDomain domain, std::array<OutputDefinition, kOutputCount> outputs,
                   effects::ModelEffects effects = {});
 
@@ -162,6 +164,9 @@ class PropulsionModel {
   /// One output in its file unit at any point, without clamping to the domain: a surface's own
   /// value (not floored), a derived output as evaluate() derives it, NaN if not modelled.
   double evaluateRaw(Output output, double pwm_us, double voltage_v) const;
+
+  /// The thrust surface at the domain's highest pulse width and voltage, N: the scale of air_density's law.
+  double fullThrustN() const;
 
   /// The ESC, motor, propeller, bench air and supply.
   const ModelMetadata& metadata() const { return metadata_; }

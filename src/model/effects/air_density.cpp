@@ -1,4 +1,5 @@
 // air_density: the flight's air thinner or denser than the bench's.
+#include <algorithm>
 #include <cmath>
 
 #include "propulsion_estimator/common/field_error.h"
@@ -12,9 +13,15 @@ const EffectDescription& airDensityEffect() {
   static const EffectDescription description = [] {
     EffectDescription d{};
     d.name = "air_density";
-    // Thrust at fixed pulse width and voltage scales between rho^0.5 (a light, fast motor gaining
-    // speed in thin air) and rho^1 (a stiff motor).
-    d.parameter = {"exponent", 0.0, 2.0, 0.0};
+    // A rotor at fixed duty and voltage turns where its motor's torque balances the propeller's,
+    // kQ rho w^2 + (Kt^2 / R) w = Kt (duty V / R - I0). In air of r times the bench's density the
+    // speed rises by y with r x y^2 + y = x + 1, where x = kQ rho_bench w / (Kt^2 / R) is the
+    // share of the propeller's load against the motor's speed stiffness on the bench, and thrust
+    // goes as r y^2: as rho^1 for a stiff motor (x -> 0), towards rho^0 for a weak one. x grows
+    // with speed, x = x_full sqrt(T / T_full), so one parameter holds the whole law: the exponent
+    // the law has at the model's full thrust, 1 / (1 + 2 x_full). A power law with one exponent
+    // leaves, beside a high site's air, a residual that rises with throttle.
+    d.parameter = {"full_thrust_exponent", 0.0, 1.0, 0.0};
     d.signal = Signal::kAirDensity;
     d.meaning =
         "the flight's air is thinner or denser than the bench's: a propeller's thrust at a given speed follows "
@@ -22,13 +29,20 @@ const EffectDescription& airDensityEffect() {
     d.separating_flight =
         "fly on another day or site with static pressure and air temperature logged: an air-density loss "
         "follows the air, not the current or the payload";
-    d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
-      return std::pow(signals.value(Signal::kAirDensity) / references.bench_air_density_kg_m3, value);
+    d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals, double thrust_n) {
+      if (value <= 0.0) return 1.0;
+      const double ratio = signals.value(Signal::kAirDensity) / references.bench_air_density_kg_m3;
+      const double x = (1.0 / value - 1.0) / 2.0 * std::sqrt(std::max(thrust_n, 0.0) / references.full_thrust_n);
+      // y = (sqrt(1 + 4 r x (x + 1)) - 1) / (2 r x), in the form that holds at x = 0.
+      const double speed = 2.0 * (x + 1.0) / (1.0 + std::sqrt(1.0 + 4.0 * ratio * x * (x + 1.0)));
+      return ratio * speed * speed;
     };
     // The battery current at the sensed voltage measures electrical power, and at a given power
     // momentum theory gives T proportional to (rho P^2)^(1/3): the current view sees
-    // (rho / rho_bench)^(1/3) whatever exponent the PWM view was fitted with.
-    d.current_view_exponent = [](double value) { return value > 0.0 ? (1.0 / 3.0) / value : 0.0; };
+    // (rho / rho_bench)^(1/3) whatever the motor.
+    d.current_view_factor = [](double value, const ModelEffects& references, const Signals& signals) {
+      return value > 0.0 ? std::cbrt(signals.value(Signal::kAirDensity) / references.bench_air_density_kg_m3) : 1.0;
+    };
     // The RPM view reads thrust at the flight's density (thrust at a given speed follows it): it
     // already holds what this effect corrects.
     d.rpm_view_exponent = [](double) { return 0.0; };
@@ -47,6 +61,11 @@ const EffectDescription& airDensityEffect() {
       if (!(effects.bench_air_density_kg_m3 > 0.3 && effects.bench_air_density_kg_m3 < 1.6)) {
         throw FieldError("effects.air_density", "the bench air density " + formatNumber(effects.bench_air_density_kg_m3) +
                                                     " kg/m^3 of the model's metadata is outside 0.3..1.6 kg/m^3");
+      }
+      // NaN until the model sets it from its surfaces (a model file's effects are read before them).
+      if (!std::isnan(effects.full_thrust_n) && !(effects.full_thrust_n > 0.0)) {
+        throw FieldError("effects.air_density", "needs thrust at the model's highest pulse width and voltage, and the "
+                                                    "thrust surface gives " + formatNumber(effects.full_thrust_n) + " N there");
       }
     };
     return d;

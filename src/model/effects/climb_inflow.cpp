@@ -23,7 +23,7 @@ const EffectDescription& climbInflowEffect() {
         "steady climbs and descents at two speeds: climb inflow grows with the speed along the rotors' axes";
     // Momentum theory: a climb's axial inflow lowers the blades' angle of attack, while a slow
     // descent (into the vortex-ring region) barely changes thrust at a given rotor speed.
-    d.thrust_factor = [](double value, const ModelEffects&, const Signals& signals) {
+    d.thrust_factor = [](double value, const ModelEffects&, const Signals& signals, double) {
       return 1.0 - value * std::max(signals.value(Signal::kAxialSpeed), 0.0);
     };
     // Momentum theory gives a climb's loss at constant power about as at constant speed.

@@ -18,7 +18,7 @@ const EffectDescription& groundEffectEffect() {
     d.separating_flight =
         "hover at three heights below two rotor diameters and one well above: ground effect grows as the "
         "rotors near the ground";
-    d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
+    d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals, double) {
       const double distance = std::max(signals.value(Signal::kHeight) + references.rotor_height_m, kMinGroundDistanceM);
       return 1.0 + value / (distance * distance);
     };

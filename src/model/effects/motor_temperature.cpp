@@ -15,7 +15,7 @@ const EffectDescription& motorTemperatureEffect() {
     d.separating_flight =
         "a long hover from cold motors, motor temperature logged: motor heating grows with the motors' "
         "temperature over the flight";
-    d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals) {
+    d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals, double) {
       return 1.0 + value * (signals.value(Signal::kMotorTemperature) - references.motor_reference_c);
     };
     // A hot motor spins faster at a given duty (weaker flux) but needs more current per newton

@@ -17,7 +17,7 @@ const EffectDescription& thrustLossEffect() {
     d.separating_flight =
         "hover with two payloads at one site and height: a thrust loss takes the same fraction of thrust at "
         "every payload, current, air and height";
-    d.thrust_factor = [](double value, const ModelEffects&, const Signals&) { return 1.0 - value; };
+    d.thrust_factor = [](double value, const ModelEffects&, const Signals&, double) { return 1.0 - value; };
     // Blockage and interaction act on the air the rotor has already moved: same rotor state,
     // same torque, current and speed, less net force, in every view.
     d.current_view_exponent = [](double) { return 1.0; };

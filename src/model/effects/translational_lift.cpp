@@ -22,7 +22,7 @@ const EffectDescription& translationalLiftEffect() {
         "of the speed";
     // The low-speed law of momentum theory (the induced inflow falls as (V / v_h)^2 / 4); over the
     // ground, since no wind is measured: in wind it is the air speed that counts.
-    d.thrust_factor = [](double value, const ModelEffects&, const Signals& signals) {
+    d.thrust_factor = [](double value, const ModelEffects&, const Signals& signals, double) {
       return 1.0 + value * signals.value(Signal::kHorizontalSpeed) * signals.value(Signal::kHorizontalSpeed);
     };
     // At the rotor's speed the thrust rises while the induced torque (thrust x inflow) hardly

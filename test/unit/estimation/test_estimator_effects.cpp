@@ -64,15 +64,24 @@ TEST(EstimatorEffects, SupplyResistanceLowersTheVoltageByTheDropOfTheBatteryCurr
   expectMotor(f, kPwm, kVoltage - 0.05 * 16.0, 1.0);
 }
 
-TEST(EstimatorEffects, AirDensityScalesThrustByTheDensityRatioToTheExponent) {
+// The law itself is tested against a motor's torque balance (test_air_density_law.cpp); here, that
+// the node applies it to each rotor at that rotor's own thrust, with the model's full thrust.
+TEST(EstimatorEffects, AirDensityScalesEachRotorsThrustByTheLawAtItsOwnThrust) {
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), only(fx::Kind::kAirDensity, 0.85));
   f.estimator.addInput(pe::input::Scalar::kStaticPressure, f.t, 95000.0);
   f.estimator.addInput(pe::input::Scalar::kAirTemperature, f.t, 30.0);
   f.fly(kPwm, 0.1);
   const double rho = 95000.0 / (pe::kSpecificGasConstantDryAir * (30.0 + pe::kZeroCelsiusInKelvin));
   EXPECT_NEAR(benchDensity(f), 101325.0 / (pe::kSpecificGasConstantDryAir * 295.15), 1e-12) << "the model's 22 deg C";
-  expectMotor(f, kPwm, kVoltage, std::pow(rho / benchDensity(f), 0.85));
-  EXPECT_NEAR(f.estimator.effectSignals(f.t).value(pe::effects::Signal::kAirDensity), rho, 1e-12);
+  EXPECT_DOUBLE_EQ(f.model.effects().full_thrust_n, f.model.fullThrustN());
+  pe::OperatingPoint plain;
+  ASSERT_TRUE(f.model.evaluate(kPwm, kVoltage, &plain));
+  const fx::Signals signals = f.estimator.effectSignals(f.t);
+  const double factor = fx::singleThrustFactor(fx::Kind::kAirDensity, 0.85, f.model.effects(), signals, plain.thrust_n);
+  EXPECT_LT(factor, 1.0);
+  EXPECT_LT(factor, std::pow(rho / benchDensity(f), 0.85)) << "below full thrust the exponent is larger";
+  expectMotor(f, kPwm, kVoltage, factor);
+  EXPECT_NEAR(signals.value(pe::effects::Signal::kAirDensity), rho, 1e-12);
 }
 
 TEST(EstimatorEffects, GroundEffectGrowsAsTheRangefinderNearsTheGround) {
@@ -186,7 +195,7 @@ TEST(EstimatorEffects, WithoutItsSignalACorrectionIsSkippedAndTheOthersApply) {
 }
 
 TEST(EstimatorEffects, AnEffectAtItsNeutralValueIsStillSkippedWithoutItsSignal) {
-  // (rho / rho_bench)^0 is 1 for any density, but a missing density must show as skipped.
+  // The neutral exponent gives 1 for any density, but a missing density must show as skipped.
   EstimatorFixture f({}, pe::Vehicle::quadX(0.225), only(fx::Kind::kAirDensity, 0.0));
   f.fly(kPwm, 0.1);
   EXPECT_TRUE(skipped(f, fx::Kind::kAirDensity));

@@ -12,6 +12,8 @@ namespace fx = propulsion_estimator::effects;
 
 namespace {
 
+constexpr double kRotorThrustN = 5.0;  // half the references' full thrust
+
 // Signals at which every correction has something to read.
 fx::Signals everySignal() {
   fx::Signals signals;
@@ -28,6 +30,7 @@ fx::Signals everySignal() {
 fx::ModelEffects references() {
   fx::ModelEffects effects;
   effects.bench_air_density_kg_m3 = 1.2;
+  effects.full_thrust_n = 10.0;
   effects.rotor_height_m = 0.05;
   effects.motor_reference_c = 22.0;
   return effects;
@@ -56,7 +59,9 @@ TEST(EffectDescriptions, EachIsCompleteAndActsOnceEitherOnInputsOrOnThrust) {
     EXPECT_LE(d.parameter.neutral, d.parameter.max);
     EXPECT_GT(std::string(d.meaning).size(), 20u);
     EXPECT_NE(d.correct_inputs == nullptr, d.thrust_factor == nullptr) << "one correction of the PWM view";
-    EXPECT_TRUE(!d.thrust_factor || d.current_view_exponent) << "a thrust factor needs its current view";
+    EXPECT_TRUE(!d.thrust_factor || d.current_view_exponent || d.current_view_factor)
+        << "a thrust factor needs its current view";
+    EXPECT_FALSE(d.current_view_exponent && d.current_view_factor) << "one current view";
     EXPECT_TRUE(!d.thrust_factor || d.rpm_view_exponent) << "a thrust factor needs its RPM view";
     EXPECT_EQ(d.informative == nullptr, d.uninformative == nullptr);
     EXPECT_TRUE(!d.reference.key || d.reference.member) << "a reference key needs its place";
@@ -71,7 +76,7 @@ TEST(EffectDescriptions, TheNeutralParameterChangesNothing) {
     SCOPED_TRACE(d.name);
     fx::ModelEffects effects = references();
     effects.setParameter(kind, d.parameter.neutral);
-    EXPECT_DOUBLE_EQ(fx::thrustFactor(effects, signals), 1.0);
+    EXPECT_DOUBLE_EQ(fx::thrustFactor(effects, signals, kRotorThrustN), 1.0);
     const fx::Inputs inputs = fx::correctInputs(effects, 1500.0, 11.1, signals);
     EXPECT_DOUBLE_EQ(inputs.pwm_us, 1500.0);
     EXPECT_DOUBLE_EQ(inputs.voltage_v, 11.1);
@@ -87,12 +92,12 @@ TEST(EffectDescriptions, AParameterInsideItsRangeCorrectsAndItsMissingSignalIsSk
     EXPECT_NO_THROW(effects.validate());
     const fx::Signals signals = everySignal();
     const fx::Inputs inputs = fx::correctInputs(effects, 1500.0, 11.1, signals);
-    const double factor = fx::thrustFactor(effects, signals);
+    const double factor = fx::thrustFactor(effects, signals, kRotorThrustN);
     EXPECT_TRUE(factor != 1.0 || inputs.pwm_us != 1500.0 || inputs.voltage_v != 11.1) << "corrects nothing";
     if (d.signal == fx::Signal::kNone) continue;
     fx::KindMask skipped = 0;
     fx::correctInputs(effects, 1500.0, 11.1, fx::Signals(), &skipped);
-    EXPECT_DOUBLE_EQ(fx::thrustFactor(effects, fx::Signals(), &skipped), 1.0);
+    EXPECT_DOUBLE_EQ(fx::thrustFactor(effects, fx::Signals(), kRotorThrustN, &skipped), 1.0);
     EXPECT_EQ(skipped, fx::bit(kind));
   }
 }

@@ -236,7 +236,7 @@ const std::string kAllEffects = R"(effects:
   supply_resistance: {resistance_ohm: 0.035}
   ground_effect: {coefficient_m2: 0.0011, rotor_height_m: 0.05}
   motor_temperature: {per_c: 0.0012, reference_c: 22}
-  air_density: {exponent: 0.85}
+  air_density: {full_thrust_exponent: 0.85}
   thrust_loss: {fraction: 0.04}
   climb_inflow: {per_m_s: 0.03}
   esc_offset: {offset_us: 12}
@@ -311,7 +311,7 @@ TEST(ModelYaml, WithEffectsAddsTheSectionAndTakesTheBenchAirFromTheMetadata) {
   const pe::PropulsionModel corrected = plain.withEffects(fx);
   EXPECT_DOUBLE_EQ(corrected.effects().bench_air_density_kg_m3, plain.metadata().benchAirDensity());
   const std::string written = pe::modelToYaml(corrected);
-  EXPECT_NE(written.find("effects:\n  air_density: {exponent: 0.8}\n  thrust_loss: {fraction: 0.05}\n"),
+  EXPECT_NE(written.find("effects:\n  air_density: {full_thrust_exponent: 0.8}\n  thrust_loss: {fraction: 0.05}\n"),
             std::string::npos)
       << written;
   EXPECT_EQ(pe::parseModelYaml(written, "corrected").effects().parameter(pe::effects::Kind::kThrustLoss), 0.05);
@@ -371,7 +371,7 @@ TEST(ModelYaml, LoadsAModelWithoutBenchAir) {
 }
 
 TEST(ModelYaml, RefusesAirDensityWithoutBenchAir) {
-  EXPECT_EQ(refusal(withoutBenchAir() + "effects:\n  air_density: {exponent: 0.85}\n"),
+  EXPECT_EQ(refusal(withoutBenchAir() + "effects:\n  air_density: {full_thrust_exponent: 0.85}\n"),
             "m.yaml:30: effects.air_density: needs the bench air of the model's metadata (bench_air_temperature_c, "
             "bench_air_pressure_pa) as its reference, and the model has none");
   pe::effects::ModelEffects fx;
@@ -384,6 +384,15 @@ TEST(ModelYaml, RefusesAirDensityWithoutBenchAir) {
                  "effects.air_density: needs the bench air of the model's metadata (bench_air_temperature_c, "
                  "bench_air_pressure_pa) as its reference, and the model has none");
   }
+}
+
+// air_density's law is scaled by the model's thrust at its top corner (1900 us, 13 V here).
+TEST(ModelYaml, RefusesAirDensityOnAModelWithoutThrustAtItsTopCorner) {
+  const std::string flat = replaced("{p00: 3.0, p10: 3.0, p01: 0.3}", "{p00: 3.0, p10: 0.0, p01: -3.0}");
+  EXPECT_NO_THROW(pe::parseModelYaml(flat, "m.yaml"));
+  EXPECT_EQ(refusal(flat + "effects:\n  air_density: {full_thrust_exponent: 0.85}\n"),
+            "m.yaml: effects.air_density: needs thrust at the model's highest pulse width and voltage, and the thrust "
+            "surface gives 0 N there");
 }
 
 TEST(ModelYaml, RefusesHalfTheBenchAir) {
