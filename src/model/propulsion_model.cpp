@@ -190,11 +190,23 @@ PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,
     if (outputs_[index(output)].source == OutputSource::kDerived) evaluation_order_[next++] = output;
   }
   effects_.full_thrust_n = fullThrustN();
-  effects_.validate();
+  validateEffects(effects_);
 }
 
 double PropulsionModel::fullThrustN() const {
-  return evaluateRaw(Output::kThrust, domain_.pwm_max_us, domain_.voltage_max_v) * to_si_[index(Output::kThrust)];
+  // The highest voltage logged at the top pulse width: the box's corner may lie where the bench
+  // measured nothing.
+  return evaluateRaw(Output::kThrust, domain_.pwm_max_us, domain_.voltageRange(domain_.pwm_max_us).second) *
+         to_si_[index(Output::kThrust)];
+}
+
+void PropulsionModel::validateEffects(const effects::ModelEffects& effects) const {
+  effects.validate();
+  // air_density's law is scaled by the full thrust (a model file's effects are read without it).
+  if (effects.has(effects::Kind::kAirDensity) && !(std::isfinite(effects.full_thrust_n) && effects.full_thrust_n > 0.0)) {
+    throw FieldError("effects.air_density", "needs thrust at the model's highest pulse width and voltage, and the "
+                                            "thrust surface gives " + formatNumber(effects.full_thrust_n) + " N there");
+  }
 }
 
 void PropulsionModel::setMotorReference(std::optional<MotorReference> reference) {
@@ -206,7 +218,7 @@ PropulsionModel PropulsionModel::withEffects(effects::ModelEffects effects) cons
   PropulsionModel copy = *this;
   effects.bench_air_density_kg_m3 = metadata_.benchAirDensity();
   effects.full_thrust_n = effects_.full_thrust_n;
-  effects.validate();
+  validateEffects(effects);
   copy.effects_ = effects;
   return copy;
 }

@@ -137,7 +137,7 @@ struct TareResult {
 ///
 /// The model's effects (effects::ModelEffects) are applied to every motor: the surfaces are
 /// evaluated at effects::correctInputs() and thrust and efficiency multiplied by
-/// effects::thrustFactor() (floored at zero, as the surfaces' thrust is). A correction whose signal
+/// effects::thrustFactor() at each rotor's own thrust (floored at zero, as the surfaces' thrust is). A correction whose signal
 /// is missing or older than its timeout is skipped for that message and counted.
 class Estimator {
  public:

@@ -18,7 +18,7 @@ namespace gap {
 ///  - the RPM view: each motor's thrust at its measured speed (ESC telemetry) through the model's
 ///    thrust_from_rpm, at the flight's air density.
 /// Causes err differently in them: an ESC end-point offset leaves the current and RPM views
-/// untouched, an electrical or air-density cause moves the current view several times less than the
+/// untouched, an electrical or air-density cause moves the current view two to three times less than the
 /// PWM view and the RPM view not at all, a thrust loss or a hidden mass moves all three equally,
 /// motor heating moves the first two in opposite directions and not the third.
 class ThrustViews {
@@ -91,7 +91,8 @@ double rpmViewExponent(effects::Kind kind, double parameter);
 /// How much of an effect's thrust factor the current view sees, as an exponent on it (1: as much
 /// as the PWM view; 0: none; negative: the other way), given the effect's fitted `parameter`.
 /// Only for effects acting on thrust (not the input corrections, which the current view takes
-/// through the surfaces).
+/// through the surfaces); 0 too for an effect with a current-view law of its own
+/// (EffectDescription::current_view_factor: air_density, seen as the cube root of the density ratio).
 double currentViewExponent(effects::Kind kind, double parameter);
 
 }  // namespace gap

@@ -145,7 +145,7 @@ class PropulsionModel {
   /// Throws ConfigError (without file context) for a unit that does not fit its output, a
   /// derivation that is circular or refers to an absent output, thrust not modelled, or an
   /// empty domain; FieldError ("effects.<name>.<key>") for effects that ModelEffects::validate()
-  /// refuses (air_density: a thrust surface not above zero at the domain's top corner). The
+  /// refuses, and for air_density on a thrust surface not finite and above zero at fullThrustN()'s point. The
   /// effects' references from the model (bench air density, full thrust) are the model's, whatever
   /// `effects` says.
   PropulsionModel(ModelMetadata metadata, ModelDomain domain, std::array<OutputDefinition, kOutputCount> outputs,
@@ -165,7 +165,8 @@ class PropulsionModel {
   /// value (not floored), a derived output as evaluate() derives it, NaN if not modelled.
   double evaluateRaw(Output output, double pwm_us, double voltage_v) const;
 
-  /// The thrust surface at the domain's highest pulse width and voltage, N: the scale of air_density's law.
+  /// The thrust surface at the domain's highest pulse width and the highest voltage logged there, N:
+  /// the scale of air_density's law.
   double fullThrustN() const;
 
   /// The ESC, motor, propeller, bench air and supply.
@@ -190,6 +191,8 @@ class PropulsionModel {
   void setMotorReference(std::optional<MotorReference> reference);
 
  private:
+  /// ModelEffects::validate() and the full thrust air_density reads; throws FieldError.
+  void validateEffects(const effects::ModelEffects& effects) const;
   /// All outputs in SI, floored as evaluate() documents, in dependency order.
   std::array<double, kOutputCount> computeSi(double pwm_us, double voltage_v) const;
   double evaluateSi(Output output, double pwm_us, double voltage_v, const std::array<double, kOutputCount>& done) const;

@@ -1,6 +1,7 @@
 // air_density: the flight's air thinner or denser than the bench's.
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
@@ -31,8 +32,12 @@ const EffectDescription& airDensityEffect() {
         "follows the air, not the current or the payload";
     d.thrust_factor = [](double value, const ModelEffects& references, const Signals& signals, double thrust_n) {
       if (value <= 0.0) return 1.0;
+      // A programming error, not a file's: PropulsionModel and the diagnosis set it.
+      if (std::isnan(references.full_thrust_n)) throw std::logic_error("air_density: the model's full thrust is not set");
       const double ratio = signals.value(Signal::kAirDensity) / references.bench_air_density_kg_m3;
-      const double x = (1.0 / value - 1.0) / 2.0 * std::sqrt(std::max(thrust_n, 0.0) / references.full_thrust_n);
+      // Capped where the factor is 1 to many digits: x (x + 1) would overflow for a tiny parameter.
+      const double x_full = std::min(1e9, (1.0 / value - 1.0) / 2.0);
+      const double x = x_full * std::sqrt(std::max(thrust_n, 0.0) / references.full_thrust_n);
       // y = (sqrt(1 + 4 r x (x + 1)) - 1) / (2 r x), in the form that holds at x = 0.
       const double speed = 2.0 * (x + 1.0) / (1.0 + std::sqrt(1.0 + 4.0 * ratio * x * (x + 1.0)));
       return ratio * speed * speed;
@@ -61,11 +66,6 @@ const EffectDescription& airDensityEffect() {
       if (!(effects.bench_air_density_kg_m3 > 0.3 && effects.bench_air_density_kg_m3 < 1.6)) {
         throw FieldError("effects.air_density", "the bench air density " + formatNumber(effects.bench_air_density_kg_m3) +
                                                     " kg/m^3 of the model's metadata is outside 0.3..1.6 kg/m^3");
-      }
-      // NaN until the model sets it from its surfaces (a model file's effects are read before them).
-      if (!std::isnan(effects.full_thrust_n) && !(effects.full_thrust_n > 0.0)) {
-        throw FieldError("effects.air_density", "needs thrust at the model's highest pulse width and voltage, and the "
-                                                    "thrust surface gives " + formatNumber(effects.full_thrust_n) + " N there");
       }
     };
     return d;

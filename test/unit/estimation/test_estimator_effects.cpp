@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -82,6 +83,17 @@ TEST(EstimatorEffects, AirDensityScalesEachRotorsThrustByTheLawAtItsOwnThrust) {
   EXPECT_LT(factor, std::pow(rho / benchDensity(f), 0.85)) << "below full thrust the exponent is larger";
   expectMotor(f, kPwm, kVoltage, factor);
   EXPECT_NEAR(signals.value(pe::effects::Signal::kAirDensity), rho, 1e-12);
+  // Rotors at four pulse widths: each at its own thrust, the lightest losing the most.
+  const std::vector<std::uint16_t> channels = {1300, 1500, 1690, 1850, 1000, 1000, 1000, 1000};
+  ASSERT_EQ(f.estimator.addMotorOutputs(f.t, f.t, channels.data(), channels.size()), pe::Rejection::kNone);
+  double previous = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_TRUE(f.model.evaluate(channels[i], kVoltage, &plain));
+    const double own = fx::singleThrustFactor(fx::Kind::kAirDensity, 0.85, f.model.effects(), signals, plain.thrust_n);
+    EXPECT_DOUBLE_EQ(f.estimator.output().motors[i].estimate.thrust_n, plain.thrust_n * own) << "motor " << i + 1;
+    EXPECT_GT(own, previous) << "motor " << i + 1;
+    previous = own;
+  }
 }
 
 TEST(EstimatorEffects, GroundEffectGrowsAsTheRangefinderNearsTheGround) {

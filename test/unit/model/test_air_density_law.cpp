@@ -1,6 +1,7 @@
 // The air_density correction against a DC motor driving a propeller, solved here by bisection on
 // its torque balance: thrust at fixed duty and voltage in thinner or denser air, at every load.
 #include <cmath>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -92,4 +93,13 @@ TEST(AirDensityLaw, AStiffMotorScalesWithTheDensityAndTheNeutralValueChangesNoth
     EXPECT_NEAR(lawFactor(1.0, refs, 0.8, thrust), 0.8, 1e-12) << thrust << " N";
     EXPECT_DOUBLE_EQ(lawFactor(0.0, refs, 0.8, thrust), 1.0) << thrust << " N";
   }
+}
+
+TEST(AirDensityLaw, ATinyParameterIsAlmostNeutralAndAnUnsetFullThrustIsLoud) {
+  const fx::ModelEffects refs = references(8.0);
+  for (double tiny : {1e-12, 1e-200, 1e-310}) {
+    EXPECT_NEAR(lawFactor(tiny, refs, 0.7, 4.0), 1.0, 1e-3) << tiny;
+    EXPECT_NEAR(lawFactor(tiny, refs, 0.7, 0.0), 0.7, 1e-12) << tiny << ": at zero thrust the speed holds";
+  }
+  EXPECT_THROW(lawFactor(0.7, references(std::nan("")), 0.7, 4.0), std::logic_error);
 }
