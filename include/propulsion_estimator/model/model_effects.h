@@ -121,8 +121,8 @@ struct Inputs {
 ///   translational_lift T *= 1 + per_m2_s2 * horizontal speed^2   (below the rotors' hover induced speed)
 struct ModelEffects {
   double bench_air_density_kg_m3 = kNaN;  ///< reference of air_density (the model's bench air)
-  /// Reference of air_density: the model's thrust at its highest pulse width and voltage, N (set
-  /// by PropulsionModel from its surfaces).
+  /// Reference of air_density: the model's thrust at its highest pulse width and the highest voltage
+  /// logged there, N (PropulsionModel::fullThrustN(), set by the model).
   double full_thrust_n = kNaN;
   double rotor_height_m = 0.0;  ///< rotor discs above the height reference, for ground_effect
   double motor_reference_c = kNaN;  ///< reference of motor_temperature
