@@ -195,6 +195,8 @@ class Diagnoser {
   bool fallsEnough(double before_pct, double after_pct) const;
   // Mean over blocks of the joint squared error.
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
+  // The joint mean square once each flight's mean residual is taken out of each view.
+  double withinFlightMeanSquare(const HeldOutPrediction& prediction) const;
   double suspectThrustFactor(int motor, double yaw_gap) const;
   double currentViewRatio(const effects::ModelEffects& without, const effects::ModelEffects& with) const;
   double meanPwm(const Block& block) const;
@@ -208,6 +210,8 @@ class Diagnoser {
   Breakdown phase(const BlockView& pwm_view) const;
   void balanceMotors();
   HeldOutPrediction selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
+  // Whether `candidate` leaves less of the error within flights than the vehicle's own `own` would.
+  bool explainsMoreWithinFlights(Kind candidate, const HeldOutPrediction& with_candidate, Kind own) const;
   // Prefixes the trace's steps from `first_step` on with the background they ran on top of.
   void markOnBackground(std::size_t first_step);
   // working_, grouped_ and the diagnosis' selected and ambiguous lists from the rounds' outcomes.

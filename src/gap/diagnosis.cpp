@@ -417,14 +417,18 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
     const std::optional<Kind> best = selectionRound(round, working_, current, results, &admissible, &own);
     if (!background_.empty() && rounds.empty()) markOnBackground(first_step);
     const bool own_first = own && (!best || (*results)[*own].joint_rmse_pct < (*results)[*best].joint_rmse_pct);
-    if (own_first && rounds.empty() && static_cast<int>(background_.size()) < kMaxBackgroundEffects) {
+    if (own_first && rounds.empty() && static_cast<int>(background_.size()) < kMaxBackgroundEffects &&
+        !(best && explainsMoreWithinFlights(*best, admissible.at(*best), *own))) {
       // The vehicle's own effect (the day's air, its motors' warming, parts within their spread)
       // is no finding, but left in the error it hides a small effect that is one, and where it
       // explains more than any candidate that passes, naming that candidate would name what the
       // vehicle's own leaves (an ESC offset within the parts' spread named as a supply resistance
       // on development seed 7002): it is modelled, unnamed, and the round tried again on top of
-      // it. Only before a first effect is named: after one, what its law leaves over is what the
-      // background would take up (law_left_over.cpp).
+      // it. Not when the candidate that passes explains the error within flights better: the
+      // vehicle's own then wins on what differs between flights alone (the day's air taking up a
+      // motor heating, which also differs with each flight's air, development seed 5151). Only
+      // before a first effect is named: after one, what its law leaves over is what the background
+      // would take up (law_left_over.cpp).
       background_.push_back(*own);
       adopt(rounds);
       current = predictHeldOut(working_);
@@ -460,6 +464,14 @@ void Diagnoser::markOnBackground(std::size_t first_step) {
     diagnosis_.trace[step].verdict =
         "with " + nameList(names, 3) + " modelled as the vehicle's own: " + diagnosis_.trace[step].verdict;
   }
+}
+
+// Whether `candidate` (its held-out prediction `with_candidate`) leaves less of the error within
+// flights, each flight's mean taken out, than the vehicle's own effect `own` in its place.
+bool Diagnoser::explainsMoreWithinFlights(Kind candidate, const HeldOutPrediction& with_candidate, Kind own) const {
+  std::vector<Kind> with_own = working_;
+  with_own.push_back(own);
+  return candidate != own && withinFlightMeanSquare(with_candidate) < withinFlightMeanSquare(predictHeldOut(with_own));
 }
 
 // The effects the rounds chose, as the correction and the report take them.

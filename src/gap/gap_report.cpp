@@ -411,7 +411,7 @@ void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
   }
   md << "The two views of thrust tell causes apart: the PWM view (what the node estimates) and the view through the "
         "measured battery current. The current-view ratio is how much of an effect's correction the current view's "
-        "residual shows: about 1 for a thrust loss or a hidden mass, near 0 for an ESC offset, about a third for an "
+        "residual shows: about 1 for a thrust loss or a hidden mass, near 0 for an ESC offset, a third to a half for an "
         "electrical or an air-density cause, negative for motor heating.\n\n";
 
 }

@@ -2,6 +2,11 @@
 // the current view's and the RPM view's held-out residuals, each weighed by what it knows.
 #include "diagnoser.h"
 
+#include <array>
+#include <cmath>
+#include <map>
+#include <utility>
+
 namespace propulsion_estimator {
 namespace gap {
 namespace detail {
@@ -39,6 +44,39 @@ double Diagnoser::jointSquare(const HeldOutPrediction& prediction, std::size_t b
 double Diagnoser::jointMeanSquare(const HeldOutPrediction& prediction) const {
   double sum = 0.0;
   for (std::size_t i = 0; i < blocks_.size(); ++i) sum += jointSquare(prediction, i);
+  return sum / blocks_.size();
+}
+
+// What a correction explains between flights (one factor per flight: the day's air, a payload's
+// hang) and what it explains within them (a motor warming over each flight) are told apart by
+// taking each flight's mean residual out of each view first.
+double Diagnoser::withinFlightMeanSquare(const HeldOutPrediction& prediction) const {
+  const std::array<const std::vector<double>*, 3> views = {&prediction.pwm, &prediction.current, &prediction.rpm};
+  const std::array<double, 3> weights = {1.0, diagnosis_.current_view_weight, diagnosis_.rpm_view_weight};
+  struct Mean {
+    double sum = 0.0;
+    int count = 0;
+  };
+  std::map<std::pair<int, int>, Mean> means;  // by flight and view
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    for (int v = 0; v < 3; ++v) {
+      const double residual = (*views[v])[i];
+      if (!std::isfinite(residual)) continue;
+      Mean& mean = means[{blocks_[i].flight, v}];
+      mean.sum += residual;
+      ++mean.count;
+    }
+  }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    for (int v = 0; v < 3; ++v) {
+      const double residual = (*views[v])[i];
+      if (!std::isfinite(residual)) continue;
+      const Mean& mean = means.at({blocks_[i].flight, v});
+      const double deviation = residual - mean.sum / mean.count;
+      sum += weights[v] * deviation * deviation;
+    }
+  }
   return sum / blocks_.size();
 }
 

@@ -46,6 +46,7 @@ struct World {
   double motor_per_c = 0.0;
   double motor_warming_c = 0.0;    // each flight's motors warm by this much, linearly over the flight
   bool warming_heats = false;      // the thrust follows the warming too (else only the day's temperature)
+  bool day_heats = true;           // the thrust follows the day's temperature the motors start at
   bool no_current = false;         // no battery current logged
   // Each flight's rotors give (1 + flight_spread * a flight's own draw in -1.2..1) of their thrust:
   // what a payload's hang and the day do to one flight and not to the next.
@@ -104,7 +105,9 @@ class SyntheticFlights : public ::testing::Test {
       for (int i = 0; i < 50 * 42; ++i, t += 0.02) {
         const double sensed = voltage_v - 0.3 * (t / 150.0);
         const double warm =
-            (1.0 + world.motor_per_c * (motor_c + (world.warming_heats ? warming_at(t) : 0.0) - 22.0)) * flight_factor;
+            (1.0 + world.motor_per_c * ((world.day_heats ? motor_c : 22.0) + (world.warming_heats ? warming_at(t) : 0.0) -
+                                        22.0)) *
+            flight_factor;
         // What the ESCs see and what each rotor must give so that the vehicle hovers.
         double esc_voltage = sensed;
         double current = 0.0;
@@ -144,6 +147,7 @@ class SyntheticFlights : public ::testing::Test {
           if (world.motor_temperature) {
             flight.streams.input(pe::input::Scalar::kMotorTemperature).push_back({t, motor_c + warming_at(t)});
           }
+
         }
         pe::ImuReading imu;
         imu.time_s = t;
@@ -942,6 +946,39 @@ TEST_F(SyntheticFlights, TheCurrentViewTakesOutTheDrawMeasuredOnTheGround) {
   ASSERT_EQ(measured.samples.size(), fitted.samples.size());
   EXPECT_NEAR(measured.samples[0].current_a, fitted.samples[0].current_a, 1e-9);
   EXPECT_TRUE(measured.selected.empty());
+}
+
+// Motors warming 16 C over each flight and losing 0.2 %/C of their thrust to it, their logged
+// temperature starting at each day's (14-26 C), which the thrust does not follow: the heating's law
+// also reads the days' temperatures and errs between flights. Over all blocks a thrust loss within
+// the parts' spread (the vehicle's own, not nameable) explains more than the heating, which passes
+// every test; within each flight only the heating explains anything. Modelling the thrust loss first
+// left the heating not significant and named an ESC offset (the family's motor heatings beside the
+// day's air, development seed 5151): the vehicle's own is not modelled first where the candidate
+// that passes explains the error within flights better.
+TEST_F(SyntheticFlights, AHeatingExplainingTheErrorWithinFlightsIsNotHiddenByTheVehiclesOwnEffect) {
+  World world;
+  world.motor_temperature = true;
+  world.motor_warming_c = 16.0;
+  world.warming_heats = true;
+  world.day_heats = false;
+  world.motor_per_c = -0.002;
+  world.no_current = true;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  const std::string report = gap::gapReportMarkdown(diagnosis, model_, "cmd");
+  const auto first_round = [&](Kind kind) {
+    for (const gap::SelectionStep& step : diagnosis.trace) {
+      if (step.round == 1 && step.kind == kind) return step;
+    }
+    return gap::SelectionStep{};
+  };
+  // The premise: the heating passes, and the thrust loss, not nameable, explains more.
+  const gap::SelectionStep heating = first_round(Kind::kMotorTemperature), loss = first_round(Kind::kThrustLoss);
+  EXPECT_EQ(heating.verdict, "passes every test") << report;
+  EXPECT_EQ(loss.verdict.rfind("not named: changes the thrust by at most", 0), 0u) << report;
+  EXPECT_LT(loss.joint_rmse_pct, heating.joint_rmse_pct) << report;
+  EXPECT_EQ(diagnosis.selected, std::vector<Kind>{Kind::kMotorTemperature}) << report;
+  EXPECT_TRUE(diagnosis.background.empty()) << report;
 }
 
 // A reference judges a motor heating read within flights by its change from the healthy flights
