@@ -212,6 +212,9 @@ class Diagnoser {
   HeldOutPrediction selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
   // Whether `candidate` leaves less of the error within flights than the vehicle's own `own` would.
   bool explainsMoreWithinFlights(Kind candidate, const HeldOutPrediction& with_candidate, Kind own) const;
+  // `current` with `own` modelled unnamed beside the rounds' effects, where that lowers the error.
+  HeldOutPrediction offerToTheCorrection(Kind own, const std::vector<RoundOutcome>& rounds,
+                                         const HeldOutPrediction& current);
   // Prefixes the trace's steps from `first_step` on with the background they ran on top of.
   void markOnBackground(std::size_t first_step);
   // working_, grouped_ and the diagnosis' selected and ambiguous lists from the rounds' outcomes.

@@ -410,38 +410,50 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
   }
   std::vector<RoundOutcome> rounds;
   HeldOutPrediction current = before;
+  // The vehicle's own effects left out of the rounds, offered to the correction once the names
+  // are chosen: one not modelled first (below), and the one the last round refused as the
+  // vehicle's own (after a first name none is modelled first, yet the day's air beside a named
+  // motor heating still lowers the error).
+  std::vector<Kind> offered;
   for (int round = 0; can_hold_out && round < config_.max_effects; ++round) {
     std::map<Kind, HeldOutPrediction> admissible;
     std::optional<Kind> own;
     const std::size_t first_step = diagnosis_.trace.size();
     const std::optional<Kind> best = selectionRound(round, working_, current, results, &admissible, &own);
     if (!background_.empty() && rounds.empty()) markOnBackground(first_step);
-    const bool own_first = own && (!best || (*results)[*own].joint_rmse_pct < (*results)[*best].joint_rmse_pct);
-    if (own_first && rounds.empty() && static_cast<int>(background_.size()) < kMaxBackgroundEffects &&
-        !(best && explainsMoreWithinFlights(*best, admissible.at(*best), *own))) {
-      // The vehicle's own effect (the day's air, its motors' warming, parts within their spread)
-      // is no finding, but left in the error it hides a small effect that is one, and where it
-      // explains more than any candidate that passes, naming that candidate would name what the
-      // vehicle's own leaves (an ESC offset within the parts' spread named as a supply resistance
-      // on development seed 7002): it is modelled, unnamed, and the round tried again on top of
-      // it. Not when the candidate that passes explains the error within flights better: the
-      // vehicle's own then wins on what differs between flights alone (the day's air taking up a
-      // motor heating, which also differs with each flight's air, development seed 5151). Only
-      // before a first effect is named: after one, what its law leaves over is what the background
-      // would take up (law_left_over.cpp).
+    const bool own_first = own && (!best || (*results)[*own].joint_rmse_pct < (*results)[*best].joint_rmse_pct) &&
+                           rounds.empty() && static_cast<int>(background_.size()) < kMaxBackgroundEffects;
+    // The vehicle's own effect (the day's air, its motors' warming, parts within their spread) is
+    // no finding, but left in the error it hides a small effect that is one, and where it explains
+    // more than any candidate that passes, naming that candidate would name what the vehicle's own
+    // leaves (an ESC offset within the parts' spread named as a supply resistance on development
+    // seed 7002): it is modelled, unnamed, and the round tried again on top of it. Not first when
+    // the candidate that passes explains the error within flights better: the vehicle's own then
+    // wins on what differs between flights alone, and modelled first it took up what the
+    // candidate's law could reach of that (the day's air hiding a motor heating, development seed
+    // 5151); it is offered to the correction once the names are chosen. Only before a first
+    // effect is named: after one, what its law leaves over is what the background would take up
+    // (law_left_over.cpp).
+    if (own_first && best && explainsMoreWithinFlights(*best, admissible.at(*best), *own)) {
+      offered.push_back(*own);
+    } else if (own_first) {
       background_.push_back(*own);
       adopt(rounds);
       current = predictHeldOut(working_);
       --round;
       continue;
     }
-    if (!best) break;
+    if (!best) {
+      if (own) offered.push_back(*own);
+      break;
+    }
     rounds.push_back({*best, ambiguityOf(*best, admissible), round});
     adopt(rounds);
     current = admissible.at(*best);
   }
   const bool revisited = rounds.size() >= 2;
   if (revisited) current = revisitRounds(&rounds, results);
+  for (Kind own : offered) current = offerToTheCorrection(own, rounds, current);
   for (const RoundOutcome& outcome : rounds) {
     if (outcome.ambiguity) continue;
     EffectResult& taken = (*results)[outcome.leader];
@@ -472,6 +484,24 @@ bool Diagnoser::explainsMoreWithinFlights(Kind candidate, const HeldOutPredictio
   std::vector<Kind> with_own = working_;
   with_own.push_back(own);
   return candidate != own && withinFlightMeanSquare(with_candidate) < withinFlightMeanSquare(predictHeldOut(with_own));
+}
+
+// A vehicle's own effect left out of the rounds (selectEffects) joins the correction, unnamed, where
+// the held-out joint error falls with it: the day's air still carries what differs between flights
+// beside a motor heating named for what it does within them, as when it was modelled first.
+HeldOutPrediction Diagnoser::offerToTheCorrection(Kind own, const std::vector<RoundOutcome>& rounds,
+                                                  const HeldOutPrediction& current) {
+  if (std::find(working_.begin(), working_.end(), own) != working_.end() ||
+      static_cast<int>(background_.size()) >= kMaxBackgroundEffects) {
+    return current;
+  }
+  std::vector<Kind> with_own = working_;
+  with_own.push_back(own);
+  HeldOutPrediction prediction = predictHeldOut(with_own);
+  if (!(jointMeanSquare(prediction) < jointMeanSquare(current))) return current;
+  background_.push_back(own);
+  adopt(rounds);
+  return prediction;
 }
 
 // The effects the rounds chose, as the correction and the report take them.

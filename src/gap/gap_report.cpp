@@ -390,8 +390,9 @@ void writeEffectsSection(std::ostream& md, const Diagnosis& diagnosis) {
   }
   if (!diagnosis.background.empty()) {
     md << "**Modelled, not named:** " << codeList(diagnosis.background) << ": the vehicle's own (no change from its healthy flights, or within its parts' spread: its line in the "
-          "table above says which), in the correction and beneath the effects tried after it, so that what it "
-          "explains does not hide a small effect.\n\n";
+          "table above says which), in the correction, where it lowers the held-out error, and, when it was "
+          "modelled before any name, beneath the effects tried after it, so that what it explains does not hide a small "
+          "effect.\n\n";
   }
   for (const Ambiguity& ambiguity : diagnosis.ambiguous) {
     md << "**Ambiguous: one of " << codeList(ambiguity.kinds) << "** explains part of the gap, but these flights cannot tell which: swapping the leader for the runner-up "
