@@ -210,6 +210,11 @@ class Diagnoser {
   Breakdown phase(const BlockView& pwm_view) const;
   void balanceMotors();
   HeldOutPrediction selectEffects(const HeldOutPrediction& before, std::map<Kind, EffectResult>* results);
+  // Why `kind` fitted with `kinds` is the vehicle's own (within the parts' spread, no change from
+  // the healthy flights), or "".
+  std::string vehiclesOwn(Kind kind, const std::vector<Kind>& kinds, const EffectFit& fit, const EffectSize& size) const;
+  // Whether `candidate`, fitted on top of the vehicle's own `own`, is the vehicle's own as well.
+  bool ownOnTopOf(Kind own, Kind candidate) const;
   // Whether `candidate` leaves less of the error within flights than the vehicle's own `own` would.
   bool explainsMoreWithinFlights(Kind candidate, const HeldOutPrediction& with_candidate, Kind own) const;
   // `current` with `own` modelled unnamed beside the rounds' effects, where that lowers the error.

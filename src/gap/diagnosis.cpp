@@ -279,11 +279,6 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     result.plausible = result.parameter > spec.min + margin && result.parameter < spec.max - margin;
     result.current_view_ratio = currentViewRatio(round_base, fit.effects);
     result.size = effectSizeAgainstParts(views_, all_, fit.effects, kind, config_.parts_spread);
-    // With the effect on the vehicle's healthy flights, their fit may stand in for the parts' spread.
-    const bool by_reference =
-        judgedByReferenceAlone(kind, config_.reference_effects, betweenFlightShare(effects::requiredSignal(kind)));
-    const std::string within_parts =
-        by_reference ? "" : withinPartsSpread(kind, result.parameter, result.size, config_.parts_spread);
     const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
     const double drop_pct = base_pwm_rmse_pct - 100.0 * std::sqrt(pwm_ms);
     const bool significant = result.p_value < config_.significance && ms < base_ms &&
@@ -296,12 +291,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
                       formatNumber(spec.max) + ": the gap is not of this effect's shape";
     } else if (!excludes_neutral) {
       result.reason = "its 95 % interval includes no effect";
-    } else if (const std::string same =
-                   within_parts.empty() ? notAChange(kind, result.parameter, flightsHalfWidth(kinds, half),
-                                                     signalMedian(all_, effects::requiredSignal(kind)),
-                                                     config_.reference_effects)
-                                        : within_parts;
-               !same.empty()) {
+    } else if (const std::string same = vehiclesOwn(kind, kinds, fit, result.size); !same.empty()) {
       result.reason = same;
       if (own && ms < own_ms) {
         own_ms = ms;
@@ -431,10 +421,13 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
     // the candidate that passes explains the error within flights better: the vehicle's own then
     // wins on what differs between flights alone, and modelled first it took up what the
     // candidate's law could reach of that (the day's air hiding a motor heating, development seed
-    // 5151); it is offered to the correction once the names are chosen. Only before a first
+    // 5151); it is offered to the correction once the names are chosen. Still first when the
+    // candidate, fitted on top of it, is the vehicle's own too (a weak background climb inflow
+    // beside an ESC offset within the parts' spread, fresh seed 777918 seen). Only before a first
     // effect is named: after one, what its law leaves over is what the background would take up
     // (law_left_over.cpp).
-    if (own_first && best && explainsMoreWithinFlights(*best, admissible.at(*best), *own)) {
+    if (own_first && best && explainsMoreWithinFlights(*best, admissible.at(*best), *own) &&
+        !ownOnTopOf(*own, *best)) {
       offered.push_back(*own);
     } else if (own_first) {
       background_.push_back(*own);
@@ -476,6 +469,32 @@ void Diagnoser::markOnBackground(std::size_t first_step) {
     diagnosis_.trace[step].verdict =
         "with " + nameList(names, 3) + " modelled as the vehicle's own: " + diagnosis_.trace[step].verdict;
   }
+}
+
+// Why `kind`, fitted with `kinds` (`fit`, its change against the parts' `size`), is the vehicle's
+// own rather than a finding: within the parts' spread, or no change from the healthy flights; ""
+// when it is neither.
+std::string Diagnoser::vehiclesOwn(Kind kind, const std::vector<Kind>& kinds, const EffectFit& fit,
+                                   const EffectSize& size) const {
+  const double parameter = *fit.effects.parameter(kind);
+  // With the effect on the vehicle's healthy flights, their fit may stand in for the parts' spread.
+  const bool by_reference =
+      judgedByReferenceAlone(kind, config_.reference_effects, betweenFlightShare(effects::requiredSignal(kind)));
+  const std::string within_parts = by_reference ? "" : withinPartsSpread(kind, parameter, size, config_.parts_spread);
+  if (!within_parts.empty()) return within_parts;
+  return notAChange(kind, parameter, flightsHalfWidth(kinds, fit.ci_half.back()),
+                    signalMedian(all_, effects::requiredSignal(kind)), config_.reference_effects);
+}
+
+// Whether `candidate`, fitted on top of the vehicle's own `own`, is the vehicle's own as well.
+bool Diagnoser::ownOnTopOf(Kind own, Kind candidate) const {
+  std::vector<Kind> kinds = working_;
+  kinds.push_back(own);
+  kinds.push_back(candidate);
+  const EffectFit fit = fitEffects(views_, all_, kinds, references());
+  return !vehiclesOwn(candidate, kinds, fit,
+                      effectSizeAgainstParts(views_, all_, fit.effects, candidate, config_.parts_spread))
+              .empty();
 }
 
 // Whether `candidate` (its held-out prediction `with_candidate`) leaves less of the error within

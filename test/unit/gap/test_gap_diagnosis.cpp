@@ -948,7 +948,7 @@ TEST_F(SyntheticFlights, TheCurrentViewTakesOutTheDrawMeasuredOnTheGround) {
   EXPECT_TRUE(measured.selected.empty());
 }
 
-// Motors warming 16 C over each flight and losing 0.2 %/C of their thrust to it, their logged
+// Motors warming 16 C over each flight and losing 0.3 %/C of their thrust to it, their logged
 // temperature starting at each day's (14-26 C), which the thrust does not follow: the heating's law
 // also reads the days' temperatures and errs between flights. Over all blocks a thrust loss within
 // the parts' spread (the vehicle's own, not nameable) explains more than the heating, which passes
@@ -962,7 +962,7 @@ TEST_F(SyntheticFlights, AHeatingExplainingTheErrorWithinFlightsIsNotHiddenByThe
   world.motor_warming_c = 16.0;
   world.warming_heats = true;
   world.day_heats = false;
-  world.motor_per_c = -0.002;
+  world.motor_per_c = -0.003;
   world.no_current = true;
   const gap::Diagnosis diagnosis = diagnose(world);
   const std::string report = gap::gapReportMarkdown(diagnosis, model_, "cmd");
