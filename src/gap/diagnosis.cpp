@@ -471,58 +471,6 @@ void Diagnoser::markOnBackground(std::size_t first_step) {
   }
 }
 
-// Why `kind`, fitted with `kinds` (`fit`, its change against the parts' `size`), is the vehicle's
-// own rather than a finding: within the parts' spread, or no change from the healthy flights; ""
-// when it is neither.
-std::string Diagnoser::vehiclesOwn(Kind kind, const std::vector<Kind>& kinds, const EffectFit& fit,
-                                   const EffectSize& size) const {
-  const double parameter = *fit.effects.parameter(kind);
-  // With the effect on the vehicle's healthy flights, their fit may stand in for the parts' spread.
-  const bool by_reference =
-      judgedByReferenceAlone(kind, config_.reference_effects, betweenFlightShare(effects::requiredSignal(kind)));
-  const std::string within_parts = by_reference ? "" : withinPartsSpread(kind, parameter, size, config_.parts_spread);
-  if (!within_parts.empty()) return within_parts;
-  return notAChange(kind, parameter, flightsHalfWidth(kinds, fit.ci_half.back()),
-                    signalMedian(all_, effects::requiredSignal(kind)), config_.reference_effects);
-}
-
-// Whether `candidate`, fitted on top of the vehicle's own `own`, is the vehicle's own as well.
-bool Diagnoser::ownOnTopOf(Kind own, Kind candidate) const {
-  std::vector<Kind> kinds = working_;
-  kinds.push_back(own);
-  kinds.push_back(candidate);
-  const EffectFit fit = fitEffects(views_, all_, kinds, references());
-  return !vehiclesOwn(candidate, kinds, fit,
-                      effectSizeAgainstParts(views_, all_, fit.effects, candidate, config_.parts_spread))
-              .empty();
-}
-
-// Whether `candidate` (its held-out prediction `with_candidate`) leaves less of the error within
-// flights, each flight's mean taken out, than the vehicle's own effect `own` in its place.
-bool Diagnoser::explainsMoreWithinFlights(Kind candidate, const HeldOutPrediction& with_candidate, Kind own) const {
-  std::vector<Kind> with_own = working_;
-  with_own.push_back(own);
-  return candidate != own && withinFlightMeanSquare(with_candidate) < withinFlightMeanSquare(predictHeldOut(with_own));
-}
-
-// A vehicle's own effect left out of the rounds (selectEffects) joins the correction, unnamed, where
-// the held-out joint error falls with it: the day's air still carries what differs between flights
-// beside a motor heating named for what it does within them, as when it was modelled first.
-HeldOutPrediction Diagnoser::offerToTheCorrection(Kind own, const std::vector<RoundOutcome>& rounds,
-                                                  const HeldOutPrediction& current) {
-  if (std::find(working_.begin(), working_.end(), own) != working_.end() ||
-      static_cast<int>(background_.size()) >= kMaxBackgroundEffects) {
-    return current;
-  }
-  std::vector<Kind> with_own = working_;
-  with_own.push_back(own);
-  HeldOutPrediction prediction = predictHeldOut(with_own);
-  if (!(jointMeanSquare(prediction) < jointMeanSquare(current))) return current;
-  background_.push_back(own);
-  adopt(rounds);
-  return prediction;
-}
-
 // The effects the rounds chose, as the correction and the report take them.
 void Diagnoser::adopt(const std::vector<RoundOutcome>& rounds) {
   working_ = background_;
