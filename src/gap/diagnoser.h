@@ -215,8 +215,9 @@ class Diagnoser {
   std::string vehiclesOwn(Kind kind, const std::vector<Kind>& kinds, const EffectFit& fit, const EffectSize& size) const;
   // Whether `candidate`, fitted on top of the vehicle's own `own`, is the vehicle's own as well.
   bool ownOnTopOf(Kind own, Kind candidate) const;
-  // Whether `candidate` leaves less of the error within flights than the vehicle's own `own` would.
-  bool explainsMoreWithinFlights(Kind candidate, const HeldOutPrediction& with_candidate, Kind own) const;
+  // Whether a candidate predicting `with_candidate` leaves less of the error within flights than
+  // the vehicle's own `own` would.
+  bool explainsMoreWithinFlights(const HeldOutPrediction& with_candidate, Kind own) const;
   // `current` with `own` modelled unnamed beside the rounds' effects, where that lowers the error.
   HeldOutPrediction offerToTheCorrection(Kind own, const std::vector<RoundOutcome>& rounds,
                                          const HeldOutPrediction& current);

@@ -426,7 +426,7 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
     // beside an ESC offset within the parts' spread, fresh seed 777918 seen). Only before a first
     // effect is named: after one, what its law leaves over is what the background would take up
     // (law_left_over.cpp).
-    if (own_first && best && explainsMoreWithinFlights(*best, admissible.at(*best), *own) &&
+    if (own_first && best && explainsMoreWithinFlights(admissible.at(*best), *own) &&
         !ownOnTopOf(*own, *best)) {
       offered.push_back(*own);
     } else if (own_first) {

@@ -36,12 +36,12 @@ bool Diagnoser::ownOnTopOf(Kind own, Kind candidate) const {
               .empty();
 }
 
-// Whether `candidate` (its held-out prediction `with_candidate`) leaves less of the error within
+// Whether a candidate (its held-out prediction `with_candidate`) leaves less of the error within
 // flights, each flight's mean taken out, than the vehicle's own effect `own` in its place.
-bool Diagnoser::explainsMoreWithinFlights(Kind candidate, const HeldOutPrediction& with_candidate, Kind own) const {
+bool Diagnoser::explainsMoreWithinFlights(const HeldOutPrediction& with_candidate, Kind own) const {
   std::vector<Kind> with_own = working_;
   with_own.push_back(own);
-  return candidate != own && withinFlightMeanSquare(with_candidate) < withinFlightMeanSquare(predictHeldOut(with_own));
+  return withinFlightMeanSquare(with_candidate) < withinFlightMeanSquare(predictHeldOut(with_own));
 }
 
 // A vehicle's own effect left out of the rounds (selectEffects) joins the correction, unnamed, where

@@ -147,7 +147,6 @@ class SyntheticFlights : public ::testing::Test {
           if (world.motor_temperature) {
             flight.streams.input(pe::input::Scalar::kMotorTemperature).push_back({t, motor_c + warming_at(t)});
           }
-
         }
         pe::ImuReading imu;
         imu.time_s = t;
