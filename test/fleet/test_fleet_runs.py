@@ -60,6 +60,7 @@ def test_a_run_killed_mid_way_and_restarted_keeps_every_flight_exactly_once(smal
     whole = variant(small_fleet, "whole", database="whole.sqlite", report="whole_report")
     subprocess.run(fleet_command(whole, "--jobs", "2", "--quiet"), check=True)
     rng = random.Random(7)
+    endings = []
     for kill in range(4):
         # Killed (SIGKILL, no clean-up) at a random moment after its first flight was written: a
         # write may be under way.
@@ -70,10 +71,14 @@ def test_a_run_killed_mid_way_and_restarted_keeps_every_flight_exactly_once(smal
                 time.sleep(rng.uniform(0.0, 0.4))
                 os.killpg(process.pid, signal.SIGKILL)
                 break
-        process.wait()
-        assert process.returncode == -signal.SIGKILL
+        process.stdout.close()
+        endings.append(process.wait())
+    # The first run has all 18 flights before it and is always killed; a later run left with a
+    # flight or two may finish inside the pause on a fast machine, and then it ends cleanly.
+    assert endings[0] == -signal.SIGKILL
+    assert all(ending in (-signal.SIGKILL, 0) for ending in endings)
     kept = rows(os.path.join(small_fleet, "killed.sqlite"))
-    assert 4 <= len(kept) < 18
+    assert 4 <= len(kept) <= 18
     assert all(len(f["rotors"]) == 4 and f["hovers"] for f in kept)  # none half-written
     subprocess.run(fleet_command(path, "--quiet"), check=True)
     kept = rows(os.path.join(small_fleet, "killed.sqlite"))
