@@ -16,10 +16,11 @@ hangs its payload a few millimetres off the attach point the diagnosis is told; 
 weak-propeller cases also fly three healthy flights of the same vehicle, which diagnose_gap gets
 as --reference.
 
-Usage: validate_gap.py --bin DIR --repo DIR --work DIR [--cases N] [--quick] [--seed S]
+Usage: validate_gap.py --bin DIR --repo DIR --work DIR [--cases N] [--quick] [--seed S] [--case K,...]
                        [--markdown FILE] [--junit FILE] [--jobs N] [--reuse] [--compare-rpm-view]
   --bin      folder holding simulate, fit_surfaces and diagnose_gap
   --quick    one case of each kind the CI needs (null, thrust loss, supply resistance, weak propeller)
+  --case     only these of the seed's cases (numbers), drawn as in the whole run
   --markdown write the table (docs/VALIDATION.md)
   --reuse    diagnose the cases already simulated in --work again (after a change to the diagnosis);
              cases not simulated there count as errors
@@ -618,6 +619,8 @@ def main():
     parser.add_argument("--compare-whole-flights", action="store_true",
                         help="diagnose each case also from whole-flight masses (no segments) and compare")
     parser.add_argument("--only", help="comma-separated case labels to run (null,weak_propeller,...): for calibration")
+    parser.add_argument("--case", help="comma-separated numbers of the seed's cases to run (39 for case_39_...), drawn "
+                                       "as in the whole run: a case a change was made for, kept as a regression test")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--markdown")
     parser.add_argument("--junit")
@@ -632,6 +635,11 @@ def main():
     cases = make_cases(args.cases, args.seed, args.quick, known_effects(args.bin), weak_thrust)
     if args.only:
         cases = [case for case in cases if case["label"] in args.only.split(",")]
+    if args.case:
+        numbers = {int(number) for number in args.case.split(",")}
+        if not numbers <= set(range(1, len(cases) + 1)):
+            parser.error("--case %s: the run has cases 1..%d" % (args.case, len(cases)))
+        cases = [case for index, case in enumerate(cases) if index + 1 in numbers]
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         rows = list(pool.map(lambda case: run_case(case, args), cases))
     errors = [r for r in rows if "error" in r]

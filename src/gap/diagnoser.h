@@ -215,6 +215,13 @@ class Diagnoser {
   std::string vehiclesOwn(Kind kind, const std::vector<Kind>& kinds, const EffectFit& fit, const EffectSize& size) const;
   // Whether `candidate`, fitted on top of the vehicle's own `own`, is the vehicle's own as well.
   bool ownOnTopOf(Kind own, Kind candidate) const;
+  // Whether `candidate` still lowers the held-out error significantly, and by the thresholds, once
+  // the vehicle's own `own` is modelled beside the rounds' effects.
+  bool passesOnTopOf(Kind own, Kind candidate) const;
+  // `candidate`'s verdict, in the results and in the trace's steps from `first_step` on: passed, but
+  // what it explains is the vehicle's own `own`'s.
+  void declineForTheVehiclesOwn(Kind candidate, Kind own, std::size_t first_step,
+                                std::map<Kind, EffectResult>* results);
   // Whether a candidate predicting `with_candidate` leaves less of the error within flights than
   // the vehicle's own `own` would.
   bool explainsMoreWithinFlights(const HeldOutPrediction& with_candidate, Kind own) const;

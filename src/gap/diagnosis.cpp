@@ -440,6 +440,17 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
       if (own) offered.push_back(*own);
       break;
     }
+    // After a first name the vehicle's own is not modelled first (law_left_over.cpp judges what
+    // the first law leaves), but a second name that the vehicle's own explains better and that
+    // explains nothing beyond it is that effect's work (an ESC offset taking up the motors'
+    // warming at a cold high site beside its named air, fresh seed 195794): not named; the
+    // vehicle's own joins the correction.
+    if (!rounds.empty() && own && (*results)[*own].joint_rmse_pct < (*results)[*best].joint_rmse_pct &&
+        !passesOnTopOf(*own, *best)) {
+      declineForTheVehiclesOwn(*best, *own, first_step, results);
+      offered.push_back(*own);
+      break;
+    }
     rounds.push_back({*best, ambiguityOf(*best, admissible), round});
     adopt(rounds);
     current = admissible.at(*best);

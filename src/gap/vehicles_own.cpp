@@ -2,9 +2,11 @@
 // candidate is one, whether it is modelled before the rounds name anything, and what of it joins the
 // correction once they have (Diagnoser::selectEffects).
 #include <algorithm>
+#include <cmath>
 
 #include "diagnoser.h"
 #include "propulsion_estimator/gap/parts_spread.h"
+#include "propulsion_estimator/gap/sign_flip_test.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -34,6 +36,32 @@ bool Diagnoser::ownOnTopOf(Kind own, Kind candidate) const {
   return !vehiclesOwn(candidate, kinds, fit,
                       effectSizeAgainstParts(views_, all_, fit.effects, candidate, config_.parts_spread))
               .empty();
+}
+
+bool Diagnoser::passesOnTopOf(Kind own, Kind candidate) const {
+  std::vector<Kind> kinds = working_;
+  kinds.push_back(own);
+  const HeldOutPrediction base = predictHeldOut(kinds);
+  kinds.push_back(candidate);
+  const HeldOutPrediction with = predictHeldOut(kinds);
+  const double p = signFlipPValue(groupImprovements(base, with), config_.permutations,
+                                  config_.seed + static_cast<unsigned>(candidate));
+  const auto rmse_pct = [](const std::vector<double>& view) { return 100.0 * std::sqrt(finiteMeanSquare(view)); };
+  return p < config_.significance && jointMeanSquare(with) < jointMeanSquare(base) &&
+         (fallsEnough(rmse_pct(base.pwm), rmse_pct(with.pwm)) || fallsEnough(rmse_pct(base.rpm), rmse_pct(with.rpm)));
+}
+
+void Diagnoser::declineForTheVehiclesOwn(Kind candidate, Kind own, std::size_t first_step,
+                                         std::map<Kind, EffectResult>* results) {
+  const std::string verdict =
+      "passes every test, but " + std::string(effects::kindName(own)) +
+      ", the vehicle's own, lowers the joint held-out error more (" +
+      formatPrintf("%.2f", (*results)[own].joint_rmse_pct) + " % against " +
+      formatPrintf("%.2f", (*results)[candidate].joint_rmse_pct) + " %) and, modelled, leaves it nothing significant: not named";
+  (*results)[candidate].reason = verdict;
+  for (std::size_t step = first_step; step < diagnosis_.trace.size(); ++step) {
+    if (diagnosis_.trace[step].kind == candidate) diagnosis_.trace[step].verdict = verdict;
+  }
 }
 
 // Whether a candidate (its held-out prediction `with_candidate`) leaves less of the error within
