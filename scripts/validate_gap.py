@@ -801,6 +801,7 @@ def main():
                       "not a validation (the randomized family's sections are).\n\n"
                       % (today, args.cases, args.seed, machine) + "\n".join(lines) + "\n")
     if args.junit:
+        os.makedirs(os.path.dirname(os.path.abspath(args.junit)), exist_ok=True)
         with open(args.junit, "w") as handle:
             failure = "" if passed else '<failure message="acceptance thresholds missed"/>'
             handle.write('<?xml version="1.0"?>\n<testsuite name="validate_gap" tests="1" errors="0" failures="%d">'
