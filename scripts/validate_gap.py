@@ -633,13 +633,14 @@ def main():
     # plain world's as before.
     weak_thrust = (0.90, 0.94) if args.family and not args.plain_world else (0.8, 0.9)
     cases = make_cases(args.cases, args.seed, args.quick, known_effects(args.bin), weak_thrust)
-    if args.only:
-        cases = [case for case in cases if case["label"] in args.only.split(",")]
     if args.case:
+        # Numbered as in the whole run, before --only picks labels among them.
         numbers = {int(number) for number in args.case.split(",")}
         if not numbers <= set(range(1, len(cases) + 1)):
             parser.error("--case %s: the run has cases 1..%d" % (args.case, len(cases)))
         cases = [case for index, case in enumerate(cases) if index + 1 in numbers]
+    if args.only:
+        cases = [case for case in cases if case["label"] in args.only.split(",")]
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         rows = list(pool.map(lambda case: run_case(case, args), cases))
     errors = [r for r in rows if "error" in r]

@@ -105,6 +105,12 @@ struct HeldOutPrediction {
   std::vector<double> view_n;   // PWM view, N
 };
 
+// A candidate a round refused only as the vehicle's own, and its held-out prediction on top of the
+// round's effects.
+struct OwnCandidate {
+  Kind kind;
+  HeldOutPrediction prediction;
+};
 
 // Effects fitted with their strength free to differ between light and heavy loads (by the load
 // that explains most): what a later round's effect must beat (law_left_over.cpp).
@@ -215,16 +221,16 @@ class Diagnoser {
   std::string vehiclesOwn(Kind kind, const std::vector<Kind>& kinds, const EffectFit& fit, const EffectSize& size) const;
   // Whether `candidate`, fitted on top of the vehicle's own `own`, is the vehicle's own as well.
   bool ownOnTopOf(Kind own, Kind candidate) const;
-  // Whether `candidate` still lowers the held-out error significantly, and by the thresholds, once
-  // the vehicle's own `own` is modelled beside the rounds' effects.
-  bool passesOnTopOf(Kind own, Kind candidate) const;
+  // Whether `candidate` still improves enough once the vehicle's own (`own`, its prediction with
+  // the rounds' effects) is modelled beside the rounds' effects.
+  bool passesOnTopOf(const OwnCandidate& own, Kind candidate) const;
   // `candidate`'s verdict, in the results and in the trace's steps from `first_step` on: passed, but
   // what it explains is the vehicle's own `own`'s.
   void declineForTheVehiclesOwn(Kind candidate, Kind own, std::size_t first_step,
                                 std::map<Kind, EffectResult>* results);
   // Whether a candidate predicting `with_candidate` leaves less of the error within flights than
   // the vehicle's own `own` would.
-  bool explainsMoreWithinFlights(const HeldOutPrediction& with_candidate, Kind own) const;
+  bool explainsMoreWithinFlights(const HeldOutPrediction& with_candidate, const OwnCandidate& own) const;
   // `current` with `own` modelled unnamed beside the rounds' effects, where that lowers the error.
   HeldOutPrediction offerToTheCorrection(Kind own, const std::vector<RoundOutcome>& rounds,
                                          const HeldOutPrediction& current);
@@ -238,11 +244,17 @@ class Diagnoser {
   // One round of the forward selection: every candidate tried on top of `selected`; the best one
   // that passes every test, or nullopt.
   // `own`, when given: the best candidate that passed the tests of improvement and was refused only
-  // as the vehicle's own (within the parts' spread, or no change from its healthy flights).
+  // as the vehicle's own (within the parts' spread, or no change from its healthy flights), with
+  // its held-out prediction on top of `selected`.
   std::optional<Kind> selectionRound(int round, const std::vector<Kind>& selected, const HeldOutPrediction& current,
                                      std::map<Kind, EffectResult>* results,
                                      std::map<Kind, HeldOutPrediction>* admissible,
-                                     std::optional<Kind>* own = nullptr);
+                                     std::optional<OwnCandidate>* own = nullptr);
+  // The sign-flip p of `with`'s improvement on `base`, per 10 s stretch, for candidate `kind`.
+  double improvementPValue(const HeldOutPrediction& base, const HeldOutPrediction& with, Kind kind) const;
+  // Whether `with` improves on `base` as a name needs (p from improvementPValue): p below the
+  // significance, the joint error lower, and the PWM or RPM view's RMSE falling enough.
+  bool improvesEnough(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value) const;
   // Why a candidate that lowers nothing enough was not taken, in the numbers the tests used.
   std::string notSignificant(const EffectResult& result, double base_pwm_rmse_pct, double drop_pct,
                              double mean_square_ratio) const;

@@ -240,7 +240,7 @@ double Diagnoser::meanPwm(const Block& block) const {
 std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>& selected,
                                               const HeldOutPrediction& current, std::map<Kind, EffectResult>* results,
                                               std::map<Kind, HeldOutPrediction>* admissible,
-                                              std::optional<Kind>* own) {
+                                              std::optional<OwnCandidate>* own) {
   const double base_ms = jointMeanSquare(current);
   const effects::ModelEffects round_base = fitEffects(views_, all_, selected, references()).effects;
   const double base_pwm = finiteMeanSquare(current.pwm);
@@ -267,8 +267,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     result.base_rpm_rmse_pct = base_rpm_rmse_pct;
     result.joint_rmse_pct = 100.0 * std::sqrt(ms);
     result.base_joint_rmse_pct = 100.0 * std::sqrt(base_ms);
-    result.p_value = signFlipPValue(groupImprovements(current, prediction), config_.permutations,
-                                    config_.seed + static_cast<unsigned>(kind));
+    result.p_value = improvementPValue(current, prediction, kind);
     const EffectFit fit = fitEffects(views_, all_, kinds, references());
     result.parameter = *fit.effects.parameter(kind);
     const double half = fit.ci_half.back();
@@ -281,10 +280,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     result.size = effectSizeAgainstParts(views_, all_, fit.effects, kind, config_.parts_spread);
     const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
     const double drop_pct = base_pwm_rmse_pct - 100.0 * std::sqrt(pwm_ms);
-    const bool significant = result.p_value < config_.significance && ms < base_ms &&
-                             (fallsEnough(base_pwm_rmse_pct, result.heldout_rmse_pct) ||
-                              fallsEnough(result.base_rpm_rmse_pct, result.rpm_rmse_pct));
-    if (!significant) {
+    if (!improvesEnough(current, prediction, result.p_value)) {
       result.reason = notSignificant(result, base_pwm_rmse_pct, drop_pct, pwm_ms / base_pwm);
     } else if (!result.plausible) {
       result.reason = "fitted at the edge of its plausible range " + formatNumber(spec.min) + ".." +
@@ -295,7 +291,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
       result.reason = same;
       if (own && ms < own_ms) {
         own_ms = ms;
-        *own = kind;
+        *own = OwnCandidate{kind, prediction};
       }
     } else if (const std::string left_over = round > 0 ? leftOverOfLaw(kind, selected, result.size, prediction, ms) : "";
                !left_over.empty()) {
@@ -329,6 +325,16 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     (*results)[entry.kind].reason = entry.verdict;
   }
   return best;
+}
+
+double Diagnoser::improvementPValue(const HeldOutPrediction& base, const HeldOutPrediction& with, Kind kind) const {
+  return signFlipPValue(groupImprovements(base, with), config_.permutations, config_.seed + static_cast<unsigned>(kind));
+}
+
+bool Diagnoser::improvesEnough(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value) const {
+  const auto rmse_pct = [](const std::vector<double>& view) { return 100.0 * std::sqrt(finiteMeanSquare(view)); };
+  return p_value < config_.significance && jointMeanSquare(with) < jointMeanSquare(base) &&
+         (fallsEnough(rmse_pct(base.pwm), rmse_pct(with.pwm)) || fallsEnough(rmse_pct(base.rpm), rmse_pct(with.rpm)));
 }
 
 // Whether a view's held-out RMSE (% of the truth) falls from `before` to `after` by more than a
@@ -407,11 +413,11 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
   std::vector<Kind> offered;
   for (int round = 0; can_hold_out && round < config_.max_effects; ++round) {
     std::map<Kind, HeldOutPrediction> admissible;
-    std::optional<Kind> own;
+    std::optional<OwnCandidate> own;
     const std::size_t first_step = diagnosis_.trace.size();
     const std::optional<Kind> best = selectionRound(round, working_, current, results, &admissible, &own);
     if (!background_.empty() && rounds.empty()) markOnBackground(first_step);
-    const bool own_first = own && (!best || (*results)[*own].joint_rmse_pct < (*results)[*best].joint_rmse_pct) &&
+    const bool own_first = own && (!best || (*results)[own->kind].joint_rmse_pct < (*results)[*best].joint_rmse_pct) &&
                            rounds.empty() && static_cast<int>(background_.size()) < kMaxBackgroundEffects;
     // The vehicle's own effect (the day's air, its motors' warming, parts within their spread) is
     // no finding, but left in the error it hides a small effect that is one, and where it explains
@@ -423,32 +429,32 @@ HeldOutPrediction Diagnoser::selectEffects(const HeldOutPrediction& before, std:
     // candidate's law could reach of that (the day's air hiding a motor heating, development seed
     // 5151); it is offered to the correction once the names are chosen. Still first when the
     // candidate, fitted on top of it, is the vehicle's own too (a weak background climb inflow
-    // beside an ESC offset within the parts' spread, fresh seed 777918 seen). Only before a first
-    // effect is named: after one, what its law leaves over is what the background would take up
-    // (law_left_over.cpp).
+    // beside an ESC offset within the parts' spread, seed 777918, a development seed since). Only
+    // before a first effect is named: after one, what its law leaves over is what the background
+    // would take up (law_left_over.cpp).
     if (own_first && best && explainsMoreWithinFlights(admissible.at(*best), *own) &&
-        !ownOnTopOf(*own, *best)) {
-      offered.push_back(*own);
+        !ownOnTopOf(own->kind, *best)) {
+      offered.push_back(own->kind);
     } else if (own_first) {
-      background_.push_back(*own);
+      background_.push_back(own->kind);
       adopt(rounds);
-      current = predictHeldOut(working_);
+      current = own->prediction;
       --round;
       continue;
     }
     if (!best) {
-      if (own) offered.push_back(*own);
+      if (own) offered.push_back(own->kind);
       break;
     }
     // After a first name the vehicle's own is not modelled first (law_left_over.cpp judges what
     // the first law leaves), but a second name that the vehicle's own explains better and that
     // explains nothing beyond it is that effect's work (an ESC offset taking up the motors'
-    // warming at a cold high site beside its named air, fresh seed 195794): not named; the
+    // warming at a cold high site beside its named air, development seed 195794): not named; the
     // vehicle's own joins the correction.
-    if (!rounds.empty() && own && (*results)[*own].joint_rmse_pct < (*results)[*best].joint_rmse_pct &&
+    if (!rounds.empty() && own && (*results)[own->kind].joint_rmse_pct < (*results)[*best].joint_rmse_pct &&
         !passesOnTopOf(*own, *best)) {
-      declineForTheVehiclesOwn(*best, *own, first_step, results);
-      offered.push_back(*own);
+      declineForTheVehiclesOwn(*best, own->kind, first_step, results);
+      offered.push_back(own->kind);
       break;
     }
     rounds.push_back({*best, ambiguityOf(*best, admissible), round});

@@ -2,11 +2,9 @@
 // candidate is one, whether it is modelled before the rounds name anything, and what of it joins the
 // correction once they have (Diagnoser::selectEffects).
 #include <algorithm>
-#include <cmath>
 
 #include "diagnoser.h"
 #include "propulsion_estimator/gap/parts_spread.h"
-#include "propulsion_estimator/gap/sign_flip_test.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -38,17 +36,12 @@ bool Diagnoser::ownOnTopOf(Kind own, Kind candidate) const {
               .empty();
 }
 
-bool Diagnoser::passesOnTopOf(Kind own, Kind candidate) const {
+bool Diagnoser::passesOnTopOf(const OwnCandidate& own, Kind candidate) const {
   std::vector<Kind> kinds = working_;
-  kinds.push_back(own);
-  const HeldOutPrediction base = predictHeldOut(kinds);
+  kinds.push_back(own.kind);
   kinds.push_back(candidate);
   const HeldOutPrediction with = predictHeldOut(kinds);
-  const double p = signFlipPValue(groupImprovements(base, with), config_.permutations,
-                                  config_.seed + static_cast<unsigned>(candidate));
-  const auto rmse_pct = [](const std::vector<double>& view) { return 100.0 * std::sqrt(finiteMeanSquare(view)); };
-  return p < config_.significance && jointMeanSquare(with) < jointMeanSquare(base) &&
-         (fallsEnough(rmse_pct(base.pwm), rmse_pct(with.pwm)) || fallsEnough(rmse_pct(base.rpm), rmse_pct(with.rpm)));
+  return improvesEnough(own.prediction, with, improvementPValue(own.prediction, with, candidate));
 }
 
 void Diagnoser::declineForTheVehiclesOwn(Kind candidate, Kind own, std::size_t first_step,
@@ -66,10 +59,8 @@ void Diagnoser::declineForTheVehiclesOwn(Kind candidate, Kind own, std::size_t f
 
 // Whether a candidate (its held-out prediction `with_candidate`) leaves less of the error within
 // flights, each flight's mean taken out, than the vehicle's own effect `own` in its place.
-bool Diagnoser::explainsMoreWithinFlights(const HeldOutPrediction& with_candidate, Kind own) const {
-  std::vector<Kind> with_own = working_;
-  with_own.push_back(own);
-  return withinFlightMeanSquare(with_candidate) < withinFlightMeanSquare(predictHeldOut(with_own));
+bool Diagnoser::explainsMoreWithinFlights(const HeldOutPrediction& with_candidate, const OwnCandidate& own) const {
+  return withinFlightMeanSquare(with_candidate) < withinFlightMeanSquare(own.prediction);
 }
 
 // A vehicle's own effect left out of the rounds (selectEffects) joins the correction, unnamed, where
