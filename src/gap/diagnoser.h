@@ -168,6 +168,7 @@ class Diagnoser {
   double rotorLag();
   void cut();
   void findUnits();
+  // What the effects are read against: the bench, or the reference flights' air and warmth.
   effects::ModelEffects references() const;
   std::string testability(Kind kind) const;
   HeldOutPrediction predictHeldOut(const std::vector<Kind>& kinds) const;

@@ -151,19 +151,6 @@ effects::ModelEffects Diagnoser::selectAndFit() {
   return fitEffects(views_, all_, working_, references()).effects;
 }
 
-effects::ModelEffects Diagnoser::references() const {
-  effects::ModelEffects references;
-  references.bench_air_density_kg_m3 = model_.metadata().benchAirDensity();
-  references.full_thrust_n = model_.fullThrustN();
-  references.motor_reference_c = model_.metadata().bench_air_temperature_c.value_or(kNaN);
-  if (vehicle_.hasGeometry()) {
-    double height = 0.0;
-    for (const Rotor& rotor : vehicle_.rotors) height += rotor.position_m.z() / vehicle_.rotors.size();
-    references.rotor_height_m = height;
-  }
-  return references;
-}
-
 std::string Diagnoser::testability(Kind kind) const {
   const effects::EffectDescription& description = effects::describe(kind);
   const effects::ModelEffects base = references();

@@ -254,7 +254,7 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
 namespace {
 
 // The healthy vehicle's weighed vertical thrust over each view's, summed over its steady blocks
-// (NaN for a view no block has).
+// (NaN for a view no block has), and the air and motor temperature those blocks flew in.
 void learnThrustFactors(const ThrustViews& views, const std::vector<Block>& blocks, MotorReference* reference) {
   const effects::ModelEffects none;
   const auto factor = [&blocks](const std::function<double(const Block&)>& view) {
@@ -270,6 +270,19 @@ void learnThrustFactors(const ThrustViews& views, const std::vector<Block>& bloc
   reference->thrust_factor = factor([&](const Block& block) { return views.pwmView(block, none); });
   reference->current_thrust_factor = factor([&](const Block& block) { return views.currentView(block, none); });
   reference->rpm_thrust_factor = factor([&](const Block& block) { return views.rpmView(block, none); });
+  const auto mean_signal = [&blocks](effects::Signal signal) {
+    double sum = 0.0;
+    int count = 0;
+    for (const Block& block : blocks) {
+      const double value = block.signals.value(signal);
+      if (!std::isfinite(value) || !(block.truth_n > 0.0)) continue;
+      sum += value;
+      ++count;
+    }
+    return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+  };
+  reference->air_density_kg_m3 = mean_signal(effects::Signal::kAirDensity);
+  reference->motor_temperature_c = mean_signal(effects::Signal::kMotorTemperature);
 }
 
 // What the live ESC check sees of each healthy motor: the mean over the flights of each flight's

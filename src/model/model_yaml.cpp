@@ -254,10 +254,12 @@ void writeRpmThrust(YAML::Emitter& out, const RpmThrust& fit) {
 
 // motor_reference: {flights, shares: [...], share_std: [...], gap_std: [...]}, one entry per motor;
 // with ESC telemetry also esc_rpm_deviation, esc_current_deviation and esc_rpm_level; with weighed steady flight
-// thrust_factor, current_thrust_factor and rpm_thrust_factor (each where the view exists).
+// thrust_factor, current_thrust_factor and rpm_thrust_factor (each where the view exists), and the
+// air_density_kg_m3 and motor_temperature_c they were flown in (each where the flights gave it).
 MotorReference readMotorReference(const YamlMap& map) {
   map.allowOnly({"flights", "shares", "share_std", "gap_std", "esc_rpm_deviation", "esc_current_deviation",
-                 "thrust_factor", "current_thrust_factor", "rpm_thrust_factor", "esc_rpm_level"});
+                 "thrust_factor", "current_thrust_factor", "rpm_thrust_factor", "esc_rpm_level", "air_density_kg_m3",
+                 "motor_temperature_c"});
   MotorReference reference;
   reference.flights = map.integer("flights");
   reference.shares = map.numbers("shares");
@@ -266,7 +268,9 @@ MotorReference readMotorReference(const YamlMap& map) {
   for (const auto& [key, value] : {std::make_pair("thrust_factor", &reference.thrust_factor),
                                    std::make_pair("current_thrust_factor", &reference.current_thrust_factor),
                                    std::make_pair("rpm_thrust_factor", &reference.rpm_thrust_factor),
-                                   std::make_pair("esc_rpm_level", &reference.esc_rpm_level)}) {
+                                   std::make_pair("esc_rpm_level", &reference.esc_rpm_level),
+                                   std::make_pair("air_density_kg_m3", &reference.air_density_kg_m3),
+                                   std::make_pair("motor_temperature_c", &reference.motor_temperature_c)}) {
     if (map.has(key)) *value = map.number(key);
   }
   if (map.has("esc_rpm_deviation") || map.has("esc_current_deviation")) {
@@ -282,7 +286,9 @@ void writeMotorReference(YAML::Emitter& out, const MotorReference& reference) {
   for (const auto& [key, value] : {std::make_pair("thrust_factor", reference.thrust_factor),
                                    std::make_pair("current_thrust_factor", reference.current_thrust_factor),
                                    std::make_pair("rpm_thrust_factor", reference.rpm_thrust_factor),
-                                   std::make_pair("esc_rpm_level", reference.esc_rpm_level)}) {
+                                   std::make_pair("esc_rpm_level", reference.esc_rpm_level),
+                                   std::make_pair("air_density_kg_m3", reference.air_density_kg_m3),
+                                   std::make_pair("motor_temperature_c", reference.motor_temperature_c)}) {
     if (!std::isnan(value)) out << YAML::Key << key << YAML::Value << formatNumber(value);
   }
   std::vector<std::pair<const char*, const std::vector<double>*>> lists = {

@@ -42,6 +42,12 @@ void MotorReference::validate() const {
                                    std::make_pair("rpm_thrust_factor", rpm_thrust_factor)}) {
     if (!std::isnan(value)) requireWithin(std::string("motor_reference.") + key, value, 0.5, 1.5);
   }
+  if (!std::isnan(air_density_kg_m3)) {
+    requireWithin("motor_reference.air_density_kg_m3", air_density_kg_m3, 0.3, 2.0, " kg/m^3");
+  }
+  if (!std::isnan(motor_temperature_c)) {
+    requireWithin("motor_reference.motor_temperature_c", motor_temperature_c, -60.0, 200.0, " deg C");
+  }
   if (std::abs(sum - 1.0) > 1e-3) {
     throw FieldError("motor_reference.shares", "they sum to " + formatPrintf("%.4f", sum) + ", not 1");
   }

@@ -212,11 +212,19 @@ void PropulsionModel::validateEffects(const effects::ModelEffects& effects) cons
 void PropulsionModel::setMotorReference(std::optional<MotorReference> reference) {
   if (reference) reference->validate();
   motor_reference_ = std::move(reference);
+  effects_.bench_air_density_kg_m3 = airReferenceDensity();
+}
+
+double PropulsionModel::airReferenceDensity() const {
+  // A diagnosis against healthy flights folds their thrust level, flown in their air, into the
+  // corrected model, and fits the air's effect as a change from that air.
+  if (motor_reference_ && std::isfinite(motor_reference_->air_density_kg_m3)) return motor_reference_->air_density_kg_m3;
+  return metadata_.benchAirDensity();
 }
 
 PropulsionModel PropulsionModel::withEffects(effects::ModelEffects effects) const {
   PropulsionModel copy = *this;
-  effects.bench_air_density_kg_m3 = metadata_.benchAirDensity();
+  effects.bench_air_density_kg_m3 = airReferenceDensity();
   effects.full_thrust_n = effects_.full_thrust_n;
   validateEffects(effects);
   copy.effects_ = effects;

@@ -120,7 +120,9 @@ struct Inputs {
 ///   climb_inflow       T *= 1 - per_m_s * max(axial speed, 0)   (climbs; a slow descent barely changes thrust)
 ///   translational_lift T *= 1 + per_m2_s2 * horizontal speed^2   (below the rotors' hover induced speed)
 struct ModelEffects {
-  double bench_air_density_kg_m3 = kNaN;  ///< reference of air_density (the model's bench air)
+  /// Reference of air_density: the model's bench air, or the air of the healthy flights whose
+  /// thrust level a correction holds (MotorReference::air_density_kg_m3).
+  double bench_air_density_kg_m3 = kNaN;
   /// Reference of air_density: the model's thrust at its highest pulse width and the highest voltage
   /// logged there, N (PropulsionModel::fullThrustN(), set by the model).
   double full_thrust_n = kNaN;

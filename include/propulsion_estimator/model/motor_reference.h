@@ -37,11 +37,17 @@ struct MotorReference {
   /// telemetry's rotor speeds (its RPM view); NaN without them.
   double current_thrust_factor = std::numeric_limits<double>::quiet_NaN();
   double rpm_thrust_factor = std::numeric_limits<double>::quiet_NaN();  ///< see current_thrust_factor
+  /// The air and the motors those thrust factors were flown in: the mean air density (kg/m^3) and
+  /// motor temperature (deg C) over the same steady blocks. The factors hold that air and that
+  /// warmth, so the diagnosis reads the day's air and the motors' warming as changes from these,
+  /// not from the bench's. NaN where the flights did not give the signal.
+  double air_density_kg_m3 = std::numeric_limits<double>::quiet_NaN();
+  double motor_temperature_c = std::numeric_limits<double>::quiet_NaN();  ///< see air_density_kg_m3
 
   /// FieldError naming the field under motor_reference: shares that do not sum to 1 or are not positive,
   /// lists of different lengths (the ESC deviations: none or one per motor, both or neither), a
-  /// negative spread, an ESC deviation beyond +-50 %, a thrust factor outside 0.5..1.5, fewer than
-  /// 3 flights.
+  /// negative spread, an ESC deviation beyond +-50 %, a thrust factor outside 0.5..1.5, an air
+  /// density outside 0.3..2 kg/m^3, a motor temperature outside -60..200 deg C, fewer than 3 flights.
   void validate() const;
 };
 

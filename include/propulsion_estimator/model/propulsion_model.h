@@ -187,12 +187,16 @@ class PropulsionModel {
   /// written by diagnose_gap --reference): the node's motor-health check and later diagnoses judge
   /// each motor's change from it; nullopt when the file has none.
   const std::optional<MotorReference>& motorReference() const { return motor_reference_; }
-  /// Sets or clears it; throws FieldError as MotorReference::validate() does.
+  /// Sets or clears it; throws FieldError as MotorReference::validate() does. With the reference's
+  /// air density set, air_density's effect reads the air as a change from that air (the thrust
+  /// level the reference folded into the corrected model was flown in it), else from the bench's.
   void setMotorReference(std::optional<MotorReference> reference);
 
  private:
   /// ModelEffects::validate() and the full thrust air_density reads; throws FieldError.
   void validateEffects(const effects::ModelEffects& effects) const;
+  /// kg/m^3 air_density's effect is read against: the motor reference's air, else the bench's.
+  double airReferenceDensity() const;
   /// All outputs in SI, floored as evaluate() documents, in dependency order.
   std::array<double, kOutputCount> computeSi(double pwm_us, double voltage_v) const;
   double evaluateSi(Output output, double pwm_us, double voltage_v, const std::array<double, kOutputCount>& done) const;

@@ -722,6 +722,33 @@ TEST_F(SyntheticFlights, AReferenceEffectReadBetweenFlightsIsKnownAsWellAsItsFli
   EXPECT_LT(reference(12.0).ci_half, 0.002);
 }
 
+// The healthy flights' thrust level holds their motors' warmth: the warming is then read as a
+// change from that warmth, not from the bench's 22 C, which would count the healthy flights'
+// warmth twice (once in the level, once in the effect) and bend the fitted law to take up the
+// difference. Motors warming 14 C over each flight, losing 0.3 %/C: the healthy flights' motors
+// average 27 C, their level 1.4 % below the bench's.
+TEST_F(SyntheticFlights, AgainstHealthyFlightsTheMotorsWarmingIsReadFromTheirWarmth) {
+  World warm;
+  warm.motor_temperature = true;
+  warm.motor_per_c = -0.003;
+  warm.motor_warming_c = 14.0;
+  warm.warming_heats = true;
+  warm.no_current = true;
+  gap::DiagnosisConfig config;
+  config.motor_reference = gap::learnReference(model_, vehicle_, flights(warm, 1), config);
+  const double healthy_c = config.motor_reference->motor_temperature_c;
+  EXPECT_GT(healthy_c, 22.0);  // the days' 14-26 C and the warming's 0-14 C
+  EXPECT_LT(healthy_c, 40.0);
+  EXPECT_TRUE(std::isnan(config.motor_reference->air_density_kg_m3));  // no air logged
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, flights(warm), config);
+  EXPECT_EQ(diagnosis.fitted.motor_reference_c, healthy_c);
+  const gap::EffectResult& heating = diagnosis.effects.at(static_cast<std::size_t>(Kind::kMotorTemperature));
+  EXPECT_NEAR(heating.parameter, warm.motor_per_c, 0.0003) << heating.reason;
+  EXPECT_EQ(diagnosis.selected, std::vector<Kind>{Kind::kMotorTemperature});
+  // Read from the bench's 22 C, the level's 1.4 % needed another effect modelled beside (measured).
+  EXPECT_TRUE(diagnosis.background.empty()) << testing::PrintToString(diagnosis.background);
+}
+
 // A second effect that is there, and large, is still named beside the first.
 TEST_F(SyntheticFlights, ASecondEffectBeyondWhatTheFirstLawLeavesIsNamed) {
   World world;

@@ -5,6 +5,7 @@
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/model/effect_description.h"
 #include "propulsion_estimator/model/model_yaml.h"
@@ -442,6 +443,54 @@ TEST(ModelYaml, RoundTripsTheMotorReferencesEscDeviationsAndThrustFactors) {
   EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, thrust_factor: 0.2, shares: [0.25, 0.25, 0.25, 0.25], "
                              "share_std: [0, 0, 0, 0], gap_std: [0, 0, 0, 0]}\n"),
             "m.yaml:31: motor_reference.thrust_factor: 0.2 is outside 0.5..1.5");
+}
+
+// The air and motor warmth the reference's thrust levels were flown in, which later diagnoses and
+// the corrected model read the air's and the motors' effects against.
+TEST(ModelYaml, RoundTripsTheAirAndMotorTemperatureOfTheMotorReference) {
+  pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
+  pe::MotorReference reference{
+      {0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}, {}, {}};
+  reference.thrust_factor = 0.962;
+  reference.air_density_kg_m3 = 1.1873;
+  reference.motor_temperature_c = 31.25;
+  model.setMotorReference(reference);
+  const pe::PropulsionModel back = pe::parseModelYaml(pe::modelToYaml(model), "back.yaml");
+  ASSERT_TRUE(back.motorReference());
+  EXPECT_EQ(back.motorReference()->air_density_kg_m3, 1.1873);
+  EXPECT_EQ(back.motorReference()->motor_temperature_c, 31.25);
+  reference.air_density_kg_m3 = pe::kNaN;
+  reference.motor_temperature_c = pe::kNaN;
+  model.setMotorReference(reference);
+  const pe::PropulsionModel without = pe::parseModelYaml(pe::modelToYaml(model), "back.yaml");
+  EXPECT_TRUE(std::isnan(without.motorReference()->air_density_kg_m3));
+  EXPECT_TRUE(std::isnan(without.motorReference()->motor_temperature_c));
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, air_density_kg_m3: 12, shares: [0.25, 0.25, 0.25, 0.25], "
+                             "share_std: [0, 0, 0, 0], gap_std: [0, 0, 0, 0]}\n"),
+            "m.yaml:31: motor_reference.air_density_kg_m3: 12 is outside 0.3..2 kg/m^3");
+  EXPECT_EQ(refusal(kValid + "motor_reference: {flights: 3, motor_temperature_c: 400, shares: [0.25, 0.25, 0.25, 0.25], "
+                             "share_std: [0, 0, 0, 0], gap_std: [0, 0, 0, 0]}\n"),
+            "m.yaml:31: motor_reference.motor_temperature_c: 400 is outside -60..200 deg C");
+}
+
+// A corrected model holds the reference flights' thrust level, flown in their air: its air effect
+// reads the air as a change from that air, and from the bench's without it.
+TEST(ModelYaml, TheAirEffectReadsTheAirAgainstTheMotorReferencesAir) {
+  pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
+  const double bench = model.metadata().benchAirDensity();
+  EXPECT_EQ(model.effects().bench_air_density_kg_m3, bench);
+  pe::MotorReference reference{
+      {0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}, {}, {}};
+  reference.air_density_kg_m3 = 1.105;
+  model.setMotorReference(reference);
+  EXPECT_EQ(model.effects().bench_air_density_kg_m3, 1.105);
+  EXPECT_EQ(model.withEffects(model.effects()).effects().bench_air_density_kg_m3, 1.105);
+  EXPECT_EQ(pe::parseModelYaml(pe::modelToYaml(model), "back.yaml").effects().bench_air_density_kg_m3, 1.105);
+  reference.air_density_kg_m3 = pe::kNaN;
+  model.setMotorReference(reference);
+  EXPECT_EQ(model.effects().bench_air_density_kg_m3, bench);
+  model.setMotorReference(std::nullopt);
+  EXPECT_EQ(model.effects().bench_air_density_kg_m3, bench);
 }
 
 TEST(ModelYaml, RefusesAMotorReferenceThatIsNotOne) {
