@@ -261,7 +261,7 @@ MotorReference learnReference(const Arguments& args, const PropulsionModel& mode
                                                             formatPrintf("%.4g", effect.signal_high) + ")"
                                                       : std::string()));
   }
-  std::printf("reference: each effect fitted alone on them (an effect as large here is not named): %s\n",
+  std::printf("reference: each effect fitted on them beside the day's air (an effect as large here is not named): %s\n",
               shown.empty() ? "none (no effect the flights can test)" : joined(shown).c_str());
   return reference;
 }

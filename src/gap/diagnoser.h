@@ -129,9 +129,10 @@ class Diagnoser {
         views_(model, motorCount(), config.rpm_view) {}
 
   Diagnosis run();
-  // Each effect fitted alone on these flights (a vehicle's healthy ones, with their own levels
-  // from config.motor_reference) and the range of the signal it reads (fitReferenceEffects).
-  ReferenceEffects fitEachAlone();
+  // Each effect fitted on these flights (a vehicle's healthy ones, with their own levels from
+  // config.motor_reference) on top of the day's air, and the range of the signal it reads
+  // (fitReferenceEffects).
+  ReferenceEffects fitEachBesideTheAir();
 
  private:
   // The 95 % half-width of the last of `kinds`' parameters, fitted with the others, from each

@@ -117,7 +117,7 @@ double Diagnoser::flightsHalfWidth(const std::vector<Kind>& kinds, double fit_ha
   return std::max(fit_half, jackknifeHalfWidth(kinds));
 }
 
-ReferenceEffects Diagnoser::fitEachAlone() {
+ReferenceEffects Diagnoser::fitEachBesideTheAir() {
   config_.validate();
   cut();
   findUnits();
@@ -125,12 +125,18 @@ ReferenceEffects Diagnoser::fitEachAlone() {
   ReferenceEffects fitted;
   for (Kind kind : effects::kAllKinds) {
     if (!testability(kind).empty()) continue;
-    const EffectFit fit = fitEffects(views_, all_, {kind}, references());
+    // The day's air is on every flight and the diagnosis models it first, as the vehicle's own:
+    // each effect is read on top of it here too, or the motors' warming, which follows the day's
+    // temperature, would take up the healthy flights' air and be compared with a warming read
+    // beside it.
+    std::vector<Kind> kinds = {kind};
+    if (kind != Kind::kAirDensity && testability(Kind::kAirDensity).empty()) kinds.insert(kinds.begin(), Kind::kAirDensity);
+    const EffectFit fit = fitEffects(views_, all_, kinds, references());
     ReferenceEffect effect;
     effect.value = *fit.effects.parameter(kind);
-    effect.ci_half = fit.ci_half.front();
+    effect.ci_half = fit.ci_half.back();
     if (betweenFlightShare(effects::requiredSignal(kind)) > kMostlyBetweenFlights) {
-      effect.ci_half = std::max(effect.ci_half, jackknifeHalfWidth({kind}));
+      effect.ci_half = std::max(effect.ci_half, jackknifeHalfWidth(kinds));
     }
     if (!std::isfinite(effect.value) || !std::isfinite(effect.ci_half)) continue;
     const effects::Signal signal = effects::requiredSignal(kind);
@@ -151,7 +157,7 @@ ReferenceEffects Diagnoser::fitEachAlone() {
 
 ReferenceEffects fitReferenceEffects(const PropulsionModel& model, const Vehicle& vehicle,
                                      const std::vector<Flight>& flights, const DiagnosisConfig& config) {
-  return detail::Diagnoser(model, vehicle, flights, config, {}).fitEachAlone();
+  return detail::Diagnoser(model, vehicle, flights, config, {}).fitEachBesideTheAir();
 }
 
 }  // namespace gap

@@ -287,8 +287,9 @@ effects::ModelEffects correctedEffects(const Diagnosis& diagnosis);
 Diagnosis diagnoseGap(const PropulsionModel& model, const Vehicle& vehicle, const std::vector<Flight>& flights,
                       const DiagnosisConfig& config, const std::vector<BenchLog>& bench = {});
 
-/// Each effect the diagnosis knows, fitted alone on a vehicle's healthy `flights` at their own
-/// thrust level (`config.motor_reference`, learned from them), with the range of the signal it
+/// Each effect the diagnosis knows, fitted on a vehicle's healthy `flights` at their own thrust
+/// level (`config.motor_reference`, learned from them) on top of the day's air (air_density, where
+/// the flights give the air; alone otherwise, and air_density alone), with the range of the signal it
 /// reads there; effects the flights cannot test are left out. Throws DataError when no block of
 /// the flights can be used.
 ReferenceEffects fitReferenceEffects(const PropulsionModel& model, const Vehicle& vehicle,

@@ -13,7 +13,8 @@ namespace gap {
 /// always warm their motors, fly in the day's air and near the ground, so an effect the bench
 /// model leaves out is often present on the healthy flights too, and is then no change.
 struct ReferenceEffect {
-  double value = 0.0;    ///< the effect's parameter fitted alone there (its ParameterSpec unit)
+  /// The effect's parameter fitted there on top of the day's air (its ParameterSpec unit).
+  double value = 0.0;
   /// Its 95 % half-width; for an effect whose signal changes mostly between flights (the day's
   /// air), the larger of the fit's and the flights' jackknife (each flight left out in turn).
   double ci_half = 0.0;
