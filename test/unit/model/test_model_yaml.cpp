@@ -405,10 +405,19 @@ TEST(ModelYaml, RefusesHalfTheBenchAir) {
             "together, or not at all");
 }
 
+namespace {
+
+// A four-motor reference learned from seven healthy flights, without ESC telemetry.
+pe::MotorReference sevenFlightReference() {
+  return pe::MotorReference{
+      {0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}, {}, {}};
+}
+
+}  // namespace
+
 TEST(ModelYaml, RoundTripsTheMotorReference) {
   pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
-  model.setMotorReference(pe::MotorReference{{0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7,
-                                             {0.037, 0.053, 0.035, 0.051}, {}, {}});
+  model.setMotorReference(sevenFlightReference());
   const pe::PropulsionModel back = pe::parseModelYaml(pe::modelToYaml(model), "back.yaml");
   ASSERT_TRUE(back.motorReference());
   EXPECT_EQ(back.motorReference()->flights, 7);
@@ -421,8 +430,7 @@ TEST(ModelYaml, RoundTripsTheMotorReference) {
 
 TEST(ModelYaml, RoundTripsTheMotorReferencesEscDeviationsAndThrustFactors) {
   pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
-  pe::MotorReference reference{
-      {0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}, {}, {}};
+  pe::MotorReference reference = sevenFlightReference();
   reference.esc_rpm_deviation = {0.012, -0.008, 0.011, -0.009};
   reference.esc_current_deviation = {-0.03, 0.025, -0.028, 0.027};
   reference.thrust_factor = 0.962;
@@ -449,8 +457,7 @@ TEST(ModelYaml, RoundTripsTheMotorReferencesEscDeviationsAndThrustFactors) {
 // the corrected model read the air's and the motors' effects against.
 TEST(ModelYaml, RoundTripsTheAirAndMotorTemperatureOfTheMotorReference) {
   pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
-  pe::MotorReference reference{
-      {0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}, {}, {}};
+  pe::MotorReference reference = sevenFlightReference();
   reference.thrust_factor = 0.962;
   reference.air_density_kg_m3 = 1.1873;
   reference.motor_temperature_c = 31.25;
@@ -479,8 +486,7 @@ TEST(ModelYaml, TheAirEffectReadsTheAirAgainstTheMotorReferencesAir) {
   pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
   const double bench = model.metadata().benchAirDensity();
   EXPECT_EQ(model.effects().bench_air_density_kg_m3, bench);
-  pe::MotorReference reference{
-      {0.27, 0.22, 0.28, 0.23}, {0.004, 0.005, 0.004, 0.005}, 7, {0.037, 0.053, 0.035, 0.051}, {}, {}};
+  pe::MotorReference reference = sevenFlightReference();
   reference.air_density_kg_m3 = 1.105;
   model.setMotorReference(reference);
   EXPECT_EQ(model.effects().bench_air_density_kg_m3, 1.105);
