@@ -55,7 +55,8 @@ const EffectDescription& airDensityEffect() {
     d.reference = {nullptr, &ModelEffects::bench_air_density_kg_m3, 0.3, 1.6,
                    "the model has no bench air (metadata bench_air_temperature_c, bench_air_pressure_pa)"};
     d.describe_reference = [](const ModelEffects& effects) {
-      return ", bench air " + formatPrintf("%.4f", effects.bench_air_density_kg_m3) + " kg/m^3";
+      // The bench's air, or the reference flights' whose thrust level a corrected model holds.
+      return ", reference air " + formatPrintf("%.4f", effects.bench_air_density_kg_m3) + " kg/m^3";
     };
     d.validate_reference = [](const ModelEffects& effects) {
       if (std::isnan(effects.bench_air_density_kg_m3)) {

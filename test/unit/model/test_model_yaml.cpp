@@ -491,6 +491,10 @@ TEST(ModelYaml, TheAirEffectReadsTheAirAgainstTheMotorReferencesAir) {
   model.setMotorReference(reference);
   EXPECT_EQ(model.effects().bench_air_density_kg_m3, 1.105);
   EXPECT_EQ(model.withEffects(model.effects()).effects().bench_air_density_kg_m3, 1.105);
+  pe::effects::ModelEffects air = model.effects();
+  air.setParameter(pe::effects::Kind::kAirDensity, 0.6);
+  EXPECT_EQ(pe::effects::describeParameters(pe::effects::Kind::kAirDensity, air),
+            "full_thrust_exponent 0.6, reference air 1.1050 kg/m^3");  // as the node logs it
   EXPECT_EQ(pe::parseModelYaml(pe::modelToYaml(model), "back.yaml").effects().bench_air_density_kg_m3, 1.105);
   reference.air_density_kg_m3 = pe::kNaN;
   model.setMotorReference(reference);
