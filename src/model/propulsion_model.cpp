@@ -8,6 +8,7 @@
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/units.h"
+#include "propulsion_estimator/model/effect_baseline.h"
 #include "propulsion_estimator/model/effect_signals.h"
 
 namespace propulsion_estimator {
@@ -212,19 +213,12 @@ void PropulsionModel::validateEffects(const effects::ModelEffects& effects) cons
 void PropulsionModel::setMotorReference(std::optional<MotorReference> reference) {
   if (reference) reference->validate();
   motor_reference_ = std::move(reference);
-  effects_.bench_air_density_kg_m3 = airReferenceDensity();
-}
-
-double PropulsionModel::airReferenceDensity() const {
-  // A diagnosis against healthy flights folds their thrust level, flown in their air, into the
-  // corrected model, and fits the air's effect as a change from that air.
-  if (motor_reference_ && std::isfinite(motor_reference_->air_density_kg_m3)) return motor_reference_->air_density_kg_m3;
-  return metadata_.benchAirDensity();
+  effects_.bench_air_density_kg_m3 = effectBaseline(metadata_, motor_reference_).air_density_kg_m3;
 }
 
 PropulsionModel PropulsionModel::withEffects(effects::ModelEffects effects) const {
   PropulsionModel copy = *this;
-  effects.bench_air_density_kg_m3 = airReferenceDensity();
+  effects.bench_air_density_kg_m3 = effectBaseline(metadata_, motor_reference_).air_density_kg_m3;
   effects.full_thrust_n = effects_.full_thrust_n;
   validateEffects(effects);
   copy.effects_ = effects;

@@ -195,8 +195,6 @@ class PropulsionModel {
  private:
   /// ModelEffects::validate() and the full thrust air_density reads; throws FieldError.
   void validateEffects(const effects::ModelEffects& effects) const;
-  /// kg/m^3 air_density's effect is read against: the motor reference's air, else the bench's.
-  double airReferenceDensity() const;
   /// All outputs in SI, floored as evaluate() documents, in dependency order.
   std::array<double, kOutputCount> computeSi(double pwm_us, double voltage_v) const;
   double evaluateSi(Output output, double pwm_us, double voltage_v, const std::array<double, kOutputCount>& done) const;
