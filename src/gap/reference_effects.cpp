@@ -20,11 +20,18 @@ std::string notAChange(effects::Kind kind, double value, double ci_half, double 
     const double width = healthy.signal_high - healthy.signal_low;
     if (signal_median < healthy.signal_low - width || signal_median > healthy.signal_high + width) return "";
   }
-  const double allowed = std::hypot(ci_half, healthy.ci_half);
-  if (!(std::abs(value - healthy.value) <= allowed)) return "";
-  return "not named: no change from the vehicle's healthy flights (" + formatPrintf("%.4g", healthy.value) +
-         " +- " + formatPrintf("%.2g", healthy.ci_half) + " there, " + formatPrintf("%.4g", value) + " +- " +
-         formatPrintf("%.2g", ci_half) + " here): the vehicle's own, not what changed";
+  const double change = std::abs(value - healthy.value);
+  if (!(change <= std::hypot(ci_half, healthy.ci_half))) return "";
+  const std::string both = formatPrintf("%.4g", healthy.value) + " +- " + formatPrintf("%.2g", healthy.ci_half) +
+                           " there, " + formatPrintf("%.4g", value) + " +- " + formatPrintf("%.2g", ci_half) + " here";
+  // These flights alone would call it a change; only the healthy flights' own looseness holds it
+  // back. The user can act on that: the verdict says so rather than vouching for the vehicle.
+  if (change > ci_half && healthy.ci_half > ci_half) {
+    return "not named: not shown to be a change from the vehicle's healthy flights (" + both +
+           "): these flights alone would call it one, but the healthy flights pin it too loosely; more of them, "
+           "or more of its signal on them, would decide";
+  }
+  return "not named: no change from the vehicle's healthy flights (" + both + "): the vehicle's own, not what changed";
 }
 
 // The parts' spread stands in for a reference: without one, healthy rotors and ESCs that differ

@@ -23,9 +23,21 @@ gap::ReferenceEffects warmingMotors() {
 
 // Motors that warm as they did on the healthy flights: the same law, not a change.
 TEST(ReferenceEffects, TheSameLawAsOnTheHealthyFlightsIsNoChange) {
-  EXPECT_EQ(gap::notAChange(fx::Kind::kMotorTemperature, -0.0014, 0.0002, 38.0, warmingMotors()),
-            "not named: no change from the vehicle's healthy flights (-0.0012 +- 0.0003 there, -0.0014 +- 0.0002 "
+  EXPECT_EQ(gap::notAChange(fx::Kind::kMotorTemperature, -0.0013, 0.0002, 38.0, warmingMotors()),
+            "not named: no change from the vehicle's healthy flights (-0.0012 +- 0.0003 there, -0.0013 +- 0.0002 "
             "here): the vehicle's own, not what changed");
+}
+
+// Healthy flights that pin the law loosely: these flights alone would call it a change, the two
+// intervals together do not. Not named, and the verdict says why, not that it is the vehicle's own.
+TEST(ReferenceEffects, HealthyFlightsThatPinItLooselyCannotVouchForIt) {
+  gap::ReferenceEffects loose = warmingMotors();
+  loose.at(fx::Kind::kMotorTemperature).ci_half = 0.0009;
+  EXPECT_EQ(gap::notAChange(fx::Kind::kMotorTemperature, -0.0018, 0.0002, 38.0, loose),
+            "not named: not shown to be a change from the vehicle's healthy flights (-0.0012 +- 0.0009 there, "
+            "-0.0018 +- 0.0002 here): these flights alone would call it one, but the healthy flights pin it too "
+            "loosely; more of them, or more of its signal on them, would decide");
+  EXPECT_EQ(gap::notAChange(fx::Kind::kMotorTemperature, -0.0025, 0.0002, 38.0, loose), "");
 }
 
 // A motor cooled worse since: its law moved beyond both intervals.
