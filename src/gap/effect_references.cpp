@@ -12,7 +12,7 @@ namespace detail {
 effects::ModelEffects Diagnoser::references() const {
   effects::ModelEffects references;
   const EffectBaseline baseline = effectBaseline(model_.metadata(), config_.motor_reference);
-  references.bench_air_density_kg_m3 = baseline.air_density_kg_m3;
+  references.air_reference_density_kg_m3 = baseline.air_density_kg_m3;
   references.motor_reference_c = baseline.motor_temperature_c;
   references.full_thrust_n = model_.fullThrustN();
   if (vehicle_.hasGeometry()) {

@@ -345,7 +345,7 @@ PropulsionModel parseModelYaml(const std::string& text, const std::string& sourc
   effects::ModelEffects fx;
   if (const std::optional<YamlMap> section = root.optionalMap("effects")) {
     fx = readEffects(*section);
-    fx.bench_air_density_kg_m3 = metadata.benchAirDensity();
+    fx.air_reference_density_kg_m3 = metadata.benchAirDensity();
     validateAt(root, fx);
   }
 

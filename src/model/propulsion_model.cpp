@@ -153,7 +153,7 @@ PropulsionModel::PropulsionModel(ModelMetadata metadata, ModelDomain domain,
                                  std::array<OutputDefinition, kOutputCount> outputs, effects::ModelEffects effects)
     : metadata_(std::move(metadata)), domain_(domain), outputs_(std::move(outputs)), effects_(effects) {
   // One source for the reference: an effects section cannot claim other bench air than the metadata's.
-  effects_.bench_air_density_kg_m3 = metadata_.benchAirDensity();
+  effects_.air_reference_density_kg_m3 = metadata_.benchAirDensity();
   domain_.validate();
   for (Output output : kAllOutputs) {
     const OutputDefinition& def = outputs_[index(output)];
@@ -213,12 +213,12 @@ void PropulsionModel::validateEffects(const effects::ModelEffects& effects) cons
 void PropulsionModel::setMotorReference(std::optional<MotorReference> reference) {
   if (reference) reference->validate();
   motor_reference_ = std::move(reference);
-  effects_.bench_air_density_kg_m3 = effectBaseline(metadata_, motor_reference_).air_density_kg_m3;
+  effects_.air_reference_density_kg_m3 = effectBaseline(metadata_, motor_reference_).air_density_kg_m3;
 }
 
 PropulsionModel PropulsionModel::withEffects(effects::ModelEffects effects) const {
   PropulsionModel copy = *this;
-  effects.bench_air_density_kg_m3 = effectBaseline(metadata_, motor_reference_).air_density_kg_m3;
+  effects.air_reference_density_kg_m3 = effectBaseline(metadata_, motor_reference_).air_density_kg_m3;
   effects.full_thrust_n = effects_.full_thrust_n;
   validateEffects(effects);
   copy.effects_ = effects;

@@ -122,7 +122,7 @@ struct Inputs {
 struct ModelEffects {
   /// Reference of air_density: the model's bench air, or the air of the healthy flights whose
   /// thrust level a correction holds (MotorReference::air_density_kg_m3).
-  double bench_air_density_kg_m3 = kNaN;
+  double air_reference_density_kg_m3 = kNaN;
   /// Reference of air_density: the model's thrust at its highest pulse width and the highest voltage
   /// logged there, N (PropulsionModel::fullThrustN(), set by the model).
   double full_thrust_n = kNaN;

@@ -34,7 +34,7 @@ const EffectDescription& airDensityEffect() {
       if (value <= 0.0) return 1.0;
       // A programming error, not a file's: PropulsionModel and the diagnosis set it.
       if (std::isnan(references.full_thrust_n)) throw std::logic_error("air_density: the model's full thrust is not set");
-      const double ratio = signals.value(Signal::kAirDensity) / references.bench_air_density_kg_m3;
+      const double ratio = signals.value(Signal::kAirDensity) / references.air_reference_density_kg_m3;
       // Capped where the factor is 1 to many digits: x (x + 1) would overflow for a tiny parameter.
       const double x_full = std::min(1e9, (1.0 / value - 1.0) / 2.0);
       const double x = x_full * std::sqrt(std::max(thrust_n, 0.0) / references.full_thrust_n);
@@ -46,27 +46,29 @@ const EffectDescription& airDensityEffect() {
     // momentum theory gives T proportional to (rho P^2)^(1/3): the current view sees
     // (rho / rho_bench)^(1/3) whatever the motor.
     d.current_view_factor = [](double value, const ModelEffects& references, const Signals& signals) {
-      return value > 0.0 ? std::cbrt(signals.value(Signal::kAirDensity) / references.bench_air_density_kg_m3) : 1.0;
+      return value > 0.0 ? std::cbrt(signals.value(Signal::kAirDensity) / references.air_reference_density_kg_m3) : 1.0;
     };
     // The RPM view reads thrust at the flight's density (thrust at a given speed follows it): it
     // already holds what this effect corrects.
     d.rpm_view_exponent = [](double) { return 0.0; };
     // The reference is the model's bench air (metadata), not a key of the effect's entry.
-    d.reference = {nullptr, &ModelEffects::bench_air_density_kg_m3, 0.3, 1.6,
+    d.reference = {nullptr, &ModelEffects::air_reference_density_kg_m3, 0.3, 1.6,
                    "the model has no bench air (metadata bench_air_temperature_c, bench_air_pressure_pa)"};
     d.describe_reference = [](const ModelEffects& effects) {
       // The bench's air, or the reference flights' whose thrust level a corrected model holds.
-      return ", reference air " + formatPrintf("%.4f", effects.bench_air_density_kg_m3) + " kg/m^3";
+      return ", reference air " + formatPrintf("%.4f", effects.air_reference_density_kg_m3) + " kg/m^3";
     };
     d.validate_reference = [](const ModelEffects& effects) {
-      if (std::isnan(effects.bench_air_density_kg_m3)) {
+      if (std::isnan(effects.air_reference_density_kg_m3)) {
         throw FieldError("effects.air_density",
                          "needs the bench air of the model's metadata (bench_air_temperature_c, bench_air_pressure_pa) "
                          "as its reference, and the model has none");
       }
-      if (!(effects.bench_air_density_kg_m3 > 0.3 && effects.bench_air_density_kg_m3 < 1.6)) {
-        throw FieldError("effects.air_density", "the bench air density " + formatNumber(effects.bench_air_density_kg_m3) +
-                                                    " kg/m^3 of the model's metadata is outside 0.3..1.6 kg/m^3");
+      if (!(effects.air_reference_density_kg_m3 > 0.3 && effects.air_reference_density_kg_m3 < 1.6)) {
+        throw FieldError("effects.air_density", "the reference air density " +
+                                                    formatNumber(effects.air_reference_density_kg_m3) +
+                                                    " kg/m^3 (the metadata's bench air, or the motor_reference's air) "
+                                                    "is outside 0.3..1.6 kg/m^3");
       }
     };
     return d;

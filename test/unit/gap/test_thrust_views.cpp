@@ -69,10 +69,10 @@ TEST_F(ThrustViewsTest, AnEscOffsetLeavesTheCurrentViewAlone) {
 TEST_F(ThrustViewsTest, ThinAirActsOnEachRotorAtItsOwnThrustAndOnTheCurrentViewAsItsCubeRoot) {
   fx::ModelEffects air;
   air.setParameter(fx::Kind::kAirDensity, 0.6);
-  air.bench_air_density_kg_m3 = model_.metadata().benchAirDensity();
+  air.air_reference_density_kg_m3 = model_.metadata().benchAirDensity();
   air.full_thrust_n = model_.fullThrustN();
   gap::Block thin = block_;
-  thin.signals.set(fx::Signal::kAirDensity, 0.75 * air.bench_air_density_kg_m3);
+  thin.signals.set(fx::Signal::kAirDensity, 0.75 * air.air_reference_density_kg_m3);
   thin.pwm_us = {1300.0, 1450.0, 1600.0, 1750.0};
   double expected = 0.0;
   std::vector<double> factors;

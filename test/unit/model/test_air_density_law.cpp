@@ -45,14 +45,14 @@ struct Motor {
 
 fx::ModelEffects references(double full_thrust_n) {
   fx::ModelEffects effects;
-  effects.bench_air_density_kg_m3 = 1.2;
+  effects.air_reference_density_kg_m3 = 1.2;
   effects.full_thrust_n = full_thrust_n;
   return effects;
 }
 
 double lawFactor(double parameter, const fx::ModelEffects& references, double ratio, double thrust_n) {
   fx::Signals signals;
-  signals.set(fx::Signal::kAirDensity, ratio * references.bench_air_density_kg_m3);
+  signals.set(fx::Signal::kAirDensity, ratio * references.air_reference_density_kg_m3);
   return fx::singleThrustFactor(fx::Kind::kAirDensity, parameter, references, signals, thrust_n);
 }
 

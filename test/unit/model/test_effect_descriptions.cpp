@@ -29,7 +29,7 @@ fx::Signals everySignal() {
 
 fx::ModelEffects references() {
   fx::ModelEffects effects;
-  effects.bench_air_density_kg_m3 = 1.2;
+  effects.air_reference_density_kg_m3 = 1.2;
   effects.full_thrust_n = 10.0;
   effects.rotor_height_m = 0.05;
   effects.motor_reference_c = 22.0;

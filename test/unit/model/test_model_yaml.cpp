@@ -270,8 +270,8 @@ TEST(ModelYaml, ReadsTheEffectsSection) {
   EXPECT_EQ(fx.parameter(pe::effects::Kind::kMotorTemperature), 0.0012);
   EXPECT_EQ(fx.motor_reference_c, 22.0);
   EXPECT_EQ(fx.parameter(pe::effects::Kind::kAirDensity), 0.85);
-  EXPECT_DOUBLE_EQ(fx.bench_air_density_kg_m3, model.metadata().benchAirDensity());
-  EXPECT_NEAR(fx.bench_air_density_kg_m3, 1.2041, 1e-4);  // 101325 Pa, 20 deg C
+  EXPECT_DOUBLE_EQ(fx.air_reference_density_kg_m3, model.metadata().benchAirDensity());
+  EXPECT_NEAR(fx.air_reference_density_kg_m3, 1.2041, 1e-4);  // 101325 Pa, 20 deg C
   EXPECT_EQ(fx.parameter(pe::effects::Kind::kThrustLoss), 0.04);
   EXPECT_EQ(fx.parameter(pe::effects::Kind::kClimbInflow), 0.03);
   EXPECT_EQ(fx.parameter(pe::effects::Kind::kEscOffset), 12.0);
@@ -298,7 +298,7 @@ TEST(ModelYaml, RoundTripsEveryEffect) {
   }
   EXPECT_EQ(reread.effects().rotor_height_m, original.effects().rotor_height_m);
   EXPECT_EQ(reread.effects().motor_reference_c, original.effects().motor_reference_c);
-  EXPECT_EQ(reread.effects().bench_air_density_kg_m3, original.effects().bench_air_density_kg_m3);
+  EXPECT_EQ(reread.effects().air_reference_density_kg_m3, original.effects().air_reference_density_kg_m3);
   // A corrected model is another model: a tare taken with the plain one does not apply to it.
   EXPECT_NE(pe::modelFingerprint(reread), pe::modelFingerprint(pe::parseModelYaml(kValid, "plain")));
 }
@@ -307,10 +307,10 @@ TEST(ModelYaml, WithEffectsAddsTheSectionAndTakesTheBenchAirFromTheMetadata) {
   const pe::PropulsionModel plain = pe::parseModelYaml(kValid, "m.yaml");
   pe::effects::ModelEffects fx;
   fx.setParameter(pe::effects::Kind::kAirDensity, 0.8);
-  fx.bench_air_density_kg_m3 = 0.9;  // not the metadata's: overridden
+  fx.air_reference_density_kg_m3 = 0.9;  // not the metadata's: overridden
   fx.setParameter(pe::effects::Kind::kThrustLoss, 0.05);
   const pe::PropulsionModel corrected = plain.withEffects(fx);
-  EXPECT_DOUBLE_EQ(corrected.effects().bench_air_density_kg_m3, plain.metadata().benchAirDensity());
+  EXPECT_DOUBLE_EQ(corrected.effects().air_reference_density_kg_m3, plain.metadata().benchAirDensity());
   const std::string written = pe::modelToYaml(corrected);
   EXPECT_NE(written.find("effects:\n  air_density: {full_thrust_exponent: 0.8}\n  thrust_loss: {fraction: 0.05}\n"),
             std::string::npos)
@@ -485,22 +485,22 @@ TEST(ModelYaml, RoundTripsTheAirAndMotorTemperatureOfTheMotorReference) {
 TEST(ModelYaml, TheAirEffectReadsTheAirAgainstTheMotorReferencesAir) {
   pe::PropulsionModel model = pe::parseModelYaml(kValid, "m.yaml");
   const double bench = model.metadata().benchAirDensity();
-  EXPECT_EQ(model.effects().bench_air_density_kg_m3, bench);
+  EXPECT_EQ(model.effects().air_reference_density_kg_m3, bench);
   pe::MotorReference reference = sevenFlightReference();
   reference.air_density_kg_m3 = 1.105;
   model.setMotorReference(reference);
-  EXPECT_EQ(model.effects().bench_air_density_kg_m3, 1.105);
-  EXPECT_EQ(model.withEffects(model.effects()).effects().bench_air_density_kg_m3, 1.105);
+  EXPECT_EQ(model.effects().air_reference_density_kg_m3, 1.105);
+  EXPECT_EQ(model.withEffects(model.effects()).effects().air_reference_density_kg_m3, 1.105);
   pe::effects::ModelEffects air = model.effects();
   air.setParameter(pe::effects::Kind::kAirDensity, 0.6);
   EXPECT_EQ(pe::effects::describeParameters(pe::effects::Kind::kAirDensity, air),
             "full_thrust_exponent 0.6, reference air 1.1050 kg/m^3");  // as the node logs it
-  EXPECT_EQ(pe::parseModelYaml(pe::modelToYaml(model), "back.yaml").effects().bench_air_density_kg_m3, 1.105);
+  EXPECT_EQ(pe::parseModelYaml(pe::modelToYaml(model), "back.yaml").effects().air_reference_density_kg_m3, 1.105);
   reference.air_density_kg_m3 = pe::kNaN;
   model.setMotorReference(reference);
-  EXPECT_EQ(model.effects().bench_air_density_kg_m3, bench);
+  EXPECT_EQ(model.effects().air_reference_density_kg_m3, bench);
   model.setMotorReference(std::nullopt);
-  EXPECT_EQ(model.effects().bench_air_density_kg_m3, bench);
+  EXPECT_EQ(model.effects().air_reference_density_kg_m3, bench);
 }
 
 TEST(ModelYaml, RefusesAMotorReferenceThatIsNotOne) {

@@ -182,7 +182,7 @@ TEST(FlightFeed, FeedsTheAirTemperatureToAModelThatReadsIt) {
   pe::FlightStreams streams = steadyCommand(1500.0, 11.5, 2.0);
   streams.input(pe::input::Scalar::kAirTemperature).push_back({0.5, -100.0});
   pe::effects::ModelEffects fx = thesisModel().effects();
-  fx.bench_air_density_kg_m3 = 1.2;
+  fx.air_reference_density_kg_m3 = 1.2;
   fx.setParameter(pe::effects::Kind::kAirDensity, 1.0);
   const pe::PropulsionModel model = thesisModel().withEffects(fx);
   pe::OnboardSession session(model, vehicle, pe::offline::replayOnboardConfig(vehicle));

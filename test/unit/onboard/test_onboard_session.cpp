@@ -74,7 +74,7 @@ TEST(OnboardSession, TakesASignalOnlyWhereAnEffectOfTheModelReadsIt) {
   EXPECT_EQ(plain.addInput(pe::input::Scalar::kMotorTemperature, 1.0, -100.0), pe::Rejection::kNone);
 
   pe::effects::ModelEffects fx = thesisModel().effects();
-  fx.bench_air_density_kg_m3 = 1.2;
+  fx.air_reference_density_kg_m3 = 1.2;
   fx.setParameter(pe::effects::Kind::kAirDensity, 1.0);
   pe::OnboardSession reading(thesisModel().withEffects(fx), quad, quadConfig());
   EXPECT_TRUE(reading.reads(pe::effects::Signal::kAirDensity));
@@ -165,7 +165,7 @@ TEST(EscTelemetryHealth, NamesTheBenchsAirWhereTheRpmViewHadNoOther) {
   EXPECT_EQ(valueOf(pe::judgeEscTelemetry(without, t, activity), "rpm_view_air"), label);
 
   pe::effects::ModelEffects fx = thesisModel().effects();
-  fx.bench_air_density_kg_m3 = 1.2;
+  fx.air_reference_density_kg_m3 = 1.2;
   fx.setParameter(pe::effects::Kind::kAirDensity, 1.0);
   pe::PropulsionModel air_read = thesisModel().withEffects(fx);
   air_read.setRpmThrust(rpm_thrust);
