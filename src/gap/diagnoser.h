@@ -135,6 +135,8 @@ class Diagnoser {
   ReferenceEffects fitEachBesideTheAir();
 
  private:
+  // Each of `kinds_to_fit` (testable here) fitted on this diagnoser's blocks beside the day's air.
+  ReferenceEffects fitEach(const std::vector<Kind>& kinds_to_fit) const;
   // The 95 % half-width of the last of `kinds`' parameters, fitted with the others, from each
   // flight left out in turn; 0 with fewer than three flights (reference_effects.cpp).
   double jackknifeHalfWidth(const std::vector<Kind>& kinds) const;

@@ -124,14 +124,32 @@ double Diagnoser::flightsHalfWidth(const std::vector<Kind>& kinds, double fit_ha
   return std::max(fit_half, jackknifeHalfWidth(kinds));
 }
 
+// The healthy flights' effects are read on the blocks the selection reads a candidate on (the
+// steady ones, selectionMask): a transient block also carries what the lag model leaves over, which
+// widened the healthy flights' interval of a ground effect two- to threefold, until a change no
+// longer stood out from it. An effect read between flights (the day's air) is read on every block
+// as before: its interval is its flights' jackknife, and on the steady blocks alone three flights'
+// jackknife narrowed until a null case's day's air was called a change (development seed 607560).
 ReferenceEffects Diagnoser::fitEachBesideTheAir() {
   config_.validate();
   cut();
   findUnits();
   balanceMotors();
-  ReferenceEffects fitted;
+  std::vector<Kind> between, within;
   for (Kind kind : effects::kAllKinds) {
     if (!testability(kind).empty()) continue;
+    (betweenFlightShare(effects::requiredSignal(kind)) > kMostlyBetweenFlights ? between : within).push_back(kind);
+  }
+  ReferenceEffects fitted = fitEach(between);
+  const std::vector<bool> mask = selectionMask();
+  const ReferenceEffects steady = mask.empty() ? fitEach(within) : Diagnoser(*this, mask, views_).fitEach(within);
+  fitted.insert(steady.begin(), steady.end());
+  return fitted;
+}
+
+ReferenceEffects Diagnoser::fitEach(const std::vector<Kind>& kinds_to_fit) const {
+  ReferenceEffects fitted;
+  for (Kind kind : kinds_to_fit) {
     // The day's air is on every flight and the diagnosis models it first, as the vehicle's own:
     // each effect is read on top of it here too, or the motors' warming, which follows the day's
     // temperature, would take up the healthy flights' air and be compared with a warming read

@@ -290,8 +290,10 @@ Diagnosis diagnoseGap(const PropulsionModel& model, const Vehicle& vehicle, cons
 /// Each effect the diagnosis knows, fitted on a vehicle's healthy `flights` at their own thrust
 /// level (`config.motor_reference`, learned from them) on top of the day's air (air_density, where
 /// the flights give the air; alone otherwise, and air_density alone), with the range of the signal it
-/// reads there; effects the flights cannot test are left out. Throws DataError when no block of
-/// the flights can be used.
+/// reads there; effects the flights cannot test are left out. An effect read within flights (or
+/// reading no signal) is fitted on the blocks the selection reads candidates on (the steady ones
+/// inside the model's domain, when others are in), one read between flights (the day's air) on
+/// every block. Throws DataError when no block of the flights can be used.
 ReferenceEffects fitReferenceEffects(const PropulsionModel& model, const Vehicle& vehicle,
                                      const std::vector<Flight>& flights, const DiagnosisConfig& config);
 

@@ -18,7 +18,7 @@ struct ReferenceEffect {
   /// Its 95 % half-width; for an effect whose signal changes mostly between flights (the day's
   /// air), the larger of the fit's and the flights' jackknife (each flight left out in turn).
   double ci_half = 0.0;
-  /// The lowest value of the signal the effect reads over those flights' blocks; NaN for an
+  /// The lowest value of the signal the effect reads over the blocks it was fitted on; NaN for an
   /// effect reading none.
   double signal_low = kNaN;
   double signal_high = kNaN;  ///< the highest, likewise
