@@ -135,7 +135,7 @@ class Diagnoser {
   ReferenceEffects fitEachBesideTheAir();
 
  private:
-  // Each of `kinds_to_fit` (testable here) fitted on this diagnoser's blocks beside the day's air.
+  // Each of `kinds_to_fit` that these blocks can test, fitted on them beside the day's air.
   ReferenceEffects fitEach(const std::vector<Kind>& kinds_to_fit) const;
   // The 95 % half-width of the last of `kinds`' parameters, fitted with the others, from each
   // flight left out in turn; 0 with fewer than three flights (reference_effects.cpp).
@@ -145,6 +145,11 @@ class Diagnoser {
   double flightsHalfWidth(const std::vector<Kind>& kinds, double fit_half) const;
   // The share of `signal`'s variance over the blocks between the flights' means (NaN without it).
   double betweenFlightShare(effects::Signal signal) const;
+  // Whether `kind`'s signal changes mostly between flights (the day's air): its share above
+  // kMostlyBetweenFlights; false for an effect reading none.
+  bool readBetweenFlights(Kind kind) const {
+    return betweenFlightShare(effects::requiredSignal(kind)) > kMostlyBetweenFlights;
+  }
 
   // A diagnosis of the outer one's blocks kept only (`keep_block`, per block), seeing them through
   // `views`: fresh ones for the nested hold-out, the outer's (with its suspect's factor) for the

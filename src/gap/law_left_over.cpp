@@ -50,7 +50,7 @@ std::string Diagnoser::readBetweenFlightsAsBefore(Kind kind) const {
   const effects::Signal signal = effects::requiredSignal(kind);
   const auto healthy = config_.reference_effects.find(kind);
   if (signal == effects::Signal::kNone || healthy == config_.reference_effects.end() ||
-      !std::isfinite(healthy->second.signal_low) || !(betweenFlightShare(signal) > kMostlyBetweenFlights)) {
+      !std::isfinite(healthy->second.signal_low) || !readBetweenFlights(kind)) {
     return "";
   }
   const double median = signalMedian(all_, signal);

@@ -102,6 +102,10 @@ class SyntheticFlights : public ::testing::Test {
     const auto warming_at = [&](double time_s) {
       return world.motor_warming_c * time_s / (47.0 * static_cast<double>(masses.size()));
     };
+    // The autopilot's kick at `time_s`, us.
+    const auto kickAt = [&](double time_s) {
+      return world.kicks && std::fmod(time_s, 10.0) >= 5.0 && std::fmod(time_s, 10.0) < 5.3 ? world.kick_us : 0.0;
+    };
     double t = 0.0;
     for (std::size_t s = 0; s < masses.size(); ++s) {
       const double mass = world.one_mass_kg > 0.0 ? world.one_mass_kg : masses[s];
@@ -129,9 +133,6 @@ class SyntheticFlights : public ::testing::Test {
         }
         pe::RcOutFrame frame;
         frame.time_s = t;
-        const auto kickAt = [&](double time_s) {
-          return world.kicks && std::fmod(time_s, 10.0) >= 5.0 && std::fmod(time_s, 10.0) < 5.3 ? world.kick_us : 0.0;
-        };
         const double kick = kickAt(t);
         for (int k = 0; k < 4; ++k) frame.pwm_us[k] = pwm[k] + kick + pwm_noise(rng);
         double lift_n = 0.0;
