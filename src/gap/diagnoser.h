@@ -187,14 +187,16 @@ class Diagnoser {
   using EffectsOfBlock = std::function<const effects::ModelEffects&(const Block&)>;
   using UnitFit = std::function<EffectsOfBlock(const std::vector<const Block*>& training)>;
   HeldOutPrediction predictHeldOutWith(const UnitFit& fit_unit) const;
-  // In a round after `selected`'s: "" when candidate `kind` (of `size`, held-out prediction `with`
-  // of joint mean square `ms`) is more than what their laws leave over (law_left_over.cpp); else
-  // why not.
+  // `kinds` with their strength free to differ between light and heavy loads, by the load that
+  // explains most (law_left_over.cpp).
   const FlexibleLaw& flexibleLaw(const std::vector<Kind>& kinds);
   // Why `kind`, read from a signal that changes mostly between flights within the healthy flights'
   // range, cannot be told in a later round from an earlier effect's leftover; "" otherwise.
   std::string readBetweenFlightsAsBefore(Kind kind) const;
-  std::string leftOverOfLaw(Kind kind, const std::vector<Kind>& selected, const EffectSize& size,
+  // After the earlier rounds' `earlier` effects and a suspect motor's factor (either may be none):
+  // "" when candidate `kind` (of `size`, held-out prediction `with` of joint mean square `ms`) is
+  // more than what their laws leave over (law_left_over.cpp); else why not.
+  std::string leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier, const EffectSize& size,
                             const HeldOutPrediction& with, double ms);
   // A view's weight in the joint error: the PWM view's block-to-block noise variance over the
   // view's (`view`, from the plain model's held-out residuals `before`); 1 without the view.

@@ -280,7 +280,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
         own_ms = ms;
         *own = OwnCandidate{kind, prediction};
       }
-    } else if (const std::string left_over = round > 0 ? leftOverOfLaw(kind, selected, result.size, prediction, ms) : "";
+    } else if (const std::string left_over =
+                   leftOverOfLaw(kind, round > 0 ? selected : std::vector<Kind>{}, result.size, prediction, ms);
                !left_over.empty()) {
       result.reason = left_over;
     } else if (!vehicle_.hasGeometry() && effects::requiredSignal(kind) == effects::Signal::kNone) {

@@ -15,6 +15,11 @@
 //  - when it beats the earlier effects with their strength free to differ between light and heavy
 //    loads (each held-out flight's blocks below and above the training flights' median command,
 //    current, thrust, flight time or voltage, whichever explains most), by the selection's test.
+// A suspect motor's factor is such an earlier law too, from the first round on: one factor on its
+// modelled thrust, where a chipped blade also turns less drag torque, so that the motor speeds up
+// and its thrust lost changes with the operating point as the battery drains and the motors warm.
+// An effect beside it is named only by its size (the flexible law above frees effects, not a
+// motor's factor).
 #include "diagnoser.h"
 #include "propulsion_estimator/common/name_list.h"
 
@@ -71,12 +76,13 @@ std::string Diagnoser::readBetweenFlightsAsBefore(Kind kind) const {
          " there): with one value per flight it takes up what the earlier law leaves on each flight as well";
 }
 
-std::string Diagnoser::leftOverOfLaw(Kind kind, const std::vector<Kind>& selected, const EffectSize& size,
+std::string Diagnoser::leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier_kinds, const EffectSize& size,
                                      const HeldOutPrediction& with, double ms) {
-  if (selected.empty()) return "";
+  if (earlier_kinds.empty() && !views_.scalesAMotor()) return "";
   std::vector<std::string> names;
-  for (Kind first : selected) names.push_back(effects::kindName(first));
-  const std::string earlier = nameList(names, 3);
+  for (Kind first : earlier_kinds) names.push_back(effects::kindName(first));
+  if (views_.scalesAMotor()) names.push_back("the suspect motor's factor");
+  const std::string earlier = nameList(names, 4);
   if (size.blocks_beyond < kMinBlocksBeyondParts) {
     return "not named: after " + earlier + ", an effect must move the thrust beyond healthy parts' spread (" +
            formatPrintf("%.1f", size.largest_change_pct) + " % at most here against " +
@@ -87,14 +93,17 @@ std::string Diagnoser::leftOverOfLaw(Kind kind, const std::vector<Kind>& selecte
   if (const std::string per_flight = readBetweenFlightsAsBefore(kind); !per_flight.empty()) {
     return "not named: after " + earlier + ", " + per_flight;
   }
-  const FlexibleLaw& flexible = flexibleLaw(selected);
+  if (earlier_kinds.empty()) return "";
+  names.resize(earlier_kinds.size());
+  const std::string effects_before = nameList(names, 3);
+  const FlexibleLaw& flexible = flexibleLaw(earlier_kinds);
   const double p = signFlipPValue(groupImprovements(flexible.prediction, with), config_.permutations,
                                   config_.seed + 7919u + static_cast<unsigned>(kind));  // a stream of its own
   if (ms < flexible.mean_square && p < config_.significance) return "";
-  return "not taken: no better than " + earlier + " with a strength free to differ with the " + flexible.load +
+  return "not taken: no better than " + effects_before + " with a strength free to differ with the " + flexible.load +
          " (joint held-out error " + formatPrintf("%.2f", 100.0 * std::sqrt(ms)) + " % against " +
          formatPrintf("%.2f", 100.0 * std::sqrt(flexible.mean_square)) + " %, p = " + formatPrintf("%.3f", p) +
-         "): what the law of " + earlier + " leaves over, not a second effect";
+         "): what the law of " + effects_before + " leaves over, not a second effect";
 }
 
 }  // namespace detail

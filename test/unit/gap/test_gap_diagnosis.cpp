@@ -706,6 +706,32 @@ TEST_F(SyntheticFlights, AfterAFirstEffectASecondMustMoveTheThrustBeyondTheParts
       << reason;
 }
 
+// A suspect motor's factor is a law as well, and a mis-shaped one (a chipped blade also turns less
+// drag torque, and its thrust lost changes with the operating point): beside it an effect is named
+// by its size alone, as after a first effect. The heating named alone above, with propeller 3 at
+// 85 % of its thrust: the motor located, the heating's shape not named.
+TEST_F(SyntheticFlights, BesideASuspectMotorAnEffectMustMoveTheThrustBeyondThePartsSpread) {
+  World warm;
+  warm.motor_temperature = true;
+  warm.motor_per_c = -0.002;
+  warm.no_current = true;
+  World healthy = warm;
+  healthy.motor_per_c = 0.0;
+  gap::DiagnosisConfig config;
+  config.motor_reference = gap::learnReference(model_, vehicle_, flights(healthy, 1), config);
+  warm.weak_motor = 2;
+  warm.weak_factor = 0.85;
+  const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, flights(warm), config);
+  ASSERT_TRUE(diagnosis.motors.suspect_channel);
+  EXPECT_EQ(*diagnosis.motors.suspect_channel, 3);
+  EXPECT_TRUE(diagnosis.selected.empty()) << gap::gapReportMarkdown(diagnosis, model_, "cmd");
+  const std::string& reason = diagnosis.effects.at(static_cast<std::size_t>(Kind::kMotorTemperature)).reason;
+  EXPECT_EQ(reason.rfind("not named: after the suspect motor's factor, an effect must move the thrust beyond healthy "
+                         "parts' spread", 0),
+            0u)
+      << reason;
+}
+
 // A healthy flight's blocks err together (its payload's hang, its air): an effect read from a
 // signal that changes between flights, as the motors' temperature on three days, is known only as
 // well as three flights tell it, and the reference's interval says so: the flights' jackknife,
