@@ -198,6 +198,10 @@ class Diagnoser {
   // more than what their laws leave over (law_left_over.cpp); else why not.
   std::string leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier, const EffectSize& size,
                             const HeldOutPrediction& with, double ms);
+  // Why `kind` is not named on top of `selected`: the motor the balance shows lacking most beyond
+  // three standard errors explains it (lacking_motor.cpp); "" otherwise, with a suspect's factor
+  // applied or no such motor.
+  std::string oneLackingMotorExplains(Kind kind, const std::vector<Kind>& selected) const;
   // A view's weight in the joint error: the PWM view's block-to-block noise variance over the
   // view's (`view`, from the plain model's held-out residuals `before`); 1 without the view.
   double viewWeight(const HeldOutPrediction& before, const std::vector<double>& view) const;

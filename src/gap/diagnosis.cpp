@@ -141,6 +141,7 @@ Diagnoser::Diagnoser(const Diagnoser& outer, const std::vector<bool>& keep_block
   }
   for (const Block& block : blocks_) all_.push_back(&block);
   diagnosis_.blocks = static_cast<int>(blocks_.size());
+  diagnosis_.motors = outer.diagnosis_.motors;
   findUnits();
 }
 
@@ -284,6 +285,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
                    leftOverOfLaw(kind, round > 0 ? selected : std::vector<Kind>{}, result.size, prediction, ms);
                !left_over.empty()) {
       result.reason = left_over;
+    } else if (const std::string one_motor = oneLackingMotorExplains(kind, selected); !one_motor.empty()) {
+      result.reason = one_motor;
     } else if (!vehicle_.hasGeometry() && effects::requiredSignal(kind) == effects::Signal::kNone) {
       // A correction that reads no signal moves every block alike, and so does one weak motor:
       // without the rotors' positions the moment balance cannot tell them apart.
