@@ -202,6 +202,14 @@ class Diagnoser {
   // three standard errors explains it (lacking_motor.cpp); "" otherwise, with a suspect's factor
   // applied or no such motor.
   std::string oneLackingMotorExplains(Kind kind, const std::vector<Kind>& selected) const;
+  // The motor the balance shows lacking most beyond three standard errors, no suspect's factor
+  // applied; -1 when none.
+  int lackingMotor() const;
+  // This diagnosis with motor `lacking`'s factor from the balance applied.
+  Diagnoser withLackingMotor(int lacking) const;
+  // "channel N's factor (...)" when the lacking motor's factor alone lowers the held-out error as
+  // a name needs (an earlier law for leftOverOfLaw); "" otherwise.
+  std::string lackingMotorLaw();
   // A view's weight in the joint error: the PWM view's block-to-block noise variance over the
   // view's (`view`, from the plain model's held-out residuals `before`); 1 without the view.
   double viewWeight(const HeldOutPrediction& before, const std::vector<double>& view) const;
@@ -303,6 +311,7 @@ class Diagnoser {
   std::vector<Kind> background_;  // the vehicle's own effects, modelled but not named
   std::set<Kind> grouped_;     // members of an ambiguous group: not tried again
   std::map<std::vector<Kind>, FlexibleLaw> flexible_laws_;  // by the effects fitted flexibly
+  std::optional<std::string> lacking_motor_law_;  // lackingMotorLaw's, once known
   int units_ = 0;
   std::string unit_name_;
   Diagnosis diagnosis_;

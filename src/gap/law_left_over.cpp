@@ -78,10 +78,11 @@ std::string Diagnoser::readBetweenFlightsAsBefore(Kind kind) const {
 
 std::string Diagnoser::leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier_kinds, const EffectSize& size,
                                      const HeldOutPrediction& with, double ms) {
-  if (earlier_kinds.empty() && !views_.scalesAMotor()) return "";
+  const std::string motor_law = views_.scalesAMotor() ? "the suspect motor's factor" : lackingMotorLaw();
+  if (earlier_kinds.empty() && motor_law.empty()) return "";
   std::vector<std::string> names;
   for (Kind first : earlier_kinds) names.push_back(effects::kindName(first));
-  if (views_.scalesAMotor()) names.push_back("the suspect motor's factor");
+  if (!motor_law.empty()) names.push_back(motor_law);
   const std::string earlier = nameList(names, 4);
   if (size.blocks_beyond < kMinBlocksBeyondParts) {
     return "not named: after " + earlier + ", an effect must move the thrust beyond healthy parts' spread (" +
