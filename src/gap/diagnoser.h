@@ -193,7 +193,8 @@ class Diagnoser {
   // Why `kind`, read from a signal that changes mostly between flights within the healthy flights'
   // range, cannot be told in a later round from an earlier effect's leftover; "" otherwise.
   std::string readBetweenFlightsAsBefore(Kind kind) const;
-  // After the earlier rounds' `earlier` effects and a suspect motor's factor (either may be none):
+  // After the earlier rounds' effects (`earlier`) and a suspect's or lacking rotor's factor
+  // (lackingMotorLaw; either may be none):
   // "" when candidate `kind` (of `size`, held-out prediction `with` of joint mean square `ms`) is
   // more than what their laws leave over (law_left_over.cpp); else why not.
   std::string leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier, const EffectSize& size,
@@ -205,7 +206,8 @@ class Diagnoser {
   // The motor the balance shows lacking most beyond three standard errors, no suspect's factor
   // applied; -1 when none.
   int lackingMotor() const;
-  // This diagnosis with motor `lacking`'s factor from the balance applied.
+  // This diagnosis with motor `lacking`'s factor applied, fitted to the weighed thrust within
+  // twice the balance's gap (suspectThrustFactor).
   Diagnoser withLackingMotor(int lacking) const;
   // "channel N's factor (...)" when the lacking motor's factor alone lowers the held-out error as
   // a name needs (an earlier law for leftOverOfLaw); "" otherwise.

@@ -14,8 +14,9 @@
 // Development seed 815818 case 35: a chipped blade at 93.3 %, read 4.9 % +- 0.5 lacking against
 // the suspect's 5 %, was named a 1.2 % thrust loss; with the loss refused alone, a motor heating
 // took it up; with the balance's factor rather than the fitted one, a supply resistance. On the
-// 107 cases of ten development seeds with such a motor and no suspect nothing else changed; a motor
-// lacking 1.2 % (below the parts' spread) counted as well cost a motor heating (815818 case 30).
+// 128 cases of twelve development seeds with such a motor and no suspect nothing else changed; a
+// motor lacking 1.2 % (below the parts' spread) counted as well cost a motor heating (815818 case
+// 30).
 #include "diagnoser.h"
 
 namespace propulsion_estimator {

@@ -19,7 +19,8 @@
 // modelled thrust, where a chipped blade also turns less drag torque, so that the motor speeds up
 // and its thrust lost changes with the operating point as the battery drains and the motors warm.
 // An effect beside it is named only by its size (the flexible law above frees effects, not a
-// motor's factor).
+// motor's factor); so is one beside a rotor lacking below the suspect's threshold whose factor
+// alone lowers the error as a name needs (lacking_motor.cpp).
 #include "diagnoser.h"
 #include "propulsion_estimator/common/name_list.h"
 
