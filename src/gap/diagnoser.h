@@ -173,6 +173,8 @@ class Diagnoser {
   // Each candidate's one line once the selection is over: taken, ambiguous, or why not.
   void finishReasons(std::map<Kind, EffectResult>* results) const;
   int motorCount() const { return static_cast<int>(vehicle_.rotors.size()); }
+  // Whether the motor balance found a suspect (its factor then rides on views_).
+  bool hasSuspect() const { return diagnosis_.motors.suspect_channel.has_value(); }
   double rotorLag();
   void cut();
   void findUnits();

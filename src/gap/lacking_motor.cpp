@@ -24,7 +24,7 @@ namespace gap {
 namespace detail {
 
 int Diagnoser::lackingMotor() const {
-  if (views_.scalesAMotor()) return -1;
+  if (hasSuspect()) return -1;
   const std::vector<MotorGap>& motors = diagnosis_.motors.motors;
   int lacking = -1;
   for (std::size_t k = 0; k < motors.size(); ++k) {

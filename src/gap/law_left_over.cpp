@@ -79,10 +79,11 @@ std::string Diagnoser::readBetweenFlightsAsBefore(Kind kind) const {
 
 std::string Diagnoser::leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier_kinds, const EffectSize& size,
                                      const HeldOutPrediction& with, double ms) {
-  const std::string motor_law = views_.scalesAMotor() ? "the suspect motor's factor" : lackingMotorLaw();
+  const std::string motor_law = hasSuspect() ? "the suspect motor's factor" : lackingMotorLaw();
   if (earlier_kinds.empty() && motor_law.empty()) return "";
-  std::vector<std::string> names;
-  for (Kind first : earlier_kinds) names.push_back(effects::kindName(first));
+  std::vector<std::string> effect_names;
+  for (Kind first : earlier_kinds) effect_names.push_back(effects::kindName(first));
+  std::vector<std::string> names = effect_names;
   if (!motor_law.empty()) names.push_back(motor_law);
   const std::string earlier = nameList(names, 4);
   if (size.blocks_beyond < kMinBlocksBeyondParts) {
@@ -96,8 +97,7 @@ std::string Diagnoser::leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier
     return "not named: after " + earlier + ", " + per_flight;
   }
   if (earlier_kinds.empty()) return "";
-  names.resize(earlier_kinds.size());
-  const std::string effects_before = nameList(names, 3);
+  const std::string effects_before = nameList(effect_names, 3);
   const FlexibleLaw& flexible = flexibleLaw(earlier_kinds);
   const double p = signFlipPValue(groupImprovements(flexible.prediction, with), config_.permutations,
                                   config_.seed + 7919u + static_cast<unsigned>(kind));  // a stream of its own

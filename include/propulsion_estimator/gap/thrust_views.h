@@ -1,6 +1,5 @@
 #pragma once
 
-#include <algorithm>
 #include <array>
 
 #include "propulsion_estimator/gap/blocks.h"
@@ -46,10 +45,6 @@ class ThrustViews {
 
   /// A per-motor factor on thrust (1 = as modelled), for a motor the balance shows to be off.
   void setMotorScale(int motor, double scale) { motor_scale_[motor] = scale; }
-  /// Whether a motor's factor differs from 1 (a suspect motor's is applied).
-  bool scalesAMotor() const {
-    return std::any_of(motor_scale_.begin(), motor_scale_.begin() + motors_, [](double s) { return s != 1.0; });
-  }
   /// Factors on each view's thrust (1 = as modelled): a healthy vehicle's own level against the
   /// model in each view (MotorReference), so that effects are sought as changes from it. NaN: 1.
   void setLevels(double pwm, double current, double rpm);
