@@ -28,6 +28,7 @@ def main():
     parser.add_argument("--significance", type=float, default=0.01)
     args = parser.parse_args()
     rows, rpm_rows = [], []
+    regional = {}
     for work in args.work:
         for report_path in sorted(glob.glob(os.path.join(work, "case_*", "diagnosis", "report.yaml"))):
             case = os.path.basename(os.path.dirname(os.path.dirname(report_path)))
@@ -44,6 +45,12 @@ def main():
                 drop = before - step["heldout_rmse_pct"]
                 ratio = (step["heldout_rmse_pct"] / before) ** 2 if before else 1.0
                 rows.append((drop, ratio, os.path.basename(work), case, step["name"]))
+                # Where its law acts, in either view: its own floor.
+                for view in ("", "rpm_"):
+                    if step.get("regional_%srmse_pct" % view) is not None:
+                        fall = step["base_regional_%srmse_pct" % view] - step["regional_%srmse_pct" % view]
+                        regional.setdefault(step["name"], []).append(
+                            (fall, view or "pwm_", os.path.basename(work), case))
                 # The RPM view's fall, where the flights had one: its test uses the same thresholds.
                 if step.get("rpm_rmse_pct") is not None and step.get("base_rpm_rmse_pct"):
                     before = step["base_rpm_rmse_pct"]
@@ -59,6 +66,12 @@ def main():
     print("RPM view: %d of them with ESC telemetry" % len(rpm_rows))
     for drop, ratio, work, case, name in rpm_rows[:5]:
         print("  %-14s %-28s %-18s RMSE falls %.3f points, mean square to %.3f" % (work, case, name, drop, ratio))
+
+    for name, falls in sorted(regional.items()):
+        falls.sort(reverse=True)
+        fall, view, work, case = falls[0]
+        print("where %s acts: %d falls; largest %.3f points (%s view, %s %s): threshold %.3f" %
+              (name, len(falls), fall, view[:-1], work, case, 1.25 * fall))
 
 
 if __name__ == "__main__":

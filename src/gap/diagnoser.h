@@ -173,6 +173,9 @@ class Diagnoser {
   // Each candidate's one line once the selection is over: taken, ambiguous, or why not.
   void finishReasons(std::map<Kind, EffectResult>* results) const;
   int motorCount() const { return static_cast<int>(vehicle_.rotors.size()); }
+  // The fewest blocks an effect acting on some blocks only needs there to be tested: 4, or a
+  // fiftieth of the blocks.
+  int minInformativeBlocks() const { return std::max(4, static_cast<int>(blocks_.size()) / 50); }
   // Whether the motor balance found a suspect (its factor then rides on views_).
   bool hasSuspect() const { return diagnosis_.motors.suspect_channel.has_value(); }
   double rotorLag();
@@ -197,10 +200,11 @@ class Diagnoser {
   std::string readBetweenFlightsAsBefore(Kind kind) const;
   // After the earlier rounds' effects (`earlier`) and a suspect's or lacking rotor's factor
   // (lackingMotorLaw; either may be none):
-  // "" when candidate `kind` (of `size`, held-out prediction `with` of joint mean square `ms`) is
-  // more than what their laws leave over (law_left_over.cpp); else why not.
+  // "" when candidate `kind` (of `size`, held-out prediction `with` of joint mean square `ms`,
+  // `regional` where its law acts) is more than what their laws leave over (law_left_over.cpp);
+  // else why not.
   std::string leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier, const EffectSize& size,
-                            const HeldOutPrediction& with, double ms);
+                            const RegionalError& regional, const HeldOutPrediction& with, double ms);
   // Why `kind` is not named on top of `selected`: the motor the balance shows lacking most beyond
   // three standard errors explains it (lacking_motor.cpp); "" otherwise, with a suspect's factor
   // applied or no such motor.
@@ -225,7 +229,17 @@ class Diagnoser {
   // Whether a view's held-out RMSE (% of the truth) falls from `before_pct` to `after_pct` by more
   // than min_improvement_pct points and below max_mean_square_ratio of its mean square; false
   // when either is NaN (no such view).
-  bool fallsEnough(double before_pct, double after_pct) const;
+  bool fallsEnough(double before_pct, double after_pct) const { return fallsBy(before_pct, after_pct, config_.min_improvement_pct); }
+  // The same against `min_points` (min_improvement_pct, or a min_regional_improvement_pct where a
+  // law acts on some blocks only).
+  bool fallsBy(double before_pct, double after_pct, double min_points) const;
+  // `kind`'s held-out error before (`base`) and with it (`with`) on the blocks its law acts on.
+  RegionalError regionalError(Kind kind, const HeldOutPrediction& base, const HeldOutPrediction& with) const;
+  // Whether `kind`'s regional error falls by more than its min_regional_improvement_pct in either view.
+  bool fallsWhereItActs(Kind kind, const RegionalError& regional) const;
+  // ", nor on the 96 blocks where its law acts (PWM view ... ; > 0.140 points needed there)", the
+  // numbers of fallsWhereItActs' test; "" for an effect judged over all blocks alone.
+  std::string regionalClause(Kind kind, const RegionalError& regional) const;
   // Mean over blocks of the joint squared error.
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
   // The joint mean square once each flight's mean residual is taken out of each view.
@@ -280,14 +294,18 @@ class Diagnoser {
   // The sign-flip p of `with`'s improvement on `base`, per 10 s stretch, for candidate `kind`.
   double improvementPValue(const HeldOutPrediction& base, const HeldOutPrediction& with, Kind kind) const;
   // Whether `with` improves on `base` as a name needs (p from improvementPValue): p below the
-  // significance, the joint error lower, and the PWM or RPM view's RMSE falling enough.
-  bool improvesEnough(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value) const;
+  // significance, the joint error lower, and the PWM or RPM view's RMSE falling enough, over all
+  // blocks or, for a candidate `kind` whose law acts on some only, on those.
+  bool improvesEnough(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value,
+                      std::optional<Kind> kind) const;
   // Why a candidate that lowers nothing enough was not taken, in the numbers the tests used.
   std::string notSignificant(const EffectResult& result, double base_pwm_rmse_pct, double drop_pct,
                              double mean_square_ratio) const;
   void reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected);
   void reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after);
   std::string method() const;
+  // "ground_effect 0.150 %, climb_inflow ...": each min_regional_improvement_pct.
+  std::string regionalThresholds() const;
   // The method line's clause on the RPM view: in use with its weight, or why not.
   std::string rpmView() const;
   std::string dynamicBlocks() const;

@@ -169,8 +169,7 @@ std::string Diagnoser::testability(Kind kind) const {
   }
   const std::string needs = effects::sourcesOf(signal, config_.signal_sources);
   if (with_signal < static_cast<int>(blocks_.size()) / 2) return "needs " + needs;
-  const int few = std::max(4, static_cast<int>(blocks_.size()) / 50);
-  if (description.informative && informative < few) return description.uninformative(config_.rotor_diameter_m);
+  if (description.informative && informative < minInformativeBlocks()) return description.uninformative(config_.rotor_diameter_m);
   return "";
 }
 
@@ -268,7 +267,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     result.size = effectSizeAgainstParts(views_, all_, fit.effects, kind, config_.parts_spread);
     const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
     const double drop_pct = base_pwm_rmse_pct - 100.0 * std::sqrt(pwm_ms);
-    if (!improvesEnough(current, prediction, result.p_value)) {
+    result.regional = regionalError(kind, current, prediction);
+    if (!improvesEnough(current, prediction, result.p_value, kind)) {
       result.reason = notSignificant(result, base_pwm_rmse_pct, drop_pct, pwm_ms / base_pwm);
     } else if (!result.plausible) {
       result.reason = "fitted at the edge of its plausible range " + formatNumber(spec.min) + ".." +
@@ -282,7 +282,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
         *own = OwnCandidate{kind, prediction};
       }
     } else if (const std::string left_over =
-                   leftOverOfLaw(kind, round > 0 ? selected : std::vector<Kind>{}, result.size, prediction, ms);
+                   leftOverOfLaw(kind, round > 0 ? selected : std::vector<Kind>{}, result.size, result.regional,
+                                 prediction, ms);
                !left_over.empty()) {
       result.reason = left_over;
     } else if (const std::string one_motor = oneLackingMotorExplains(kind, selected); !one_motor.empty()) {
@@ -304,7 +305,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
       }
     }
     diagnosis_.trace.push_back({round + 1, kind, result.heldout_rmse_pct, base_pwm_rmse_pct, result.rpm_rmse_pct,
-                                result.base_rpm_rmse_pct, result.joint_rmse_pct, result.p_value, result.reason});
+                                result.base_rpm_rmse_pct, result.joint_rmse_pct, result.p_value, result.reason,
+                                result.regional});
   }
   // The candidates that passed every test but lowered the joint error less than the one taken.
   for (std::size_t step : admissible_steps) {
@@ -322,16 +324,20 @@ double Diagnoser::improvementPValue(const HeldOutPrediction& base, const HeldOut
   return signFlipPValue(groupImprovements(base, with), config_.permutations, config_.seed + static_cast<unsigned>(kind));
 }
 
-bool Diagnoser::improvesEnough(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value) const {
+bool Diagnoser::improvesEnough(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value,
+                               std::optional<Kind> kind) const {
   const auto rmse_pct = [](const std::vector<double>& view) { return 100.0 * std::sqrt(finiteMeanSquare(view)); };
-  return p_value < config_.significance && jointMeanSquare(with) < jointMeanSquare(base) &&
-         (fallsEnough(rmse_pct(base.pwm), rmse_pct(with.pwm)) || fallsEnough(rmse_pct(base.rpm), rmse_pct(with.rpm)));
+  if (!(p_value < config_.significance && jointMeanSquare(with) < jointMeanSquare(base))) return false;
+  if (fallsEnough(rmse_pct(base.pwm), rmse_pct(with.pwm)) || fallsEnough(rmse_pct(base.rpm), rmse_pct(with.rpm))) {
+    return true;
+  }
+  return kind && fallsWhereItActs(*kind, regionalError(*kind, base, with));
 }
 
 // Whether a view's held-out RMSE (% of the truth) falls from `before` to `after` by more than a
 // mismatch of model family alone gives on null flights: in points and as a share of its square.
-bool Diagnoser::fallsEnough(double before_pct, double after_pct) const {
-  return std::isfinite(before_pct) && std::isfinite(after_pct) && before_pct - after_pct > config_.min_improvement_pct &&
+bool Diagnoser::fallsBy(double before_pct, double after_pct, double min_points) const {
+  return std::isfinite(before_pct) && std::isfinite(after_pct) && before_pct - after_pct > min_points &&
          after_pct * after_pct < config_.max_mean_square_ratio * before_pct * before_pct;
 }
 
@@ -355,7 +361,7 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
     return "not taken: " + joint + ", not significant (p must be below " + formatNumber(config_.significance) + ")";
   }
   if (!fallsEnough(base_pwm_rmse_pct, result.heldout_rmse_pct) &&
-      !fallsEnough(result.base_rpm_rmse_pct, result.rpm_rmse_pct)) {
+      !fallsEnough(result.base_rpm_rmse_pct, result.rpm_rmse_pct) && !fallsWhereItActs(result.kind, result.regional)) {
     const std::string rpm =
         std::isfinite(result.rpm_rmse_pct)
             ? ", nor the RPM-view held-out error (" + formatPrintf("%.2f", result.rpm_rmse_pct) + " % against " +
@@ -363,6 +369,7 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
             : std::string();
     return "not taken: significant (" + joint + "), but the " + pwm + " falls by " + formatPrintf("%.3f", drop_pct) +
            " points (" + formatPrintf("%.0f", 100.0 * (1.0 - mean_square_ratio)) + " % of its mean square)" + rpm +
+           regionalClause(result.kind, result.regional) +
            ": at most what a mismatch of model family alone gives on null flights (> " +
            formatPrintf("%.3f", config_.min_improvement_pct) + " points and " +
            formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) + " % needed)";

@@ -17,6 +17,9 @@ void DiagnosisConfig::validate() const {
   requireWithin("permutations", permutations, 20, 100000);
   requirePositive("significance", significance, 0.2);
   requireWithin("min_improvement_pct", min_improvement_pct, 0.0, 50.0, " %");
+  for (const auto& [kind, points] : min_regional_improvement_pct) {
+    requireWithin("min_regional_improvement_pct." + std::string(effects::kindName(kind)), points, 0.0, 50.0, " %");
+  }
   requireWithin("max_mean_square_ratio", max_mean_square_ratio, 0.0, 1.0);
   requireWithin("ambiguity_p", ambiguity_p, 0.0, 1.0);
   requireWithin("nested_folds", nested_folds, 2, 100);

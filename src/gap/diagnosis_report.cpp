@@ -221,6 +221,14 @@ std::string Diagnoser::rpmView() const {
          formatPrintf("%.3g", diagnosis_.rpm_view_weight);
 }
 
+std::string Diagnoser::regionalThresholds() const {
+  std::string text;
+  for (const auto& [kind, points] : config_.min_regional_improvement_pct) {
+    text += (text.empty() ? "" : ", ") + std::string(effects::kindName(kind)) + " " + formatPrintf("%.3f", points) + " %";
+  }
+  return text.empty() ? "none" : text;
+}
+
 std::string Diagnoser::method() const {
   return "Quasi-steady " + formatNumber(config_.block_s) + " s blocks only (collective PWM changing by at most " +
          formatNumber(config_.max_pwm_change_us) + " us within the block, vertical acceleration at most " +
@@ -231,7 +239,9 @@ std::string Diagnoser::method() const {
          ". An effect is added when the held-out RMSE of the PWM view (or of the RPM view, where there is one) falls "
          "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
          formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
-         " % (more than a mismatch of model family alone gives on null flights), the joint error of the views "
+         " % (more than a mismatch of model family alone gives on null flights; an effect whose law acts on some "
+         "blocks only, also where it acts by more than that mismatch gives there: " + regionalThresholds() +
+         "), the joint error of the views "
          "(the current view weighted by the PWM view's block-to-block noise variance over its own, here " +
          formatPrintf("%.3g", diagnosis_.current_view_weight) + "; " + rpmView() + ") falls, a sign-flip permutation "
          "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +

@@ -140,6 +140,15 @@ void emitSelection(YAML::Emitter& out, const Diagnosis& diagnosis) {
     }
     emitField(out, "joint_rmse_pct", step.joint_rmse_pct);
     emitField(out, "p_value", step.p_value);
+    if (step.regional.blocks > 0) {
+      out << YAML::Key << "regional_blocks" << YAML::Value << step.regional.blocks;
+      emitField(out, "regional_rmse_pct", step.regional.pwm_rmse_pct);
+      emitField(out, "base_regional_rmse_pct", step.regional.base_pwm_rmse_pct);
+      if (std::isfinite(step.regional.rpm_rmse_pct)) {
+        emitField(out, "regional_rpm_rmse_pct", step.regional.rpm_rmse_pct);
+        emitField(out, "base_regional_rpm_rmse_pct", step.regional.base_rpm_rmse_pct);
+      }
+    }
     out << YAML::Key << "verdict" << YAML::Value << step.verdict << YAML::EndMap;
   }
   out << YAML::EndSeq;

@@ -57,7 +57,7 @@ std::string Diagnoser::lackingMotorLaw() {
   if (lacking < 0) return "";
   const HeldOutPrediction base = predictHeldOut({}), with = withLackingMotor(lacking).predictHeldOut({});
   const double p = signFlipPValue(groupImprovements(base, with), config_.permutations, config_.seed + 104729u);
-  if (!improvesEnough(base, with, p)) return "";
+  if (!improvesEnough(base, with, p, std::nullopt)) return "";
   const MotorGap& motor = diagnosis_.motors.motors[lacking];
   return *lacking_motor_law_ = "channel " + std::to_string(motor.channel) + "'s factor (lacking " +
                                formatPrintf("%.1f", motor.thrust_gap_pct) + " % in the moment balance)";
@@ -71,7 +71,7 @@ std::string Diagnoser::oneLackingMotorExplains(Kind kind, const std::vector<Kind
   std::vector<Kind> kinds = selected;
   kinds.push_back(kind);
   const HeldOutPrediction base = weak.predictHeldOut(selected), with = weak.predictHeldOut(kinds);
-  if (weak.improvesEnough(base, with, weak.improvementPValue(base, with, kind))) return "";
+  if (weak.improvesEnough(base, with, weak.improvementPValue(base, with, kind), kind)) return "";
   return "not named: one motor explains it: channel " + std::to_string(motor.channel) + " lacks " +
          formatPrintf("%.1f", motor.thrust_gap_pct) + " % +- " + formatPrintf("%.1f", motor.ci_pct) +
          " of its thrust in the moment balance (a suspect needs at least " +

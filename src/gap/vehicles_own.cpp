@@ -41,7 +41,7 @@ bool Diagnoser::passesOnTopOf(const OwnCandidate& own, Kind candidate) const {
   kinds.push_back(own.kind);
   kinds.push_back(candidate);
   const HeldOutPrediction with = predictHeldOut(kinds);
-  return improvesEnough(own.prediction, with, improvementPValue(own.prediction, with, candidate));
+  return improvesEnough(own.prediction, with, improvementPValue(own.prediction, with, candidate), candidate);
 }
 
 void Diagnoser::declineForTheVehiclesOwn(Kind candidate, Kind own, std::size_t first_step,
