@@ -173,8 +173,8 @@ class Diagnoser {
   // Each candidate's one line once the selection is over: taken, ambiguous, or why not.
   void finishReasons(std::map<Kind, EffectResult>* results) const;
   int motorCount() const { return static_cast<int>(vehicle_.rotors.size()); }
-  // The fewest blocks an effect acting on some blocks only needs there to be tested: 4, or a
-  // fiftieth of the blocks.
+  // The fewest blocks an effect acting on some blocks only needs there to be tested: the larger
+  // of 4 and a fiftieth of the blocks.
   int minInformativeBlocks() const { return std::max(4, static_cast<int>(blocks_.size()) / 50); }
   // Whether the motor balance found a suspect (its factor then rides on views_).
   bool hasSuspect() const { return diagnosis_.motors.suspect_channel.has_value(); }
@@ -200,11 +200,10 @@ class Diagnoser {
   std::string readBetweenFlightsAsBefore(Kind kind) const;
   // After the earlier rounds' effects (`earlier`) and a suspect's or lacking rotor's factor
   // (lackingMotorLaw; either may be none):
-  // "" when candidate `kind` (of `size`, held-out prediction `with` of joint mean square `ms`,
-  // `regional` where its law acts) is more than what their laws leave over (law_left_over.cpp);
-  // else why not.
+  // "" when candidate `kind` (of `size`, held-out prediction `with` of joint mean square `ms`) is
+  // more than what their laws leave over (law_left_over.cpp); else why not.
   std::string leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier, const EffectSize& size,
-                            const RegionalError& regional, const HeldOutPrediction& with, double ms);
+                            const HeldOutPrediction& with, double ms);
   // Why `kind` is not named on top of `selected`: the motor the balance shows lacking most beyond
   // three standard errors explains it (lacking_motor.cpp); "" otherwise, with a suspect's factor
   // applied or no such motor.
@@ -233,12 +232,14 @@ class Diagnoser {
   // The same against `min_points` (min_improvement_pct, or a min_regional_improvement_pct where a
   // law acts on some blocks only).
   bool fallsBy(double before_pct, double after_pct, double min_points) const;
-  // `kind`'s held-out error before (`base`) and with it (`with`) on the blocks its law acts on.
+  // `kind`'s held-out error before (`base`) and with it (`with`) on the blocks its law acts on
+  // (where_it_acts.cpp).
   RegionalError regionalError(Kind kind, const HeldOutPrediction& base, const HeldOutPrediction& with) const;
-  // Whether `kind`'s regional error falls by more than its min_regional_improvement_pct in either view.
+  // Whether `kind`'s regional error falls in either view by more than its
+  // min_regional_improvement_pct; false without one (where_it_acts.cpp).
   bool fallsWhereItActs(Kind kind, const RegionalError& regional) const;
-  // ", nor on the 96 blocks where its law acts (PWM view ... ; > 0.140 points needed there)", the
-  // numbers of fallsWhereItActs' test; "" for an effect judged over all blocks alone.
+  // ", nor on the 96 blocks where its law acts (PWM view ...; > 0.140 points needed there)", the
+  // numbers of fallsWhereItActs' test; "" for an effect without a min_regional_improvement_pct.
   std::string regionalClause(Kind kind, const RegionalError& regional) const;
   // Mean over blocks of the joint squared error.
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
@@ -304,7 +305,7 @@ class Diagnoser {
   void reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected);
   void reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after);
   std::string method() const;
-  // "ground_effect 0.150 %, climb_inflow ...": each min_regional_improvement_pct.
+  // "ground_effect 0.140 %": each min_regional_improvement_pct.
   std::string regionalThresholds() const;
   // The method line's clause on the RPM view: in use with its weight, or why not.
   std::string rpmView() const;

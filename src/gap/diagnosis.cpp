@@ -282,8 +282,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
         *own = OwnCandidate{kind, prediction};
       }
     } else if (const std::string left_over =
-                   leftOverOfLaw(kind, round > 0 ? selected : std::vector<Kind>{}, result.size, result.regional,
-                                 prediction, ms);
+                   leftOverOfLaw(kind, round > 0 ? selected : std::vector<Kind>{}, result.size, prediction, ms);
                !left_over.empty()) {
       result.reason = left_over;
     } else if (const std::string one_motor = oneLackingMotorExplains(kind, selected); !one_motor.empty()) {
@@ -361,7 +360,8 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
     return "not taken: " + joint + ", not significant (p must be below " + formatNumber(config_.significance) + ")";
   }
   if (!fallsEnough(base_pwm_rmse_pct, result.heldout_rmse_pct) &&
-      !fallsEnough(result.base_rpm_rmse_pct, result.rpm_rmse_pct) && !fallsWhereItActs(result.kind, result.regional)) {
+      !fallsEnough(result.base_rpm_rmse_pct, result.rpm_rmse_pct) &&
+      !fallsWhereItActs(result.kind, result.regional)) {
     const std::string rpm =
         std::isfinite(result.rpm_rmse_pct)
             ? ", nor the RPM-view held-out error (" + formatPrintf("%.2f", result.rpm_rmse_pct) + " % against " +

@@ -2,6 +2,7 @@
 
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/gap/diagnosis.h"
+#include "propulsion_estimator/model/effect_description.h"
 
 namespace propulsion_estimator {
 namespace gap {
@@ -18,7 +19,11 @@ void DiagnosisConfig::validate() const {
   requirePositive("significance", significance, 0.2);
   requireWithin("min_improvement_pct", min_improvement_pct, 0.0, 50.0, " %");
   for (const auto& [kind, points] : min_regional_improvement_pct) {
-    requireWithin("min_regional_improvement_pct." + std::string(effects::kindName(kind)), points, 0.0, 50.0, " %");
+    const std::string key = "min_regional_improvement_pct." + std::string(effects::kindName(kind));
+    if (!effects::describe(kind).informative) {
+      throw FieldError(key, "acts on every block: it has no blocks of its own to be judged on");
+    }
+    requireWithin(key, points, 0.0, 50.0, " %");
   }
   requireWithin("max_mean_square_ratio", max_mean_square_ratio, 0.0, 1.0);
   requireWithin("ambiguity_p", ambiguity_p, 0.0, 1.0);

@@ -240,7 +240,7 @@ std::string Diagnoser::method() const {
          "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
          formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
          " % (more than a mismatch of model family alone gives on null flights; an effect whose law acts on some "
-         "blocks only, also where it acts by more than that mismatch gives there: " + regionalThresholds() +
+         "blocks only, also on those blocks by more than that mismatch gives there: " + regionalThresholds() +
          "), the joint error of the views "
          "(the current view weighted by the PWM view's block-to-block noise variance over its own, here " +
          formatPrintf("%.3g", diagnosis_.current_view_weight) + "; " + rpmView() + ") falls, a sign-flip permutation "

@@ -55,8 +55,8 @@ struct DiagnosisConfig {
   /// there, where the error over all blocks dilutes it: named when a view's held-out RMSE on those
   /// blocks falls by more than its value here, in % of the truth (and its mean square below
   /// max_mean_square_ratio), more than a mismatch of model family alone gives on those blocks of
-  /// null flights; and after a first effect such a fall names it as a size beyond the parts'
-  /// spread does (law_left_over.cpp). An effect without an entry is judged over all blocks alone.
+  /// null flights. An effect without an entry is judged over all blocks alone; a key whose effect
+  /// acts on every block is refused.
   /// The ground effect, on the blocks within two rotor diameters of the ground: 0.140, calibrated
   /// on 2026-12-06 on the null, centre-of-gravity and weak-propeller cases of the twelve
   /// development seeds 836101, 607560, 815818, 7002, 5151, 118746, 139505, 583352, 777918, 595762,
@@ -132,17 +132,18 @@ struct MotorBalance {
   std::string unavailable;  ///< empty, or why (no geometry, no hover, fewer than 4 motors)
 };
 
-/// One candidate effect, fitted on training flights and scored on held-out flights.
-/// A candidate's held-out RMSE (% of the truth) on the blocks its law acts on (the effect's
-/// informative blocks), before and with it; blocks 0 for an effect acting on every block, which is
-/// judged over all of them alone. The RPM view's NaN without one.
+/// A candidate's held-out RMSE on the blocks its law acts on (the effect's informative blocks),
+/// before and with it; blocks 0 for an effect acting on every block, which is judged over all of
+/// them alone.
 struct RegionalError {
-  int blocks = 0;
-  double base_pwm_rmse_pct = kNaN;
-  double pwm_rmse_pct = kNaN;
-  double base_rpm_rmse_pct = kNaN;
-  double rpm_rmse_pct = kNaN;
+  int blocks = 0;                   ///< informative blocks (the RPM view's: those of them it reads)
+  double base_pwm_rmse_pct = kNaN;  ///< PWM view before it, % of the truth
+  double pwm_rmse_pct = kNaN;       ///< PWM view with it, % of the truth
+  double base_rpm_rmse_pct = kNaN;  ///< RPM view before it, % of the truth; NaN without one
+  double rpm_rmse_pct = kNaN;       ///< RPM view with it, % of the truth; NaN without one
 };
+
+/// One candidate effect, fitted on training flights and scored on held-out flights.
 
 struct EffectResult {
   effects::Kind kind = effects::Kind::kThrustLoss;  ///< which effect

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <tuple>
 #include <random>
 #include <string>
 #include <vector>
@@ -67,11 +69,11 @@ const char* kNearTheGroundProfile =
     "  - {type: takeoff, height_m: 3.0, rate_m_s: 1.0}\n"
     "  - {type: hover, duration_s: HOVER}\n"
     "  - {type: descend, height_m: 0.3, rate_m_s: 1.0}\n"
-    "  - {type: hover, duration_s: 8}\n"
+    "  - {type: hover, duration_s: LOW}\n"
     "  - {type: climb, height_m: 5.0, rate_m_s: 1.5}\n"
     "  - {type: hover, duration_s: HOVER}\n"
     "  - {type: descend, height_m: 0.4, rate_m_s: 1.0}\n"
-    "  - {type: hover, duration_s: 8}\n"
+    "  - {type: hover, duration_s: LOW}\n"
     "  - {type: land, rate_m_s: 0.5}\n"
     "  - {type: wait, duration_s: 2}\n";
 
@@ -81,6 +83,7 @@ struct Script {
   std::string spans = "airborne";  // the manifest: "airborne" (take-off to landing) or "hovers"
   double payload_kg = 0.0;  // 0 for none
   double hover_s = 5.0;  // each of its four hovers
+  double low_hover_s = 8.0;  // kNearTheGroundProfile: each of its two hovers near the ground
   int rc_out_rate_hz = 50;  // how often the log holds the ESC commands
   pe::sim::SimEffects effects;  // what the surfaces leave out
 };
@@ -98,6 +101,7 @@ pe::Flight simulateDynamicFlight(std::uint64_t seed, const Script& script = {}) 
   fill(&text, "SPANS", script.spans);
   fill(&text, "PAYLOAD", std::to_string(script.payload_kg));
   fill(&text, "HOVER", std::to_string(script.hover_s));
+  fill(&text, "LOW", std::to_string(script.low_hover_s));
   fill(&text, "RATE", std::to_string(script.rc_out_rate_hz));
   const pe::sim::FlightProfile profile = pe::sim::parseFlightProfileYaml(text, "dynamic.yaml");
   RecordingFlightSink sink;
@@ -390,23 +394,35 @@ TEST(DynamicFlight, TheSameFlightsLoggedAtAnyRateKeepTheSameBlocksAndSelectAlike
 namespace {
 
 // Five flights of kNearTheGroundProfile with the ground's lift at `strength` (1: Cheeseman and
-// Bennett's), diagnosed with `config`.
-gap::Diagnosis diagnoseNearTheGround(double strength, const gap::DiagnosisConfig& config) {
-  const pe::PropulsionModel model = pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml"));
-  const pe::Vehicle vehicle = pe::loadVehicleUrdf(repoPath("config/f450_quad.urdf"));
-  std::vector<pe::Flight> flights;
-  for (int f = 0; f < 5; ++f) {
+// Bennett's) and a thrust loss of `thrust_loss`, diagnosed with `config`; each world flown once.
+gap::Diagnosis diagnoseNearTheGround(double strength, const gap::DiagnosisConfig& config, double thrust_loss = 0.0,
+                                     double low_hover_s = 8.0) {
+  static std::map<std::tuple<double, double, double>, std::vector<pe::Flight>> flown;
+  std::vector<pe::Flight>& flights = flown[{strength, thrust_loss, low_hover_s}];
+  for (int f = static_cast<int>(flights.size()); f < 5; ++f) {
     Script script;
     script.profile = kNearTheGroundProfile;
     script.hover_s = 20.0;
+    script.low_hover_s = low_hover_s;
     if (strength > 0.0) script.effects.ground_effect_strength = strength;
+    if (thrust_loss > 0.0) script.effects.thrust_loss_fraction = thrust_loss;
     flights.push_back(simulateDynamicFlight(40 + f, script));
   }
-  return gap::diagnoseGap(model, vehicle, flights, config);
+  return gap::diagnoseGap(pe::loadModelFile(repoPath("config/e300_dji2212_dji9443.yaml")),
+                          pe::loadVehicleUrdf(repoPath("config/f450_quad.urdf")), flights, config);
 }
 
+// Whether `kind` is named (selected).
 bool names(const gap::Diagnosis& diagnosis, pe::effects::Kind kind) {
   return std::find(diagnosis.selected.begin(), diagnosis.selected.end(), kind) != diagnosis.selected.end();
+}
+
+// Whether `kind` is named or among an ambiguous round's candidates.
+bool namesOrSuggests(const gap::Diagnosis& diagnosis, pe::effects::Kind kind) {
+  for (const gap::Ambiguity& ambiguity : diagnosis.ambiguous) {
+    if (std::find(ambiguity.kinds.begin(), ambiguity.kinds.end(), kind) != ambiguity.kinds.end()) return true;
+  }
+  return names(diagnosis, kind);
 }
 
 }  // namespace
@@ -417,16 +433,20 @@ TEST(DynamicFlight, AGroundEffectIsJudgedWhereItsLawActs) {
   gap::DiagnosisConfig config;
   const gap::Diagnosis judged = diagnoseNearTheGround(1.0, config);
   EXPECT_TRUE(names(judged, pe::effects::Kind::kGroundEffect)) << judged.method;
+  const double near_the_ground = config.min_regional_improvement_pct.at(pe::effects::Kind::kGroundEffect);
   config.min_regional_improvement_pct.clear();
   const gap::Diagnosis overall = diagnoseNearTheGround(1.0, config);
-  EXPECT_FALSE(names(overall, pe::effects::Kind::kGroundEffect));
+  EXPECT_FALSE(namesOrSuggests(overall, pe::effects::Kind::kGroundEffect));
+  // Measured 2026-12-06: over all blocks 0.39 -> 0.32 %, on the 50 near the ground 0.58 -> 0.31 %.
+  int steps = 0;
   for (const gap::SelectionStep& step : overall.trace) {
-    if (step.kind == pe::effects::Kind::kGroundEffect && step.round == 1) {
-      std::printf("ground effect, round 1: held-out %.3f -> %.3f %%; near the ground (%d blocks) %.3f -> %.3f %%: %s\n",
-                  step.base_heldout_rmse_pct, step.heldout_rmse_pct, step.regional.blocks,
-                  step.regional.base_pwm_rmse_pct, step.regional.pwm_rmse_pct, step.verdict.c_str());
-    }
+    if (step.kind != pe::effects::Kind::kGroundEffect || step.round != 1) continue;
+    ++steps;
+    EXPECT_LT(step.base_heldout_rmse_pct - step.heldout_rmse_pct, config.min_improvement_pct) << step.verdict;
+    EXPECT_GT(step.regional.blocks, 20);
+    EXPECT_GT(step.regional.base_pwm_rmse_pct - step.regional.pwm_rmse_pct, near_the_ground) << step.verdict;
   }
+  EXPECT_GT(steps, 0);
 }
 
 // min_regional_improvement_pct's ground effect (0.140 points, the family's null flights' floor
@@ -436,11 +456,11 @@ TEST(DynamicFlight, AGroundEffectIsJudgedWhereItsLawActs) {
 TEST(DynamicFlight, TheGroundEffectsThresholdLiesBetweenHalfAndThreeQuartersOfItsStrength) {
   gap::DiagnosisConfig config;
   EXPECT_TRUE(names(diagnoseNearTheGround(0.75, config), pe::effects::Kind::kGroundEffect));
-  EXPECT_FALSE(names(diagnoseNearTheGround(0.5, config), pe::effects::Kind::kGroundEffect));
+  EXPECT_FALSE(namesOrSuggests(diagnoseNearTheGround(0.5, config), pe::effects::Kind::kGroundEffect));
   double& threshold = config.min_regional_improvement_pct.at(pe::effects::Kind::kGroundEffect);
   const double calibrated = threshold;
   threshold = 1.5 * calibrated;
-  EXPECT_FALSE(names(diagnoseNearTheGround(0.75, config), pe::effects::Kind::kGroundEffect));
+  EXPECT_FALSE(namesOrSuggests(diagnoseNearTheGround(0.75, config), pe::effects::Kind::kGroundEffect));
   threshold = 0.5 * calibrated;
   EXPECT_TRUE(names(diagnoseNearTheGround(0.5, config), pe::effects::Kind::kGroundEffect));
 }

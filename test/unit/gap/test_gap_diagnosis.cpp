@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/units.h"
 #include "propulsion_estimator/gap/blocks.h"
 #include "propulsion_estimator/gap/diagnosis.h"
@@ -1145,23 +1146,48 @@ TEST_F(SyntheticFlights, WithAReferenceAHeatingReadWithinFlightsIsJudgedByItsCha
 // threshold names the first, raised by half it leaves the second unnamed. So does
 // max_mean_square_ratio (0.9) from below: the second's mean square falls to 0.62 of what it was.
 TEST_F(SyntheticFlights, TheImprovementThresholdLiesBetweenTwoSmallHeatings) {
-  const auto names_heating = [this](double per_c, const gap::DiagnosisConfig& config) {
+  // 1: the heating named alone; 0: nothing named, nothing ambiguous; -1: anything else.
+  const auto verdict = [this](double per_c, const gap::DiagnosisConfig& config) {
     World warm;
     warm.motor_temperature = true;
     warm.motor_per_c = per_c;
     warm.no_current = true;
     const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, flights(warm), config);
-    return diagnosis.selected == std::vector<Kind>{Kind::kMotorTemperature};
+    if (!diagnosis.ambiguous.empty()) return -1;
+    if (diagnosis.selected.empty()) return 0;
+    return diagnosis.selected == std::vector<Kind>{Kind::kMotorTemperature} ? 1 : -1;
   };
   gap::DiagnosisConfig config;
-  EXPECT_FALSE(names_heating(-0.0006, config));
-  EXPECT_TRUE(names_heating(-0.0008, config));
+  EXPECT_EQ(verdict(-0.0006, config), 0);
+  EXPECT_EQ(verdict(-0.0008, config), 1);
   const gap::DiagnosisConfig calibrated;
   config.min_improvement_pct = 0.5 * calibrated.min_improvement_pct;
-  EXPECT_TRUE(names_heating(-0.0006, config));
+  EXPECT_EQ(verdict(-0.0006, config), 1);
   config.min_improvement_pct = 1.5 * calibrated.min_improvement_pct;
-  EXPECT_FALSE(names_heating(-0.0008, config));
+  EXPECT_EQ(verdict(-0.0008, config), 0);
   config = calibrated;
   config.max_mean_square_ratio = 0.5 * calibrated.max_mean_square_ratio;
-  EXPECT_FALSE(names_heating(-0.0008, config));
+  EXPECT_EQ(verdict(-0.0008, config), 0);
+}
+
+TEST(DiagnosisConfig, RefusesARegionalThresholdForAnEffectActingOnEveryBlockOrOutOfRange) {
+  gap::DiagnosisConfig config;
+  config.min_regional_improvement_pct[Kind::kThrustLoss] = 0.2;
+  try {
+    config.validate();
+    FAIL() << "a regional threshold for thrust_loss was accepted";
+  } catch (const pe::FieldError& e) {
+    EXPECT_STREQ(e.what(),
+                 "min_regional_improvement_pct.thrust_loss: acts on every block: it has no blocks of its own to be "
+                 "judged on");
+  }
+  config = gap::DiagnosisConfig();
+  config.min_regional_improvement_pct[Kind::kGroundEffect] = -0.1;
+  try {
+    config.validate();
+    FAIL() << "a negative regional threshold was accepted";
+  } catch (const pe::FieldError& e) {
+    EXPECT_EQ(e.field(), "min_regional_improvement_pct.ground_effect");
+  }
+  EXPECT_NO_THROW(gap::DiagnosisConfig().validate());
 }

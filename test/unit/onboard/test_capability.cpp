@@ -450,11 +450,15 @@ TEST(MotorHealth, FlagsAMotorWeakerThanTheVehiclesReference) {
 }
 
 TEST(MotorHealth, WithoutAReferenceOnlyAMotorBeyondTheHealthySpreadIsFlagged) {
-  // 15 % is within three times the 6.7 % healthy vehicles show against the ideal balance; 30 % is not.
+  // 15 % is within three times the 6.7 % healthy vehicles show against the ideal balance; 25 % and
+  // 30 % are not. healthy_gap_std holds from both sides: halved, 15 % is flagged; raised by half
+  // (20 % times three), 25 % is not.
   pe::MotorHealth within(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
   EXPECT_EQ(hover(&within, {3.3, 3.3, 3.3 / 0.85, 3.3}).flagged_channel, 0);
   pe::MotorHealth beyond(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
-  EXPECT_EQ(hover(&beyond, {3.3, 3.3, 3.3 / 0.7, 3.3}).flagged_channel, 3);
+  EXPECT_EQ(hover(&beyond, {3.3, 3.3, 3.3 / 0.75, 3.3}).flagged_channel, 3);
+  pe::MotorHealth far(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
+  EXPECT_EQ(hover(&far, {3.3, 3.3, 3.3 / 0.7, 3.3}).flagged_channel, 3);
 }
 
 TEST(MotorHealth, RefusesAReferenceOfAnotherMotorCount) {

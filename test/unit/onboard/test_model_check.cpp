@@ -84,6 +84,27 @@ TEST(ModelCheck, NamesTheFamilyOfCauseFromTheDeviations) {
   }
 }
 
+// rpm_tolerance and current_tolerance (0.9 % and 1 %) hold from both sides: a rotor 2 % fast that
+// draws 0.75 % less current than that speed needs is consistent and one drawing 1.25 % less is a
+// propeller; halving current_tolerance names the first, raising it by half clears the second.
+// (rpm_tolerance: NoFlagOnTwoHundredFlightsWithoutAFault and the weak-propeller flights.)
+TEST(ModelCheck, TheCurrentToleranceLiesBetweenTwoPropellerSignatures) {
+  const auto verdict = [](double current_short, const pe::ModelCheckConfig& config) {
+    pe::ModelCheck check({1, 2, 3, 4}, config);
+    double t = 0.0;
+    feed(&check, &t, 5.0, {1, 1.02, 1, 1}, {1, std::pow(1.02, 3) * (1.0 - current_short), 1, 1});
+    return check.report(t).verdict;
+  };
+  pe::ModelCheckConfig config;
+  EXPECT_EQ(verdict(0.0075, config), pe::ModelCheckVerdict::kConsistent);
+  EXPECT_EQ(verdict(0.0125, config), pe::ModelCheckVerdict::kPropeller);
+  const pe::ModelCheckConfig calibrated;
+  config.current_tolerance = 0.5 * calibrated.current_tolerance;
+  EXPECT_EQ(verdict(0.0075, config), pe::ModelCheckVerdict::kPropeller);
+  config.current_tolerance = 1.5 * calibrated.current_tolerance;
+  EXPECT_EQ(verdict(0.0125, config), pe::ModelCheckVerdict::kConsistent);
+}
+
 // Healthy motors differ by their parts: a propeller that turns a little more torque per thrust
 // than the others shows the damaged propeller's signature on every flight. Against a baseline of
 // the same vehicle's healthy flights only a change from it counts.
