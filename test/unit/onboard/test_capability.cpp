@@ -450,15 +450,23 @@ TEST(MotorHealth, FlagsAMotorWeakerThanTheVehiclesReference) {
 }
 
 TEST(MotorHealth, WithoutAReferenceOnlyAMotorBeyondTheHealthySpreadIsFlagged) {
-  // 15 % is within three times the 6.7 % healthy vehicles show against the ideal balance; 25 % and
-  // 30 % are not. healthy_gap_std holds from both sides: halved, 15 % is flagged; raised by half
-  // (20 % times three), 25 % is not.
-  pe::MotorHealth within(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
-  EXPECT_EQ(hover(&within, {3.3, 3.3, 3.3 / 0.85, 3.3}).flagged_channel, 0);
-  pe::MotorHealth beyond(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
-  EXPECT_EQ(hover(&beyond, {3.3, 3.3, 3.3 / 0.75, 3.3}).flagged_channel, 3);
-  pe::MotorHealth far(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, {});
-  EXPECT_EQ(hover(&far, {3.3, 3.3, 3.3 / 0.7, 3.3}).flagged_channel, 3);
+  // A motor needing 1 / 0.85 of its share lacks 18 % of its modelled thrust, within three times
+  // the 6.7 % healthy vehicles show against the ideal balance; one needing 1 / 0.8 (25 %) or
+  // 1 / 0.7 (43 %) is not. healthy_gap_std holds from both sides: halved, 18 % is flagged; raised
+  // by half (30 % times three), 25 % is not.
+  const auto flagged = [](double factor, const pe::MotorHealthConfig& config) {
+    pe::MotorHealth health(pe::Vehicle::quadX(0.225), {1, 2, 3, 4}, config);
+    return hover(&health, {3.3, 3.3, 3.3 / factor, 3.3}).flagged_channel;
+  };
+  pe::MotorHealthConfig config;
+  EXPECT_EQ(flagged(0.85, config), 0);
+  EXPECT_EQ(flagged(0.8, config), 3);
+  EXPECT_EQ(flagged(0.7, config), 3);
+  const pe::MotorHealthConfig calibrated;
+  config.healthy_gap_std = 0.5 * calibrated.healthy_gap_std;
+  EXPECT_EQ(flagged(0.85, config), 3);
+  config.healthy_gap_std = 1.5 * calibrated.healthy_gap_std;
+  EXPECT_EQ(flagged(0.8, config), 0);
 }
 
 TEST(MotorHealth, RefusesAReferenceOfAnotherMotorCount) {
