@@ -33,13 +33,16 @@ namespace gap = propulsion_estimator::gap;
 
 namespace {
 
-const char* kProfile =
+// The vehicle, its autopilot and its manifest, before a profile's segments.
+const std::string kVehicleAndManifest =
     "autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, rc_out_rate_hz: RATE}\n"
     "vehicle: {urdf: URDF, centre_of_mass_offset_m: [0.008, -0.005, 0], landing_gear: {height_m: 0.12, "
     "half_width_m: 0.12}, drag_area_m2: 0.04, battery_initial_soc: 0.95}\n"
     "payload_cable: {length_m: 0.15, attach_point_m: [0, 0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: 10}\n"
     "manifest: {settle_s: 2, spans: SPANS}\n"
-    "segments:\n"
+    "segments:\n";
+
+const std::string kProfile = kVehicleAndManifest +
     "  - {type: wait, duration_s: 3}\n"
     "  - {type: payload, mass_kg: PAYLOAD, duration_s: 2}\n"
     "  - {type: takeoff, height_m: 2.0, rate_m_s: 1.5}\n"
@@ -58,13 +61,7 @@ const char* kProfile =
 
 // A flight that hovers twice near the ground (its rotors 0.3 and 0.4 m up, within two rotor
 // diameters) and twice well above it, without a payload.
-const char* kNearTheGroundProfile =
-    "autopilot: {flavour: px4, pwm_min_us: 1100, pwm_max_us: 1950, disarmed_pwm_us: 900, rc_out_rate_hz: RATE}\n"
-    "vehicle: {urdf: URDF, centre_of_mass_offset_m: [0.008, -0.005, 0], landing_gear: {height_m: 0.12, "
-    "half_width_m: 0.12}, drag_area_m2: 0.04, battery_initial_soc: 0.95}\n"
-    "payload_cable: {length_m: 0.15, attach_point_m: [0, 0, -0.04], stiffness_n_per_m: 1000, damping_n_s_per_m: 10}\n"
-    "manifest: {settle_s: 2, spans: SPANS}\n"
-    "segments:\n"
+const std::string kNearTheGroundProfile = kVehicleAndManifest +
     "  - {type: wait, duration_s: 3}\n"
     "  - {type: takeoff, height_m: 3.0, rate_m_s: 1.0}\n"
     "  - {type: hover, duration_s: HOVER}\n"
@@ -79,7 +76,7 @@ const char* kNearTheGroundProfile =
 
 // How a dynamic flight is flown and weighed.
 struct Script {
-  const char* profile = kProfile;  // kProfile, or kNearTheGroundProfile (no payload)
+  std::string profile = kProfile;  // kProfile, or kNearTheGroundProfile (no payload)
   std::string spans = "airborne";  // the manifest: "airborne" (take-off to landing) or "hovers"
   double payload_kg = 0.0;  // 0 for none
   double hover_s = 5.0;  // each of its four hovers
