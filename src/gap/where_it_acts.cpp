@@ -3,7 +3,7 @@
 // flight's: its held-out mean square over all blocks falls by about a tenth of what it falls by
 // there, and its RMSE over all blocks by less than the model family's mismatch gives over all,
 // while near the ground it stands well clear of what that mismatch gives there. On the family's
-// twelve development seeds judging it there too named all 10 lone ground effects the error over
+// twelve development seeds judging it there too named all 9 lone ground effects the error over
 // all blocks had left unnamed, and no null case.
 #include "diagnoser.h"
 
