@@ -15,8 +15,8 @@ threshold 25 % above the largest (min_regional_improvement_pct: the code judges 
 there; the others' floor is so high that a fall beyond it clears the threshold over all blocks too);
 and, for such an effect judged after an earlier one (a later round, or beside a suspect motor's
 factor), the largest such fall over every case where that effect was not injected: what an
-earlier law's leftover gives there (why such a fall does not name a later round's effect:
-law_left_over.cpp).
+earlier law's leftover gives there, and a threshold 25 % above it
+(min_later_regional_improvement_pct: law_left_over.cpp).
 Run it on development seeds only.
 
 Usage: calibrate_gap_thresholds.py WORK_DIR [WORK_DIR ...] [--significance P]

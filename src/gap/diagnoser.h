@@ -200,10 +200,11 @@ class Diagnoser {
   std::string readBetweenFlightsAsBefore(Kind kind) const;
   // After the earlier rounds' effects (`earlier`) and a suspect's or lacking rotor's factor
   // (lackingMotorLaw; either may be none):
-  // "" when candidate `kind` (of `size`, held-out prediction `with` of joint mean square `ms`) is
-  // more than what their laws leave over (law_left_over.cpp); else why not.
+  // "" when candidate `kind` (of `size`, `regional` where its law acts, held-out prediction `with`
+  // of joint mean square `ms`) is more than what their laws leave over (law_left_over.cpp); else
+  // why not.
   std::string leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier, const EffectSize& size,
-                            const HeldOutPrediction& with, double ms);
+                            const RegionalError& regional, const HeldOutPrediction& with, double ms);
   // Why `kind` is not named on top of `selected`: the motor the balance shows lacking most beyond
   // three standard errors explains it (lacking_motor.cpp); "" otherwise, with a suspect's factor
   // applied or no such motor.
@@ -235,12 +236,13 @@ class Diagnoser {
   // `kind`'s held-out error before (`base`) and with it (`with`) on the blocks its law acts on
   // (where_it_acts.cpp).
   RegionalError regionalError(Kind kind, const HeldOutPrediction& base, const HeldOutPrediction& with) const;
-  // Whether `kind`'s regional error falls in either view by more than its
-  // min_regional_improvement_pct; false without one (where_it_acts.cpp).
-  bool fallsWhereItActs(Kind kind, const RegionalError& regional) const;
+  // Whether `kind`'s regional error falls in either view by more than its entry in `thresholds`
+  // (min_regional_improvement_pct, or min_later_regional_improvement_pct); false without one
+  // (where_it_acts.cpp).
+  bool fallsWhereItActs(Kind kind, const RegionalError& regional, const std::map<Kind, double>& thresholds) const;
   // ", nor on the 96 blocks where its law acts (PWM view ...; > 0.140 points needed there)", the
-  // numbers of fallsWhereItActs' test; "" for an effect without a min_regional_improvement_pct.
-  std::string regionalClause(Kind kind, const RegionalError& regional) const;
+  // numbers of fallsWhereItActs' test against `thresholds`; "" for an effect without an entry.
+  std::string regionalClause(Kind kind, const RegionalError& regional, const std::map<Kind, double>& thresholds) const;
   // Mean over blocks of the joint squared error.
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
   // The joint mean square once each flight's mean residual is taken out of each view.
@@ -305,8 +307,8 @@ class Diagnoser {
   void reportEffects(std::map<Kind, EffectResult>* results, const std::vector<Kind>& selected);
   void reportHeldOut(const HeldOutPrediction& before, const HeldOutPrediction& after);
   std::string method() const;
-  // "ground_effect 0.140 %": each min_regional_improvement_pct.
-  std::string regionalThresholds() const;
+  // "ground_effect 0.140 %": each entry of `thresholds`.
+  static std::string regionalThresholds(const std::map<Kind, double>& thresholds);
   // The method line's clause on the RPM view: in use with its weight, or why not.
   std::string rpmView() const;
   std::string dynamicBlocks() const;

@@ -282,7 +282,8 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
         *own = OwnCandidate{kind, prediction};
       }
     } else if (const std::string left_over =
-                   leftOverOfLaw(kind, round > 0 ? selected : std::vector<Kind>{}, result.size, prediction, ms);
+                   leftOverOfLaw(kind, round > 0 ? selected : std::vector<Kind>{}, result.size, result.regional,
+                                 prediction, ms);
                !left_over.empty()) {
       result.reason = left_over;
     } else if (const std::string one_motor = oneLackingMotorExplains(kind, selected); !one_motor.empty()) {
@@ -330,7 +331,7 @@ bool Diagnoser::improvesEnough(const HeldOutPrediction& base, const HeldOutPredi
   if (fallsEnough(rmse_pct(base.pwm), rmse_pct(with.pwm)) || fallsEnough(rmse_pct(base.rpm), rmse_pct(with.rpm))) {
     return true;
   }
-  return kind && fallsWhereItActs(*kind, regionalError(*kind, base, with));
+  return kind && fallsWhereItActs(*kind, regionalError(*kind, base, with), config_.min_regional_improvement_pct);
 }
 
 // Whether a view's held-out RMSE (% of the truth) falls from `before` to `after` by more than a
@@ -361,7 +362,7 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
   }
   if (!fallsEnough(base_pwm_rmse_pct, result.heldout_rmse_pct) &&
       !fallsEnough(result.base_rpm_rmse_pct, result.rpm_rmse_pct) &&
-      !fallsWhereItActs(result.kind, result.regional)) {
+      !fallsWhereItActs(result.kind, result.regional, config_.min_regional_improvement_pct)) {
     const std::string rpm =
         std::isfinite(result.rpm_rmse_pct)
             ? ", nor the RPM-view held-out error (" + formatPrintf("%.2f", result.rpm_rmse_pct) + " % against " +
@@ -369,7 +370,7 @@ std::string Diagnoser::notSignificant(const EffectResult& result, double base_pw
             : std::string();
     return "not taken: significant (" + joint + "), but the " + pwm + " falls by " + formatPrintf("%.3f", drop_pct) +
            " points (" + formatPrintf("%.0f", 100.0 * (1.0 - mean_square_ratio)) + " % of its mean square)" + rpm +
-           regionalClause(result.kind, result.regional) +
+           regionalClause(result.kind, result.regional, config_.min_regional_improvement_pct) +
            ": at most what a mismatch of model family alone gives on null flights (> " +
            formatPrintf("%.3f", config_.min_improvement_pct) + " points and " +
            formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) + " % needed)";

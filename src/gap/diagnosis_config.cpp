@@ -25,6 +25,15 @@ void DiagnosisConfig::validate() const {
     }
     requireWithin(key, points, 0.0, 50.0, " %");
   }
+  for (const auto& [kind, points] : min_later_regional_improvement_pct) {
+    const std::string key = "min_later_regional_improvement_pct." + std::string(effects::kindName(kind));
+    const auto first_round = min_regional_improvement_pct.find(kind);
+    if (first_round == min_regional_improvement_pct.end()) {
+      throw FieldError(key, "needs a min_regional_improvement_pct: an effect not judged where its law acts in a first "
+                            "round is not judged there after one");
+    }
+    requireWithin(key, points, first_round->second, 50.0, " %");
+  }
   requireWithin("max_mean_square_ratio", max_mean_square_ratio, 0.0, 1.0);
   requireWithin("ambiguity_p", ambiguity_p, 0.0, 1.0);
   requireWithin("nested_folds", nested_folds, 2, 100);

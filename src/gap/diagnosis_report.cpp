@@ -221,9 +221,9 @@ std::string Diagnoser::rpmView() const {
          formatPrintf("%.3g", diagnosis_.rpm_view_weight);
 }
 
-std::string Diagnoser::regionalThresholds() const {
+std::string Diagnoser::regionalThresholds(const std::map<Kind, double>& thresholds) {
   std::string text;
-  for (const auto& [kind, points] : config_.min_regional_improvement_pct) {
+  for (const auto& [kind, points] : thresholds) {
     text += (text.empty() ? "" : ", ") + std::string(effects::kindName(kind)) + " " + formatPrintf("%.3f", points) + " %";
   }
   return text.empty() ? "none" : text;
@@ -240,8 +240,10 @@ std::string Diagnoser::method() const {
          "by more than " + formatPrintf("%.3f", config_.min_improvement_pct) + " % of the truth and its mean square by " +
          formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
          " % (more than a mismatch of model family alone gives on null flights; an effect whose law acts on some "
-         "blocks only, also on those blocks by more than that mismatch gives there: " + regionalThresholds() +
-         "), the joint error of the views "
+         "blocks only, also on those blocks by more than that mismatch gives there: " +
+         regionalThresholds(config_.min_regional_improvement_pct) +
+         "; after an earlier effect, by more than what its law leaves there: " +
+         regionalThresholds(config_.min_later_regional_improvement_pct) + "), the joint error of the views "
          "(the current view weighted by the PWM view's block-to-block noise variance over its own, here " +
          formatPrintf("%.3g", diagnosis_.current_view_weight) + "; " + rpmView() + ") falls, a sign-flip permutation "
          "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +

@@ -9,10 +9,12 @@
 // and the real second effect there (a translational lift) moved it by 17-30 %. So a later
 // round names an effect only
 //  - by its size: beyond what healthy parts could give (the shape alone, which names a small
-//    first effect, does not name a later one; nor does a fall where an effect's law acts, which
-//    names a first ground effect: after an earlier effect, where none was injected, a ground
-//    effect lowered the error near the ground by up to 0.29 points on the twelve development
-//    seeds, twice the first round's floor there);
+//    first effect, does not name a later one), or, for an effect judged where its law acts, by
+//    its fall there beyond what an earlier law leaves there (min_later_regional_improvement_pct):
+//    after an earlier effect, where none was injected, a ground effect lowered the error near the
+//    ground by up to 0.29 points on the twelve development seeds, twice the first round's floor
+//    there, while the ground effects injected beside another effect, lifting the thrust by less
+//    than the parts' spread, lowered it there by 0.2-0.7 points;
 //  - not read from a signal that changes mostly between flights and stays where the healthy
 //    flights read it;
 //  - when it beats the earlier effects with their strength free to differ between light and heavy
@@ -81,7 +83,7 @@ std::string Diagnoser::readBetweenFlightsAsBefore(Kind kind) const {
 }
 
 std::string Diagnoser::leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier_kinds, const EffectSize& size,
-                                     const HeldOutPrediction& with, double ms) {
+                                     const RegionalError& regional, const HeldOutPrediction& with, double ms) {
   const std::string motor_law = hasSuspect() ? "the suspect motor's factor" : lackingMotorLaw();
   if (earlier_kinds.empty() && motor_law.empty()) return "";
   std::vector<std::string> effect_names;
@@ -89,12 +91,13 @@ std::string Diagnoser::leftOverOfLaw(Kind kind, const std::vector<Kind>& earlier
   std::vector<std::string> names = effect_names;
   if (!motor_law.empty()) names.push_back(motor_law);
   const std::string earlier = nameList(names, 4);
-  if (size.blocks_beyond < kMinBlocksBeyondParts) {
+  const std::map<Kind, double>& later = config_.min_later_regional_improvement_pct;
+  if (size.blocks_beyond < kMinBlocksBeyondParts && !fallsWhereItActs(kind, regional, later)) {
     return "not named: after " + earlier + ", an effect must move the thrust beyond healthy parts' spread (" +
            formatPrintf("%.1f", size.largest_change_pct) + " % at most here against " +
            formatPrintf("%.1f", size.parts_change_pct) + " %, beyond it on " + std::to_string(size.blocks_beyond) +
-           " blocks, " + std::to_string(kMinBlocksBeyondParts) + " needed): a shape alone is what a mis-shaped law of " +
-           earlier + " leaves over as well";
+           " blocks, " + std::to_string(kMinBlocksBeyondParts) + " needed" + regionalClause(kind, regional, later) +
+           "): a shape alone is what a mis-shaped law of " + earlier + " leaves over as well";
   }
   if (const std::string per_flight = readBetweenFlightsAsBefore(kind); !per_flight.empty()) {
     return "not named: after " + earlier + ", " + per_flight;

@@ -44,9 +44,10 @@ RegionalError Diagnoser::regionalError(Kind kind, const HeldOutPrediction& base,
   return regional;
 }
 
-std::string Diagnoser::regionalClause(Kind kind, const RegionalError& regional) const {
-  const auto threshold = config_.min_regional_improvement_pct.find(kind);
-  if (regional.blocks == 0 || threshold == config_.min_regional_improvement_pct.end()) return "";
+std::string Diagnoser::regionalClause(Kind kind, const RegionalError& regional,
+                                      const std::map<Kind, double>& thresholds) const {
+  const auto threshold = thresholds.find(kind);
+  if (regional.blocks == 0 || threshold == thresholds.end()) return "";
   const std::string rpm = std::isfinite(regional.rpm_rmse_pct)
                               ? ", RPM view " + formatPrintf("%.2f", regional.rpm_rmse_pct) + " % against " +
                                     formatPrintf("%.2f", regional.base_rpm_rmse_pct) + " %"
@@ -56,9 +57,10 @@ std::string Diagnoser::regionalClause(Kind kind, const RegionalError& regional) 
          " %" + rpm + "; > " + formatPrintf("%.3f", threshold->second) + " points needed there)";
 }
 
-bool Diagnoser::fallsWhereItActs(Kind kind, const RegionalError& regional) const {
-  const auto threshold = config_.min_regional_improvement_pct.find(kind);
-  if (regional.blocks == 0 || threshold == config_.min_regional_improvement_pct.end()) return false;
+bool Diagnoser::fallsWhereItActs(Kind kind, const RegionalError& regional,
+                                 const std::map<Kind, double>& thresholds) const {
+  const auto threshold = thresholds.find(kind);
+  if (regional.blocks == 0 || threshold == thresholds.end()) return false;
   return fallsBy(regional.base_pwm_rmse_pct, regional.pwm_rmse_pct, threshold->second) ||
          fallsBy(regional.base_rpm_rmse_pct, regional.rpm_rmse_pct, threshold->second);
 }

@@ -432,6 +432,7 @@ TEST(DynamicFlight, AGroundEffectIsJudgedWhereItsLawActs) {
   EXPECT_TRUE(names(judged, pe::effects::Kind::kGroundEffect)) << judged.method;
   const double near_the_ground = config.min_regional_improvement_pct.at(pe::effects::Kind::kGroundEffect);
   config.min_regional_improvement_pct.clear();
+  config.min_later_regional_improvement_pct.clear();
   const gap::Diagnosis overall = diagnoseNearTheGround(1.0, config);
   EXPECT_FALSE(namesOrSuggests(overall, pe::effects::Kind::kGroundEffect));
   // Measured 2026-12-06: over all blocks 0.39 -> 0.32 %, on the 50 near the ground 0.58 -> 0.31 %.
@@ -460,4 +461,27 @@ TEST(DynamicFlight, TheGroundEffectsThresholdLiesBetweenHalfAndThreeQuartersOfIt
   EXPECT_FALSE(namesOrSuggests(diagnoseNearTheGround(0.75, config), pe::effects::Kind::kGroundEffect));
   threshold = 0.5 * calibrated;
   EXPECT_TRUE(names(diagnoseNearTheGround(0.5, config), pe::effects::Kind::kGroundEffect));
+}
+
+// min_later_regional_improvement_pct's ground effect (0.365 points, what an earlier law leaves near
+// the ground on the family's development seeds, 25 % up) after a thrust loss of 6 %, the ground's
+// lift confined to two 10 s hovers, too little thrust to pass for more than the parts' spread: at
+// 1.5 times Cheeseman and Bennett's it lowers the held-out error near the ground by 0.28 points,
+// at 2.1 times by 0.45 (measured 2026-12-06). Halving the threshold names the one, raising it by
+// half leaves the other unnamed.
+TEST(DynamicFlight, AfterAnEarlierEffectTheGroundEffectsThresholdLiesBetweenTwoStrengths) {
+  gap::DiagnosisConfig config;
+  const auto afterAThrustLoss = [&config](double strength) {
+    const gap::Diagnosis diagnosis = diagnoseNearTheGround(strength, config, 0.06, 10.0);
+    EXPECT_TRUE(names(diagnosis, pe::effects::Kind::kThrustLoss)) << strength;
+    return diagnosis;
+  };
+  EXPECT_TRUE(names(afterAThrustLoss(2.1), pe::effects::Kind::kGroundEffect));
+  EXPECT_FALSE(namesOrSuggests(afterAThrustLoss(1.5), pe::effects::Kind::kGroundEffect));
+  double& threshold = config.min_later_regional_improvement_pct.at(pe::effects::Kind::kGroundEffect);
+  const double calibrated = threshold;
+  threshold = 1.5 * calibrated;
+  EXPECT_FALSE(namesOrSuggests(afterAThrustLoss(2.1), pe::effects::Kind::kGroundEffect));
+  threshold = 0.5 * calibrated;
+  EXPECT_TRUE(names(afterAThrustLoss(1.5), pe::effects::Kind::kGroundEffect));
 }
