@@ -243,6 +243,11 @@ class Diagnoser {
   // ", nor on the 96 blocks where its law acts (PWM view ...; > 0.140 points needed there)", the
   // numbers of fallsWhereItActs' test against `thresholds`; "" for an effect without an entry.
   std::string regionalClause(Kind kind, const RegionalError& regional, const std::map<Kind, double>& thresholds) const;
+  // "; nor does its held-out error on the 96 blocks where its law acts fall by more than what an
+  // earlier law leaves there (...; > 0.365 points needed)": a later round's refusal by size, its
+  // regional test against `thresholds` added; "" for an effect without an entry.
+  std::string laterRegionalClause(Kind kind, const RegionalError& regional,
+                                  const std::map<Kind, double>& thresholds) const;
   // Mean over blocks of the joint squared error.
   double jointMeanSquare(const HeldOutPrediction& prediction) const;
   // The joint mean square once each flight's mean residual is taken out of each view.

@@ -1,6 +1,7 @@
 #include <cmath>
 
 #include "propulsion_estimator/common/field_error.h"
+#include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/gap/diagnosis.h"
 #include "propulsion_estimator/model/effect_description.h"
 
@@ -31,6 +32,12 @@ void DiagnosisConfig::validate() const {
     if (first_round == min_regional_improvement_pct.end()) {
       throw FieldError(key, "needs a min_regional_improvement_pct: an effect not judged where its law acts in a first "
                             "round is not judged there after one");
+    }
+    if (!(points >= first_round->second)) {
+      throw FieldError(key, formatNumber(points) + " % is below min_regional_improvement_pct." +
+                                std::string(effects::kindName(kind)) + " (" + formatNumber(first_round->second) +
+                                " %): what an earlier law leaves there is no less than what the model family's "
+                                "mismatch gives");
     }
     requireWithin(key, points, first_round->second, 50.0, " %");
   }

@@ -241,16 +241,18 @@ std::string Diagnoser::method() const {
          formatPrintf("%.0f", 100.0 * (1.0 - config_.max_mean_square_ratio)) +
          " % (more than a mismatch of model family alone gives on null flights; an effect whose law acts on some "
          "blocks only, also on those blocks by more than that mismatch gives there: " +
-         regionalThresholds(config_.min_regional_improvement_pct) +
-         "; after an earlier effect, by more than what its law leaves there: " +
-         regionalThresholds(config_.min_later_regional_improvement_pct) + "), the joint error of the views "
+         regionalThresholds(config_.min_regional_improvement_pct) + "), the joint error of the views "
          "(the current view weighted by the PWM view's block-to-block noise variance over its own, here " +
          formatPrintf("%.3g", diagnosis_.current_view_weight) + "; " + rpmView() + ") falls, a sign-flip permutation "
          "test over " + formatPrintf("%.0f", config_.group_s) + " s stretches (" +
          std::to_string(config_.permutations) + " permutations) gives p < " + formatNumber(config_.significance) +
          ", and the fitted parameter lies inside its plausible range with a 95 % interval excluding "
          "no effect; at most " + std::to_string(config_.max_effects) +
-         " effects. When another candidate also passes every test and the leader's lower held-out error over it "
+         " effects. After an earlier effect or a suspect motor's factor, an effect is named only where it changes "
+         "the thrust beyond healthy parts' spread on " + std::to_string(kMinBlocksBeyondParts) +
+         " blocks or more, or where its law acts its held-out error falls by more than an earlier law leaves "
+         "there (" + regionalThresholds(config_.min_later_regional_improvement_pct) +
+         "). When another candidate also passes every test and the leader's lower held-out error over it "
          "is not significant (sign-flip p >= " + formatNumber(config_.ambiguity_p) +
          "), the round's effects are reported ambiguous, not selected; the correction uses the leader. Once no "
          "round adds one, each round is chosen again with the other rounds' effects in (dropped when none passes), "

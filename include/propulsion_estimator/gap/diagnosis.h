@@ -65,11 +65,13 @@ struct DiagnosisConfig {
   /// floor there (0.80 and 1.09 points) is so high that a fall beyond it also clears the threshold
   /// over all blocks (on those seeds' 527 cases it never decided); VALIDATION.md.
   std::map<effects::Kind, double> min_regional_improvement_pct = {{effects::Kind::kGroundEffect, 0.140}};
-  /// After an earlier effect or a motor's factor, where a later effect must otherwise change the
-  /// thrust beyond the parts' spread: an effect with a min_regional_improvement_pct is also named
-  /// by its fall where its law acts beyond its value here, in % of the truth: more than what a
-  /// mis-shaped earlier law leaves there. A key needs a min_regional_improvement_pct of at most
-  /// its value.
+  /// After an earlier effect or a suspect motor's factor, where a later effect must otherwise
+  /// change the thrust beyond the parts' spread: an effect with a min_regional_improvement_pct is
+  /// also named when either view's held-out RMSE where its law acts falls by more than its value
+  /// here, in % of the truth (and its mean square below max_mean_square_ratio): more than what a
+  /// mis-shaped earlier law leaves there. Not beside a rotor lacking below the suspect's threshold
+  /// alone (its factor is not in the views that error is read on). A key needs a
+  /// min_regional_improvement_pct of at most its value; throws FieldError otherwise.
   /// The ground effect: 0.365, calibrated on 2026-12-06 on the same twelve development seeds: the
   /// largest significant fall near the ground, after an earlier effect or beside a suspect motor,
   /// of a ground effect where none was injected was 0.292 points (583352 case 22); 25 % above it.

@@ -1201,5 +1201,7 @@ TEST(DiagnosisConfig, RefusesARegionalThresholdForAnEffectActingOnEveryBlockOrOu
             "judged where its law acts in a first round is not judged there after one");
   config = gap::DiagnosisConfig();
   config.min_later_regional_improvement_pct[Kind::kGroundEffect] = 0.1;
-  EXPECT_EQ(refusal(config), "min_later_regional_improvement_pct.ground_effect: 0.1 is outside 0.14..50 %");
+  EXPECT_EQ(refusal(config),
+            "min_later_regional_improvement_pct.ground_effect: 0.1 % is below min_regional_improvement_pct.ground_effect "
+            "(0.14 %): what an earlier law leaves there is no less than what the model family's mismatch gives");
 }
