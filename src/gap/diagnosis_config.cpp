@@ -33,13 +33,13 @@ void DiagnosisConfig::validate() const {
       throw FieldError(key, "needs a min_regional_improvement_pct: an effect not judged where its law acts in a first "
                             "round is not judged there after one");
     }
-    if (!(points >= first_round->second)) {
+    requireWithin(key, points, 0.0, 50.0, " %");
+    if (points < first_round->second) {
       throw FieldError(key, formatNumber(points) + " % is below min_regional_improvement_pct." +
                                 std::string(effects::kindName(kind)) + " (" + formatNumber(first_round->second) +
                                 " %): what an earlier law leaves there is no less than what the model family's "
                                 "mismatch gives");
     }
-    requireWithin(key, points, first_round->second, 50.0, " %");
   }
   requireWithin("max_mean_square_ratio", max_mean_square_ratio, 0.0, 1.0);
   requireWithin("ambiguity_p", ambiguity_p, 0.0, 1.0);

@@ -11,7 +11,7 @@
 //  - by its size: beyond what healthy parts could give (the shape alone, which names a small
 //    first effect, does not name a later one), or, for an effect judged where its law acts, by
 //    its fall there beyond what an earlier law leaves there (min_later_regional_improvement_pct,
-//    whose calibration its header gives: twice the first round's floor there);
+//    whose calibration its header gives: 2.6 times the first round's floor there);
 //  - not read from a signal that changes mostly between flights and stays where the healthy
 //    flights read it;
 //  - when it beats the earlier effects with their strength free to differ between light and heavy
