@@ -236,6 +236,9 @@ class Diagnoser {
   // `kind`'s held-out error before (`base`) and with it (`with`) on the blocks its law acts on
   // (where_it_acts.cpp).
   RegionalError regionalError(Kind kind, const HeldOutPrediction& base, const HeldOutPrediction& with) const;
+  // Whether `block` is one the effect of `description` says its law acts on (its informative
+  // blocks, its signal present); false for an effect acting on every block (where_it_acts.cpp).
+  bool actsOn(const effects::EffectDescription& description, const Block& block) const;
   // Whether `kind`'s regional error falls in either view by more than its entry in `thresholds`
   // (min_regional_improvement_pct, or min_later_regional_improvement_pct); false without one
   // (where_it_acts.cpp).
@@ -306,6 +309,13 @@ class Diagnoser {
   // blocks or, for a candidate `kind` whose law acts on some only, on those.
   bool improvesEnough(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value,
                       std::optional<Kind> kind) const;
+  // The same for candidate `kind` whose error where its law acts (regionalError) is at hand.
+  bool improvesEnough(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value, Kind kind,
+                      const RegionalError& regional) const;
+  // p below the significance and the joint error lower.
+  bool significantlyLower(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value) const;
+  // The PWM or RPM view's RMSE over all blocks falling enough (fallsEnough).
+  bool fallsOverAll(const HeldOutPrediction& base, const HeldOutPrediction& with) const;
   // Why a candidate that lowers nothing enough was not taken, in the numbers the tests used.
   std::string notSignificant(const EffectResult& result, double base_pwm_rmse_pct, double drop_pct,
                              double mean_square_ratio) const;

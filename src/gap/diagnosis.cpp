@@ -165,7 +165,7 @@ std::string Diagnoser::testability(Kind kind) const {
     const double value = block.signals.value(signal);
     if (!std::isfinite(value)) continue;
     ++with_signal;
-    if (description.informative && description.informative(value, config_.rotor_diameter_m)) ++informative;
+    if (actsOn(description, block)) ++informative;
   }
   const std::string needs = effects::sourcesOf(signal, config_.signal_sources);
   if (with_signal < static_cast<int>(blocks_.size()) / 2) return "needs " + needs;
@@ -268,7 +268,7 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     const bool excludes_neutral = result.ci_low > spec.neutral || result.ci_high < spec.neutral;
     const double drop_pct = base_pwm_rmse_pct - 100.0 * std::sqrt(pwm_ms);
     result.regional = regionalError(kind, current, prediction);
-    if (!improvesEnough(current, prediction, result.p_value, kind)) {
+    if (!improvesEnough(current, prediction, result.p_value, kind, result.regional)) {
       result.reason = notSignificant(result, base_pwm_rmse_pct, drop_pct, pwm_ms / base_pwm);
     } else if (!result.plausible) {
       result.reason = "fitted at the edge of its plausible range " + formatNumber(spec.min) + ".." +
@@ -318,27 +318,6 @@ std::optional<Kind> Diagnoser::selectionRound(int round, const std::vector<Kind>
     (*results)[entry.kind].reason = entry.verdict;
   }
   return best;
-}
-
-double Diagnoser::improvementPValue(const HeldOutPrediction& base, const HeldOutPrediction& with, Kind kind) const {
-  return signFlipPValue(groupImprovements(base, with), config_.permutations, config_.seed + static_cast<unsigned>(kind));
-}
-
-bool Diagnoser::improvesEnough(const HeldOutPrediction& base, const HeldOutPrediction& with, double p_value,
-                               std::optional<Kind> kind) const {
-  const auto rmse_pct = [](const std::vector<double>& view) { return 100.0 * std::sqrt(finiteMeanSquare(view)); };
-  if (!(p_value < config_.significance && jointMeanSquare(with) < jointMeanSquare(base))) return false;
-  if (fallsEnough(rmse_pct(base.pwm), rmse_pct(with.pwm)) || fallsEnough(rmse_pct(base.rpm), rmse_pct(with.rpm))) {
-    return true;
-  }
-  return kind && fallsWhereItActs(*kind, regionalError(*kind, base, with), config_.min_regional_improvement_pct);
-}
-
-// Whether a view's held-out RMSE (% of the truth) falls from `before` to `after` by more than a
-// mismatch of model family alone gives on null flights: in points and as a share of its square.
-bool Diagnoser::fallsBy(double before_pct, double after_pct, double min_points) const {
-  return std::isfinite(before_pct) && std::isfinite(after_pct) && before_pct - after_pct > min_points &&
-         after_pct * after_pct < config_.max_mean_square_ratio * before_pct * before_pct;
 }
 
 // The verdict of a candidate that failed the test of improvement, naming the test that failed in

@@ -20,11 +20,7 @@ RegionalError Diagnoser::regionalError(Kind kind, const HeldOutPrediction& base,
   double base_pwm = 0.0, with_pwm = 0.0, base_rpm = 0.0, with_rpm = 0.0;
   int rpm_blocks = 0;
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
-    const double value = blocks_[i].signals.value(description.signal);
-    if (!std::isfinite(value) || !description.informative(value, config_.rotor_diameter_m) ||
-        !std::isfinite(base.pwm[i]) || !std::isfinite(with.pwm[i])) {
-      continue;
-    }
+    if (!actsOn(description, blocks_[i]) || !std::isfinite(base.pwm[i]) || !std::isfinite(with.pwm[i])) continue;
     ++regional.blocks;
     base_pwm += base.pwm[i] * base.pwm[i];
     with_pwm += with.pwm[i] * with.pwm[i];
@@ -58,6 +54,12 @@ std::string viewsThere(const RegionalError& regional) {
 }
 
 }  // namespace
+
+bool Diagnoser::actsOn(const effects::EffectDescription& description, const Block& block) const {
+  if (!description.informative) return false;
+  const double value = block.signals.value(description.signal);
+  return std::isfinite(value) && description.informative(value, config_.rotor_diameter_m);
+}
 
 std::string Diagnoser::regionalClause(Kind kind, const RegionalError& regional,
                                       const std::map<Kind, double>& thresholds) const {

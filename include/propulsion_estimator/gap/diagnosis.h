@@ -155,7 +155,6 @@ struct RegionalError {
 };
 
 /// One candidate effect, fitted on training flights and scored on held-out flights.
-
 struct EffectResult {
   effects::Kind kind = effects::Kind::kThrustLoss;  ///< which effect
   bool testable = false;  ///< whether the flights carry the signal it needs
