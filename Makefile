@@ -84,6 +84,7 @@ LONG_TESTS := CapabilityFlight.HoverEnduranceOnFamilyPacksDevelopmentSeeds \
 	CapabilityFlight.TheEnduranceIntervalHoldsTheTruthOnHeldOutPacksOfKnownTemperature \
 	CapabilityFlight.APackFlownOnceBeforeDevelopmentPacks \
 	CapabilityFlight.APackFlownOnceBeforeHeldOutPacks \
+	CapabilityFlight.LearnedPacksThatHaveATwinFrom30Percent \
 	ModelCheckFlight.NoFlagOnTwoHundredFlightsWithoutAFault \
 	DynamicFlight.TheSameFlightsLoggedAtAnyRateKeepTheSameBlocksAndSelectAlike
 space := $(subst ,, )

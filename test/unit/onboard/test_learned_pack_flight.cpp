@@ -1,0 +1,244 @@
+// A pack flown once before: the hover time left on its second flight from the pack file's record
+// of its first (issue 36), on packs of the battery family, against the time the simulated vehicle
+// then hovers to the loaded cut-off; and the twins that show why no estimator is within 10 % of
+// every pack from 30 %.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "capability_flight.h"
+#include "propulsion_estimator/common/parallel_for.h"
+#include "propulsion_estimator/onboard/pack_file.h"
+#include "propulsion_estimator/sim/physics/battery_family.h"
+
+using namespace capability_flight;
+
+namespace {
+
+// A pack flown once before: from 100 % it hovers until 12 % of the time to its loaded cut-off is
+// left (the truth's, as a pilot lands on the autopilot's warning), lands and rests 10 s; the pack
+// file's record after it.
+pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double payload_kg, double time_to_cutoff_s,
+                                    double avionics_a) {
+  CapabilitySink sink(f450(), userPack(), thesisModel());
+  fly(profile(payload_kg, 0.88 * time_to_cutoff_s, 1.0, "[0.0, 0.0, 0.0]", "", 12.0, avionics_a), &sink, {}, params);
+  EXPECT_TRUE(sink.packFlightFinished());
+  pe::PackRecord fresh;
+  fresh.pack_id = "family pack";
+  fresh.cells = 3;
+  return sink.learnPack(fresh);
+}
+
+// The pack's second flight from 100, 60 and 30 % (packs `seeds` of the family), its record from
+// learnedFromOneFlight given: the hover time left 60 s after take-off within 10 % of the truth in
+// at least `share` of the cases.
+void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, double share) {
+  struct PackOutcome {
+    int cases = 0;
+    int within = 0;
+    std::string log;
+  };
+  std::vector<PackOutcome> outcomes(seeds.size());
+  pe::parallelFor(seeds.size(), kCores, [&](std::size_t i) {
+    PackOutcome& out = outcomes[i];
+    const std::uint32_t seed = seeds[i];
+    const pe::sim::DrawnBattery drawn = pe::sim::drawBattery(pe::sim::BatteryFamily{}, seed);
+    pe::sim::SimParams params = thesisParams();
+    params.battery = drawn.params;
+    const double payload_kg = seed % 2 ? 0.0 : 0.3;
+    const double avionics_a = avionicsA(seed);
+    CapabilitySink full(f450(), userPack(), thesisModel());
+    fly(profile(payload_kg, 3000.0, 1.0, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &full, {}, params);
+    if (!full.cutoff_s) {
+      ADD_FAILURE() << "seed " << seed << ": the full hover reached no cut-off";
+      return;
+    }
+    const pe::PackRecord record = learnedFromOneFlight(params, payload_kg, *full.cutoff_s - *full.takeoff_s, avionics_a);
+    for (double initial_soc : {1.0, 0.6, 0.3}) {
+      pe::CapabilityConfig user = userPack();
+      user.pack = record;
+      CapabilitySink sink(f450(), user, thesisModel(), {60.0});
+      fly(profile(payload_kg, 3000.0, initial_soc, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &sink, {}, params);
+      if (!sink.cutoff_s) {
+        ADD_FAILURE() << "seed " << seed << " from " << initial_soc << ": no cut-off";
+        continue;
+      }
+      if (*sink.cutoff_s < *sink.takeoff_s + 90.0 || !sink.predictions[0]) continue;
+      const pe::CapabilityReport& c = sink.predictions[0]->report;
+      const double flown_s = *sink.cutoff_s - sink.predictions[0]->made_s;
+      const double error = (c.hover_endurance_s - flown_s) / flown_s;
+      appendf(&out.log,
+              "seed %u %s, payload %.1f kg, from %.0f %%, learned %d points, %.2f Ah, R %.1f mOhm: predicted %.0f s "
+              "(90 %% %.0f..%.0f), flew %.0f s, error %+.1f %%\n",
+              seed, drawn.describe().c_str(), payload_kg, 100.0 * initial_soc, static_cast<int>(record.ocv_soc.size()),
+              record.capacity_ah.value_or(pe::kNaN),
+              1000.0 * (record.resistance_ohm.empty() ? pe::kNaN : record.resistance_ohm.back()), c.hover_endurance_s,
+              c.hover_endurance_low_s, c.hover_endurance_high_s, flown_s, 100.0 * error);
+      ++out.cases;
+      out.within += std::abs(error) < 0.10;
+    }
+  });
+  int cases = 0, within = 0;
+  for (const PackOutcome& outcome : outcomes) {
+    std::fputs(outcome.log.c_str(), stdout);
+    cases += outcome.cases;
+    within += outcome.within;
+  }
+  std::printf("a pack flown once before: within 10 %% after 60 s in %d of %d cases\n", within, cases);
+  ASSERT_GT(cases, 0);
+  EXPECT_GE(within, share * cases);
+}
+
+// A learned pack's twin that no estimator tells apart from it on its second flight from 30 %. The
+// learning flight lands 12 % of its hover short of the cut-off (issue 36 allows 15 %), so a second
+// flight from 30 % ends in charge the first never crossed. The twin is the family pack `seed` with
+// its curve lowered below both the learning flight's lowest charge and the second flight's charge
+// after 60 s (less 0.01): a quadratic dip that keeps the curve rising, to 5 mV above the family's
+// lowest resting voltage at 10 % (the spread of published LiPo charts) and no lower than its lowest
+// at empty. Its learning flight, the same hover, also lands within 15 % of its own cut-off. Both
+// learning flights give the same pack record to the last bit and both second flights the same
+// messages for a minute, so any estimator's prediction is the same (asserted). Returns the pack's
+// hover time after 60 s over its twin's (1 when the pack is already at the charts' lowest at 10 %).
+// Held out for the learned packs: 20 packs drawn on 2026-12-02 after the learner was fixed on packs 1-20.
+const std::vector<std::uint32_t> kLearnedHeldOutPacks = {65406,  229737, 243417, 257057, 274397, 323679, 444364,
+                                                         491976, 499329, 544398, 551762, 565555, 576810, 658139,
+                                                         714122, 754525, 788487, 875409, 917716, 957820};
+
+double learnedAlikeHoverRatio(std::uint32_t seed, bool print) {
+  const pe::sim::BatteryFamily family;
+  pe::sim::SimParams alike = thesisParams();
+  alike.battery = pe::sim::drawBattery(family, seed).params;
+  const double payload_kg = seed % 2 ? 0.0 : 0.3, avionics_a = avionicsA(seed);
+  const auto learn = [&](const pe::sim::SimParams& params, double hover_s, double* lowest_soc) {
+    CapabilitySink sink(f450(), userPack(), thesisModel());
+    fly(profile(payload_kg, hover_s, 1.0, "[0.0, 0.0, 0.0]", "", 12.0, avionics_a), &sink, {}, params);
+    EXPECT_TRUE(sink.packFlightFinished());
+    *lowest_soc = sink.lowest_true_soc;
+    pe::PackRecord fresh;
+    fresh.pack_id = "family pack";
+    fresh.cells = 3;
+    return sink.learnPack(fresh);
+  };
+  const auto toCutoff = [&](const pe::sim::SimParams& params) {
+    CapabilitySink sink(f450(), userPack(), thesisModel());
+    fly(profile(payload_kg, 3000.0, 1.0, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &sink, {}, params);
+    EXPECT_TRUE(sink.cutoff_s.has_value());
+    return sink.cutoff_s ? *sink.cutoff_s - *sink.takeoff_s : pe::kNaN;
+  };
+  const auto secondFlight = [&](const pe::sim::SimParams& params, const pe::PackRecord& record) {
+    pe::CapabilityConfig user = userPack();
+    user.pack = record;
+    CapabilitySink sink(f450(), user, thesisModel(), {60.0});
+    fly(profile(payload_kg, 3000.0, 0.3, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &sink, {}, params);
+    EXPECT_TRUE(sink.cutoff_s && sink.predictions[0]);
+    return sink;
+  };
+  const double hover_s = 0.88 * toCutoff(alike);
+  double learned_lowest_soc = pe::kNaN, unused = pe::kNaN;
+  {
+    const CapabilitySink second = secondFlight(alike, learn(alike, hover_s, &learned_lowest_soc));
+    if (!second.predictions[0]) return pe::kNaN;
+    learned_lowest_soc = std::min(learned_lowest_soc, second.predictions[0]->lowest_true_soc);
+  }
+  double above_soc = learned_lowest_soc - 0.01;
+  // A point of the table at above_soc, on its line: the curve interpolates linearly, and lowering
+  // the points below must leave the curve above as it was, to the last bit.
+  std::vector<double>& socs = alike.battery.ocv_soc;
+  std::vector<double>& cell_vs = alike.battery.ocv_cell_v;
+  const auto at = std::lower_bound(socs.begin(), socs.end(), above_soc - 1e-6);
+  if (std::abs(*at - above_soc) < 1e-6) {
+    above_soc = *at;
+  } else {
+    cell_vs.insert(cell_vs.begin() + (at - socs.begin()), alike.battery.openCircuitVoltage(above_soc) / family.cells);
+    socs.insert(at, above_soc);
+  }
+  const pe::PackRecord record = learn(alike, hover_s, &unused);
+  const CapabilitySink second = secondFlight(alike, record);
+
+  pe::sim::SimParams lower = alike;
+  const auto dip = [above_soc](double soc) { return std::pow(std::max(0.0, above_soc - soc) / above_soc, 2); };
+  const double cell_v_at_10 = alike.battery.openCircuitVoltage(0.1) / family.cells;
+  const double depth_v = std::min((cell_v_at_10 - (family.cell_v_at[0].lo + 0.005)) / dip(0.1),
+                                  alike.battery.ocv_cell_v.front() - family.cell_empty_v.lo);
+  // A pack already at the charts' lowest at 10 % has no such twin.
+  if (!(depth_v > 0.0)) return 1.0;
+  for (std::size_t k = 0; k < lower.battery.ocv_soc.size(); ++k) {
+    lower.battery.ocv_cell_v[k] -= depth_v * dip(lower.battery.ocv_soc[k]);
+  }
+  lower.battery.validate();
+  EXPECT_GE(lower.battery.openCircuitVoltage(0.1) / family.cells, family.cell_v_at[0].lo);
+  EXPECT_GE(lower.battery.ocv_cell_v.front(), family.cell_empty_v.lo - 1e-12);
+  // The lowered pack's learning flight also lands within 15 % of its own cut-off, before it.
+  const double lower_to_cutoff_s = toCutoff(lower);
+  EXPECT_GE(hover_s, 0.85 * lower_to_cutoff_s);
+  EXPECT_LT(hover_s, lower_to_cutoff_s);
+  EXPECT_EQ(pe::packFileText(learn(lower, hover_s, &unused)), pe::packFileText(record));
+  const CapabilitySink lowered = secondFlight(lower, record);
+  if (!lowered.predictions[0] || !lowered.cutoff_s || !second.cutoff_s) return pe::kNaN;
+  EXPECT_EQ(lowered.predictions[0]->report.hover_endurance_s, second.predictions[0]->report.hover_endurance_s);
+  const double flown_s = *second.cutoff_s - second.predictions[0]->made_s;
+  const double lower_flown_s = *lowered.cutoff_s - lowered.predictions[0]->made_s;
+  if (print) {
+    std::printf("seed %u: both flights' first minutes down to %.3f; the curve lowered below %.3f by up to "
+                "%.3f V a cell: predicted %.1f s for both, flew %.0f and %.0f s (ratio %.2f; within 10 %% of both "
+                "needs at most %.2f)\n",
+                seed, learned_lowest_soc, above_soc, depth_v,
+                second.predictions[0]->report.hover_endurance_s, flown_s, lower_flown_s, flown_s / lower_flown_s,
+                1.1 / 0.9);
+  }
+  return flown_s / lower_flown_s;
+}
+
+}  // namespace
+
+// Why issue 36's bar for a learned pack cannot be met from 30 % on every pack: the family pack of
+// seed 19 (two plateaus, 14 C) and its twin (learnedAlikeHoverRatio) get one prediction after 60 s
+// from one pack record, but hover for times more than 1.1 / 0.9 apart: no prediction lies within
+// 10 % of both.
+TEST(CapabilityFlight, TwoPacksLearnedAlikeGetOnePredictionFrom30PercentButNotOneHoverTime) {
+  EXPECT_GT(learnedAlikeHoverRatio(19, true), 1.1 / 0.9);
+}
+
+// How many of the family's packs have such a twin, development packs 1-20 and the held-out packs
+// of APackFlownOnceBeforeHeldOutPacks (measured 2026-12-06: 6 of 20 and 3 of 20). Each such pair
+// costs any estimator one case of the two from 30 %. Asserted: that twins exist on both sets.
+TEST(CapabilityFlight, LearnedPacksThatHaveATwinFrom30Percent) {
+  const std::vector<std::vector<std::uint32_t>> sets = {
+      {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20}, kLearnedHeldOutPacks};
+  for (const std::vector<std::uint32_t>& seeds : sets) {
+    std::vector<double> ratios(seeds.size());
+    pe::parallelFor(seeds.size(), kCores, [&](std::size_t i) { ratios[i] = learnedAlikeHoverRatio(seeds[i], false); });
+    int twins = 0;
+    std::string list;
+    for (std::size_t i = 0; i < seeds.size(); ++i) {
+      appendf(&list, " %u:%.2f", seeds[i], ratios[i]);
+      twins += ratios[i] > 1.1 / 0.9;
+    }
+    std::printf("packs with a twin no estimator tells apart from 30 %% (hover ratio above %.2f): %d of %zu;%s\n",
+                1.1 / 0.9, twins, seeds.size(), list.c_str());
+    EXPECT_GE(twins, 1);
+  }
+}
+
+// Development: packs 1-20 chose how a flight is learned (measured 2026-12-02: 43 of 60 within
+// 10 % after 60 s; the same packs unlearned, HoverEnduranceOnFamilyPacks*, about 3 in 10). Issue
+// 36's bar, 90 %, does not hold: from 30 % charge the hover left after 60 s is 1-3 minutes; packs
+// with a flat stretch read their charge high (a minute's polarisation is not the long hover's the
+// learned curve holds), knee packs learn a capacity 7-20 % short (docs/capability.md). Asserted:
+// the measured share, as a regression guard.
+TEST(CapabilityFlight, APackFlownOnceBeforeDevelopmentPacks) {
+  std::vector<std::uint32_t> seeds;
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) seeds.push_back(seed);
+  expectALearnedPackWithin10Percent(seeds, 0.71);
+}
+
+// Held out: 20 packs drawn on 2026-12-02 after the learner was fixed on packs 1-20, first flown
+// then (with each pack's avionics draw since: 39 of 56 within 10 %; from 100 %: 19 of 20, 60 %:
+// 14 of 19, 30 %: 6 of 17). Asserted: that share, as a regression guard.
+TEST(CapabilityFlight, APackFlownOnceBeforeHeldOutPacks) {
+  expectALearnedPackWithin10Percent(kLearnedHeldOutPacks, 0.69);
+}
