@@ -72,7 +72,8 @@ SAN := --build-base $(WS)/sanitizers/build --install-base $(WS)/sanitizers/insta
 # (under the sanitizers 90-150 s each, and the packs' own curves 400 s; in Release 10-80 s). They
 # run once, in the Release build of make check; the sanitizer run and the ROS-free run leave them
 # out, as the same code runs there in the short tests of the same modules
-# (TheHoverTimeLeftOverAFlightWithItsInterval, TwoPacksAlikeAboveTheirKnee..., PackLearner.*,
+# (TheHoverTimeLeftOverAFlightWithItsInterval, TwoPacksAlikeAboveTheirKnee..., TwoPacksLearnedAlike...,
+# PackLearner.*,
 # ModelCheckFlight's fault tests, DynamicFlight's other tests).
 LONG_TESTS := CapabilityFlight.HoverEnduranceOnFamilyPacksDevelopmentSeeds \
 	CapabilityFlight.HoverEnduranceOnFamilyPacksHeldOutSeeds \
@@ -84,6 +85,7 @@ LONG_TESTS := CapabilityFlight.HoverEnduranceOnFamilyPacksDevelopmentSeeds \
 	CapabilityFlight.TheEnduranceIntervalHoldsTheTruthOnHeldOutPacksOfKnownTemperature \
 	CapabilityFlight.APackFlownOnceBeforeDevelopmentPacks \
 	CapabilityFlight.APackFlownOnceBeforeHeldOutPacks \
+	CapabilityFlight.APackFlownOnceBeforeWithItsOwnCurveDevelopmentPacks \
 	CapabilityFlight.LearnedPacksThatHaveATwinFrom30Percent \
 	ModelCheckFlight.NoFlagOnTwoHundredFlightsWithoutAFault \
 	DynamicFlight.TheSameFlightsLoggedAtAnyRateKeepTheSameBlocksAndSelectAlike

@@ -154,15 +154,11 @@ TEST(CapabilityFlight, TwoPacksAlikeAboveTheirKneeGetOnePredictionButNotOneHover
   pe::sim::SimParams alike = thesisParams();
   alike.battery = pe::sim::drawBattery(family, 19).params;
   pe::sim::SimParams lower_knee = alike;
-  pe::sim::LipoBatteryParams& lowered = lower_knee.battery;
   constexpr double kAboveSoc = 0.22;
-  const auto dip = [](double soc) { return std::pow(std::max(0.0, kAboveSoc - soc) / kAboveSoc, 2); };
-  const double depth_v =
-      (alike.battery.openCircuitVoltage(0.1) / family.cells - (family.cell_v_at[0].lo + 0.005)) / dip(0.1);
+  const double depth_v = lowerCurveBelow(&lower_knee.battery, kAboveSoc, family);
   ASSERT_GT(depth_v, 0.0);
-  for (std::size_t k = 0; k < lowered.ocv_soc.size(); ++k) lowered.ocv_cell_v[k] -= depth_v * dip(lowered.ocv_soc[k]);
-  lowered.validate();
   // Still a pack of the family's spread at empty and at 10 %.
+  const pe::sim::LipoBatteryParams& lowered = lower_knee.battery;
   EXPECT_GE(lowered.ocv_cell_v.front(), family.cell_empty_v.lo);
   EXPECT_GE(lowered.openCircuitVoltage(0.1) / family.cells, family.cell_v_at[0].lo);
 

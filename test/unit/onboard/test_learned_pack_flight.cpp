@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "capability_flight.h"
@@ -19,14 +20,17 @@ using namespace capability_flight;
 
 namespace {
 
-// A pack flown once before: from 100 % it hovers until 12 % of the time to its loaded cut-off is
-// left (the truth's, as a pilot lands on the autopilot's warning), lands and rests 10 s; the pack
-// file's record after it.
-pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double payload_kg, double time_to_cutoff_s,
-                                    double avionics_a) {
-  CapabilitySink sink(f450(), userPack(), thesisModel());
-  fly(profile(payload_kg, 0.88 * time_to_cutoff_s, 1.0, "[0.0, 0.0, 0.0]", "", 12.0, avionics_a), &sink, {}, params);
+// A pack flown once before: from 100 % it hovers `hover_s` (12 % short of the time to its loaded
+// cut-off, the truth's, as a pilot lands on the autopilot's warning), lands and rests 10 s; the
+// pack file's record after it. `lowest_soc`, when given, gets the pack's lowest charge in the
+// flight (CapabilitySink::lowest_true_soc).
+pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double payload_kg, double hover_s,
+                                    double avionics_a, double* lowest_soc = nullptr,
+                                    const pe::CapabilityConfig& user = userPack()) {
+  CapabilitySink sink(f450(), user, thesisModel());
+  fly(profile(payload_kg, hover_s, 1.0, "[0.0, 0.0, 0.0]", "", 12.0, avionics_a), &sink, {}, params);
   EXPECT_TRUE(sink.packFlightFinished());
+  if (lowest_soc) *lowest_soc = sink.lowest_true_soc;
   pe::PackRecord fresh;
   fresh.pack_id = "family pack";
   fresh.cells = 3;
@@ -35,8 +39,9 @@ pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double pay
 
 // The pack's second flight from 100, 60 and 30 % (packs `seeds` of the family), its record from
 // learnedFromOneFlight given: the hover time left 60 s after take-off within 10 % of the truth in
-// at least `share` of the cases.
-void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, double share) {
+// at least `share` of the cases. With `own_curve` the user also gives the pack's own curve on both
+// flights (ocv_table, the simulator's table: an ideal measurement).
+void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, double share, bool own_curve = false) {
   struct PackOutcome {
     int cases = 0;
     int within = 0;
@@ -53,15 +58,21 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
     params.battery = drawn.params;
     const double payload_kg = seed % 2 ? 0.0 : 0.3;
     const double avionics_a = avionicsA(seed);
-    CapabilitySink full(f450(), userPack(), thesisModel());
+    pe::CapabilityConfig given = userPack();
+    if (own_curve) {
+      given.ocv_table_soc = params.battery.ocv_soc;
+      given.ocv_table_cell_v = params.battery.ocv_cell_v;
+    }
+    CapabilitySink full(f450(), given, thesisModel());
     fly(profile(payload_kg, 3000.0, 1.0, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &full, {}, params);
     if (!full.cutoff_s) {
       ADD_FAILURE() << "seed " << seed << ": the full hover reached no cut-off";
       return;
     }
-    const pe::PackRecord record = learnedFromOneFlight(params, payload_kg, *full.cutoff_s - *full.takeoff_s, avionics_a);
+    const pe::PackRecord record =
+        learnedFromOneFlight(params, payload_kg, 0.88 * (*full.cutoff_s - *full.takeoff_s), avionics_a, nullptr, given);
     for (double initial_soc : {1.0, 0.6, 0.3}) {
-      pe::CapabilityConfig user = userPack();
+      pe::CapabilityConfig user = given;
       user.pack = record;
       CapabilitySink sink(f450(), user, thesisModel(), {60.0});
       fly(profile(payload_kg, 3000.0, initial_soc, "[0.0, 0.0, 0.0]", "", 2.0, avionics_a), &sink, {}, params);
@@ -104,35 +115,30 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
   EXPECT_LE(below_interval, 0.05 * cases);
 }
 
-// A learned pack's twin that no estimator tells apart from it on its second flight from 30 %. The
-// learning flight lands 12 % of its hover short of the cut-off (issue 36 allows 15 %), so a second
-// flight from 30 % ends in charge the first never crossed. The twin is the family pack `seed` with
-// its curve lowered below both the learning flight's lowest charge and the second flight's charge
-// after 60 s (less 0.01): a quadratic dip that keeps the curve rising, to 5 mV above the family's
-// lowest resting voltage at 10 % (the spread of published LiPo charts) and no lower than its lowest
-// at empty. Its learning flight, the same hover, also lands within 15 % of its own cut-off. Both
-// learning flights give the same pack record to the last bit and both second flights the same
-// messages for a minute, so any estimator's prediction is the same (asserted). Returns the pack's
-// hover time after 60 s over its twin's (1 when the pack is already at the charts' lowest at 10 %).
-// Held out for the learned packs: 20 packs drawn on 2026-12-02 after the learner was fixed on packs 1-20.
+// Held out for the learned packs: 20 packs drawn on 2026-12-02 after the learner was fixed on
+// packs 1-20, first flown then.
 const std::vector<std::uint32_t> kLearnedHeldOutPacks = {65406,  229737, 243417, 257057, 274397, 323679, 444364,
                                                          491976, 499329, 544398, 551762, 565555, 576810, 658139,
                                                          714122, 754525, 788487, 875409, 917716, 957820};
 
+// A learned pack's twin that no estimator tells apart from it on its second flight from 30 %. The
+// learning flight lands 12 % of its hover short of the cut-off (issue 36 allows 15 %), so a second
+// flight from 30 % ends in charge the first never crossed. The twin is the family pack `seed` with
+// its curve lowered (lowerCurveBelow) below both the learning flight's lowest charge and the
+// second flight's charge after 60 s, less 0.01 (the charges are read from the percentage, rounded
+// to 1 %). Its learning flight, the same hover, also lands within 15 % of its own cut-off. Both
+// learning flights give the same pack record to the last bit and both second flights the same
+// messages for a minute, so any estimator's prediction is the same (asserted). Returns the pack's
+// hover time after 60 s over its twin's; 1 when it has no twin (already at the charts' lowest at
+// 10 %, or flown below 11 %); NaN when a flight reached no cut-off or the second's, like
+// expectALearnedPackWithin10Percent's, came within 90 s of the take-off.
 double learnedAlikeHoverRatio(std::uint32_t seed, bool print) {
   const pe::sim::BatteryFamily family;
   pe::sim::SimParams alike = thesisParams();
   alike.battery = pe::sim::drawBattery(family, seed).params;
   const double payload_kg = seed % 2 ? 0.0 : 0.3, avionics_a = avionicsA(seed);
   const auto learn = [&](const pe::sim::SimParams& params, double hover_s, double* lowest_soc) {
-    CapabilitySink sink(f450(), userPack(), thesisModel());
-    fly(profile(payload_kg, hover_s, 1.0, "[0.0, 0.0, 0.0]", "", 12.0, avionics_a), &sink, {}, params);
-    EXPECT_TRUE(sink.packFlightFinished());
-    *lowest_soc = sink.lowest_true_soc;
-    pe::PackRecord fresh;
-    fresh.pack_id = "family pack";
-    fresh.cells = 3;
-    return sink.learnPack(fresh);
+    return learnedFromOneFlight(params, payload_kg, hover_s, avionics_a, lowest_soc);
   };
   const auto toCutoff = [&](const pe::sim::SimParams& params) {
     CapabilitySink sink(f450(), userPack(), thesisModel());
@@ -149,12 +155,13 @@ double learnedAlikeHoverRatio(std::uint32_t seed, bool print) {
     return sink;
   };
   const double hover_s = 0.88 * toCutoff(alike);
-  double learned_lowest_soc = pe::kNaN, unused = pe::kNaN;
+  double learned_lowest_soc = pe::kNaN;
   {
     const CapabilitySink second = secondFlight(alike, learn(alike, hover_s, &learned_lowest_soc));
     if (!second.predictions[0]) return pe::kNaN;
     learned_lowest_soc = std::min(learned_lowest_soc, second.predictions[0]->lowest_true_soc);
   }
+  if (!(learned_lowest_soc > 0.11)) return 1.0;
   double above_soc = learned_lowest_soc - 0.01;
   // A point of the table at above_soc, on its line: the curve interpolates linearly, and lowering
   // the points below must leave the curve above as it was, to the last bit.
@@ -164,39 +171,33 @@ double learnedAlikeHoverRatio(std::uint32_t seed, bool print) {
   if (std::abs(*at - above_soc) < 1e-6) {
     above_soc = *at;
   } else {
-    cell_vs.insert(cell_vs.begin() + (at - socs.begin()), alike.battery.openCircuitVoltage(above_soc) / family.cells);
+    cell_vs.insert(cell_vs.begin() + (at - socs.begin()),
+                   alike.battery.openCircuitVoltage(above_soc) / alike.battery.cells);
     socs.insert(at, above_soc);
   }
-  const pe::PackRecord record = learn(alike, hover_s, &unused);
+  const pe::PackRecord record = learn(alike, hover_s, nullptr);
   const CapabilitySink second = secondFlight(alike, record);
+  if (!second.cutoff_s || !second.predictions[0] || *second.cutoff_s < *second.takeoff_s + 90.0) return pe::kNaN;
 
   pe::sim::SimParams lower = alike;
-  const auto dip = [above_soc](double soc) { return std::pow(std::max(0.0, above_soc - soc) / above_soc, 2); };
-  const double cell_v_at_10 = alike.battery.openCircuitVoltage(0.1) / family.cells;
-  const double depth_v = std::min((cell_v_at_10 - (family.cell_v_at[0].lo + 0.005)) / dip(0.1),
-                                  alike.battery.ocv_cell_v.front() - family.cell_empty_v.lo);
-  // A pack already at the charts' lowest at 10 % has no such twin.
+  const double depth_v = lowerCurveBelow(&lower.battery, above_soc, family);
   if (!(depth_v > 0.0)) return 1.0;
-  for (std::size_t k = 0; k < lower.battery.ocv_soc.size(); ++k) {
-    lower.battery.ocv_cell_v[k] -= depth_v * dip(lower.battery.ocv_soc[k]);
-  }
-  lower.battery.validate();
-  EXPECT_GE(lower.battery.openCircuitVoltage(0.1) / family.cells, family.cell_v_at[0].lo);
+  EXPECT_GE(lower.battery.openCircuitVoltage(0.1) / lower.battery.cells, family.cell_v_at[0].lo);
   EXPECT_GE(lower.battery.ocv_cell_v.front(), family.cell_empty_v.lo - 1e-12);
   // The lowered pack's learning flight also lands within 15 % of its own cut-off, before it.
   const double lower_to_cutoff_s = toCutoff(lower);
   EXPECT_GE(hover_s, 0.85 * lower_to_cutoff_s);
   EXPECT_LT(hover_s, lower_to_cutoff_s);
-  EXPECT_EQ(pe::packFileText(learn(lower, hover_s, &unused)), pe::packFileText(record));
+  EXPECT_EQ(pe::packFileText(learn(lower, hover_s, nullptr)), pe::packFileText(record));
   const CapabilitySink lowered = secondFlight(lower, record);
-  if (!lowered.predictions[0] || !lowered.cutoff_s || !second.cutoff_s) return pe::kNaN;
+  if (!lowered.predictions[0] || !lowered.cutoff_s) return pe::kNaN;
   EXPECT_EQ(lowered.predictions[0]->report.hover_endurance_s, second.predictions[0]->report.hover_endurance_s);
   const double flown_s = *second.cutoff_s - second.predictions[0]->made_s;
   const double lower_flown_s = *lowered.cutoff_s - lowered.predictions[0]->made_s;
   if (print) {
     std::printf("seed %u: both flights' first minutes down to %.3f; the curve lowered below %.3f by up to "
-                "%.3f V a cell: predicted %.1f s for both, flew %.0f and %.0f s (ratio %.2f; within 10 %% of both "
-                "needs at most %.2f)\n",
+                "%.3f V a cell: predicted %.1f s for both, flew %.0f and %.0f s (ratio %.3f; within 10 %% of both "
+                "needs at most %.3f)\n",
                 seed, learned_lowest_soc, above_soc, depth_v,
                 second.predictions[0]->report.hover_endurance_s, flown_s, lower_flown_s, flown_s / lower_flown_s,
                 1.1 / 0.9);
@@ -215,23 +216,25 @@ TEST(CapabilityFlight, TwoPacksLearnedAlikeGetOnePredictionFrom30PercentButNotOn
 }
 
 // How many of the family's packs have such a twin, development packs 1-20 and the held-out packs
-// of APackFlownOnceBeforeHeldOutPacks (measured 2026-12-06: 6 of 20 and 3 of 20). Each such pair
-// costs any estimator one case of the two from 30 %. Asserted: that twins exist on both sets.
+// of APackFlownOnceBeforeHeldOutPacks (measured 2026-12-06: 6 of 20 and 3 of 20; ratios printed,
+// a pack with no cut-off 90 s after the take-off from 30 % printed as nan). Each such pair costs
+// any estimator one case of the two from 30 %. Asserted: at least 5 and 2, as a regression guard.
 TEST(CapabilityFlight, LearnedPacksThatHaveATwinFrom30Percent) {
-  const std::vector<std::vector<std::uint32_t>> sets = {
-      {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20}, kLearnedHeldOutPacks};
-  for (const std::vector<std::uint32_t>& seeds : sets) {
+  std::vector<std::uint32_t> development;
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) development.push_back(seed);
+  const std::vector<std::pair<std::vector<std::uint32_t>, int>> sets = {{development, 5}, {kLearnedHeldOutPacks, 2}};
+  for (const auto& [seeds, least] : sets) {
     std::vector<double> ratios(seeds.size());
     pe::parallelFor(seeds.size(), kCores, [&](std::size_t i) { ratios[i] = learnedAlikeHoverRatio(seeds[i], false); });
     int twins = 0;
     std::string list;
     for (std::size_t i = 0; i < seeds.size(); ++i) {
-      appendf(&list, " %u:%.2f", seeds[i], ratios[i]);
+      appendf(&list, " %u:%.3f", seeds[i], ratios[i]);
       twins += ratios[i] > 1.1 / 0.9;
     }
-    std::printf("packs with a twin no estimator tells apart from 30 %% (hover ratio above %.2f): %d of %zu;%s\n",
+    std::printf("packs with a twin no estimator tells apart from 30 %% (hover ratio above %.3f): %d of %zu;%s\n",
                 1.1 / 0.9, twins, seeds.size(), list.c_str());
-    EXPECT_GE(twins, 1);
+    EXPECT_GE(twins, least);
   }
 }
 
@@ -254,4 +257,14 @@ TEST(CapabilityFlight, APackFlownOnceBeforeDevelopmentPacks) {
 // 14 of 19, 30 %: 6 of 17). Asserted: that share, as a regression guard.
 TEST(CapabilityFlight, APackFlownOnceBeforeHeldOutPacks) {
   expectALearnedPackWithin10Percent(kLearnedHeldOutPacks, 0.69);
+}
+
+// The development packs with their own curve given as well (docs/capability.md): the part of the
+// curve the learning flight never crossed is then known, and what is left is the capacity learned
+// at a rest 10 s after the landing and the curve learned under load (measured 2026-12-06: 48 of
+// 60, from 30 %: 10 of 20). Asserted: that share, as a regression guard.
+TEST(CapabilityFlight, APackFlownOnceBeforeWithItsOwnCurveDevelopmentPacks) {
+  std::vector<std::uint32_t> seeds;
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) seeds.push_back(seed);
+  expectALearnedPackWithin10Percent(seeds, 0.79, true);
 }

@@ -7,10 +7,10 @@
 
 
 #include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
-#include <cmath>
 #include <optional>
 #include <string>
 #include <thread>
@@ -27,6 +27,7 @@
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_profile_yaml.h"
 #include "propulsion_estimator/sim/flight/flight_simulator.h"
+#include "propulsion_estimator/sim/physics/battery_family.h"
 #include "propulsion_estimator/sim/physics/sim_params_yaml.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
 #include "test_paths.h"
@@ -132,7 +133,7 @@ class CapabilitySink : public pe::sim::FlightSink {
     estimator_.addBattery(s.time_s, s.voltage_v);
     estimator_.addBatteryCurrent(s.time_s, s.current_a);
     // The simulated percentage is the true state of charge: the default mode (ignore) never reads it.
-    if (!(s.percentage >= lowest_true_soc)) lowest_true_soc = s.percentage;
+    if (std::isnan(lowest_true_soc) || s.percentage < lowest_true_soc) lowest_true_soc = s.percentage;
     const double modelled_a = estimator_.output().totals.current_a;
     capability_.addBattery(s.time_s, s.voltage_v, pe::BatteryReport{s.percentage, s.current_a, pack_temperature_c},
                            modelled_a);
@@ -158,8 +159,9 @@ class CapabilitySink : public pe::sim::FlightSink {
 
   /// deg C the battery messages report for the pack (BatteryState.temperature); NaN: none.
   double pack_temperature_c = pe::kNaN;
-  /// The simulated pack's lowest state of charge in the flight (its BatteryState.percentage, the
-  /// simulator's truth): where a counter-example may change the pack's curve unseen.
+  /// The simulated pack's lowest state of charge in the flight, as its BatteryState.percentage
+  /// reports it (the simulator's truth rounded to 1 %): where a counter-example may change the
+  /// pack's curve unseen.
   double lowest_true_soc = pe::kNaN;
   std::optional<double> takeoff_s, hover_start_s, first_flag_s, cutoff_s;
   unsigned flagged_channels = 0;
@@ -233,6 +235,23 @@ inline void appendf(std::string* log, const char* format, ...) {
   std::vsnprintf(line, sizeof line, format, args);
   va_end(args);
   *log += line;
+}
+
+// Lowers `battery`'s curve below `above_soc` (a table point there, or none below it changes the
+// curve above) by a quadratic dip that keeps it rising: as deep as keeps it 5 mV above the
+// family's lowest resting voltage at 10 % (the spread of published LiPo charts) and no lower than
+// the family's lowest at empty. Returns the depth in V a cell; at or below 0 (the pack already at
+// the charts' lowest at 10 %, or above_soc not above 10 %) nothing is lowered.
+inline double lowerCurveBelow(pe::sim::LipoBatteryParams* battery, double above_soc, const pe::sim::BatteryFamily& family) {
+  const auto dip = [above_soc](double soc) { return std::pow(std::max(0.0, above_soc - soc) / above_soc, 2); };
+  if (!(above_soc > 0.1)) return 0.0;
+  const double depth_v =
+      std::min((battery->openCircuitVoltage(0.1) / battery->cells - (family.cell_v_at[0].lo + 0.005)) / dip(0.1),
+               battery->ocv_cell_v.front() - family.cell_empty_v.lo);
+  if (!(depth_v > 0.0)) return depth_v;
+  for (std::size_t k = 0; k < battery->ocv_soc.size(); ++k) battery->ocv_cell_v[k] -= depth_v * dip(battery->ocv_soc[k]);
+  battery->validate();
+  return depth_v;
 }
 
 }  // namespace capability_flight
