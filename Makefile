@@ -86,6 +86,7 @@ LONG_TESTS := CapabilityFlight.HoverEnduranceOnFamilyPacksDevelopmentSeeds \
 	CapabilityFlight.APackFlownOnceBeforeDevelopmentPacks \
 	CapabilityFlight.APackFlownOnceBeforeHeldOutPacks \
 	CapabilityFlight.APackFlownOnceBeforeWithItsOwnCurveDevelopmentPacks \
+	CapabilityFlight.APackFlownOnceBeforeWithItsOwnCurveHeldOutPacks \
 	CapabilityFlight.LearnedPacksThatHaveATwinFrom30Percent \
 	ModelCheckFlight.NoFlagOnTwoHundredFlightsWithoutAFault \
 	DynamicFlight.TheSameFlightsLoggedAtAnyRateKeepTheSameBlocksAndSelectAlike
