@@ -7,6 +7,9 @@
 // all blocks had left unnamed, and no null case.
 #include "diagnoser.h"
 
+#include <map>
+#include <optional>
+
 namespace propulsion_estimator {
 namespace gap {
 namespace detail {
@@ -53,6 +56,13 @@ std::string viewsThere(const RegionalError& regional) {
          formatPrintf("%.2f", regional.base_pwm_rmse_pct) + " %" + rpm;
 }
 
+// `kind`'s entry of `thresholds`, when it has one and blocks where its law acts to be judged on.
+std::optional<double> thresholdThere(Kind kind, const RegionalError& regional, const std::map<Kind, double>& thresholds) {
+  const auto threshold = thresholds.find(kind);
+  if (regional.blocks == 0 || threshold == thresholds.end()) return std::nullopt;
+  return threshold->second;
+}
+
 }  // namespace
 
 bool Diagnoser::actsOn(const effects::EffectDescription& description, const Block& block) const {
@@ -63,27 +73,26 @@ bool Diagnoser::actsOn(const effects::EffectDescription& description, const Bloc
 
 std::string Diagnoser::regionalClause(Kind kind, const RegionalError& regional,
                                       const std::map<Kind, double>& thresholds) const {
-  const auto threshold = thresholds.find(kind);
-  if (regional.blocks == 0 || threshold == thresholds.end()) return "";
+  const std::optional<double> threshold = thresholdThere(kind, regional, thresholds);
+  if (!threshold) return "";
   return ", nor on the " + std::to_string(regional.blocks) + " blocks where its law acts (" + viewsThere(regional) +
-         "; > " + formatPrintf("%.3f", threshold->second) + " points needed there)";
+         "; > " + formatPrintf("%.3f", *threshold) + " points needed there)";
 }
 
 std::string Diagnoser::laterRegionalClause(Kind kind, const RegionalError& regional,
                                            const std::map<Kind, double>& thresholds) const {
-  const auto threshold = thresholds.find(kind);
-  if (regional.blocks == 0 || threshold == thresholds.end()) return "";
+  const std::optional<double> threshold = thresholdThere(kind, regional, thresholds);
+  if (!threshold) return "";
   return "; nor does its held-out error on the " + std::to_string(regional.blocks) +
          " blocks where its law acts fall by more than what an earlier law leaves there (" + viewsThere(regional) +
-         "; > " + formatPrintf("%.3f", threshold->second) + " points needed)";
+         "; > " + formatPrintf("%.3f", *threshold) + " points needed)";
 }
 
 bool Diagnoser::fallsWhereItActs(Kind kind, const RegionalError& regional,
                                  const std::map<Kind, double>& thresholds) const {
-  const auto threshold = thresholds.find(kind);
-  if (regional.blocks == 0 || threshold == thresholds.end()) return false;
-  return fallsBy(regional.base_pwm_rmse_pct, regional.pwm_rmse_pct, threshold->second) ||
-         fallsBy(regional.base_rpm_rmse_pct, regional.rpm_rmse_pct, threshold->second);
+  const std::optional<double> threshold = thresholdThere(kind, regional, thresholds);
+  return threshold && (fallsBy(regional.base_pwm_rmse_pct, regional.pwm_rmse_pct, *threshold) ||
+                       fallsBy(regional.base_rpm_rmse_pct, regional.rpm_rmse_pct, *threshold));
 }
 
 }  // namespace detail
