@@ -8,6 +8,7 @@ node's payload error must fall below the plain node's by the margin the report p
 held-out payload error before minus after), within tolerances that are test parameters."""
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -64,6 +65,7 @@ class DiagnoseThenReplayTest(unittest.TestCase):
     def test_the_written_correction_shrinks_the_payload_error_as_predicted(self):
         rospy.init_node("test_diagnose_then_replay")
         work = tempfile.mkdtemp(prefix="pe_diagnose_replay_")
+        self.addCleanup(shutil.rmtree, work, True)
 
         # The weighed flights diagnose_gap sees, in one manifest.
         flights = []

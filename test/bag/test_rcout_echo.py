@@ -6,6 +6,7 @@ stands in for an installed mavros_msgs with a class that genpy generates at test
 temporary directory, from the definition stored in the bag itself; rostopic then subscribes with
 that class's md5sum, which the publisher (rosbag play) must match."""
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -37,8 +38,9 @@ class RcOutEchoTest(unittest.TestCase):
         self.assertEqual(connection.datatype, "mavros_msgs/RCOut")
         self.assertEqual(connection.md5sum, "52cacf104bab5ae3b103cfe176590713")
         environment = dict(os.environ)
-        environment["PYTHONPATH"] = mavros_msgs_stand_in(connection.msg_def) + os.pathsep + environment.get(
-            "PYTHONPATH", "")
+        stand_in = mavros_msgs_stand_in(connection.msg_def)
+        self.addCleanup(shutil.rmtree, stand_in, True)
+        environment["PYTHONPATH"] = stand_in + os.pathsep + environment.get("PYTHONPATH", "")
         # Skip the first seconds of the flight, where the vehicle is still disarmed on the ground.
         # Its own process group: `rosbag play` runs the player in a child process that must stop too.
         player = subprocess.Popen(["rosbag", "play", "--quiet", "--start=10", BAG], stdout=subprocess.DEVNULL,

@@ -5,6 +5,7 @@ two estimator_nodes, one with the plain model and one with the model plus an eff
 written here. The corrected model's payload error must be below the plain model's, by a margin,
 and within a tolerance; tolerances are test parameters."""
 import os
+import shutil
 import subprocess
 import tempfile
 import unittest
@@ -24,6 +25,7 @@ class ReplayEffectsTest(unittest.TestCase):
     def test_the_corrected_model_estimates_the_payload_better(self):
         rospy.init_node("test_replay_effects")
         work = tempfile.mkdtemp(prefix="pe_effects_")
+        self.addCleanup(shutil.rmtree, work, True)
         bag_path, manifest = os.path.join(work, "flight.bag"), os.path.join(work, "flight.manifest.yaml")
         simulate = roslib.packages.find_node("propulsion_estimator", "simulate")[0]
         subprocess.run([simulate, "flight", "--params", rospy.get_param("~params"), "--profile",

@@ -6,6 +6,7 @@ tolerances given as test parameters. Then `estimate` runs on the same bag and on
 logged as a PX4 ULog and an ArduPilot DataFlash log: every hover's mass as the node said it."""
 import csv
 import os
+import shutil
 import subprocess
 import tempfile
 import unittest
@@ -24,6 +25,7 @@ class ReplayPayloadTest(unittest.TestCase):
     def test_payload_of_a_simulated_flight(self):
         rospy.init_node("test_replay_payload")
         work = tempfile.mkdtemp(prefix="pe_replay_")
+        self.addCleanup(shutil.rmtree, work, True)
         bag_path, manifest = os.path.join(work, "flight.bag"), os.path.join(work, "flight.manifest.yaml")
         simulate = roslib.packages.find_node("propulsion_estimator", "simulate")[0]
         command = [simulate, "flight", "--params", rospy.get_param("~params"), "--profile", rospy.get_param("~profile"),

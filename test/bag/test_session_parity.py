@@ -6,6 +6,7 @@ gap) and the same live ESC check verdict on the same channel, and that verdict m
 simulated fault (so that agreeing on nothing cannot pass)."""
 import os
 import re
+import shutil
 import subprocess
 import tempfile
 import time
@@ -48,6 +49,7 @@ class SessionParityTest(unittest.TestCase):
     def test_the_node_and_estimate_give_the_same_verdicts(self):
         rospy.init_node("test_session_parity")
         work = tempfile.mkdtemp(prefix="pe_parity_")
+        self.addCleanup(shutil.rmtree, work, True)
         bag = os.path.join(work, "flight.bag")
         simulate = roslib.packages.find_node("propulsion_estimator", "simulate")[0]
         subprocess.run([simulate, "flight", "--params", rospy.get_param("~params"), "--profile",

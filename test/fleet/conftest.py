@@ -44,6 +44,8 @@ def variant(folder, name, **changes):
 def small_fleet():
     """3 vehicles of 6 flights each (no scenario event among them), simulated once."""
     folder = tempfile.mkdtemp(prefix="fleet-small-")
-    simulate_fleet(folder, 3, 6, 31)
-    yield folder
-    shutil.rmtree(folder, ignore_errors=True)
+    try:
+        simulate_fleet(folder, 3, 6, 31)
+        yield folder
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)

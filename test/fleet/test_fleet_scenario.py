@@ -25,9 +25,11 @@ STAGE_ONE = 16  # flights into the fleet's life when it is first judged
 @pytest.fixture(scope="module")
 def fleet():
     folder = tempfile.mkdtemp(prefix="fleet-scenario-")
-    simulate(folder, 20, 30, 2027)
-    yield folder
-    shutil.rmtree(folder, ignore_errors=True)
+    try:
+        simulate(folder, 20, 30, 2027)
+        yield folder
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 def findings(path):

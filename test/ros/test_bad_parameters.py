@@ -3,6 +3,7 @@
 parameter or file, and exits with status 1 (no crash, no silent default)."""
 import os
 import re
+import shutil
 import subprocess
 import tempfile
 import unittest
@@ -99,7 +100,9 @@ class BadParametersTest(unittest.TestCase):
                          (1, "motor_channels: 6 channels for a vehicle with 4 rotors"))
 
     def test_topic_of_an_effect_disabled(self):
-        model = os.path.join(tempfile.mkdtemp(prefix="pe_effects_"), "ground_effect.yaml")
+        folder = tempfile.mkdtemp(prefix="pe_effects_")
+        self.addCleanup(shutil.rmtree, folder, True)
+        model = os.path.join(folder, "ground_effect.yaml")
         with open(MODEL) as f:
             text = f.read()
         with open(model, "w") as f:
@@ -108,7 +111,9 @@ class BadParametersTest(unittest.TestCase):
                          (1, "/g/rangefinder_topic: empty, but the model's ground_effect effect (%s) reads it" % model))
 
     def test_effect_outside_its_range(self):
-        model = os.path.join(tempfile.mkdtemp(prefix="pe_effects_"), "thrust_loss.yaml")
+        folder = tempfile.mkdtemp(prefix="pe_effects_")
+        self.addCleanup(shutil.rmtree, folder, True)
+        model = os.path.join(folder, "thrust_loss.yaml")
         with open(MODEL) as f:
             text = f.read()
         with open(model, "w") as f:

@@ -224,7 +224,9 @@ class EstimatorNodeTest(unittest.TestCase):
         """A node whose model has every effect subscribes to each effect's topic (the node with the
         plain model to none of them) and names, in its Effects diagnostic, each correction whose
         signal is missing."""
-        model = os.path.join(tempfile.mkdtemp(prefix="pe_effects_"), "all_effects.yaml")
+        folder = tempfile.mkdtemp(prefix="pe_effects_")
+        self.addCleanup(shutil.rmtree, folder, True)
+        model = os.path.join(folder, "all_effects.yaml")
         with open(rospy.get_param("/propulsion_estimator/model")) as f:
             text = f.read()
         with open(model, "w") as f:
@@ -326,7 +328,9 @@ class EstimatorNodeTest(unittest.TestCase):
     def test_9_tare_file_that_cannot_be_read_is_moved_aside(self):
         """A node whose tare file is empty starts without it (the launch marks it required: it must
         not stop), moves the file aside and names it and the reason on its Tare file diagnostic."""
-        bad = os.path.join(tempfile.mkdtemp(prefix="pe_bad_tare_"), "tare.yaml")
+        folder = tempfile.mkdtemp(prefix="pe_bad_tare_")
+        self.addCleanup(shutil.rmtree, folder, True)
+        bad = os.path.join(folder, "tare.yaml")
         open(bad, "w").close()
         rospy.set_param("/bad_tare/model", rospy.get_param("/propulsion_estimator/model"))
         rospy.set_param("/bad_tare/tare_file", bad)
@@ -358,6 +362,7 @@ class EstimatorNodeTest(unittest.TestCase):
         number, writes the pack's record once the flight has landed and rested 10 s, and a node
         started later reads it for the same pack."""
         folder = tempfile.mkdtemp(prefix="pe_pack_")
+        self.addCleanup(shutil.rmtree, folder, True)
         path = os.path.join(folder, "SN-1.yaml")
         statuses, diagnostics = node_diagnostics("packed")
 
