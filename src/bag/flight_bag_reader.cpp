@@ -288,12 +288,21 @@ FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
   if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
   // The record walk opens no rosbag object: outside the lock, readers run it in parallel.
   const std::string damaged = checkBagRecords(path);
+  // A recording cut short (a full card, a lost power) keeps its bag header (the record at byte 13,
+  // after the version line) and ends in a record running past the file's end: `rosbag reindex`
+  // rebuilds its index from the records before the cut.
+  const bool cut_short = damaged.find("beyond the file's end") != std::string::npos && damaged.rfind("at byte 13:", 0) != 0;
+  if (cut_short) {
+    throw DataError(path + ": not a readable bag: " + damaged + "; `rosbag reindex` recovers the messages before it");
+  }
   if (!damaged.empty()) throw DataError(path + ": not a readable bag: " + damaged);
   // Declared after the lock, a bag refused here is destroyed before the lock is released.
   const std::lock_guard<std::mutex> lock(bagLifetimeMutex());
   auto bag = std::make_unique<rosbag::Bag>();
   try {
     bag->open(path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagUnindexedException& e) {
+    throw DataError(path + ": not a readable bag: " + e.what() + " (a recording never closed); `rosbag reindex` indexes it");
   } catch (const rosbag::BagException& e) {
     throw DataError(path + ": not a readable bag: " + e.what());
   }
@@ -348,9 +357,12 @@ FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int motors) c
   std::vector<std::uint8_t> buffer;
   std::string error;
   double time_s = 0.0;
+  bool any = false;
+  refusal_.clear();
   try {
     for (const rosbag::MessageInstance& message : rosbag::View(*bag_, rosbag::TopicQuery(requested))) {
       time_s = secondsSince(start_, message.getTime());
+      any = true;
       const std::uint32_t size = message.size();
       if (buffer.size() < size) buffer.resize(size);
       ros::serialization::OStream out(buffer.data(), size);
@@ -370,7 +382,11 @@ FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int motors) c
       }
     }
   } catch (const rosbag::BagException& e) {
-    throw DataError(path_ + ": reading failed after " + formatPrintf("%.3f", time_s) + " s: " + e.what());
+    // A chunk that cannot be read (its compressed data corrupt) ends the flight there, as a damaged
+    // ULog's first bad message does: what came before it is kept.
+    const std::string line = path_ + ": reading failed after " + formatPrintf("%.3f", time_s) + " s: " + e.what();
+    if (!any) throw DataError(line);
+    refusal_ = line;
   }
   return streams;
 }

@@ -40,8 +40,8 @@ struct FlightBagTopics {
 /// lock, since rosbag loads and unloads a plugin then; no other rosbag::Bag may come or go meanwhile.
 class FlightBagReader : public FlightLogReader {
  public:
-  /// Opens `path`. InputError "<path>: no such file"; DataError "<path>: not a readable bag: <why>",
-  /// "<path>: no messages".
+  /// Opens `path`. InputError "<path>: no such file"; DataError "<path>: not a readable bag: <why>"
+  /// (a bag cut short or never closed: "...; `rosbag reindex` ..."), "<path>: no messages".
   explicit FlightBagReader(const std::string& path);
   ~FlightBagReader() override;
   FlightBagReader(const FlightBagReader&) = delete;
@@ -61,12 +61,16 @@ class FlightBagReader : public FlightLogReader {
   /// outside the sensor's min_range..max_range are left out. An optional topic that the bag lacks
   /// leaves its stream empty. DataError "<path>: <topic>: <problem>" for a required topic
   /// without messages, a topic of another type or md5sum than expected, an RCOut message with
-  /// fewer channels than `motors`, or a malformed message; "<path>: <problem>" when the bag
-  /// cannot be read to its end.
+  /// fewer channels than `motors`, or a malformed message; "<path>: reading failed after <t> s:
+  /// <why>" when not even the first message can be read. A bag whose chunk at t s cannot be read
+  /// (corrupt compressed data) gives the messages before it, and that line as refusal().
   FlightStreams read(const FlightBagTopics& topics, int motors) const;
+  /// "" until read() met a chunk it could not read; then the line saying where.
+  std::string refusal() const override { return refusal_; }
 
  private:
   std::string path_;
+  mutable std::string refusal_;  // set by read(): the reader's interface reads it after read()
   std::unique_ptr<rosbag::Bag> bag_;
   ros::Time start_;
   double duration_s_ = 0.0;

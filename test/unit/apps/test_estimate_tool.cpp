@@ -103,3 +103,37 @@ TEST(EstimateTool, TakesTheNodesParametersFromAFileAsALaunchFileLoadsThem) {
   EXPECT_EQ(window.err, "estimate: " + (dir / "window.yaml").string() +
                             ": hover/window_s: must be a positive number, got -1\n");
 }
+
+// A rosbag damaged part-way, as a ULog or DataFlash log: a chunk whose compressed data is corrupt
+// ends the flight there and the hovers before it are estimated, the reader's line among the
+// warnings (the log named once); a bag cut short or never closed is refused with the remedy.
+TEST(EstimateTool, EstimatesABagUpToItsDamageAndNamesTheRemedyForOneCutShort) {
+  const std::filesystem::path dir = freshDirectory("damaged_bag");
+  const std::string demo = slurp(repoPath("config/demo/demo_flight.bag"));
+  ASSERT_GT(demo.size(), 1000000u);
+  std::string corrupt = demo;
+  corrupt.replace(corrupt.size() / 2, 64, std::string(64, '\xff'));
+  const std::string corrupt_path = (dir / "corrupt.bag").string();
+  std::ofstream(corrupt_path, std::ios::binary) << corrupt;
+  const std::string cut_path = (dir / "cut.bag").string();
+  std::ofstream(cut_path, std::ios::binary) << demo.substr(0, demo.size() / 2);
+  const ToolRun run = runTool(PE_ESTIMATE,
+                              kModel + " --no-figures --out " + quoted((dir / "out").string()) + " " +
+                                  quoted(corrupt_path) + " " + quoted(cut_path),
+                              dir);
+  EXPECT_EQ(run.status, 1) << run.err;
+  EXPECT_NE(run.out.find("estimated 1 of 2 logs"), std::string::npos) << run.out;
+  const std::string damage = "  " + corrupt_path + ": reading failed after ";
+  const std::size_t at = run.out.find(damage);
+  ASSERT_NE(at, std::string::npos) << run.out;
+  const std::string line = run.out.substr(at, run.out.find('\n', at) - at);
+  EXPECT_NE(line.find(" s: data integrity error was detected in the compressed data (read up to there)"),
+            std::string::npos)
+      << line;
+  EXPECT_NE(slurp(dir / "out/corrupt/summary.md").find("| 1 | "), std::string::npos) << "a hover before the damage";
+  EXPECT_NE(run.err.find("estimate: " + cut_path + ": not a readable bag: at byte "), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("beyond the file's end (" + std::to_string(demo.size() / 2) +
+                         " bytes); `rosbag reindex` recovers the messages before it\n"),
+            std::string::npos)
+      << run.err;
+}

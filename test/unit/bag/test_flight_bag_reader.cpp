@@ -245,9 +245,11 @@ TEST_F(FlightBagReader, RefusesARecordLongerThanTheFileBeforeRosbagReadsIt) {
                                            "2147483647 bytes, beyond the file's end (" + std::to_string(good.size()) +
                                            " bytes)");
   std::ofstream(file("cut.bag"), std::ios::binary) << good.substr(0, good.size() - 10);
-  EXPECT_EQ(refusal(file("cut.bag")).rfind(file("cut.bag") + ": not a readable bag: at byte ", 0), 0u)
-      << refusal(file("cut.bag"));
-  std::cout << "  " << refusal(file("cut.bag")) << "\n";
+  const std::string cut = refusal(file("cut.bag"));
+  EXPECT_EQ(cut.rfind(file("cut.bag") + ": not a readable bag: at byte ", 0), 0u) << cut;
+  const std::string remedy = "; `rosbag reindex` recovers the messages before it";
+  EXPECT_EQ(cut.substr(cut.size() - std::min(cut.size(), remedy.size())), remedy) << cut;
+  std::cout << "  " << cut << "\n";
 }
 
 // rosbag reads as many index entries as a record states, past its data if need be, and then a
@@ -462,4 +464,46 @@ TEST_F(FlightBagReader, RefusesABatteryArrayLongerThanItsRecordBeforeAllocatingI
   EXPECT_EQ(refusal(file("huge_cells.bag")),
             file("huge_cells.bag") + ": /mavros/battery: at 0.500 s: malformed sensor_msgs/BatteryState: cell_voltage "
                                      "declares 536870912 elements, the 12 bytes left hold 3");
+}
+
+// A recording never closed (the recorder killed) has no index: rosbag refuses it whole, and the
+// line names the remedy.
+TEST_F(FlightBagReader, RefusesABagNeverClosedNamingTheRemedy) {
+  writeMinimalBag(file("good.bag"));
+  std::ifstream in(file("good.bag"), std::ios::binary);
+  std::string bag((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = fieldValueAt(bag, "index_pos", 8);
+  bag.replace(at, 8, std::string(8, '\0'));  // as rosbag record leaves it until it closes the bag
+  std::ofstream(file("active.bag"), std::ios::binary) << bag;
+  EXPECT_EQ(refusal(file("active.bag")), file("active.bag") +
+                                             ": not a readable bag: Bag unindexed (a recording never closed); "
+                                             "`rosbag reindex` indexes it");
+}
+
+// A chunk whose compressed data is corrupt ends the flight there: the messages of the chunks
+// before it are read, and refusal() says where, as for a damaged ULog.
+TEST_F(FlightBagReader, ReadsABagUpToAChunkItCannotRead) {
+  {
+    rosbag::Bag bag(file("chunks.bag"), rosbag::bagmode::Write);
+    bag.setCompression(rosbag::compression::BZ2);
+    bag.setChunkThreshold(4096);
+    for (int k = 0; k < 400; ++k) {
+      const ros::Time stamp = kStart + ros::Duration(0.1 * k);
+      bag.write(pe::kRcOutTopic, stamp, pe::encodeRcOut(rcOutMessage({1500, 1500, 1500, 1500})));
+      bag.write(pe::kBatteryTopic, stamp, battery(12.0 - 0.001 * k));
+    }
+  }
+  std::ifstream in(file("chunks.bag"), std::ios::binary);
+  std::string bag((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The middle of the file lies inside a chunk's compressed data.
+  bag.replace(bag.size() / 2, 64, std::string(64, '\xff'));
+  std::ofstream(file("corrupt.bag"), std::ios::binary) << bag;
+  const pe::FlightBagReader reader(file("corrupt.bag"));
+  const pe::FlightStreams streams = reader.read(pe::FlightBagTopics{}, 4);
+  ASSERT_FALSE(streams.battery.empty());
+  EXPECT_LT(streams.battery.back().time_s, 39.9) << "the messages after the chunk are not read";
+  EXPECT_GT(streams.battery.back().time_s, 1.0) << "the chunks before it are";
+  EXPECT_EQ(reader.refusal().rfind(file("corrupt.bag") + ": reading failed after ", 0), 0u) << reader.refusal();
+  std::cout << "  " << reader.refusal() << "\n";
+  EXPECT_EQ(pe::FlightBagReader(file("chunks.bag")).refusal(), "");
 }

@@ -141,7 +141,7 @@ TEST(UlogReader, KeepsARefusalOnOneLine) {
   writer.format("battery_status:uint64_t timestamp;float voltage_v;");
   writer.subscribe(0, "vehicle\nattitude");
   EXPECT_EQ(refusal(writer.bytes()),
-            "throws: f.ulg: no data messages (f.ulg: at byte 69: A message: subscribes to 'vehicle\\x0aattitude', "
+            "throws: f.ulg: no data messages (at byte 69: A message: subscribes to 'vehicle\\x0aattitude', "
             "which no format defines)");
 }
 
@@ -152,7 +152,7 @@ TEST(UlogReader, RefusesABadFormatOrInfoMessage) {
     writer.format(definition);
     return refusal(writer.bytes());
   };
-  const std::string at16 = "throws: f.ulg: no data messages (f.ulg: at byte 16: ";
+  const std::string at16 = "throws: f.ulg: no data messages (at byte 16: ";
   EXPECT_EQ(formatRefusal("battery_status"), at16 + "F message: format 'battery_status' has no 'name:')");
   EXPECT_EQ(formatRefusal("b:float[0] x;"), at16 + "F message: b: field 'float[0] x' has a bad array length)");
   EXPECT_EQ(formatRefusal("b:floatx;"), at16 + "F message: b: field 'floatx' is not 'type name')");
