@@ -64,6 +64,15 @@ std::unique_ptr<FlightLogReader> FlightLogFormats::open(const std::string& path)
   for (const FlightLogFormat& format : formats_) {
     if (head.compare(0, format.magic.size(), format.magic) == 0) return format.open(path);
   }
+  if (head.empty()) throw DataError(path + ": empty: not a flight log");
+  // A file that ends inside a format's first bytes is that format's log cut short, not a stranger.
+  for (const FlightLogFormat& format : formats_) {
+    if (head.size() < format.magic.size() && format.magic.compare(0, head.size(), head) == 0) {
+      throw DataError(path + ": a " + format.name + " log cut short: it ends after " + std::to_string(head.size()) +
+                      (head.size() == 1 ? " byte" : " bytes") + ", within its first " +
+                      std::to_string(format.magic.size()) + " (\"" + printableBytes(format.magic) + "\")");
+    }
+  }
   throw DataError(path + ": not a flight log of a known format (" + joined(names()) + "): it starts with \"" + printableBytes(head) +
                   "\"");
 }

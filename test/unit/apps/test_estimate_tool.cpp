@@ -137,3 +137,14 @@ TEST(EstimateTool, EstimatesABagUpToItsDamageAndNamesTheRemedyForOneCutShort) {
             std::string::npos)
       << run.err;
 }
+
+// A log that ends within its format's first bytes is that format's log cut short, not a stranger.
+TEST(EstimateTool, NamesTheFormatOfALogCutWithinItsFirstBytes) {
+  const std::filesystem::path dir = freshDirectory("cut_signature");
+  const std::string log = (dir / "log171.bin").string();
+  std::ofstream(log, std::ios::binary) << slurp(repoPath("test/data/arducopter_dronekit_la_log171/log171_cut.bin")).substr(0, 3);
+  const ToolRun run = runTool(PE_ESTIMATE, kModel + " --no-figures --out " + quoted((dir / "out").string()) + " " + quoted(log), dir);
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.err, "estimate: " + log + ": a dataflash log cut short: it ends after 3 bytes, within its first 5 "
+                     "(\"\\xa3\\x95\\x80\\x80Y\")\n");
+}

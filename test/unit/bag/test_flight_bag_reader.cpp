@@ -359,7 +359,10 @@ TEST_F(FlightBagReader, IsTheRegistrysRosbagFormat) {
   EXPECT_EQ(refusal(file("text.bag")),
             file("text.bag") + ": not a flight log of a known format (rosbag): it starts with \"not a\\x09bag \\x22a\"");
   std::ofstream(file("empty.bag")).flush();
-  EXPECT_EQ(refusal(file("empty.bag")), file("empty.bag") + ": not a flight log of a known format (rosbag): it starts with \"\"");
+  EXPECT_EQ(refusal(file("empty.bag")), file("empty.bag") + ": empty: not a flight log");
+  std::ofstream(file("cut.bag")) << "#ROSBAG";
+  EXPECT_EQ(refusal(file("cut.bag")), file("cut.bag") + ": a rosbag log cut short: it ends after 7 bytes, within its "
+                                                        "first 12 (\"#ROSBAG V2.0\")");
 }
 
 TEST_F(FlightBagReader, RefusesABagWithoutARequiredTopic) {
