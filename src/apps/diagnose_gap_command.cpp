@@ -330,7 +330,7 @@ int diagnose(const Arguments& args) {
 
 int runDiagnoseGap(int argc, char** argv) {
   CLI::App app{
-      "Diagnoses the gap between a propulsion model and weighed flights: reads each flight's log (a rosbag's MAVROS topics, a PX4 ULog, an ArduPilot DataFlash log) "
+      "Diagnoses the gap between a propulsion model and weighed flights: reads each flight's log (a rosbag's MAVROS topics, a PX4 ULog, an ArduPilot DataFlash log, a Crazyflie uSD log) "
       "and the manifest's segments of known mass."};
   Arguments args;
   app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
@@ -361,15 +361,15 @@ int runDiagnoseGap(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--airborne-settle-s", args.airborne.settle_s,
                  "A flight weighed as a whole (manifest mass_kg): seconds after lift-off left out of its weighed stretch")
-      ->check(CLI::Range(0.0, 60.0))
+      ->check(numberIn(0.0, 60.0))
       ->capture_default_str();
   app.add_option("--airborne-min-s", args.airborne.min_weighed_s,
                  "A flight weighed as a whole: its shortest weighed stretch, s (shorter airborne stretches are hops)")
-      ->check(CLI::Range(0.5, 3600.0))
+      ->check(numberIn(0.5, 3600.0))
       ->capture_default_str();
   app.add_flag("--no-rpm-view", args.no_rpm_view,
                "Leave ESC telemetry's rotor speeds out of the diagnosis (the RPM view): the PWM and current views only");
-  app.add_option("--jobs", args.jobs, "Logs read in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--jobs", args.jobs, "Logs read in parallel")->check(wholeNumberIn(1, 64))->capture_default_str();
   // Before the required options are checked: a tool or test builds its list of effects from this.
   app.add_flag_callback(
       "--list-effects",

@@ -230,7 +230,7 @@ int estimate(const Arguments& args) {
 int runEstimate(int argc, char** argv) {
   CLI::App app{
       "Runs the estimator's onboard session (hover detection, mass, payload, motor health, capability) offline on "
-      "flight logs (PX4 ULog, ArduPilot DataFlash, rosbag with MAVROS topics), message by message as estimator_node "
+      "flight logs (PX4 ULog, ArduPilot DataFlash, Crazyflie uSD, rosbag with MAVROS topics), message by message as estimator_node "
       "runs on a replayed bag, and writes per log estimates.csv, summary.md, flight.yaml and mass.png."};
   Arguments args;
   app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
@@ -247,7 +247,7 @@ int runEstimate(int argc, char** argv) {
                  "hover/..., payload/..., capability/...); default: the node's defaults");
   app.add_option("--disarmed-pwm-max-us", args.disarmed_pwm_max_us,
                  "PWM at or below this is a disarmed or stopped motor (default the node's, 950 us; ArduPilot: 1000)");
-  app.add_option("--jobs", args.jobs, "Logs estimated in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--jobs", args.jobs, "Logs estimated in parallel")->check(wholeNumberIn(1, 64))->capture_default_str();
   app.add_flag("--no-figures", args.no_figures, "Write no mass.png (no matplotlib needed)");
   args.input.addTo(app);
   args.plotter.addTo(app);

@@ -144,10 +144,10 @@ int runFitSurfaces(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "voltage", "pwm", "log"}))
       ->capture_default_str();
   app.add_option("--max-pwm-degree", options.max_pwm_degree, "Highest PWM degree tried")
-      ->check(CLI::Range(1, 5))
+      ->check(wholeNumberIn(1, 5))
       ->capture_default_str();
   app.add_option("--max-voltage-degree", options.max_voltage_degree, "Highest voltage degree tried")
-      ->check(CLI::Range(0, 3))
+      ->check(wholeNumberIn(0, 3))
       ->capture_default_str();
   app.add_option("--efficiency", args.efficiency,
                  "derived (thrust / power) or surface (fitted to thrust / power samples)")

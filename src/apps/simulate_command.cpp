@@ -195,19 +195,19 @@ int runSimulateCommand(int argc, char** argv) {
       ->required()
       ->check(CLI::IsMember({"pwm_sweep", "discharge", "constant_thrust"}));
   bench_command->add_option("--voltage", bench.voltages_v, "pwm_sweep: supply voltages (default 10.5, 10.8, ..., 12.6)")
-      ->check(CLI::Range(1.0, 60.0));
+      ->check(numberIn(1.0, 60.0));
   bench_command
       ->add_option("--pwm-range", bench.pwm_range_us,
                    "pwm_sweep: first and last pulse width, us (default: the parameter file's)")
       ->expected(2)
-      ->check(CLI::Range(800.0, 2200.0));
+      ->check(numberIn(800.0, 2200.0));
   bench_command->add_option("--pwm-step", bench.pwm_step_us, "pwm_sweep: step, us (default 5)")
       ->check(CLI::PositiveNumber);
   bench_command->add_option("--step-duration", bench.step_duration_s, "pwm_sweep: dwell per step, s (default 1)")
       ->check(CLI::PositiveNumber);
   bench_command
       ->add_option("--pwm", bench.pwms_us, "discharge: pulse widths, us (default 1600 1700 1800 1900 within the range)")
-      ->check(CLI::Range(800.0, 2200.0));
+      ->check(numberIn(800.0, 2200.0));
   bench_command->add_option("--thrust-g", bench.thrusts_g, "constant_thrust: thrusts, g (default 300 350 400 450 500)")
       ->check(CLI::PositiveNumber);
   bench_command

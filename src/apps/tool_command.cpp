@@ -1,10 +1,12 @@
 #include "tool_command.h"
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 
 #include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
 
@@ -18,6 +20,30 @@ std::string commandName(const std::string& name, const CLI::App& app) {
 }
 
 }  // namespace
+
+CLI::Validator numberIn(double lo, double hi) {
+  const std::string range = formatNumber(lo) + ".." + formatNumber(hi);
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value)) return text + " is not a number";
+        if (value < lo || value > hi) return text + " is outside " + range;
+        return "";
+      },
+      "NUMBER in " + range);
+}
+
+CLI::Validator wholeNumberIn(int lo, int hi) {
+  const std::string range = std::to_string(lo) + ".." + std::to_string(hi);
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        long long value = 0;
+        if (!CLI::detail::lexical_cast(text, value)) return text + " is not a whole number";
+        if (value < lo || value > hi) return text + " is outside " + range;
+        return "";
+      },
+      "INT in " + range);
+}
 
 int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
   try {

@@ -14,4 +14,9 @@ namespace propulsion_estimator {
 // exits 0; otherwise the status is what `run` returns.
 int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv, const std::function<int()>& run);
 
+// An option's value checked as a number within lo..hi: "abc is not a number" (CLI11's Range calls a
+// word out of range), "70 is outside 1..64". wholeNumberIn also refuses a fraction.
+CLI::Validator numberIn(double lo, double hi);
+CLI::Validator wholeNumberIn(int lo, int hi);
+
 }  // namespace propulsion_estimator

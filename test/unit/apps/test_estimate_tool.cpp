@@ -60,6 +60,19 @@ TEST(EstimateTool, RefusesASampleRateOutsideItsRangeNamingTheOption) {
   EXPECT_EQ(run.err, "estimate: --sample-rate-hz: -1 is outside 0..1000 Hz\n");
 }
 
+// A word or a fraction given for a count is named as such, not as out of range (CLI11's Range).
+TEST(EstimateTool, RefusesAJobCountThatIsNotAWholeNumberInRange) {
+  const std::filesystem::path dir = freshDirectory("jobs");
+  const auto refusal = [&](const std::string& jobs) {
+    const ToolRun run = runTool(PE_ESTIMATE, kModel + " --jobs " + jobs + " --out " + quoted((dir / "out").string()) + " a.ulg", dir);
+    EXPECT_EQ(run.status, 2) << jobs;
+    return run.err;
+  };
+  EXPECT_EQ(refusal("abc"), "estimate: --jobs: abc is not a whole number (see --help)\n");
+  EXPECT_EQ(refusal("2.5"), "estimate: --jobs: 2.5 is not a whole number (see --help)\n");
+  EXPECT_EQ(refusal("70"), "estimate: --jobs: 70 is outside 1..64 (see --help)\n");
+}
+
 TEST(EstimateTool, RefusesAFrameWithoutItsArmLength) {
   const std::filesystem::path dir = freshDirectory("frame");
   const ToolRun run = runTool(PE_ESTIMATE,
