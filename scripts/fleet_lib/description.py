@@ -131,11 +131,12 @@ def load(path):
             _fail(path, "vehicles[%d].name" % index, "'%s' is given twice" % vehicle.name)
         vehicles[vehicle.name] = vehicle
     logs = _patterns(path, folder, "logs", root["logs"]) if "logs" in root else []
+    # Checked whenever given: a pattern kept for logs to come is refused now, not on their first run.
     vehicle_pattern = None
-    if logs:
-        if "vehicle_pattern" not in root:
-            _fail(path, "vehicle_pattern", "missing: the fleet's logs need the pattern that names a log's vehicle")
+    if "vehicle_pattern" in root:
         vehicle_pattern = _pattern(path, "vehicle_pattern", root["vehicle_pattern"], group="vehicle")
+    if logs and vehicle_pattern is None:
+        _fail(path, "vehicle_pattern", "missing: the fleet's logs need the pattern that names a log's vehicle")
     for key in ("database", "report"):
         if key in root and (not isinstance(root[key], str) or not root[key]):
             _fail(path, key, "expected a path, got %r" % (root[key],))

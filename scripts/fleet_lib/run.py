@@ -136,4 +136,6 @@ def main(argv=None):
         written = report.write(fleet, database.flights(connection), problems)
         print("fleet: report %s" % written)
     connection.close()
-    return 0
+    # New logs of which none could be estimated (a vehicle's parameters or model refused, say): the
+    # run did nothing a scheduler should count as done.
+    return 1 if jobs and refused == len(jobs) else 0

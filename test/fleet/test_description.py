@@ -47,6 +47,8 @@ def test_a_good_description_loads_with_its_paths_from_its_folder(folder):
      "fleet.yaml: vehicle_pattern: missing"),
     ("vehicles:\n  - {name: v1, model: model.yaml, urdf: vehicle.urdf}\nlogs: 'in/*.ulg'\nvehicle_pattern: '^(v[0-9]+)'\n",
      "fleet.yaml: vehicle_pattern: '^(v[0-9]+)' has no (?P<vehicle>...) group"),
+    ("vehicles:\n  - {name: v1, model: model.yaml, urdf: vehicle.urdf}\nvehicle_pattern: '^(v[0-9]+)'\n",
+     "fleet.yaml: vehicle_pattern: '^(v[0-9]+)' has no (?P<vehicle>...) group"),
     ("vehicles:\n  - {name: v1, model: model.yaml, urdf: vehicle.urdf}\nhealthy_band: 2\n",
      "fleet.yaml: healthy_band: 2 is outside 0.005..0.5"),
     ("vehicles:\n  - {name: v1, model: model.yaml, urdf: vehicle.urdf, empty_mass_kg: -1}\n",

@@ -152,3 +152,31 @@ def test_bad_logs_an_unknown_vehicle_and_a_mismatched_reference_are_one_line_eac
     for flight in [truncated, garbage, unknown] + mismatched + unlearned:
         assert flight["problem"] in problems
         assert "\n" not in flight["problem"]
+
+
+def test_a_run_whose_new_logs_are_all_refused_exits_1_and_tries_them_again(small_fleet, tmp_path):
+    """A misspelt key in the vehicles' parameters refuses every log: the run says so in its status,
+    and the next run tries the logs again rather than counting them done."""
+    folder = str(tmp_path)
+    for name in ("model.yaml", "f450_quad.urdf"):
+        shutil.copy(os.path.join(small_fleet, name), folder)
+    with open(os.path.join(small_fleet, "node_params.yaml")) as handle:
+        params = yaml.safe_load(handle)
+    params["hover_typo"] = 1.0
+    with open(os.path.join(folder, "node_params.yaml"), "w") as handle:
+        yaml.safe_dump(params, handle)
+    os.mkdir(os.path.join(folder, "logs"))
+    logs = [log for log in logs_in(small_fleet) if log.startswith("v01_")][:2]
+    for log in logs:
+        os.symlink(os.path.join(small_fleet, "logs", log), os.path.join(folder, "logs", log))
+    with open(os.path.join(folder, "fleet.yaml"), "w") as handle:
+        yaml.safe_dump({"vehicles": [{"name": "v01", "model": "model.yaml", "urdf": "f450_quad.urdf",
+                                      "params": "node_params.yaml", "logs": ["logs/*.ulg"]}]}, handle)
+    for _ in range(2):
+        done = subprocess.run(fleet_command(os.path.join(folder, "fleet.yaml"), "--quiet", "--no-report"),
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        assert done.returncode == 1, done.stdout
+        assert "fleet: 2 new flights (2 refused)" in done.stdout, done.stdout
+    kept = rows(os.path.join(folder, "fleet.sqlite"))
+    assert [f["status"] for f in kept] == ["refused", "refused"]
+    assert all("hover_typo" in f["problem"] for f in kept), [f["problem"] for f in kept]
