@@ -11,6 +11,7 @@ name, default /propulsion_estimator), ~tare_segment (index, default 0), ~toleran
 table), ~results_file (optional: the rows as YAML)."""
 import math
 import os
+import sys
 
 import yaml
 
@@ -95,6 +96,10 @@ class SegmentReport:
 
 
 def main():
+    # A node's settings are parameters: --help says so instead of waiting for a ROS master.
+    if "-h" in sys.argv[1:] or "--help" in sys.argv[1:]:
+        print(__doc__)
+        return 0
     import rosbag
     import rospy
     from propulsion_estimator.msg import PayloadEstimate
