@@ -132,10 +132,30 @@ def main(argv=None):
                 len(row["hovers"]), len(row["rotors"]))
             print("[%d/%d] %s %s: %s" % (count, len(jobs), row["vehicle"] or "?", row["log"], what), flush=True)
     print("fleet: %d new flights (%d refused) in %s" % (len(jobs), refused, fleet.database))
+    flights = database.flights(connection)
     if not args.no_report:
-        written = report.write(fleet, database.flights(connection), problems)
+        written = report.write(fleet, flights, problems)
         print("fleet: report %s" % written)
     connection.close()
-    # New logs of which none could be estimated (a vehicle's parameters or model refused, say): the
-    # run did nothing a scheduler should count as done.
-    return 1 if jobs and refused == len(jobs) else 0
+    unjudged = unjudged_vehicles(fleet, flights)
+    for line in unjudged:
+        print("fleet: %s" % line, file=sys.stderr)
+    return 1 if unjudged else 0
+
+
+def unjudged_vehicles(fleet, flights):
+    """One line for each vehicle of the description whose every kept log is refused: its parameters,
+    model or reference are at fault rather than a log, and a scheduler should hear of it. A bad file
+    among a vehicle's good logs is a row of the report, not a failed run."""
+    by_vehicle = {}
+    for flight in flights:
+        if flight["vehicle"] in fleet.vehicles:
+            by_vehicle.setdefault(flight["vehicle"], []).append(flight)
+    lines = []
+    for name in sorted(by_vehicle):
+        kept = by_vehicle[name]
+        if all(f["status"] == "refused" for f in kept):
+            first = min(kept, key=lambda f: f["log"])
+            lines.append("vehicle %s: all %d of its logs refused (%s: %s)" % (
+                name, len(kept), os.path.basename(first["log"]), first["problem"]))
+    return lines

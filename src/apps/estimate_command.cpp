@@ -138,13 +138,8 @@ LogResult estimateLog(const std::string& path, const std::string& directory, con
     const std::unique_ptr<FlightLogReader> reader = flightLogFormats().open(path);
     offline::FlightEstimate estimate = offline::estimateFlight(model, vehicle, reader->read(log_options), options);
     estimate.log_damage = reader->refusal();
-    if (!estimate.log_damage.empty()) {
-      // Warnings are printed after the log's name: the reader's line names it once.
-      const std::string named = path + ": ";
-      const std::string& damage = estimate.log_damage;
-      estimate.warnings.push_back((damage.rfind(named, 0) == 0 ? damage.substr(named.size()) : damage) +
-                                  " (read up to there)");
-    }
+    // Warnings are printed after the log's name: the reader's line names it once.
+    if (!estimate.log_damage.empty()) estimate.warnings.push_back(withoutLogPath(estimate.log_damage, path) + " (read up to there)");
     std::filesystem::create_directories(directory);
     writeTextFile(directory + "/estimates.csv", offline::estimateCsv(estimate.samples));
     writeTextFile(directory + "/summary.md", offline::estimateSummaryMarkdown(estimate, model_name, "mass.png"));

@@ -288,14 +288,13 @@ FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
   if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
   // The record walk opens no rosbag object: outside the lock, readers run it in parallel.
   const std::string damaged = checkBagRecords(path);
-  // A recording cut short (a full card, a lost power) keeps its bag header (the record at byte 13,
-  // after the version line) and ends in a record running past the file's end: `rosbag reindex`
-  // rebuilds its index from the records before the cut.
-  const bool cut_short = damaged.find("beyond the file's end") != std::string::npos && damaged.rfind("at byte 13:", 0) != 0;
-  if (cut_short) {
-    throw DataError(path + ": not a readable bag: " + damaged + "; `rosbag reindex` recovers the messages before it");
+  // Past its bag header (the record at byte 13, after the version line), a bag cut short (a full
+  // card, lost power) or damaged is read through its index, which `rosbag reindex` rebuilds from
+  // the records that are whole.
+  if (damaged.rfind("at byte 13:", 0) == 0) throw DataError(path + ": not a readable bag: " + damaged);
+  if (!damaged.empty()) {
+    throw DataError(path + ": not a readable bag: " + damaged + "; `rosbag reindex` rebuilds its index from the whole records");
   }
-  if (!damaged.empty()) throw DataError(path + ": not a readable bag: " + damaged);
   // Declared after the lock, a bag refused here is destroyed before the lock is released.
   const std::lock_guard<std::mutex> lock(bagLifetimeMutex());
   auto bag = std::make_unique<rosbag::Bag>();
@@ -362,11 +361,12 @@ FlightStreams FlightBagReader::read(const FlightBagTopics& topics, int motors) c
   try {
     for (const rosbag::MessageInstance& message : rosbag::View(*bag_, rosbag::TopicQuery(requested))) {
       time_s = secondsSince(start_, message.getTime());
-      any = true;
+      // The time comes from the index; the chunk is read (and a corrupt one found) below.
       const std::uint32_t size = message.size();
       if (buffer.size() < size) buffer.resize(size);
       ros::serialization::OStream out(buffer.data(), size);
       message.write(out);
+      any = true;
       // Two signals may share a topic (both temperatures on one, say): each gets the message.
       for (const Source& source : sources) {
         if (*source.topic != message.getTopic()) continue;

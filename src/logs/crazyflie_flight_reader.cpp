@@ -161,7 +161,8 @@ CrazyflieFlightReader::CrazyflieFlightReader(const std::string& bytes, const std
     }
   }
   if (first > last) {
-    throw DataError(path_ + ": no records" + (file_->refusal().empty() ? "" : " (" + file_->refusal() + ")"));
+    const std::string& why = file_->refusal();
+    throw DataError(path_ + ": no records" + (why.empty() ? "" : " (" + withoutLogPath(why, path_) + ")"));
   }
   first_us_ = first;
   duration_s_ = static_cast<double>(last - first) / 1e6;

@@ -299,7 +299,8 @@ DataflashFlightReader::DataflashFlightReader(std::string bytes, const std::strin
     last = std::max(last, t);
   }
   if (!std::isfinite(first)) {
-    throw DataError(path_ + ": no timed messages" + (file_->refusal().empty() ? "" : " (" + file_->refusal() + ")"));
+    const std::string& why = file_->refusal();
+    throw DataError(path_ + ": no timed messages" + (why.empty() ? "" : " (" + withoutLogPath(why, path_) + ")"));
   }
   first_us_ = first;
   duration_s_ = (last - first) / 1e6;

@@ -89,6 +89,11 @@ std::string readFlightLogBytes(const std::string& path) {
   return readTextFile(path);
 }
 
+std::string withoutLogPath(const std::string& line, const std::string& path) {
+  const std::string named = path + ": ";
+  return line.rfind(named, 0) == 0 ? line.substr(named.size()) : line;
+}
+
 std::string printableBytes(const std::string& bytes) {
   static const char kHex[] = "0123456789abcdef";
   std::string text;

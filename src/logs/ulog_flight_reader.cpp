@@ -325,11 +325,8 @@ UlogFlightReader::UlogFlightReader(std::string bytes, const std::string& path)
 
 void UlogFlightReader::init() {
   if (file_->data().empty()) {
-    // The file's refusal names the file too: it is named once.
     const std::string& why = file_->refusal();
-    const std::string named = path_ + ": ";
-    const std::string where = why.rfind(named, 0) == 0 ? why.substr(named.size()) : why;
-    throw DataError(path_ + ": no data messages" + (why.empty() ? "" : " (" + where + ")"));
+    throw DataError(path_ + ": no data messages" + (why.empty() ? "" : " (" + withoutLogPath(why, path_) + ")"));
   }
   std::uint64_t first = std::numeric_limits<std::uint64_t>::max();
   std::uint64_t last = 0;

@@ -41,7 +41,8 @@ struct FlightBagTopics {
 class FlightBagReader : public FlightLogReader {
  public:
   /// Opens `path`. InputError "<path>: no such file"; DataError "<path>: not a readable bag: <why>"
-  /// (a bag cut short or never closed: "...; `rosbag reindex` ..."), "<path>: no messages".
+  /// (a bag damaged past its header, cut short say, or never closed: "...; `rosbag reindex` ..."),
+  /// "<path>: no messages".
   explicit FlightBagReader(const std::string& path);
   ~FlightBagReader() override;
   FlightBagReader(const FlightBagReader&) = delete;

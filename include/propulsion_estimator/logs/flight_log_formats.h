@@ -27,8 +27,10 @@ class FlightLogFormats {
   void add(FlightLogFormat format);
 
   /// Opens `path` with the format whose magic it starts with. InputError "<path>: no such file"
-  /// or "<path>: cannot be read"; DataError "<path>: not a flight log of a known format (rosbag,
-  /// ...): it starts with "<its first bytes, escaped>"", or whatever the format's reader throws.
+  /// or "<path>: cannot be read"; DataError "<path>: empty: not a flight log", "<path>: a <format>
+  /// log cut short: it ends after <n> bytes, within its first <m> ("<magic>")", "<path>: not a
+  /// flight log of a known format (rosbag, ...): it starts with "<its first bytes, escaped>"", or
+  /// whatever the format's reader throws.
   std::unique_ptr<FlightLogReader> open(const std::string& path) const;
 
   /// The formats' names, in the order they were added.

@@ -48,7 +48,8 @@ class FlightLogReader {
   /// options it cannot use.
   virtual FlightStreams read(const FlightLogOptions& options) const = 0;
   /// "" for a log read to its end; else the one line that refused the rest of it ("<path>: at
-  /// byte <offset>: <message>: <problem>"): read() then gives what came before.
+  /// byte <offset>: <message>: <problem>"; a rosbag's "<path>: reading failed after <t> s: <why>",
+  /// known once read() has run): read() then gives what came before.
   virtual std::string refusal() const { return ""; }
 };
 
@@ -59,5 +60,9 @@ std::string readFlightLogBytes(const std::string& path);
 /// `bytes` as C would spell them: printable ASCII as is, other bytes (a newline, a NUL) as `\xNN`;
 /// for text taken from a log into a one-line message.
 std::string printableBytes(const std::string& bytes);
+
+/// A reader's `line` without its leading "<path>: ", for a message that names the log already;
+/// `line` itself when it does not start so.
+std::string withoutLogPath(const std::string& line, const std::string& path);
 
 }  // namespace propulsion_estimator

@@ -146,7 +146,7 @@ TEST(EstimateTool, EstimatesABagUpToItsDamageAndNamesTheRemedyForOneCutShort) {
   EXPECT_NE(slurp(dir / "out/corrupt/summary.md").find("| 1 | "), std::string::npos) << "a hover before the damage";
   EXPECT_NE(run.err.find("estimate: " + cut_path + ": not a readable bag: at byte "), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("beyond the file's end (" + std::to_string(demo.size() / 2) +
-                         " bytes); `rosbag reindex` recovers the messages before it\n"),
+                         " bytes); `rosbag reindex` rebuilds its index from the whole records\n"),
             std::string::npos)
       << run.err;
 }

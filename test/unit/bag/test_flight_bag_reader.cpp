@@ -247,7 +247,7 @@ TEST_F(FlightBagReader, RefusesARecordLongerThanTheFileBeforeRosbagReadsIt) {
   std::ofstream(file("cut.bag"), std::ios::binary) << good.substr(0, good.size() - 10);
   const std::string cut = refusal(file("cut.bag"));
   EXPECT_EQ(cut.rfind(file("cut.bag") + ": not a readable bag: at byte ", 0), 0u) << cut;
-  const std::string remedy = "; `rosbag reindex` recovers the messages before it";
+  const std::string remedy = "; `rosbag reindex` rebuilds its index from the whole records";
   EXPECT_EQ(cut.substr(cut.size() - std::min(cut.size(), remedy.size())), remedy) << cut;
   std::cout << "  " << cut << "\n";
 }
@@ -256,7 +256,8 @@ TEST_F(FlightBagReader, RefusesARecordLongerThanTheFileBeforeRosbagReadsIt) {
 // record length from the middle of the next record (fuzz_flight_bag's finding: 2.3 GB asked for).
 TEST_F(FlightBagReader, RefusesAnIndexRecordStatingMoreEntriesThanItHolds) {
   const std::string found = repoPath("test/fuzz/regressions/flight_bag/oom-index-record-count-beyond-its-data");
-  EXPECT_EQ(refusal(found), found + ": not a readable bag: at byte 9636: index record states 93 entries in 144 bytes");
+  EXPECT_EQ(refusal(found), found + ": not a readable bag: at byte 9636: index record states 93 entries in 144 bytes"
+                            "; `rosbag reindex` rebuilds its index from the whole records");
 }
 
 namespace {
@@ -301,7 +302,7 @@ TEST_F(FlightBagReader, RefusesCountsThatRosbagWouldFollowPastTheLastRecord) {
   std::ofstream(file("connections.bag"), std::ios::binary) << connections;
   EXPECT_EQ(refusal(file("connections.bag")),
             file("connections.bag") + ": not a readable bag: the bag header states 100 connections and 1 chunks at byte " +
-                std::to_string(index_pos) + ", but only 3 records lie there");
+                std::to_string(index_pos) + ", but only 3 records lie there; `rosbag reindex` rebuilds its index from the whole records");
 
   // The chunk info is the last record: its data, (connection, messages) pairs, ends the file.
   const std::size_t chunk_info = fieldValueAt(good, "chunk_pos", 8);
@@ -324,7 +325,7 @@ TEST_F(FlightBagReader, RefusesCountsThatRosbagWouldFollowPastTheLastRecord) {
   std::ofstream(file("listed.bag"), std::ios::binary) << listed;
   EXPECT_EQ(refusal(file("listed.bag")), file("listed.bag") + ": not a readable bag: the chunk at byte " +
                                              std::to_string(chunk_pos) +
-                                             " lists 7 connections, but only 5 records follow it");
+                                             " lists 7 connections, but only 5 records follow it; `rosbag reindex` rebuilds its index from the whole records");
   EXPECT_EQ(refusal(file("good.bag")), "") << "the unedited bag is read";
 }
 
@@ -509,4 +510,11 @@ TEST_F(FlightBagReader, ReadsABagUpToAChunkItCannotRead) {
   EXPECT_EQ(reader.refusal().rfind(file("corrupt.bag") + ": reading failed after ", 0), 0u) << reader.refusal();
   std::cout << "  " << reader.refusal() << "\n";
   EXPECT_EQ(pe::FlightBagReader(file("chunks.bag")).refusal(), "");
+  // The first chunk's compressed data (bzip2's "BZh" after the bag header) corrupt: nothing can be
+  // read, and the bag is refused.
+  std::string first = bag;
+  first.replace(first.find("BZh", 4096) + 10, 32, std::string(32, '\xff'));
+  std::ofstream(file("first.bag"), std::ios::binary) << first;
+  EXPECT_EQ(refusal(file("first.bag")).rfind(file("first.bag") + ": reading failed after 0.000 s: ", 0), 0u)
+      << refusal(file("first.bag"));
 }

@@ -298,6 +298,10 @@ TEST(CrazyflieUsdLog, RefusesWhatIsNotAVersion2Log) {
   cf::Writer empty;
   empty.define(kFixedFrequency, "fixedFrequency", {"pwm.m1_pwm(I)"});
   EXPECT_EQ(refusal(empty.bytes()), "throws: f.log: no records");
+  // A header and a first record cut short: the reader's line, the log named once.
+  const std::string cut_first = refusal(empty.bytes() + std::string("\x01\x02\x03", 3));
+  EXPECT_EQ(cut_first, "throws: f.log: no records (at byte 38: record: truncated (7 bytes left for a 10-byte record "
+                       "head and the 4-byte CRC))");
   EXPECT_THROW(pe::CrazyflieFlightReader("/nonexistent.log"), pe::InputError);
 }
 

@@ -92,7 +92,7 @@ TEST(DataflashReader, KeepsWhatCameBeforeATruncationOrACorruptMessage) {
     damaged[at] = byte;
     return refusal(damaged);
   };
-  const std::string fmt_at = "throws: f.bin: no timed messages (f.bin: at byte 89: FMT: ";
+  const std::string fmt_at = "throws: f.bin: no timed messages (at byte 89: FMT: ";
   EXPECT_EQ(rcouFmt(93, 12), fmt_at + "RCOU: its columns take 19 bytes, its length says 12)");
   EXPECT_EQ(rcouFmt(103, 'H'), fmt_at + "RCOU: 6 format characters for 5 labels)");
   EXPECT_EQ(rcouFmt(99, 'X'), fmt_at + "RCOU: format character 'X' unknown)");

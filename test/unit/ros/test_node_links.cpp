@@ -1,13 +1,10 @@
 #include <cstdio>
-#include <filesystem>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
-
-#include "tool_process.h"
 
 namespace {
 
@@ -65,16 +62,4 @@ TEST(NodeLinks, CheckerFlagsRosbagFittingAndSimulator) {
   EXPECT_NE(found[1].find("fitting"), std::string::npos);
   EXPECT_NE(found[2].find("sim_physics"), std::string::npos);
   EXPECT_TRUE(forbiddenLibraries("\tlibtopic_tools.so => /usr/lib/libtopic_tools.so (0x1)\n").empty());
-}
-
-// --help says where the node's settings are and exits, with no ROS master to wait for.
-TEST(EstimatorNode, HelpNamesItsParametersAndLaunchFileWithoutAMaster) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "pe_node_help";
-  std::filesystem::create_directories(dir);
-  const ToolRun run = runTool(PE_ESTIMATOR_NODE, "--help", dir);
-  std::filesystem::remove_all(dir);
-  EXPECT_EQ(run.status, 0) << run.err;
-  EXPECT_EQ(run.out.rfind("estimator_node: the propulsion estimator as a ROS node.", 0), 0u) << run.out;
-  EXPECT_NE(run.out.find("roslaunch propulsion_estimator estimator.launch model:=MODEL.yaml"), std::string::npos);
-  EXPECT_EQ(run.err, "");
 }
