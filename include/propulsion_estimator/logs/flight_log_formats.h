@@ -27,8 +27,8 @@ class FlightLogFormats {
   void add(FlightLogFormat format);
 
   /// Opens `path` with the format whose magic it starts with. InputError "<path>: no such file"
-  /// or "<path>: cannot be read"; DataError "<path>: empty: not a flight log", "<path>: a <format>
-  /// log cut short: it ends after <n> bytes, within its first <m> ("<magic>")", "<path>: not a
+  /// or "<path>: cannot be read"; DataError "<path>: empty: not a flight log", "<path>: a FORMAT
+  /// log cut short: it ends after N bytes, within its first M ("MAGIC")", "<path>: not a
   /// flight log of a known format (rosbag, ...): it starts with "<its first bytes, escaped>"", or
   /// whatever the format's reader throws.
   std::unique_ptr<FlightLogReader> open(const std::string& path) const;
