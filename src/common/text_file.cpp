@@ -1,5 +1,6 @@
 #include "propulsion_estimator/common/text_file.h"
 
+#include <filesystem>
 #include <sstream>
 
 #include "propulsion_estimator/common/input_error.h"
@@ -7,6 +8,9 @@
 namespace propulsion_estimator {
 
 std::string readTextFile(const std::string& path) {
+  // A folder opens as a stream whose size reads as the largest offset: refused by name instead.
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InputError(path + ": a folder, not a file");
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError(path + ": cannot open file");
   // Read at once into a string of the file's size: a stream that grows as it reads copies a

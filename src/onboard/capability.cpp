@@ -153,6 +153,8 @@ bool CapabilityEstimator::usePack(const PackRecord& record) {
   return true;
 }
 
+double CapabilityEstimator::packRestLeftS() const { return learner_ ? learner_->restLeftS() : kNaN; }
+
 PackRecord CapabilityEstimator::learnPack(const PackRecord& previous) {
   if (!packFlightFinished()) return previous;
   PackRecord record = learner_->learned(previous, battery_->config().curve);

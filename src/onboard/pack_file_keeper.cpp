@@ -21,6 +21,7 @@ std::optional<PackRecord> PackFileKeeper::identify(const std::string& pack_id, l
   record_.pack_id = pack_id;
   record_.cells = cells_;
   writable_ = true;
+  refused_ = false;
   note_.clear();
   for (const std::string& stale : removeStaleTemporaries(path_)) note_ += "removed " + stale + " (a write killed); ";
   try {
@@ -37,9 +38,11 @@ std::optional<PackRecord> PackFileKeeper::identify(const std::string& pack_id, l
              (error ? "; not moved aside (" + error.message() + "), not written" : "; moved to " + aside +
                                                                                         ", learned afresh");
     writable_ = !error;
+    refused_ = true;
   } catch (const InputError& e) {
     note_ += std::string("refused: ") + e.what() + "; not written";
     writable_ = false;
+    refused_ = true;
   }
   return std::nullopt;
 }
@@ -50,9 +53,11 @@ std::string PackFileKeeper::save(const PackRecord& record) {
     savePackFile(path_, record);
   } catch (const InputError& e) {
     note_ = e.what();
+    refused_ = true;
     return note_;
   }
   record_ = record;
+  refused_ = false;
   note_ = path_ + ": pack \"" + record.pack_id + "\", " + std::to_string(record.flights) + " flights learned";
   std::string line = note_;
   if (record.capacity_ah) line += ", capacity " + formatPrintf("%.3f Ah", *record.capacity_ah);

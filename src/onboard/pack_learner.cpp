@@ -61,6 +61,11 @@ void PackLearner::add(double time_s, double voltage_v, double current_a, const B
 
 bool PackLearner::flightFinished() const { return landed_; }
 
+double PackLearner::restLeftS() const {
+  if (!flying_ || landed_ || std::isnan(rest_since_s_)) return kNaN;
+  return std::max(0.0, config_.settle_s - (last_s_ - rest_since_s_));
+}
+
 PackRecord PackLearner::learned(const PackRecord& previous, const OcvCurve& flown) const {
   PackRecord record = previous;
   if (!landed_) return record;

@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <ctime>
+#include <filesystem>
 #include <functional>
 #include <sstream>
 
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/input_error.h"
+#include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/model/model_yaml.h"
 #include "propulsion_estimator/onboard/tare_file.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
@@ -120,17 +122,7 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     status.add("tare_file", params_.tare_file);
     status.summary(tare_file_level_, tare_file_message_);
   });
-  diagnostics_.add("Pack file", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
-    status.add("pack_file", params_.pack_file);
-    if (!pack_file_.enabled()) {
-      status.summary(DiagnosticStatus::OK, "none: capability/battery/pack_file is empty, no pack is learned");
-    } else if (!pack_file_.identified()) {
-      status.summary(DiagnosticStatus::WARN, "no pack identity yet: capability/battery/pack_id is empty and no "
-                                             "BatteryState.serial_number has come");
-    } else {
-      status.summary(pack_file_.active() ? DiagnosticStatus::OK : DiagnosticStatus::WARN, pack_file_.note());
-    }
-  });
+  diagnostics_.add("Pack file", [this](diagnostic_updater::DiagnosticStatusWrapper& status) { packFileStatus(&status); });
   diagnostics_.add("Effects", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     const HealthSnapshot now = takeSnapshot();
     copy(judgeEffects(session_->estimator(), effects_before_, now, params_.health), &status);
@@ -193,10 +185,14 @@ void EstimatorNode::loadTare() {
   } catch (const InputError& e) {
     // A tare file that cannot be read must not keep the node (required in the launch) from starting.
     std::string message = std::string("refused: ") + e.what() + "; started without the tare";
-    try {
-      message += ", the file moved to " + setAsideTareFile(params_.tare_file, static_cast<long long>(std::time(nullptr)));
-    } catch (const InputError& moved) {
-      message += std::string("; ") + moved.what();
+    std::error_code error;
+    // A folder named as the file is the user's: left where it is (~tare cannot write there either).
+    if (!std::filesystem::is_directory(params_.tare_file, error)) {
+      try {
+        message += ", the file moved to " + setAsideTareFile(params_.tare_file, static_cast<long long>(std::time(nullptr)));
+      } catch (const InputError& moved) {
+        message += std::string("; ") + moved.what();
+      }
     }
     setTareFileStatus(DiagnosticStatus::WARN, message);
     return;
@@ -218,7 +214,11 @@ void EstimatorNode::loadTare() {
 void EstimatorNode::identifyPack(const std::string& pack_id, bool before_start) {
   if (!pack_file_.enabled() || pack_id.empty()) return;
   const std::optional<PackRecord> record = pack_file_.identify(pack_id, static_cast<long long>(std::time(nullptr)));
-  ROS_INFO_STREAM("pack file: " << pack_file_.note());
+  if (pack_file_.refused() || !pack_file_.active()) {
+    ROS_WARN_STREAM("pack file: " << pack_file_.note());
+  } else {
+    ROS_INFO_STREAM("pack file: " << pack_file_.note());
+  }
   if (!record) return;
   if (before_start) {
     params_.capability.pack = record;
@@ -228,9 +228,34 @@ void EstimatorNode::identifyPack(const std::string& pack_id, bool before_start) 
   }
 }
 
+void EstimatorNode::packFileStatus(diagnostic_updater::DiagnosticStatusWrapper* status) const {
+  status->add("pack_file", params_.pack_file);
+  if (!pack_file_.enabled()) {
+    status->summary(DiagnosticStatus::OK, "none: capability/battery/pack_file is empty, no pack is learned");
+    return;
+  }
+  if (!pack_file_.identified()) {
+    status->summary(DiagnosticStatus::WARN, "no pack identity yet: capability/battery/pack_id is empty and no "
+                                            "BatteryState.serial_number has come");
+    return;
+  }
+  std::string note = pack_file_.note();
+  // A replay or a power-off soon after the landing learns nothing: said while the rest lasts.
+  const double rest_left_s = session_->capabilityEstimator().packRestLeftS();
+  if (pack_file_.active() && !std::isnan(rest_left_s)) {
+    note += formatPrintf("; landed: this flight is learned once the pack has rested %.0f s more", rest_left_s);
+  }
+  status->summary(pack_file_.active() && !pack_file_.refused() ? DiagnosticStatus::OK : DiagnosticStatus::WARN, note);
+}
+
 void EstimatorNode::learnPack() {
   if (!pack_file_.active() || !session_->packFlightFinished()) return;
-  ROS_INFO_STREAM("pack file: " << pack_file_.save(session_->learnPack(pack_file_.previous())));
+  const std::string line = pack_file_.save(session_->learnPack(pack_file_.previous()));
+  if (pack_file_.refused()) {
+    ROS_WARN_STREAM("pack file: " << line);
+  } else {
+    ROS_INFO_STREAM("pack file: " << line);
+  }
 }
 
 void EstimatorNode::setTareFileStatus(std::uint8_t level, const std::string& message) {
@@ -546,8 +571,11 @@ bool EstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   response.success = true;
   if (!params_.tare_file.empty()) {
     try {
+      std::error_code error;
+      const bool existed = std::filesystem::exists(params_.tare_file, error);
       removeTareFile(params_.tare_file);
-      setTareFileStatus(DiagnosticStatus::OK, params_.tare_file + ": removed by ~reset");
+      setTareFileStatus(DiagnosticStatus::OK,
+                        params_.tare_file + (existed ? ": removed by ~reset" : ": none (~reset had none to remove)"));
     } catch (const InputError& e) {
       response.success = false;
       message << "; but " << e.what() << ", and the next start reads it again";

@@ -325,6 +325,26 @@ class EstimatorNodeTest(unittest.TestCase):
         finally:
             shutil.rmtree(self.tare_file)
 
+    def tare_file_status(self, name, tare_file):
+        """The Tare file diagnostic of a node `name` started with `tare_file`, once it is up; asserts
+        that it keeps running, then stops it."""
+        rospy.set_param("/%s/model" % name, rospy.get_param("/propulsion_estimator/model"))
+        rospy.set_param("/%s/tare_file" % name, tare_file)
+        statuses, diagnostics = node_diagnostics(name)
+        launch = roslaunch.scriptapi.ROSLaunch()
+        launch.start()
+        process = launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name=name,
+                                                    namespace="/", output="log"))
+        try:
+            rospy.wait_for_service("/%s/tare" % name, timeout=30.0)
+            self.h.wait_for(lambda: "Tare file" in statuses, 10.0, "the Tare file diagnostic of the node")
+            self.assertTrue(process.is_alive())
+            return statuses["Tare file"]
+        finally:
+            diagnostics.unregister()
+            process.stop()
+            launch.stop()
+
     def test_9_tare_file_that_cannot_be_read_is_moved_aside(self):
         """A node whose tare file is empty starts without it (the launch marks it required: it must
         not stop), moves the file aside and names it and the reason on its Tare file diagnostic."""
@@ -332,30 +352,24 @@ class EstimatorNodeTest(unittest.TestCase):
         self.addCleanup(shutil.rmtree, folder, True)
         bad = os.path.join(folder, "tare.yaml")
         open(bad, "w").close()
-        rospy.set_param("/bad_tare/model", rospy.get_param("/propulsion_estimator/model"))
-        rospy.set_param("/bad_tare/tare_file", bad)
-        statuses, diagnostics = node_diagnostics("bad_tare")
+        status = self.tare_file_status("bad_tare", bad)
+        aside = glob.glob(bad + ".bad-*")
+        self.assertEqual(len(aside), 1, aside)
+        self.assertFalse(os.path.exists(bad))
+        self.assertEqual(status.level, DiagnosticStatus.WARN)
+        self.assertEqual(status.message, "refused: " + bad + ": the file is empty; started without the tare, the "
+                         "file moved to " + aside[0])
 
-        launch = roslaunch.scriptapi.ROSLaunch()
-        launch.start()
-        process = launch.launch(roslaunch.core.Node("propulsion_estimator", "estimator_node", name="bad_tare",
-                                                    namespace="/", output="log"))
-        try:
-            rospy.wait_for_service("/bad_tare/tare", timeout=30.0)
-            self.h.wait_for(lambda: "Tare file" in statuses, 10.0, "the Tare file diagnostic of the node")
-            aside = glob.glob(bad + ".bad-*")
-            self.assertEqual(len(aside), 1, aside)
-            self.assertFalse(os.path.exists(bad))
-            status = statuses["Tare file"]
-            self.assertEqual(status.level, DiagnosticStatus.WARN)
-            self.assertEqual(status.message, "refused: " + bad + ": the file is empty; started without the tare, the "
-                             "file moved to " + aside[0])
-            self.assertTrue(process.is_alive())
-        finally:
-            diagnostics.unregister()
-            process.stop()
-            launch.stop()
-            shutil.rmtree(os.path.dirname(bad))
+    def test_9_tare_file_that_is_a_folder_is_left_where_it_is(self):
+        """A folder named as the tare file is refused by name on the Tare file diagnostic; the node
+        starts without the tare and leaves the folder, the user's, where it is."""
+        folder = tempfile.mkdtemp(prefix="pe_folder_tare_")
+        self.addCleanup(shutil.rmtree, folder, True)
+        status = self.tare_file_status("folder_tare", folder)
+        self.assertEqual(status.level, DiagnosticStatus.WARN)
+        self.assertEqual(status.message, "refused: " + folder + ": a folder, not a file; started without the tare")
+        self.assertTrue(os.path.isdir(folder))
+        self.assertEqual(glob.glob(folder + ".bad-*"), [])
 
     def test_9_pack_file_learned_from_a_flight_and_read_at_the_next_start(self):
         """A node with a pack file and no pack_id takes the pack's identity from the battery's serial
@@ -387,10 +401,19 @@ class EstimatorNodeTest(unittest.TestCase):
             self.assertEqual(statuses["Pack file"].level, DiagnosticStatus.WARN)
             self.assertTrue(statuses["Pack file"].message.startswith("no pack identity yet"))
             rate = rospy.Rate(10.0)
-            for voltage_v, current_a, seconds in ((12.4, 0.5, 3.0), (11.9, 14.0, 4.0), (12.3, 0.5, 12.0)):
+
+            def publish(voltage_v, current_a, seconds):
                 for _ in range(int(10 * seconds)):
                     publisher.publish(BatteryState(voltage=voltage_v, current=current_a, serial_number="SN-1"))
                     rate.sleep()
+            for voltage_v, current_a, seconds in ((12.4, 0.5, 3.0), (11.9, 14.0, 4.0), (12.3, 0.5, 3.0)):
+                publish(voltage_v, current_a, seconds)
+            # Landed and resting: the diagnostic says the flight is learned once the rest is long enough.
+            self.h.wait_for(lambda: "landed: this flight is learned once the pack has rested" in
+                            statuses["Pack file"].message, 10.0, "the Pack file diagnostic of a landed flight")
+            self.assertEqual(statuses["Pack file"].level, DiagnosticStatus.OK)
+            self.assertFalse(os.path.exists(path))
+            publish(12.3, 0.5, 9.0)
             self.h.wait_for(lambda: os.path.exists(path), 10.0, "the pack file " + path)
             with open(path) as f:
                 record = yaml.safe_load(f)

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/estimation/estimator.h"
 #include "propulsion_estimator/model/motor_reference.h"
 #include "propulsion_estimator/vehicle/vehicle.h"
@@ -43,15 +44,15 @@ struct MotorHealthVerdict {
   bool judged = false;  ///< whether a full window was judged
   std::string unavailable;  ///< why not, when judged is false
   int blocks = 0;  ///< steady-hover blocks in the window
-  double yaw_imbalance = 0.0;      ///< sum(s_k T_k) / sum(T_k) over the window (rotor_balance.h)
-  double yaw_imbalance_std = 0.0;  ///< its standard error
+  double yaw_imbalance = kNaN;      ///< sum(s_k T_k) / sum(T_k) over the window (rotor_balance.h); NaN unjudged
+  double yaw_imbalance_std = kNaN;  ///< its standard error
   std::vector<MotorBalanceGap> motors;  ///< one per motor, in rotor order
   int flagged_channel = 0;  ///< 0: none
   /// The centre of the window's model thrusts, less the URDF's centre of gravity, in m (body x, y):
-  /// a centre-of-gravity offset moves every share consistently and is no motor fault.
+  /// a centre-of-gravity offset moves every share consistently and is no motor fault. NaN unjudged.
   ///@{
-  double cg_offset_x_m = 0.0;
-  double cg_offset_y_m = 0.0;
+  double cg_offset_x_m = kNaN;
+  double cg_offset_y_m = kNaN;
   ///@}
 };
 

@@ -162,6 +162,8 @@ class CapabilityEstimator {
   /// Whether a flight has been flown and the pack has rested since (PackLearner); false without a
   /// battery configured.
   bool packFlightFinished() const { return learner_ && learner_->flightFinished(); }
+  /// s the pack must still rest before its landed flight is learned; NaN when no flight awaits it.
+  double packRestLeftS() const;
   /// `previous` with the finished flight learned (PackLearner::learned), and the learner starts
   /// on the next flight. `previous` unchanged when no flight has finished.
   PackRecord learnPack(const PackRecord& previous);

@@ -20,6 +20,8 @@ class PackFileKeeper {
   bool identified() const { return !pack_id_.empty(); }  ///< identify() has been called
   /// Whether finished flights are written: identified, and the file is this pack's or absent.
   bool active() const { return identified() && writable_; }
+  /// Whether the file was refused at identify() (moved aside or not) or the last save() failed.
+  bool refused() const { return refused_; }
 
   /// The pack flown is `pack_id` (capability/battery/pack_id, or BatteryState.serial_number): reads
   /// its file. Returns its record when the file holds this pack; nullopt when there is none yet, it
@@ -41,6 +43,7 @@ class PackFileKeeper {
   int cells_;
   std::string pack_id_, path_, note_;
   bool writable_ = false;
+  bool refused_ = false;
   PackRecord record_;
 };
 

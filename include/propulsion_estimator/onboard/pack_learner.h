@@ -41,6 +41,9 @@ class PackLearner {
   void add(double time_s, double voltage_v, double current_a, const BatteryEstimate& estimate);
   /// Whether a flight has been flown and the pack has rested settle_s since its landing.
   bool flightFinished() const;
+  /// s the pack must still rest after a landing before the flight is learned (settle_s less the
+  /// rest so far); NaN while no landed flight awaits it.
+  double restLeftS() const;
   /// `previous` (the pack's record before this flight, identity and cells set) with this flight
   /// learned, `flown` the curve the flight was estimated with: one more flight, the resistance
   /// appended, the capacity when the rest voltages span min_capacity_span of the charge (averaged

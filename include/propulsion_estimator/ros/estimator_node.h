@@ -74,6 +74,8 @@ class EstimatorNode {
   void identifyPack(const std::string& pack_id, bool before_start);
   /// After a battery message: a finished flight's record written.
   void learnPack();
+  // The Pack file diagnostic: the keeper's note, what a landed flight still waits for.
+  void packFileStatus(diagnostic_updater::DiagnosticStatusWrapper* status) const;
   /// Subscribes to `scalar` on `topic`, decoding its ScalarSpec's message.
   ros::Subscriber subscribeInput(ros::NodeHandle& input_nh, input::Scalar scalar, const std::string& topic,
                                  const ros::TransportHints& hints);

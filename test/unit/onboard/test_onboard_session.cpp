@@ -89,6 +89,11 @@ TEST(OnboardSession, ResetForgetsTheHoverAndTheChecks) {
   session.reset();
   EXPECT_TRUE(std::isnan(session.estimator().output().payload.total_mass_kg));
   EXPECT_FALSE(session.motorHealth().judged);
+  // Unjudged, the balance's figures are NaN (Capability.msg), not a balanced 0.
+  EXPECT_TRUE(std::isnan(session.motorHealth().yaw_imbalance));
+  EXPECT_TRUE(std::isnan(session.motorHealth().yaw_imbalance_std));
+  EXPECT_TRUE(std::isnan(session.motorHealth().cg_offset_x_m));
+  EXPECT_TRUE(std::isnan(session.motorHealth().cg_offset_y_m));
 }
 
 TEST(EscTelemetryHealth, SaysSoWhenNoTelemetryCameAndWhyNoneWasUsable) {

@@ -94,6 +94,8 @@ TEST(PackLearner, LearnsNothingFromAFlightItDidNotSeeStartOrEnd) {
   for (int t = 10; t < 300; ++t) landing.add(t, 11.9, 14.0, estimate);
   for (int t = 300; t < 305; ++t) landing.add(t, 11.9, 0.5, estimate);  // settling, not yet 10 s
   EXPECT_FALSE(landing.flightFinished());
+  EXPECT_DOUBLE_EQ(landing.restLeftS(), 6.0);  // at rest since 300 s, last reading at 304 s
+  EXPECT_TRUE(std::isnan(learner.restLeftS())) << "a flight whose start was not seen awaits nothing";
   const pe::PackRecord unchanged = landing.learned(freshRecord(), pe::OcvCurve::lipo());
   EXPECT_EQ(unchanged.flights, 0);
 }
@@ -153,5 +155,14 @@ TEST(PackFileKeeper, ReadsWritesAndNeverTouchesAnotherPack) {
   EXPECT_NE(bad.note().find("moved to " + folder + "/C.yaml.bad-1700000000, learned afresh"), std::string::npos)
       << bad.note();
   EXPECT_TRUE(fs::exists(folder + "/C.yaml.bad-1700000000"));
+  EXPECT_TRUE(bad.refused()) << "moved aside and learned afresh, but said as a warning";
+  EXPECT_FALSE(next.refused());
+  // A folder where the pack's file goes: refused by name, never written.
+  fs::create_directories(folder + "/D.yaml");
+  pe::PackFileKeeper in_the_way(pattern, 3);
+  EXPECT_FALSE(in_the_way.identify("D", 0).has_value());
+  EXPECT_TRUE(in_the_way.refused());
+  EXPECT_FALSE(in_the_way.active());
+  EXPECT_EQ(in_the_way.note(), "refused: " + folder + "/D.yaml: a folder, not a file; not written");
   fs::remove_all(folder);
 }
