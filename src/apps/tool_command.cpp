@@ -21,28 +21,31 @@ std::string commandName(const std::string& name, const CLI::App& app) {
 
 }  // namespace
 
-CLI::Validator numberIn(double lo, double hi) {
-  const std::string range = formatNumber(lo) + ".." + formatNumber(hi);
+namespace {
+
+// `T` read from the option's text within lo..hi; `what` names a text that is no `T`.
+template <typename T>
+CLI::Validator valueIn(T lo, T hi, const std::string& range, const std::string& what, const std::string& kind) {
   return CLI::Validator(
-      [lo, hi, range](std::string& text) -> std::string {
-        double value = 0.0;
-        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value)) return text + " is not a number";
+      [lo, hi, range, what](std::string& text) -> std::string {
+        T value{};
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(static_cast<double>(value))) {
+          return text + " is not " + what;
+        }
         if (value < lo || value > hi) return text + " is outside " + range;
         return "";
       },
-      "NUMBER in " + range);
+      kind + " in " + range);
+}
+
+}  // namespace
+
+CLI::Validator numberIn(double lo, double hi) {
+  return valueIn(lo, hi, formatNumber(lo) + ".." + formatNumber(hi), "a number", "NUMBER");
 }
 
 CLI::Validator wholeNumberIn(int lo, int hi) {
-  const std::string range = std::to_string(lo) + ".." + std::to_string(hi);
-  return CLI::Validator(
-      [lo, hi, range](std::string& text) -> std::string {
-        long long value = 0;
-        if (!CLI::detail::lexical_cast(text, value)) return text + " is not a whole number";
-        if (value < lo || value > hi) return text + " is outside " + range;
-        return "";
-      },
-      "INT in " + range);
+  return valueIn<long long>(lo, hi, std::to_string(lo) + ".." + std::to_string(hi), "a whole number", "INT");
 }
 
 int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv, const std::function<int()>& run) {

@@ -82,6 +82,12 @@ class BagWalker {
     in_.seekg(0);
   }
 
+  BagRecordCheck check() {
+    const std::string damage = walk();
+    return {damage, !damage.empty() && !bag_header_damaged_};
+  }
+
+ private:
   std::string walk() {
     // The version line read as rosbag reads it (sscanf, trailing bytes ignored); 2.0 is walked here.
     std::string line;
@@ -91,9 +97,11 @@ class BagWalker {
     if (!in_ || std::sscanf(line.c_str(), "#ROS%s V%d.%d", &name[0], &major, &minor) != 3 || major != 2 || minor != 0) {
       return "";  // rosbag reads or refuses it
     }
-    std::uint64_t at = line.size() + 1;
+    const std::uint64_t bag_header = line.size() + 1;
+    std::uint64_t at = bag_header;
     while (at < size_) {
       const std::uint64_t record = at;
+      bag_header_damaged_ = record == bag_header;
       std::string header, problem;
       std::uint32_t data_length = 0;
       if (!readLength(&at, "header", &problem) || !readBytes(&at, &header) ||
@@ -107,6 +115,7 @@ class BagWalker {
       at += data_length;
       in_.seekg(static_cast<std::streamoff>(at));
     }
+    bag_header_damaged_ = false;
     if (index_pos_ != 0 && record_starts_.count(index_pos_) == 0 && index_pos_ != size_) {
       return "the bag header's index position " + std::to_string(index_pos_) + " is not a record's start";
     }
@@ -129,7 +138,6 @@ class BagWalker {
     return "";
   }
 
- private:
   // Records from the one at `at` (included) to the file's end; 0 when none starts there.
   std::uint64_t recordsFrom(std::uint64_t at) const {
     const auto first = record_starts_.find(at);
@@ -267,10 +275,11 @@ class BagWalker {
   std::map<std::uint64_t, std::uint64_t> chunk_connections_;  // chunk start -> connections its info lists
   std::uint64_t chunk_size_ = 0;
   bool chunk_walked_ = false;
+  bool bag_header_damaged_ = false;  // the record walk() stopped at is the bag header
 };
 
 }  // namespace
 
-std::string checkBagRecords(const std::string& path) { return BagWalker(path).walk(); }
+BagRecordCheck checkBagRecords(const std::string& path) { return BagWalker(path).check(); }
 
 }  // namespace propulsion_estimator

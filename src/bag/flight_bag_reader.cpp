@@ -287,13 +287,12 @@ FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
   // The record walk opens no rosbag object: outside the lock, readers run it in parallel.
-  const std::string damaged = checkBagRecords(path);
-  // Past its bag header (the record at byte 13, after the version line), a bag cut short (a full
-  // card, lost power) or damaged is read through its index, which `rosbag reindex` rebuilds from
-  // the records that are whole.
-  if (damaged.rfind("at byte 13:", 0) == 0) throw DataError(path + ": not a readable bag: " + damaged);
-  if (!damaged.empty()) {
-    throw DataError(path + ": not a readable bag: " + damaged + "; `rosbag reindex` rebuilds its index from the whole records");
+  const BagRecordCheck checked = checkBagRecords(path);
+  if (!checked.damage.empty()) {
+    // A bag cut short (a full card, lost power) or damaged past its header is read through its
+    // index, which `rosbag reindex` rebuilds from the records that are whole.
+    throw DataError(path + ": not a readable bag: " + checked.damage +
+                    (checked.past_bag_header ? "; `rosbag reindex` rebuilds its index from the whole records" : ""));
   }
   // Declared after the lock, a bag refused here is destroyed before the lock is released.
   const std::lock_guard<std::mutex> lock(bagLifetimeMutex());

@@ -161,8 +161,7 @@ CrazyflieFlightReader::CrazyflieFlightReader(const std::string& bytes, const std
     }
   }
   if (first > last) {
-    const std::string& why = file_->refusal();
-    throw DataError(path_ + ": no records" + (why.empty() ? "" : " (" + withoutLogPath(why, path_) + ")"));
+    throw DataError(nothingReadLine(path_, "no records", file_->refusal()));
   }
   first_us_ = first;
   duration_s_ = static_cast<double>(last - first) / 1e6;

@@ -299,8 +299,7 @@ DataflashFlightReader::DataflashFlightReader(std::string bytes, const std::strin
     last = std::max(last, t);
   }
   if (!std::isfinite(first)) {
-    const std::string& why = file_->refusal();
-    throw DataError(path_ + ": no timed messages" + (why.empty() ? "" : " (" + withoutLogPath(why, path_) + ")"));
+    throw DataError(nothingReadLine(path_, "no timed messages", file_->refusal()));
   }
   first_us_ = first;
   duration_s_ = (last - first) / 1e6;

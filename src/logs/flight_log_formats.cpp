@@ -94,6 +94,10 @@ std::string withoutLogPath(const std::string& line, const std::string& path) {
   return line.rfind(named, 0) == 0 ? line.substr(named.size()) : line;
 }
 
+std::string nothingReadLine(const std::string& path, const std::string& nothing, const std::string& refusal) {
+  return path + ": " + nothing + (refusal.empty() ? "" : " (" + withoutLogPath(refusal, path) + ")");
+}
+
 std::string printableBytes(const std::string& bytes) {
   static const char kHex[] = "0123456789abcdef";
   std::string text;

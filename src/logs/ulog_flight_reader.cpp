@@ -325,8 +325,7 @@ UlogFlightReader::UlogFlightReader(std::string bytes, const std::string& path)
 
 void UlogFlightReader::init() {
   if (file_->data().empty()) {
-    const std::string& why = file_->refusal();
-    throw DataError(path_ + ": no data messages" + (why.empty() ? "" : " (" + withoutLogPath(why, path_) + ")"));
+    throw DataError(nothingReadLine(path_, "no data messages", file_->refusal()));
   }
   std::uint64_t first = std::numeric_limits<std::uint64_t>::max();
   std::uint64_t last = 0;

@@ -214,17 +214,21 @@ void EstimatorNode::loadTare() {
 void EstimatorNode::identifyPack(const std::string& pack_id, bool before_start) {
   if (!pack_file_.enabled() || pack_id.empty()) return;
   const std::optional<PackRecord> record = pack_file_.identify(pack_id, static_cast<long long>(std::time(nullptr)));
-  if (pack_file_.refused() || !pack_file_.active()) {
-    ROS_WARN_STREAM("pack file: " << pack_file_.note());
-  } else {
-    ROS_INFO_STREAM("pack file: " << pack_file_.note());
-  }
+  logPackFile(pack_file_.note(), pack_file_.refused() || !pack_file_.active());
   if (!record) return;
   if (before_start) {
     params_.capability.pack = record;
   } else if (!session_->usePack(*record)) {
     ROS_WARN_STREAM("pack file: pack \"" << pack_id << "\" identified after the first battery reading: its record "
                                           "is not used on this flight");
+  }
+}
+
+void EstimatorNode::logPackFile(const std::string& line, bool warn) {
+  if (warn) {
+    ROS_WARN_STREAM("pack file: " << line);
+  } else {
+    ROS_INFO_STREAM("pack file: " << line);
   }
 }
 
@@ -251,11 +255,7 @@ void EstimatorNode::packFileStatus(diagnostic_updater::DiagnosticStatusWrapper* 
 void EstimatorNode::learnPack() {
   if (!pack_file_.active() || !session_->packFlightFinished()) return;
   const std::string line = pack_file_.save(session_->learnPack(pack_file_.previous()));
-  if (pack_file_.refused()) {
-    ROS_WARN_STREAM("pack file: " << line);
-  } else {
-    ROS_INFO_STREAM("pack file: " << line);
-  }
+  logPackFile(line, pack_file_.refused());
 }
 
 void EstimatorNode::setTareFileStatus(std::uint8_t level, const std::string& message) {

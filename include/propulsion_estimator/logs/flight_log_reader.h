@@ -64,5 +64,8 @@ std::string printableBytes(const std::string& bytes);
 /// A reader's `line` without its leading "<path>: ", for a message that names the log already;
 /// `line` itself when it does not start so.
 std::string withoutLogPath(const std::string& line, const std::string& path);
+/// "<path>: <nothing>", and the file's `refusal` in brackets, named once, when it has one: the line
+/// of a log whose reading stopped before anything usable ("f.ulg: no data messages (at byte 69: ...)").
+std::string nothingReadLine(const std::string& path, const std::string& nothing, const std::string& refusal);
 
 }  // namespace propulsion_estimator

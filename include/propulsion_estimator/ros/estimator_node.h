@@ -74,6 +74,8 @@ class EstimatorNode {
   void identifyPack(const std::string& pack_id, bool before_start);
   /// After a battery message: a finished flight's record written.
   void learnPack();
+  // One pack-file line to the log, a WARN when the file was refused or is not written.
+  static void logPackFile(const std::string& line, bool warn);
   // The Pack file diagnostic: the keeper's note, what a landed flight still waits for.
   void packFileStatus(diagnostic_updater::DiagnosticStatusWrapper* status) const;
   /// Subscribes to `scalar` on `topic`, decoding its ScalarSpec's message.
