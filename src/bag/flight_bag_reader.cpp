@@ -300,7 +300,8 @@ FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
   try {
     bag->open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagUnindexedException& e) {
-    throw DataError(path + ": not a readable bag: " + e.what() + " (a recording never closed); `rosbag reindex` indexes it");
+    throw DataError(path + ": not a readable bag: " + e.what() +
+                    " (a recording never closed); `rosbag reindex` indexes it");
   } catch (const rosbag::BagException& e) {
     throw DataError(path + ": not a readable bag: " + e.what());
   }

@@ -122,7 +122,8 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     status.add("tare_file", params_.tare_file);
     status.summary(tare_file_level_, tare_file_message_);
   });
-  diagnostics_.add("Pack file", [this](diagnostic_updater::DiagnosticStatusWrapper& status) { packFileStatus(&status); });
+  diagnostics_.add("Pack file",
+                   [this](diagnostic_updater::DiagnosticStatusWrapper& status) { packFileStatus(&status); });
   diagnostics_.add("Effects", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
     const HealthSnapshot now = takeSnapshot();
     copy(judgeEffects(session_->estimator(), effects_before_, now, params_.health), &status);
