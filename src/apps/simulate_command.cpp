@@ -202,20 +202,20 @@ int runSimulateCommand(int argc, char** argv) {
       ->expected(2)
       ->check(numberIn(800.0, 2200.0));
   bench_command->add_option("--pwm-step", bench.pwm_step_us, "pwm_sweep: step, us (default 5)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   bench_command->add_option("--step-duration", bench.step_duration_s, "pwm_sweep: dwell per step, s (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   bench_command
       ->add_option("--pwm", bench.pwms_us, "discharge: pulse widths, us (default 1600 1700 1800 1900 within the range)")
       ->check(numberIn(800.0, 2200.0));
   bench_command->add_option("--thrust-g", bench.thrusts_g, "constant_thrust: thrusts, g (default 300 350 400 450 500)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   bench_command
       ->add_option("--sample-interval", bench.sample_interval_s,
                    "discharge, constant_thrust: log interval, s (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   bench_command->add_option("--cutoff-v", bench.cutoff_v, "discharge, constant_thrust: cut-off voltage (default 10.5)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   bench_command->add_option("--seed", bench.seed, "Seed of the sensor noise (default 1)");
   bench_command->add_option("--output", bench.output, "Native bench CSV to write")->required();
   bench_command->add_option("--truth", bench.truth, "Also write the noise-free log to this CSV");

@@ -48,6 +48,17 @@ CLI::Validator wholeNumberIn(int lo, int hi) {
   return valueIn<long long>(lo, hi, std::to_string(lo) + ".." + std::to_string(hi), "a whole number", "INT");
 }
 
+CLI::Validator positiveNumber() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value)) return text + " is not a number";
+        if (!(value > 0.0)) return text + " is not above 0";
+        return "";
+      },
+      "NUMBER > 0");
+}
+
 int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
   try {
     app.parse(argc, argv);

@@ -15,8 +15,11 @@ namespace propulsion_estimator {
 int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv, const std::function<int()>& run);
 
 // An option's value checked as a number within lo..hi: "abc is not a number" (CLI11's Range calls a
-// word out of range), "70 is outside 1..64". wholeNumberIn also refuses a fraction.
+// word out of range), "70 is outside 1..64". wholeNumberIn also refuses a fraction; positiveNumber
+// refuses zero and below ("0 is not above 0"; CLI11's PositiveNumber lets NaN through and prints
+// the largest double as its range).
 CLI::Validator numberIn(double lo, double hi);
 CLI::Validator wholeNumberIn(int lo, int hi);
+CLI::Validator positiveNumber();
 
 }  // namespace propulsion_estimator

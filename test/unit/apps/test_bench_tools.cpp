@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <new>
 #include <regex>
@@ -336,6 +338,15 @@ TEST_F(BenchTools, SimulateAnswersLikeTheOtherTools) {
       run(PE_SIMULATE, "flight --params " + params + " --profile p.yaml --log f.bag --ulog-layout px4-1.14");
   EXPECT_EQ(layout_of_a_bag.status, 1);
   EXPECT_EQ(layout_of_a_bag.err, "simulate flight: --ulog-layout: px4-1.14 is for --log-format ulog, not bag\n");
+  // A positive number: a word, NaN, zero and below each refused by its value.
+  for (const auto& [value, reason] : std::vector<std::pair<std::string, std::string>>{
+           {"abc", "abc is not a number"}, {"nan", "nan is not a number"}, {"0", "0 is not above 0"},
+           {"-1", "-1 is not above 0"}}) {
+    const ToolRun step =
+        run(PE_SIMULATE, "bench --params " + params + " --experiment pwm_sweep --output " + csv + " --pwm-step " + value);
+    EXPECT_EQ(step.status, 2);
+    EXPECT_EQ(step.err, "simulate bench: --pwm-step: " + reason + " (see --help)\n");
+  }
   const ToolRun no_command = run(PE_SIMULATE, "");
   EXPECT_EQ(no_command.status, 2);
   EXPECT_EQ(no_command.err, "simulate: A subcommand is required (see --help)\n");
