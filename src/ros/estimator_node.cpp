@@ -18,10 +18,20 @@ namespace {
 
 using diagnostic_msgs::DiagnosticStatus;
 
-Vehicle loadVehicle(const ros::NodeHandle& nh, const EstimatorNodeParams& params) {
+// `read()` of the file `parameter` names, a refusal naming the parameter too: "/n/model: /x.yaml: ...".
+template <typename Read>
+auto readParameterFile(const ros::NodeHandle& private_nh, const std::string& parameter, Read read) {
+  try {
+    return read();
+  } catch (const InputError& e) {
+    throw ConfigError(private_nh.resolveName(parameter) + ": " + e.what());
+  }
+}
+
+Vehicle loadVehicle(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const EstimatorNodeParams& params) {
   if (!params.urdf_file.empty()) {
     ROS_INFO_STREAM("vehicle from URDF file " << params.urdf_file);
-    return loadVehicleUrdf(params.urdf_file);
+    return readParameterFile(private_nh, "urdf_file", [&] { return loadVehicleUrdf(params.urdf_file); });
   }
   std::string key, xml;
   if (nh.searchParam("robot_description", key) && nh.getParam(key, xml)) {
@@ -54,10 +64,10 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
       pack_file_(params_.pack_file, params_.capability.cells.value_or(0)),
       diagnostics_(nh, private_nh),
       publish_limiter_(params_.publish_rate_hz) {
-  PropulsionModel model = loadModelFile(params_.model);
+  PropulsionModel model = readParameterFile(private_nh, "model", [&] { return loadModelFile(params_.model); });
   identifyPack(params_.pack_id, true);
   model_fingerprint_ = modelFingerprint(model);
-  Vehicle vehicle = loadVehicle(nh, params_);
+  Vehicle vehicle = loadVehicle(nh, private_nh, params_);
   session_ = std::make_unique<OnboardSession>(
       std::move(model), std::move(vehicle),
       OnboardConfig{params_.estimator, params_.capability, params_.esc_telemetry, params_.mass_view},
@@ -84,7 +94,6 @@ EstimatorNode::EstimatorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     motors_msg_.motors[i].channel = static_cast<std::uint8_t>(params_.estimator.motor_channels[i]);
   }
   rc_out_.channels.reserve(32);
-
   // The estimates' queues hold half a second at 1000 Hz (about 100 kB at most): on a loaded
   // companion computer a subscriber may not read for tens of milliseconds, and a shorter queue drops
   // messages (the soak rostest counts every answer). RCOut is handled as it is read (input_queue_);

@@ -39,7 +39,11 @@ class BadParametersTest(unittest.TestCase):
         self.assertEqual(start("a", {}), (1, "/a/model: required parameter is not set"))
 
     def test_model_file_missing(self):
-        self.assertEqual(start("b", {"model": "/nonexistent.yaml"}), (1, "/nonexistent.yaml: cannot open file"))
+        self.assertEqual(start("b", {"model": "/nonexistent.yaml"}), (1, "/b/model: /nonexistent.yaml: cannot open file"))
+
+    def test_urdf_file_missing(self):
+        self.assertEqual(start("u", {"model": MODEL, "urdf_file": "/nonexistent.urdf"}),
+                         (1, "/u/urdf_file: /nonexistent.urdf: cannot open file"))
 
     def test_wrong_type(self):
         self.assertEqual(start("c", {"model": MODEL, "battery_timeout_s": "five"}),
@@ -120,7 +124,7 @@ class BadParametersTest(unittest.TestCase):
             f.write(text + "effects:\n  thrust_loss: {fraction: 4}\n")
         line = text.count("\n") + 2  # the model's lines, then effects:, then thrust_loss
         self.assertEqual(start("h", {"model": model}),
-                         (1, "%s:%d: effects.thrust_loss.fraction: 4 is outside -0.1..0.4" % (model, line)))
+                         (1, "/h/model: %s:%d: effects.thrust_loss.fraction: 4 is outside -0.1..0.4" % (model, line)))
 
 
 if __name__ == "__main__":
