@@ -46,8 +46,8 @@ struct BatteryEstimatorConfig {
   /// The 90 % interval's ends in spreads below and above the central figure, calibrated on the
   /// battery family's development packs (test_capability_flight.cpp, docs/capability.md).
   ///@{
-  double interval_low_z = 1.44;
-  double interval_high_z = 0.61;
+  double interval_low_z = 1.50;
+  double interval_high_z = 0.86;
   ///@}
   /// A; the least change of current the resistance needs to be identified (a take-off gives it).
   double min_current_span_a = 2.0;

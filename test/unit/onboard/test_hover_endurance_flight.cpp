@@ -218,11 +218,24 @@ TEST(CapabilityFlight, HoverEnduranceWithTheOwnCurveOfWarmNewPacks) {
 
 namespace {
 
-// The interval's calibration set: packs 1..40 of the family (development; packs 1-6 also chose the
-// central figure's settings).
+// The interval's calibration set (development): packs 1..40 of the family (packs 1-6 also chose
+// the central figure's settings), the 39 packs drawn on 2026-12-02 that were held out until
+// 2026-12-06, and the 40 drawn on 2026-12-06 at a review (docs/capability.md, "The 90 % interval").
 std::vector<std::uint32_t> intervalDevelopmentSeeds() {
   std::vector<std::uint32_t> seeds;
   for (std::uint32_t seed = 1; seed <= 40; ++seed) seeds.push_back(seed);
+  for (std::uint32_t seed : {67272,  72914,  88398,  101736, 102615, 125930, 182306, 240251, 333205, 340309,
+                             341425, 358741, 398125, 419428, 460757, 481506, 504565, 523960, 548411, 552132,
+                             555024, 576963, 612108, 614448, 633521, 635817, 693948, 748688, 807895, 832670,
+                             860455, 868569, 900689, 906794, 908277, 909784, 939109, 952795, 959195}) {
+    seeds.push_back(seed);
+  }
+  for (std::uint32_t seed : {3358230, 4150845, 2213533, 9102686, 5915025, 6094465, 1872093, 8805309, 7577249, 4705143,
+                             1540717, 1065611, 8021891, 3888254, 3748468, 6413010, 6709657, 2009674, 5993584, 5209938,
+                             9569679, 9495399, 9544240, 9758419, 6655425, 8474514, 8222992, 4910885, 6771218, 1006740,
+                             9511580, 5777583, 8630733, 5277507, 9119935, 9514498, 8289480, 5430237, 3985479, 7011688}) {
+    seeds.push_back(seed);
+  }
   return seeds;
 }
 
@@ -246,14 +259,14 @@ std::array<double, 2> neededZ(const std::vector<EnduranceCase>& cases, double sh
   return quantile;
 }
 
-// Held out: 40 packs drawn on 2026-12-02 (random.SystemRandom) after the interval's factors were
-// fixed on the development packs, first flown then; pack 406777 is left out, as its long flight
-// (TheHoverTimeLeftOverAFlightWithItsInterval) showed the resistance's drift in a steady hover and
-// so took part in the fix. Every curve shape, cold and warm, new and aged packs are among them.
+// Held out: 40 packs drawn on 2026-12-06 (random.SystemRandom) after the interval's factors were
+// fixed on the development packs (intervalDevelopmentSeeds), first flown then. Every curve shape,
+// cold and warm, new and aged packs are among them (asserted).
 std::vector<std::uint32_t> intervalHeldOutSeeds() {
-  return {67272,  72914,  88398,  101736, 102615, 125930, 182306, 240251, 333205, 340309, 341425, 358741, 398125,
-          419428, 460757, 481506, 504565, 523960, 548411, 552132, 555024, 576963, 612108, 614448, 633521, 635817,
-          693948, 748688, 807895, 832670, 860455, 868569, 900689, 906794, 908277, 909784, 939109, 952795, 959195};
+  return {1189985, 1193015, 1679792, 1692035, 1910964, 2121869, 2353034, 2528326, 3059647, 3464057,
+          3732896, 4159994, 4575437, 5051924, 5069986, 5175229, 5272508, 5473269, 5543985, 5697651,
+          5995060, 6493627, 6692463, 6929404, 6950026, 7173459, 7336649, 7415346, 7524526, 8040265,
+          8397009, 8675507, 9010469, 9091075, 9136510, 9191231, 9289087, 9417541, 9532752, 9934752};
 }
 
 // On each pack's first flight, 60 s after take-off, the 90 % interval holds the time the vehicle
@@ -276,10 +289,11 @@ TEST(CapabilityFlight, TheEnduranceIntervalIsCalibratedOnTheDevelopmentPacks) {
   const std::vector<EnduranceCase> cases = flyFamilyPacks(intervalDevelopmentSeeds());
   const pe::BatteryEstimatorConfig pack = *userPack().battery();
   const std::array<double, 2> z = neededZ(cases, 0.95, pack);
+  int after_60_s = 0;
+  const double held_60_s = shareOf(cases, 60.0, [](const EnduranceCase& e) { return e.inInterval(); }, &after_60_s);
   std::printf("%zu cases: the interval needs %.3f spreads below, %.3f above (configured %.3f, %.3f); after 60 s %.1f %% "
-              "in it\n",
-              cases.size(), z[0], z[1], pack.interval_low_z, pack.interval_high_z,
-              100.0 * shareOf(cases, 60.0, [](const EnduranceCase& e) { return e.inInterval(); }));
+              "of %d in it\n",
+              cases.size(), z[0], z[1], pack.interval_low_z, pack.interval_high_z, 100.0 * held_60_s, after_60_s);
   EXPECT_NEAR(pack.interval_low_z, z[0], 0.1 * z[0]);
   EXPECT_NEAR(pack.interval_high_z, z[1], 0.1 * z[1]);
 }
