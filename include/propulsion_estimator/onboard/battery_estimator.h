@@ -44,7 +44,7 @@ struct BatteryEstimatorConfig {
   /// enters the interval's low end.
   double cold_capacity_rel = 0.08;
   /// The 90 % interval's ends in spreads below and above the central figure, calibrated on the
-  /// battery family's development packs (test_capability_flight.cpp, docs/capability.md).
+  /// battery family's development packs (test_hover_endurance_flight.cpp, docs/capability.md).
   ///@{
   double interval_low_z = 1.50;
   double interval_high_z = 0.86;
