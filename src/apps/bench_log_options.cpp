@@ -26,7 +26,19 @@ void BenchLogOptions::addTo(CLI::App& app) {
   app.add_option("--map", maps_,
                  "QUANTITY=COLUMN: take a Tyto/RCbenchmark quantity from this header column, e.g. "
                  "rpm='Motor Optical Speed (RPM)' or motor_temp_c='Temp 1 (\xC2\xBA"
-                 "C)' (repeatable)");
+                 "C)' (repeatable)")
+      ->check(CLI::Validator(
+          [](std::string& map) -> std::string {
+            const std::size_t equals = map.find('=');
+            if (equals == std::string::npos) return map + " is not QUANTITY=COLUMN";
+            try {
+              benchColumnFromName(map.substr(0, equals));
+            } catch (const ConfigError& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "QUANTITY=COLUMN"));
   app.add_option("--decimal", decimal_, "Decimal separator of ';'-separated logs: auto, point, comma")
       ->check(CLI::IsMember({"auto", "point", "comma"}))
       ->capture_default_str();

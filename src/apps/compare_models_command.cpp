@@ -45,13 +45,13 @@ std::pair<std::string, std::vector<std::string>> splitModelArgument(const std::s
 }
 
 int compare(Arguments args, const BenchReadOptions& read_options) {
-  if (args.models.size() < 2) throw ConfigError("give two or more models to compare");
+  if (args.models.size() < 2) throw UsageError("give two or more models to compare");
   if (!args.report.empty()) args.plotter.check();
   fitting::ComparisonOptions options;
   options.voltage_v = args.voltage_v;
   if (args.mass_kg || args.cells || args.capacity_mah) {
     if (!args.mass_kg || !args.cells || !args.capacity_mah) {
-      throw ConfigError("hover needs --mass-kg, --cells and --capacity-mah together");
+      throw UsageError("hover needs --mass-kg, --cells and --capacity-mah together");
     }
     args.hover.vehicle_mass_kg = *args.mass_kg;
     args.hover.cells = *args.cells;
@@ -93,11 +93,12 @@ int runCompareModels(int argc, char** argv) {
                  "Model files, each optionally with its bench logs for motor temperature and data points: "
                  "MODEL.yaml=LOG[,LOG|DIR...]")
       ->required();
-  app.add_option("--voltage", args.voltage_v, "Voltage of the maxima and curves (default: top of each model's domain)");
-  app.add_option("--mass-kg", args.mass_kg, "Vehicle take-off mass for hover (kg)");
-  app.add_option("--motors", args.hover.motors, "Number of motors")->capture_default_str();
-  app.add_option("--cells", args.cells, "LiPo cells in series");
-  app.add_option("--capacity-mah", args.capacity_mah, "Battery capacity (mAh)");
+  app.add_option("--voltage", args.voltage_v, "Voltage of the maxima and curves (default: top of each model's domain)")
+      ->check(positiveNumber());
+  app.add_option("--mass-kg", args.mass_kg, "Vehicle take-off mass for hover (kg)")->check(positiveNumber());
+  app.add_option("--motors", args.hover.motors, "Number of motors")->check(wholeNumberIn(1, 16))->capture_default_str();
+  app.add_option("--cells", args.cells, "LiPo cells in series")->check(wholeNumberIn(1, 14));
+  app.add_option("--capacity-mah", args.capacity_mah, "Battery capacity (mAh)")->check(positiveNumber());
   app.add_option("--usable-fraction", args.hover.usable_fraction, "Share of the capacity used down to the cutoff")
       ->capture_default_str();
   app.add_option("--cell-full-v", args.hover.cell_full_v, "Cell voltage of a full battery under hover load")

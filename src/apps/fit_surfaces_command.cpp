@@ -171,9 +171,11 @@ int runFitSurfaces(int argc, char** argv) {
       ->check(CLI::IsMember({"regulated", "battery"}));
   app.add_option("--steady-voltage-mad", options.levels.steady_voltage_mad_v,
                  "A log is one voltage level when the median absolute deviation of its voltage is at most this (V)")
+      ->check(positiveNumber())
       ->capture_default_str();
   app.add_option("--voltage-bin", options.levels.voltage_bin_v,
                  "Voltage bin width for logs whose voltage wanders, e.g. battery discharges (V)")
+      ->check(positiveNumber())
       ->capture_default_str();
   log_options.addTo(app);
   args.plotter.addTo(app);

@@ -69,6 +69,9 @@ int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv
   }
   try {
     return run();
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "%s: %s (see --help)\n", commandName(name, app).c_str(), e.what());
+    return 2;
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s: %s\n", commandName(name, app).c_str(), e.what());
   } catch (const std::filesystem::filesystem_error& e) {

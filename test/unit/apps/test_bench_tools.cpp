@@ -274,9 +274,16 @@ TEST_F(BenchTools, FitSurfacesUsageAndReaderErrors) {
   EXPECT_EQ(r.err,
             "fit_surfaces: " + (dir_ / "text.csv").string() + ":3: column 3 'thrust_g': 'abc' is not a number\n");
   const ToolRun map = run(PE_FIT_SURFACES, "--out x.yaml --map speed=RPM " + (dir_ / "text.csv").string());
+  EXPECT_EQ(map.status, 2);
   EXPECT_EQ(map.err,
-            "fit_surfaces: 'speed' is not a bench quantity (one of time_s, pwm_us, voltage_v, thrust_n, current_a, "
-            "power_w, rpm, ambient_temp_c, motor_temp_c, pressure_pa)\n");
+            "fit_surfaces: --map: 'speed' is not a bench quantity (one of time_s, pwm_us, voltage_v, thrust_n, current_a, "
+            "power_w, rpm, ambient_temp_c, motor_temp_c, pressure_pa) (see --help)\n");
+  const ToolRun no_column = run(PE_FIT_SURFACES, "--out x.yaml --map rpm " + (dir_ / "text.csv").string());
+  EXPECT_EQ(no_column.status, 2);
+  EXPECT_EQ(no_column.err, "fit_surfaces: --map: rpm is not QUANTITY=COLUMN (see --help)\n");
+  const ToolRun bin = run(PE_FIT_SURFACES, "--out x.yaml --voltage-bin -1 " + (dir_ / "text.csv").string());
+  EXPECT_EQ(bin.status, 2);
+  EXPECT_EQ(bin.err, "fit_surfaces: --voltage-bin: -1 is not above 0 (see --help)\n");
 }
 
 TEST_F(BenchTools, FitSurfacesReadsAFiftyThousandCharacterCommentLine) {
@@ -388,9 +395,13 @@ TEST_F(BenchTools, CompareModelsPrintsTheChapter7TableAndWritesTheReport) {
     EXPECT_GT(fs::file_size(dir_ / "cmp" / figure), 20000u) << figure;
   }
   const ToolRun one = run(PE_COMPARE_MODELS, (dir_ / "g4.yaml").string());
-  EXPECT_EQ(one.status, 1);
-  EXPECT_EQ(one.err, "compare_models: give two or more models to compare\n");
-  const ToolRun partial =
-      run(PE_COMPARE_MODELS, "--mass-kg 1 " + (dir_ / "g4.yaml").string() + " " + (dir_ / "g5.yaml").string());
-  EXPECT_EQ(partial.err, "compare_models: hover needs --mass-kg, --cells and --capacity-mah together\n");
+  EXPECT_EQ(one.status, 2);
+  EXPECT_EQ(one.err, "compare_models: give two or more models to compare (see --help)\n");
+  const std::string two = " " + (dir_ / "g4.yaml").string() + " " + (dir_ / "g5.yaml").string();
+  const ToolRun partial = run(PE_COMPARE_MODELS, "--mass-kg 1" + two);
+  EXPECT_EQ(partial.status, 2);
+  EXPECT_EQ(partial.err, "compare_models: hover needs --mass-kg, --cells and --capacity-mah together (see --help)\n");
+  const ToolRun cells = run(PE_COMPARE_MODELS, "--cells 3.5" + two);
+  EXPECT_EQ(cells.status, 2);
+  EXPECT_EQ(cells.err, "compare_models: --cells: 3.5 is not a whole number (see --help)\n");
 }
