@@ -17,7 +17,15 @@
 namespace propulsion_estimator {
 namespace {
 
+// A scalar this long is shown by its start: a CSV or a text given as a YAML file reads as one
+// plain scalar, the whole file.
+constexpr std::size_t kLongestScalarShown = 60;
+
 std::string describe(const YAML::Node& value) {
+  if (value.IsScalar() && value.Scalar().size() > kLongestScalarShown) {
+    return "'" + value.Scalar().substr(0, kLongestScalarShown) + "...' (a text of " +
+           std::to_string(value.Scalar().size()) + " characters)";
+  }
   if (value.IsScalar()) return "'" + value.Scalar() + "'";
   if (value.IsSequence()) return "a list";
   if (value.IsMap()) return "a mapping";

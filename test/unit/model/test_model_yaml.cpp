@@ -337,6 +337,16 @@ TEST(ModelYaml, RefusesAnEffectWithoutItsParameterOrReference) {
             "m.yaml:32: effects.motor_temperature.reference_c: missing key");
 }
 
+// A bench CSV given as a model reads as one plain scalar: the refusal shows its start, not the file.
+TEST(ModelYaml, RefusesACsvShowingItsStartOnly) {
+  std::string csv = "time_s,pwm_us,voltage_v,thrust_n\n";
+  for (int row = 0; row < 200; ++row) csv += "0.5,1500,11.1,3.2\n";
+  const std::string line = refusal(csv);
+  // Its first 60 characters (the lines folded into one), then its length: 32 + 200 * (1 + 17).
+  EXPECT_EQ(line, "m.yaml:1: document: expected a mapping, got 'time_s,pwm_us,voltage_v,thrust_n 0.5,1500,11.1,3.2 "
+                  "0.5,1500,...' (a text of 3632 characters)");
+}
+
 TEST(ModelYaml, RefusesAnEffectThatIsNotAMappingOrNotANumber) {
   EXPECT_EQ(refusal(withEffects("  esc_offset: 12\n")), "m.yaml:32: effects.esc_offset: expected a mapping, got '12'");
   EXPECT_EQ(refusal(withEffects("  esc_offset: {offset_us: twelve}\n")),
