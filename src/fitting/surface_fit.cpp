@@ -394,13 +394,17 @@ class OutputPlan {
     const double r2 = explained(result.surface, data_.output(output));
     if (output != Output::kThrust && r2 < kPoorFitR2) {
       const std::string name = outputName(output);
-      const std::string why = formatPrintf("its best surface explains only R^2 %.2f", r2) + " of column " +
-                              sampleColumn(output) +
-                              (output == Output::kRpm ? " (an electrical speed, or dropouts?): map the rotor's speed "
-                                                        "with --map rpm=<column>, or log it with the motor's pole "
-                                                        "count set in the stand's software"
-                                                      : " (a noisy or misread sensor?): map another column with "
-                                                        "--map " + name + "=<column>");
+      // The advice names a --map the reader takes: the bench quantity, not the output's name.
+      const std::string advice =
+          output == Output::kRpm ? " (an electrical speed, or dropouts?): map the rotor's speed with --map rpm=<column>, "
+                                   "or log it with the motor's pole count set in the stand's software"
+          : output == Output::kEfficiency
+              ? " (a noisy power sensor?): keep --efficiency derived, or map another power column with "
+                "--map power_w=<column>"
+              : std::string(" (a noisy or misread sensor?): map another column with --map ") + sampleColumn(output) +
+                    "=<column>";
+      const std::string why =
+          formatPrintf("its best surface explains only R^2 %.2f", r2) + " of column " + sampleColumn(output) + advice;
       absent(output, "left out: " + why);
       reports_[index(output)].candidates = std::move(result.candidates);
       reports_[index(output)].left_out = name + " left out: " + why;

@@ -426,6 +426,26 @@ TEST(BenchFitRefusals, ConstantColumn) {
             "connected?)");
 }
 
+// A current column that is noise (a misread sensor) is left out, and the advice names a --map the
+// reader takes: the bench quantity current_a, not the output's name.
+TEST(BenchFit, LeavesOutACurrentThatIsNoiseNamingTheMapToTry) {
+  std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, smoothThrust),
+                                    gridLog("b.csv", pwmSteps(1100, 1900, 50), 12.0, smoothThrust),
+                                    gridLog("c.csv", pwmSteps(1100, 1900, 50), 12.6, smoothThrust)};
+  std::mt19937 draw(3);
+  std::uniform_real_distribution<double> noise(1.0, 20.0);
+  for (pe::BenchLog& log : logs) {
+    for (std::size_t row = 0; row < log.rows(); ++row) log.column(pe::BenchColumn::kCurrent).push_back(noise(draw));
+  }
+  const pe::fitting::BenchFit fit = pe::fitting::fitBenchModel(logs, {});
+  ASSERT_EQ(fit.model.output(pe::Output::kCurrent).source, pe::OutputSource::kNone);
+  const std::string& note = fit.model.output(pe::Output::kCurrent).note;
+  EXPECT_NE(note.find("of column current_a (a noisy or misread sensor?): map another column with --map "
+                      "current_a=<column>"),
+            std::string::npos)
+      << note;
+}
+
 TEST(BenchFitRefusals, AnOutputLoggedAtOneVoltageLevelOnly) {
   // rpm in the 11.1 V sweep only: its surface could not depend on voltage.
   std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, smoothThrust),
