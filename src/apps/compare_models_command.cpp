@@ -105,7 +105,8 @@ int runCompareModels(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--cell-cutoff-v", args.hover.cell_cutoff_v, "Cell voltage at which the flight ends")
       ->capture_default_str();
-  app.add_option("--report", args.report, "Directory for the report (Markdown, CSV data, PNG figures)");
+  app.add_option("--report", args.report, "Directory for the report (Markdown, CSV data, PNG figures)")
+      ->check(folderToWrite());
   log_options.addTo(app);
   args.plotter.addTo(app);
   return runToolCommand("compare_models", app, argc, argv, [&] { return compare(args, log_options.readOptions()); });

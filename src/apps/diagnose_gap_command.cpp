@@ -335,7 +335,7 @@ int runDiagnoseGap(int argc, char** argv) {
   Arguments args;
   app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
   app.add_option("--manifest", args.manifest, "Flight manifest: logs and their weighed segments (YAML)")->required();
-  app.add_option("--out", args.out, "Directory for the report")->required();
+  app.add_option("--out", args.out, "Directory for the report")->required()->check(folderToWrite());
   app.add_option("--reference", args.reference,
                  "Flight manifest of the same vehicle's flights known to be healthy (e.g. after maintenance): each "
                  "motor is judged by its change from them (needs --urdf or --frame)");

@@ -230,7 +230,9 @@ int runEstimate(int argc, char** argv) {
   Arguments args;
   app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
   app.add_option("logs", args.logs, "Flight logs (a quoted pattern such as 'logs/*.ulg' is expanded)")->required();
-  app.add_option("--out", args.out, "Directory for the results: one folder per log and summary.md")->required();
+  app.add_option("--out", args.out, "Directory for the results: one folder per log and summary.md")
+      ->required()
+      ->check(folderToWrite());
   app.add_option("--empty-mass-kg", args.empty_mass_kg,
                  "The vehicle's empty mass, kg, for the payload (default: the URDF's inertials, else unknown)");
   app.add_option("--sample-rate-hz", args.sample_rate_hz,

@@ -107,6 +107,8 @@ int fit(const Arguments& args, fitting::FitOptions options, const BenchReadOptio
   std::printf("cross-validation: %s\n", result.grouping_description.c_str());
   printSummary(result);
   if (result.validation_error.empty()) {
+    const std::filesystem::path folder = std::filesystem::path(args.out).parent_path();
+    if (!folder.empty()) std::filesystem::create_directories(folder);
     writeTextFile(args.out, yaml);
   }
 
@@ -137,8 +139,9 @@ int runFitSurfaces(int argc, char** argv) {
   fitting::FitOptions options;
   BenchLogOptions log_options;
   app.add_option("logs", args.logs, "Bench logs, or directories of *.csv logs")->required();
-  app.add_option("--out", args.out, "Model file to write (YAML)")->required();
-  app.add_option("--report", args.report, "Directory for the report (Markdown, CSV data, PNG figures)");
+  app.add_option("--out", args.out, "Model file to write (YAML)")->required()->check(fileToWrite());
+  app.add_option("--report", args.report, "Directory for the report (Markdown, CSV data, PNG figures)")
+      ->check(folderToWrite());
   app.add_option("--group-by", args.group_by,
                  "Cross-validation groups: auto (voltage levels if 3 or more, else PWM levels), voltage, pwm, log")
       ->check(CLI::IsMember({"auto", "voltage", "pwm", "log"}))

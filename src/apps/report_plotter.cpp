@@ -41,6 +41,7 @@ std::string findScript(const std::string& script) {
   namespace fs = std::filesystem;
   if (!script.empty()) {
     if (!fs::exists(script)) throw ConfigError(script + ": plot script not found (--plot-script)");
+    if (fs::is_directory(script)) throw ConfigError(script + ": a folder, not the plot script (--plot-script)");
     return script;
   }
   std::error_code error;

@@ -217,8 +217,8 @@ int runSimulateCommand(int argc, char** argv) {
   bench_command->add_option("--cutoff-v", bench.cutoff_v, "discharge, constant_thrust: cut-off voltage (default 10.5)")
       ->check(positiveNumber());
   bench_command->add_option("--seed", bench.seed, "Seed of the sensor noise (default 1)");
-  bench_command->add_option("--output", bench.output, "Native bench CSV to write")->required();
-  bench_command->add_option("--truth", bench.truth, "Also write the noise-free log to this CSV");
+  bench_command->add_option("--output", bench.output, "Native bench CSV to write")->required()->check(fileToWrite());
+  bench_command->add_option("--truth", bench.truth, "Also write the noise-free log to this CSV")->check(fileToWrite());
 
   FlightOptions flight;
   CLI::App* flight_command =

@@ -59,6 +59,46 @@ CLI::Validator positiveNumber() {
       "NUMBER > 0");
 }
 
+namespace {
+
+// The refusal of `path` when some folder on its way is a file, else "".
+std::string throughAFile(const std::filesystem::path& path) {
+  std::error_code error;
+  for (std::filesystem::path folder = path.parent_path(); !folder.empty() && folder != folder.root_path();
+       folder = folder.parent_path()) {
+    if (std::filesystem::exists(folder, error) && !std::filesystem::is_directory(folder, error)) {
+      return path.string() + ": " + folder.string() + " is a file, not a folder";
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+CLI::Validator fileToWrite() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::error_code error;
+        if (std::filesystem::is_directory(text, error) || (!text.empty() && text.back() == '/')) {
+          return text + ": a folder, not a file";
+        }
+        return throughAFile(text);
+      },
+      "FILE");
+}
+
+CLI::Validator folderToWrite() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::error_code error;
+        if (std::filesystem::exists(text, error) && !std::filesystem::is_directory(text, error)) {
+          return text + ": a file, not a folder";
+        }
+        return throughAFile(std::filesystem::path(text) / "x");
+      },
+      "DIR");
+}
+
 int runToolCommand(const std::string& name, CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
   try {
     app.parse(argc, argv);

@@ -31,4 +31,11 @@ CLI::Validator numberIn(double lo, double hi);
 CLI::Validator wholeNumberIn(int lo, int hi);
 CLI::Validator positiveNumber();
 
+// A path the tool writes, checked before any work: a file to write refuses a folder ("out/: a
+// folder, not a file") and a path through a file ("a.csv/m.yaml: a.csv is a file, not a folder");
+// a folder to write refuses a file ("a.csv: a file, not a folder"). Missing folders are created
+// when written.
+CLI::Validator fileToWrite();
+CLI::Validator folderToWrite();
+
 }  // namespace propulsion_estimator

@@ -286,6 +286,31 @@ TEST_F(BenchTools, FitSurfacesUsageAndReaderErrors) {
   EXPECT_EQ(bin.err, "fit_surfaces: --voltage-bin: -1 is not above 0 (see --help)\n");
 }
 
+// Where fit_surfaces writes is checked before the fit: a folder as the model, a path through a
+// file, a file as the report's folder, a folder as the plot script. A missing folder is created.
+TEST_F(BenchTools, FitSurfacesChecksWhereItWritesBeforeTheFit) {
+  const std::string file = (dir_ / "file.txt").string();
+  std::ofstream(file) << "x\n";
+  const std::string logs = strawson("a1_7.csv") + " " + strawson("a1_11.csv") + " " + metadata("a1");
+  const auto refusal = [&](const std::string& options) {
+    const ToolRun r = run(PE_FIT_SURFACES, options + " " + logs);
+    EXPECT_FALSE(fs::exists(dir_ / "m.yaml")) << options;
+    return std::to_string(r.status) + " " + r.err;
+  };
+  EXPECT_EQ(refusal("--out " + dir_.string() + "/"),
+            "2 fit_surfaces: --out: " + dir_.string() + "/: a folder, not a file (see --help)\n");
+  EXPECT_EQ(refusal("--out " + file + "/m.yaml"),
+            "2 fit_surfaces: --out: " + file + "/m.yaml: " + file + " is a file, not a folder (see --help)\n");
+  EXPECT_EQ(refusal("--out " + (dir_ / "m.yaml").string() + " --report " + file),
+            "2 fit_surfaces: --report: " + file + ": a file, not a folder (see --help)\n");
+  EXPECT_EQ(refusal("--out " + (dir_ / "m.yaml").string() + " --report " + (dir_ / "r").string() + " --plot-script " +
+                    dir_.string()),
+            "1 fit_surfaces: " + dir_.string() + ": a folder, not the plot script (--plot-script)\n");
+  const ToolRun made = run(PE_FIT_SURFACES, "--out " + (dir_ / "new" / "m.yaml").string() + " " + logs);
+  EXPECT_EQ(made.status, 0) << made.err;
+  EXPECT_TRUE(fs::exists(dir_ / "new" / "m.yaml"));
+}
+
 TEST_F(BenchTools, FitSurfacesReadsAFiftyThousandCharacterCommentLine) {
   std::ofstream(dir_ / "long.csv") << "# " << std::string(50000, 'x') << "\n# note: " << std::string(50000, 'y')
                                    << "\npwm_us,voltage_v,thrust_g\n1500,11.1,100\n1600,11.1,abc\n";

@@ -73,6 +73,15 @@ TEST(EstimateTool, RefusesAJobCountThatIsNotAWholeNumberInRange) {
   EXPECT_EQ(refusal("70"), "estimate: --jobs: 70 is outside 1..64 (see --help)\n");
 }
 
+// A file given as the results' folder is refused before any log is read.
+TEST(EstimateTool, RefusesAFileAsItsOutputFolder) {
+  const std::filesystem::path dir = freshDirectory("out_file");
+  std::ofstream(dir / "out") << "x\n";
+  const ToolRun run = runTool(PE_ESTIMATE, kModel + " --out " + quoted((dir / "out").string()) + " a.ulg", dir);
+  EXPECT_EQ(run.status, 2);
+  EXPECT_EQ(run.err, "estimate: --out: " + (dir / "out").string() + ": a file, not a folder (see --help)\n");
+}
+
 TEST(EstimateTool, RefusesAFrameWithoutItsArmLength) {
   const std::filesystem::path dir = freshDirectory("frame");
   const ToolRun run = runTool(PE_ESTIMATE,
