@@ -52,6 +52,30 @@ void requireFinite(const BenchLog& log, BenchColumn column) {
   }
 }
 
+// Thrust over power of a propeller on a stand, g/W, from micro rotors at full throttle to large
+// slow ones: a log far outside was written in other units (grams under thrust_n, newtons under
+// thrust_g, milliwatts or kilowatts), and a model fitted on it would be off a hundredfold.
+constexpr double kLowestEfficiencyGPerW = 0.5;
+constexpr double kHighestEfficiencyGPerW = 40.0;
+
+void requirePlausibleEfficiency(const BenchLog& log, const std::vector<double>& power_w, double peak_power_w) {
+  if (!(peak_power_w > 0.0)) return;
+  std::vector<double> efficiency;
+  const std::vector<double>& thrust_n = log.column(BenchColumn::kThrust);
+  for (std::size_t r = 0; r < power_w.size(); ++r) {
+    if (power_w[r] >= kEfficiencyMinPowerShare * peak_power_w) {
+      efficiency.push_back(std::abs(thrust_n[r]) / kNewtonPerGramForce / power_w[r]);
+    }
+  }
+  if (efficiency.empty()) return;
+  const double typical = median(efficiency);
+  if (typical >= kLowestEfficiencyGPerW && typical <= kHighestEfficiencyGPerW) return;
+  throw DataError(log.source + ": thrust over power is " + formatPrintf("%.3g", typical) +
+                  " g/W (the median), where propellers give " + formatPrintf("%g", kLowestEfficiencyGPerW) + "-" +
+                  formatPrintf("%g", kHighestEfficiencyGPerW) +
+                  " g/W: thrust or power logged in other units (grams under thrust_n, newtons under thrust_g, mW or kW)?");
+}
+
 // Levels of sorted keys: consecutive keys closer than `gap` join one level.
 std::vector<int> clusterSorted(const std::vector<std::pair<double, int>>& keyed, double gap, int* count) {
   std::vector<int> level(keyed.size());
@@ -239,6 +263,7 @@ BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOpt
         log_power[r] = v[r] * log.column(BenchColumn::kCurrent)[r];
     }
     const double peak_power = (has_power || has_current) ? *std::max_element(log_power.begin(), log_power.end()) : 0.0;
+    requirePlausibleEfficiency(log, log_power, peak_power);
     for (std::size_t r = 0; r < n; ++r) {
       data.log.push_back(static_cast<int>(l));
       data.line.push_back(log.line_numbers[r]);

@@ -446,6 +446,32 @@ TEST(BenchFit, LeavesOutACurrentThatIsNoiseNamingTheMapToTry) {
       << note;
 }
 
+// Grams logged under thrust_n (a hundred times the thrust) or newtons under thrust_g: thrust over
+// power is then far from any propeller's, and the log is refused, not fitted.
+TEST(BenchFitRefusals, ThrustOrPowerInOtherUnits) {
+  const auto logsWithThrustTimes = [](double scale) {
+    std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 100), 11.1, smoothThrust),
+                                      gridLog("b.csv", pwmSteps(1100, 1900, 100), 12.0, smoothThrust)};
+    for (pe::BenchLog& log : logs) {
+      for (std::size_t row = 0; row < log.rows(); ++row) {
+        const double x = log.column(pe::BenchColumn::kPwm)[row], v = log.column(pe::BenchColumn::kVoltage)[row];
+        log.column(pe::BenchColumn::kPower).push_back(SmoothChain::powerWatts(x, v));
+        log.column(pe::BenchColumn::kThrust)[row] *= scale;
+      }
+    }
+    return logs;
+  };
+  for (double scale : {1.0 / pe::kNewtonPerGramForce, pe::kNewtonPerGramForce}) {
+    const std::string line = refusal(logsWithThrustTimes(scale));
+    EXPECT_EQ(line.rfind("a.csv: thrust over power is ", 0), 0u) << line;
+    EXPECT_NE(line.find(" g/W (the median), where propellers give 0.5-40 g/W: thrust or power logged in other units "
+                        "(grams under thrust_n, newtons under thrust_g, mW or kW)?"),
+              std::string::npos)
+        << line;
+  }
+  EXPECT_EQ(refusal(logsWithThrustTimes(1.0)), "accepted");
+}
+
 TEST(BenchFitRefusals, AnOutputLoggedAtOneVoltageLevelOnly) {
   // rpm in the 11.1 V sweep only: its surface could not depend on voltage.
   std::vector<pe::BenchLog> logs = {gridLog("a.csv", pwmSteps(1100, 1900, 50), 11.1, smoothThrust),
