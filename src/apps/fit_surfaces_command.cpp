@@ -1,6 +1,7 @@
 #include "fit_surfaces_command.h"
 
 #include <algorithm>
+#include <cmath>
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -84,8 +85,9 @@ int fit(const Arguments& args, fitting::FitOptions options, const BenchReadOptio
     try {
       const RpmThrust rpm_thrust = fitRpmThrust(logs, result.model.metadata().benchAirDensity());
       result.model.setRpmThrust(rpm_thrust);
-      std::printf("thrust from rpm: T = %.4g n^2 + %.4g n N (n in rpm), rms %.3g N over %d rows\n",
-                  rpm_thrust.n_per_rpm2, rpm_thrust.n_per_rpm, rpm_thrust.rms_n, rpm_thrust.rows);
+      std::printf("thrust from rpm: T = %.4g n^2 %c %.4g n N (n in rpm), rms %.3g N over %d rows\n",
+                  rpm_thrust.n_per_rpm2, rpm_thrust.n_per_rpm < 0.0 ? '-' : '+', std::abs(rpm_thrust.n_per_rpm),
+                  rpm_thrust.rms_n, rpm_thrust.rows);
     } catch (const DataError& e) {
       std::printf("note: %s\n", e.what());
     }
