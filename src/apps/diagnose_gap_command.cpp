@@ -155,6 +155,22 @@ std::string streamSummary(const FlightStreams& streams, std::size_t* readings) {
   return joined(items);
 }
 
+// The motor balance's verdict in one line of the terminal's summary (report.md has its table).
+std::string motorVerdictLine(const gap::MotorBalance& motors) {
+  if (!motors.unavailable.empty()) return "motors: not judged: " + motors.unavailable;
+  if (!motors.suspect_channel) return "motors: no motor stands out";
+  const auto gap = std::find_if(motors.motors.begin(), motors.motors.end(),
+                                [&](const gap::MotorGap& m) { return m.channel == *motors.suspect_channel; });
+  const std::string against = motors.basis == "reference"  ? "the vehicle's healthy flights"
+                              : motors.basis == "payloads" ? "the weighed payloads"
+                                                           : "the ideal balance";
+  return "suspect motor: channel " + std::to_string(*motors.suspect_channel) + ", modelled " +
+         (gap == motors.motors.end() ? std::string("n/a")
+                                     : formatPrintf("%.1f", gap->thrust_gap_pct) + " +- " + formatPrintf("%.1f", gap->ci_pct)) +
+         " % above its share against " + against + "; it gives " +
+         formatPrintf("%.1f", 100.0 * motors.suspect_thrust_factor, "n/a") + " % of its modelled thrust";
+}
+
 // The diagnosis of the flights read, and its report in `out`: report.md, report.yaml, the
 // figures and their data. The flights refused are listed among what could not be used.
 void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, const Vehicle& vehicle,
@@ -198,6 +214,7 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
     std::printf("ambiguous: %s (the correction uses %s); %s\n", group.c_str(), effects::kindName(ambiguity.kinds[0]),
                 ambiguity.separating_flight.c_str());
   }
+  std::printf("%s\n", motorVerdictLine(diagnosis.motors).c_str());
   if (diagnosis.heldout.nested.unavailable.empty()) {
     std::printf("nested held-out RMSE (flights that chose nothing) %s %% -> %s %%\n",
                 formatPrintf("%.2f", diagnosis.heldout.nested.before_rmse_pct).c_str(),
@@ -211,15 +228,21 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   onboard_model.setMotorReference(config.motor_reference);
   std::vector<std::string> names;
   std::vector<gap::MotorHealthReplay> replays;
-  int flagged = 0;
+  int flagged = 0, judged = 0;
   for (const Flight& flight : flights) {
     names.push_back(flight.name);
     replays.push_back(gap::replayMotorHealth(onboard_model, vehicle, flight.streams));
     flagged += !replays.back().flagged_channels.empty();
+    judged += replays.back().judgements > 0;
   }
   writeTextFile(args.out + "/motor_health.yaml", gap::motorHealthReplayYaml(names, replays));
-  std::printf("onboard motor-health check: a motor flagged on %d of %zu flights; %s/motor_health.yaml\n", flagged,
-              flights.size(), args.out.c_str());
+  // A flight never judged is not a healthy one: the count says how many were.
+  std::printf("onboard motor-health check: judged on %d of %zu flights, a motor flagged on %d%s; %s/motor_health.yaml\n",
+              judged, flights.size(), flagged,
+              judged < static_cast<int>(flights.size())
+                  ? " (not judged: no steady hover the node's check accepts at its default parameters)"
+                  : "",
+              args.out.c_str());
   std::vector<gap::ModelCheckReplay> checks;
   int with_telemetry = 0, checked_flagged = 0;
   for (const Flight& flight : flights) {

@@ -229,3 +229,23 @@ TEST_F(DiagnoseGapTool, ModelWithoutBenchAirLeavesAirDensityUntestable) {
             std::string::npos)
       << report;
 }
+
+// The README's CrazyPAD diagnosis (real flights, motor 3's propeller cut since the healthy ones):
+// the terminal's summary names the suspect motor, and says that the onboard check judged none of
+// the three flights rather than that it flagged none (a 30 g vehicle is below the node's default
+// hover mass).
+TEST_F(DiagnoseGapTool, SaysOnTheTerminalWhichMotorAndWhatTheOnboardCheckJudged) {
+  const std::string data = repoPath("test/data/crazypad/");
+  const ToolRun r = run("--model " + data + "crazyflie21_model.yaml --urdf " + data + "crazyflie21.urdf --manifest " +
+                        data + "cut_M3_3mm_E8.manifest.yaml --reference " + data + "healthy_E8.manifest.yaml --out " +
+                        file("cf") + " --python /usr/bin/python3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\nsuspect motor: channel 3, modelled 6.6 +- 3.3 % above its share against the vehicle's healthy "
+                       "flights; it gives 93.8 % of its modelled thrust\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\nonboard motor-health check: judged on 0 of 3 flights, a motor flagged on 0 (not judged: no "
+                       "steady hover the node's check accepts at its default parameters); "),
+            std::string::npos)
+      << r.out;
+}
