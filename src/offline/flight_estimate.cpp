@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 
 #include "propulsion_estimator/common/name_list.h"
@@ -235,6 +236,10 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
   EpisodeTracker episodes(session.capabilityEstimator(), options.estimator.payload.episode_gap_s);
   std::array<std::uint64_t, kBlockerCount> blockers{};
   double next_verdict_s = -std::numeric_limits<double>::infinity();
+  // Per flagged channel, when first and in how many judged windows: a flag early in a flight may
+  // be gone by its last window, which the summary shows.
+  std::map<int, std::pair<double, int>> flags;
+  int judged_windows = 0;
 
   FlightEstimate result;
   result.source = streams.source;
@@ -251,7 +256,12 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
     next_verdict_s = out.stamp_s + 1.0;
     const MotorHealthVerdict verdict = session.motorHealth();
     if (verdict.judged) result.motor_health = verdict;
-    if (verdict.flagged_channel != 0) addOnce(&result.flagged_channels, verdict.flagged_channel);
+    judged_windows += verdict.judged;
+    if (verdict.flagged_channel != 0) {
+      addOnce(&result.flagged_channels, verdict.flagged_channel);
+      const double into_s = out.stamp_s - (feed.arrivals().empty() ? 0.0 : feed.arrivals().front().time_s);
+      ++flags.try_emplace(verdict.flagged_channel, into_s, 0).first->second.second;
+    }
     takeEscCheck(session.modelCheck().report(out.stamp_s), &result);
   }
   if (result.esc_check.verdict == ModelCheckVerdict::kNotJudged) {
@@ -272,8 +282,15 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
              rangesOf(streams, vehicle.rotors.size(), options.estimator.disarmed_pwm_max_us), &result.warnings);
   if (result.hovers.empty()) warnNoHover(blockers, result.counters.accepted, &result.warnings);
   for (int channel : result.flagged_channels) {
-    result.warnings.push_back("the motor-health check flagged channel " + std::to_string(channel) +
-                              " (its share of the thrust beyond the healthy spread; diagnose_gap locates it)");
+    const auto& [first_s, windows] = flags.at(channel);
+    const int last = result.motor_health.flagged_channel;
+    result.warnings.push_back(
+        "the motor-health check flagged channel " + std::to_string(channel) + " in " + std::to_string(windows) + " of " +
+        std::to_string(judged_windows) + " judged windows, first " + formatPrintf("%.0f", first_s) +
+        " s into the log (its share of the thrust beyond the healthy spread; diagnose_gap locates it)" +
+        (last == channel ? std::string("")
+         : last == 0     ? std::string("; the last window: no motor stands out")
+                         : "; the last window: channel " + std::to_string(last)));
   }
   for (const std::string& flag : result.esc_flags) {
     result.warnings.push_back("the live ESC check said " + flag + " (ESC telemetry against the model)");

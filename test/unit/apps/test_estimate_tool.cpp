@@ -50,6 +50,25 @@ TEST(EstimateTool, EstimatesEveryLogItCanReadAndNamesTheOneItCannot) {
   EXPECT_NE(index.find("(log171_cut/summary.md) | 3 hovers ("), std::string::npos) << index;
 }
 
+// The ArduCopter's motors judged with its frame: a channel flagged in a few windows, gone by the
+// last one, is said so, beside the summary's last window (no contradiction left to the user).
+TEST(EstimateTool, SaysWhenAndHowOftenAMotorWasFlaggedBesideTheLastWindow) {
+  const std::filesystem::path dir = freshDirectory("flagged");
+  const ToolRun run =
+      runTool(PE_ESTIMATE,
+              kModel + " --no-figures --frame quad_x --arm-m 0.225 --out " + quoted((dir / "out").string()) + " " +
+                  quoted(repoPath("test/data/arducopter_dronekit_la_log171/log171_cut.bin")),
+              dir);
+  ASSERT_EQ(run.status, 0) << run.err;
+  const std::string summary = slurp(dir / "out/log171_cut/summary.md");
+  EXPECT_NE(summary.find("Last window of 10 steady-hover blocks: no motor stands out."), std::string::npos) << summary;
+  EXPECT_NE(summary.find("- the motor-health check flagged channel 4 in 3 of 52 judged windows, first 198 s into the "
+                         "log (its share of the thrust beyond the healthy spread; diagnose_gap locates it); the last "
+                         "window: no motor stands out\n"),
+            std::string::npos)
+      << summary;
+}
+
 TEST(EstimateTool, RefusesASampleRateOutsideItsRangeNamingTheOption) {
   const std::filesystem::path dir = freshDirectory("rate");
   const ToolRun run = runTool(PE_ESTIMATE,
