@@ -6,6 +6,7 @@
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/vehicle/vehicle_urdf.h"
+#include "tool_command.h"
 
 namespace propulsion_estimator {
 namespace {
@@ -22,8 +23,9 @@ void FlightInputOptions::addTo(CLI::App& app) {
                  "Vehicle URDF: rotors (rotor_<k>_joint, in motor-channel order) and geometry (default: a quadcopter "
                  "on channels 1-4, geometry unknown)");
   app.add_option("--frame", frame_,
-                 "Instead of --urdf, a common frame in the autopilots' motor order (PX4's and ArduPilot's agree): quad_x, hexa_x, octo_x (needs --arm-m)");
-  app.add_option("--arm-m", arm_m_, "Arm length of --frame: centre to rotor hub, m");
+                 "Instead of --urdf, a common frame in the autopilots' motor order (PX4's and ArduPilot's agree): quad_x, hexa_x, octo_x (needs --arm-m)")
+      ->check(CLI::IsMember({"quad_x", "hexa_x", "octo_x"}));
+  app.add_option("--arm-m", arm_m_, "Arm length of --frame: centre to rotor hub, m")->check(numberIn(0.03, 2.0));
   app.add_option("--topic", topics_,
                  "NAME=TOPIC: in a rosbag, read signal NAME from TOPIC instead of MAVROS' (repeatable); names: " +
                      signalNames());
@@ -35,11 +37,11 @@ void FlightInputOptions::addTo(CLI::App& app) {
 
 Vehicle FlightInputOptions::vehicle(const std::string& tool) const {
   if (!frame_.empty()) {
-    if (!urdf_.empty()) throw ConfigError("--frame: give the frame or --urdf, not both");
-    if (std::isnan(arm_m_)) throw ConfigError("--frame " + frame_ + ": needs --arm-m, the arm length in m");
+    if (!urdf_.empty()) throw UsageError("--frame: give the frame or --urdf, not both");
+    if (std::isnan(arm_m_)) throw UsageError("--frame " + frame_ + ": needs --arm-m, the arm length in m");
     return Vehicle::frame(frame_, arm_m_);
   }
-  if (!std::isnan(arm_m_)) throw ConfigError("--arm-m: needs --frame");
+  if (!std::isnan(arm_m_)) throw UsageError("--arm-m: needs --frame");
   if (urdf_.empty()) {
     std::printf("note: no --urdf or --frame: %d motors on RCOut channels 1-%d, thrusting up at unknown positions "
                 "(the motor balance needs the geometry; a single weak motor cannot be told from an effect)\n",

@@ -107,8 +107,18 @@ TEST(EstimateTool, RefusesAFrameWithoutItsArmLength) {
                               kModel + " --no-figures --frame hexa_x --out " + quoted((dir / "out").string()) + " " +
                                   quoted(repoPath("test/data/arducopter_dronekit_la_log171/log171_cut.bin")),
                               dir);
-  EXPECT_EQ(run.status, 1);
-  EXPECT_EQ(run.err, "estimate: --frame hexa_x: needs --arm-m, the arm length in m\n");
+  EXPECT_EQ(run.status, 2);
+  EXPECT_EQ(run.err, "estimate: --frame hexa_x: needs --arm-m, the arm length in m (see --help)\n");
+  // An unknown frame and a frame beside a URDF are usage errors too.
+  const ToolRun unknown = runTool(PE_ESTIMATE, kModel + " --frame quad_y --arm-m 0.2 --out " + quoted((dir / "out").string()) + " a.bin", dir);
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_EQ(unknown.err, "estimate: --frame: quad_y not in {quad_x,hexa_x,octo_x} (see --help)\n");
+  const ToolRun both = runTool(PE_ESTIMATE,
+                               kModel + " --frame quad_x --arm-m 0.2 --urdf " + quoted(repoPath("config/f450_quad.urdf")) +
+                                   " --out " + quoted((dir / "out").string()) + " a.bin",
+                               dir);
+  EXPECT_EQ(both.status, 2);
+  EXPECT_EQ(both.err, "estimate: --frame: give the frame or --urdf, not both (see --help)\n");
 }
 
 TEST(EstimateTool, TakesTheNodesParametersFromAFileAsALaunchFileLoadsThem) {
