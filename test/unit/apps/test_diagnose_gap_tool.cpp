@@ -258,4 +258,11 @@ TEST_F(DiagnoseGapTool, SaysOnTheTerminalWhichMotorAndWhatTheOnboardCheckJudged)
                     "bench logged only 3.57-3.57 V (outside: clamp)"),
             std::string::npos)
       << md;
+  // The corrected model's thrust_loss holds the vehicle's healthy level, no selected effect: its
+  // header says so.
+  std::ifstream corrected(file("cf/corrected_model.yaml"));
+  std::string header;
+  std::getline(corrected, header);
+  EXPECT_EQ(header, "# " + data + "crazyflie21_model.yaml with the effects diagnose_gap selected (none) and the "
+                    "vehicle's level on its healthy flights, 0.8171 of the model's thrust, in thrust_loss; see report.md");
 }
