@@ -300,23 +300,26 @@ void throwAtField(const YamlMap& root, const FieldError& error) {
   std::istringstream stream(error.field());
   for (std::string part; std::getline(stream, part, '.');) parts.push_back(part);
 
-  // Walk down "a.b[2].c" as far as the document goes; the last part present names the line.
-  YamlMap map = root;
+  // Walk down "a.b[2].c" as far as the document goes; the last part present names the line. The
+  // maps walked are kept, never assigned: assigning a YAML::Node writes into the node it refers
+  // to, and would rewrite the document itself (a later refusal then named a wrong line).
+  std::vector<YamlMap> walked = {root};
   std::string key = parts.empty() ? "" : parts.front();
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const std::string& part = parts[i];
     const std::size_t bracket = part.find('[');
     key = part.substr(0, bracket);
-    if (i + 1 == parts.size() || !map.has(key)) break;
+    if (i + 1 == parts.size() || !walked.back().has(key)) break;
     if (bracket == std::string::npos) {
-      map = map.map(key);
+      walked.push_back(walked.back().map(key));
       continue;
     }
-    const std::vector<YamlMap> items = map.maps(key);
+    std::vector<YamlMap> items = walked.back().maps(key);
     const std::size_t index = std::stoul(part.substr(bracket + 1));
     if (index >= items.size()) break;
-    map = items[index];
+    walked.push_back(items[index]);
   }
+  const YamlMap& map = walked.back();
   // where() gives "<source>:<line>: <path.key>"; keep the location, name the field as given.
   const std::string where = map.where(key);
   const std::string suffix = ": " + (map.path().empty() ? key : map.path() + "." + key);

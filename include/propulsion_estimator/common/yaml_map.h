@@ -18,6 +18,10 @@ class YamlMap {
  public:
   /// `path` is the dotted key path of this map ("" for the document root).
   YamlMap(const YAML::Node& node, std::string source, std::string path);
+  YamlMap(const YamlMap&) = default;
+  /// Not assignable: assigning a YAML::Node writes into the node it refers to, which would
+  /// rewrite the document; keep another YamlMap instead.
+  YamlMap& operator=(const YamlMap&) = delete;
 
   /// Refuses any key not in `allowed`.
   void allowOnly(std::initializer_list<const char*> allowed) const;

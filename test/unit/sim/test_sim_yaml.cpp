@@ -438,6 +438,14 @@ TEST(FlightManifest, EntriesKeepAFlightsRefusalAndTheOtherFlights) {
             path + ":8: flights[1].segments[0].mass_kg: 0 is outside 0..100 kg (must be positive)");
   EXPECT_EQ(entries[2].refusal, "");
   EXPECT_EQ(entries[2].flight.segments[0].mass_kg, 1.5);
+  // Two flights refused: each on its own line (locating the first once rewrote the document, and
+  // the second was then named on the first flight's line).
+  pe::writeTextFile(path, kManifest + "  - bag: b.bag\n    segments:\n      - {start: 1, end: 2, mass_kg: 0}\n" +
+                              "  - bag: c.bag\n    segments:\n      - {start: 3, end: 4, mass_kg: 1500}\n");
+  const std::vector<pe::ManifestEntry> two = pe::loadFlightManifestEntries(path);
+  ASSERT_EQ(two.size(), 3u);
+  EXPECT_EQ(two[1].refusal, path + ":8: flights[1].segments[0].mass_kg: 0 is outside 0..100 kg (must be positive)");
+  EXPECT_EQ(two[2].refusal, path + ":11: flights[2].segments[0].mass_kg: 1500 is outside 0..100 kg (must be positive)");
   // What is wrong with the file itself still refuses it.
   pe::writeTextFile(path, "flights: []\n");
   EXPECT_EQ(refusal([&] { pe::loadFlightManifestEntries(path); }), path + ":1: flights: no flights");
