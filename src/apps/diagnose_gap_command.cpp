@@ -177,6 +177,11 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
                        const std::vector<Flight>& flights, const gap::DiagnosisConfig& config,
                        const std::vector<BenchLog>& bench, const std::vector<std::string>& refusals) {
   gap::Diagnosis diagnosis = gap::diagnoseGap(model, vehicle, flights, config, bench);
+  // What the diagnosis could not use or doubts reaches the terminal too (the refusals already did);
+  // the shortfall of steady data has a line of its own below.
+  for (const std::string& problem : diagnosis.problems) {
+    if (problem != diagnosis.steady_data_shortfall) std::printf("problem: %s\n", problem.c_str());
+  }
   diagnosis.problems.insert(diagnosis.problems.begin(), refusals.begin(), refusals.end());
   writeTextFile(args.out + "/report.yaml", gap::gapReportYaml(diagnosis));
   gap::writeGapReportData(diagnosis, args.out);

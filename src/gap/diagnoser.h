@@ -32,6 +32,9 @@ using effects::Kind;
 // A, the most the avionics (flight controller, companion computer, radios, camera) draw beside the
 // motors: the current view's nuisance is sought within 0..this.
 constexpr double kMaxAvionicsCurrentA = 3.0;
+// |bias| of a flight beyond which the gap is no unmodelled effect but a mass in other units, a
+// segment on the ground or another vehicle's model, %.
+constexpr double kImplausibleBiasPct = 50.0;
 // What the cut into blocks left out, for the one line that says why nothing could be used.
 struct UnusedData {
   int transient = 0;               // blocks changing or accelerating beyond the steadiness bounds

@@ -130,6 +130,14 @@ void Diagnoser::reportWhere(const BlockView& pwm_view) {
   by_flight.name = "flight";
   for (const FlightGap& flight : diagnosis_.flights) {
     if (flight.stats.samples > 0) by_flight.bins.push_back({flight.name, flight.stats});
+    // No unmodelled effect halves or doubles the thrust: a gap this large is a mass in other
+    // units, a segment on the ground or another vehicle's model, and is said before any effect.
+    if (flight.stats.samples > 0 && std::abs(flight.stats.bias_pct) > kImplausibleBiasPct) {
+      diagnosis_.problems.push_back(flight.name + ": the model gives " +
+                                    formatPrintf("%.1f", 100.0 + flight.stats.bias_pct) +
+                                    " % of the thrust its weighed mass needs: is mass_kg in kg (not grams), the vehicle "
+                                    "airborne in every segment, and the model this vehicle's?");
+    }
   }
   diagnosis_.where.push_back(by_flight);
 }

@@ -266,3 +266,21 @@ TEST_F(DiagnoseGapTool, SaysOnTheTerminalWhichMotorAndWhatTheOnboardCheckJudged)
   EXPECT_EQ(header, "# " + data + "crazyflie21_model.yaml with the effects diagnose_gap selected (none) and the "
                     "vehicle's level on its healthy flights, 0.8171 of the model's thrust, in thrust_loss; see report.md");
 }
+
+// A mass written in grams under mass_kg (30 for a 30 g Crazyflie): no effect halves the thrust a
+// thousandfold, and the tool says what to check, on the terminal and in the report.
+TEST_F(DiagnoseGapTool, SaysAMassInGramsIsNoEffect) {
+  const std::string logs = repoPath("test/data/crazypad/cut_propeller_M3_3mm/");
+  writeManifest("grams.yaml", "flights:\n  - log: " + logs + "E8_log01\n    segments:\n"
+                              "      - {start: 5.2, end: 10.3, mass_kg: 30}\n      - {start: 19, end: 24.4, mass_kg: 30}\n");
+  const ToolRun r = run("--model " + repoPath("test/data/crazypad/crazyflie21_model.yaml") + " --manifest " +
+                        file("grams.yaml") + " --out " + file("g") + " --python /usr/bin/python3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string problem = "problem: " + logs + "E8_log01: the model gives 0.1 % of the thrust its weighed mass needs: "
+                              "is mass_kg in kg (not grams), the vehicle airborne in every segment, and the model this "
+                              "vehicle's?\n";
+  EXPECT_NE(r.out.find(problem), std::string::npos) << r.out;
+  std::ifstream report(file("g/report.md"));
+  const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find(problem.substr(9, problem.size() - 10)), std::string::npos) << md;
+}
