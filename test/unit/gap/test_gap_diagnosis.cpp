@@ -627,11 +627,11 @@ TEST_F(SyntheticFlights, SaysWhenTheFlightsLieOutsideTheModelsDomain) {
     for (pe::BatteryReading& reading : flight.streams.battery) reading.voltage_v += 4.0;
   }
   const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{});
-  ASSERT_FALSE(diagnosis.problems.empty());
-  EXPECT_EQ(diagnosis.problems.back(),
-            "585 of 585 blocks lie outside the model's domain: the flights' battery reads 15.03-16.40 V and their pulse "
-            "widths 1621-1788 us, the model covers 10.50-12.60 V and 1200-1900 us (outside: clamp): is this the right "
-            "model for this vehicle and battery?");
+  const std::string outside =
+      "585 of 585 blocks lie outside the model's domain: the flights' battery reads 15.03-16.40 V and their pulse "
+      "widths 1621-1788 us, the model covers 10.50-12.60 V and 1200-1900 us (outside: clamp): is this the right "
+      "model for this vehicle and battery?";
+  EXPECT_NE(std::find(diagnosis.problems.begin(), diagnosis.problems.end(), outside), diagnosis.problems.end());
 }
 
 TEST_F(SyntheticFlights, ReportYamlHoldsTheContract) {
