@@ -50,8 +50,9 @@ BlockConfig blockConfig(const DiagnosisConfig& config, const PropulsionModel& mo
 std::string groundDrawText(const std::vector<std::string>& measured, const std::vector<std::string>& unmeasured,
                            double stopped_pwm_us);
 // "no usable sample in any weighed segment of any flight: ..." with each reason's count and
-// bound (usable_data.cpp).
-std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config);
+// bound, or, when no block was cut at all, the segments' problems (usable_data.cpp).
+std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config,
+                          const std::vector<std::string>& segment_problems);
 // A line when most blocks lie outside the model's domain, naming the flights' ranges beside the
 // model's: is this the right model? nullopt otherwise (usable_data.cpp).
 std::optional<std::string> outsideTheDomain(const std::vector<Block>& blocks, const ModelDomain& domain, int motors);

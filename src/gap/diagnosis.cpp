@@ -80,7 +80,7 @@ void Diagnoser::cut() {
   diagnosis_.blocks = static_cast<int>(blocks_.size());
   diagnosis_.ground_draw = groundDrawText(measured, unmeasured, stoppedPwmUs(model_.domain()));
   unused.transient = diagnosis_.transient_blocks;
-  if (blocks_.empty()) throw DataError(nothingUsable(unused, config_));
+  if (blocks_.empty()) throw DataError(nothingUsable(unused, config_, diagnosis_.problems));
   if (unused.rejected_outside > 0) {
     diagnosis_.problems.push_back(std::to_string(unused.rejected_outside) +
                                   " blocks outside the model's domain left out: it rejects them (outside: reject), "

@@ -8,7 +8,8 @@ namespace propulsion_estimator {
 namespace gap {
 namespace detail {
 
-std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config) {
+std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config,
+                          const std::vector<std::string>& segment_problems) {
   std::string reasons;
   const auto add = [&reasons](const std::string& reason) { reasons += (reasons.empty() ? "" : "; ") + reason; };
   if (unused.transient > 0) {
@@ -28,8 +29,17 @@ std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& confi
     add(std::to_string(unused.rejected_outside) +
         " blocks outside the model's domain, which it rejects (outside: reject) as the node would");
   }
-  return "no usable sample in any weighed segment of any flight" +
-         (reasons.empty() ? std::string(" (see the lines above for each segment)") : ": " + reasons);
+  // The segments' own problems are the reasons when no block was cut at all: the refusal is the
+  // only line the user sees, so it carries them.
+  if (reasons.empty()) {
+    const std::string skipped = "; skipped";
+    for (const std::string& problem : segment_problems) {
+      const bool says_skipped = problem.size() > skipped.size() &&
+                                problem.compare(problem.size() - skipped.size(), skipped.size(), skipped) == 0;
+      add(says_skipped ? problem.substr(0, problem.size() - skipped.size()) : problem);
+    }
+  }
+  return "no usable sample in any weighed segment of any flight" + (reasons.empty() ? std::string() : ": " + reasons);
 }
 
 std::optional<std::string> outsideTheDomain(const std::vector<Block>& blocks, const ModelDomain& domain, int motors) {

@@ -600,7 +600,15 @@ TEST_F(SyntheticFlights, RefusesWhenNothingIsUsable) {
     gap::diagnoseGap(model_, vehicle_, all, gap::DiagnosisConfig{});
     FAIL() << "diagnosed flights with nothing usable";
   } catch (const pe::DataError& e) {
-    EXPECT_STREQ(e.what(), "no usable sample in any weighed segment of any flight (see the lines above for each segment)");
+    // The refusal is the only line the user sees: it carries each segment's problem.
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("no usable sample in any weighed segment of any flight: f1.bag: segment 1 (5000-5010 s) lies "
+                         "outside the log's rc/out span 0.00-",
+                         0),
+              0u)
+        << what;
+    EXPECT_NE(what.find(" s; f2.bag: segment 1 (5000-5010 s) lies outside the log's rc/out span 0.00-"), std::string::npos)
+        << what;
   }
 }
 
