@@ -21,6 +21,7 @@
 #include "propulsion_estimator/bag/bag_records.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/data_error.h"
+#include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/codecs/esc_telemetry_codec.h"
@@ -284,8 +285,7 @@ double secondsSince(const ros::Time& start, const ros::Time& time) {
 }  // namespace
 
 FlightBagReader::FlightBagReader(const std::string& path) : path_(path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
+  requireRegularFile(path);
   // The record walk opens no rosbag object: outside the lock, readers run it in parallel.
   const BagRecordCheck checked = checkBagRecords(path);
   if (!checked.damage.empty()) {

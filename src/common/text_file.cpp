@@ -7,6 +7,15 @@
 
 namespace propulsion_estimator {
 
+void requireRegularFile(const std::string& path) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::is_regular_file(status)) return;
+  if (std::filesystem::is_directory(status)) throw InputError(path + ": a folder, not a file");
+  if (std::filesystem::exists(status)) throw InputError(path + ": not a regular file (a device, pipe or socket)");
+  throw InputError(path + ": no such file");
+}
+
 std::string readTextFile(const std::string& path) {
   // A folder opens as a stream whose size reads as the largest offset: refused by name instead.
   std::error_code error;

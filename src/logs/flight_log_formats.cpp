@@ -52,8 +52,7 @@ void FlightLogFormats::add(FlightLogFormat format) {
 }
 
 std::unique_ptr<FlightLogReader> FlightLogFormats::open(const std::string& path) const {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
+  requireRegularFile(path);
   std::size_t longest = 0;
   for (const FlightLogFormat& format : formats_) longest = std::max(longest, format.magic.size());
   std::ifstream in(path, std::ios::binary);
@@ -84,8 +83,7 @@ std::vector<std::string> FlightLogFormats::names() const {
 }
 
 std::string readFlightLogBytes(const std::string& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) throw InputError(path + ": no such file");
+  requireRegularFile(path);
   return readTextFile(path);
 }
 
