@@ -178,9 +178,12 @@ void emitGap(YAML::Emitter& out, const Diagnosis& diagnosis) {
     out << YAML::Key << "problems" << YAML::Value << YAML::Flow << flight.problems;
     out << YAML::Key << "segments" << YAML::Value << YAML::BeginSeq;
     for (const ManifestSegment& segment : flight.segments) {
-      out << YAML::Flow << YAML::BeginMap << YAML::Key << "start" << YAML::Value << segment.start_s << YAML::Key
-          << "end" << YAML::Value << segment.end_s << YAML::Key << "mass_kg" << YAML::Value << segment.mass_kg
-          << YAML::EndMap;
+      // As the manifest gave them (5.2, not 5.2000000000000002).
+      out << YAML::Flow << YAML::BeginMap;
+      emitField(out, "start", segment.start_s, "%.10g");
+      emitField(out, "end", segment.end_s, "%.10g");
+      emitField(out, "mass_kg", segment.mass_kg, "%.10g");
+      out << YAML::EndMap;
     }
     out << YAML::EndSeq << YAML::EndMap;
   }

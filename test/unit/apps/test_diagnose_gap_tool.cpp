@@ -258,6 +258,10 @@ TEST_F(DiagnoseGapTool, SaysOnTheTerminalWhichMotorAndWhatTheOnboardCheckJudged)
                     "bench logged only 3.57-3.57 V (outside: clamp)"),
             std::string::npos)
       << md;
+  // The segments as the manifest gives them.
+  std::ifstream yaml_file(file("cf/report.yaml"));
+  const std::string yaml((std::istreambuf_iterator<char>(yaml_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(yaml.find("- {start: 5.2, end: 10.3, mass_kg: 0.03}"), std::string::npos) << yaml;
   // The corrected model's thrust_loss holds the vehicle's healthy level, no selected effect: its
   // header says so.
   std::ifstream corrected(file("cf/corrected_model.yaml"));
