@@ -95,7 +95,9 @@ std::vector<std::string> outputDirectories(const std::string& out, const std::ve
 // The node's parameters, from --params as a launch file would load them (else the node's
 // defaults), read and validated by the node's own reader; the options on top.
 offline::EstimateOptions optionsOf(const Arguments& args, const Vehicle& vehicle) {
-  const std::map<std::string, std::string> model{{"model", args.model}};
+  // The model and the URDF are the tool's options; the parameters print them as the node would.
+  std::map<std::string, std::string> model{{"model", args.model}};
+  if (!args.input.urdf().empty()) model["urdf_file"] = args.input.urdf();
   const std::unique_ptr<offline::YamlParameterSource> source =
       args.params.empty() ? std::make_unique<offline::YamlParameterSource>(model)
                           : std::make_unique<offline::YamlParameterSource>(args.params, model);

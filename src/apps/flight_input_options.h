@@ -19,10 +19,13 @@ class FlightInputOptions {
   void addTo(CLI::App& app);
   // The vehicle the options name: the URDF's, the frame's, or (saying so on stdout, prefixed by
   // `tool`) a quadcopter on channels 1-4 at unknown positions. Throws ConfigError naming the option
-  // for a frame without --arm-m, both a frame and a URDF, --arm-m alone, or more rotors than read.
+  // for too many rotors, UsageError for a frame without --arm-m, both a frame and a URDF, or
+  // --arm-m alone.
   Vehicle vehicle(const std::string& tool) const;
   // How each log is read for `motors` motors. Throws ConfigError naming the option.
   FlightLogOptions logOptions(int motors) const;
+  // The --urdf given, or "".
+  const std::string& urdf() const { return urdf_; }
   // The --topic sources as given.
   const std::vector<std::string>& topics() const { return topics_; }
 

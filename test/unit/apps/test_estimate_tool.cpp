@@ -144,6 +144,9 @@ TEST(EstimateTool, TakesTheNodesParametersFromAFileAsALaunchFileLoadsThem) {
   EXPECT_EQ(tuned.status, 0) << tuned.err;
   EXPECT_NE(tuned.out.find("2 hovers"), std::string::npos) << tuned.out;
   EXPECT_NE(tuned.out.find("min_mass_kg 0.01"), std::string::npos) << tuned.out;  // each loaded value, once
+  // The URDF the tool uses, not "(none)".
+  EXPECT_NE(tuned.out.find("\n  urdf_file: " + repoPath("test/data/crazypad/crazyflie21.urdf") + "\n"), std::string::npos)
+      << tuned.out;
   const ToolRun channels = withParams("channels.yaml", "motor_channels: [5, 6, 7, 8]\n");
   EXPECT_EQ(channels.status, 1);
   EXPECT_EQ(channels.err, "estimate: " + (dir / "channels.yaml").string() +
