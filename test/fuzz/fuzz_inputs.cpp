@@ -148,8 +148,17 @@ bool feedDataflash(const std::uint8_t* data, std::size_t size) {
 // A rosbag as diagnose_gap reads it. rosbag opens files only: the input goes to a file of this
 // process first.
 bool feedFlightBag(const std::uint8_t* data, std::size_t size) {
-  static const std::string path =
-      (std::filesystem::temp_directory_path() / ("pe_fuzz_" + std::to_string(::getpid()) + ".bag")).string();
+  // The file is removed as the process ends: a run per process id would otherwise leave one behind.
+  struct RemovedAtExit {
+    std::string path;
+    ~RemovedAtExit() {
+      std::error_code error;
+      std::filesystem::remove(path, error);
+    }
+  };
+  static const RemovedAtExit file{
+      (std::filesystem::temp_directory_path() / ("pe_fuzz_" + std::to_string(::getpid()) + ".bag")).string()};
+  const std::string& path = file.path;
   std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), size);
   try {
     const FlightBagReader reader(path);
