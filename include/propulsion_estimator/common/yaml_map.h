@@ -18,6 +18,7 @@ class YamlMap {
  public:
   /// `path` is the dotted key path of this map ("" for the document root).
   YamlMap(const YAML::Node& node, std::string source, std::string path);
+  /// A copy refers to the same mapping of the same document.
   YamlMap(const YamlMap&) = default;
   /// Not assignable: assigning a YAML::Node writes into the node it refers to, which would
   /// rewrite the document; keep another YamlMap instead.
