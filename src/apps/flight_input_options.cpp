@@ -24,8 +24,9 @@ void FlightInputOptions::addTo(CLI::App& app) {
                  "on channels 1-4, geometry unknown)");
   app.add_option("--frame", frame_,
                  "Instead of --urdf, a common frame in the autopilots' motor order (PX4's and ArduPilot's agree): quad_x, hexa_x, octo_x (needs --arm-m)")
-      ->check(CLI::IsMember({"quad_x", "hexa_x", "octo_x"}));
-  app.add_option("--arm-m", arm_m_, "Arm length of --frame: centre to rotor hub, m")->check(numberIn(0.03, 2.0));
+      ->check(CLI::IsMember(Vehicle::frameNames()));
+  app.add_option("--arm-m", arm_m_, "Arm length of --frame: centre to rotor hub, m")
+      ->check(numberIn(Vehicle::kMinArmM, Vehicle::kMaxArmM));
   app.add_option("--topic", topics_,
                  "NAME=TOPIC: in a rosbag, read signal NAME from TOPIC instead of MAVROS' (repeatable); names: " +
                      signalNames());

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "propulsion_estimator/common/config_error.h"
+#include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/number_format.h"
 
 namespace propulsion_estimator {
@@ -61,9 +62,10 @@ std::vector<std::string> Vehicle::frameNames() { return {"quad_x", "hexa_x", "oc
 
 Vehicle Vehicle::frame(const std::string& name, double arm_length_m) {
   const std::vector<FrameMotor>* motors = frameMotors(name);
-  if (!motors) throw ConfigError("--frame: unknown frame '" + name + "' (known: quad_x, hexa_x, octo_x)");
-  if (!(arm_length_m >= 0.03 && arm_length_m <= 2.0)) {
-    throw ConfigError("--arm-m: " + formatNumber(arm_length_m) + " is outside 0.03..2 m");
+  if (!motors) throw ConfigError("--frame: unknown frame '" + name + "' (known: " + joined(frameNames()) + ")");
+  if (!(arm_length_m >= kMinArmM && arm_length_m <= kMaxArmM)) {
+    throw ConfigError("--arm-m: " + formatNumber(arm_length_m) + " is outside " + formatNumber(kMinArmM) + ".." +
+                      formatNumber(kMaxArmM) + " m");
   }
   Vehicle vehicle;
   for (std::size_t k = 0; k < motors->size(); ++k) {

@@ -40,8 +40,13 @@ struct Vehicle {
   static Vehicle quadX(double arm_length_m);
   /// A common frame by name, rotors `arm_length_m` from the centre in the plane of the base link,
   /// in ArduPilot's motor order (AP_MotorsMatrix): "quad_x" (as quadX), "hexa_x", "octo_x".
-  /// Throws ConfigError for another name or an arm length outside 0.03..2 m.
+  /// Throws ConfigError for another name or an arm length outside kMinArmM..kMaxArmM.
   static Vehicle frame(const std::string& name, double arm_length_m);
+  /// m; the arm lengths frame() takes, from a micro quad's to a large octocopter's.
+  ///@{
+  static constexpr double kMinArmM = 0.03;
+  static constexpr double kMaxArmM = 2.0;
+  ///@}
   /// The names frame() knows.
   static std::vector<std::string> frameNames();
 };
