@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
-#include <map>
 #include <numeric>
+#include <vector>
 
 #include "propulsion_estimator/common/name_list.h"
 #include "propulsion_estimator/common/field_error.h"
@@ -236,9 +237,14 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
   EpisodeTracker episodes(session.capabilityEstimator(), options.estimator.payload.episode_gap_s);
   std::array<std::uint64_t, kBlockerCount> blockers{};
   double next_verdict_s = -std::numeric_limits<double>::infinity();
-  // Per flagged channel, when first and in how many judged windows: a flag early in a flight may
-  // be gone by its last window, which the summary shows.
-  std::map<int, std::pair<double, int>> flags;
+  // Each flagged channel, in the order first flagged: when first and in how many judged windows
+  // (a flag early in a flight may be gone by its last window, which the summary shows).
+  struct ChannelFlags {
+    int channel;
+    double first_s;
+    int windows;
+  };
+  std::vector<ChannelFlags> flags;
   int judged_windows = 0;
 
   FlightEstimate result;
@@ -258,9 +264,13 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
     if (verdict.judged) result.motor_health = verdict;
     judged_windows += verdict.judged;
     if (verdict.flagged_channel != 0) {
-      addOnce(&result.flagged_channels, verdict.flagged_channel);
-      const double into_s = out.stamp_s - (feed.arrivals().empty() ? 0.0 : feed.arrivals().front().time_s);
-      ++flags.try_emplace(verdict.flagged_channel, into_s, 0).first->second.second;
+      auto flag = std::find_if(flags.begin(), flags.end(),
+                               [&](const ChannelFlags& f) { return f.channel == verdict.flagged_channel; });
+      if (flag == flags.end()) {
+        flags.push_back({verdict.flagged_channel, out.stamp_s - feed.arrivals().front().time_s, 0});
+        flag = std::prev(flags.end());
+      }
+      ++flag->windows;
     }
     takeEscCheck(session.modelCheck().report(out.stamp_s), &result);
   }
@@ -281,16 +291,17 @@ FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehic
   warnDomain(result.counters, model.domain(),
              rangesOf(streams, vehicle.rotors.size(), options.estimator.disarmed_pwm_max_us), &result.warnings);
   if (result.hovers.empty()) warnNoHover(blockers, result.counters.accepted, &result.warnings);
-  for (int channel : result.flagged_channels) {
-    const auto& [first_s, windows] = flags.at(channel);
-    const int last = result.motor_health.flagged_channel;
+  const int last = result.motor_health.flagged_channel;
+  for (const ChannelFlags& flag : flags) {
+    result.flagged_channels.push_back(flag.channel);
     result.warnings.push_back(
-        "the motor-health check flagged channel " + std::to_string(channel) + " in " + std::to_string(windows) + " of " +
-        std::to_string(judged_windows) + " judged windows, first " + formatPrintf("%.0f", first_s) +
+        "the motor-health check flagged channel " + std::to_string(flag.channel) + " in " +
+        std::to_string(flag.windows) + " of " + std::to_string(judged_windows) + " judged windows, first " +
+        formatPrintf("%.0f", flag.first_s) +
         " s into the log (its share of the thrust beyond the healthy spread; diagnose_gap locates it)" +
-        (last == channel ? std::string("")
-         : last == 0     ? std::string("; the last window: no motor stands out")
-                         : "; the last window: channel " + std::to_string(last)));
+        (last == flag.channel ? std::string("")
+         : last == 0          ? std::string("; the last window: no motor stands out")
+                              : "; the last window: channel " + std::to_string(last)));
   }
   for (const std::string& flag : result.esc_flags) {
     result.warnings.push_back("the live ESC check said " + flag + " (ESC telemetry against the model)");
