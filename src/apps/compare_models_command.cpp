@@ -100,10 +100,13 @@ int runCompareModels(int argc, char** argv) {
   app.add_option("--cells", args.cells, "LiPo cells in series")->check(wholeNumberIn(1, 14));
   app.add_option("--capacity-mah", args.capacity_mah, "Battery capacity (mAh)")->check(positiveNumber());
   app.add_option("--usable-fraction", args.hover.usable_fraction, "Share of the capacity used down to the cutoff")
+      ->check(numberIn(0.01, 1.0))
       ->capture_default_str();
   app.add_option("--cell-full-v", args.hover.cell_full_v, "Cell voltage of a full battery under hover load")
+      ->check(positiveNumber())
       ->capture_default_str();
   app.add_option("--cell-cutoff-v", args.hover.cell_cutoff_v, "Cell voltage at which the flight ends")
+      ->check(positiveNumber())
       ->capture_default_str();
   app.add_option("--report", args.report, "Directory for the report (Markdown, CSV data, PNG figures)")
       ->check(folderToWrite());

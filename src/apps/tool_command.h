@@ -33,8 +33,8 @@ CLI::Validator positiveNumber();
 
 // A path the tool writes, checked before any work: a file to write refuses a folder ("out/: a
 // folder, not a file") and a path through a file ("a.csv/m.yaml: a.csv is a file, not a folder");
-// a folder to write refuses a file ("a.csv: a file, not a folder"). Missing folders are created
-// when written.
+// a folder to write refuses a file ("a.csv: a file, not a folder"). A missing folder is not
+// refused: the tools that write folders create them, fit_surfaces creates --out's.
 CLI::Validator fileToWrite();
 CLI::Validator folderToWrite();
 

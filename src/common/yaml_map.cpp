@@ -314,7 +314,7 @@ void throwAtField(const YamlMap& root, const FieldError& error) {
       walked.push_back(walked.back().map(key));
       continue;
     }
-    std::vector<YamlMap> items = walked.back().maps(key);
+    const std::vector<YamlMap> items = walked.back().maps(key);
     const std::size_t index = std::stoul(part.substr(bracket + 1));
     if (index >= items.size()) break;
     walked.push_back(items[index]);

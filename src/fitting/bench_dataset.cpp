@@ -58,14 +58,11 @@ void requireFinite(const BenchLog& log, BenchColumn column) {
 constexpr double kLowestEfficiencyGPerW = 0.5;
 constexpr double kHighestEfficiencyGPerW = 40.0;
 
-void requirePlausibleEfficiency(const BenchLog& log, const std::vector<double>& power_w, double peak_power_w) {
-  if (!(peak_power_w > 0.0)) return;
+// `efficiency_g_per_w`: the log's rows as the dataset holds them (NaN below its power share).
+void requirePlausibleEfficiency(const BenchLog& log, const double* efficiency_g_per_w, std::size_t rows) {
   std::vector<double> efficiency;
-  const std::vector<double>& thrust_n = log.column(BenchColumn::kThrust);
-  for (std::size_t r = 0; r < power_w.size(); ++r) {
-    if (power_w[r] >= kEfficiencyMinPowerShare * peak_power_w) {
-      efficiency.push_back(std::abs(thrust_n[r]) / kNewtonPerGramForce / power_w[r]);
-    }
+  for (std::size_t r = 0; r < rows; ++r) {
+    if (std::isfinite(efficiency_g_per_w[r])) efficiency.push_back(std::abs(efficiency_g_per_w[r]));
   }
   if (efficiency.empty()) return;
   const double typical = median(efficiency);
@@ -263,7 +260,6 @@ BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOpt
         log_power[r] = v[r] * log.column(BenchColumn::kCurrent)[r];
     }
     const double peak_power = (has_power || has_current) ? *std::max_element(log_power.begin(), log_power.end()) : 0.0;
-    requirePlausibleEfficiency(log, log_power, peak_power);
     for (std::size_t r = 0; r < n; ++r) {
       data.log.push_back(static_cast<int>(l));
       data.line.push_back(log.line_numbers[r]);
@@ -277,6 +273,7 @@ BenchDataset buildBenchDataset(const std::vector<BenchLog>& logs, const LevelOpt
       data.values[efficiency].push_back(efficient_enough ? thrust_g / log_power[r] : kNaN);
       data.values[rpm].push_back(log.has(BenchColumn::kRpm) ? log.column(BenchColumn::kRpm)[r] : kNaN);
     }
+    requirePlausibleEfficiency(log, data.values[efficiency].data() + data.values[efficiency].size() - n, n);
   }
   assignVoltageLevels(logs, options, &data);
   assignPwmLevels(options, &data);

@@ -40,7 +40,7 @@ struct FlightBagTopics {
 /// lock, since rosbag loads and unloads a plugin then; no other rosbag::Bag may come or go meanwhile.
 class FlightBagReader : public FlightLogReader {
  public:
-  /// Opens `path`. InputError "<path>: no such file"; DataError "<path>: not a readable bag: <why>"
+  /// Opens `path`. InputError as requireRegularFile (no such file, a folder, a device); DataError "<path>: not a readable bag: <why>"
   /// (a bag damaged past its header, cut short say, or never closed: "...; `rosbag reindex` ..."),
   /// "<path>: no messages".
   explicit FlightBagReader(const std::string& path);

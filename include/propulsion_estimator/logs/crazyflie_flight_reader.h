@@ -23,7 +23,7 @@ namespace propulsion_estimator {
 /// Times: seconds from the log's first record.
 class CrazyflieFlightReader : public FlightLogReader {
  public:
-  /// Reads and parses `path`. InputError "<path>: no such file"; DataError as crazyflie::File
+  /// Reads and parses `path`. InputError as requireRegularFile (no such file, a folder, a device); DataError as crazyflie::File
   /// throws, and "<path>: no records". A file that breaks later is read up to there (refusal()).
   explicit CrazyflieFlightReader(const std::string& path);
   /// Parses `bytes` as if read from `path` (fuzzing, tests).

@@ -23,7 +23,7 @@ namespace propulsion_estimator {
 /// Times: TimeUS (TimeMS in older logs), seconds from the log's first timed message.
 class DataflashFlightReader : public FlightLogReader {
  public:
-  /// Reads and parses `path`. InputError "<path>: no such file"; DataError "<path>: not a
+  /// Reads and parses `path`. InputError as requireRegularFile (no such file, a folder, a device); DataError "<path>: not a
   /// DataFlash log ...", "<path>: no timed messages". A file that breaks later is read up to there.
   explicit DataflashFlightReader(const std::string& path);
   /// Parses `bytes` as if read from `path` (fuzzing, tests).

@@ -26,7 +26,7 @@ class FlightLogFormats {
   /// Adds `format`; std::invalid_argument for an empty magic or a name or magic already added.
   void add(FlightLogFormat format);
 
-  /// Opens `path` with the format whose magic it starts with. InputError "<path>: no such file"
+  /// Opens `path` with the format whose magic it starts with. InputError as requireRegularFile (no such file, a folder, a device)
   /// or "<path>: cannot be read"; DataError "<path>: empty: not a flight log", "<path>: a FORMAT
   /// log cut short: it ends after N bytes, within its first M ("MAGIC")", "<path>: not a
   /// flight log of a known format (rosbag, ...): it starts with "<its first bytes, escaped>"", or

@@ -54,7 +54,7 @@ class FlightLogReader {
 };
 
 /// The whole of the flight log `path`, for a reader that parses it in memory. InputError
-/// "<path>: no such file", or naming it when it cannot be read.
+/// as requireRegularFile (no such file, a folder, a device), or naming it when it cannot be read.
 std::string readFlightLogBytes(const std::string& path);
 
 /// `bytes` as C would spell them: printable ASCII as is, other bytes (a newline, a NUL) as `\xNN`;

@@ -27,7 +27,7 @@ namespace propulsion_estimator {
 /// Times: seconds from the log's first data message (the manifest's clock).
 class UlogFlightReader : public FlightLogReader {
  public:
-  /// Reads and parses `path`. InputError "<path>: no such file"; DataError "<path>: not a ULog
+  /// Reads and parses `path`. InputError as requireRegularFile (no such file, a folder, a device); DataError "<path>: not a ULog
   /// ...", "<path>: no data messages". A file that breaks later is read up to there (refusal()).
   explicit UlogFlightReader(const std::string& path);
   /// Parses `bytes` as if read from `path` (fuzzing, tests).

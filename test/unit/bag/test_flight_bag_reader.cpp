@@ -513,7 +513,9 @@ TEST_F(FlightBagReader, ReadsABagUpToAChunkItCannotRead) {
   // The first chunk's compressed data (bzip2's "BZh" after the bag header) corrupt: nothing can be
   // read, and the bag is refused.
   std::string first = bag;
-  first.replace(first.find("BZh", 4096) + 10, 32, std::string(32, '\xff'));
+  const std::size_t chunk = first.find("BZh", 4096);
+  ASSERT_NE(chunk, std::string::npos);
+  first.replace(chunk + 10, 32, std::string(32, '\xff'));
   std::ofstream(file("first.bag"), std::ios::binary) << first;
   EXPECT_EQ(refusal(file("first.bag")).rfind(file("first.bag") + ": reading failed after 0.000 s: ", 0), 0u)
       << refusal(file("first.bag"));
