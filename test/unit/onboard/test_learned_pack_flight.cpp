@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -38,6 +39,15 @@ pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double pay
   return sink.learnPack(fresh);
 }
 
+// The share of a second flight's charge left after 60 s (from `soc_60s` to the cut-off's
+// `soc_cutoff`) that lies below `learned_lowest_soc`, the lowest the learning flight crossed: what
+// the pack record cannot know but from the chemistry's curve. 0..1; all three are the simulated
+// pack's reported percentage, rounded to 1 %.
+double unseenShare(double soc_60s, double soc_cutoff, double learned_lowest_soc) {
+  if (!(soc_60s > soc_cutoff)) return pe::kNaN;
+  return std::clamp((std::min(soc_60s, learned_lowest_soc) - soc_cutoff) / (soc_60s - soc_cutoff), 0.0, 1.0);
+}
+
 // The learning flight hovers this share of the full hover to the cut-off: it lands 12 % of its
 // hover short (issue 36 allows 15 %).
 constexpr double kLearningHoverShare = 0.88;
@@ -62,6 +72,9 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
     int within = 0;
     int in_interval = 0;
     int below_interval = 0;  // the truth below the interval's low end: an optimistic interval
+    // By start (100, 60, 30 %): cases, within 10 %, and the sum of unseenShare().
+    std::array<int, 3> start_cases{}, start_within{};
+    std::array<double, 3> start_unseen{};
     std::string log;
   };
   std::vector<PackOutcome> outcomes(seeds.size());
@@ -83,9 +96,12 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
       ADD_FAILURE() << "seed " << seed << ": the full hover reached no cut-off";
       return;
     }
+    double learned_lowest_soc = pe::kNaN;
     const pe::PackRecord record =
-        learnedFromOneFlight(params, payload_kg, kLearningHoverShare * *full_s, avionics_a, nullptr, given);
-    for (double initial_soc : {1.0, 0.6, 0.3}) {
+        learnedFromOneFlight(params, payload_kg, kLearningHoverShare * *full_s, avionics_a, &learned_lowest_soc, given);
+    const std::array<double, 3> starts = {1.0, 0.6, 0.3};
+    for (std::size_t start = 0; start < starts.size(); ++start) {
+      const double initial_soc = starts[start];
       pe::CapabilityConfig user = given;
       user.pack = record;
       CapabilitySink sink(f450(), user, thesisModel(), {60.0});
@@ -98,32 +114,56 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
       const pe::CapabilityReport& c = sink.predictions[0]->report;
       const double flown_s = *sink.cutoff_s - sink.predictions[0]->made_s;
       const double error = (c.hover_endurance_s - flown_s) / flown_s;
+      const double unseen =
+          unseenShare(sink.predictions[0]->lowest_true_soc, sink.cutoff_true_soc, learned_lowest_soc);
       appendf(&out.log,
               "seed %u %s, payload %.1f kg, from %.0f %%, learned %d points, %.2f Ah, R %.1f mOhm: predicted %.0f s "
-              "(90 %% %.0f..%.0f), flew %.0f s, error %+.1f %%\n",
+              "(90 %% %.0f..%.0f), flew %.0f s, error %+.1f %%; charge %.2f..%.2f, %.0f %% of it below the learning "
+              "flight's %.2f\n",
               seed, drawn.describe().c_str(), payload_kg, 100.0 * initial_soc, static_cast<int>(record.ocv_soc.size()),
               record.capacity_ah.value_or(pe::kNaN),
               1000.0 * (record.resistance_ohm.empty() ? pe::kNaN : record.resistance_ohm.back()), c.hover_endurance_s,
-              c.hover_endurance_low_s, c.hover_endurance_high_s, flown_s, 100.0 * error);
+              c.hover_endurance_low_s, c.hover_endurance_high_s, flown_s, 100.0 * error,
+              sink.predictions[0]->lowest_true_soc, sink.cutoff_true_soc, 100.0 * unseen, learned_lowest_soc);
       ++out.cases;
       out.within += std::abs(error) < 0.10;
       out.in_interval += c.hover_endurance_low_s <= flown_s && flown_s <= c.hover_endurance_high_s;
       out.below_interval += flown_s < c.hover_endurance_low_s;
+      ++out.start_cases[start];
+      out.start_within[start] += std::abs(error) < 0.10;
+      out.start_unseen[start] += unseen;
     }
   });
   int cases = 0, within = 0, in_interval = 0, below_interval = 0;
+  std::array<int, 3> start_cases{}, start_within{};
+  std::array<double, 3> start_unseen{};
   for (const PackOutcome& outcome : outcomes) {
     std::fputs(outcome.log.c_str(), stdout);
     cases += outcome.cases;
     within += outcome.within;
     in_interval += outcome.in_interval;
     below_interval += outcome.below_interval;
+    for (std::size_t k = 0; k < start_cases.size(); ++k) {
+      start_cases[k] += outcome.start_cases[k];
+      start_within[k] += outcome.start_within[k];
+      start_unseen[k] += outcome.start_unseen[k];
+    }
+  }
+  for (std::size_t k = 0; k < start_cases.size(); ++k) {
+    std::printf("from %.0f %%: within 10 %% in %d of %d cases; on average %.0f %% of the charge left after 60 s lies "
+                "below the lowest the learning flight crossed\n",
+                k == 0 ? 100.0 : k == 1 ? 60.0 : 30.0, start_within[k], start_cases[k],
+                start_cases[k] ? 100.0 * start_unseen[k] / start_cases[k] : pe::kNaN);
   }
   std::printf("a pack flown once before: within 10 %% after 60 s in %d of %d cases; the truth in the 90 %% interval in "
               "%d, below its low end (the interval optimistic) in %d\n",
               within, cases, in_interval, below_interval);
   ASSERT_GT(cases, 0);
   EXPECT_GE(within, share * cases);
+  // What the bar from 30 % asks about (docs/capability.md): most of the charge left after 60 s
+  // lies below the lowest the learning flight crossed.
+  ASSERT_GT(start_cases[2], 0);
+  EXPECT_GT(start_unseen[2] / start_cases[2], 0.5);
   // The interval, calibrated on first flights, stays honest on a learned pack: it may be too wide,
   // but its low end is above the truth in at most 5 % of cases.
   EXPECT_LE(below_interval, 0.05 * cases);
@@ -257,7 +297,8 @@ TEST(CapabilityFlight, LearnedPacksThatHaveATwinFrom30Percent) {
 }
 
 // Development: packs 1-20 chose how a flight is learned (measured 2026-12-02: 43 of 60 within
-// 10 % after 60 s; the same packs unlearned, HoverEnduranceOnFamilyPacks*, about 3 in 10). Issue
+// 10 % after 60 s; from 100 % 20 of 20, 60 % 19 of 20, 30 % 4 of 20, where on average 12 %, 25 %
+// and 75 % of the charge left after 60 s lies below the lowest the learning flight crossed; the same packs unlearned, HoverEnduranceOnFamilyPacks*, about 3 in 10). Issue
 // 36's bar, 90 %, does not hold: from 30 % charge the hover left after 60 s is 1-3 minutes; packs
 // with a flat stretch read their charge high (a minute's polarisation is not the long hover's the
 // learned curve holds), knee packs learn a capacity 7-20 % short (docs/capability.md), and the
@@ -270,7 +311,8 @@ TEST(CapabilityFlight, APackFlownOnceBeforeDevelopmentPacks) {
 
 // Held out: 20 packs drawn on 2026-12-02 after the learner was fixed on packs 1-20, first flown
 // then (with each pack's avionics draw since: 39 of 56 within 10 %; from 100 %: 19 of 20, 60 %:
-// 14 of 19, 30 %: 6 of 17). Asserted: that share, as a regression guard.
+// 14 of 19, 30 %: 6 of 17, where on average 79 % of the charge left after 60 s lies below the
+// lowest the learning flight crossed). Asserted: that share, as a regression guard.
 TEST(CapabilityFlight, APackFlownOnceBeforeHeldOutPacks) {
   expectALearnedPackWithin10Percent(kLearnedHeldOutPacks, 0.69);
 }

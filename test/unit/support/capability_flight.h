@@ -154,7 +154,10 @@ class CapabilitySink : public pe::sim::FlightSink {
     truth_ = s;
     filtered_v_ = std::isnan(filtered_v_) ? s.battery_voltage_v
                                           : filtered_v_ + std::min(1.0, dt_s / 1.0) * (s.battery_voltage_v - filtered_v_);
-    if (takeoff_s && s.time_s > *takeoff_s + 5.0 && !cutoff_s && filtered_v_ < cutoff_v_) cutoff_s = s.time_s;
+    if (takeoff_s && s.time_s > *takeoff_s + 5.0 && !cutoff_s && filtered_v_ < cutoff_v_) {
+      cutoff_s = s.time_s;
+      cutoff_true_soc = lowest_true_soc;
+    }
   }
 
   /// deg C the battery messages report for the pack (BatteryState.temperature); NaN: none.
@@ -163,6 +166,8 @@ class CapabilitySink : public pe::sim::FlightSink {
   /// reports it (the simulator's truth rounded to 1 %): where a counter-example may change the
   /// pack's curve unseen.
   double lowest_true_soc = pe::kNaN;
+  /// lowest_true_soc when the cut-off was reached (NaN before): where the pack's usable charge ends.
+  double cutoff_true_soc = pe::kNaN;
   std::optional<double> takeoff_s, hover_start_s, first_flag_s, cutoff_s;
   unsigned flagged_channels = 0;
   std::optional<pe::MotorHealthVerdict> last_health;
