@@ -7,6 +7,7 @@
 
 #include "bench_log_options.h"
 #include "propulsion_estimator/common/text_file.h"
+#include "propulsion_estimator/common/cells_in_series.h"
 #include "propulsion_estimator/fitting/comparison_report.h"
 #include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/fitting/model_comparison.h"
@@ -97,7 +98,7 @@ int runCompareModels(int argc, char** argv) {
       ->check(positiveNumber());
   app.add_option("--mass-kg", args.mass_kg, "Vehicle take-off mass for hover (kg)")->check(positiveNumber());
   app.add_option("--motors", args.hover.motors, "Number of motors")->check(wholeNumberIn(1, 16))->capture_default_str();
-  app.add_option("--cells", args.cells, "LiPo cells in series")->check(wholeNumberIn(1, 14));
+  app.add_option("--cells", args.cells, "LiPo cells in series")->check(wholeNumberIn(kMinCellsInSeries, kMaxCellsInSeries));
   app.add_option("--capacity-mah", args.capacity_mah, "Battery capacity (mAh)")->check(positiveNumber());
   app.add_option("--usable-fraction", args.hover.usable_fraction, "Share of the capacity used down to the cutoff")
       ->check(numberIn(0.01, 1.0))

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "propulsion_estimator/common/cells_in_series.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
 
@@ -27,7 +28,7 @@ constexpr double kResistanceStdFloorOhm = 0.003;
 }  // namespace
 
 void BatteryEstimatorConfig::validate() const {
-  requireWithin("capability/battery/cells", cells, 1, 14);
+  requireWithin("capability/battery/cells", cells, kMinCellsInSeries, kMaxCellsInSeries);
   requirePositive("capability/battery/capacity_ah", capacity_ah, 1000.0, " Ah");
   requirePositive("capability/battery/resistance_memory_s", resistance_memory_s);
   requirePositive("capability/battery/voltage_sigma_v", voltage_sigma_v);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "propulsion_estimator/common/cells_in_series.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/units.h"
@@ -59,9 +60,7 @@ void CapabilityConfig::validate() const {
   if (pwm_max_us) requirePositive("capability/pwm_max_us", *pwm_max_us);
   requirePositive("capability/min_thrust_to_weight", min_thrust_to_weight);
   if (capacity_ah) requirePositive("capability/battery/capacity_ah", *capacity_ah);
-  if (cells && (*cells < 1 || *cells > 14)) {
-    throw FieldError("capability/battery/cells", std::to_string(*cells) + " is outside 1..14");
-  }
+  if (cells) requireWithin("capability/battery/cells", *cells, kMinCellsInSeries, kMaxCellsInSeries);
   if (capacity_ah.has_value() != cells.has_value()) {
     throw FieldError(capacity_ah ? "capability/battery/cells" : "capability/battery/capacity_ah",
                      std::string("required with capability/battery/") + (capacity_ah ? "capacity_ah" : "cells"));

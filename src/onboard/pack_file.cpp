@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "propulsion_estimator/common/atomic_file.h"
+#include "propulsion_estimator/common/cells_in_series.h"
 #include "propulsion_estimator/common/text_file.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/yaml_map.h"
@@ -33,7 +34,10 @@ PackRecord parsePackFile(const std::string& text, const std::string& source) {
   record.pack_id = root.text("pack_id");
   if (record.pack_id.empty()) root.fail("pack_id", "must not be empty");
   record.cells = root.integer("cells");
-  if (record.cells < 1 || record.cells > 14) root.fail("cells", std::to_string(record.cells) + " is outside 1..14");
+  if (record.cells < kMinCellsInSeries || record.cells > kMaxCellsInSeries) {
+    root.fail("cells", std::to_string(record.cells) + " is outside " + std::to_string(kMinCellsInSeries) + ".." +
+                           std::to_string(kMaxCellsInSeries));
+  }
   record.flights = root.integer("flights");
   if (record.flights < 0) root.fail("flights", "must not be negative");
   record.capacity_ah = root.optionalNumber("capacity_ah");

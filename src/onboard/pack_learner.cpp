@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "propulsion_estimator/common/cells_in_series.h"
 #include "propulsion_estimator/common/field_error.h"
 
 namespace propulsion_estimator {
@@ -21,7 +22,7 @@ constexpr double kMinRiseV = 1e-4;
 }  // namespace
 
 void PackLearnerConfig::validate() const {
-  requireWithin("capability/battery/cells", cells, 1, 14);
+  requireWithin("capability/battery/cells", cells, kMinCellsInSeries, kMaxCellsInSeries);
   requirePositive("capability/battery/capacity_ah", capacity_ah, 1000.0, " Ah");
   requirePositive("capability/battery/rest_current_a", rest_current_a, 1000.0, " A");
   requirePositive("capability/battery/settle_s", settle_s);

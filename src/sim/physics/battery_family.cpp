@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "propulsion_estimator/common/cells_in_series.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
 
@@ -64,7 +65,7 @@ const char* ocvShapeName(OcvShape shape) {
 }
 
 void BatteryFamily::validate() const {
-  requireWithin("battery_family.cells", cells, 1, 14);
+  requireWithin("battery_family.cells", cells, kMinCellsInSeries, kMaxCellsInSeries);
   requirePositive("battery_family.rated_capacity_ah", rated_capacity_ah, 1000.0, " Ah");
   requireRange("cell_empty_v", cell_empty_v, 2.5, 4.4);
   requireRange("cell_full_v", cell_full_v, cell_empty_v.hi, 4.4);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "propulsion_estimator/common/cells_in_series.h"
 #include "propulsion_estimator/common/field_error.h"
 #include "propulsion_estimator/common/number_format.h"
 
@@ -10,7 +11,7 @@ namespace propulsion_estimator {
 namespace sim {
 
 void LipoBatteryParams::validate() const {
-  requireWithin("battery.cells", cells, 1, 14);
+  requireWithin("battery.cells", cells, kMinCellsInSeries, kMaxCellsInSeries);
   requirePositive("battery.capacity_ah", capacity_ah, 1000.0, " Ah");
   if (ocv_soc.size() < 2 || ocv_soc.size() != ocv_cell_v.size()) {
     throw FieldError("battery.open_circuit_voltage", "soc and cell_v need the same number of points, at least 2 (got " +

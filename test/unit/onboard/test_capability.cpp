@@ -400,6 +400,11 @@ TEST(CapabilityConfig, RefusesBadParametersWithOneLine) {
   config.cells.reset();
   EXPECT_EQ(refusal(config), "capability/battery/cells: required with capability/battery/capacity_ah");
   config = configured();
+  config.cells = 15;
+  EXPECT_EQ(refusal(config), "capability/battery/cells: 15 is outside 1..14");
+  config.cells = 0;
+  EXPECT_EQ(refusal(config), "capability/battery/cells: 0 is outside 1..14");
+  config = configured();
   config.min_thrust_to_weight = 0.0;
   EXPECT_EQ(refusal(config), "capability/min_thrust_to_weight: must be a positive number, got 0");
   config = configured();
