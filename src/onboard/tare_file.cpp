@@ -38,10 +38,11 @@ void saveTareFile(const std::string& path, const TareRecord& record) {
 
 std::vector<std::string> removeStaleTareTemporaries(const std::string& path) { return removeStaleTemporaries(path); }
 
-void removeTareFile(const std::string& path) {
+bool removeTareFile(const std::string& path) {
   std::error_code error;
-  std::filesystem::remove(path, error);
+  const bool removed = std::filesystem::remove(path, error);
   if (error) throw InputError(path + ": cannot remove the tare file: " + error.message());
+  return removed;
 }
 
 std::string setAsideTareFile(const std::string& path, long long unix_time) {

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <ctime>
-#include <filesystem>
 #include <functional>
 #include <sstream>
 
@@ -190,21 +189,23 @@ void EstimatorNode::loadTare() {
     ROS_WARN_STREAM("tare file: removed " << stale << ", left by a ~tare that was interrupted");
   }
   std::optional<TareRecord> tare;
+  // A tare file that cannot be read must not keep the node (required in the launch) from starting.
+  // Content that is not a tare is moved aside for the next ~tare; a file that cannot be read (a
+  // folder, no permission) is the user's and is left where it is (~tare cannot write there either),
+  // as the pack file keeper does.
   try {
     tare = loadTareFile(params_.tare_file);
-  } catch (const InputError& e) {
-    // A tare file that cannot be read must not keep the node (required in the launch) from starting.
+  } catch (const ConfigError& e) {
     std::string message = std::string("refused: ") + e.what() + "; started without the tare";
-    std::error_code error;
-    // A folder named as the file is the user's: left where it is (~tare cannot write there either).
-    if (!std::filesystem::is_directory(params_.tare_file, error)) {
-      try {
-        message += ", the file moved to " + setAsideTareFile(params_.tare_file, static_cast<long long>(std::time(nullptr)));
-      } catch (const InputError& moved) {
-        message += std::string("; ") + moved.what();
-      }
+    try {
+      message += ", the file moved to " + setAsideTareFile(params_.tare_file, static_cast<long long>(std::time(nullptr)));
+    } catch (const InputError& moved) {
+      message += std::string("; ") + moved.what();
     }
     setTareFileStatus(DiagnosticStatus::WARN, message);
+    return;
+  } catch (const InputError& e) {
+    setTareFileStatus(DiagnosticStatus::WARN, std::string("refused: ") + e.what() + "; started without the tare");
     return;
   }
   if (!tare) {
@@ -581,11 +582,9 @@ bool EstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   response.success = true;
   if (!params_.tare_file.empty()) {
     try {
-      std::error_code error;
-      const bool existed = std::filesystem::exists(params_.tare_file, error);
-      removeTareFile(params_.tare_file);
+      const bool removed = removeTareFile(params_.tare_file);
       setTareFileStatus(DiagnosticStatus::OK,
-                        params_.tare_file + (existed ? ": removed by ~reset" : ": none (~reset had none to remove)"));
+                        params_.tare_file + (removed ? ": removed by ~reset" : ": none (~reset had none to remove)"));
     } catch (const InputError& e) {
       response.success = false;
       message << "; but " << e.what() << ", and the next start reads it again";

@@ -31,8 +31,9 @@ void saveTareFile(const std::string& path, const TareRecord& record);
 /// Removes the temporary files of saveTareFile() next to `path` that a killed write left
 /// (removeStaleTemporaries()), and returns their names; never throws.
 std::vector<std::string> removeStaleTareTemporaries(const std::string& path);
-/// Removes the file if it exists; InputError naming it when it exists and cannot be removed.
-void removeTareFile(const std::string& path);
+/// Removes the file if it exists and returns whether it did; InputError naming it when it exists
+/// and cannot be removed.
+bool removeTareFile(const std::string& path);
 /// Moves a tare file that cannot be used out of the way, to "<path>.bad-<unix_time>", and returns
 /// that name; InputError naming both when it cannot be moved.
 std::string setAsideTareFile(const std::string& path, long long unix_time);

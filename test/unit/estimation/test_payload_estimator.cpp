@@ -81,7 +81,9 @@ TEST(TareFile, RoundTripsAndRefusesGarbage) {
   } catch (const pe::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()), path + ":1: empty_mass_kg: expected a number, got 'heavy'");
   }
-  pe::removeTareFile(path);
+  // Whether a file was removed (~reset's answer says so).
+  EXPECT_TRUE(pe::removeTareFile(path));
+  EXPECT_FALSE(pe::removeTareFile(path));
 }
 
 namespace {
