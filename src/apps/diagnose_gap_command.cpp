@@ -58,7 +58,6 @@ struct Arguments {
 struct FlightRead {
   std::optional<Flight> flight;
   std::string refusal;
-  std::string damage;  // a log read up to where it broke: the reader's one line
   std::string stretches;  // a flight weighed as a whole: the airborne stretches found
 };
 
@@ -107,7 +106,7 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
 FlightRead readFlight(const std::string& manifest, std::size_t index, const ManifestEntry& entry,
                       const FlightLogOptions& options, const PropulsionModel& model,
                       const gap::AirborneSettings& airborne) {
-  if (!entry.refusal.empty()) return {std::nullopt, entry.refusal, {}, {}};
+  if (!entry.refusal.empty()) return {std::nullopt, entry.refusal, {}};
   const std::string at = manifest + ": flights[" + std::to_string(index) + "]";
   try {
     const std::unique_ptr<FlightLogReader> reader =
@@ -121,15 +120,17 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
         return {std::nullopt, at + ".segments[" + std::to_string(s) + "]: " + formatNumber(segments[s].start_s) +
                                   ".." + formatNumber(segments[s].end_s) + " s is outside " + reader->path() +
                                   " (0.." + formatPrintf("%.3f", reader->durationS()) + " s)",
-                {}, {}};
+                {}};
       }
     }
-    Flight flight{entry.flight.log, reader->read(options), segments};
+    Flight flight{entry.flight.log, reader->read(options), segments, ""};
+    // Known once read() has run.
+    flight.damage = reader->refusal();
     const std::string stretches =
         entry.flight.airborne_mass_kg.empty() ? "" : weighAirborne(model, entry.flight, airborne, &flight);
-    return {std::move(flight), "", reader->refusal(), stretches};
+    return {std::move(flight), "", stretches};
   } catch (const InputError& e) {
-    return {std::nullopt, at + ": " + e.what(), {}, {}};
+    return {std::nullopt, at + ": " + e.what(), {}};
   }
 }
 
@@ -338,8 +339,8 @@ int diagnose(const Arguments& args) {
       refusals.push_back(read.refusal);
       continue;
     }
-    if (!read.damage.empty()) {
-      const std::string problem = read.damage + " (the flight is read up to there)";
+    if (!read.flight->damage.empty()) {
+      const std::string problem = read.flight->damage + " (the flight is read up to there)";
       std::fprintf(stderr, "diagnose_gap: %s\n", problem.c_str());
       damages.push_back(problem);
     }

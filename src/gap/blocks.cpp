@@ -206,13 +206,11 @@ std::string nothingInSegment(const std::string& name, int without_attitude, int 
                              double timeout_s) {
   if (without_attitude > 0) {
     return name + ": none of its " + std::to_string(without_attitude) +
-           " blocks has the attitude on every frame (no IMU orientation within " + formatNumber(timeout_s) +
-           " s); skipped";
+           " blocks has the attitude on every frame (no IMU orientation within " + formatNumber(timeout_s) + " s)";
   }
-  if (frames == 0) return name + " holds no rc/out frame; skipped";
+  if (frames == 0) return name + " holds no rc/out frame";
   return name + " has no rc/out with a fresh battery voltage (" + std::to_string(without_battery) + " of its " +
-         std::to_string(frames) + " rc/out frames without a battery voltage within " + formatNumber(timeout_s) +
-         " s); skipped";
+         std::to_string(frames) + " rc/out frames without a battery voltage within " + formatNumber(timeout_s) + " s)";
 }
 
 }  // namespace
@@ -235,7 +233,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
   result.has_imu = !streams.imu.empty();
   result.has_current = hasCurrent(streams.battery);
   if (streams.rc_out.empty() || streams.battery.empty()) {
-    result.problems.push_back(flight.name + ": no rc/out or battery messages");
+    result.skipped.push_back(flight.name + ": no rc/out or battery messages");
     return result;
   }
   if (!result.has_imu) {
@@ -253,8 +251,9 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
   for (int s = 0; s < static_cast<int>(flight.segments.size()); ++s) {
     const ManifestSegment& segment = flight.segments[s];
     if (segment.start_s < log_start || segment.end_s > log_end) {
-      result.problems.push_back(segmentName(flight, s) + " lies outside the log's rc/out span " +
-                                formatPrintf("%.2f", log_start) + "-" + formatPrintf("%.2f", log_end) + " s; skipped");
+      result.skipped.push_back(segmentName(flight, s) + " lies outside the log's rc/out span " +
+                               formatPrintf("%.2f", log_start) + "-" + formatPrintf("%.2f", log_end) + " s" +
+                               (flight.damage.empty() ? "" : " (the log is damaged and read only up to there)"));
       continue;
     }
     Cursor<BatteryReading> battery(streams.battery);
@@ -340,8 +339,8 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     result.frames_without_battery += without_battery;
     // Blocks a rejecting model refuses are said once for all flights (the diagnosis' count).
     if (usable == 0 && rejected == 0) {
-      result.problems.push_back(nothingInSegment(segmentName(flight, s), without_attitude, frames, without_battery,
-                                                 timeout));
+      result.skipped.push_back(nothingInSegment(segmentName(flight, s), without_attitude, frames, without_battery,
+                                                timeout));
     }
   }
   return result;

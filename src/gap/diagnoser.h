@@ -50,9 +50,10 @@ BlockConfig blockConfig(const DiagnosisConfig& config, const PropulsionModel& mo
 std::string groundDrawText(const std::vector<std::string>& measured, const std::vector<std::string>& unmeasured,
                            double stopped_pwm_us);
 // "no usable sample in any weighed segment of any flight: ..." with each reason's count and
-// bound, or, when no block was cut at all, the segments' problems (usable_data.cpp).
+// bound, or, when no block was cut at all, why each segment was skipped (FlightBlocks::skipped;
+// usable_data.cpp).
 std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config,
-                          const std::vector<std::string>& segment_problems);
+                          const std::vector<std::string>& skipped);
 // A line when most blocks lie outside the model's domain, naming the flights' ranges beside the
 // model's: is this the right model? nullopt otherwise (usable_data.cpp).
 std::optional<std::string> outsideTheDomain(const std::vector<Block>& blocks, const ModelDomain& domain, int motors);

@@ -52,9 +52,14 @@ void Diagnoser::cut() {
   std::vector<std::string> measured, unmeasured;
   int group = 0;
   UnusedData unused;
+  std::vector<std::string> skipped;
   for (int f = 0; f < static_cast<int>(flights_.size()); ++f) {
     FlightBlocks cut = cutIntoBlocks(flights_[f], f, vehicle_, block_config, group);
     for (const std::string& problem : cut.problems) diagnosis_.problems.push_back(problem);
+    for (const std::string& reason : cut.skipped) {
+      diagnosis_.problems.push_back(reason + "; skipped");
+      skipped.push_back(reason);
+    }
     unused.without_attitude += cut.blocks_without_attitude;
     unused.frames_without_battery += cut.frames_without_battery;
     unused.rejected_outside += cut.blocks_rejected_outside;
@@ -80,7 +85,7 @@ void Diagnoser::cut() {
   diagnosis_.blocks = static_cast<int>(blocks_.size());
   diagnosis_.ground_draw = groundDrawText(measured, unmeasured, stoppedPwmUs(model_.domain()));
   unused.transient = diagnosis_.transient_blocks;
-  if (blocks_.empty()) throw DataError(nothingUsable(unused, config_, diagnosis_.problems));
+  if (blocks_.empty()) throw DataError(nothingUsable(unused, config_, skipped));
   if (unused.rejected_outside > 0) {
     diagnosis_.problems.push_back(std::to_string(unused.rejected_outside) +
                                   " blocks outside the model's domain left out: it rejects them (outside: reject), "

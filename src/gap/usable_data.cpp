@@ -9,7 +9,7 @@ namespace gap {
 namespace detail {
 
 std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& config,
-                          const std::vector<std::string>& segment_problems) {
+                          const std::vector<std::string>& skipped) {
   std::string reasons;
   const auto add = [&reasons](const std::string& reason) { reasons += (reasons.empty() ? "" : "; ") + reason; };
   if (unused.transient > 0) {
@@ -29,15 +29,10 @@ std::string nothingUsable(const UnusedData& unused, const DiagnosisConfig& confi
     add(std::to_string(unused.rejected_outside) +
         " blocks outside the model's domain, which it rejects (outside: reject) as the node would");
   }
-  // The segments' own problems are the reasons when no block was cut at all: the refusal is the
-  // only line the user sees, so it carries them.
+  // The skipped segments' reasons are the reasons when no block was cut at all: the refusal is
+  // the only line the user sees, so it carries them.
   if (reasons.empty()) {
-    const std::string skipped = "; skipped";
-    for (const std::string& problem : segment_problems) {
-      const bool says_skipped = problem.size() > skipped.size() &&
-                                problem.compare(problem.size() - skipped.size(), skipped.size(), skipped) == 0;
-      add(says_skipped ? problem.substr(0, problem.size() - skipped.size()) : problem);
-    }
+    for (const std::string& reason : skipped) add(reason);
   }
   return "no usable sample in any weighed segment of any flight" + (reasons.empty() ? std::string() : ": " + reasons);
 }

@@ -69,10 +69,13 @@ struct BlockConfig {
 /// no effect in the library describes.
 bool isQuasiSteady(const Block& block, double max_pwm_change_us, double max_accel_m_s2);
 
-/// The result of cutting one flight: its blocks and one line for each thing that could not be used.
+/// The result of cutting one flight: its blocks, why a segment gave none, and what was assumed.
 struct FlightBlocks {
   std::vector<Block> blocks;  ///< in time order
-  std::vector<std::string> problems;  ///< one line for each thing that could not be used
+  /// One line for each segment (or the whole flight) that gave no block, with why and the counts
+  /// ("f.bag: segment 2 (15-30 s) lies outside the log's rc/out span 0.00-20.00 s").
+  std::vector<std::string> skipped;
+  std::vector<std::string> problems;  ///< one line for each thing assumed in place of what is missing (no IMU)
   bool has_imu = false;  ///< whether the flight had an IMU
   bool has_current = false;  ///< whether the flight had a battery current
   int frames_without_battery = 0;  ///< rc/out frames in segments with no battery voltage within the timeout
@@ -85,7 +88,7 @@ struct FlightBlocks {
 bool insideDomain(const Block& block, const ModelDomain& domain, int motors);
 
 /// Cuts `flight` into blocks inside its weighed segments, its commands through the rotor lag. A segment outside the log's time span,
-/// or with no rc/out and battery inside it, is listed in `problems` and skipped. Without IMU the
+/// or with no rc/out and battery inside it, is listed in `skipped`. Without IMU the
 /// vertical specific force is taken as g (level, unaccelerated flight), and said so.
 FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle& vehicle, const BlockConfig& config,
                            int first_group);

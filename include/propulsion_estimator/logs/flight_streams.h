@@ -103,6 +103,9 @@ struct Flight {
   std::string name;  ///< the log as the manifest names it
   FlightStreams streams;  ///< the flight's signals
   std::vector<ManifestSegment> segments;  ///< the weighed segments, on the streams' clock
+  /// "" for a log read to its end; else the reader's one line on where it broke
+  /// (FlightLogReader::refusal()): the streams end there.
+  std::string damage;
 };
 
 }  // namespace propulsion_estimator

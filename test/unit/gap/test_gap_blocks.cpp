@@ -83,25 +83,32 @@ TEST(GapBlocks, NamesASegmentOutsideTheLogAndAFlightWithoutBattery) {
   pe::Flight flight = levelFlight();
   flight.segments.push_back({15.0, 30.0, 1.0});
   const gap::FlightBlocks cut = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
-  ASSERT_EQ(cut.problems.size(), 1u);
-  EXPECT_EQ(cut.problems[0], "f.bag: segment 2 (15-30 s) lies outside the log's rc/out span 0.00-20.00 s; skipped");
+  EXPECT_TRUE(cut.problems.empty());
+  ASSERT_EQ(cut.skipped.size(), 1u);
+  EXPECT_EQ(cut.skipped[0], "f.bag: segment 2 (15-30 s) lies outside the log's rc/out span 0.00-20.00 s");
   EXPECT_EQ(cut.blocks.size(), 10u);
+  // A log that broke off before the segment: the line says why its span ends there.
+  flight.damage = "f.bag: reading failed after 20 s: chunk 3: corrupt";
+  EXPECT_EQ(gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0).skipped,
+            std::vector<std::string>{"f.bag: segment 2 (15-30 s) lies outside the log's rc/out span 0.00-20.00 s (the "
+                                     "log is damaged and read only up to there)"});
+  flight.damage.clear();
 
   flight.streams.battery.clear();
   const gap::FlightBlocks none = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
   EXPECT_TRUE(none.blocks.empty());
-  ASSERT_EQ(none.problems.size(), 1u);
-  EXPECT_EQ(none.problems[0], "f.bag: no rc/out or battery messages");
+  ASSERT_EQ(none.skipped.size(), 1u);
+  EXPECT_EQ(none.skipped[0], "f.bag: no rc/out or battery messages");
 }
 
 namespace {
 
-// The one problem line of a flight that gives no block, and the cut.
+// Why a flight of one segment gave no block, and the cut.
 std::string onlyProblem(const pe::Flight& flight, gap::FlightBlocks* cut) {
   *cut = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
   EXPECT_TRUE(cut->blocks.empty());
-  EXPECT_EQ(cut->problems.size(), 1u);
-  return cut->problems.empty() ? std::string() : cut->problems[0];
+  EXPECT_EQ(cut->skipped.size(), 1u);
+  return cut->skipped.empty() ? std::string() : cut->skipped[0];
 }
 
 }  // namespace
@@ -111,18 +118,18 @@ TEST(GapBlocks, SaysWhyASegmentGaveNothingWithTheNumbers) {
   pe::Flight flight = levelFlight();
   for (pe::BatteryReading& reading : flight.streams.battery) reading.time_s -= 100.0;  // all long before
   EXPECT_EQ(onlyProblem(flight, &cut), "f.bag: segment 1 (2-12 s) has no rc/out with a fresh battery voltage (101 of "
-                                       "its 101 rc/out frames without a battery voltage within 1 s); skipped");
+                                       "its 101 rc/out frames without a battery voltage within 1 s)");
   EXPECT_EQ(cut.frames_without_battery, 101);
 
   flight = levelFlight();
   for (pe::ImuReading& imu : flight.streams.imu) imu.time_s += 100.0;  // the IMU only after the segment
   EXPECT_EQ(onlyProblem(flight, &cut), "f.bag: segment 1 (2-12 s): none of its 10 blocks has the attitude on every "
-                                       "frame (no IMU orientation within 1 s); skipped");
+                                       "frame (no IMU orientation within 1 s)");
   EXPECT_EQ(cut.blocks_without_attitude, 10);
 
   flight = levelFlight();
   flight.streams.rc_out.erase(flight.streams.rc_out.begin() + 15, flight.streams.rc_out.begin() + 150);
-  EXPECT_EQ(onlyProblem(flight, &cut), "f.bag: segment 1 (2-12 s) holds no rc/out frame; skipped");
+  EXPECT_EQ(onlyProblem(flight, &cut), "f.bag: segment 1 (2-12 s) holds no rc/out frame");
 }
 
 TEST(GapBlocks, WithoutImuTheWeightIsTheTruthAndItIsSaid) {
