@@ -175,6 +175,27 @@ TEST_F(DiagnoseGapTool, GoesOnWithTheFlightsItCanUse) {
   EXPECT_NE(renamed.out.find("read 1 of 1 flights, 112 readings"), std::string::npos) << renamed.out;
 }
 
+// The demo bag with a chunk corrupt half-way: the flight is read up to there, the segments before
+// it are diagnosed, and the one beyond says that the log breaks off there, not merely that the
+// segment lies outside it.
+TEST_F(DiagnoseGapTool, SaysASegmentBeyondADamagedLogsBreakLiesThere) {
+  std::string bag = slurp(repoPath("config/demo/demo_flight.bag"));
+  ASSERT_GT(bag.size(), 1000000u);
+  bag.replace(bag.size() * 3 / 4, 64, std::string(64, '\xff'));
+  std::ofstream(file("damaged.bag"), std::ios::binary) << bag;
+  writeManifest("m.yaml",
+                "flights:\n  - bag: damaged.bag\n    segments:\n      - {start: 11.88, end: 32.88, mass_kg: 1.315}\n"
+                "      - {start: 93.4, end: 114.4, mass_kg: 1.711}\n");
+  const ToolRun r = diagnose("m.yaml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("diagnose_gap: " + file("damaged.bag") + ": reading failed after "), std::string::npos) << r.err;
+  const std::string report = slurp(dir_ / "report" / "report.md");
+  EXPECT_NE(report.find("damaged.bag: segment 2 (93.4-114.4 s) lies outside the log's rc/out span 0.00-"),
+            std::string::npos)
+      << report;
+  EXPECT_NE(report.find(" s (the log is damaged and read only up to there); skipped"), std::string::npos) << report;
+}
+
 TEST_F(DiagnoseGapTool, RefusesBadArgumentsWithOneLine) {
   writeFlightBag(file("a.bag"), 10.0);
   writeManifest("m.yaml", "flights:\n  - bag: a.bag\n    segments:\n      - {start: 2, end: 8, mass_kg: 1.315}\n");
