@@ -59,6 +59,7 @@ struct FlightRead {
   std::optional<Flight> flight;
   std::string refusal;
   std::string stretches;  // a flight weighed as a whole: the airborne stretches found
+  bool by_topic = false;  // its signals read from topics (a rosbag), not by its format's own names
 };
 
 // A flight given `mass_kg:` for its airborne stretches: its segments, found in its log.
@@ -75,6 +76,27 @@ std::string weighAirborne(const PropulsionModel& model, const ManifestFlight& en
   return "airborne stretches found: " + text;
 }
 
+// Where the report says an untestable effect's signals come from: a bag's topics (those read, not
+// the defaults), and another format's signal names, as its reading notes list them
+// ("static_pressure: not in this log (no vehicle_air_data)"). `bags` and `others`: how many
+// flights of each were read.
+effects::SignalSources signalSources(const FlightLogOptions& options, int bags, int others) {
+  const auto source = [&](const std::string& name, const std::string& usual) {
+    const auto given = options.sources.find(name);
+    const std::string topic = given == options.sources.end() ? usual : given->second;
+    if (others == 0) return topic;
+    return (bags == 0 ? "" : topic + " in a bag, ") + "the log's " + name + (bags == 0 ? "" : " otherwise");
+  };
+  effects::SignalSources sources;
+  sources.battery = source("battery", kBatteryTopic);
+  sources.velocity = source("velocity", kVelocityTopic);
+  sources.imu = source("imu", kImuTopic);
+  for (input::Scalar scalar : input::kAllScalars) {
+    sources.inputs[input::index(scalar)] = source(input::spec(scalar).name, input::spec(scalar).topic);
+  }
+  return sources;
+}
+
 gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& options) {
   gap::DiagnosisConfig config;
   config.rotor_diameter_m = args.rotor_diameter_m;
@@ -89,24 +111,15 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
     std::replace(option.begin(), option.end(), '_', '-');
     throw ConfigError(option + ": " + e.problem());
   }
-  // The report says which topic an untestable effect needs: the topics read, not the defaults.
-  const auto source = [&options](const std::string& name, const char* usual) {
-    const auto given = options.sources.find(name);
-    return given == options.sources.end() ? std::string(usual) : given->second;
-  };
-  config.signal_sources.battery = source("battery", kBatteryTopic);
-  config.signal_sources.velocity = source("velocity", kVelocityTopic);
-  config.signal_sources.imu = source("imu", kImuTopic);
-  for (input::Scalar scalar : input::kAllScalars) {
-    config.signal_sources.inputs[input::index(scalar)] = source(input::spec(scalar).name, input::spec(scalar).topic);
-  }
+  // As a bag's until the flights are read (signalSources).
+  config.signal_sources = signalSources(options, 1, 0);
   return config;
 }
 
 FlightRead readFlight(const std::string& manifest, std::size_t index, const ManifestEntry& entry,
                       const FlightLogOptions& options, const PropulsionModel& model,
                       const gap::AirborneSettings& airborne) {
-  if (!entry.refusal.empty()) return {std::nullopt, entry.refusal, {}};
+  if (!entry.refusal.empty()) return {std::nullopt, entry.refusal, {}, false};
   const std::string at = manifest + ": flights[" + std::to_string(index) + "]";
   try {
     const std::unique_ptr<FlightLogReader> reader =
@@ -120,7 +133,7 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
         return {std::nullopt, at + ".segments[" + std::to_string(s) + "]: " + formatNumber(segments[s].start_s) +
                                   ".." + formatNumber(segments[s].end_s) + " s is outside " + reader->path() +
                                   " (0.." + formatPrintf("%.3f", reader->durationS()) + " s)",
-                {}};
+                {}, false};
       }
     }
     Flight flight{entry.flight.log, reader->read(options), segments, ""};
@@ -128,9 +141,9 @@ FlightRead readFlight(const std::string& manifest, std::size_t index, const Mani
     flight.damage = reader->refusal();
     const std::string stretches =
         entry.flight.airborne_mass_kg.empty() ? "" : weighAirborne(model, entry.flight, airborne, &flight);
-    return {std::move(flight), "", stretches};
+    return {std::move(flight), "", stretches, reader->readsNamedSources()};
   } catch (const InputError& e) {
-    return {std::nullopt, at + ": " + e.what(), {}};
+    return {std::nullopt, at + ": " + e.what(), {}, false};
   }
 }
 
@@ -333,6 +346,7 @@ int diagnose(const Arguments& args) {
   std::vector<std::string> refusals;
   std::vector<std::string> damages;
   std::size_t readings = 0;
+  int bags = 0;
   for (FlightRead& read : reads) {
     if (!read.flight) {
       std::fprintf(stderr, "diagnose_gap: %s\n", read.refusal.c_str());
@@ -349,10 +363,12 @@ int diagnose(const Arguments& args) {
     for (const std::string& note : read.flight->streams.notes) std::printf("  %s\n", note.c_str());
     if (!read.stretches.empty()) std::printf("  %s\n", read.stretches.c_str());
     flights.push_back(std::move(*read.flight));
+    bags += read.by_topic;
   }
   std::printf("read %zu of %zu flights, %zu readings, in %s s with %d jobs\n", flights.size(), reads.size(), readings,
               formatPrintf("%.2f", seconds).c_str(), args.jobs);
 
+  config.signal_sources = signalSources(options, bags, static_cast<int>(flights.size()) - bags);
   std::vector<std::string> problems = refusals;
   problems.insert(problems.end(), damages.begin(), damages.end());
   if (!flights.empty()) diagnoseAndReport(args, model, vehicle, flights, config, bench, problems);

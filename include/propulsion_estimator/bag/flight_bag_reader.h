@@ -68,6 +68,8 @@ class FlightBagReader : public FlightLogReader {
   FlightStreams read(const FlightBagTopics& topics, int motors) const;
   /// "" until read() met a chunk it could not read; then the line saying where.
   std::string refusal() const override { return refusal_; }
+  /// True: its signals are the topics FlightLogOptions::sources names.
+  bool readsNamedSources() const override { return true; }
 
  private:
   std::string path_;

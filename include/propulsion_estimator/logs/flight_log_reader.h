@@ -51,6 +51,9 @@ class FlightLogReader {
   /// byte <offset>: <message>: <problem>"; a rosbag's "<path>: reading failed after <t> s: <why>",
   /// known once read() has run): read() then gives what came before.
   virtual std::string refusal() const { return ""; }
+  /// Whether the log's signals are found where FlightLogOptions::sources names them (a rosbag's
+  /// topics); false: by the format's own names, which read() lists in FlightStreams::notes.
+  virtual bool readsNamedSources() const { return false; }
 };
 
 /// The whole of the flight log `path`, for a reader that parses it in memory. InputError

@@ -270,6 +270,12 @@ TEST_F(DiagnoseGapTool, SaysOnTheTerminalWhichMotorAndWhatTheOnboardCheckJudged)
                        "steady hover the node's check accepts at its default parameters); "),
             std::string::npos)
       << r.out;
+  // An effect a Crazyflie log cannot test names the signal as the log's reading notes do, not a
+  // bag's topic.
+  EXPECT_NE(slurp(fs::path(file("cf/report.yaml"))).find("reason: needs battery current on the log's battery\n"),
+            std::string::npos);
+  EXPECT_NE(r.out.find("  battery: pm.vbatMV (mV), no current (a Crazyflie has no current sensor)\n"), std::string::npos)
+      << r.out;
   // The flights lie inside the model's box but not where the bench logged: the report says so, not
   // that the box misses them.
   std::ifstream report(file("cf/report.md"));

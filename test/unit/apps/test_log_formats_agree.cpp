@@ -74,7 +74,7 @@ TEST(LogFormats, GiveTheSameDiagnosisOfOneFlight) {
       read_options.pwm_min_us = profile.autopilot.pwm_min_us;
       read_options.pwm_max_us = profile.autopilot.pwm_max_us;
     }
-    const std::vector<pe::Flight> flights = {{name, reader->read(read_options), result.segments}};
+    const std::vector<pe::Flight> flights = {{name, reader->read(read_options), result.segments, ""}};
     diagnoses.push_back(pe::gap::diagnoseGap(model, vehicle, flights, pe::gap::DiagnosisConfig{}, {}));
     replays.push_back(pe::gap::replayModelCheck(model, vehicle, flights.front().streams));
   }
