@@ -175,13 +175,10 @@ std::string motorVerdictLine(const gap::MotorBalance& motors) {
   if (!motors.suspect_channel) return "motors: no motor stands out";
   const auto gap = std::find_if(motors.motors.begin(), motors.motors.end(),
                                 [&](const gap::MotorGap& m) { return m.channel == *motors.suspect_channel; });
-  const std::string against = motors.basis == "reference"  ? "the vehicle's healthy flights"
-                              : motors.basis == "payloads" ? "the weighed payloads"
-                                                           : "the ideal balance";
   return "suspect motor: channel " + std::to_string(*motors.suspect_channel) + ", modelled " +
          (gap == motors.motors.end() ? std::string("n/a")
                                      : formatPrintf("%.1f", gap->thrust_gap_pct) + " +- " + formatPrintf("%.1f", gap->ci_pct)) +
-         " % above its share against " + against + "; it gives " +
+         " % above its share against " + gap::motorBasisAgainst(motors.basis) + "; it gives " +
          formatPrintf("%.1f", 100.0 * motors.suspect_thrust_factor, "n/a") + " % of its modelled thrust";
 }
 

@@ -223,7 +223,7 @@ std::string gapReportYaml(const Diagnosis& diagnosis) {
     }
     out << YAML::EndSeq;
   }
-  out << YAML::Key << "motor_basis" << YAML::Value << diagnosis.motors.basis;
+  out << YAML::Key << "motor_basis" << YAML::Value << motorBasisName(diagnosis.motors.basis);
   emitField(out, "reference_thrust_factor", diagnosis.motors.reference_thrust_factor);
   out << YAML::Key << "motors" << YAML::Value << YAML::BeginSeq;
   for (const MotorGap& motor : diagnosis.motors.motors) {
@@ -297,7 +297,7 @@ namespace {
 
 // What the motors were judged against, for the report.
 std::string basisText(const MotorBalance& balance) {
-  if (balance.basis == "reference") {
+  if (balance.basis == MotorBasis::kReference) {
     return "Each motor against this vehicle's own healthy flights (--reference): the fraction of its modelled thrust "
            "it lacks now that it did not then (negative: more), the yaw balance's change fitted beside it (a damaged "
            "propeller's drag torque changes too). A suspect lacks more than the motor gap threshold and three "
@@ -305,7 +305,7 @@ std::string basisText(const MotorBalance& balance) {
            "vehicle: its thrust on those flights was " +
            formatPrintf("%.3f", balance.reference_thrust_factor) + " of the model's (1: not weighed there).";
   }
-  if (balance.basis == "payloads") {
+  if (balance.basis == MotorBasis::kPayloads) {
     return "Each motor's gap that keeps the empty vehicle's mass moment the same with every payload (the payloads "
            "hang below base_link's origin). A gap resting on its search bound or without an interval names no motor, "
            "nor one within three times the spread healthy vehicles show (+-" +
@@ -359,7 +359,7 @@ void writeWhereSection(std::ostream& md, const Diagnosis& diagnosis) {
       md << "**Suspect motor: channel " << *diagnosis.motors.suspect_channel << "**. It gives "
          << formatPrintf("%.1f", 100.0 * diagnosis.motors.suspect_thrust_factor, "n/a")
          << " % of its modelled thrust ("
-         << (diagnosis.motors.basis == "payloads" ? "fitted to the weighed thrust" : "from its share of the thrust")
+         << (diagnosis.motors.basis == MotorBasis::kPayloads ? "fitted to the weighed thrust" : "from its share of the thrust")
          << "); that is applied before effects are sought.\n\n";
     } else {
       md << "No motor stands out.\n\n";

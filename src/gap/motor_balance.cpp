@@ -218,7 +218,7 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   rule.min_gap = config.motor_min_gap;
   rule.healthy_gap_std = config.motor_healthy_gap_std;
   if (config.motor_reference) {
-    balance.basis = "reference";
+    balance.basis = MotorBasis::kReference;
     takeVerdict(judgeAgainstReference(vehicle, *config.motor_reference, hoverUnits(views, blocks, false), rule), channels,
                 &balance);
     return balance;
@@ -240,12 +240,12 @@ MotorBalance balanceMotors(const ThrustViews& views, const Vehicle& vehicle, con
   }
   const SegmentMoments moments{vehicle, segment_sums, segment_mass, motors};
   if (heaviest - lightest > kMinPayloadSpreadKg && moments.segments() >= kMinMomentSegments) {
-    balance.basis = "payloads";
+    balance.basis = MotorBasis::kPayloads;
     balance.healthy_gap_std_pct = 100.0 * config.motor_healthy_gap_std;
     balanceByMoments(moments, channels, config.motor_min_gap, config.motor_healthy_gap_std, &balance);
     return balance;
   }
-  balance.basis = "ideal";
+  balance.basis = MotorBasis::kIdeal;
   balance.healthy_gap_std_pct = 100.0 * config.motor_healthy_gap_std;
   takeVerdict(judgeAgainstIdeal(vehicle, hoverUnits(views, blocks, true), rule), channels, &balance);
   return balance;

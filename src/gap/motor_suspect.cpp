@@ -25,7 +25,7 @@ void Diagnoser::balanceMotors() {
       // the weighed thrust; the shares give it as the model's excess over the motor's thrust,
       // whatever the weighed mass (a mass off by a few per cent would pull a fitted factor along).
       const double gap = motor.thrust_gap_pct / 100.0;
-      diagnosis_.motors.suspect_thrust_factor = diagnosis_.motors.basis == "payloads"
+      diagnosis_.motors.suspect_thrust_factor = diagnosis_.motors.basis == MotorBasis::kPayloads
                                                     ? suspectThrustFactor(static_cast<int>(k), gap)
                                                     : 1.0 / (1.0 + gap);
       views_.setMotorScale(static_cast<int>(k), diagnosis_.motors.suspect_thrust_factor);

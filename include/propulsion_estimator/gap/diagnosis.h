@@ -9,6 +9,7 @@
 #include "propulsion_estimator/common/not_a_number.h"
 #include "propulsion_estimator/estimation/motor_change.h"
 #include "propulsion_estimator/gap/bench_gap.h"
+#include "propulsion_estimator/gap/motor_basis.h"
 #include "propulsion_estimator/gap/parts_spread.h"
 #include "propulsion_estimator/gap/reference_effects.h"
 #include "propulsion_estimator/gap/residual_breakdown.h"
@@ -126,9 +127,7 @@ struct MotorGap {
 /// centre of thrust it implies (m, body frame).
 struct MotorBalance {
   std::vector<MotorGap> motors;        ///< one per motor, in rotor order
-  /// What each motor was judged against: "reference" (the vehicle's healthy flights), "payloads"
-  /// (the moments across weighed payloads) or "ideal" (the balance of identical rotors).
-  std::string basis;
+  MotorBasis basis = MotorBasis::kIdeal;  ///< what each motor was judged against
   /// Without a reference: the spread of the gap healthy vehicles show, % (one standard deviation);
   /// a suspect stands beyond three of it.
   double healthy_gap_std_pct = 0.0;

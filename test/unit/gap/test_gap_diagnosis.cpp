@@ -439,13 +439,13 @@ TEST_F(SyntheticFlights, WithOnePayloadAPropellerAt92PercentIsLocatedAgainstTheV
   weak.weak_motor = 2;
   weak.weak_factor = 0.92;
   const gap::Diagnosis with = gap::diagnoseGap(model_, vehicle_, flights(weak), config);
-  EXPECT_EQ(with.motors.basis, "reference");
+  EXPECT_EQ(with.motors.basis, gap::MotorBasis::kReference);
   ASSERT_TRUE(with.motors.suspect_channel);
   EXPECT_EQ(*with.motors.suspect_channel, 3);
   EXPECT_TRUE(with.selected.empty());
   // Without it, 9 % is within the spread healthy vehicles show against the ideal balance.
   const gap::Diagnosis without = gap::diagnoseGap(model_, vehicle_, flights(weak), gap::DiagnosisConfig());
-  EXPECT_EQ(without.motors.basis, "ideal");
+  EXPECT_EQ(without.motors.basis, gap::MotorBasis::kIdeal);
   EXPECT_FALSE(without.motors.suspect_channel);
 }
 
@@ -458,8 +458,8 @@ TEST_F(SyntheticFlights, WithoutAReferenceAPropellerAt75PercentIsNamed) {
   world.weak_motor = 2;
   world.weak_factor = 0.75;
   const gap::Diagnosis diagnosis = gap::diagnoseGap(model_, vehicle_, flights(world), gap::DiagnosisConfig());
-  EXPECT_NE(diagnosis.motors.basis, "reference");
-  std::string gaps = diagnosis.motors.basis + ":";
+  EXPECT_NE(diagnosis.motors.basis, gap::MotorBasis::kReference);
+  std::string gaps = std::string(gap::motorBasisName(diagnosis.motors.basis)) + ":";
   for (const gap::MotorGap& motor : diagnosis.motors.motors) gaps += " " + std::to_string(motor.thrust_gap_pct) + "+-" + std::to_string(motor.ci_pct);
   ASSERT_TRUE(diagnosis.motors.suspect_channel) << gaps;
   EXPECT_EQ(*diagnosis.motors.suspect_channel, 3);
@@ -561,7 +561,7 @@ TEST_F(SyntheticFlights, AMomentFitRestingOnItsBoundNamesNoMotor) {
   const std::vector<gap::Block> blocks = hoversWithAWeakMotor(
       vehicle_, 1, [&](double thrust, double voltage) { return pwmFor(thrust, voltage); }, false, 0.6);
   const gap::MotorBalance balance = gap::balanceMotors(views_, vehicle_, blocks, {1, 2, 3, 4}, partsAlike());
-  EXPECT_EQ(balance.basis, "payloads");
+  EXPECT_EQ(balance.basis, gap::MotorBasis::kPayloads);
   EXPECT_FALSE(balance.suspect_channel) << "channel " << *balance.suspect_channel;
 }
 

@@ -38,7 +38,7 @@ std::vector<pe::Flight> flightsOf(const std::string& manifest_name) {
   for (const pe::ManifestEntry& entry : pe::loadFlightManifestEntries(manifest)) {
     EXPECT_TRUE(entry.refusal.empty()) << entry.refusal;
     const pe::CrazyflieFlightReader reader(pe::resolveLogPath(manifest, entry.flight.log));
-    flights.push_back({entry.flight.log, reader.read(options), entry.flight.segments});
+    flights.push_back({entry.flight.log, reader.read(options), entry.flight.segments, reader.refusal()});
   }
   return flights;
 }
@@ -89,7 +89,7 @@ class CrazyPadFlights : public ::testing::Test {
 TEST_F(CrazyPadFlights, HealthyFlightsOfEachVehicleGetNoSuspectWithoutAReference) {
   for (const char* manifest : {"healthy_E8.manifest.yaml", "healthy_E9.manifest.yaml"}) {
     const gap::Diagnosis diagnosis = diagnose(flightsOf(manifest));
-    EXPECT_EQ(diagnosis.motors.basis, "ideal") << manifest;
+    EXPECT_EQ(diagnosis.motors.basis, gap::MotorBasis::kIdeal) << manifest;
     EXPECT_FALSE(diagnosis.motors.suspect_channel) << manifest << ": channel " << *diagnosis.motors.suspect_channel;
   }
 }
@@ -101,7 +101,7 @@ TEST_F(CrazyPadFlights, HealthyFlightsGetNoSuspectAgainstTheVehiclesOwnEarlierFl
   for (const auto& [reference, judged] : {std::make_pair(subset(e8, 0, 4), subset(e8, 4, 7)),
                                           std::make_pair(subset(e9, 0, 3), subset(e9, 3, 5))}) {
     const gap::Diagnosis diagnosis = diagnose(judged, reference);
-    EXPECT_EQ(diagnosis.motors.basis, "reference");
+    EXPECT_EQ(diagnosis.motors.basis, gap::MotorBasis::kReference);
     // Nor an effect: the healthy flights judge what they read within flights (2026-12-03).
     EXPECT_TRUE(diagnosis.selected.empty()) << judged.front().name;
     EXPECT_TRUE(diagnosis.ambiguous.empty()) << judged.front().name;
