@@ -214,13 +214,14 @@ void diagnoseAndReport(const Arguments& args, const PropulsionModel& model, cons
   if (reference) reference->thrust_factor = reference->current_thrust_factor = reference->rpm_thrust_factor = kNaN;
   corrected.setMotorReference(reference);
   // The healthy level folded into thrust_loss is no selected effect: the header says where it is from.
-  const double level = diagnosis.motors.reference_thrust_factor;
   saveModelFile(corrected, args.out + "/corrected_model.yaml",
                 args.model + " with the effects diagnose_gap selected (" +
                     (corrected_with.empty() ? std::string("none") : joined(corrected_with)) + ")" +
-                    (level == 1.0 ? std::string("")
-                                  : " and the vehicle's level on its healthy flights, " + formatPrintf("%.4f", level) +
-                                        " of the model's thrust, in thrust_loss") +
+                    (gap::foldsHealthyLevel(diagnosis)
+                         ? " and the vehicle's level on its healthy flights, " +
+                               formatPrintf("%.4f", diagnosis.motors.reference_thrust_factor) +
+                               " of the model's thrust, in thrust_loss"
+                         : std::string("")) +
                     "; see report.md");
 
   const gap::ResidualStats& overall = diagnosis.overall;

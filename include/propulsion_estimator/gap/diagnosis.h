@@ -317,6 +317,9 @@ struct Diagnosis {
 /// into thrust_loss: 1 - factor x (1 - fitted fraction). The model then predicts what the
 /// diagnosis scored.
 effects::ModelEffects correctedEffects(const Diagnosis& diagnosis);
+/// Whether correctedEffects() folds a healthy level into thrust_loss: a reference whose thrust
+/// factor is not 1.
+bool foldsHealthyLevel(const Diagnosis& diagnosis);
 
 /// Diagnoses the gap between `model` and the weighed flights, and the extra bench logs' gap.
 /// Flights or segments that cannot be used are listed in Diagnosis::problems and the rest is

@@ -270,6 +270,14 @@ TEST_F(DiagnoseGapTool, SaysOnTheTerminalWhichMotorAndWhatTheOnboardCheckJudged)
                        "steady hover the node's check accepts at its default parameters); "),
             std::string::npos)
       << r.out;
+  // The corrected model's header says the healthy level folded into thrust_loss is no selected
+  // effect.
+  EXPECT_EQ(slurp(fs::path(file("cf/corrected_model.yaml"))).rfind("# " + data + "crazyflie21_model.yaml with the effects "
+                                                                   "diagnose_gap selected (none) and the vehicle's "
+                                                                   "level on its healthy flights, 0.8171 of the "
+                                                                   "model's thrust, in thrust_loss; see report.md\n",
+                                                                   0),
+            0u);
   // An effect a Crazyflie log cannot test names the signal as the log's reading notes do, not a
   // bag's topic.
   EXPECT_NE(slurp(fs::path(file("cf/report.yaml"))).find("reason: needs battery current on the log's battery\n"),
