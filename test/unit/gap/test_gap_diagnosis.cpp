@@ -1214,3 +1214,33 @@ TEST(DiagnosisConfig, RefusesARegionalThresholdForAnEffectActingOnEveryBlockOrOu
             "min_later_regional_improvement_pct.ground_effect: 0.1 % is below min_regional_improvement_pct.ground_effect "
             "(0.14 %): what an earlier law leaves there is no less than what the model family's mismatch gives");
 }
+
+// A propeller at 85 % with the payloads' moments as the basis and no battery current: 15 % is
+// within three times what healthy vehicles show, so no suspect, but the motor stands out of its
+// balance; a thrust loss or an ESC offset fitted on every rotor would take up its quarter of the
+// vehicle's thrust, and on top of that motor's factor neither is left to name (lacking_motor.cpp).
+TEST_F(SyntheticFlights, AMotorThatLacksBelowASuspectsBarExplainsAGlobalEffectAway) {
+  World world;
+  world.weak_motor = 2;
+  world.weak_factor = 0.85;
+  world.no_current = true;
+  const gap::Diagnosis diagnosis = diagnose(world);
+  EXPECT_EQ(diagnosis.motors.basis, gap::MotorBasis::kPayloads);
+  EXPECT_FALSE(diagnosis.motors.suspect_channel);
+  EXPECT_TRUE(diagnosis.selected.empty()) << testing::PrintToString(diagnosis.selected.size());
+  const std::string explained = "not named: one motor explains it: channel 3 lacks 15.0 % +- 0.1 of its thrust in the "
+                                "moment balance (a suspect needs more than 20.1 %, three times the spread healthy "
+                                "vehicles show), and on top of that motor's factor it no longer lowers the held-out "
+                                "error as a name needs: what it takes up is that rotor's";
+  for (pe::effects::Kind kind : {pe::effects::Kind::kThrustLoss, pe::effects::Kind::kEscOffset}) {
+    const auto effect = std::find_if(diagnosis.effects.begin(), diagnosis.effects.end(),
+                                     [kind](const gap::EffectResult& e) { return e.kind == kind; });
+    ASSERT_NE(effect, diagnosis.effects.end());
+    EXPECT_EQ(effect->reason, explained) << pe::effects::kindName(kind);
+  }
+  // The same motor at 97 %: below what healthy rotors differ by, it explains nothing away.
+  world.weak_factor = 0.97;
+  for (const gap::EffectResult& effect : diagnose(world).effects) {
+    EXPECT_EQ(effect.reason.find("one motor explains it"), std::string::npos) << effect.reason;
+  }
+}
