@@ -247,6 +247,10 @@ def plot_gap(directory):
     current = 100.0 * (column(rows, "current_view_n") / truth - 1.0)
     corrected = 100.0 * (column(rows, "corrected_n") / truth - 1.0)
     predicted = model - corrected
+    # corrected_model.yaml carries more than the named effects (the vehicle's own, a suspect motor's
+    # factor, the healthy level): drawn whenever it differs from the plain model, and said so.
+    corrected_differs = bool(np.nanmax(np.abs(corrected - model), initial=0.0) > 1e-6)
+    corrected_name = ("with " + ", ".join(selected)) if selected else "corrected model (no effect named)"
     signals = [("pwm_us", "Mean pulse width (us)"), ("voltage_v", "Battery voltage (V)"),
                ("current_a", "Battery current (A)"), ("height_m", "Height above ground (m)"),
                ("vertical_speed_m_s", "Vertical speed (m/s)"), ("air_density_kg_m3", "Air density (kg/m^3)"),
@@ -256,9 +260,9 @@ def plot_gap(directory):
     for axis, (name, label) in zip(axes, present):
         x = column(rows, name)
         axis.scatter(x, model, s=4, alpha=0.35, label="model - truth")
-        if selected:
+        if corrected_differs:
             axis.scatter(x, predicted, s=4, alpha=0.35, color="tab:orange",
-                         label="predicted by " + ", ".join(selected))
+                         label="predicted by " + (", ".join(selected) if selected else "the corrected model"))
         axis.axhline(0.0, color="black", linewidth=0.6)
         axis.set_xlabel(label)
         axis.set_ylabel("Residual (% of truth)")
@@ -307,7 +311,7 @@ def plot_gap(directory):
     for flight in sorted(set(flights)):
         mask = flights == flight
         left.plot(time[mask], model[mask], ".", markersize=2, label="flight %d plain" % (flight + 1))
-        if selected:
+        if corrected_differs:
             left.plot(time[mask], corrected[mask], ".", markersize=2, label="flight %d corrected" % (flight + 1))
     left.axhline(0.0, color="black", linewidth=0.6)
     left.set_xlabel("Time in the log (s)")
@@ -316,8 +320,8 @@ def plot_gap(directory):
     left.legend(fontsize=7, loc="best", ncol=2)
     bins = np.linspace(np.nanmin([model.min(), corrected.min()]), np.nanmax([model.max(), corrected.max()]), 60)
     right.hist(model, bins=bins, alpha=0.6, label="plain model")
-    if selected:
-        right.hist(corrected, bins=bins, alpha=0.6, label="with " + ", ".join(selected))
+    if corrected_differs:
+        right.hist(corrected, bins=bins, alpha=0.6, label=corrected_name)
     right.set_xlabel("Residual (% of truth)")
     right.set_ylabel("Blocks")
     right.grid(alpha=0.3)

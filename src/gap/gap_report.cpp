@@ -503,11 +503,12 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
 
   md << "## Figures\n\n";
   md << "![Residual against each signal](gap_signals.png)\n\n"
-        "Residual against each signal; orange: what the selected effects predict.\n\n";
+        "Residual against each signal; orange: what corrected_model.yaml predicts (the selected effects, with the "
+        "vehicle's own and its motors').\n\n";
   md << "![The two views](gap_two_views.png)\n\n"
         "Current-view residual against PWM-view residual; the lines show how each family of causes moves them.\n\n";
   md << "![Before and after](gap_before_after.png)\n\n"
-        "Residual over time per flight, with the plain model and with the selected effects.\n";
+        "Residual over time per flight, with the plain model and with corrected_model.yaml.\n";
   return md.str();
 }
 
