@@ -1,5 +1,7 @@
 #include "bench_log_options.h"
 
+#include <utility>
+
 #include "propulsion_estimator/common/config_error.h"
 
 namespace propulsion_estimator {
@@ -9,6 +11,14 @@ SignPolicy signPolicy(const std::string& text) {
   if (text == "as-logged") return SignPolicy::kAsLogged;
   if (text == "negate") return SignPolicy::kNegate;
   return SignPolicy::kAuto;
+}
+
+// "QUANTITY=COLUMN": the quantity and the header column; ConfigError saying what is wrong. The
+// command line checks it when parsed and readOptions() reads it, through this one function.
+std::pair<BenchColumn, std::string> columnMap(const std::string& map) {
+  const std::size_t equals = map.find('=');
+  if (equals == std::string::npos) throw ConfigError(map + " is not QUANTITY=COLUMN");
+  return {benchColumnFromName(map.substr(0, equals)), map.substr(equals + 1)};
 }
 
 }  // namespace
@@ -29,10 +39,8 @@ void BenchLogOptions::addTo(CLI::App& app) {
                  "C)' (repeatable)")
       ->check(CLI::Validator(
           [](std::string& map) -> std::string {
-            const std::size_t equals = map.find('=');
-            if (equals == std::string::npos) return map + " is not QUANTITY=COLUMN";
             try {
-              benchColumnFromName(map.substr(0, equals));
+              columnMap(map);
             } catch (const ConfigError& e) {
               return e.what();
             }
@@ -52,9 +60,8 @@ BenchReadOptions BenchLogOptions::readOptions() const {
                     : decimal_ == "comma" ? DecimalSeparator::kComma
                                           : DecimalSeparator::kAuto;
   for (const std::string& map : maps_) {
-    const std::size_t equals = map.find('=');
-    if (equals == std::string::npos) throw ConfigError("--map " + map + ": expected QUANTITY=COLUMN");
-    options.columns[benchColumnFromName(map.substr(0, equals))] = map.substr(equals + 1);
+    const auto [column, header] = columnMap(map);
+    options.columns[column] = header;
   }
   return options;
 }
