@@ -247,10 +247,11 @@ def plot_gap(directory):
     current = 100.0 * (column(rows, "current_view_n") / truth - 1.0)
     corrected = 100.0 * (column(rows, "corrected_n") / truth - 1.0)
     predicted = model - corrected
-    # corrected_model.yaml carries more than the named effects (the vehicle's own, a suspect motor's
-    # factor, the healthy level): drawn whenever it differs from the plain model, and said so.
-    corrected_differs = bool(np.nanmax(np.abs(corrected - model), initial=0.0) > 1e-6)
-    corrected_name = ("with " + ", ".join(selected)) if selected else "corrected model (no effect named)"
+    # The diagnosis's correction holds more than the named effects (the vehicle's own, the healthy
+    # level, a suspect motor's factor): drawn whenever it differs from the plain model, and said so.
+    change = np.abs(corrected - model)
+    corrected_differs = bool(np.any(change[np.isfinite(change)] > 1e-6))
+    corrected_name = ("with " + ", ".join(selected)) if selected else "corrected (no effect named)"
     signals = [("pwm_us", "Mean pulse width (us)"), ("voltage_v", "Battery voltage (V)"),
                ("current_a", "Battery current (A)"), ("height_m", "Height above ground (m)"),
                ("vertical_speed_m_s", "Vertical speed (m/s)"), ("air_density_kg_m3", "Air density (kg/m^3)"),
@@ -262,7 +263,7 @@ def plot_gap(directory):
         axis.scatter(x, model, s=4, alpha=0.35, label="model - truth")
         if corrected_differs:
             axis.scatter(x, predicted, s=4, alpha=0.35, color="tab:orange",
-                         label="predicted by " + (", ".join(selected) if selected else "the corrected model"))
+                         label="predicted by " + (", ".join(selected) if selected else "the correction (no effect named)"))
         axis.axhline(0.0, color="black", linewidth=0.6)
         axis.set_xlabel(label)
         axis.set_ylabel("Residual (% of truth)")

@@ -59,7 +59,7 @@ struct FlightRead {
   std::optional<Flight> flight;
   std::string refusal;
   std::string stretches;  // a flight weighed as a whole: the airborne stretches found
-  bool by_topic = false;  // its signals read from topics (a rosbag), not by its format's own names
+  bool reads_named_sources = false;  // FlightLogReader::readsNamedSources(): a rosbag's topics
 };
 
 // A flight given `mass_kg:` for its airborne stretches: its segments, found in its log.
@@ -85,7 +85,7 @@ effects::SignalSources signalSources(const FlightLogOptions& options, int bags, 
     const auto given = options.sources.find(name);
     const std::string topic = given == options.sources.end() ? usual : given->second;
     if (others == 0) return topic;
-    return (bags == 0 ? "" : topic + " in a bag, ") + "the log's " + name + (bags == 0 ? "" : " otherwise");
+    return "the log's " + name + (bags == 0 ? "" : " (a bag's " + topic + ")");
   };
   effects::SignalSources sources;
   sources.battery = source("battery", kBatteryTopic);
@@ -97,7 +97,8 @@ effects::SignalSources signalSources(const FlightLogOptions& options, int bags, 
   return sources;
 }
 
-gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& options) {
+// The signal sources are set once the flights are read (signalSources).
+gap::DiagnosisConfig configOf(const Arguments& args) {
   gap::DiagnosisConfig config;
   config.rotor_diameter_m = args.rotor_diameter_m;
   config.rotor_time_constant_s = args.rotor_time_constant_s;
@@ -111,8 +112,6 @@ gap::DiagnosisConfig configOf(const Arguments& args, const FlightLogOptions& opt
     std::replace(option.begin(), option.end(), '_', '-');
     throw ConfigError(option + ": " + e.problem());
   }
-  // As a bag's until the flights are read (signalSources).
-  config.signal_sources = signalSources(options, 1, 0);
   return config;
 }
 
@@ -317,7 +316,7 @@ int diagnose(const Arguments& args) {
   const Vehicle vehicle = args.input.vehicle("diagnose_gap");
   const FlightLogOptions options =
       args.input.logOptions(static_cast<int>(vehicle.rotors.size()));
-  gap::DiagnosisConfig config = configOf(args, options);
+  gap::DiagnosisConfig config = configOf(args);
   if (!args.reference.empty()) {
     config.motor_reference = learnReference(args, model, vehicle, options, config, &config.reference_effects);
   } else if (model.motorReference()) {
@@ -361,7 +360,7 @@ int diagnose(const Arguments& args) {
     for (const std::string& note : read.flight->streams.notes) std::printf("  %s\n", note.c_str());
     if (!read.stretches.empty()) std::printf("  %s\n", read.stretches.c_str());
     flights.push_back(std::move(*read.flight));
-    bags += read.by_topic;
+    bags += read.reads_named_sources;
   }
   std::printf("read %zu of %zu flights, %zu readings, in %s s with %d jobs\n", flights.size(), reads.size(), readings,
               formatPrintf("%.2f", seconds).c_str(), args.jobs);

@@ -201,6 +201,14 @@ std::string segmentName(const Flight& flight, int index) {
          formatNumber(segment.end_s) + " s)";
 }
 
+// Why segment `index` of `flight` lies outside its log's rc/out span; a damaged log's break named
+// when the segment ends past it.
+std::string outsideTheLog(const Flight& flight, int index, double log_start, double log_end) {
+  const bool past_the_break = !flight.damage.empty() && flight.segments[index].end_s > log_end;
+  return segmentName(flight, index) + " lies outside the log's rc/out span " + formatPrintf("%.2f", log_start) + "-" +
+         formatPrintf("%.2f", log_end) + " s" + (past_the_break ? " (the log is damaged and read only up to there)" : "");
+}
+
 // Why a segment gave no block, with the counts.
 std::string nothingInSegment(const std::string& name, int without_attitude, int frames, int without_battery,
                              double timeout_s) {
@@ -237,7 +245,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
     return result;
   }
   if (!result.has_imu) {
-    result.problems.push_back(flight.name + ": no IMU; the vertical force is taken as the weight (level, steady flight)");
+    result.assumptions.push_back(flight.name + ": no IMU; the vertical force is taken as the weight (level, steady flight)");
   }
   const double log_start = streams.rc_out.front().time_s;
   const double log_end = streams.rc_out.back().time_s;
@@ -251,9 +259,7 @@ FlightBlocks cutIntoBlocks(const Flight& flight, int flight_index, const Vehicle
   for (int s = 0; s < static_cast<int>(flight.segments.size()); ++s) {
     const ManifestSegment& segment = flight.segments[s];
     if (segment.start_s < log_start || segment.end_s > log_end) {
-      result.skipped.push_back(segmentName(flight, s) + " lies outside the log's rc/out span " +
-                               formatPrintf("%.2f", log_start) + "-" + formatPrintf("%.2f", log_end) + " s" +
-                               (flight.damage.empty() ? "" : " (the log is damaged and read only up to there)"));
+      result.skipped.push_back(outsideTheLog(flight, s, log_start, log_end));
       continue;
     }
     Cursor<BatteryReading> battery(streams.battery);

@@ -55,7 +55,7 @@ void Diagnoser::cut() {
   std::vector<std::string> skipped;
   for (int f = 0; f < static_cast<int>(flights_.size()); ++f) {
     FlightBlocks cut = cutIntoBlocks(flights_[f], f, vehicle_, block_config, group);
-    for (const std::string& problem : cut.problems) diagnosis_.problems.push_back(problem);
+    for (const std::string& assumption : cut.assumptions) diagnosis_.problems.push_back(assumption);
     for (const std::string& reason : cut.skipped) {
       diagnosis_.problems.push_back(reason + "; skipped");
       skipped.push_back(reason);

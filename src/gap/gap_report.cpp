@@ -503,12 +503,12 @@ std::string gapReportMarkdown(const Diagnosis& diagnosis, const PropulsionModel&
 
   md << "## Figures\n\n";
   md << "![Residual against each signal](gap_signals.png)\n\n"
-        "Residual against each signal; orange: what corrected_model.yaml predicts (the selected effects, with the "
-        "vehicle's own and its motors').\n\n";
+        "Residual against each signal; orange: what the diagnosis's correction predicts: corrected_model.yaml's "
+        "effects and, when a motor is suspect, its factor (which the model file does not carry).\n\n";
   md << "![The two views](gap_two_views.png)\n\n"
         "Current-view residual against PWM-view residual; the lines show how each family of causes moves them.\n\n";
   md << "![Before and after](gap_before_after.png)\n\n"
-        "Residual over time per flight, with the plain model and with corrected_model.yaml.\n";
+        "Residual over time per flight, with the plain model and with the diagnosis's correction (as above).\n";
   return md.str();
 }
 

@@ -73,13 +73,14 @@ std::string Diagnoser::oneLackingMotorExplains(Kind kind, const std::vector<Kind
   const HeldOutPrediction base = weak.predictHeldOut(selected), with = weak.predictHeldOut(kinds);
   if (weak.improvesEnough(base, with, weak.improvementPValue(base, with, kind), kind)) return "";
   // What the balance's basis asks of a suspect (balanceMotors), which this motor does not reach.
+  const std::string min_gap = "more than " + formatNumber(100.0 * config_.motor_min_gap) + " % and three ";
+  const std::string healthy = formatPrintf("%.1f", diagnosis_.motors.healthy_gap_std_pct);
   const std::string suspect_needs =
-      diagnosis_.motors.basis == MotorBasis::kReference
-          ? "more than " + formatPrintf("%.0f", 100.0 * config_.motor_min_gap) +
-                " % and three standard errors of the reference's spread"
-          : "more than " +
-                formatPrintf("%.1f", std::max(100.0 * config_.motor_min_gap, 3.0 * diagnosis_.motors.healthy_gap_std_pct)) +
-                " %, three times the spread healthy vehicles show";
+      diagnosis_.motors.basis == MotorBasis::kReference ? min_gap + "standard errors of the reference's spread"
+      : diagnosis_.motors.basis == MotorBasis::kPayloads
+          ? min_gap + "times the +-" + healthy + " % spread healthy vehicles show"
+          : min_gap + "times its spread against the ideal balance (healthy vehicles' +-" + healthy +
+                " % with its own scatter)";
   return "not named: one motor explains it: channel " + std::to_string(motor.channel) + " lacks " +
          formatPrintf("%.1f", motor.thrust_gap_pct) + " % +- " + formatPrintf("%.1f", motor.ci_pct) +
          " of its thrust in the moment balance (a suspect needs " + suspect_needs +

@@ -5,6 +5,7 @@ namespace gap {
 
 const char* motorBasisName(MotorBasis basis) {
   switch (basis) {
+    case MotorBasis::kNone: return "none";
     case MotorBasis::kPayloads: return "payloads";
     case MotorBasis::kReference: return "reference";
     case MotorBasis::kIdeal: break;
@@ -14,6 +15,7 @@ const char* motorBasisName(MotorBasis basis) {
 
 const char* motorBasisAgainst(MotorBasis basis) {
   switch (basis) {
+    case MotorBasis::kNone: return "nothing";
     case MotorBasis::kPayloads: return "the weighed payloads";
     case MotorBasis::kReference: return "the vehicle's healthy flights";
     case MotorBasis::kIdeal: break;

@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "propulsion_estimator/common/atomic_file.h"
+#include "propulsion_estimator/common/config_error.h"
 #include "propulsion_estimator/common/number_format.h"
 #include "propulsion_estimator/common/input_error.h"
 #include "propulsion_estimator/common/text_file.h"
@@ -43,6 +44,22 @@ bool removeTareFile(const std::string& path) {
   const bool removed = std::filesystem::remove(path, error);
   if (error) throw InputError(path + ": cannot remove the tare file: " + error.message());
   return removed;
+}
+
+TareAtStart loadTareAtStart(const std::string& path, long long unix_time) {
+  try {
+    return {loadTareFile(path), ""};
+  } catch (const ConfigError& e) {
+    std::string refusal = std::string("refused: ") + e.what() + "; started without the tare";
+    try {
+      refusal += ", the file moved to " + setAsideTareFile(path, unix_time);
+    } catch (const InputError& moved) {
+      refusal += std::string("; ") + moved.what();
+    }
+    return {std::nullopt, refusal};
+  } catch (const InputError& e) {
+    return {std::nullopt, std::string("refused: ") + e.what() + "; started without the tare"};
+  }
 }
 
 std::string setAsideTareFile(const std::string& path, long long unix_time) {

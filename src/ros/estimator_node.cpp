@@ -188,26 +188,13 @@ void EstimatorNode::loadTare() {
   for (const std::string& stale : removeStaleTareTemporaries(params_.tare_file)) {
     ROS_WARN_STREAM("tare file: removed " << stale << ", left by a ~tare that was interrupted");
   }
-  std::optional<TareRecord> tare;
   // A tare file that cannot be read must not keep the node (required in the launch) from starting.
-  // Content that is not a tare is moved aside for the next ~tare; a file that cannot be read (a
-  // folder, no permission) is the user's and is left where it is (~tare cannot write there either),
-  // as the pack file keeper does.
-  try {
-    tare = loadTareFile(params_.tare_file);
-  } catch (const ConfigError& e) {
-    std::string message = std::string("refused: ") + e.what() + "; started without the tare";
-    try {
-      message += ", the file moved to " + setAsideTareFile(params_.tare_file, static_cast<long long>(std::time(nullptr)));
-    } catch (const InputError& moved) {
-      message += std::string("; ") + moved.what();
-    }
-    setTareFileStatus(DiagnosticStatus::WARN, message);
-    return;
-  } catch (const InputError& e) {
-    setTareFileStatus(DiagnosticStatus::WARN, std::string("refused: ") + e.what() + "; started without the tare");
+  const TareAtStart start = loadTareAtStart(params_.tare_file, static_cast<long long>(std::time(nullptr)));
+  if (!start.refusal.empty()) {
+    setTareFileStatus(DiagnosticStatus::WARN, start.refusal);
     return;
   }
+  const std::optional<TareRecord>& tare = start.record;
   if (!tare) {
     setTareFileStatus(DiagnosticStatus::OK, params_.tare_file + ": none yet");
   } else if (tare->model_fingerprint == model_fingerprint_) {

@@ -75,7 +75,7 @@ struct FlightBlocks {
   /// One line for each segment (or the whole flight) that gave no block, with why and the counts
   /// ("f.bag: segment 2 (15-30 s) lies outside the log's rc/out span 0.00-20.00 s").
   std::vector<std::string> skipped;
-  std::vector<std::string> problems;  ///< one line for each thing assumed in place of what is missing (no IMU)
+  std::vector<std::string> assumptions;  ///< one line for each thing assumed in place of what is missing (no IMU)
   bool has_imu = false;  ///< whether the flight had an IMU
   bool has_current = false;  ///< whether the flight had a battery current
   int frames_without_battery = 0;  ///< rc/out frames in segments with no battery voltage within the timeout

@@ -127,7 +127,7 @@ struct MotorGap {
 /// centre of thrust it implies (m, body frame).
 struct MotorBalance {
   std::vector<MotorGap> motors;        ///< one per motor, in rotor order
-  MotorBasis basis = MotorBasis::kIdeal;  ///< what each motor was judged against
+  MotorBasis basis = MotorBasis::kNone;  ///< what each motor was judged against
   /// Without a reference: the spread of the gap healthy vehicles show, % (one standard deviation);
   /// a suspect stands beyond three of it.
   double healthy_gap_std_pct = 0.0;

@@ -34,6 +34,18 @@ std::vector<std::string> removeStaleTareTemporaries(const std::string& path);
 /// Removes the file if it exists and returns whether it did; InputError naming it when it exists
 /// and cannot be removed.
 bool removeTareFile(const std::string& path);
+/// The tare a node starts with (TareAtStart).
+struct TareAtStart {
+  std::optional<TareRecord> record;  ///< nullopt when there is none or it was refused
+  /// "" or "refused: <why>; started without the tare", and ", the file moved to <aside>" (or why it
+  /// could not be) when it was moved aside.
+  std::string refusal;
+};
+/// The tare in `path` at a node's start, never stopping it: content that is not a tare
+/// (ConfigError) is moved aside (setAsideTareFile) for the next ~tare; a file that cannot be read
+/// (a folder, no permission) is the user's and is left where it is, as the pack file keeper does.
+/// Throws nothing.
+TareAtStart loadTareAtStart(const std::string& path, long long unix_time);
 /// Moves a tare file that cannot be used out of the way, to "<path>.bad-<unix_time>", and returns
 /// that name; InputError naming both when it cannot be moved.
 std::string setAsideTareFile(const std::string& path, long long unix_time);

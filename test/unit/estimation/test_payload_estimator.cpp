@@ -114,6 +114,36 @@ TEST(TareFile, RefusesAnEmptyFileAndDuplicateKeys) {
   std::filesystem::remove_all(folder);
 }
 
+// At a node's start: none, a tare, content that is not one (moved aside for the next ~tare), and a
+// folder named as the file (the user's: left where it is).
+TEST(TareFile, AtStartMovesRefusedContentAsideAndLeavesWhatCannotBeRead) {
+  const std::string folder = testing::TempDir() + "/pe_tare_at_start";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string path = folder + "/tare.yaml";
+  pe::TareAtStart none = pe::loadTareAtStart(path, 1700000000);
+  EXPECT_FALSE(none.record.has_value());
+  EXPECT_EQ(none.refusal, "");
+  pe::saveTareFile(path, {1.25, "m.yaml", "0123"});
+  const pe::TareAtStart tare = pe::loadTareAtStart(path, 1700000000);
+  ASSERT_TRUE(tare.record.has_value());
+  EXPECT_EQ(tare.record->empty_mass_kg, 1.25);
+  EXPECT_EQ(tare.refusal, "");
+  std::ofstream(path) << "empty_mass_kg: heavy\nmodel: m.yaml\nmodel_fingerprint: 0123\n";
+  const pe::TareAtStart refused = pe::loadTareAtStart(path, 1700000000);
+  EXPECT_FALSE(refused.record.has_value());
+  EXPECT_EQ(refused.refusal, "refused: " + path + ":1: empty_mass_kg: expected a number, got 'heavy'; started without "
+                             "the tare, the file moved to " + path + ".bad-1700000000");
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_TRUE(std::filesystem::exists(path + ".bad-1700000000"));
+  std::filesystem::create_directories(path);
+  const pe::TareAtStart unreadable = pe::loadTareAtStart(path, 1700000001);
+  EXPECT_EQ(unreadable.refusal, "refused: " + path + ": a folder, not a file; started without the tare");
+  EXPECT_TRUE(std::filesystem::is_directory(path));
+  EXPECT_FALSE(std::filesystem::exists(path + ".bad-1700000001"));
+  std::filesystem::remove_all(folder);
+}
+
 TEST(TareFile, WritesThroughAUniqueTemporaryFileAndLeavesNoneBehind) {
   const std::string folder = testing::TempDir() + "/pe_tare_unique";
   std::filesystem::remove_all(folder);

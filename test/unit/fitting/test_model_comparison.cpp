@@ -268,6 +268,13 @@ TEST(ModelComparison, RefusesBadHoverOptions) {
   } catch (const pe::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()), "--cell-cutoff-v must be positive and below --cell-full-v");
   }
+  options.hover = quad(1.0, 15, 4000);
+  try {
+    pe::fitting::compareModel("e300", thesisModel(), {}, options);
+    FAIL();
+  } catch (const pe::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "--cells 15 is outside 1..14");
+  }
 }
 
 TEST(ModelComparison, MaximumMotorTemperatureFromTheLogs) {

@@ -48,7 +48,7 @@ gap::BlockConfig config() {
 
 TEST(GapBlocks, AveragesEachBlockOfASegment) {
   const gap::FlightBlocks cut = gap::cutIntoBlocks(levelFlight(), 0, pe::Vehicle::quadX(0.225), config(), 0);
-  EXPECT_TRUE(cut.problems.empty());
+  EXPECT_TRUE(cut.assumptions.empty());
   EXPECT_TRUE(cut.has_imu);
   EXPECT_TRUE(cut.has_current);
   ASSERT_EQ(cut.blocks.size(), 10u);  // 2-12 s in 1 s blocks (the frame at 12 s alone is dropped)
@@ -83,7 +83,7 @@ TEST(GapBlocks, NamesASegmentOutsideTheLogAndAFlightWithoutBattery) {
   pe::Flight flight = levelFlight();
   flight.segments.push_back({15.0, 30.0, 1.0});
   const gap::FlightBlocks cut = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
-  EXPECT_TRUE(cut.problems.empty());
+  EXPECT_TRUE(cut.assumptions.empty());
   ASSERT_EQ(cut.skipped.size(), 1u);
   EXPECT_EQ(cut.skipped[0], "f.bag: segment 2 (15-30 s) lies outside the log's rc/out span 0.00-20.00 s");
   EXPECT_EQ(cut.blocks.size(), 10u);
@@ -92,6 +92,11 @@ TEST(GapBlocks, NamesASegmentOutsideTheLogAndAFlightWithoutBattery) {
   EXPECT_EQ(gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0).skipped,
             std::vector<std::string>{"f.bag: segment 2 (15-30 s) lies outside the log's rc/out span 0.00-20.00 s (the "
                                      "log is damaged and read only up to there)"});
+  // A segment before the log's first frame lies outside it whatever the damage.
+  flight.segments.back() = {-5.0, 1.0, 1.0};
+  EXPECT_EQ(gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0).skipped,
+            std::vector<std::string>{"f.bag: segment 2 (-5-1 s) lies outside the log's rc/out span 0.00-20.00 s"});
+  flight.segments.back() = {15.0, 30.0, 1.0};
   flight.damage.clear();
 
   flight.streams.battery.clear();
@@ -138,8 +143,8 @@ TEST(GapBlocks, WithoutImuTheWeightIsTheTruthAndItIsSaid) {
   const gap::FlightBlocks cut = gap::cutIntoBlocks(flight, 0, pe::Vehicle::quadX(0.225), config(), 0);
   ASSERT_FALSE(cut.blocks.empty());
   EXPECT_NEAR(cut.blocks[0].truth_n, 1.2 * pe::kStandardGravity, 1e-9);
-  ASSERT_EQ(cut.problems.size(), 1u);
-  EXPECT_NE(cut.problems[0].find("no IMU"), std::string::npos);
+  ASSERT_EQ(cut.assumptions.size(), 1u);
+  EXPECT_NE(cut.assumptions[0].find("no IMU"), std::string::npos);
 }
 
 

@@ -418,6 +418,9 @@ TEST_F(SyntheticFlights, WithoutGeometryAWeakMotorIsNotNamedAsAnEffect) {
   const gap::Diagnosis diagnosis =
       gap::diagnoseGap(model_, pe::Vehicle::upwardRotors(4), flights(world), gap::DiagnosisConfig());
   EXPECT_FALSE(diagnosis.motors.suspect_channel);
+  // No balance was made: report.yaml names no basis for it.
+  EXPECT_EQ(diagnosis.motors.basis, gap::MotorBasis::kNone);
+  EXPECT_NE(gap::gapReportYaml(diagnosis).find("motor_basis: none\n"), std::string::npos);
   for (const gap::EffectResult& effect : diagnosis.effects) {
     EXPECT_TRUE(std::find(diagnosis.selected.begin(), diagnosis.selected.end(), effect.kind) == diagnosis.selected.end())
         << pe::effects::kindName(effect.kind) << ": " << effect.reason;
@@ -1229,8 +1232,8 @@ TEST_F(SyntheticFlights, AMotorThatLacksBelowASuspectsBarExplainsAGlobalEffectAw
   EXPECT_FALSE(diagnosis.motors.suspect_channel);
   EXPECT_TRUE(diagnosis.selected.empty()) << testing::PrintToString(diagnosis.selected.size());
   const std::string explained = "not named: one motor explains it: channel 3 lacks 15.0 % +- 0.1 of its thrust in the "
-                                "moment balance (a suspect needs more than 20.1 %, three times the spread healthy "
-                                "vehicles show), and on top of that motor's factor it no longer lowers the held-out "
+                                "moment balance (a suspect needs more than 5 % and three times the +-6.7 % spread "
+                                "healthy vehicles show), and on top of that motor's factor it no longer lowers the held-out "
                                 "error as a name needs: what it takes up is that rotor's";
   for (pe::effects::Kind kind : {pe::effects::Kind::kThrustLoss, pe::effects::Kind::kEscOffset}) {
     const auto effect = std::find_if(diagnosis.effects.begin(), diagnosis.effects.end(),

@@ -44,9 +44,12 @@ pe::PackRecord learnedFromOneFlight(const pe::sim::SimParams& params, double pay
 // the pack record cannot know but from the chemistry's curve. 0..1; all three are the simulated
 // pack's reported percentage, rounded to 1 %.
 double unseenShare(double soc_60s, double soc_cutoff, double learned_lowest_soc) {
-  if (!(soc_60s > soc_cutoff)) return pe::kNaN;
+  if (!(soc_60s > soc_cutoff) || std::isnan(learned_lowest_soc)) return pe::kNaN;
   return std::clamp((std::min(soc_60s, learned_lowest_soc) - soc_cutoff) / (soc_60s - soc_cutoff), 0.0, 1.0);
 }
+
+// The charges the second flight starts from (issue 36's).
+constexpr std::array<double, 3> kSecondFlightStarts = {1.0, 0.6, 0.3};
 
 // The learning flight hovers this share of the full hover to the cut-off: it lands 12 % of its
 // hover short (issue 36 allows 15 %).
@@ -99,9 +102,8 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
     double learned_lowest_soc = pe::kNaN;
     const pe::PackRecord record =
         learnedFromOneFlight(params, payload_kg, kLearningHoverShare * *full_s, avionics_a, &learned_lowest_soc, given);
-    const std::array<double, 3> starts = {1.0, 0.6, 0.3};
-    for (std::size_t start = 0; start < starts.size(); ++start) {
-      const double initial_soc = starts[start];
+    for (std::size_t start = 0; start < kSecondFlightStarts.size(); ++start) {
+      const double initial_soc = kSecondFlightStarts[start];
       pe::CapabilityConfig user = given;
       user.pack = record;
       CapabilitySink sink(f450(), user, thesisModel(), {60.0});
@@ -152,7 +154,7 @@ void expectALearnedPackWithin10Percent(const std::vector<std::uint32_t>& seeds, 
   for (std::size_t k = 0; k < start_cases.size(); ++k) {
     std::printf("from %.0f %%: within 10 %% in %d of %d cases; on average %.0f %% of the charge left after 60 s lies "
                 "below the lowest the learning flight crossed\n",
-                k == 0 ? 100.0 : k == 1 ? 60.0 : 30.0, start_within[k], start_cases[k],
+                100.0 * kSecondFlightStarts[k], start_within[k], start_cases[k],
                 start_cases[k] ? 100.0 * start_unseen[k] / start_cases[k] : pe::kNaN);
   }
   std::printf("a pack flown once before: within 10 %% after 60 s in %d of %d cases; the truth in the 90 %% interval in "
