@@ -6,6 +6,7 @@ import concurrent.futures
 import datetime
 import os
 import shutil
+import subprocess
 import sys
 
 from . import database, description, references, report, task
@@ -27,14 +28,32 @@ def _tool(name, given):
     return found
 
 
-def _reference_models(fleet, diagnose_gap, workers):
+def _inputs_problem(vehicle, model, estimate):
+    """None when `estimate --check` accepts the vehicle's model (with its reference), URDF and
+    params, else the line naming the vehicle: a params file mistyped after its logs were all
+    estimated is heard of on the next run, not when a new log arrives."""
+    command = [estimate, "--model", model, "--urdf", vehicle.urdf, "--check"]
+    if vehicle.params:
+        command += ["--params", vehicle.params]
+    done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if done.returncode == 0:
+        return None
+    return "vehicle %s: its model, URDF and params cannot be estimated with: %s" % (
+        vehicle.name, task.last_line(done.stderr or done.stdout))
+
+
+def _reference_models(fleet, diagnose_gap, estimate, workers):
     """Each vehicle's model with its reference (learned on `workers` threads where a manifest is
-    given), and one line for each vehicle whose reference could not be learned."""
+    given), and one line for each vehicle whose reference could not be learned or whose inputs
+    `estimate --check` refuses."""
     folder = os.path.dirname(os.path.abspath(fleet.database))
 
     def learn(vehicle):
         try:
             model = references.model_for(vehicle, folder, diagnose_gap, sys.executable)
+            refused = _inputs_problem(vehicle, model, estimate)
+            if refused:
+                return vehicle.name, None, refused
             return vehicle.name, (model, references.motor_count(model) is not None), None
         except references.ReferenceError as error:
             return vehicle.name, None, str(error)
@@ -49,9 +68,10 @@ def _reference_models(fleet, diagnose_gap, workers):
 
 
 def jobs_for(fleet, connection, estimate, diagnose_gap, workers):
-    """The tasks of every log not kept yet, and one line for each vehicle whose reference failed."""
+    """The tasks of every log not kept yet, and one line for each vehicle that cannot be judged
+    (its reference not learned, its params refused)."""
     kept = database.seen(connection)
-    models, problems = _reference_models(fleet, diagnose_gap, workers)
+    models, problems = _reference_models(fleet, diagnose_gap, estimate, workers)
     jobs = []
     for name, log, pack, problem in description.logs(fleet):
         try:
@@ -140,7 +160,8 @@ def main(argv=None):
     unjudged = unjudged_vehicles(fleet, flights)
     for line in unjudged:
         print("fleet: %s" % line, file=sys.stderr)
-    return 1 if unjudged else 0
+    # A vehicle that cannot be judged fails the run even when all its logs were kept before.
+    return 1 if unjudged or problems else 0
 
 
 def unjudged_vehicles(fleet, flights):

@@ -41,7 +41,8 @@ def _refused(job, problem, digest):
                 warnings=[], hovers=[], rotors=[])
 
 
-def _last_line(text):
+def last_line(text):
+    """The last non-blank line of a tool's output: its one-line reason."""
     lines = [line.strip() for line in text.splitlines() if line.strip()]
     return lines[-1] if lines else "no output"
 
@@ -115,7 +116,7 @@ def _estimate_flight(job):
         done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         records = glob.glob(os.path.join(out, "*", "flight.yaml"))
         if done.returncode != 0 or len(records) != 1:
-            return _refused(job, _last_line(done.stderr or done.stdout), digest)
+            return _refused(job, last_line(done.stderr or done.stdout), digest)
         with open(records[0]) as handle:
             record = yaml.safe_load(handle)
     return row_of(job, digest, record)

@@ -46,6 +46,7 @@ struct Arguments {
   std::optional<double> disarmed_pwm_max_us;
   int jobs = 1;
   bool no_figures = false;
+  bool check = false;  // read and check the inputs, estimate nothing
   FlightInputOptions input;
   ReportPlotter plotter;
 };
@@ -202,6 +203,15 @@ std::vector<LogResult> estimateLogs(const Arguments& args, const std::vector<std
 int estimate(const Arguments& args) {
   const PropulsionModel model = loadModelFile(args.model);
   const Vehicle vehicle = args.input.vehicle("estimate");
+  if (args.check) {
+    offline::checkEstimateInputs(model, vehicle, optionsOf(args, vehicle));
+    std::printf("estimate: --check: %s, the vehicle and %s accepted\n", args.model.c_str(),
+                args.params.empty() ? "the node's default parameters" : args.params.c_str());
+    return 0;
+  }
+  // Required unless --check, which reads no log.
+  if (args.logs.empty()) throw UsageError("logs: at least one flight log is required (or --check)");
+  if (args.out.empty()) throw UsageError("--out is required (or --check)");
   const std::vector<std::string> logs = expandLogs(args.logs);
   if (!args.no_figures) args.plotter.check();
   std::filesystem::create_directories(args.out);
@@ -231,10 +241,11 @@ int runEstimate(int argc, char** argv) {
       "runs on a replayed bag, and writes per log estimates.csv, summary.md, flight.yaml and mass.png."};
   Arguments args;
   app.add_option("--model", args.model, "Model file (YAML), as estimator_node loads it")->required();
-  app.add_option("logs", args.logs, "Flight logs (a quoted pattern such as 'logs/*.ulg' is expanded)")->required();
-  app.add_option("--out", args.out, "Directory for the results: one folder per log and summary.md")
-      ->required()
-      ->check(folderToWrite());
+  CLI::Option* logs =
+      app.add_option("logs", args.logs, "Flight logs (a quoted pattern such as 'logs/*.ulg' is expanded); required unless --check");
+  CLI::Option* out = app.add_option("--out", args.out,
+                                    "Directory for the results: one folder per log and summary.md; required unless --check")
+                         ->check(folderToWrite());
   app.add_option("--empty-mass-kg", args.empty_mass_kg,
                  "The vehicle's empty mass, kg, for the payload (default: the URDF's inertials, else unknown)");
   app.add_option("--sample-rate-hz", args.sample_rate_hz,
@@ -248,6 +259,11 @@ int runEstimate(int argc, char** argv) {
                  "PWM at or below this is a disarmed or stopped motor (default the node's, 950 us; ArduPilot: 1000)");
   app.add_option("--jobs", args.jobs, "Logs estimated in parallel")->check(wholeNumberIn(1, 64))->capture_default_str();
   app.add_flag("--no-figures", args.no_figures, "Write no mass.png (no matplotlib needed)");
+  app.add_flag("--check", args.check,
+               "Read and check --model, the vehicle (--urdf or --frame) and --params as an estimate would, print "
+               "the parameters, and estimate nothing (no logs or --out then): exit 0 when all are accepted")
+      ->excludes(logs)
+      ->excludes(out);
   args.input.addTo(app);
   args.plotter.addTo(app);
   return runToolCommand("estimate", app, argc, argv, [&] { return estimate(args); });

@@ -217,7 +217,22 @@ void warnNoHover(const std::array<std::uint64_t, kBlockerCount>& blockers, std::
                       " % of them)");
 }
 
+// The node's configuration of a session, from the options.
+OnboardConfig onboardConfig(const EstimateOptions& options) {
+  OnboardConfig config;
+  config.estimator = options.estimator;
+  config.capability = options.capability;
+  config.esc_telemetry = options.esc_telemetry;
+  return config;
+}
+
 }  // namespace
+
+void checkEstimateInputs(const PropulsionModel& model, const Vehicle& vehicle, const EstimateOptions& options) {
+  options.validate(vehicle.rotors.size());
+  // Made and dropped: its constructor refuses what the session could not run with.
+  [[maybe_unused]] const OnboardSession session(model, vehicle, onboardConfig(options));
+}
 
 void EstimateOptions::validate(std::size_t rotors) const {
   estimator.validate(rotors);
@@ -228,11 +243,7 @@ void EstimateOptions::validate(std::size_t rotors) const {
 FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                               const EstimateOptions& options) {
   options.validate(vehicle.rotors.size());
-  OnboardConfig config;
-  config.estimator = options.estimator;
-  config.capability = options.capability;
-  config.esc_telemetry = options.esc_telemetry;
-  OnboardSession session(model, vehicle, config);
+  OnboardSession session(model, vehicle, onboardConfig(options));
   RateLimiter limiter(options.sample_rate_hz);
   EpisodeTracker episodes(session.capabilityEstimator(), options.estimator.payload.episode_gap_s);
   std::array<std::uint64_t, kBlockerCount> blockers{};

@@ -92,6 +92,10 @@ struct FlightEstimate {
 /// (see EstimateOptions::validate).
 FlightEstimate estimateFlight(const PropulsionModel& model, const Vehicle& vehicle, const FlightStreams& streams,
                               const EstimateOptions& options);
+/// What estimateFlight() refuses before it reads a message: options that do not fit the vehicle, or
+/// a session the model and the vehicle cannot make (a motor reference for other rotors).
+/// ConfigError as estimateFlight; nothing when a log would be estimated.
+void checkEstimateInputs(const PropulsionModel& model, const Vehicle& vehicle, const EstimateOptions& options);
 
 }  // namespace offline
 }  // namespace propulsion_estimator

@@ -161,6 +161,34 @@ TEST(EstimateTool, TakesTheNodesParametersFromAFileAsALaunchFileLoadsThem) {
 // A rosbag damaged part-way, as a ULog or DataFlash log: a chunk whose compressed data is corrupt
 // ends the flight there and the hovers before it are estimated, the reader's line among the
 // warnings (the log named once); a bag cut short or never closed is refused with the remedy.
+// --check reads the model, the vehicle and the parameters as an estimate would and estimates
+// nothing: a fleet asks it whether a vehicle's parameters still hold before any log arrives.
+TEST(EstimateTool, ChecksTheModelTheVehicleAndTheParametersWithoutALog) {
+  const std::filesystem::path dir = freshDirectory("check");
+  const std::string good = (dir / "good.yaml").string(), typo = (dir / "typo.yaml").string();
+  std::ofstream(good) << "hover:\n  window_s: 3\n";
+  std::ofstream(typo) << "hover:\n  windw_s: 3\n";
+  const ToolRun accepted = runTool(PE_ESTIMATE, kModel + " --frame quad_x --arm-m 0.225 --params " + quoted(good) + " --check", dir);
+  EXPECT_EQ(accepted.status, 0) << accepted.err;
+  EXPECT_NE(accepted.out.find("  hover: window_s 3,"), std::string::npos) << accepted.out;
+  EXPECT_NE(accepted.out.find("estimate: --check: " + repoPath("config/e300_dji2212_dji9443.yaml") +
+                              ", the vehicle and " + good + " accepted\n"),
+            std::string::npos)
+      << accepted.out;
+  const ToolRun refused = runTool(PE_ESTIMATE, kModel + " --params " + quoted(typo) + " --check", dir);
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_EQ(refused.err, "estimate: " + typo + ": hover/windw_s: unknown parameter (see the README's parameter table)\n");
+  const ToolRun with_log = runTool(PE_ESTIMATE, kModel + " --check a.ulg", dir);
+  EXPECT_EQ(with_log.status, 2);
+  EXPECT_EQ(with_log.err, "estimate: logs excludes --check (see --help)\n");
+  const ToolRun nothing = runTool(PE_ESTIMATE, kModel + " --out " + quoted((dir / "out").string()), dir);
+  EXPECT_EQ(nothing.status, 2);
+  EXPECT_EQ(nothing.err, "estimate: logs: at least one flight log is required (or --check) (see --help)\n");
+  const ToolRun nowhere = runTool(PE_ESTIMATE, kModel + " a.ulg", dir);
+  EXPECT_EQ(nowhere.status, 2);
+  EXPECT_EQ(nowhere.err, "estimate: --out is required (or --check) (see --help)\n");
+}
+
 TEST(EstimateTool, EstimatesABagUpToItsDamageAndNamesTheRemedyForOneCutShort) {
   const std::filesystem::path dir = freshDirectory("damaged_bag");
   const std::string demo = slurp(repoPath("config/demo/demo_flight.bag"));
