@@ -29,12 +29,13 @@ def _tool(name, given):
 
 
 def _inputs_problem(vehicle, model, estimate):
-    """None when `estimate --check` accepts the vehicle's model (with its reference), URDF and
-    params, else the line naming the vehicle: a params file mistyped after its logs were all
-    estimated is heard of on the next run, not when a new log arrives."""
-    command = [estimate, "--model", model, "--urdf", vehicle.urdf, "--check"]
-    if vehicle.params:
-        command += ["--params", vehicle.params]
+    """None when `estimate --check` accepts the vehicle's model (with its reference), URDF, params
+    and empty mass, else the line naming the vehicle: a params file mistyped after its logs were all
+    estimated is heard of on the next run, not when a new log arrives. `estimate` None: not checked
+    (the tool runs on the workers only)."""
+    if estimate is None:
+        return None
+    command = task.estimate_inputs(estimate, model, vehicle.urdf, vehicle.params, vehicle.empty_mass_kg) + ["--check"]
     done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     if done.returncode == 0:
         return None
@@ -71,7 +72,13 @@ def jobs_for(fleet, connection, estimate, diagnose_gap, workers):
     """The tasks of every log not kept yet, and one line for each vehicle that cannot be judged
     (its reference not learned, its params refused)."""
     kept = database.seen(connection)
-    models, problems = _reference_models(fleet, diagnose_gap, estimate, workers)
+    # With a scheduler, --estimate may name the workers' tool: the vehicles are then checked there,
+    # with each log, and this machine says so.
+    checker = estimate if shutil.which(estimate) else None
+    if checker is None:
+        print("fleet: %s cannot be run here: each vehicle's inputs are checked with its logs only" % estimate,
+              file=sys.stderr)
+    models, problems = _reference_models(fleet, diagnose_gap, checker, workers)
     jobs = []
     for name, log, pack, problem in description.logs(fleet):
         try:

@@ -93,6 +93,17 @@ def estimate_flight(job):
                         job.get("digest") or "unreadable:" + job["log"])
 
 
+def estimate_inputs(estimate, model, urdf, params, empty_mass_kg):
+    """The estimate command line's vehicle part, the same for a log's estimate and for the fleet's
+    `--check` of the vehicle (run.py): what one accepts, the other does."""
+    command = [estimate, "--model", model, "--urdf", urdf]
+    if params:
+        command += ["--params", params]
+    if empty_mass_kg is not None:
+        command += ["--empty-mass-kg", repr(empty_mass_kg)]
+    return command
+
+
 def _estimate_flight(job):
     """The row of one log. `job`: vehicle, log, pack (or None), estimate (the tool), model, urdf,
     params (or None), empty_mass_kg (or None), reference ('vehicle' or 'none'), problem (a log
@@ -107,12 +118,9 @@ def _estimate_flight(job):
     if job.get("problem"):
         return _refused(job, job["problem"], digest)
     with tempfile.TemporaryDirectory(prefix="fleet-") as out:
-        command = [job["estimate"], "--model", job["model"], "--urdf", job["urdf"], "--out", out, "--no-figures",
-                   "--sample-rate-hz", "1", job["log"]]
-        if job.get("params"):
-            command += ["--params", job["params"]]
-        if job.get("empty_mass_kg") is not None:
-            command += ["--empty-mass-kg", repr(job["empty_mass_kg"])]
+        command = estimate_inputs(job["estimate"], job["model"], job["urdf"], job.get("params"),
+                                  job.get("empty_mass_kg")) + ["--out", out, "--no-figures", "--sample-rate-hz", "1",
+                                                               job["log"]]
         done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         records = glob.glob(os.path.join(out, "*", "flight.yaml"))
         if done.returncode != 0 or len(records) != 1:

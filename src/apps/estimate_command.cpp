@@ -201,17 +201,18 @@ std::vector<LogResult> estimateLogs(const Arguments& args, const std::vector<std
 }
 
 int estimate(const Arguments& args) {
+  // Required unless --check, which reads no log: said before any file is read.
+  if (!args.check && args.logs.empty()) throw UsageError("logs: at least one flight log is required (or --check)");
+  if (!args.check && args.out.empty()) throw UsageError("--out is required (or --check)");
   const PropulsionModel model = loadModelFile(args.model);
   const Vehicle vehicle = args.input.vehicle("estimate");
   if (args.check) {
+    args.input.logOptions(static_cast<int>(vehicle.rotors.size()));
     offline::checkEstimateInputs(model, vehicle, optionsOf(args, vehicle));
     std::printf("estimate: --check: %s, the vehicle and %s accepted\n", args.model.c_str(),
                 args.params.empty() ? "the node's default parameters" : args.params.c_str());
     return 0;
   }
-  // Required unless --check, which reads no log.
-  if (args.logs.empty()) throw UsageError("logs: at least one flight log is required (or --check)");
-  if (args.out.empty()) throw UsageError("--out is required (or --check)");
   const std::vector<std::string> logs = expandLogs(args.logs);
   if (!args.no_figures) args.plotter.check();
   std::filesystem::create_directories(args.out);
@@ -260,8 +261,9 @@ int runEstimate(int argc, char** argv) {
   app.add_option("--jobs", args.jobs, "Logs estimated in parallel")->check(wholeNumberIn(1, 64))->capture_default_str();
   app.add_flag("--no-figures", args.no_figures, "Write no mass.png (no matplotlib needed)");
   app.add_flag("--check", args.check,
-               "Read and check --model, the vehicle (--urdf or --frame) and --params as an estimate would, print "
-               "the parameters, and estimate nothing (no logs or --out then): exit 0 when all are accepted")
+               "Read and check --model, the vehicle (--urdf or --frame), --params and the log options as an estimate "
+               "would, print the parameters given, and estimate nothing (no logs or --out then): exit 0 when all are "
+               "accepted")
       ->excludes(logs)
       ->excludes(out);
   args.input.addTo(app);

@@ -198,7 +198,8 @@ def test_a_vehicle_whose_logs_are_all_refused_fails_the_run_until_mended(small_f
     assert done.returncode == 0, done.stdout + done.stderr
     assert "fleet: 3 new flights (1 refused)" in done.stdout, done.stdout
     assert run().returncode == 0  # the bad file tried again alone
-    # A typo made once every log is kept: no log runs, yet the run fails and names it.
+    # A typo made once every good log is kept (only the bad file is tried again): the run fails and
+    # names it, and passes again once it is mended.
     params["hover_typo"] = 1.0
     with open(os.path.join(folder, "node_params.yaml"), "w") as handle:
         yaml.safe_dump(params, handle)
@@ -207,3 +208,7 @@ def test_a_vehicle_whose_logs_are_all_refused_fails_the_run_until_mended(small_f
     assert "fleet: 1 new flights (1 refused)" in done.stdout, done.stdout
     assert ("fleet: vehicle v01: its model, URDF and params cannot be estimated with: estimate: %s: hover_typo: "
             "unknown parameter" % os.path.join(folder, "node_params.yaml")) in done.stderr, done.stderr
+    del params["hover_typo"]
+    with open(os.path.join(folder, "node_params.yaml"), "w") as handle:
+        yaml.safe_dump(params, handle)
+    assert run().returncode == 0

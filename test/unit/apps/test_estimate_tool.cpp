@@ -158,9 +158,6 @@ TEST(EstimateTool, TakesTheNodesParametersFromAFileAsALaunchFileLoadsThem) {
                             ": hover/window_s: must be a positive number, got -1\n");
 }
 
-// A rosbag damaged part-way, as a ULog or DataFlash log: a chunk whose compressed data is corrupt
-// ends the flight there and the hovers before it are estimated, the reader's line among the
-// warnings (the log named once); a bag cut short or never closed is refused with the remedy.
 // --check reads the model, the vehicle and the parameters as an estimate would and estimates
 // nothing: a fleet asks it whether a vehicle's parameters still hold before any log arrives.
 TEST(EstimateTool, ChecksTheModelTheVehicleAndTheParametersWithoutALog) {
@@ -187,8 +184,22 @@ TEST(EstimateTool, ChecksTheModelTheVehicleAndTheParametersWithoutALog) {
   const ToolRun nowhere = runTool(PE_ESTIMATE, kModel + " a.ulg", dir);
   EXPECT_EQ(nowhere.status, 2);
   EXPECT_EQ(nowhere.err, "estimate: --out is required (or --check) (see --help)\n");
+  const ToolRun with_out = runTool(PE_ESTIMATE, kModel + " --check --out " + quoted((dir / "out").string()), dir);
+  EXPECT_EQ(with_out.status, 2);
+  EXPECT_EQ(with_out.err, "estimate: --out excludes --check (see --help)\n");
+  // The session is made: a model whose motor reference is a hexacopter's is refused for a quad.
+  const std::string hexa = (dir / "hexa.yaml").string();
+  std::ofstream(hexa) << slurp(repoPath("config/e300_dji2212_dji9443.yaml"))
+                      << "motor_reference: {flights: 3, shares: [0.15, 0.15, 0.15, 0.15, 0.2, 0.2], share_std: [0.001, "
+                         "0.001, 0.001, 0.001, 0.001, 0.001], gap_std: [0.002, 0.002, 0.002, 0.002, 0.002, 0.002]}\n";
+  const ToolRun mismatched = runTool(PE_ESTIMATE, "--model " + quoted(hexa) + " --frame quad_x --arm-m 0.225 --check", dir);
+  EXPECT_EQ(mismatched.status, 1);
+  EXPECT_NE(mismatched.err.find("6 shares for 4 rotors"), std::string::npos) << mismatched.err;
 }
 
+// A rosbag damaged part-way, as a ULog or DataFlash log: a chunk whose compressed data is corrupt
+// ends the flight there and the hovers before it are estimated, the reader's line among the
+// warnings (the log named once); a bag cut short or never closed is refused with the remedy.
 TEST(EstimateTool, EstimatesABagUpToItsDamageAndNamesTheRemedyForOneCutShort) {
   const std::filesystem::path dir = freshDirectory("damaged_bag");
   const std::string demo = slurp(repoPath("config/demo/demo_flight.bag"));
