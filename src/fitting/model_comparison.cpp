@@ -55,10 +55,7 @@ BatteryPack HoverOptions::pack() const {
 void HoverOptions::validate() const {
   if (!(vehicle_mass_kg > 0.0)) throw ConfigError("--mass-kg must be positive");
   if (motors < 1) throw ConfigError("--motors must be at least 1");
-  if (cells < kMinCellsInSeries || cells > kMaxCellsInSeries) {
-    throw ConfigError("--cells " + std::to_string(cells) + " is outside " + std::to_string(kMinCellsInSeries) + ".." +
-                      std::to_string(kMaxCellsInSeries));
-  }
+  if (const std::string problem = cellsInSeriesProblem(cells); !problem.empty()) throw ConfigError("--cells " + problem);
   if (!(capacity_mah > 0.0)) throw ConfigError("--capacity-mah must be positive");
   if (!(usable_fraction > 0.0 && usable_fraction <= 1.0)) throw ConfigError("--usable-fraction must be in (0, 1]");
   if (!(cell_cutoff_v > 0.0 && cell_cutoff_v < cell_full_v)) {

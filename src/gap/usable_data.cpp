@@ -58,15 +58,13 @@ std::optional<std::string> outsideTheDomain(const std::vector<Block>& blocks, co
   // Inside the box yet outside the domain: the bench logged other voltages at these pulse widths
   // (a battery's sag under load), which is what the line must name.
   const auto [covered_low, covered_high] = domain.voltageRange(0.5 * (pwm_low + pwm_high));
+  const std::string volts = formatPrintf("%.2f", domain.voltage_min_v) + "-" + formatPrintf("%.2f", domain.voltage_max_v) + " V";
+  const std::string pulses = formatPrintf("%.0f", domain.pwm_min_us) + "-" + formatPrintf("%.0f", domain.pwm_max_us) + " us";
   const std::string where =
-      in_the_box ? "inside the model's box (" + formatPrintf("%.2f", domain.voltage_min_v) + "-" +
-                       formatPrintf("%.2f", domain.voltage_max_v) + " V, " + formatPrintf("%.0f", domain.pwm_min_us) +
-                       "-" + formatPrintf("%.0f", domain.pwm_max_us) + " us), but at " +
+      in_the_box ? "inside the model's box (" + volts + ", " + pulses + "), but at " +
                        formatPrintf("%.0f", 0.5 * (pwm_low + pwm_high)) + " us the bench logged only " +
                        formatPrintf("%.2f", covered_low) + "-" + formatPrintf("%.2f", covered_high) + " V"
-                 : "the model covers " + formatPrintf("%.2f", domain.voltage_min_v) + "-" +
-                       formatPrintf("%.2f", domain.voltage_max_v) + " V and " + formatPrintf("%.0f", domain.pwm_min_us) +
-                       "-" + formatPrintf("%.0f", domain.pwm_max_us) + " us";
+                 : "the model covers " + volts + " and " + pulses;
   return std::to_string(outside) + " of " + std::to_string(blocks.size()) +
          " blocks lie outside the model's domain: the flights' battery reads " + formatPrintf("%.2f", volt_low) + "-" +
          formatPrintf("%.2f", volt_high) + " V and their pulse widths " + formatPrintf("%.0f", pwm_low) + "-" +

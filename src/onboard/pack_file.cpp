@@ -34,10 +34,7 @@ PackRecord parsePackFile(const std::string& text, const std::string& source) {
   record.pack_id = root.text("pack_id");
   if (record.pack_id.empty()) root.fail("pack_id", "must not be empty");
   record.cells = root.integer("cells");
-  if (record.cells < kMinCellsInSeries || record.cells > kMaxCellsInSeries) {
-    root.fail("cells", std::to_string(record.cells) + " is outside " + std::to_string(kMinCellsInSeries) + ".." +
-                           std::to_string(kMaxCellsInSeries));
-  }
+  if (const std::string problem = cellsInSeriesProblem(record.cells); !problem.empty()) root.fail("cells", problem);
   record.flights = root.integer("flights");
   if (record.flights < 0) root.fail("flights", "must not be negative");
   record.capacity_ah = root.optionalNumber("capacity_ah");

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <string>
+
 namespace propulsion_estimator {
 
 /// The packs the package takes, in cells in series: 1S to 14S (58.8 V full, the largest pack
@@ -9,5 +11,13 @@ namespace propulsion_estimator {
 inline constexpr int kMinCellsInSeries = 1;
 inline constexpr int kMaxCellsInSeries = 14;
 ///@}
+
+/// "15 is outside 1..14" for a count of cells outside the range, "" within it: the problem a
+/// reader that names its own field (a file's line, an option) says. Throws nothing.
+inline std::string cellsInSeriesProblem(int cells) {
+  if (cells >= kMinCellsInSeries && cells <= kMaxCellsInSeries) return "";
+  return std::to_string(cells) + " is outside " + std::to_string(kMinCellsInSeries) + ".." +
+         std::to_string(kMaxCellsInSeries);
+}
 
 }  // namespace propulsion_estimator

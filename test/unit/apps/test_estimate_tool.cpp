@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -175,18 +177,19 @@ TEST(EstimateTool, ChecksTheModelTheVehicleAndTheParametersWithoutALog) {
   const ToolRun refused = runTool(PE_ESTIMATE, kModel + " --params " + quoted(typo) + " --check", dir);
   EXPECT_EQ(refused.status, 1);
   EXPECT_EQ(refused.err, "estimate: " + typo + ": hover/windw_s: unknown parameter (see the README's parameter table)\n");
-  const ToolRun with_log = runTool(PE_ESTIMATE, kModel + " --check a.ulg", dir);
-  EXPECT_EQ(with_log.status, 2);
-  EXPECT_EQ(with_log.err, "estimate: logs excludes --check (see --help)\n");
-  const ToolRun nothing = runTool(PE_ESTIMATE, kModel + " --out " + quoted((dir / "out").string()), dir);
-  EXPECT_EQ(nothing.status, 2);
-  EXPECT_EQ(nothing.err, "estimate: logs: at least one flight log is required (or --check) (see --help)\n");
-  const ToolRun nowhere = runTool(PE_ESTIMATE, kModel + " a.ulg", dir);
-  EXPECT_EQ(nowhere.status, 2);
-  EXPECT_EQ(nowhere.err, "estimate: --out is required (or --check) (see --help)\n");
-  const ToolRun with_out = runTool(PE_ESTIMATE, kModel + " --check --out " + quoted((dir / "out").string()), dir);
-  EXPECT_EQ(with_out.status, 2);
-  EXPECT_EQ(with_out.err, "estimate: --out excludes --check (see --help)\n");
+  // Usage errors (exit 2): --check beside what it does not read, and what an estimate needs.
+  const std::vector<std::pair<std::string, std::string>> usage = {
+      {" --check a.ulg", "estimate: logs excludes --check (see --help)\n"},
+      {" --out " + quoted((dir / "out").string()),
+       "estimate: logs: at least one flight log is required (or --check) (see --help)\n"},
+      {" a.ulg", "estimate: --out is required (or --check) (see --help)\n"},
+      {" --check --out " + quoted((dir / "out").string()), "estimate: --out excludes --check (see --help)\n"},
+  };
+  for (const auto& [arguments, err] : usage) {
+    const ToolRun run = runTool(PE_ESTIMATE, kModel + arguments, dir);
+    EXPECT_EQ(run.status, 2) << arguments;
+    EXPECT_EQ(run.err, err) << arguments;
+  }
   // The session is made: a model whose motor reference is a hexacopter's is refused for a quad.
   const std::string hexa = (dir / "hexa.yaml").string();
   std::ofstream(hexa) << slurp(repoPath("config/e300_dji2212_dji9443.yaml"))
